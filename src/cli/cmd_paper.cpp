@@ -1,0 +1,29 @@
+#include "cli/commands.h"
+#include "experiment/paper.h"
+
+namespace radrecon::cli {
+
+void add_paper_command(CLI::App& app) {
+  auto opt = std::make_shared<PaperOptions>();
+  auto out = std::make_shared<std::string>(opt->out_dir.string());
+  auto quiet = std::make_shared<bool>(false);
+  CLI::App* cmd = app.add_subcommand(
+      "paper",
+      "Run the whole paper experiment on the built-in scene: the 400x400 reference and the 16x16 grid "
+      "data, every reconstruction method, the error tables and the figures.");
+  cmd->add_option("--out", *out, "Output folder")->capture_default_str();
+  cmd->add_option("--reference", opt->reference_divisions, "Reference grid on the ground (elements per edge)")
+      ->check(CLI::Range(16, 2000))
+      ->capture_default_str();
+  cmd->add_option("--residual", opt->residual, "Progressive refinement stops below this unshot fraction")
+      ->check(CLI::Range(1e-12, 0.5))
+      ->capture_default_str();
+  cmd->add_flag("--quiet", *quiet, "No progress messages");
+  cmd->callback([opt, out, quiet] {
+    opt->out_dir = *out;
+    opt->progress = !*quiet;
+    run_paper(*opt);
+  });
+}
+
+}  // namespace radrecon::cli

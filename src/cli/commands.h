@@ -1,0 +1,11 @@
+#pragma once
+// The radrecon subcommands; each adds itself to the application and runs when selected.
+
+#include <CLI/CLI.hpp>
+
+namespace radrecon::cli {
+
+void add_solve_command(CLI::App& app);
+void add_paper_command(CLI::App& app);
+
+}  // namespace radrecon::cli

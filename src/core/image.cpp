@@ -1,0 +1,70 @@
+#include "core/image.h"
+
+#include <png.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+
+#include "core/atomic_file.h"
+#include "core/check.h"
+#include "core/error.h"
+
+namespace radrecon {
+
+Image::Image(int width, int height)
+    : width_(width), height_(height),
+      pixels_(static_cast<size_t>(width) * height, Rgb::Zero()) {
+  RR_CHECK(width > 0 && height > 0, "image size must be positive");
+}
+
+namespace {
+
+double srgb_encode_value(double linear) {
+  return linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
+}
+
+}  // namespace
+
+void write_png(const std::filesystem::path& path, const Image& image, bool srgb_encode) {
+  std::vector<std::uint8_t> bytes(static_cast<size_t>(image.width()) * image.height() * 3);
+  for (int y = 0; y < image.height(); ++y)
+    for (int x = 0; x < image.width(); ++x)
+      for (int c = 0; c < 3; ++c) {
+        double v = std::clamp(image.at(x, y)[c], 0.0, 1.0);
+        if (std::isnan(v)) v = 0.0;
+        if (srgb_encode) v = srgb_encode_value(v);
+        bytes[(static_cast<size_t>(y) * image.width() + x) * 3 + c] =
+            static_cast<std::uint8_t>(std::lround(v * 255.0));
+      }
+  write_file_atomically(path, [&](const std::filesystem::path& tmp) {
+    png_image png{};
+    png.version = PNG_IMAGE_VERSION;
+    png.width = static_cast<png_uint_32>(image.width());
+    png.height = static_cast<png_uint_32>(image.height());
+    png.format = PNG_FORMAT_RGB;
+    if (!png_image_write_to_file(&png, tmp.c_str(), 0, bytes.data(), 0, nullptr)) {
+      std::string message = png.message;
+      png_image_free(&png);
+      throw UserError(path.string(), "cannot write PNG: " + message);
+    }
+  });
+}
+
+void write_pfm(const std::filesystem::path& path, const Image& image) {
+  write_file_atomically(path, [&](const std::filesystem::path& tmp) {
+    std::ofstream out(tmp, std::ios::binary);
+    out << "PF\n" << image.width() << " " << image.height() << "\n-1.0\n";  // little endian
+    std::vector<float> row(static_cast<size_t>(image.width()) * 3);
+    for (int y = image.height() - 1; y >= 0; --y) {
+      for (int x = 0; x < image.width(); ++x)
+        for (int c = 0; c < 3; ++c) row[static_cast<size_t>(x) * 3 + c] = static_cast<float>(image.at(x, y)[c]);
+      out.write(reinterpret_cast<const char*>(row.data()), static_cast<std::streamsize>(row.size() * sizeof(float)));
+    }
+    out.close();
+    if (!out) throw UserError(path.string(), "cannot write PFM");
+  });
+}
+
+}  // namespace radrecon

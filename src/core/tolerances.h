@@ -1,0 +1,29 @@
+#pragma once
+// Every numerical tolerance of the library, named, with the reason for its value.
+
+namespace radrecon::tol {
+
+/// Largest distance (relative to the quad's size) of a corner from the plane of the other three
+/// for a quad to count as planar. Scenes are written by hand or exported in single precision,
+/// so 1e-6 of the size accepts float round-off and refuses real warps.
+inline constexpr double kPlanarityRelative = 1e-6;
+
+/// Smallest area (relative to the squared longest edge) of a non-degenerate quad.
+inline constexpr double kDegenerateAreaRelative = 1e-9;
+
+/// A point counts as lying in a plane when its signed distance is within this many metres.
+/// Scenes are metre-scale; 1e-9 m is far below any feature and far above double round-off.
+inline constexpr double kPlaneDistance_m = 1e-9;
+
+/// Adaptive shooting: a shooter block is used as a whole when its distance from the receiver
+/// point exceeds this multiple of its diagonal; closer, it is split into its elements. At 2
+/// diagonals the point-collocated form factor of a block differs from the sum over its parts
+/// by well under 1% for smoothly varying radiosity.
+inline constexpr double kFarFieldDiagonals = 2.0;
+
+/// Two values of unshot radiosity (W/m^2) within this relative difference count as equal, so a
+/// block of uniform unshot radiosity (an emitter's first shot) is never split: by additivity of
+/// form factors that is exact.
+inline constexpr double kUniformRelative = 1e-12;
+
+}  // namespace radrecon::tol

@@ -1,0 +1,16 @@
+#pragma once
+// Small fixed-size vector types shared by every module (Eigen underneath).
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+namespace radrecon {
+
+/// A point or direction in a plane, e.g. surface coordinates (s, t) in metres.
+using Vec2 = Eigen::Vector2d;
+/// A point or direction in world space, in metres.
+using Vec3 = Eigen::Vector3d;
+/// Linear RGB triple: radiosity or exitance in W/m^2 per channel, or a reflectance in [0,1).
+using Rgb = Eigen::Array3d;
+
+}  // namespace radrecon

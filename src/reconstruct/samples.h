@@ -1,0 +1,52 @@
+#pragma once
+// The data a reconstruction starts from, on a 2-D domain in metres (a surface's (s, t) =
+// (u * length_u, v * length_v)). Values are stored point-major: `channels` values per point.
+
+#include <vector>
+
+#include "core/vec.h"
+
+namespace radrecon {
+
+/// An axis-aligned rectangle [x0, x1] x [y0, y1], metres.
+struct Rect {
+  double x0, y0, x1, y1;
+  Vec2 center() const { return {0.5 * (x0 + x1), 0.5 * (y0 + y1)}; }
+};
+
+/// A piecewise-constant function: disjoint cells, one value (per channel) on each.
+struct CellSamples {
+  std::vector<Rect> cells;
+  std::vector<double> values;  ///< cells.size() * channels
+  int channels = 1;
+};
+
+/// A regular grid of nx x ny cells of size dx x dy starting at (x0, y0), one value per cell,
+/// stored row by row from y0 upward (cell (i, j) at j * nx + i).
+struct GridCells {
+  int nx = 0, ny = 0;
+  double x0 = 0, y0 = 0, dx = 1, dy = 1;
+  int channels = 1;
+  std::vector<double> values;  ///< nx * ny * channels
+};
+
+/// Values at the nodes of a regular grid: node (i, j) at (x0 + i dx, y0 + j dy), i in [0, nx),
+/// j in [0, ny), stored row by row (node (i, j) at j * nx + i).
+struct GridNodes {
+  int nx = 0, ny = 0;
+  double x0 = 0, y0 = 0, dx = 1, dy = 1;
+  int channels = 1;
+  std::vector<double> values;  ///< nx * ny * channels
+};
+
+/// Scattered samples: arbitrary points, values per point.
+struct ScatteredSamples {
+  std::vector<Vec2> points;
+  std::vector<double> values;  ///< points.size() * channels
+  int channels = 1;
+};
+
+/// The cells of a grid as a general piecewise-constant function.
+CellSamples to_cells(const GridCells& grid);
+
+}  // namespace radrecon

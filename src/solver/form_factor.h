@@ -1,0 +1,31 @@
+#pragma once
+// Form factors from a differential receiver area to polygons.
+
+#include <span>
+
+#include "solver/polygon.h"
+
+namespace radrecon {
+
+/// Form factor F(dA -> P) from a differential area at `p` with unit normal `n` to the planar
+/// polygon `polygon`, by Lambert's contour integral:
+///   F = 1/(2 pi) * | sum_i angle(r_i, r_{i+1}) * dot(n, unit(r_i x r_{i+1})) |,  r_i = v_i - p.
+/// Exact (to round-off) when the whole polygon lies in the closed front half-space of the
+/// receiver; use receiver_form_factor() otherwise. Dimensionless, in [0, 1].
+double lambert_form_factor(const Vec3& p, const Vec3& n, const ConvexPolygon& polygon);
+
+/// The polygon clipped to the receiver's front half-space {x : dot(n, x - p) >= 0}.
+ConvexPolygon clip_to_horizon(const Vec3& p, const Vec3& n, const ConvexPolygon& polygon);
+
+/// Closed form (Howell's catalogue, configuration B-3) for a differential area parallel to a
+/// rectangle of sides a, b (metres) at distance c, facing it, opposite one of its corners.
+/// Independent of the contour integral; used to check it.
+double parallel_corner_form_factor(double a_m, double b_m, double c_m);
+
+/// Closed form (Howell's catalogue, configuration B-2) for a differential area and a rectangle in
+/// a perpendicular plane at distance c (metres): one edge of the rectangle, of length a, lies in
+/// the receiver's plane and starts at the foot of the receiver's perpendicular to the rectangle's
+/// plane; the other edge, of length b, rises from the receiver's plane.
+double perpendicular_corner_form_factor(double a_m, double b_m, double c_m);
+
+}  // namespace radrecon

@@ -1,0 +1,59 @@
+#pragma once
+// Small convex planar polygons in 3-D and their clipping by half-spaces: the geometry kernel of
+// the form factor and exact visibility computations. Fixed capacity, no allocation.
+
+#include <array>
+
+#include "core/check.h"
+#include "core/vec.h"
+
+namespace radrecon {
+
+/// A convex polygon with at most kCapacity vertices, in order.
+struct ConvexPolygon {
+  /// Clipping a convex polygon by a plane adds at most one vertex; a quad clipped by the
+  /// receiver's horizon and up to six occluders' five planes each stays below this.
+  static constexpr int kCapacity = 40;
+  std::array<Vec3, kCapacity> v;
+  int n = 0;
+
+  bool empty() const { return n < 3; }
+  void push(const Vec3& p) {
+    RR_CHECK(n < kCapacity, "convex polygon capacity exceeded");
+    v[n++] = p;
+  }
+};
+
+/// A half-space {x : dot(normal, x) >= offset}; the normal need not be unit length.
+struct HalfSpace {
+  Vec3 normal;
+  double offset;
+  double eval(const Vec3& x) const { return normal.dot(x) - offset; }
+  HalfSpace complement() const { return {-normal, -offset}; }
+};
+
+/// The part of `in` inside the half-space (Sutherland-Hodgman for one plane).
+inline ConvexPolygon clip(const ConvexPolygon& in, const HalfSpace& h) {
+  ConvexPolygon out;
+  if (in.n == 0) return out;
+  std::array<double, ConvexPolygon::kCapacity> d;
+  bool all_in = true, all_out = true;
+  for (int i = 0; i < in.n; ++i) {
+    d[i] = h.eval(in.v[i]);
+    all_in = all_in && d[i] >= 0;
+    all_out = all_out && d[i] <= 0;
+  }
+  if (all_in) return in;
+  if (all_out) return out;
+  for (int i = 0; i < in.n; ++i) {
+    int k = (i + 1) % in.n;
+    if (d[i] >= 0) out.push(in.v[i]);
+    if ((d[i] > 0 && d[k] < 0) || (d[i] < 0 && d[k] > 0)) {
+      double t = d[i] / (d[i] - d[k]);
+      out.push(in.v[i] + t * (in.v[k] - in.v[i]));
+    }
+  }
+  return out;
+}
+
+}  // namespace radrecon

@@ -1,0 +1,32 @@
+#pragma once
+// Progressive refinement radiosity (Cohen, Chen, Wallace and Greenberg 1988) with
+// substructuring (Cohen et al. 1986): elements receive, patches of elements shoot.
+//
+// Each step shoots the patch with the largest unshot power (summed over channels). A receiving
+// element's irradiance gain is sum over the shooter's parts of (unshot radiosity of the part) x
+// F(dA_receiver -> part), with F the exact visible point-to-polygon form factor at the element
+// centre (visibility.h). Parts: the patch as a whole when it is far from the receiver (or its
+// unshot radiosity is uniform, which is exact), else recursively its quarters, down to single
+// elements (tolerances.h, kFarFieldDiagonals).
+
+#include <string>
+
+#include "mesh/grid_mesh.h"
+#include "solver/solution.h"
+
+namespace radrecon {
+
+struct ProgressiveOptions {
+  /// Stop when the unshot power falls below this fraction of the emitted power, in (0, 1).
+  double residual = 1e-4;
+  /// Stop after this many shots at the latest (0: no limit).
+  size_t max_shots = 0;
+  /// Name printed in progress messages on stderr; empty: quiet.
+  std::string progress_label;
+};
+
+/// Solves the radiosity of the meshed scene. `mesh_spec` is recorded in the solution.
+Solution solve_progressive(const Scene& scene, const Mesh& mesh, const ProgressiveOptions& options,
+                           const std::string& mesh_spec);
+
+}  // namespace radrecon

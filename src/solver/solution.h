@@ -1,0 +1,53 @@
+#pragma once
+// The solver's output: per mesh surface, its elements with their (u,v) rectangles and radiosity.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/vec.h"
+
+namespace radrecon {
+
+struct SolutionElement {
+  double u0, v0, u1, v1;  ///< the element's (u,v) rectangle on its surface, each in [0,1]
+  Vec3 center;            ///< world-space point at the (u,v) centre, metres
+  double area_m2;
+  Rgb radiosity_w_m2;
+};
+
+struct SurfaceSolution {
+  std::string name;  ///< "ground", or "wall1/front" and "wall1/back" for two-sided surfaces
+  std::string scene_surface;
+  bool back_side = false;
+  /// Grid dimensions when the elements form a regular nu x nv grid stored row by row
+  /// (element (i,j) at j * nu + i); 0 x 0 for an adaptive subdivision.
+  int grid_nu = 0, grid_nv = 0;
+  double length_u_m = 0, length_v_m = 0;  ///< surface edge lengths, to map (u,v) to metres
+  std::vector<SolutionElement> elements;
+};
+
+/// Solver statistics. Powers are per colour channel, in W.
+struct SolveStats {
+  std::string method;  ///< "progressive" or "hierarchical"
+  size_t shots = 0;    ///< progressive refinement: patches shot
+  size_t elements = 0;
+  size_t patches = 0;
+  Rgb emitted_w = Rgb::Zero();
+  Rgb absorbed_w = Rgb::Zero();  ///< absorbed by the surfaces (1 - reflectance of what arrived)
+  Rgb unshot_w = Rgb::Zero();    ///< reflected or emitted but not yet distributed
+  Rgb escaped_w = Rgb::Zero();   ///< left an open scene (or lost to discretisation)
+  double residual = 0;           ///< unshot / emitted, summed over channels
+  double seconds = 0;
+};
+
+struct Solution {
+  std::string scene;
+  std::string mesh;  ///< the mesh specification, e.g. "grid:16"
+  std::vector<SurfaceSolution> surfaces;
+  SolveStats stats;
+
+  const SurfaceSolution* find(const std::string& name) const;
+};
+
+}  // namespace radrecon

@@ -1,0 +1,136 @@
+#include "solver/visibility.h"
+
+#include <cmath>
+
+#include "core/tolerances.h"
+#include "solver/form_factor.h"
+
+namespace radrecon {
+
+std::vector<Occluder> make_occluders(const Scene& scene) {
+  std::vector<Occluder> out;
+  for (size_t k = 0; k < scene.surfaces.size(); ++k) {
+    const Surface& s = scene.surfaces[k];
+    Occluder o;
+    o.corners = s.corners;
+    o.centroid = 0.25 * (s.corners[0] + s.corners[1] + s.corners[2] + s.corners[3]);
+    Vec3 n = s.normal();
+    o.plane = HalfSpace{n, n.dot(o.centroid)};
+    o.bbox_min = o.bbox_max = s.corners[0];
+    for (const Vec3& c : s.corners) {
+      o.bbox_min = o.bbox_min.cwiseMin(c);
+      o.bbox_max = o.bbox_max.cwiseMax(c);
+    }
+    o.scene_surface = k;
+    out.push_back(o);
+  }
+  return out;
+}
+
+std::vector<const Occluder*> occluders_in_box(const std::vector<Occluder>& occluders,
+                                              const Vec3& lo, const Vec3& hi,
+                                              size_t skip_surface_a, size_t skip_surface_b) {
+  std::vector<const Occluder*> out;
+  const double slack = tol::kPlaneDistance_m;
+  for (const Occluder& o : occluders) {
+    if (o.scene_surface == skip_surface_a || o.scene_surface == skip_surface_b) continue;
+    bool apart = (o.bbox_min.array() > hi.array() + slack).any() ||
+                 (o.bbox_max.array() < lo.array() - slack).any();
+    if (!apart) out.push_back(&o);
+  }
+  return out;
+}
+
+namespace {
+
+/// The five half-spaces whose intersection is the shadow volume of `o` seen from `p`; false if
+/// `o` cannot hide any point of `polygon` from `p`.
+bool shadow_volume(const Vec3& p, const Occluder& o, const ConvexPolygon& polygon,
+                   std::array<HalfSpace, 5>& volume) {
+  double side_p = o.plane.eval(p);
+  if (std::abs(side_p) <= tol::kPlaneDistance_m) return false;  // p in the occluder's plane
+  // Beyond the occluder's plane, as seen from p.
+  HalfSpace beyond = side_p > 0 ? o.plane.complement() : o.plane;
+  bool any_beyond = false;
+  for (int i = 0; i < polygon.n && !any_beyond; ++i) any_beyond = beyond.eval(polygon.v[i]) > 0;
+  if (!any_beyond) return false;
+  volume[0] = beyond;
+  for (int i = 0; i < 4; ++i) {
+    Vec3 m = (o.corners[i] - p).cross(o.corners[(i + 1) % 4] - p);
+    if (m.dot(o.centroid - p) < 0) m = -m;
+    HalfSpace h{m, m.dot(p)};
+    bool any_inside = false;
+    for (int k = 0; k < polygon.n && !any_inside; ++k) any_inside = h.eval(polygon.v[k]) > 0;
+    if (!any_inside) return false;  // the polygon lies wholly outside this side of the cone
+    volume[i + 1] = h;
+  }
+  return true;
+}
+
+ConvexPolygon clip_all(ConvexPolygon poly, const std::array<HalfSpace, 5>& volume) {
+  for (const HalfSpace& h : volume) {
+    poly = clip(poly, h);
+    if (poly.empty()) break;
+  }
+  return poly;
+}
+
+/// Appends the convex pieces of q minus the intersection of the half-spaces to `out`.
+void subtract(const ConvexPolygon& q, const std::array<HalfSpace, 5>& volume,
+              std::vector<ConvexPolygon>& out) {
+  ConvexPolygon rest = q;
+  for (const HalfSpace& h : volume) {
+    ConvexPolygon outside = clip(rest, h.complement());
+    if (!outside.empty()) out.push_back(outside);
+    rest = clip(rest, h);
+    if (rest.empty()) break;
+  }
+}
+
+}  // namespace
+
+double visible_form_factor(const Vec3& p, const Vec3& n, const ConvexPolygon& shooter,
+                           const Vec3& shooter_normal,
+                           const std::vector<const Occluder*>& occluders) {
+  if (shooter.empty()) return 0.0;
+  if (shooter_normal.dot(p - shooter.v[0]) <= tol::kPlaneDistance_m) return 0.0;
+  ConvexPolygon front = clip_to_horizon(p, n, shooter);
+  if (front.empty()) return 0.0;
+
+  // Common cases first: no occluder, or a single one, cast a shadow on the polygon.
+  std::array<HalfSpace, 5> volume;
+  const Occluder* first = nullptr;
+  ConvexPolygon first_shadow;
+  size_t k = 0;
+  for (; k < occluders.size(); ++k) {
+    if (!shadow_volume(p, *occluders[k], front, volume)) continue;
+    ConvexPolygon shadow = clip_all(front, volume);
+    if (shadow.empty()) continue;
+    if (first == nullptr) {
+      first = occluders[k];
+      first_shadow = shadow;
+    } else {
+      break;  // a second shadow: fall back to the general difference below
+    }
+  }
+  const double unoccluded = lambert_form_factor(p, n, front);
+  if (first == nullptr) return unoccluded;
+  if (k == occluders.size())
+    return std::max(0.0, unoccluded - lambert_form_factor(p, n, first_shadow));
+
+  // General case: subtract every shadow volume from the fragments of the visible polygon.
+  thread_local std::vector<ConvexPolygon> fragments, next;
+  fragments.assign(1, front);
+  for (const Occluder* o : occluders) {
+    if (!shadow_volume(p, *o, front, volume)) continue;
+    next.clear();
+    for (const ConvexPolygon& q : fragments) subtract(q, volume, next);
+    fragments.swap(next);
+    if (fragments.empty()) return 0.0;
+  }
+  double visible = 0.0;
+  for (const ConvexPolygon& q : fragments) visible += lambert_form_factor(p, n, q);
+  return visible;
+}
+
+}  // namespace radrecon

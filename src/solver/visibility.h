@@ -1,0 +1,41 @@
+#pragma once
+// Exact visibility between a receiver point and a convex polygon in a scene of convex quads:
+// the shadow each occluder casts on the polygon, seen from the point, is the polygon clipped by
+// five half-spaces (beyond the occluder's plane, and inside the four planes through the point
+// and the occluder's edges). The visible part is the polygon minus the union of the shadows,
+// kept as a list of convex fragments, and its form factor is exact up to round-off.
+
+#include <vector>
+
+#include "scene/scene.h"
+#include "solver/polygon.h"
+
+namespace radrecon {
+
+/// A scene surface seen as a potential blocker of light.
+struct Occluder {
+  std::array<Vec3, 4> corners;
+  Vec3 centroid;
+  HalfSpace plane;  ///< the surface's plane, normal of unit length
+  Vec3 bbox_min, bbox_max;
+  size_t scene_surface;
+};
+
+/// All surfaces of a scene as occluders.
+std::vector<Occluder> make_occluders(const Scene& scene);
+
+/// Occluders whose bounding box meets the box [lo, hi] (a conservative pre-selection for every
+/// receiver point and shooter polygon inside that box).
+std::vector<const Occluder*> occluders_in_box(const std::vector<Occluder>& occluders,
+                                              const Vec3& lo, const Vec3& hi,
+                                              size_t skip_surface_a, size_t skip_surface_b);
+
+/// The form factor from a differential receiver area at `p` with unit normal `n` to the part of
+/// the convex polygon `shooter` that is in front of the receiver and not hidden by any of the
+/// `occluders` (which must not include the surfaces of `p` and of `shooter`). Returns 0 when `p`
+/// is not in front of the shooter's plane, whose unit normal is `shooter_normal`.
+double visible_form_factor(const Vec3& p, const Vec3& n, const ConvexPolygon& shooter,
+                           const Vec3& shooter_normal,
+                           const std::vector<const Occluder*>& occluders);
+
+}  // namespace radrecon
