@@ -16,7 +16,7 @@ struct SolveArgs {
   std::string mesh = "grid:16";
   std::string out;
   double residual = 1e-4;
-  int patches = 16;
+  int patches = 2;
   bool quiet = false;
 };
 

@@ -87,7 +87,7 @@ void run_paper(const PaperOptions& opt) {
 
   auto solve = [&](int divisions, const std::string& label) {
     const std::string spec = "grid:" + std::to_string(divisions);
-    Mesh mesh = make_grid_mesh(scene, GridMeshOptions{divisions, 16});
+    Mesh mesh = make_grid_mesh(scene, GridMeshOptions{divisions, GridMeshOptions{}.max_patches});
     ProgressiveOptions po;
     po.residual = opt.residual;
     po.progress_label = opt.progress ? label : "";

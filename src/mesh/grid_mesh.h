@@ -52,7 +52,7 @@ struct GridMeshOptions {
   int divisions = 16;
   /// Shooting patches along the longest edge, >= 1: patches are square groups of
   /// ceil(divisions / max_patches) elements per edge on every surface.
-  int max_patches = 16;
+  int max_patches = 2;
 };
 
 /// Meshes every surface (both sides of a two-sided one) into a regular grid.

@@ -31,7 +31,7 @@ double parallel_corner_form_factor(double a_m, double b_m, double c_m) {
 }
 
 double perpendicular_corner_form_factor(double a_m, double b_m, double c_m) {
-  const double X = a_m / b_m, Y = c_m / b_m;
+  const double X = b_m / a_m, Y = c_m / a_m;
   const double s = std::sqrt(X * X + Y * Y);
   return (std::atan(1 / Y) - Y / s * std::atan(1 / s)) / (2.0 * std::numbers::pi);
 }

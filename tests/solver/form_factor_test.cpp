@@ -1,0 +1,112 @@
+// Lambert's contour integral against closed forms and published area-to-area form factors.
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "solver/form_factor.h"
+
+namespace radrecon {
+namespace {
+
+/// Both sides evaluate the same integral exactly in double precision.
+constexpr double kClosedFormRelative = 1e-12;
+/// Published area-to-area values are given to 5 digits (Howell's catalogue, Cohen & Wallace 1993).
+constexpr double kPublishedAbsolute = 1e-5;
+
+ConvexPolygon quad(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  ConvexPolygon p;
+  p.push(a);
+  p.push(b);
+  p.push(c);
+  p.push(d);
+  return p;
+}
+
+TEST(LambertFormFactor, MatchesParallelCornerClosedForm) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> len(0.05, 5.0);
+  for (int trial = 0; trial < 200; ++trial) {
+    const double a = len(rng), b = len(rng), c = len(rng);
+    // Receiver at the origin facing +z; rectangle [0,a] x [0,b] at height c, facing down.
+    const double f = lambert_form_factor(Vec3::Zero(), Vec3::UnitZ(),
+                                         quad({0, 0, c}, {0, b, c}, {a, b, c}, {a, 0, c}));
+    const double expected = parallel_corner_form_factor(a, b, c);
+    EXPECT_NEAR(f, expected, kClosedFormRelative * expected) << "a=" << a << " b=" << b << " c=" << c;
+  }
+}
+
+TEST(LambertFormFactor, MatchesPerpendicularCornerClosedForm) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> len(0.05, 5.0);
+  for (int trial = 0; trial < 200; ++trial) {
+    const double a = len(rng), b = len(rng), c = len(rng);
+    // Receiver at the origin facing +z; rectangle in the plane x = c, y in [0,a], z in [0,b].
+    const double f = lambert_form_factor(Vec3::Zero(), Vec3::UnitZ(),
+                                         quad({c, 0, 0}, {c, a, 0}, {c, a, b}, {c, 0, b}));
+    const double expected = perpendicular_corner_form_factor(a, b, c);
+    EXPECT_NEAR(f, expected, kClosedFormRelative * expected) << "a=" << a << " b=" << b << " c=" << c;
+  }
+}
+
+TEST(LambertFormFactor, HemisphereCoveringPolygonGivesOne) {
+  // A huge square just above the receiver covers nearly the whole hemisphere.
+  const double L = 1e6;
+  const double f = lambert_form_factor(Vec3::Zero(), Vec3::UnitZ(), quad({-L, -L, 1}, {-L, L, 1}, {L, L, 1}, {L, -L, 1}));
+  EXPECT_NEAR(f, 1.0, 1e-5);
+}
+
+/// Composite Gauss-Legendre quadrature of g over the unit square: `panels` x `panels` panels of
+/// 8 x 8 points each (the panels resolve the log singularity at a shared edge).
+template <typename G>
+double integrate_unit_square(G g, int panels) {
+  static constexpr std::array<double, 8> x = {-0.9602898564975363, -0.7966664774136267, -0.5255324099163290,
+                                              -0.1834346424956498, 0.1834346424956498,  0.5255324099163290,
+                                              0.7966664774136267,  0.9602898564975363};
+  static constexpr std::array<double, 8> w = {0.1012285362903763, 0.2223810344533745, 0.3137066458778873,
+                                              0.3626837833783620, 0.3626837833783620, 0.3137066458778873,
+                                              0.2223810344533745, 0.1012285362903763};
+  double sum = 0;
+  const double h = 1.0 / panels;
+  for (int pi = 0; pi < panels; ++pi)
+    for (int pj = 0; pj < panels; ++pj)
+      for (int i = 0; i < 8; ++i)
+        for (int j = 0; j < 8; ++j) {
+          const double u = (pi + 0.5 * (x[i] + 1)) * h, v = (pj + 0.5 * (x[j] + 1)) * h;
+          sum += 0.25 * h * h * w[i] * w[j] * g(u, v);
+        }
+  return sum;
+}
+
+TEST(LambertFormFactor, ParallelUnitSquaresAtUnitDistance) {
+  // Published: F = 0.19982 for two aligned parallel unit squares one unit apart.
+  const ConvexPolygon top = quad({0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1});
+  const double f = integrate_unit_square(
+      [&](double u, double v) { return lambert_form_factor(Vec3(u, v, 0), Vec3::UnitZ(), top); }, 4);
+  EXPECT_NEAR(f, 0.19982, kPublishedAbsolute);
+}
+
+TEST(LambertFormFactor, PerpendicularUnitSquaresSharingAnEdge) {
+  // Published: F = 0.20004 for perpendicular unit squares with a common edge.
+  const ConvexPolygon wall = quad({0, 0, 0}, {0, 0, 1}, {0, 1, 1}, {0, 1, 0});
+  // Receiver: the floor [0,1]^2 at z = 0 facing +z; the wall is the plane x = 0.
+  const double f = integrate_unit_square(
+      [&](double u, double v) { return lambert_form_factor(Vec3(u, v, 0), Vec3::UnitZ(), wall); }, 32);
+  EXPECT_NEAR(f, 0.20004, kPublishedAbsolute);
+}
+
+TEST(ClipToHorizon, KeepsOnlyThePartAboveTheReceiver) {
+  // A vertical square straddling the receiver's plane: only its upper half counts.
+  const ConvexPolygon full = quad({1, -0.5, -1}, {1, 0.5, -1}, {1, 0.5, 1}, {1, -0.5, 1});
+  const ConvexPolygon upper = quad({1, -0.5, 0}, {1, 0.5, 0}, {1, 0.5, 1}, {1, -0.5, 1});
+  const Vec3 p = Vec3::Zero(), n = Vec3::UnitZ();
+  EXPECT_NEAR(lambert_form_factor(p, n, clip_to_horizon(p, n, full)), lambert_form_factor(p, n, upper), 1e-15);
+  // By symmetry, the upper half is two perpendicular-corner rectangles of 0.5 x 1 at distance 1.
+  EXPECT_NEAR(lambert_form_factor(p, n, upper), 2 * perpendicular_corner_form_factor(0.5, 1, 1), 1e-14);
+}
+
+}  // namespace
+}  // namespace radrecon

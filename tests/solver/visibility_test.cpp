@@ -1,0 +1,126 @@
+// Exact visible form factors against brute-force quadrature with an independent ray caster.
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "solver/form_factor.h"
+#include "solver/visibility.h"
+#include "support/ray_scene.h"
+
+namespace radrecon {
+namespace {
+
+using testing_support::visible;
+
+/// The midpoint rule on an N x N grid has an O(1/N) error where a shadow edge cuts the shooter;
+/// at N = 500 that is below 1e-3 of the unoccluded form factor here.
+constexpr int kQuadratureN = 500;
+constexpr double kBruteForceRelative = 2e-3;
+
+Surface make_quad(const std::string& name, const Vec3& c0, const Vec3& c1, const Vec3& c2, const Vec3& c3) {
+  Surface s;
+  s.name = name;
+  s.corners = {c0, c1, c2, c3};
+  return s;
+}
+
+/// F(dA -> visible part of `shooter`) by the midpoint rule over the shooter, with the ray caster.
+double brute_force(const Scene& scene, size_t shooter, const Vec3& p, const Vec3& n, size_t receiver) {
+  const Surface& s = scene.surfaces[shooter];
+  const Vec3 ns = s.normal();
+  const double dA = s.area_m2() / (kQuadratureN * kQuadratureN);
+  double f = 0;
+  for (int i = 0; i < kQuadratureN; ++i)
+    for (int j = 0; j < kQuadratureN; ++j) {
+      const Vec3 y = s.point((i + 0.5) / kQuadratureN, (j + 0.5) / kQuadratureN);
+      const Vec3 r = y - p;
+      const double d2 = r.squaredNorm();
+      const double cos_r = n.dot(r) / std::sqrt(d2), cos_s = -ns.dot(r) / std::sqrt(d2);
+      if (cos_r <= 0 || cos_s <= 0) continue;
+      if (!visible(scene, p, y, receiver, shooter)) continue;
+      f += cos_r * cos_s / (std::numbers::pi * d2) * dA;
+    }
+  return f;
+}
+
+double exact(const Scene& scene, size_t shooter, const Vec3& p, const Vec3& n, size_t receiver) {
+  const std::vector<Occluder> occ = make_occluders(scene);
+  std::vector<const Occluder*> others;
+  for (const Occluder& o : occ)
+    if (o.scene_surface != shooter && o.scene_surface != receiver) others.push_back(&o);
+  ConvexPolygon poly;
+  for (const Vec3& c : scene.surfaces[shooter].corners) poly.push(c);
+  return visible_form_factor(p, n, poly, scene.surfaces[shooter].normal(), others);
+}
+
+/// A random rectangle centred at c with random orientation, sides in [0.2, 0.8].
+Surface random_occluder(std::mt19937& rng, const Vec3& c, int index) {
+  std::uniform_real_distribution<double> side(0.2, 0.8), angle(0, 2 * std::numbers::pi), tilt(-1.2, 1.2);
+  const double a = side(rng), b = side(rng);
+  Eigen::Matrix3d rot = (Eigen::AngleAxisd(angle(rng), Vec3::UnitZ()) * Eigen::AngleAxisd(tilt(rng), Vec3::UnitX()))
+                            .toRotationMatrix();
+  const Vec3 u = rot * Vec3(a / 2, 0, 0), v = rot * Vec3(0, b / 2, 0);
+  return make_quad("occluder" + std::to_string(index), c - u - v, c + u - v, c + u + v, c - u + v);
+}
+
+TEST(VisibleFormFactor, MatchesBruteForceWithRandomOccluders) {
+  std::mt19937 rng(2024);
+  std::uniform_real_distribution<double> xy(-0.5, 1.5), occ_xy(0.0, 1.0), occ_z(0.5, 1.5);
+  int occluded_cases = 0;
+  for (int trial = 0; trial < 24; ++trial) {
+    Scene scene;
+    // Receiver plane z = 0 (facing up), shooter: unit square at z = 2 facing down.
+    scene.surfaces.push_back(make_quad("floor", {-2, -2, 0}, {3, -2, 0}, {3, 3, 0}, {-2, 3, 0}));
+    scene.surfaces.push_back(make_quad("light", {0, 0, 2}, {0, 1, 2}, {1, 1, 2}, {1, 0, 2}));
+    const int occluders = 1 + trial % 3;
+    for (int k = 0; k < occluders; ++k)
+      scene.surfaces.push_back(random_occluder(rng, Vec3(occ_xy(rng), occ_xy(rng), occ_z(rng)), k));
+    const Vec3 p(xy(rng), xy(rng), 0), n = Vec3::UnitZ();
+    const double f_exact = exact(scene, 1, p, n, 0);
+    const double f_brute = brute_force(scene, 1, p, n, 0);
+    ConvexPolygon light;
+    for (const Vec3& c : scene.surfaces[1].corners) light.push(c);
+    const double f_open = lambert_form_factor(p, n, light);
+    EXPECT_NEAR(f_exact, f_brute, kBruteForceRelative * f_open)
+        << "trial " << trial << ": exact " << f_exact << ", brute force " << f_brute << ", unoccluded " << f_open;
+    if (f_exact < 0.98 * f_open) ++occluded_cases;
+  }
+  EXPECT_GE(occluded_cases, 12) << "the random cases should mostly be partly occluded";
+}
+
+TEST(VisibleFormFactor, FullyHiddenIsZeroAndUnrelatedOccluderChangesNothing) {
+  Scene scene;
+  scene.surfaces.push_back(make_quad("floor", {-2, -2, 0}, {3, -2, 0}, {3, 3, 0}, {-2, 3, 0}));
+  scene.surfaces.push_back(make_quad("light", {0, 0, 2}, {0, 1, 2}, {1, 1, 2}, {1, 0, 2}));
+  scene.surfaces.push_back(make_quad("roof", {-5, -5, 1}, {5, -5, 1}, {5, 5, 1}, {-5, 5, 1}));
+  EXPECT_EQ(exact(scene, 1, Vec3(0.5, 0.5, 0), Vec3::UnitZ(), 0), 0.0);
+  scene.surfaces[2] = make_quad("far", {10, 10, 1}, {11, 10, 1}, {11, 11, 1}, {10, 11, 1});
+  ConvexPolygon light;
+  for (const Vec3& c : scene.surfaces[1].corners) light.push(c);
+  EXPECT_EQ(exact(scene, 1, Vec3(0.3, 0.2, 0), Vec3::UnitZ(), 0),
+            lambert_form_factor(Vec3(0.3, 0.2, 0), Vec3::UnitZ(), light));
+}
+
+TEST(VisibleFormFactor, HalfCoveredByAnOccluderAtHalfHeight) {
+  // An occluder at z = 1 covering x < 0.5 of the light's shadow cone from the point below the
+  // light's centre hides exactly the half x < 0.5 of the light; by symmetry F halves.
+  Scene scene;
+  scene.surfaces.push_back(make_quad("floor", {-2, -2, 0}, {3, -2, 0}, {3, 3, 0}, {-2, 3, 0}));
+  scene.surfaces.push_back(make_quad("light", {0, 0, 2}, {0, 1, 2}, {1, 1, 2}, {1, 0, 2}));
+  scene.surfaces.push_back(make_quad("blind", {-1, -1, 1}, {0.5, -1, 1}, {0.5, 2, 1}, {-1, 2, 1}));
+  const Vec3 p(0.5, 0.5, 0);
+  ConvexPolygon light;
+  for (const Vec3& c : scene.surfaces[1].corners) light.push(c);
+  EXPECT_NEAR(exact(scene, 1, p, Vec3::UnitZ(), 0), 0.5 * lambert_form_factor(p, Vec3::UnitZ(), light), 1e-15);
+}
+
+TEST(VisibleFormFactor, ZeroBehindTheShooter) {
+  ConvexPolygon light;
+  for (const Vec3& c : {Vec3(0, 0, 2), Vec3(0, 1, 2), Vec3(1, 1, 2), Vec3(1, 0, 2)}) light.push(c);
+  // The light faces -z; a point above it sees its back.
+  EXPECT_EQ(visible_form_factor(Vec3(0.5, 0.5, 3), -Vec3::UnitZ(), light, -Vec3::UnitZ(), {}), 0.0);
+}
+
+}  // namespace
+}  // namespace radrecon

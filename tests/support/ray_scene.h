@@ -1,0 +1,61 @@
+#pragma once
+// An independent ray caster over a scene's quads, for tests that check the solver against brute
+// force: it shares no code with the solver's exact-clipping visibility.
+
+#include <cmath>
+#include <limits>
+#include <optional>
+
+#include "scene/scene.h"
+
+namespace radrecon::testing_support {
+
+struct Hit {
+  double t;
+  size_t surface;
+  bool front;  ///< the ray arrived on the front side
+  Vec3 point;
+};
+
+/// Intersection of the ray o + t d (t in (t_min, t_max)) with a convex planar quad.
+inline std::optional<double> intersect_quad(const Surface& s, const Vec3& o, const Vec3& d, double t_min,
+                                            double t_max) {
+  const Vec3 n = s.normal();
+  const double denom = n.dot(d);
+  if (std::abs(denom) < 1e-15) return std::nullopt;
+  const double t = n.dot(s.corners[0] - o) / denom;
+  if (!(t > t_min && t < t_max)) return std::nullopt;
+  const Vec3 x = o + t * d;
+  for (int i = 0; i < 4; ++i) {
+    const Vec3 e = s.corners[(i + 1) % 4] - s.corners[i];
+    if (e.cross(x - s.corners[i]).dot(n) < 0) return std::nullopt;
+  }
+  return t;
+}
+
+/// Nearest hit of the ray o + t d, t > t_min, skipping surface `skip` (the one the ray leaves).
+inline std::optional<Hit> trace(const Scene& scene, const Vec3& o, const Vec3& d, size_t skip,
+                                double t_min = 1e-9) {
+  std::optional<Hit> best;
+  double t_max = std::numeric_limits<double>::infinity();
+  for (size_t k = 0; k < scene.surfaces.size(); ++k) {
+    if (k == skip) continue;
+    if (auto t = intersect_quad(scene.surfaces[k], o, d, t_min, t_max)) {
+      t_max = *t;
+      best = Hit{*t, k, scene.surfaces[k].normal().dot(d) < 0, o + *t * d};
+    }
+  }
+  return best;
+}
+
+/// True if nothing but surfaces `a` and `b` blocks the open segment from p to q.
+inline bool visible(const Scene& scene, const Vec3& p, const Vec3& q, size_t a, size_t b) {
+  const Vec3 d = q - p;
+  for (size_t k = 0; k < scene.surfaces.size(); ++k) {
+    if (k == a || k == b) continue;
+    if (intersect_quad(scene.surfaces[k], p, d, 1e-12, 1.0 - 1e-12)) return false;
+  }
+  return true;
+}
+
+}  // namespace radrecon::testing_support
