@@ -7,7 +7,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libgtest-dev libgmock-dev libbenchmark-dev
   libeigen3-dev libcgal-dev libgmp-dev libmpfr-dev libnanoflann-dev
-  nlohmann-json3-dev libcli11-dev libpng-dev libopenexr-dev
+  nlohmann-json3-dev libcli11-dev libpng-dev libopenexr-dev time
 )
 
 missing=()

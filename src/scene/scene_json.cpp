@@ -121,6 +121,8 @@ Scene parse_scene_json(const std::string& text, const std::string& source) {
   json doc;
   try {
     doc = json::parse(text);
+  } catch (const json::out_of_range& e) {  // a number too large for a double, e.g. 1e999
+    throw UserError(source, std::string("not a valid scene: ") + e.what());
   } catch (const json::parse_error& e) {
     // nlohmann reports a byte offset; turn it into a line number.
     size_t line = 1;

@@ -110,6 +110,8 @@ Solution read_solution_json(const std::filesystem::path& path) {
   json doc;
   try {
     doc = json::parse(text);
+  } catch (const json::out_of_range& e) {  // a number too large for a double, e.g. 1e999
+    throw UserError(path.string(), std::string("not a valid solution: ") + e.what());
   } catch (const json::parse_error& e) {
     size_t line = 1;
     for (size_t i = 0; i < std::min<size_t>(e.byte, text.size()); ++i) line += text[i] == '\n';

@@ -1,0 +1,132 @@
+#!/usr/bin/env bash
+# The command-line contract: exit codes (0 success, 2 refused input), messages naming the
+# problem, and no output file left behind by a refused or failed run.
+# Usage: cli_test.sh /path/to/radrecon
+set -u
+
+RADRECON=${1:?usage: cli_test.sh /path/to/radrecon}
+TMP=$(mktemp -d "${TMPDIR:-/tmp}/radrecon_cli_test.XXXXXX")
+trap 'rm -rf "$TMP"' EXIT
+
+failures=0
+fail() {
+  echo "FAIL: $*" >&2
+  failures=$((failures + 1))
+}
+
+# run NAME ARGS...: runs radrecon, capturing stdout, stderr and the exit code in $TMP/NAME.*
+run() {
+  local name=$1
+  shift
+  "$RADRECON" "$@" >"$TMP/$name.stdout" 2>"$TMP/$name.stderr"
+  echo $? >"$TMP/$name.rc"
+}
+rc() { cat "$TMP/$1.rc"; }
+
+expect_rc() {  # NAME CODE
+  local got
+  got=$(rc "$1")
+  if [ "$got" != "$2" ]; then
+    fail "$1: exit code $got, expected $2; stderr: $(head -c 500 "$TMP/$1.stderr")"
+  fi
+}
+expect_nonzero() {  # NAME
+  if [ "$(rc "$1")" = 0 ]; then fail "$1: exit code 0, expected non-zero"; fi
+}
+expect_stderr_has() {  # NAME TEXT
+  if ! grep -qF -- "$2" "$TMP/$1.stderr"; then
+    fail "$1: stderr does not mention '$2'; stderr: $(head -c 500 "$TMP/$1.stderr")"
+  fi
+}
+expect_stderr_nonempty() {  # NAME
+  if [ ! -s "$TMP/$1.stderr" ]; then fail "$1: no message on stderr"; fi
+}
+expect_no_output() {  # NAME PATH: neither the file nor a temporary sibling of it exists
+  local base
+  base=$(basename "$2")
+  if compgen -G "$(dirname "$2")/$base*" >/dev/null; then
+    fail "$1: output left behind: $(ls "$(dirname "$2")/$base"*)"
+  fi
+}
+
+# --- help ---------------------------------------------------------------------------------
+run help --help
+expect_rc help 0
+
+run solve_help solve --help
+expect_rc solve_help 0
+if ! grep -qF -- "--mesh" "$TMP/solve_help.stdout" "$TMP/solve_help.stderr"; then
+  fail "solve_help: 'solve --help' does not mention --mesh"
+fi
+
+# --- refused scenes -----------------------------------------------------------------------
+printf '{\n  "name": "broken",\n  this is not json\n}\n' >"$TMP/notjson.json"
+run notjson solve --scene "$TMP/notjson.json" --mesh grid:2 --out "$TMP/notjson_out.json" --quiet
+expect_rc notjson 2
+expect_stderr_has notjson "notjson.json"
+expect_no_output notjson "$TMP/notjson_out.json"
+
+cat >"$TMP/refl.json" <<'EOF'
+{"surfaces": [
+  {"name": "floor", "corners": [[0,0,0],[1,0,0],[1,1,0],[0,1,0]], "reflectance": 1.5},
+  {"name": "lamp", "corners": [[0,0,1],[0,1,1],[1,1,1],[1,0,1]], "reflectance": 0, "emission": 5}
+]}
+EOF
+run refl solve --scene "$TMP/refl.json" --mesh grid:2 --out "$TMP/refl_out.json" --quiet
+expect_rc refl 2
+expect_stderr_has refl "refl.json"
+expect_stderr_has refl "reflectance"
+expect_no_output refl "$TMP/refl_out.json"
+
+run missing solve --scene "$TMP/does_not_exist.json" --mesh grid:2 --out "$TMP/missing_out.json" --quiet
+expect_rc missing 2
+expect_stderr_has missing "does_not_exist.json"
+expect_no_output missing "$TMP/missing_out.json"
+
+# --- refused mesh options -----------------------------------------------------------------
+i=0
+for mesh in grid:0 grid:abc foo:3 grid: grid:-1 grid:3x; do
+  i=$((i + 1))
+  run "mesh$i" solve --scene paper --mesh "$mesh" --out "$TMP/mesh${i}_out.json" --quiet
+  expect_rc "mesh$i" 2
+  expect_stderr_has "mesh$i" "--mesh"
+  expect_no_output "mesh$i" "$TMP/mesh${i}_out.json"
+done
+
+# --- a real solve -------------------------------------------------------------------------
+run solve solve --scene paper --mesh grid:4 --out "$TMP/solution.json" --quiet
+expect_rc solve 0
+if [ ! -f "$TMP/solution.json" ]; then
+  fail "solve: $TMP/solution.json was not written"
+elif ! python3 - "$TMP/solution.json" <<'EOF'
+import json, sys
+doc = json.load(open(sys.argv[1]))
+names = sorted(s["name"] for s in doc["surfaces"])
+want = sorted(["ground", "light", "wall1/front", "wall1/back", "wall2/front", "wall2/back"])
+if names != want:
+    sys.exit(f"surfaces {names}, expected {want}")
+if not doc["stats"]["shots"] > 0:
+    sys.exit(f"stats.shots = {doc['stats']['shots']}, expected > 0")
+EOF
+then
+  fail "solve: $TMP/solution.json is not a valid solution (see above)"
+fi
+if compgen -G "$TMP/solution.json.tmp*" >/dev/null; then fail "solve: temporary file left behind"; fi
+
+# --- other failures -----------------------------------------------------------------------
+run unknown frobnicate
+expect_nonzero unknown
+expect_stderr_nonempty unknown
+
+run noout solve --scene paper --mesh grid:2
+expect_nonzero noout
+
+run unwritable solve --scene paper --mesh grid:2 --out /proc/nonexistent/x.json --quiet
+expect_nonzero unwritable
+expect_stderr_has unwritable "/proc/nonexistent"
+
+if [ "$failures" -ne 0 ]; then
+  echo "cli_test: $failures failure(s)" >&2
+  exit 1
+fi
+echo "cli_test: all checks passed"
