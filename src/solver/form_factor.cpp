@@ -3,6 +3,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/math.h"
+
 namespace radrecon {
 
 double lambert_form_factor(const Vec3& p, const Vec3& n, const ConvexPolygon& polygon) {
@@ -14,7 +16,7 @@ double lambert_form_factor(const Vec3& p, const Vec3& n, const ConvexPolygon& po
     Vec3 c = r0.cross(r1);
     double c_norm = c.norm();
     // c_norm == 0: p on the line of this edge; the edge subtends no angle and adds nothing.
-    if (c_norm > 0) sum += std::atan2(c_norm, r0.dot(r1)) * n.dot(c) / c_norm;
+    if (c_norm > 0) sum += atan2_nonneg(c_norm, r0.dot(r1)) * n.dot(c) / c_norm;
     r0 = r1;
   }
   return std::abs(sum) / (2.0 * std::numbers::pi);

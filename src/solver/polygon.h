@@ -2,6 +2,7 @@
 // Small convex planar polygons in 3-D and their clipping by half-spaces: the geometry kernel of
 // the form factor and exact visibility computations. Fixed capacity, no allocation.
 
+#include <algorithm>
 #include <array>
 
 #include "core/check.h"
@@ -16,6 +17,15 @@ struct ConvexPolygon {
   static constexpr int kCapacity = 40;
   std::array<Vec3, kCapacity> v;
   int n = 0;
+
+  ConvexPolygon() = default;
+  // Copies only the vertices in use: polygons are copied in the innermost loop of the solver.
+  ConvexPolygon(const ConvexPolygon& o) : n(o.n) { std::copy_n(o.v.begin(), o.n, v.begin()); }
+  ConvexPolygon& operator=(const ConvexPolygon& o) {
+    n = o.n;
+    std::copy_n(o.v.begin(), o.n, v.begin());
+    return *this;
+  }
 
   bool empty() const { return n < 3; }
   void push(const Vec3& p) {
