@@ -3,8 +3,7 @@
 
 #include "cli/commands.h"
 #include "core/error.h"
-#include "mesh/grid_mesh.h"
-#include "solver/progressive.h"
+#include "experiment/solve.h"
 #include "solver/solution_io.h"
 
 namespace radrecon::cli {
@@ -17,41 +16,18 @@ struct SolveArgs {
   std::string out;
   double residual = 1e-4;
   int patches = 2;
+  std::string leaves_on;
   bool quiet = false;
 };
 
-int parse_positive_int(const std::string& text, const std::string& field) {
-  size_t used = 0;
-  long long v = 0;
-  try {
-    v = std::stoll(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != text.size() || used == 0 || v < 1 || v > 100000)
-    throw UserError(field, "expected an integer in [1, 100000], got '" + text + "'");
-  return static_cast<int>(v);
-}
-
 void run_solve(const SolveArgs& args) {
   const Scene scene = load_scene(args.scene);
-  const auto colon = args.mesh.find(':');
-  const std::string kind = args.mesh.substr(0, colon);
-  if (colon == std::string::npos)
-    throw UserError("--mesh", "expected grid:N, quadtree:LEAVES or quadtree-eps:E, got '" + args.mesh + "'");
-  if (kind == "quadtree" || kind == "quadtree-eps")
-    throw UserError("--mesh", "hierarchical radiosity on quadtrees is not implemented yet");
-  if (kind != "grid")
-    throw UserError("--mesh", "unknown mesh kind '" + kind + "' (expected grid, quadtree or quadtree-eps)");
-  const int n = parse_positive_int(args.mesh.substr(colon + 1), "--mesh grid:N");
-  const Mesh mesh = make_grid_mesh(scene, GridMeshOptions{n, args.patches});
-  if (!args.quiet)
-    std::fprintf(stderr, "solve: %s, %zu elements on %zu surface sides\n", args.mesh.c_str(), mesh.element_count(),
-                 mesh.surfaces.size());
-  ProgressiveOptions po;
-  po.residual = args.residual;
-  po.progress_label = args.quiet ? "" : "solve";
-  const Solution sol = solve_progressive(scene, mesh, po, "grid:" + std::to_string(n));
+  SolveSettings settings;
+  settings.residual = args.residual;
+  settings.patches = args.patches;
+  settings.leaves_on = args.leaves_on;
+  settings.progress_label = args.quiet ? "" : "solve";
+  const Solution sol = solve_scene(scene, args.mesh, settings);
   write_solution_json(args.out, sol);
   if (!args.quiet) std::fprintf(stderr, "solve: wrote %s\n", args.out.c_str());
 }
@@ -67,16 +43,21 @@ void add_solve_command(CLI::App& app) {
   cmd->add_option("--scene", args->scene, "Scene JSON file, or 'paper' for the built-in scene")
       ->capture_default_str();
   cmd->add_option("--mesh", args->mesh,
-                  "grid:N = N elements along the longest surface edge of the scene, the other surfaces "
-                  "with elements of the same size (capped by a surface's mesh.max_divisions)")
+                  "grid:N: progressive refinement, N elements along the longest surface edge of the scene, the "
+                  "other surfaces with elements of the same size (capped by a surface's mesh.max_divisions); "
+                  "quadtree-eps:E: hierarchical radiosity, links refined while they carry more than E watts; "
+                  "quadtree:LEAVES: hierarchical radiosity with exactly LEAVES (= 1 + 3k) leaves on one side "
+                  "(see --leaves-on)")
       ->capture_default_str();
+  cmd->add_option("--leaves-on", args->leaves_on,
+                  "Surface side that quadtree:LEAVES counts (default: 'ground' if present, else the largest surface)");
   cmd->add_option("--out", args->out, "Solution file to write (JSON)")->required();
   cmd->add_option("--residual", args->residual,
-                  "Stop when the unshot power falls below this fraction of the emitted power")
+                  "grid: stop when the unshot power falls below this fraction of the emitted power")
       ->check(CLI::Range(1e-12, 0.5))
       ->capture_default_str();
   cmd->add_option("--patches", args->patches,
-                  "Shooting patches along the longest edge (patches group elements; receivers are elements)")
+                  "grid: shooting patches along the longest edge (patches group elements; receivers are elements)")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
   cmd->add_flag("--quiet", args->quiet, "No progress messages");

@@ -37,11 +37,15 @@ MeshElement make_element(const Surface& surface, bool back_side, double u0, doub
   return e;
 }
 
+std::string side_name(const Surface& s, bool back) {
+  return s.two_sided ? s.name + (back ? "/back" : "/front") : s.name;
+}
+
 namespace {
 
 MeshSurface mesh_side(const Surface& s, size_t index, bool back, int nu, int nv, int patch_size) {
   MeshSurface m;
-  m.name = s.two_sided ? s.name + (back ? "/back" : "/front") : s.name;
+  m.name = side_name(s, back);
   m.scene_surface = index;
   m.back_side = back;
   m.normal = back ? Vec3(-s.normal()) : s.normal();

@@ -55,6 +55,10 @@ struct GridMeshOptions {
   int max_patches = 2;
 };
 
+/// The name of one side of a surface: the surface's name, or "NAME/front" and "NAME/back" for
+/// the sides of a two-sided surface.
+std::string side_name(const Surface& surface, bool back_side);
+
 /// Meshes every surface (both sides of a two-sided one) into a regular grid.
 Mesh make_grid_mesh(const Scene& scene, const GridMeshOptions& options);
 

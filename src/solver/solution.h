@@ -33,6 +33,8 @@ struct SolveStats {
   size_t shots = 0;    ///< progressive refinement: patches shot
   size_t elements = 0;
   size_t patches = 0;
+  size_t links = 0;        ///< hierarchical radiosity: links of the final hierarchy
+  double epsilon_w = 0;    ///< hierarchical radiosity: the refinement threshold used, W
   Rgb emitted_w = Rgb::Zero();
   Rgb absorbed_w = Rgb::Zero();  ///< absorbed by the surfaces (1 - reflectance of what arrived)
   Rgb unshot_w = Rgb::Zero();    ///< reflected or emitted but not yet distributed

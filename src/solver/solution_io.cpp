@@ -54,6 +54,8 @@ void write_solution_json(const std::filesystem::path& path, const Solution& sol)
     const SolveStats& st = sol.stats;
     std::fprintf(f, "\n  ],\n  \"stats\": {\"method\": %s, \"shots\": %zu, \"elements\": %zu, \"patches\": %zu,\n",
                  json_string(st.method).c_str(), st.shots, st.elements, st.patches);
+    if (st.method == "hierarchical")
+      std::fprintf(f, "    \"links\": %zu, \"epsilon_w\": %.9g,\n", st.links, st.epsilon_w);
     std::fprintf(f, "    \"emitted_w\": ");
     put_rgb(f, st.emitted_w);
     std::fprintf(f, ", \"absorbed_w\": ");

@@ -1,0 +1,90 @@
+#include "experiment/solve.h"
+
+#include <cmath>
+
+#include "core/error.h"
+#include "mesh/grid_mesh.h"
+#include "solver/hierarchical.h"
+#include "solver/progressive.h"
+
+namespace radrecon {
+
+namespace {
+
+long long parse_integer(const std::string& text, long long lo, long long hi, const std::string& field,
+                        const std::string& spec) {
+  size_t used = 0;
+  long long v = 0;
+  try {
+    v = std::stoll(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size() || v < lo || v > hi)
+    throw UserError(field, "in '" + spec + "': expected an integer in [" + std::to_string(lo) + ", " +
+                               std::to_string(hi) + "], got '" + text + "'");
+  return v;
+}
+
+double parse_positive(const std::string& text, const std::string& field, const std::string& spec) {
+  size_t used = 0;
+  double v = 0;
+  try {
+    v = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size() || !std::isfinite(v) || v <= 0)
+    throw UserError(field, "in '" + spec + "': expected a positive number, got '" + text + "'");
+  return v;
+}
+
+std::string default_leaf_side(const Scene& scene) {
+  if (scene.find_surface("ground")) {
+    const Surface& g = scene.surfaces[*scene.find_surface("ground")];
+    return side_name(g, false);
+  }
+  size_t best = 0;
+  for (size_t k = 1; k < scene.surfaces.size(); ++k)
+    if (scene.surfaces[k].area_m2() > scene.surfaces[best].area_m2()) best = k;
+  return side_name(scene.surfaces[best], false);
+}
+
+}  // namespace
+
+Solution solve_scene(const Scene& scene, const std::string& spec, const SolveSettings& settings,
+                     const std::string& field) {
+  const auto colon = spec.find(':');
+  if (colon == std::string::npos)
+    throw UserError(field, "expected grid:N, quadtree:LEAVES or quadtree-eps:E, got '" + spec + "'");
+  const std::string kind = spec.substr(0, colon), value = spec.substr(colon + 1);
+  if (kind == "grid") {
+    const int n = static_cast<int>(parse_integer(value, 1, 100000, field, spec));
+    const Mesh mesh = make_grid_mesh(scene, GridMeshOptions{n, settings.patches});
+    if (!settings.progress_label.empty())
+      std::fprintf(stderr, "%s: %s, %zu elements on %zu surface sides\n", settings.progress_label.c_str(), spec.c_str(),
+                   mesh.element_count(), mesh.surfaces.size());
+    ProgressiveOptions po;
+    po.residual = settings.residual;
+    po.progress_label = settings.progress_label;
+    return solve_progressive(scene, mesh, po, "grid:" + std::to_string(n));
+  }
+  HierarchicalOptions ho;
+  ho.progress_label = settings.progress_label;
+  if (kind == "quadtree-eps") {
+    ho.epsilon_w = parse_positive(value, field, spec);
+    return solve_hierarchical(scene, ho, spec);
+  }
+  if (kind == "quadtree") {
+    const int leaves = static_cast<int>(parse_integer(value, 1, 10000000, field, spec));
+    const std::string side = settings.leaves_on.empty() ? default_leaf_side(scene) : settings.leaves_on;
+    bool known = false;
+    for (const Surface& s : scene.surfaces)
+      known = known || side_name(s, false) == side || (s.two_sided && side_name(s, true) == side);
+    if (!known) throw UserError("--leaves-on", "the scene has no surface side named '" + side + "'");
+    return solve_hierarchical_leaves(scene, side, leaves, ho, field + " " + spec);
+  }
+  throw UserError(field, "unknown mesh kind '" + kind + "' in '" + spec + "' (expected grid, quadtree or quadtree-eps)");
+}
+
+}  // namespace radrecon

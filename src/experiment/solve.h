@@ -1,0 +1,28 @@
+#pragma once
+// One entry to the solvers by mesh specification, for the command line and the experiments:
+//   grid:N            progressive refinement on regular grids (mesh/grid_mesh.h)
+//   quadtree-eps:E    hierarchical radiosity refined to epsilon E watts
+//   quadtree:LEAVES   hierarchical radiosity with exactly LEAVES leaves on one surface side
+
+#include <string>
+
+#include "scene/scene.h"
+#include "solver/solution.h"
+
+namespace radrecon {
+
+struct SolveSettings {
+  double residual = 1e-4;  ///< progressive: stop below this unshot fraction of the emitted power
+  int patches = 2;         ///< progressive: shooting patches along the longest edge
+  /// quadtree:LEAVES: the side that gets LEAVES leaves; empty: "ground" if the scene has such a
+  /// side, else the side of the largest surface.
+  std::string leaves_on;
+  std::string progress_label;  ///< empty: quiet
+};
+
+/// Solves `scene` as `mesh_spec` says. Throws UserError naming `field` for a malformed or
+/// impossible specification.
+Solution solve_scene(const Scene& scene, const std::string& mesh_spec, const SolveSettings& settings,
+                     const std::string& field = "--mesh");
+
+}  // namespace radrecon

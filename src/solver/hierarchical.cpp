@@ -1,0 +1,519 @@
+#include "solver/hierarchical.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numeric>
+#include <queue>
+#include <tuple>
+
+#include "core/check.h"
+#include "core/error.h"
+#include "core/tolerances.h"
+#include "mesh/grid_mesh.h"
+#include "solver/form_factor.h"
+#include "solver/visibility.h"
+
+namespace radrecon {
+
+namespace {
+
+struct Node {
+  double u0, v0, u1, v1;
+  std::array<Vec3, 4> corners;
+  Vec3 center;
+  double area_m2 = 0;
+  double size_m = 0;        ///< longer edge
+  int first_child = -1;     ///< four consecutive children, or -1 for a leaf
+  Rgb radiosity = Rgb::Zero();
+  Rgb gathered = Rgb::Zero();  ///< irradiance through this node's own links, W/m^2
+  Rgb irradiance = Rgb::Zero();  ///< leaves: total irradiance including the ancestors', W/m^2
+  double spread_w_m2 = 0;        ///< max - min of the children's radiosity (channel mean); 0 at leaves
+};
+
+/// One side of one surface as a quadtree.
+struct Tree {
+  std::string name;
+  size_t scene_surface = 0;
+  bool back_side = false;
+  Vec3 normal;
+  Rgb reflectance, emission_w_m2;
+  std::vector<Node> nodes;
+  int leaves = 1;
+  int leaf_cap = 0;  ///< 0: no cap
+};
+
+struct Link {
+  int receiver_tree, receiver_node, source_tree, source_node;
+  double f;         ///< area-to-area visible form factor, receiver -> source
+  double f_spread;  ///< max - min of the point form factors over the receiver's samples
+};
+
+/// Midpoint samples per receiver edge for a link's area-to-area form factor, and the finer rule
+/// used where the point form factor jumps across the receiver (its spread exceeds this
+/// fraction of its maximum).
+constexpr int kLinkQuadrature = 4;
+constexpr int kLinkQuadratureFine = 16;
+constexpr double kDiscontinuousSpread = 0.5;
+
+class Hierarchy {
+ public:
+  Hierarchy(const Scene& scene, const HierarchicalOptions& options) : scene_(scene), options_(options) {
+    double longest = 0;
+    for (const Surface& s : scene.surfaces) longest = std::max({longest, s.length_u_m(), s.length_v_m()});
+    min_size_m_ = options.min_size_m > 0 ? options.min_size_m : longest / 256;
+    occluders_ = make_occluders(scene);
+    for (size_t k = 0; k < scene.surfaces.size(); ++k) {
+      add_tree(k, false);
+      if (scene.surfaces[k].two_sided) add_tree(k, true);
+    }
+    if (options.leaf_cap) {
+      bool found = false;
+      for (Tree& t : trees_)
+        if (t.name == options.leaf_cap->first) {
+          t.leaf_cap = options.leaf_cap->second;
+          found = true;
+        }
+      RR_CHECK(found, "leaf cap names no surface side");
+    }
+    pair_occluders_.resize(trees_.size() * trees_.size());
+    for (size_t r = 0; r < trees_.size(); ++r)
+      for (size_t s = 0; s < trees_.size(); ++s)
+        if (facing(r, s)) {
+          Vec3 lo = trees_[r].nodes[0].corners[0], hi = lo;
+          for (const Tree* t : {&trees_[r], &trees_[s]})
+            for (const Vec3& c : t->nodes[0].corners) {
+              lo = lo.cwiseMin(c);
+              hi = hi.cwiseMax(c);
+            }
+          pair_occluders_[r * trees_.size() + s] =
+              occluders_in_box(occluders_, lo, hi, trees_[r].scene_surface, trees_[s].scene_surface);
+          links_.push_back(make_link(static_cast<int>(r), 0, static_cast<int>(s), 0));
+        }
+  }
+
+  void solve() {
+    const auto start = std::chrono::steady_clock::now();
+    int passes = 0;
+    gather_until_converged();
+    while (refine_pass()) {
+      ++passes;
+      gather_until_converged();
+      if (!options_.progress_label.empty())
+        std::fprintf(stderr, "%s: refinement pass %d, %zu links, %d leaves\n", options_.progress_label.c_str(),
+                     passes, links_.size(), total_leaves());
+    }
+    hierarchy_links_ = links_.size();
+    if (options_.leaf_gather) {
+      push_links_to_leaves();
+      gather_until_converged();
+    }
+    seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+
+  Solution solution(const std::string& mesh_spec) const {
+    Solution sol;
+    sol.scene = scene_.name;
+    sol.mesh = mesh_spec;
+    SolveStats& st = sol.stats;
+    st.method = "hierarchical";
+    st.links = hierarchy_links_;
+    st.epsilon_w = options_.epsilon_w;
+    st.residual = residual_;
+    st.seconds = seconds_;
+    for (const Tree& t : trees_) {
+      const Surface& surface = scene_.surfaces[t.scene_surface];
+      SurfaceSolution out;
+      out.name = t.name;
+      out.scene_surface = surface.name;
+      out.back_side = t.back_side;
+      out.length_u_m = surface.length_u_m();
+      out.length_v_m = surface.length_v_m();
+      collect_leaves(t, 0, out);
+      st.emitted_w += t.nodes[0].area_m2 * t.emission_w_m2;
+      for (const SolutionElement& e : out.elements) (void)e;
+      st.elements += out.elements.size();
+      sol.surfaces.push_back(std::move(out));
+    }
+    for (const Tree& t : trees_) add_absorbed(t, 0, st.absorbed_w);
+    st.escaped_w = st.emitted_w - st.absorbed_w;  // what is not absorbed has left the scene
+    return sol;
+  }
+
+ private:
+  void add_tree(size_t k, bool back) {
+    const Surface& s = scene_.surfaces[k];
+    Tree t;
+    t.name = side_name(s, back);
+    t.scene_surface = k;
+    t.back_side = back;
+    t.normal = back ? Vec3(-s.normal()) : s.normal();
+    t.reflectance = s.reflectance;
+    t.emission_w_m2 = back ? Rgb(Rgb::Zero()) : s.emission_w_m2;
+    t.nodes.push_back(make_node(t, 0, 0, 1, 1));
+    trees_.push_back(std::move(t));
+  }
+
+  Node make_node(const Tree& t, double u0, double v0, double u1, double v1) const {
+    const Surface& s = scene_.surfaces[t.scene_surface];
+    const MeshElement e = make_element(s, t.back_side, u0, v0, u1, v1);
+    Node n;
+    n.u0 = u0;
+    n.v0 = v0;
+    n.u1 = u1;
+    n.v1 = v1;
+    n.corners = e.corners;
+    n.center = e.center;
+    n.area_m2 = e.area_m2;
+    n.size_m = std::max((u1 - u0) * s.length_u_m(), (v1 - v0) * s.length_v_m());
+    n.radiosity = t.emission_w_m2;
+    return n;
+  }
+
+  /// Could light leave tree s and arrive at tree r?
+  bool facing(size_t r, size_t s) const {
+    const Tree& R = trees_[r];
+    const Tree& S = trees_[s];
+    if (R.scene_surface == S.scene_surface) return false;
+    bool r_in_front = false, s_in_front = false;
+    for (const Vec3& c : R.nodes[0].corners)
+      r_in_front = r_in_front || S.normal.dot(c - S.nodes[0].corners[0]) > tol::kPlaneDistance_m;
+    for (const Vec3& c : S.nodes[0].corners)
+      s_in_front = s_in_front || R.normal.dot(c - R.nodes[0].corners[0]) > tol::kPlaneDistance_m;
+    return r_in_front && s_in_front;
+  }
+
+  const std::vector<const Occluder*>& occluders(int r, int s) const {
+    return pair_occluders_[static_cast<size_t>(r) * trees_.size() + static_cast<size_t>(s)];
+  }
+
+  /// A link's form factor is the area-to-area form factor F(receiver -> source): the mean over
+  /// kLinkQuadrature^2 midpoint samples of the receiver of the exact visible point-to-quad form
+  /// factor. Its spread over the samples measures how much the transport varies across the
+  /// receiver, shadow boundaries included.
+  Link make_link(int rt, int rn, int st, int sn) const {
+    Link link = sample_link(rt, rn, st, sn, kLinkQuadrature);
+    // A discontinuity (a shadow boundary, or the foot of a wall standing on the receiver) makes
+    // the coarse rule's error of order 1 / kLinkQuadrature of the jump: sample finely there.
+    if (link.f_spread > kDiscontinuousSpread * (link.f + link.f_spread))
+      link = sample_link(rt, rn, st, sn, kLinkQuadratureFine);
+    return link;
+  }
+
+  Link sample_link(int rt, int rn, int st, int sn, int n) const {
+    const Tree& R = trees_[static_cast<size_t>(rt)];
+    const Tree& S = trees_[static_cast<size_t>(st)];
+    const Node& r = R.nodes[static_cast<size_t>(rn)];
+    const Node& s = S.nodes[static_cast<size_t>(sn)];
+    const Surface& surface = scene_.surfaces[R.scene_surface];
+    ConvexPolygon source;
+    for (const Vec3& c : s.corners) source.push(c);
+    const auto& occ = occluders(rt, st);
+    Link link{rt, rn, st, sn, 0.0, 0.0};
+    double lo = std::numeric_limits<double>::infinity(), hi = 0;
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const Vec3 p = surface.point(r.u0 + (i + 0.5) / n * (r.u1 - r.u0), r.v0 + (j + 0.5) / n * (r.v1 - r.v0));
+        const double f = visible_form_factor(p, R.normal, source, S.normal, occ);
+        link.f += f;
+        lo = std::min(lo, f);
+        hi = std::max(hi, f);
+      }
+    link.f /= n * n;
+    link.f_spread = hi - lo;
+    return link;
+  }
+
+  /// The refinement oracle: the power error (W, channel mean) of the link, from the variation
+  /// of the transport across the receiver, rho_r * B_s * spread(F) * A_r, and from the
+  /// variation of the source's radiosity, rho_r * spread(B_s) * F * A_r.
+  struct Estimate {
+    double receiver_w, source_w;
+    double total() const { return std::max(receiver_w, source_w); }
+  };
+  Estimate error_estimate(const Link& l) const {
+    const Tree& R = trees_[static_cast<size_t>(l.receiver_tree)];
+    const Node& r = R.nodes[static_cast<size_t>(l.receiver_node)];
+    const Node& s = trees_[static_cast<size_t>(l.source_tree)].nodes[static_cast<size_t>(l.source_node)];
+    const double scale = R.reflectance.mean() * r.area_m2;
+    return {scale * s.radiosity.mean() * l.f_spread, scale * s.spread_w_m2 * l.f};
+  }
+
+  bool splittable(int tree, int node) const {
+    const Tree& t = trees_[static_cast<size_t>(tree)];
+    const Node& n = t.nodes[static_cast<size_t>(node)];
+    if (n.first_child >= 0) return true;
+    if (n.size_m < 2 * min_size_m_) return false;
+    return t.leaf_cap == 0 || t.leaves + 3 <= t.leaf_cap;
+  }
+
+  void split(int tree, int node) {
+    Tree& t = trees_[static_cast<size_t>(tree)];
+    if (t.nodes[static_cast<size_t>(node)].first_child >= 0) return;
+    const Node parent = t.nodes[static_cast<size_t>(node)];
+    const double um = 0.5 * (parent.u0 + parent.u1), vm = 0.5 * (parent.v0 + parent.v1);
+    const int first = static_cast<int>(t.nodes.size());
+    const std::array<std::array<double, 4>, 4> quads = {
+        {{parent.u0, parent.v0, um, vm}, {um, parent.v0, parent.u1, vm}, {parent.u0, vm, um, parent.v1}, {um, vm, parent.u1, parent.v1}}};
+    for (const auto& q : quads) {
+      Node child = make_node(t, q[0], q[1], q[2], q[3]);
+      child.radiosity = parent.radiosity;  // until the next solve
+      t.nodes.push_back(child);
+    }
+    t.nodes[static_cast<size_t>(node)].first_child = first;
+    t.leaves += 3;
+  }
+
+  /// One refinement pass, best first: the link with the largest error estimate is refined one
+  /// level (its larger-error end split, the children linked in its place), and its new links go
+  /// back into the queue, until no link exceeds epsilon or can be refined. Without a leaf cap
+  /// the result does not depend on the order; with one, the cap keeps the splits that matter
+  /// most. Returns whether anything was refined.
+  bool refine_pass() {
+    struct Entry {
+      double error;
+      size_t sequence;  // ties: first come first served, for determinism
+      Link link;
+      bool operator<(const Entry& o) const { return error < o.error || (error == o.error && sequence > o.sequence); }
+    };
+    std::priority_queue<Entry> queue;
+    size_t sequence = 0;
+    for (const Link& l : links_) queue.push({error_estimate(l).total(), sequence++, l});
+    std::vector<Link> kept;
+    kept.reserve(links_.size());
+    bool changed = false;
+    while (!queue.empty()) {
+      const Entry top = queue.top();
+      queue.pop();
+      const Link& l = top.link;
+      const Estimate e = error_estimate(l);
+      const bool can_r = splittable(l.receiver_tree, l.receiver_node);
+      // A black source radiates its uniform emission only: splitting it changes nothing.
+      const bool black_source = (trees_[static_cast<size_t>(l.source_tree)].reflectance == 0).all();
+      const bool can_s = !black_source && splittable(l.source_tree, l.source_node);
+      if (e.total() <= options_.epsilon_w || (!can_r && !can_s)) {
+        kept.push_back(l);
+        continue;
+      }
+      changed = true;
+      const bool split_receiver = can_r && (!can_s || e.receiver_w >= e.source_w);
+      const int tree = split_receiver ? l.receiver_tree : l.source_tree;
+      const int node = split_receiver ? l.receiver_node : l.source_node;
+      split(tree, node);
+      const int first = trees_[static_cast<size_t>(tree)].nodes[static_cast<size_t>(node)].first_child;
+      for (int c = 0; c < 4; ++c) {
+        const Link child = split_receiver ? make_link(l.receiver_tree, first + c, l.source_tree, l.source_node)
+                                          : make_link(l.receiver_tree, l.receiver_node, l.source_tree, first + c);
+        queue.push({error_estimate(child).total(), sequence++, child});
+      }
+      if (kept.size() + queue.size() > options_.max_links)
+        throw UserError("epsilon " + std::to_string(options_.epsilon_w) + " W",
+                        "the hierarchy would need more than " + std::to_string(options_.max_links) +
+                            " links; use a larger epsilon or fewer leaves");
+    }
+    // Keep the links in a canonical order (by receiver, then source) for a deterministic gather.
+    std::sort(kept.begin(), kept.end(), [](const Link& a, const Link& b) {
+      return std::tie(a.receiver_tree, a.receiver_node, a.source_tree, a.source_node) <
+             std::tie(b.receiver_tree, b.receiver_node, b.source_tree, b.source_node);
+    });
+    links_.swap(kept);
+    return changed;
+  }
+
+  /// Final gather: every link whose receiver has children is replaced by links from each of the
+  /// receiver's leaves to the same source, each with its own area-to-area form factor. Sources
+  /// keep the hierarchy's resolution; receivers get the leaves' resolution, so no leaf inherits
+  /// an ancestor's average irradiance (e.g. light from the front of a wall that the leaf is
+  /// behind).
+  void push_links_to_leaves() {
+    std::vector<Link> leaf_links;
+    leaf_links.reserve(links_.size());
+    std::vector<int> stack;
+    for (const Link& l : links_) {
+      const Tree& R = trees_[static_cast<size_t>(l.receiver_tree)];
+      if (R.nodes[static_cast<size_t>(l.receiver_node)].first_child < 0) {
+        leaf_links.push_back(l);
+        continue;
+      }
+      stack.assign(1, l.receiver_node);
+      while (!stack.empty()) {
+        const int k = stack.back();
+        stack.pop_back();
+        const Node& n = R.nodes[static_cast<size_t>(k)];
+        if (n.first_child < 0) {
+          leaf_links.push_back(make_link(l.receiver_tree, k, l.source_tree, l.source_node));
+        } else {
+          for (int c = 3; c >= 0; --c) stack.push_back(n.first_child + c);
+        }
+      }
+    }
+    std::sort(leaf_links.begin(), leaf_links.end(), [](const Link& a, const Link& b) {
+      return std::tie(a.receiver_tree, a.receiver_node, a.source_tree, a.source_node) <
+             std::tie(b.receiver_tree, b.receiver_node, b.source_tree, b.source_node);
+    });
+    links_.swap(leaf_links);
+  }
+
+  /// Jacobi gathering over all links, then push-pull, until the radiosity settles.
+  void gather_until_converged() {
+    for (int iteration = 0; iteration < 10000; ++iteration) {
+      for (Tree& t : trees_)
+        for (Node& n : t.nodes) n.gathered = Rgb::Zero();
+      for (const Link& l : links_) {
+        const Node& s = trees_[static_cast<size_t>(l.source_tree)].nodes[static_cast<size_t>(l.source_node)];
+        trees_[static_cast<size_t>(l.receiver_tree)].nodes[static_cast<size_t>(l.receiver_node)].gathered += l.f * s.radiosity;
+      }
+      double change = 0, largest = 0;
+      for (Tree& t : trees_) push_pull(t, 0, Rgb::Zero(), change, largest);
+      residual_ = largest > 0 ? change / largest : 0;
+      if (change <= options_.tolerance * largest) return;
+    }
+  }
+
+  /// Pushes irradiance down to the leaves and pulls area-weighted radiosity up; returns the
+  /// node's new radiosity.
+  Rgb push_pull(Tree& t, int index, const Rgb& irradiance_above, double& change, double& largest) {
+    Node& n = t.nodes[static_cast<size_t>(index)];
+    const Rgb irradiance = irradiance_above + n.gathered;
+    Rgb b;
+    if (n.first_child < 0) {
+      b = t.emission_w_m2 + t.reflectance * irradiance;
+      n.irradiance = irradiance;
+      change = std::max(change, (b - n.radiosity).abs().maxCoeff());
+      largest = std::max(largest, b.abs().maxCoeff());
+    } else {
+      const int first = n.first_child;
+      b = Rgb::Zero();
+      double area = 0, lo = std::numeric_limits<double>::infinity(), hi = -lo;
+      for (int c = 0; c < 4; ++c) {
+        const Rgb bc = push_pull(t, first + c, irradiance, change, largest);
+        const double a = t.nodes[static_cast<size_t>(first + c)].area_m2;
+        b += a * bc;
+        area += a;
+        lo = std::min(lo, bc.mean());
+        hi = std::max(hi, bc.mean());
+      }
+      b /= area;
+      t.nodes[static_cast<size_t>(index)].spread_w_m2 = hi - lo;
+    }
+    t.nodes[static_cast<size_t>(index)].radiosity = b;
+    return b;
+  }
+
+  void collect_leaves(const Tree& t, int index, SurfaceSolution& out) const {
+    const Node& n = t.nodes[static_cast<size_t>(index)];
+    if (n.first_child >= 0) {
+      for (int c = 0; c < 4; ++c) collect_leaves(t, n.first_child + c, out);
+      return;
+    }
+    out.elements.push_back({n.u0, n.v0, n.u1, n.v1, n.center, n.area_m2, n.radiosity});
+  }
+
+  void add_absorbed(const Tree& t, int index, Rgb& absorbed) const {
+    const Node& n = t.nodes[static_cast<size_t>(index)];
+    if (n.first_child >= 0) {
+      for (int c = 0; c < 4; ++c) add_absorbed(t, n.first_child + c, absorbed);
+      return;
+    }
+    absorbed += n.area_m2 * (1.0 - t.reflectance) * n.irradiance;
+  }
+
+  int total_leaves() const {
+    int n = 0;
+    for (const Tree& t : trees_) n += t.leaves;
+    return n;
+  }
+
+  const Scene& scene_;
+  HierarchicalOptions options_;
+  double min_size_m_ = 0;
+  std::vector<Occluder> occluders_;
+  std::vector<Tree> trees_;
+  std::vector<std::vector<const Occluder*>> pair_occluders_;
+  std::vector<Link> links_;
+  size_t hierarchy_links_ = 0;
+  double residual_ = 0;
+  double seconds_ = 0;
+};
+
+}  // namespace
+
+Solution solve_hierarchical(const Scene& scene, const HierarchicalOptions& options, const std::string& mesh_spec) {
+  RR_CHECK(options.epsilon_w > 0 && options.tolerance > 0, "hierarchical options out of range");
+  Hierarchy h(scene, options);
+  h.solve();
+  return h.solution(mesh_spec);
+}
+
+size_t leaf_count(const Solution& solution, const std::string& side) {
+  const SurfaceSolution* s = solution.find(side);
+  return s ? s->elements.size() : 0;
+}
+
+Solution solve_hierarchical_leaves(const Scene& scene, const std::string& side, int leaves,
+                                   HierarchicalOptions options, const std::string& field) {
+  if (leaves < 1 || (leaves - 1) % 3 != 0)
+    throw UserError(field, "a quadtree has 1 + 3k leaves; " + std::to_string(leaves) + " is not of that form");
+  const std::string spec = "quadtree:" + std::to_string(leaves);
+  const std::string label = options.progress_label;
+  options.progress_label.clear();
+  options.leaf_cap.reset();
+  auto count = [&](double eps) {
+    options.epsilon_w = eps;
+    return static_cast<int>(leaf_count(solve_hierarchical(scene, options, spec), side));
+  };
+  const auto start = std::chrono::steady_clock::now();
+  // The most leaves the side can have: split down to the minimum element size everywhere.
+  {
+    const Scene& sc = scene;
+    double longest = 0, side_size = 0;
+    for (const Surface& s : sc.surfaces) {
+      longest = std::max({longest, s.length_u_m(), s.length_v_m()});
+      if (side_name(s, false) == side || (s.two_sided && side_name(s, true) == side))
+        side_size = std::max(s.length_u_m(), s.length_v_m());
+    }
+    const double min_size = options.min_size_m > 0 ? options.min_size_m : longest / 256;
+    double most = 1;
+    for (double size = side_size; size >= 2 * min_size && most < 1e15; size /= 2) most *= 4;
+    if (leaves > most)
+      throw UserError(field, std::to_string(leaves) + " leaves on '" + side + "' cannot be reached above the minimum element size (" +
+                                 std::to_string(min_size) + " m allows at most " + std::to_string(static_cast<long long>(most)) + ")");
+  }
+  // Bracket: count(lo) >= leaves > count(hi), epsilon in W.
+  double hi = 1.0, lo = 1e-3;
+  while (count(hi) >= leaves && hi < 1e12) hi *= 10;
+  int c_lo = count(lo), previous = -1;
+  for (int k = 0; c_lo < leaves && c_lo > previous && k < 12; ++k) {
+    hi = lo;
+    lo /= 10;
+    previous = c_lo;
+    c_lo = count(lo);
+  }
+  if (c_lo < leaves)
+    throw UserError(field, std::to_string(leaves) + " leaves on '" + side + "' cannot be reached: refinement stops at " +
+                               std::to_string(c_lo));
+  // Bisection on log epsilon until the bracket is 0.1% wide or lo hits the count exactly.
+  for (int k = 0; k < 60 && c_lo != leaves && hi / lo > 1.001; ++k) {
+    const double mid = std::sqrt(lo * hi);
+    const int c = count(mid);
+    if (c >= leaves) {
+      lo = mid;
+      c_lo = c;
+    } else {
+      hi = mid;
+    }
+  }
+  options.epsilon_w = lo;
+  options.leaf_cap = std::make_pair(side, leaves);
+  options.progress_label = label;
+  Solution sol = solve_hierarchical(scene, options, spec);
+  RR_CHECK(static_cast<int>(leaf_count(sol, side)) == leaves, "leaf cap did not give the requested count");
+  sol.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!label.empty())
+    std::fprintf(stderr, "%s: epsilon %.4g W gives %d leaves on %s\n", label.c_str(), lo, leaves, side.c_str());
+  return sol;
+}
+
+}  // namespace radrecon

@@ -1,0 +1,59 @@
+#pragma once
+// Hierarchical radiosity (Hanrahan, Salzman and Aupperle 1991) on one quadtree per surface side.
+//
+// Links join a receiver node and a source node with the area-to-area form factor: the mean over
+// 4 x 4 points of the receiver of the exact visible point-to-quad form factor (visibility.h,
+// shared with the progressive solver), so leaves hold area averages.
+// A link is refined while its error estimate, the power it carries,
+//     rho_receiver * B_source * F * A_receiver   (W, channel mean),
+// exceeds epsilon and one of its ends is larger than the minimum element size: the larger end
+// is split into four and its children linked instead (a black source, whose radiosity is its
+// uniform emission, is never split: its form factor is exact whatever its size). F is the unoccluded form factor when the
+// link is partly visible (visibility differs between the receiver's sample points), so
+// shadow boundaries are refined where the energy is. Between refinement passes the system is
+// solved by gathering over the links and push-pull, until the radiosity changes by less than
+// `tolerance` of its maximum; the passes end when no link is refined (BF refinement).
+
+#include <optional>
+#include <string>
+
+#include "scene/scene.h"
+#include "solver/solution.h"
+
+namespace radrecon {
+
+struct HierarchicalOptions {
+  /// Refine links that carry more than this power, W (> 0).
+  double epsilon_w = 1e-3;
+  /// Nodes whose longer edge is below this (metres) are never split; 0: the longest surface
+  /// edge of the scene / 256.
+  double min_size_m = 0;
+  /// Gathering stops when no radiosity changes by more than this fraction of the largest.
+  double tolerance = 1e-6;
+  /// If set: the surface side with this name (e.g. "ground") is split at most so often that
+  /// it has at most this many leaves; the splits with the largest error estimates go first.
+  std::optional<std::pair<std::string, int>> leaf_cap;
+  /// After refinement, give every leaf its own links to the sources of its ancestors' links
+  /// (a final gather at the leaves' resolution; the sources keep theirs).
+  bool leaf_gather = true;
+  /// Refinement that needs more links than this is refused (UserError): a guard against an
+  /// epsilon so small that the links (which grow as the square of the elements) exhaust memory.
+  size_t max_links = 20'000'000;
+  /// Name printed in progress messages on stderr; empty: quiet.
+  std::string progress_label;
+};
+
+/// Solves the scene by hierarchical radiosity; the elements of the solution are the leaves.
+Solution solve_hierarchical(const Scene& scene, const HierarchicalOptions& options, const std::string& mesh_spec);
+
+/// Number of leaves of the named surface side in a solution.
+size_t leaf_count(const Solution& solution, const std::string& side);
+
+/// quadtree:LEAVES: the largest epsilon (bisection on log epsilon) whose quadtree gives the side
+/// `side` at least `leaves` leaves, then solved with a cap of exactly `leaves`. Throws
+/// UserError (naming `field`) if `leaves` is not 1 + 3k or cannot be reached above the
+/// minimum element size.
+Solution solve_hierarchical_leaves(const Scene& scene, const std::string& side, int leaves,
+                                   HierarchicalOptions options, const std::string& field);
+
+}  // namespace radrecon
