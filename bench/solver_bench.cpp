@@ -6,6 +6,7 @@
 
 #include "mesh/grid_mesh.h"
 #include "solver/form_factor.h"
+#include "solver/hierarchical.h"
 #include "solver/progressive.h"
 #include "solver/visibility.h"
 
@@ -61,6 +62,30 @@ void BM_SolvePaperGrid(benchmark::State& state) {
   state.counters["elements"] = static_cast<double>(mesh.element_count());
 }
 BENCHMARK(BM_SolvePaperGrid)->Arg(16)->Arg(100)->Arg(400)->Unit(benchmark::kMillisecond)->Iterations(3);
+
+/// quadtree:LEAVES on the paper scene: the epsilon search (about 15 solves) and the final solve.
+void BM_SolvePaperQuadtreeLeaves(benchmark::State& state) {
+  const Scene scene = paper_scene();
+  const int leaves = static_cast<int>(state.range(0));
+  Solution sol;
+  for (auto _ : state) sol = solve_hierarchical_leaves(scene, "ground", leaves, HierarchicalOptions{}, "bench");
+  state.counters["links"] = static_cast<double>(sol.stats.links);
+  state.counters["leaves_all"] = static_cast<double>(sol.stats.elements);
+  state.counters["epsilon_w"] = sol.stats.epsilon_w;
+}
+BENCHMARK(BM_SolvePaperQuadtreeLeaves)->Arg(100)->Arg(286)->Arg(1000)->Arg(4000)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+/// One hierarchical solve at a fixed epsilon (the cost per solve, without the search).
+void BM_SolvePaperQuadtreeEpsilon(benchmark::State& state) {
+  const Scene scene = paper_scene();
+  HierarchicalOptions options;
+  options.epsilon_w = 1.0 / static_cast<double>(state.range(0));
+  Solution sol;
+  for (auto _ : state) sol = solve_hierarchical(scene, options, "bench");
+  state.counters["links"] = static_cast<double>(sol.stats.links);
+  state.counters["ground_leaves"] = static_cast<double>(leaf_count(sol, "ground"));
+}
+BENCHMARK(BM_SolvePaperQuadtreeEpsilon)->Arg(20)->Arg(60)->Arg(250)->Arg(1000)->Unit(benchmark::kMillisecond)->Iterations(3);
 
 }  // namespace
 }  // namespace radrecon

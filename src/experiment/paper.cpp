@@ -9,11 +9,12 @@
 
 #include "core/atomic_file.h"
 #include "evaluate/norms.h"
+#include "experiment/solve.h"
 #include "experiment/surface_data.h"
-#include "mesh/grid_mesh.h"
+#include "reconstruct/constant.h"
 #include "reconstruct/methods.h"
 #include "render/ground_map.h"
-#include "solver/progressive.h"
+#include "render/quadtree_figure.h"
 #include "solver/solution_io.h"
 
 namespace radrecon {
@@ -25,6 +26,14 @@ const std::map<std::string, std::array<double, 3>> kPaperTable1 = {
     {"constant", {0.00506, 0.000226, 0.337}},       {"bilinear", {0.00746, 0.000842, 0.329}},
     {"bicubic", {0.0142, 0.00107, 0.31}},           {"shepard", {0.00685, 0.000487, 0.333}},
     {"multiquadric", {0.0113, 0.00087, 0.329}},     {"natural-neighbour", {0.0127, 0.00135, 0.329}},
+};
+
+/// The paper's Table 2 (quadtree data).
+const std::map<std::string, std::array<double, 3>> kPaperTable2 = {
+    {"constant", {0.014, 0.000622, 0.169}},
+    {"shepard", {0.0742, 0.00964, 0.302}},
+    {"multiquadric", {0.033, 0.00244, 0.412}},
+    {"natural-neighbour", {0.0328, 0.00273, 0.329}},
 };
 
 class Stopwatch {
@@ -84,25 +93,24 @@ void run_paper(const PaperOptions& opt) {
   };
   Stopwatch clock;
   const Scene scene = paper_scene();
-
-  auto solve = [&](int divisions, const std::string& label) {
-    const std::string spec = "grid:" + std::to_string(divisions);
-    Mesh mesh = make_grid_mesh(scene, GridMeshOptions{divisions, GridMeshOptions{}.max_patches});
-    ProgressiveOptions po;
-    po.residual = opt.residual;
-    po.progress_label = opt.progress ? label : "";
-    return solve_progressive(scene, mesh, po, spec);
+  SolveSettings settings;
+  settings.residual = opt.residual;
+  auto solve = [&](const std::string& spec, const std::string& label) {
+    say("solving " + label + " (" + spec + ")");
+    settings.progress_label = opt.progress ? label : "";
+    return solve_scene(scene, spec, settings);
   };
-  say("solving the reference (grid:" + std::to_string(opt.reference_divisions) + ")");
-  const Solution reference = solve(opt.reference_divisions, "reference");
+  const Solution reference = solve("grid:" + std::to_string(opt.reference_divisions), "reference");
   const double t_reference = clock.lap();
-  say("solving the grid data (grid:" + std::to_string(opt.grid_divisions) + ")");
-  const Solution grid = solve(opt.grid_divisions, "grid16");
+  const Solution grid = solve("grid:" + std::to_string(opt.grid_divisions), "grid16");
   const double t_grid = clock.lap();
+  const Solution quadtree = solve("quadtree:" + std::to_string(opt.quadtree_leaves), "quadtree");
+  const double t_quadtree = clock.lap();
 
   const fs::path solutions = opt.out_dir / "solutions";
   write_solution_json(solutions / "reference.json", reference);
   write_solution_json(solutions / "grid16.json", grid);
+  write_solution_json(solutions / "quadtree.json", quadtree);
   const double t_write = clock.lap();
 
   // Evaluation points: the reference cell centres on the ground; reference values: its cells.
@@ -120,47 +128,75 @@ void run_paper(const PaperOptions& opt) {
   const fs::path figures = opt.out_dir / "figures";
   write_png(figures / "fig2_reference_ground.png", radiosity_map(ref_values, W, H, white), true);
 
-  const GridCells data = grid_cells(require_surface(grid, "ground", "grid solution"));
-  std::vector<MethodResult> table1;
   std::vector<double> values(ref_values.size());
-  for (Method m : all_methods()) {
-    auto interpolant = make_grid_interpolant(m, data);
-    interpolant->evaluate(points, values);
-    table1.push_back({method_name(m), error_norms(values, ref_values)});
-    write_png(figures / ("fig3_" + method_name(m) + "_ground.png"), radiosity_map(values, W, H, white), true);
-    write_png(figures / ("fig3_" + method_name(m) + "_difference.png"),
-              difference_map(values, ref_values, W, H, white), false);
-  }
+  auto evaluate = [&](const Interpolant& interpolant, const std::string& name, const std::string& figure) {
+    interpolant.evaluate(points, values);
+    write_png(figures / (figure + "_" + name + "_ground.png"), radiosity_map(values, W, H, white), true);
+    write_png(figures / (figure + "_" + name + "_difference.png"), difference_map(values, ref_values, W, H, white), false);
+    return MethodResult{name, error_norms(values, ref_values)};
+  };
+
+  // Table 1: the grid data.
+  const GridCells grid_data = grid_cells(require_surface(grid, "ground", "grid solution"));
+  std::vector<MethodResult> table1;
+  for (Method m : all_methods()) table1.push_back(evaluate(*make_grid_interpolant(m, grid_data), method_name(m), "fig3"));
+
+  // Table 2: the quadtree data (its leaves; the scattered methods will use their centres).
+  const SurfaceSolution& quad_ground = require_surface(quadtree, "ground", "quadtree solution");
+  const CellSamples leaves = element_cells(quad_ground);
+  std::vector<MethodResult> table2;
+  table2.push_back(evaluate(PiecewiseConstant(leaves), "constant", "fig4"));
+  write_png(figures / "fig1_quadtree.png",
+            quadtree_figure(leaves, 0, 0, std::max(quad_ground.length_u_m, quad_ground.length_v_m), white), false);
   const double t_reconstruct = clock.lap();
 
   nlohmann::json errors;
   for (const MethodResult& r : table1) errors["grid"][r.name] = norms_json(r.norms);
+  for (const MethodResult& r : table2) errors["quadtree"][r.name] = norms_json(r.norms);
+  auto stats_json = [](const Solution& s) {
+    nlohmann::json j = {{"mesh", s.mesh}, {"method", s.stats.method}, {"elements", s.stats.elements},
+                        {"residual", s.stats.residual}, {"seconds", s.stats.seconds}};
+    if (s.stats.method == "hierarchical") {
+      j["links"] = s.stats.links;
+      j["epsilon_w"] = s.stats.epsilon_w;
+    } else {
+      j["shots"] = s.stats.shots;
+    }
+    return j;
+  };
   errors["settings"] = {
-      {"reference", reference.mesh}, {"grid", grid.mesh}, {"residual", opt.residual},
+      {"reference", stats_json(reference)}, {"grid", stats_json(grid)}, {"quadtree", stats_json(quadtree)},
+      {"ground_leaves", quad_ground.elements.size()}, {"residual", opt.residual},
       {"evaluated_at", std::to_string(W) + "x" + std::to_string(H) + " reference cell centres, 3 channels"},
-      {"white_w_m2", white}, {"nodal_rule", "mean of the adjacent cells (1, 2 or 4)"},
-      {"reference_stats", {{"shots", reference.stats.shots}, {"residual", reference.stats.residual},
-                           {"seconds", reference.stats.seconds}, {"elements", reference.stats.elements}}},
-      {"grid_stats", {{"shots", grid.stats.shots}, {"residual", grid.stats.residual},
-                      {"seconds", grid.stats.seconds}, {"elements", grid.stats.elements}}}};
+      {"white_w_m2", white}, {"nodal_rule", "mean of the adjacent cells (1, 2 or 4)"}};
   write_text_file(opt.out_dir / "errors.json", errors.dump(2) + "\n");
 
-  std::ostringstream notes;
-  notes << "Grid data: " << grid.mesh << " on the ground (" << data.nx << " x " << data.ny
-        << " elements). Reference: " << reference.mesh << ". Norms in W/m^2 over the " << W << " x " << H
-        << " reference cell centres (all three channels; the scene is grey). L2 is the mean squared error "
-        << "as in the paper; RMSE = sqrt(L2). Bilinear interpolates nodal values, each the mean of the "
-        << "cells sharing the node (border nodes: of the border cells only). The paper's columns are its "
-        << "published Table 1 (its own scene, whose radiometry differs), for comparison of rankings.";
+  const std::string common =
+      " Norms in W/m^2 over the " + std::to_string(W) + " x " + std::to_string(H) +
+      " reference cell centres (all three channels; the scene is grey). L2 is the mean squared error as in the "
+      "paper; RMSE = sqrt(L2). The paper's columns are its published tables (its own scene, whose radiometry "
+      "differs), for comparing rankings.";
   write_text_file(opt.out_dir / "table1.md",
-                  table_markdown("Table 1: errors for the reconstruction of grid data", table1, kPaperTable1, notes.str()));
+                  table_markdown("Table 1: errors for the reconstruction of grid data", table1, kPaperTable1,
+                                 "Grid data: " + grid.mesh + " (" + std::to_string(grid_data.nx) + " x " +
+                                     std::to_string(grid_data.ny) + " elements on the ground). Reference: " +
+                                     reference.mesh + ". Bilinear interpolates nodal values, each the mean of the "
+                                     "cells sharing the node (border nodes: of the border cells only)." + common));
+  char eps[64];
+  std::snprintf(eps, sizeof eps, "%.4g", quadtree.stats.epsilon_w);
+  write_text_file(opt.out_dir / "table2.md",
+                  table_markdown("Table 2: errors for the reconstruction of quadtree data", table2, kPaperTable2,
+                                 "Quadtree data: hierarchical radiosity, " + std::to_string(quad_ground.elements.size()) +
+                                     " leaves on the ground (epsilon " + eps + " W, " +
+                                     std::to_string(quadtree.stats.links) + " links). Reference: " + reference.mesh +
+                                     ". Constant: the value of the leaf containing the point." + common));
   const double t_tables = clock.lap();
 
-  char timing[256];
+  char timing[320];
   std::snprintf(timing, sizeof timing,
-                "done: reference %.2f s, grid %.2f s, solutions written %.2f s, reconstruction and figures %.2f s, "
-                "tables %.2f s",
-                t_reference, t_grid, t_write, t_reconstruct, t_tables);
+                "done: reference %.2f s, grid %.2f s, quadtree %.2f s, solutions written %.2f s, reconstruction and "
+                "figures %.2f s, tables %.2f s; results in %s",
+                t_reference, t_grid, t_quadtree, t_write, t_reconstruct, t_tables, opt.out_dir.string().c_str());
   say(timing);
 }
 

@@ -113,6 +113,38 @@ then
 fi
 if compgen -G "$TMP/solution.json.tmp*" >/dev/null; then fail "solve: temporary file left behind"; fi
 
+# --- quadtrees --------------------------------------------------------------------------
+for spec in quadtree:287 quadtree:0 quadtree:abc quadtree-eps:-1 quadtree-eps:0 quadtree-eps:nan quadtree:1000000; do
+  run "qt_$spec" solve --scene paper --mesh "$spec" --out "$TMP/qt_out.json" --quiet
+  expect_rc "qt_$spec" 2
+  expect_stderr_has "qt_$spec" "--mesh"
+  expect_no_output "qt_$spec" "$TMP/qt_out.json"
+done
+run qt100 solve --scene paper --mesh quadtree:100 --out "$TMP/qt100.json" --quiet
+expect_rc qt100 0
+python3 - "$TMP/qt100.json" <<'EOF' || fail "qt100: the ground does not have exactly 100 leaves"
+import json, sys
+doc = json.load(open(sys.argv[1]))
+ground = [s for s in doc["surfaces"] if s["name"] == "ground"][0]
+sys.exit(0 if len(ground["elements"]) == 100 and doc["stats"]["method"] == "hierarchical" else 1)
+EOF
+
+# --- the paper experiment, with a small reference to stay quick ---------------------------
+run paper paper --out "$TMP/paper" --reference 100 --quiet
+expect_rc paper 0
+for f in errors.json table1.md table2.md solutions/reference.json solutions/grid16.json solutions/quadtree.json \
+         figures/fig1_quadtree.png figures/fig2_reference_ground.png figures/fig3_bilinear_difference.png \
+         figures/fig4_constant_difference.png; do
+  [ -s "$TMP/paper/$f" ] || fail "paper: $f was not written"
+done
+python3 - "$TMP/paper/errors.json" <<'EOF' || fail "paper: errors.json lacks a table entry"
+import json, sys
+doc = json.load(open(sys.argv[1]))
+for table, method in [("grid", "constant"), ("grid", "bilinear"), ("quadtree", "constant")]:
+    assert set(doc[table][method]) == {"L1", "L2", "RMSE", "Linf"}, (table, method)
+assert doc["settings"]["ground_leaves"] == 286
+EOF
+
 # --- other failures -----------------------------------------------------------------------
 run unknown frobnicate
 expect_nonzero unknown

@@ -8,6 +8,7 @@
 #include <random>
 
 #include "mesh/grid_mesh.h"
+#include "solver/hierarchical.h"
 #include "solver/progressive.h"
 #include "support/ray_scene.h"
 
@@ -80,10 +81,18 @@ class PathTracer {
   size_t light_;
 };
 
+/// The 400 x 400 reference, solved once for the tests of this file.
+const Solution& reference_solution() {
+  static const Solution reference = [] {
+    const Scene scene = paper_scene();
+    return solve_progressive(scene, make_grid_mesh(scene, {400, 2}), ProgressiveOptions{}, "grid:400");
+  }();
+  return reference;
+}
+
 TEST(PaperReference, AgreesWithIndependentPathTracing) {
   const Scene scene = paper_scene();
-  ProgressiveOptions po;
-  const Solution reference = solve_progressive(scene, make_grid_mesh(scene, {400, 2}), po, "grid:400");
+  const Solution& reference = reference_solution();
   const SurfaceSolution* ground = reference.find("ground");
   ASSERT_NE(ground, nullptr);
   const size_t ground_index = *scene.find_surface("ground");
@@ -112,6 +121,38 @@ TEST(PaperReference, AgreesWithIndependentPathTracing) {
   std::printf("reference vs path tracing: mean relative difference %.2e, max %.2e over %d points\n", mean_rel,
               max_rel, counted);
   EXPECT_LT(mean_rel, kMeanRelative);
+}
+
+/// The bound: RMS over the leaves of (leaf radiosity - reference averaged over the leaf).
+constexpr double kLeafRms_w_m2 = 0.02;
+
+TEST(PaperQuadtree, LeavesAgreeWithTheReferenceAveragedOverEachLeaf) {
+  const SurfaceSolution& ref = *reference_solution().find("ground");
+  const int N = ref.grid_nu;
+  ASSERT_EQ(N, 400);
+  const Solution quadtree = solve_hierarchical_leaves(paper_scene(), "ground", 286, HierarchicalOptions{}, "test");
+  const SurfaceSolution& ground = *quadtree.find("ground");
+  ASSERT_EQ(ground.elements.size(), 286u);
+  double sum_sq = 0, worst = 0;
+  for (const SolutionElement& leaf : ground.elements) {
+    // Area-weighted mean of the reference cells over the leaf (cells cut by its edges count
+    // with the part inside).
+    double sum = 0, weight = 0;
+    for (int j = static_cast<int>(leaf.v0 * N); j < static_cast<int>(std::ceil(leaf.v1 * N)); ++j)
+      for (int i = static_cast<int>(leaf.u0 * N); i < static_cast<int>(std::ceil(leaf.u1 * N)); ++i) {
+        const double ox = std::min(leaf.u1, (i + 1.0) / N) - std::max(leaf.u0, double(i) / N);
+        const double oy = std::min(leaf.v1, (j + 1.0) / N) - std::max(leaf.v0, double(j) / N);
+        if (ox <= 0 || oy <= 0) continue;
+        sum += ox * oy * ref.elements[static_cast<size_t>(j) * N + i].radiosity_w_m2[0];
+        weight += ox * oy;
+      }
+    const double d = leaf.radiosity_w_m2[0] - sum / weight;
+    sum_sq += d * d;
+    worst = std::max(worst, std::abs(d));
+  }
+  const double rms = std::sqrt(sum_sq / ground.elements.size());
+  std::printf("quadtree (286 leaves) vs reference leaf averages: RMS %.4f W/m^2, max %.4f W/m^2\n", rms, worst);
+  EXPECT_LT(rms, kLeafRms_w_m2);
 }
 
 }  // namespace

@@ -1,0 +1,110 @@
+// Hierarchical radiosity: the quadtree's structure, exact leaf counts, a closed box, determinism.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/error.h"
+#include "solver/hierarchical.h"
+
+namespace radrecon {
+namespace {
+
+Surface quad(const std::string& name, const Vec3& c0, const Vec3& c1, const Vec3& c2, const Vec3& c3,
+             double reflectance, double emission = 0) {
+  Surface s;
+  s.name = name;
+  s.corners = {c0, c1, c2, c3};
+  s.reflectance = Rgb::Constant(reflectance);
+  s.emission_w_m2 = Rgb::Constant(emission);
+  return s;
+}
+
+Solution paper_leaves(int leaves) {
+  return solve_hierarchical_leaves(paper_scene(), "ground", leaves, HierarchicalOptions{}, "test");
+}
+
+TEST(Hierarchical, LeavesTileTheGroundWithDyadicSquares) {
+  const Solution sol = paper_leaves(286);
+  const SurfaceSolution* ground = sol.find("ground");
+  ASSERT_NE(ground, nullptr);
+  ASSERT_EQ(ground->elements.size(), 286u);
+  ASSERT_EQ(ground->grid_nu, 0);
+  double area = 0;
+  for (const SolutionElement& e : ground->elements) {
+    area += e.area_m2;
+    const double size = e.u1 - e.u0;
+    EXPECT_EQ(size, e.v1 - e.v0) << "a quadtree leaf is a square in (u,v)";
+    const double level = -std::log2(size);
+    EXPECT_EQ(level, std::round(level)) << "leaf size " << size << " is not a power of 1/2";
+    EXPECT_EQ(e.u0 / size, std::round(e.u0 / size)) << "leaf not aligned to its level";
+    EXPECT_EQ(e.v0 / size, std::round(e.v0 / size));
+  }
+  EXPECT_NEAR(area, 16.0, 1e-12);
+  // No overlap and no gap: every point of a fine grid lies in exactly one leaf.
+  for (int j = 0; j < 256; ++j)
+    for (int i = 0; i < 256; ++i) {
+      const double u = (i + 0.5) / 256, v = (j + 0.5) / 256;
+      int inside = 0;
+      for (const SolutionElement& e : ground->elements) inside += u >= e.u0 && u < e.u1 && v >= e.v0 && v < e.v1;
+      ASSERT_EQ(inside, 1) << "at u=" << u << " v=" << v;
+    }
+}
+
+TEST(Hierarchical, QuadtreeLeavesGivesExactlyThatManyLeaves) {
+  for (int leaves : {100, 286, 1000}) EXPECT_EQ(leaf_count(paper_leaves(leaves), "ground"), static_cast<size_t>(leaves));
+}
+
+TEST(Hierarchical, RefusesImpossibleLeafCounts) {
+  EXPECT_THROW(paper_leaves(287), UserError);   // not 1 + 3k
+  EXPECT_THROW(paper_leaves(0), UserError);
+  EXPECT_THROW(paper_leaves(1000000), UserError);  // beyond the minimum element size
+}
+
+TEST(Hierarchical, ClosedBoxRadiosityPowerIsEmittedOverOneMinusReflectance) {
+  const double rho = 0.6, E = 10.0;
+  Scene box;
+  box.name = "box";
+  box.surfaces.push_back(quad("bottom", {0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, rho));
+  box.surfaces.push_back(quad("top", {0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1}, rho, E));
+  box.surfaces.push_back(quad("x0", {0, 0, 0}, {0, 1, 0}, {0, 1, 1}, {0, 0, 1}, rho));
+  box.surfaces.push_back(quad("x1", {1, 0, 0}, {1, 0, 1}, {1, 1, 1}, {1, 1, 0}, rho));
+  box.surfaces.push_back(quad("y0", {0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0}, rho));
+  box.surfaces.push_back(quad("y1", {0, 1, 0}, {1, 1, 0}, {1, 1, 1}, {0, 1, 1}, rho));
+  HierarchicalOptions options;
+  options.epsilon_w = 1e-3;
+  const Solution sol = solve_hierarchical(box, options, "quadtree-eps:1e-3");
+  double power = 0;
+  for (const SurfaceSolution& s : sol.surfaces)
+    for (const SolutionElement& e : s.elements) power += e.area_m2 * e.radiosity_w_m2[0];
+  const double expected = E * 1.0 / (1 - rho);
+  EXPECT_NEAR(power, expected, 0.01 * expected);
+  EXPECT_GT(sol.stats.elements, 6u) << "the box should have been refined";
+}
+
+TEST(Hierarchical, RefinementIsDeterministic) {
+  HierarchicalOptions options;
+  options.epsilon_w = 0.005;
+  const Solution a = solve_hierarchical(paper_scene(), options, "a");
+  const Solution b = solve_hierarchical(paper_scene(), options, "b");
+  ASSERT_EQ(a.surfaces.size(), b.surfaces.size());
+  EXPECT_EQ(a.stats.links, b.stats.links);
+  for (size_t s = 0; s < a.surfaces.size(); ++s) {
+    ASSERT_EQ(a.surfaces[s].elements.size(), b.surfaces[s].elements.size());
+    for (size_t e = 0; e < a.surfaces[s].elements.size(); ++e) {
+      EXPECT_EQ(a.surfaces[s].elements[e].u0, b.surfaces[s].elements[e].u0);
+      EXPECT_EQ(a.surfaces[s].elements[e].radiosity_w_m2[0], b.surfaces[s].elements[e].radiosity_w_m2[0]);
+    }
+  }
+}
+
+TEST(Hierarchical, SmallerEpsilonRefinesMore) {
+  HierarchicalOptions coarse, fine;
+  coarse.epsilon_w = 0.02;
+  fine.epsilon_w = 0.002;
+  EXPECT_LT(leaf_count(solve_hierarchical(paper_scene(), coarse, "c"), "ground"),
+            leaf_count(solve_hierarchical(paper_scene(), fine, "f"), "ground"));
+}
+
+}  // namespace
+}  // namespace radrecon
