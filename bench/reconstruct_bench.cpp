@@ -2,6 +2,8 @@
 
 #include <benchmark/benchmark.h>
 
+#include <cmath>
+#include <map>
 #include <random>
 
 #include "reconstruct/methods.h"
@@ -32,6 +34,64 @@ void BM_GridReconstruct(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(points.size()));
 }
 BENCHMARK(BM_GridReconstruct)->DenseRange(0, static_cast<int>(all_methods().size()) - 1)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace radrecon
+
+namespace radrecon {
+namespace {
+
+/// The workloads: W1 = 286 random points onto a 400 x 400 raster of the unit square's
+/// cell centres, W3 = 100,000 random points onto 2000 x 2000. Values: a smooth function.
+struct Workload {
+  ScatteredSamples samples;
+  std::vector<Vec2> raster;
+};
+
+const Workload& workload(int points, int side) {
+  static std::map<std::pair<int, int>, Workload> cache;
+  auto it = cache.find({points, side});
+  if (it != cache.end()) return it->second;
+  Workload w;
+  std::mt19937 rng(2024);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int i = 0; i < points; ++i) {
+    const Vec2 p(u(rng), u(rng));
+    w.samples.points.push_back(p);
+    w.samples.values.push_back(std::sin(6 * p.x()) * std::cos(4 * p.y()));
+  }
+  w.raster.reserve(static_cast<size_t>(side) * side);
+  for (int j = 0; j < side; ++j)
+    for (int i = 0; i < side; ++i) w.raster.emplace_back((i + 0.5) / side, (j + 0.5) / side);
+  return cache.emplace(std::make_pair(points, side), std::move(w)).first->second;
+}
+
+/// Build and evaluate, as `radrecon interpolate` does (file I/O excluded).
+void run_scattered(benchmark::State& state, Method method, int points, int side, const MethodParams& params) {
+  const Workload& w = workload(points, side);
+  std::vector<double> out(w.raster.size());
+  for (auto _ : state) {
+    const auto f = make_scattered_interpolant(method, w.samples, params);
+    f->evaluate(w.raster, out);
+    benchmark::DoNotOptimize(out.data());
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(w.raster.size()));
+}
+
+void BM_W1_Shepard(benchmark::State& s) { run_scattered(s, Method::shepard, 286, 400, {}); }
+void BM_W1_Multiquadric(benchmark::State& s) { run_scattered(s, Method::multiquadric, 286, 400, {}); }
+void BM_W1_NaturalNeighbour(benchmark::State& s) { run_scattered(s, Method::natural_neighbour, 286, 400, {}); }
+void BM_W3_NaturalNeighbour(benchmark::State& s) { run_scattered(s, Method::natural_neighbour, 100000, 2000, {}); }
+void BM_W3_ShepardK32(benchmark::State& s) {
+  MethodParams p;
+  p.shepard_k = 32;
+  run_scattered(s, Method::shepard, 100000, 2000, p);
+}
+BENCHMARK(BM_W1_Shepard)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_W1_Multiquadric)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_W1_NaturalNeighbour)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_W3_NaturalNeighbour)->Unit(benchmark::kMillisecond)->Iterations(2);
+BENCHMARK(BM_W3_ShepardK32)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 }  // namespace
 }  // namespace radrecon

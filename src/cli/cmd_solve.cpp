@@ -20,7 +20,12 @@ struct SolveArgs {
   bool quiet = false;
 };
 
-void run_solve(const SolveArgs& args) {
+void run_solve(const SolveArgs& args, const CLI::App& cmd) {
+  // Options that only one kind of mesh uses are refused with the other, not silently ignored.
+  const bool grid = args.mesh.rfind("grid:", 0) == 0, leaves = args.mesh.rfind("quadtree:", 0) == 0;
+  if (!grid && (cmd.count("--residual") || cmd.count("--patches")))
+    throw UserError(cmd.count("--residual") ? "--residual" : "--patches", "applies to grid:N meshes only");
+  if (!leaves && cmd.count("--leaves-on")) throw UserError("--leaves-on", "applies to quadtree:LEAVES meshes only");
   const Scene scene = load_scene(args.scene);
   SolveSettings settings;
   settings.residual = args.residual;
@@ -38,8 +43,10 @@ void add_solve_command(CLI::App& app) {
   auto args = std::make_shared<SolveArgs>();
   CLI::App* cmd = app.add_subcommand(
       "solve",
-      "Solve the radiosity of a scene by progressive refinement and write the solution as JSON "
-      "(per surface side: elements with their (u,v) rectangle, centre, area and radiosity in W/m^2).");
+      "Solve the radiosity of a scene, by progressive refinement on regular grids (grid:N) or by hierarchical "
+      "radiosity on quadtrees (quadtree:LEAVES, quadtree-eps:E), and write the solution as JSON (per surface "
+      "side: elements with their (u,v) rectangle, centre, area and radiosity in W/m^2). Missing output folders "
+      "are created.");
   cmd->add_option("--scene", args->scene, "Scene JSON file, or 'paper' for the built-in scene")
       ->capture_default_str();
   cmd->add_option("--mesh", args->mesh,
@@ -61,7 +68,7 @@ void add_solve_command(CLI::App& app) {
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
   cmd->add_flag("--quiet", args->quiet, "No progress messages");
-  cmd->callback([args] { run_solve(*args); });
+  cmd->callback([args, cmd] { run_solve(*args, *cmd); });
 }
 
 }  // namespace radrecon::cli

@@ -10,13 +10,15 @@
 
 int main(int argc, char** argv) {
   CLI::App app{
-      "radrecon: computes radiosity on a scene (progressive refinement on regular grids) and "
-      "reconstructs a smooth radiosity function across each patch, judged against a fine reference "
+      "radrecon: computes radiosity on a scene (progressive refinement on regular grids, hierarchical radiosity "
+      "on quadtrees) and reconstructs a smooth radiosity function across each patch (bilinear, bicubic, "
+      "Shepard, multiquadric, natural neighbour), judged against a fine reference "
       "(after Hinkenjann & Pietrek, \"Reconstructing Radiosity by Scattered Data Interpolation\")."};
   app.require_subcommand(1);
   app.set_version_flag("--version", "radrecon 0.1.0");
   radrecon::cli::add_solve_command(app);
   radrecon::cli::add_paper_command(app);
+  radrecon::cli::add_interpolate_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -8,10 +8,22 @@
 
 namespace radrecon {
 
-void write_file_atomically(const std::filesystem::path& path,
+void write_file_atomically(const std::filesystem::path& requested,
                            const std::function<void(const std::filesystem::path&)>& write) {
   namespace fs = std::filesystem;
   std::error_code ec;
+  fs::path path = requested;
+  // Replace only regular files: never a folder, device or pipe; through a symlink, its target.
+  for (int hops = 0; fs::is_symlink(path, ec); ++hops) {
+    if (hops == 40) throw UserError(requested.string(), "too many levels of symbolic links");
+    const fs::path target = fs::read_symlink(path, ec);
+    if (ec) throw UserError(requested.string(), "cannot read the symbolic link: " + ec.message());
+    path = target.is_absolute() ? target : path.parent_path() / target;
+  }
+  const fs::file_status status = fs::status(path, ec);
+  if (fs::exists(status) && !fs::is_regular_file(status))
+    throw UserError(requested.string(), fs::is_directory(status) ? "is a folder, not a file"
+                                                                  : "is not a regular file; refusing to replace it");
   if (path.has_parent_path()) {
     fs::create_directories(path.parent_path(), ec);
     if (ec) throw UserError(path.parent_path().string(), "cannot create folder: " + ec.message());

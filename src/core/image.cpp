@@ -19,22 +19,18 @@ Image::Image(int width, int height)
   RR_CHECK(width > 0 && height > 0, "image size must be positive");
 }
 
-namespace {
-
-double srgb_encode_value(double linear) {
+double srgb_encode(double linear) {
   return linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
 }
 
-}  // namespace
-
-void write_png(const std::filesystem::path& path, const Image& image, bool srgb_encode) {
+void write_png(const std::filesystem::path& path, const Image& image, bool srgb_encode_values) {
   std::vector<std::uint8_t> bytes(static_cast<size_t>(image.width()) * image.height() * 3);
   for (int y = 0; y < image.height(); ++y)
     for (int x = 0; x < image.width(); ++x)
       for (int c = 0; c < 3; ++c) {
         double v = std::clamp(image.at(x, y)[c], 0.0, 1.0);
         if (std::isnan(v)) v = 0.0;
-        if (srgb_encode) v = srgb_encode_value(v);
+        if (srgb_encode_values) v = srgb_encode(v);
         bytes[(static_cast<size_t>(y) * image.width() + x) * 3 + c] =
             static_cast<std::uint8_t>(std::lround(v * 255.0));
       }

@@ -21,6 +21,9 @@ class Image {
   std::vector<Rgb> pixels_;
 };
 
+/// The sRGB transfer curve: a linear display value in [0,1] to its encoded value.
+double srgb_encode(double linear);
+
 /// Writes display values in [0,1] (clamped) as an 8-bit RGB PNG. With `srgb_encode` the values
 /// are taken as linear and encoded with the sRGB transfer curve; without, written as they are.
 void write_png(const std::filesystem::path& path, const Image& image, bool srgb_encode);

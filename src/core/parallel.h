@@ -7,10 +7,14 @@
 
 namespace radrecon {
 
-/// Calls body(i) for every i in [begin, end), on all threads (OpenMP, static schedule).
+/// Ranges shorter than this run on the calling thread: waking the team costs more than they do.
+inline constexpr std::int64_t kParallelMinIterations = 512;
+
+/// Calls body(i) for every i in [begin, end), on all threads (OpenMP, chunks of 256 handed out
+/// dynamically).
 template <typename Body>
 void parallel_for(std::int64_t begin, std::int64_t end, Body&& body) {
-#pragma omp parallel for schedule(dynamic, 256)
+#pragma omp parallel for schedule(dynamic, 256) if (end - begin >= kParallelMinIterations)
   for (std::int64_t i = begin; i < end; ++i) body(i);
 }
 

@@ -138,14 +138,22 @@ void run_paper(const PaperOptions& opt) {
 
   // Table 1: the grid data.
   const GridCells grid_data = grid_cells(require_surface(grid, "ground", "grid solution"));
+  const MethodParams params;  // the defaults of methods.h, stated in the tables
   std::vector<MethodResult> table1;
-  for (Method m : all_methods()) table1.push_back(evaluate(*make_grid_interpolant(m, grid_data), method_name(m), "fig3"));
+  for (Method m : all_methods())
+    table1.push_back(evaluate(*make_grid_interpolant(m, grid_data, params), method_name(m), "fig3"));
 
   // Table 2: the quadtree data (its leaves; the scattered methods will use their centres).
   const SurfaceSolution& quad_ground = require_surface(quadtree, "ground", "quadtree solution");
   const CellSamples leaves = element_cells(quad_ground);
+  const ScatteredSamples centres = element_centres(quad_ground);
   std::vector<MethodResult> table2;
-  table2.push_back(evaluate(PiecewiseConstant(leaves), "constant", "fig4"));
+  for (Method m : scattered_methods()) {
+    if (m == Method::constant)
+      table2.push_back(evaluate(PiecewiseConstant(leaves), "constant", "fig4"));
+    else
+      table2.push_back(evaluate(*make_scattered_interpolant(m, centres, params), method_name(m), "fig4"));
+  }
   write_png(figures / "fig1_quadtree.png",
             quadtree_figure(leaves, 0, 0, std::max(quad_ground.length_u_m, quad_ground.length_v_m), white), false);
   const double t_reconstruct = clock.lap();
@@ -168,7 +176,10 @@ void run_paper(const PaperOptions& opt) {
       {"reference", stats_json(reference)}, {"grid", stats_json(grid)}, {"quadtree", stats_json(quadtree)},
       {"ground_leaves", quad_ground.elements.size()}, {"residual", opt.residual},
       {"evaluated_at", std::to_string(W) + "x" + std::to_string(H) + " reference cell centres, 3 channels"},
-      {"white_w_m2", white}, {"nodal_rule", "mean of the adjacent cells (1, 2 or 4)"}};
+      {"white_w_m2", white}, {"nodal_rule", "mean of the adjacent cells (1, 2 or 4)"},
+      {"shepard", describe_params(Method::shepard, params)},
+      {"multiquadric", describe_params(Method::multiquadric, params)},
+      {"natural-neighbour", describe_params(Method::natural_neighbour, params)}};
   write_text_file(opt.out_dir / "errors.json", errors.dump(2) + "\n");
 
   const std::string common =
@@ -176,12 +187,17 @@ void run_paper(const PaperOptions& opt) {
       " reference cell centres (all three channels; the scene is grey). L2 is the mean squared error as in the "
       "paper; RMSE = sqrt(L2). The paper's columns are its published tables (its own scene, whose radiometry "
       "differs), for comparing rankings.";
+  std::string settings_text;
+  for (Method m : {Method::shepard, Method::multiquadric, Method::natural_neighbour})
+    settings_text.append(" ").append(method_name(m)).append(": ").append(describe_params(m, params)).append(".");
   write_text_file(opt.out_dir / "table1.md",
                   table_markdown("Table 1: errors for the reconstruction of grid data", table1, kPaperTable1,
                                  "Grid data: " + grid.mesh + " (" + std::to_string(grid_data.nx) + " x " +
                                      std::to_string(grid_data.ny) + " elements on the ground). Reference: " +
-                                     reference.mesh + ". Bilinear interpolates nodal values, each the mean of the "
-                                     "cells sharing the node (border nodes: of the border cells only)." + common));
+                                     reference.mesh + ". Bilinear and bicubic (natural splines) interpolate nodal "
+                                     "values, each the mean of the cells sharing the node (border nodes: of the "
+                                     "border cells only); the scattered methods use the cell centres." +
+                                     settings_text + common));
   char eps[64];
   std::snprintf(eps, sizeof eps, "%.4g", quadtree.stats.epsilon_w);
   write_text_file(opt.out_dir / "table2.md",
@@ -189,7 +205,8 @@ void run_paper(const PaperOptions& opt) {
                                  "Quadtree data: hierarchical radiosity, " + std::to_string(quad_ground.elements.size()) +
                                      " leaves on the ground (epsilon " + eps + " W, " +
                                      std::to_string(quadtree.stats.links) + " links). Reference: " + reference.mesh +
-                                     ". Constant: the value of the leaf containing the point." + common));
+                                     ". Constant: the value of the leaf containing the point; the scattered "
+                                     "methods use the leaf centres." + settings_text + common));
   const double t_tables = clock.lap();
 
   char timing[320];

@@ -11,6 +11,9 @@ namespace radrecon {
 
 namespace {
 
+/// About 1 KiB per element (mesh, solver state, output): 10^7 elements need ~10 GiB.
+constexpr size_t kMaxGridElements = 10'000'000;
+
 long long parse_integer(const std::string& text, long long lo, long long hi, const std::string& field,
                         const std::string& spec) {
   size_t used = 0;
@@ -60,7 +63,12 @@ Solution solve_scene(const Scene& scene, const std::string& spec, const SolveSet
   const std::string kind = spec.substr(0, colon), value = spec.substr(colon + 1);
   if (kind == "grid") {
     const int n = static_cast<int>(parse_integer(value, 1, 100000, field, spec));
-    const Mesh mesh = make_grid_mesh(scene, GridMeshOptions{n, settings.patches});
+    const GridMeshOptions mesh_options{n, settings.patches};
+    const size_t elements = grid_element_count(scene, mesh_options);
+    if (elements > kMaxGridElements)
+      throw UserError(field, "'" + spec + "' would make " + std::to_string(elements) + " elements; at most " +
+                                 std::to_string(kMaxGridElements) + " fit in memory");
+    const Mesh mesh = make_grid_mesh(scene, mesh_options);
     if (!settings.progress_label.empty())
       std::fprintf(stderr, "%s: %s, %zu elements on %zu surface sides\n", settings.progress_label.c_str(), spec.c_str(),
                    mesh.element_count(), mesh.surfaces.size());
@@ -81,7 +89,14 @@ Solution solve_scene(const Scene& scene, const std::string& spec, const SolveSet
     bool known = false;
     for (const Surface& s : scene.surfaces)
       known = known || side_name(s, false) == side || (s.two_sided && side_name(s, true) == side);
-    if (!known) throw UserError("--leaves-on", "the scene has no surface side named '" + side + "'");
+    if (!known) {
+      std::string sides;
+      for (const Surface& s : scene.surfaces) {
+        sides += (sides.empty() ? "" : ", ") + side_name(s, false);
+        if (s.two_sided) sides += ", " + side_name(s, true);
+      }
+      throw UserError("--leaves-on", "the scene has no surface side named '" + side + "' (its sides: " + sides + ")");
+    }
     return solve_hierarchical_leaves(scene, side, leaves, ho, field + " " + spec);
   }
   throw UserError(field, "unknown mesh kind '" + kind + "' in '" + spec + "' (expected grid, quadtree or quadtree-eps)");

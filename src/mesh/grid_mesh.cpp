@@ -64,24 +64,39 @@ MeshSurface mesh_side(const Surface& s, size_t index, bool back, int nu, int nv,
 
 }  // namespace
 
+std::pair<int, int> grid_divisions(const Scene& scene, const Surface& s, const GridMeshOptions& options) {
+  RR_CHECK(options.divisions >= 1, "mesh divisions must be positive");
+  double longest_m = 0;
+  for (const Surface& t : scene.surfaces) longest_m = std::max({longest_m, t.length_u_m(), t.length_v_m()});
+  const double element_m = longest_m / options.divisions;
+  // In double first: a tiny element on a long edge must not overflow an int.
+  auto count = [&](double length) { return std::clamp(std::round(length / element_m), 1.0, 1e9); };
+  double nu = count(s.length_u_m()), nv = count(s.length_v_m());
+  if (s.max_divisions && std::max(nu, nv) > *s.max_divisions) {
+    const double scale = double(*s.max_divisions) / std::max(nu, nv);
+    nu = std::max(1.0, std::round(nu * scale));
+    nv = std::max(1.0, std::round(nv * scale));
+  }
+  return {static_cast<int>(nu), static_cast<int>(nv)};
+}
+
+size_t grid_element_count(const Scene& scene, const GridMeshOptions& options) {
+  double total = 0;
+  for (const Surface& s : scene.surfaces) {
+    const auto [nu, nv] = grid_divisions(scene, s, options);
+    total += double(nu) * nv * (s.two_sided ? 2 : 1);
+  }
+  return static_cast<size_t>(std::min(total, 1e18));
+}
+
 Mesh make_grid_mesh(const Scene& scene, const GridMeshOptions& options) {
   RR_CHECK(options.divisions >= 1 && options.max_patches >= 1, "mesh options out of range");
-  double longest_m = 0;
-  for (const Surface& s : scene.surfaces)
-    longest_m = std::max({longest_m, s.length_u_m(), s.length_v_m()});
-  const double element_m = longest_m / options.divisions;
   const int patch_size = (options.divisions + options.max_patches - 1) / options.max_patches;
 
   Mesh mesh;
   for (size_t k = 0; k < scene.surfaces.size(); ++k) {
     const Surface& s = scene.surfaces[k];
-    int nu = std::max(1, static_cast<int>(std::lround(s.length_u_m() / element_m)));
-    int nv = std::max(1, static_cast<int>(std::lround(s.length_v_m() / element_m)));
-    if (s.max_divisions && std::max(nu, nv) > *s.max_divisions) {
-      double scale = double(*s.max_divisions) / std::max(nu, nv);
-      nu = std::max(1, static_cast<int>(std::lround(nu * scale)));
-      nv = std::max(1, static_cast<int>(std::lround(nv * scale)));
-    }
+    const auto [nu, nv] = grid_divisions(scene, s, options);
     mesh.surfaces.push_back(mesh_side(s, k, false, nu, nv, patch_size));
     if (s.two_sided) mesh.surfaces.push_back(mesh_side(s, k, true, nu, nv, patch_size));
   }

@@ -59,6 +59,12 @@ struct GridMeshOptions {
 /// the sides of a two-sided surface.
 std::string side_name(const Surface& surface, bool back_side);
 
+/// Elements along u and v of one surface under `options` (the rule of GridMeshOptions).
+std::pair<int, int> grid_divisions(const Scene& scene, const Surface& surface, const GridMeshOptions& options);
+
+/// Elements of the whole mesh (both sides of two-sided surfaces), without building it.
+size_t grid_element_count(const Scene& scene, const GridMeshOptions& options);
+
 /// Meshes every surface (both sides of a two-sided one) into a regular grid.
 Mesh make_grid_mesh(const Scene& scene, const GridMeshOptions& options);
 

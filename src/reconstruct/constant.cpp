@@ -14,6 +14,7 @@ PiecewiseConstant::PiecewiseConstant(CellSamples samples) : samples_(std::move(s
   bounds_ = samples_.cells[0];
   double min_w = std::numeric_limits<double>::infinity(), min_h = min_w;
   for (const Rect& r : samples_.cells) {
+    RR_CHECK(r.x1 > r.x0 && r.y1 > r.y0, "cells must have a positive size");
     bounds_.x0 = std::min(bounds_.x0, r.x0);
     bounds_.y0 = std::min(bounds_.y0, r.y0);
     bounds_.x1 = std::max(bounds_.x1, r.x1);
@@ -23,16 +24,18 @@ PiecewiseConstant::PiecewiseConstant(CellSamples samples) : samples_(std::move(s
   }
   // One bucket per smallest cell, at most 1024 per axis: a bucket then meets O(1) cells of a grid
   // or of a quadtree's finest level.
-  buckets_x_ = std::clamp(static_cast<int>(std::ceil((bounds_.x1 - bounds_.x0) / min_w)), 1, 1024);
-  buckets_y_ = std::clamp(static_cast<int>(std::ceil((bounds_.y1 - bounds_.y0) / min_h)), 1, 1024);
+  buckets_x_ = static_cast<int>(std::clamp(std::ceil((bounds_.x1 - bounds_.x0) / min_w), 1.0, 1024.0));
+  buckets_y_ = static_cast<int>(std::clamp(std::ceil((bounds_.y1 - bounds_.y0) / min_h), 1.0, 1024.0));
   buckets_.resize(static_cast<size_t>(buckets_x_) * buckets_y_);
   const double bw = (bounds_.x1 - bounds_.x0) / buckets_x_, bh = (bounds_.y1 - bounds_.y0) / buckets_y_;
   for (size_t k = 0; k < samples_.cells.size(); ++k) {
     const Rect& r = samples_.cells[k];
     int i0 = std::clamp(static_cast<int>(std::floor((r.x0 - bounds_.x0) / bw)), 0, buckets_x_ - 1);
-    int i1 = std::clamp(static_cast<int>(std::ceil((r.x1 - bounds_.x0) / bw)) - 1, 0, buckets_x_ - 1);
+    // Register the cell in every bucket its closed extent touches (a query is found by the
+    // bucket of its clamped position, which may be the one just past the cell's far edge).
+    int i1 = std::clamp(static_cast<int>(std::floor((r.x1 - bounds_.x0) / bw)), 0, buckets_x_ - 1);
     int j0 = std::clamp(static_cast<int>(std::floor((r.y0 - bounds_.y0) / bh)), 0, buckets_y_ - 1);
-    int j1 = std::clamp(static_cast<int>(std::ceil((r.y1 - bounds_.y0) / bh)) - 1, 0, buckets_y_ - 1);
+    int j1 = std::clamp(static_cast<int>(std::floor((r.y1 - bounds_.y0) / bh)), 0, buckets_y_ - 1);
     for (int j = j0; j <= j1; ++j)
       for (int i = i0; i <= i1; ++i) buckets_[static_cast<size_t>(j) * buckets_x_ + i].push_back(static_cast<unsigned>(k));
   }

@@ -1,9 +1,17 @@
 #include "reconstruct/methods.h"
 
+#include <cmath>
+
 #include "core/check.h"
+#include "core/error.h"
+#include "reconstruct/bicubic.h"
 #include "reconstruct/bilinear.h"
 #include "reconstruct/constant.h"
+#include "reconstruct/multiquadric.h"
+#include "reconstruct/natural_neighbour.h"
+#include "reconstruct/nearest.h"
 #include "reconstruct/nodal.h"
+#include "reconstruct/shepard.h"
 
 namespace radrecon {
 
@@ -11,6 +19,10 @@ std::string method_name(Method m) {
   switch (m) {
     case Method::constant: return "constant";
     case Method::bilinear: return "bilinear";
+    case Method::bicubic: return "bicubic";
+    case Method::shepard: return "shepard";
+    case Method::multiquadric: return "multiquadric";
+    case Method::natural_neighbour: return "natural-neighbour";
   }
   return "?";
 }
@@ -21,12 +33,122 @@ std::optional<Method> parse_method(const std::string& name) {
   return std::nullopt;
 }
 
-std::vector<Method> all_methods() { return {Method::constant, Method::bilinear}; }
+std::vector<Method> all_methods() {
+  return {Method::constant, Method::bilinear, Method::bicubic, Method::shepard, Method::multiquadric,
+          Method::natural_neighbour};
+}
 
-std::unique_ptr<Interpolant> make_grid_interpolant(Method method, const GridCells& cells) {
+std::vector<Method> scattered_methods() {
+  return {Method::constant, Method::shepard, Method::multiquadric, Method::natural_neighbour};
+}
+
+bool is_grid_method(Method m) { return m == Method::bilinear || m == Method::bicubic; }
+
+namespace {
+
+double parse_number(const std::string& text, const std::string& where) {
+  size_t used = 0;
+  double v = 0;
+  try {
+    v = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size() || !std::isfinite(v)) throw UserError(where, "expected a finite number, got '" + text + "'");
+  return v;
+}
+
+}  // namespace
+
+MethodParams parse_params(Method method, const std::vector<std::string>& settings, const std::string& field) {
+  MethodParams p;
+  for (const std::string& s : settings) {
+    const auto eq = s.find('=');
+    if (eq == std::string::npos || eq == 0) throw UserError(field, "expected NAME=VALUE, got '" + s + "'");
+    const std::string name = s.substr(0, eq), value = s.substr(eq + 1);
+    const std::string where = field + " " + name;
+    if (method == Method::shepard && name == "mu") {
+      p.shepard_mu = parse_number(value, where);
+      if (!(p.shepard_mu > 0)) throw UserError(where, "must be > 0");
+    } else if (method == Method::shepard && name == "k") {
+      const double k = parse_number(value, where);
+      if (k < 0 || k != std::floor(k) || k > 1e6) throw UserError(where, "must be an integer >= 0 (0: all samples)");
+      p.shepard_k = static_cast<int>(k);
+    } else if (method == Method::multiquadric && name == "mu") {
+      p.multiquadric_mu = parse_number(value, where);
+      if (p.multiquadric_mu == 0) throw UserError(where, "must not be 0");
+    } else if (method == Method::multiquadric && name == "r") {
+      p.multiquadric_r = parse_number(value, where);
+      if (!(*p.multiquadric_r > 0)) throw UserError(where, "must be > 0");
+    } else if (method == Method::natural_neighbour && name == "outside") {
+      if (value == "nearest") p.outside = OutsideHull::nearest;
+      else if (value == "none") p.outside = OutsideHull::none;
+      else throw UserError(where, "must be 'nearest' or 'none', got '" + value + "'");
+    } else {
+      throw UserError(where, "unknown parameter for method " + method_name(method));
+    }
+  }
+  return p;
+}
+
+std::string describe_params(Method method, const MethodParams& p) {
+  char buf[128];
   switch (method) {
-    case Method::constant: return std::make_unique<PiecewiseConstant>(to_cells(cells));
-    case Method::bilinear: return std::make_unique<Bilinear>(nodal_average(cells));
+    case Method::shepard:
+      std::snprintf(buf, sizeof buf, "mu=%g, k=%s", p.shepard_mu, p.shepard_k ? std::to_string(p.shepard_k).c_str() : "all");
+      return buf;
+    case Method::multiquadric:
+      if (p.multiquadric_r) std::snprintf(buf, sizeof buf, "mu=%g, r=%g m", p.multiquadric_mu, *p.multiquadric_r);
+      else std::snprintf(buf, sizeof buf, "mu=%g, r_i=Eck (nearest other sample)", p.multiquadric_mu);
+      return buf;
+    case Method::natural_neighbour:
+      return p.outside == OutsideHull::nearest ? "outside the hull: nearest hull point" : "outside the hull: no value";
+    default:
+      return "";
+  }
+}
+
+std::unique_ptr<Interpolant> make_grid_interpolant(Method method, const GridCells& cells, const MethodParams& params) {
+  if (method == Method::constant) return std::make_unique<PiecewiseConstant>(to_cells(cells));
+  if (is_grid_method(method)) return make_nodal_interpolant(method, nodal_average(cells), params);
+  ScatteredSamples centres;
+  centres.channels = cells.channels;
+  centres.values = cells.values;
+  for (int j = 0; j < cells.ny; ++j)
+    for (int i = 0; i < cells.nx; ++i) centres.points.emplace_back(cells.x0 + (i + 0.5) * cells.dx, cells.y0 + (j + 0.5) * cells.dy);
+  return make_scattered_interpolant(method, centres, params);
+}
+
+std::unique_ptr<Interpolant> make_nodal_interpolant(Method method, const GridNodes& nodes, const MethodParams& params) {
+  if (method == Method::bilinear) {
+    if (nodes.nx < 2 || nodes.ny < 2) throw UserError("samples", "bilinear needs a grid of at least 2 x 2 samples");
+    return std::make_unique<Bilinear>(nodes);
+  }
+  if (method == Method::bicubic) {
+    if (nodes.nx < 2 || nodes.ny < 2) throw UserError("samples", "bicubic needs a grid of at least 2 x 2 samples");
+    return std::make_unique<Bicubic>(nodes);
+  }
+  ScatteredSamples s;
+  s.channels = nodes.channels;
+  s.values = nodes.values;
+  for (int j = 0; j < nodes.ny; ++j)
+    for (int i = 0; i < nodes.nx; ++i) s.points.emplace_back(nodes.x0 + i * nodes.dx, nodes.y0 + j * nodes.dy);
+  return make_scattered_interpolant(method, s, params);
+}
+
+std::unique_ptr<Interpolant> make_scattered_interpolant(Method method, const ScatteredSamples& samples,
+                                                        const MethodParams& params) {
+  RR_CHECK(samples.values.size() == samples.points.size() * static_cast<size_t>(samples.channels),
+           "sample values do not match the points");
+  if (samples.points.empty()) throw UserError("samples", "no samples");
+  switch (method) {
+    case Method::constant: return std::make_unique<NearestSample>(samples);
+    case Method::bilinear:
+    case Method::bicubic:
+      throw UserError("samples", method_name(method) + " needs samples on a regular grid");
+    case Method::shepard: return std::make_unique<Shepard>(samples, params.shepard_mu, params.shepard_k);
+    case Method::multiquadric: return std::make_unique<Multiquadric>(samples, params.multiquadric_mu, params.multiquadric_r);
+    case Method::natural_neighbour: return std::make_unique<NaturalNeighbour>(samples, params.outside);
   }
   RR_CHECK(false, "unknown method");
   return nullptr;

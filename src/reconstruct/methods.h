@@ -1,5 +1,6 @@
 #pragma once
-// The closed set of reconstruction methods, by name.
+// The closed set of reconstruction methods, their parameters, and the factories that build an
+// interpolant from grid data, nodal grids or scattered samples.
 
 #include <memory>
 #include <optional>
@@ -11,16 +12,63 @@
 
 namespace radrecon {
 
-enum class Method { constant, bilinear };
+enum class Method { constant, bilinear, bicubic, shepard, multiquadric, natural_neighbour };
 
-/// The command-line name of a method ("constant", "bilinear", ...).
+/// The command-line name of a method: constant, bilinear, bicubic, shepard, multiquadric,
+/// natural-neighbour.
 std::string method_name(Method m);
 std::optional<Method> parse_method(const std::string& name);
-/// Every method, in the order of the paper's tables.
+/// Every method, in the order of the paper's Table 1.
 std::vector<Method> all_methods();
+/// The methods the paper applies to scattered (quadtree) data, in the order of its Table 2.
+std::vector<Method> scattered_methods();
+/// Methods that need their samples on a regular grid (bilinear, bicubic).
+bool is_grid_method(Method m);
 
-/// The reconstruction of grid data (cell values) by `method`: constant uses the cells as they
-/// are; bilinear works on nodal values (nodal_average()).
-std::unique_ptr<Interpolant> make_grid_interpolant(Method method, const GridCells& cells);
+/// What natural-neighbour interpolation returns outside the convex hull of the samples (the
+/// other methods are defined everywhere).
+enum class OutsideHull {
+  nearest,  ///< the value at the nearest point of the hull (continuous extension)
+  none,     ///< no value (NaN)
+};
+
+/// Method parameters, as given on the command line with --param NAME=VALUE:
+///   shepard:           mu (> 0, default 4): weights 1 / d^mu;
+///                      k (integer >= 0, default 0): use the k nearest samples, 0 = all.
+///   multiquadric:      mu (nonzero, default 0.5): basis (d^2 + r^2)^mu;
+///                      r (> 0, metres; default: Eck's rule, r_i = distance from sample i to
+///                      its nearest other sample).
+///   natural-neighbour: outside (nearest | none, default nearest).
+struct MethodParams {
+  double shepard_mu = 4.0;
+  int shepard_k = 0;
+  double multiquadric_mu = 0.5;
+  std::optional<double> multiquadric_r;
+  OutsideHull outside = OutsideHull::nearest;
+};
+
+/// Parses NAME=VALUE settings for `method`. Throws UserError naming `field` and the parameter
+/// for an unknown parameter, a malformed value or one out of range.
+MethodParams parse_params(Method method, const std::vector<std::string>& settings, const std::string& field);
+
+/// A one-line description of the parameters in effect, for reports ("mu=4, k=all").
+std::string describe_params(Method method, const MethodParams& params);
+
+/// Grid data (cell values), as in the paper: constant uses the cells; bilinear and bicubic
+/// interpolate nodal values (nodal_average()); the scattered methods use the cell centres.
+std::unique_ptr<Interpolant> make_grid_interpolant(Method method, const GridCells& cells,
+                                                   const MethodParams& params = {});
+
+/// Values at the nodes of a regular grid: bilinear and bicubic interpolate them; the other
+/// methods take the nodes as scattered samples.
+std::unique_ptr<Interpolant> make_nodal_interpolant(Method method, const GridNodes& nodes,
+                                                    const MethodParams& params = {});
+
+/// Scattered samples: constant is the nearest sample's value (Voronoi cells); shepard,
+/// multiquadric and natural-neighbour as documented. Throws UserError (field "samples") when
+/// the method cannot be built from them: a grid method, too few samples, duplicate points,
+/// or (natural-neighbour) all samples on one line.
+std::unique_ptr<Interpolant> make_scattered_interpolant(Method method, const ScatteredSamples& samples,
+                                                        const MethodParams& params = {});
 
 }  // namespace radrecon

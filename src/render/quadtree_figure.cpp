@@ -8,14 +8,6 @@
 
 namespace radrecon {
 
-namespace {
-
-/// sRGB encoding, so that the figure can be written without further encoding and the overlay
-/// colours keep their values.
-double encode(double v) { return v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055; }
-
-}  // namespace
-
 Image quadtree_figure(const CellSamples& cells, double x0, double y0, double extent_m, double white_w_m2,
                       const QuadtreeFigureStyle& style) {
   RR_CHECK(extent_m > 0 && style.size_px > 0, "figure size must be positive");
@@ -28,9 +20,9 @@ Image quadtree_figure(const CellSamples& cells, double x0, double y0, double ext
     const int i1 = std::clamp(static_cast<int>(std::lround(to_px(r.x1))), 0, S);
     const int j0 = std::clamp(static_cast<int>(std::lround((r.y0 - y0) / extent_m * S)), 0, S);
     const int j1 = std::clamp(static_cast<int>(std::lround((r.y1 - y0) / extent_m * S)), 0, S);
-    Rgb display;
+    Rgb display;  // sRGB-encoded here, so that the overlay colours keep their values
     for (int c = 0; c < 3; ++c)
-      display[c] = encode(tone_map(cells.values[k * static_cast<size_t>(cells.channels) + static_cast<size_t>(std::min(c, cells.channels - 1))], white_w_m2));
+      display[c] = srgb_encode(tone_map(cells.values[k * static_cast<size_t>(cells.channels) + static_cast<size_t>(std::min(c, cells.channels - 1))], white_w_m2));
     for (int j = j0; j < j1; ++j)
       for (int i = i0; i < i1; ++i) {
         const bool border = i == i0 || j == j0 || i == i1 - 1 || j == j1 - 1;

@@ -44,8 +44,9 @@ bool finite(const Vec3& p) { return p.allFinite(); }
 void validate_surface(const Surface& s, const std::string& where) {
   if (s.name.empty()) throw UserError(where + ".name", "must not be empty");
   for (int i = 0; i < 4; ++i)
-    if (!finite(s.corners[i]))
-      throw UserError(where + ".corners[" + std::to_string(i) + "]", "must be finite numbers");
+    if (!finite(s.corners[i]) || s.corners[i].cwiseAbs().maxCoeff() > tol::kMaxCoordinate_m)
+      throw UserError(where + ".corners[" + std::to_string(i) + "]",
+                      "must be finite numbers of magnitude at most " + std::to_string(tol::kMaxCoordinate_m) + " m");
   double longest_sq = 0;
   for (int i = 0; i < 4; ++i)
     longest_sq = std::max(longest_sq, (s.corners[(i + 1) % 4] - s.corners[i]).squaredNorm());
@@ -74,8 +75,8 @@ void validate_surface(const Surface& s, const std::string& where) {
     if (!(r >= 0.0 && r < 1.0))
       throw UserError(where + ".reflectance", "must be in [0,1), got " + std::to_string(r));
     double e = s.emission_w_m2[c];
-    if (!(e >= 0.0 && std::isfinite(e)))
-      throw UserError(where + ".emission", "must be a finite number >= 0, got " + std::to_string(e));
+    if (!(e >= 0.0 && e <= tol::kMaxEmission_w_m2))
+      throw UserError(where + ".emission", "must be in [0, 1e12] W/m^2, got " + std::to_string(e));
   }
   if (s.max_divisions && *s.max_divisions < 1)
     throw UserError(where + ".mesh.max_divisions", "must be at least 1");
@@ -88,7 +89,7 @@ void validate_camera(const Camera& c, const std::string& where) {
   if (!finite(c.up)) throw UserError(where + ".up", "must be finite numbers");
   Vec3 dir = c.target - c.eye;
   if (dir.norm() == 0) throw UserError(where + ".target", "must differ from eye");
-  if (dir.normalized().cross(c.up).norm() < 1e-6 || c.up.norm() == 0)
+  if (c.up.norm() == 0 || dir.normalized().cross(c.up.normalized()).norm() < tol::kParallelSine)
     throw UserError(where + ".up", "must not be zero or parallel to the view direction");
   if (!(c.fov_deg > 0 && c.fov_deg < 180))
     throw UserError(where + ".fov_deg", "must be in (0, 180)");

@@ -65,7 +65,7 @@ class Reader {
     for (auto it = obj.begin(); it != obj.end(); ++it) {
       bool ok = false;
       for (const char* k : known) ok = ok || it.key() == k;
-      if (!ok) fail(path + "." + it.key(), "unknown field");
+      if (!ok) fail(path.empty() ? it.key() : path + "." + it.key(), "unknown field");
     }
   }
 

@@ -26,16 +26,4 @@ ConvexPolygon clip_to_horizon(const Vec3& p, const Vec3& n, const ConvexPolygon&
   return clip(polygon, HalfSpace{n, n.dot(p)});
 }
 
-double parallel_corner_form_factor(double a_m, double b_m, double c_m) {
-  const double A = a_m / c_m, B = b_m / c_m;
-  const double sa = std::sqrt(1 + A * A), sb = std::sqrt(1 + B * B);
-  return (A / sa * std::atan(B / sa) + B / sb * std::atan(A / sb)) / (2.0 * std::numbers::pi);
-}
-
-double perpendicular_corner_form_factor(double a_m, double b_m, double c_m) {
-  const double X = b_m / a_m, Y = c_m / a_m;
-  const double s = std::sqrt(X * X + Y * Y);
-  return (std::atan(1 / Y) - Y / s * std::atan(1 / s)) / (2.0 * std::numbers::pi);
-}
-
 }  // namespace radrecon

@@ -17,15 +17,4 @@ double lambert_form_factor(const Vec3& p, const Vec3& n, const ConvexPolygon& po
 /// The polygon clipped to the receiver's front half-space {x : dot(n, x - p) >= 0}.
 ConvexPolygon clip_to_horizon(const Vec3& p, const Vec3& n, const ConvexPolygon& polygon);
 
-/// Closed form (Howell's catalogue, configuration B-3) for a differential area parallel to a
-/// rectangle of sides a, b (metres) at distance c, facing it, opposite one of its corners.
-/// Independent of the contour integral; used to check it.
-double parallel_corner_form_factor(double a_m, double b_m, double c_m);
-
-/// Closed form (Howell's catalogue, configuration B-2) for a differential area and a rectangle in
-/// a perpendicular plane at distance c (metres): one edge of the rectangle, of length a, lies in
-/// the receiver's plane and starts at the foot of the receiver's perpendicular to the rectangle's
-/// plane; the other edge, of length b, rises from the receiver's plane.
-double perpendicular_corner_form_factor(double a_m, double b_m, double c_m);
-
 }  // namespace radrecon

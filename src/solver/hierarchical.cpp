@@ -58,12 +58,25 @@ constexpr int kLinkQuadrature = 4;
 constexpr int kLinkQuadratureFine = 16;
 constexpr double kDiscontinuousSpread = 0.5;
 
+/// The minimum element size of `options`, or its default: a fraction of the longest edge.
+double min_element_size(const Scene& scene, const HierarchicalOptions& options) {
+  if (options.min_size_m > 0) return options.min_size_m;
+  double longest = 0;
+  for (const Surface& s : scene.surfaces) longest = std::max({longest, s.length_u_m(), s.length_v_m()});
+  return longest * tol::kMinElementFraction;
+}
+
+/// Thrown when a hierarchy would exceed HierarchicalOptions::max_links.
+struct TooManyLinks {};
+
+/// Gathering iterations before giving up on convergence (each removes a factor of about the
+/// largest reflectance; 1e-6 needs a few dozen).
+constexpr int kMaxGatherIterations = 10000;
+
 class Hierarchy {
  public:
   Hierarchy(const Scene& scene, const HierarchicalOptions& options) : scene_(scene), options_(options) {
-    double longest = 0;
-    for (const Surface& s : scene.surfaces) longest = std::max({longest, s.length_u_m(), s.length_v_m()});
-    min_size_m_ = options.min_size_m > 0 ? options.min_size_m : longest / 256;
+    min_size_m_ = min_element_size(scene, options);
     occluders_ = make_occluders(scene);
     for (size_t k = 0; k < scene.surfaces.size(); ++k) {
       add_tree(k, false);
@@ -80,18 +93,15 @@ class Hierarchy {
     }
     pair_occluders_.resize(trees_.size() * trees_.size());
     for (size_t r = 0; r < trees_.size(); ++r)
-      for (size_t s = 0; s < trees_.size(); ++s)
-        if (facing(r, s)) {
-          Vec3 lo = trees_[r].nodes[0].corners[0], hi = lo;
-          for (const Tree* t : {&trees_[r], &trees_[s]})
-            for (const Vec3& c : t->nodes[0].corners) {
-              lo = lo.cwiseMin(c);
-              hi = hi.cwiseMax(c);
-            }
-          pair_occluders_[r * trees_.size() + s] =
-              occluders_in_box(occluders_, lo, hi, trees_[r].scene_surface, trees_[s].scene_surface);
-          links_.push_back(make_link(static_cast<int>(r), 0, static_cast<int>(s), 0));
-        }
+      for (size_t s = 0; s < trees_.size(); ++s) {
+        const Tree& R = trees_[r];
+        const Tree& S = trees_[s];
+        if (R.scene_surface == S.scene_surface || !quads_face(R.nodes[0].corners, R.normal, S.nodes[0].corners, S.normal))
+          continue;
+        pair_occluders_[r * trees_.size() + s] =
+            occluders_between(occluders_, R.nodes[0].corners, S.nodes[0].corners, R.scene_surface, S.scene_surface);
+        links_.push_back(make_link(static_cast<int>(r), 0, static_cast<int>(s), 0));
+      }
   }
 
   void solve() {
@@ -133,7 +143,6 @@ class Hierarchy {
       out.length_v_m = surface.length_v_m();
       collect_leaves(t, 0, out);
       st.emitted_w += t.nodes[0].area_m2 * t.emission_w_m2;
-      for (const SolutionElement& e : out.elements) (void)e;
       st.elements += out.elements.size();
       sol.surfaces.push_back(std::move(out));
     }
@@ -170,19 +179,6 @@ class Hierarchy {
     n.size_m = std::max((u1 - u0) * s.length_u_m(), (v1 - v0) * s.length_v_m());
     n.radiosity = t.emission_w_m2;
     return n;
-  }
-
-  /// Could light leave tree s and arrive at tree r?
-  bool facing(size_t r, size_t s) const {
-    const Tree& R = trees_[r];
-    const Tree& S = trees_[s];
-    if (R.scene_surface == S.scene_surface) return false;
-    bool r_in_front = false, s_in_front = false;
-    for (const Vec3& c : R.nodes[0].corners)
-      r_in_front = r_in_front || S.normal.dot(c - S.nodes[0].corners[0]) > tol::kPlaneDistance_m;
-    for (const Vec3& c : S.nodes[0].corners)
-      s_in_front = s_in_front || R.normal.dot(c - R.nodes[0].corners[0]) > tol::kPlaneDistance_m;
-    return r_in_front && s_in_front;
   }
 
   const std::vector<const Occluder*>& occluders(int r, int s) const {
@@ -308,10 +304,7 @@ class Hierarchy {
                                           : make_link(l.receiver_tree, l.receiver_node, l.source_tree, first + c);
         queue.push({error_estimate(child).total(), sequence++, child});
       }
-      if (kept.size() + queue.size() > options_.max_links)
-        throw UserError("epsilon " + std::to_string(options_.epsilon_w) + " W",
-                        "the hierarchy would need more than " + std::to_string(options_.max_links) +
-                            " links; use a larger epsilon or fewer leaves");
+      if (kept.size() + queue.size() > options_.max_links) throw TooManyLinks{};
     }
     // Keep the links in a canonical order (by receiver, then source) for a deterministic gather.
     std::sort(kept.begin(), kept.end(), [](const Link& a, const Link& b) {
@@ -344,6 +337,7 @@ class Hierarchy {
         const Node& n = R.nodes[static_cast<size_t>(k)];
         if (n.first_child < 0) {
           leaf_links.push_back(make_link(l.receiver_tree, k, l.source_tree, l.source_node));
+          if (leaf_links.size() > options_.max_links) throw TooManyLinks{};
         } else {
           for (int c = 3; c >= 0; --c) stack.push_back(n.first_child + c);
         }
@@ -358,7 +352,7 @@ class Hierarchy {
 
   /// Jacobi gathering over all links, then push-pull, until the radiosity settles.
   void gather_until_converged() {
-    for (int iteration = 0; iteration < 10000; ++iteration) {
+    for (int iteration = 0; iteration < kMaxGatherIterations; ++iteration) {
       for (Tree& t : trees_)
         for (Node& n : t.nodes) n.gathered = Rgb::Zero();
       for (const Link& l : links_) {
@@ -443,7 +437,14 @@ class Hierarchy {
 Solution solve_hierarchical(const Scene& scene, const HierarchicalOptions& options, const std::string& mesh_spec) {
   RR_CHECK(options.epsilon_w > 0 && options.tolerance > 0, "hierarchical options out of range");
   Hierarchy h(scene, options);
-  h.solve();
+  try {
+    h.solve();
+  } catch (const TooManyLinks&) {
+    char eps[32];
+    std::snprintf(eps, sizeof eps, "%g", options.epsilon_w);
+    throw UserError(mesh_spec, std::string("epsilon ") + eps + " W would need more than " +
+                                   std::to_string(options.max_links) + " links; use a larger epsilon or fewer leaves");
+  }
   return h.solution(mesh_spec);
 }
 
@@ -458,44 +459,53 @@ Solution solve_hierarchical_leaves(const Scene& scene, const std::string& side, 
     throw UserError(field, "a quadtree has 1 + 3k leaves; " + std::to_string(leaves) + " is not of that form");
   const std::string spec = "quadtree:" + std::to_string(leaves);
   const std::string label = options.progress_label;
+  const bool leaf_gather = options.leaf_gather;
   options.progress_label.clear();
   options.leaf_cap.reset();
+  options.leaf_gather = false;  // the final gather does not change the count
+  constexpr int kTooFine = std::numeric_limits<int>::max();
+  // Leaves of `side` at epsilon `eps` (W); kTooFine when the links would not fit.
   auto count = [&](double eps) {
     options.epsilon_w = eps;
-    return static_cast<int>(leaf_count(solve_hierarchical(scene, options, spec), side));
+    Hierarchy h(scene, options);
+    try {
+      h.solve();
+    } catch (const TooManyLinks&) {
+      return kTooFine;
+    }
+    return static_cast<int>(leaf_count(h.solution(spec), side));
   };
   const auto start = std::chrono::steady_clock::now();
   // The most leaves the side can have: split down to the minimum element size everywhere.
   {
-    const Scene& sc = scene;
-    double longest = 0, side_size = 0;
-    for (const Surface& s : sc.surfaces) {
-      longest = std::max({longest, s.length_u_m(), s.length_v_m()});
+    const double min_size = min_element_size(scene, options);
+    double side_size = 0;
+    for (const Surface& s : scene.surfaces)
       if (side_name(s, false) == side || (s.two_sided && side_name(s, true) == side))
         side_size = std::max(s.length_u_m(), s.length_v_m());
-    }
-    const double min_size = options.min_size_m > 0 ? options.min_size_m : longest / 256;
     double most = 1;
-    for (double size = side_size; size >= 2 * min_size && most < 1e15; size /= 2) most *= 4;
+    for (double size = side_size; size >= 2 * min_size && most <= leaves; size /= 2) most *= 4;
     if (leaves > most)
       throw UserError(field, std::to_string(leaves) + " leaves on '" + side + "' cannot be reached above the minimum element size (" +
                                  std::to_string(min_size) + " m allows at most " + std::to_string(static_cast<long long>(most)) + ")");
   }
-  // Bracket: count(lo) >= leaves > count(hi), epsilon in W.
-  double hi = 1.0, lo = 1e-3;
-  while (count(hi) >= leaves && hi < 1e12) hi *= 10;
+  // Bracket count(lo) >= leaves > count(hi), stepping by kStep, then bisect on log epsilon until
+  // the bracket is kBracket wide or lo gives exactly `leaves`.
+  constexpr double kStep = 10, kBracket = 1.001, kStart = 1e-3, kLargest = 1e12;
+  constexpr int kMaxSteps = 12, kMaxBisections = 60;
+  double hi = 1.0, lo = kStart;
+  while (count(hi) >= leaves && hi < kLargest) hi *= kStep;
   int c_lo = count(lo), previous = -1;
-  for (int k = 0; c_lo < leaves && c_lo > previous && k < 12; ++k) {
+  for (int k = 0; c_lo < leaves && c_lo > previous && k < kMaxSteps; ++k) {
     hi = lo;
-    lo /= 10;
+    lo /= kStep;
     previous = c_lo;
     c_lo = count(lo);
   }
   if (c_lo < leaves)
     throw UserError(field, std::to_string(leaves) + " leaves on '" + side + "' cannot be reached: refinement stops at " +
                                std::to_string(c_lo));
-  // Bisection on log epsilon until the bracket is 0.1% wide or lo hits the count exactly.
-  for (int k = 0; k < 60 && c_lo != leaves && hi / lo > 1.001; ++k) {
+  for (int k = 0; k < kMaxBisections && c_lo != leaves && hi / lo > kBracket; ++k) {
     const double mid = std::sqrt(lo * hi);
     const int c = count(mid);
     if (c >= leaves) {
@@ -505,6 +515,10 @@ Solution solve_hierarchical_leaves(const Scene& scene, const std::string& side, 
       hi = mid;
     }
   }
+  if (c_lo == kTooFine)
+    throw UserError(field, std::to_string(leaves) + " leaves on '" + side + "' need more than " +
+                               std::to_string(options.max_links) + " links");
+  options.leaf_gather = leaf_gather;
   options.epsilon_w = lo;
   options.leaf_cap = std::make_pair(side, leaves);
   options.progress_label = label;

@@ -2,17 +2,16 @@
 // Hierarchical radiosity (Hanrahan, Salzman and Aupperle 1991) on one quadtree per surface side.
 //
 // Links join a receiver node and a source node with the area-to-area form factor: the mean over
-// 4 x 4 points of the receiver of the exact visible point-to-quad form factor (visibility.h,
-// shared with the progressive solver), so leaves hold area averages.
-// A link is refined while its error estimate, the power it carries,
-//     rho_receiver * B_source * F * A_receiver   (W, channel mean),
-// exceeds epsilon and one of its ends is larger than the minimum element size: the larger end
-// is split into four and its children linked instead (a black source, whose radiosity is its
-// uniform emission, is never split: its form factor is exact whatever its size). F is the unoccluded form factor when the
-// link is partly visible (visibility differs between the receiver's sample points), so
-// shadow boundaries are refined where the energy is. Between refinement passes the system is
-// solved by gathering over the links and push-pull, until the radiosity changes by less than
-// `tolerance` of its maximum; the passes end when no link is refined (BF refinement).
+// 4 x 4 points of the receiver (16 x 16 where the point value jumps) of the exact visible
+// point-to-quad form factor (visibility.h, shared with the progressive solver), so leaves hold
+// area averages. A link is refined while its error estimate, in watts,
+//     max( rho_r * B_s * (F_max - F_min) * A_r ,  rho_r * (B_max - B_min)_s * F * A_r ),
+// (the spread of the form factor over the receiver's samples, shadows included, and the spread
+// of the source's children's radiosity) exceeds epsilon: the end responsible for the larger term
+// is split into four, if it is at least twice the minimum element size (a black source, whose
+// radiosity is its uniform emission, never), and its children are linked instead. Passes of
+// best-first refinement alternate with solves (gathering over the links, push-pull) until no
+// link is refined; then each leaf gets its own links to its ancestors' sources (final gather).
 
 #include <optional>
 #include <string>
@@ -25,8 +24,8 @@ namespace radrecon {
 struct HierarchicalOptions {
   /// Refine links that carry more than this power, W (> 0).
   double epsilon_w = 1e-3;
-  /// Nodes whose longer edge is below this (metres) are never split; 0: the longest surface
-  /// edge of the scene / 256.
+  /// Leaves are never smaller than this (metres): a node is split only if its longer edge is at
+  /// least twice it. 0: tol::kMinElementFraction of the scene's longest edge.
   double min_size_m = 0;
   /// Gathering stops when no radiosity changes by more than this fraction of the largest.
   double tolerance = 1e-6;
@@ -38,7 +37,7 @@ struct HierarchicalOptions {
   bool leaf_gather = true;
   /// Refinement that needs more links than this is refused (UserError): a guard against an
   /// epsilon so small that the links (which grow as the square of the elements) exhaust memory.
-  size_t max_links = 20'000'000;
+  size_t max_links = 4'000'000;
   /// Name printed in progress messages on stderr; empty: quiet.
   std::string progress_label;
 };

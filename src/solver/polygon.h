@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 
 #include "core/check.h"
+#include "core/tolerances.h"
 #include "core/vec.h"
 
 namespace radrecon {
@@ -42,14 +44,18 @@ struct HalfSpace {
   HalfSpace complement() const { return {-normal, -offset}; }
 };
 
-/// The part of `in` inside the half-space (Sutherland-Hodgman for one plane).
+/// The part of `in` inside the half-space (Sutherland-Hodgman for one plane). Vertices within
+/// tol::kPlaneDistance_m of the plane count as on it, so nearly coincident planes (quads that
+/// share an edge) add no sliver vertices.
 inline ConvexPolygon clip(const ConvexPolygon& in, const HalfSpace& h) {
   ConvexPolygon out;
   if (in.n == 0) return out;
   std::array<double, ConvexPolygon::kCapacity> d;
   bool all_in = true, all_out = true;
+  const double on_plane = tol::kPlaneDistance_m * h.normal.norm();
   for (int i = 0; i < in.n; ++i) {
     d[i] = h.eval(in.v[i]);
+    if (std::abs(d[i]) <= on_plane) d[i] = 0;
     all_in = all_in && d[i] >= 0;
     all_out = all_out && d[i] <= 0;
   }

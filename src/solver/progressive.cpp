@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <limits>
 
 #include "core/check.h"
 #include "core/parallel.h"
@@ -57,7 +58,7 @@ class ShooterTree {
     b.center = e.center;
     b.diagonal_m = std::max((e.corners[2] - e.corners[0]).norm(), (e.corners[3] - e.corners[1]).norm());
     b.unshot_w_m2 = weighted / area;
-    b.uniform = ((hi - lo) <= tol::kUniformRelative * hi.abs().max(1e-300)).all();
+    b.uniform = ((hi - lo) <= tol::kUniformRelative * hi.abs().max(std::numeric_limits<double>::min())).all();
     if (i1 - i0 == 1 && j1 - j0 == 1) return;
     const int mi = (i1 - i0) > 1 ? (i0 + i1) / 2 : i1;
     const int mj = (j1 - j0) > 1 ? (j0 + j1) / 2 : j1;
@@ -163,7 +164,7 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
     }
     residual = unshot_total.sum() / emitted_sum;
     auto now = std::chrono::steady_clock::now();
-    if (!options.progress_label.empty() && now - last_report > std::chrono::seconds(2)) {
+    if (!options.progress_label.empty() && now - last_report > std::chrono::seconds(2) && residual >= options.residual) {
       std::fprintf(stderr, "%s: %zu shots, unshot %.2e of emitted\n", options.progress_label.c_str(),
                    shots, residual);
       last_report = now;
@@ -189,18 +190,9 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
       const MeshSurface& receiver = mesh.surfaces[r];
       if (receiver.scene_surface == shooter_side.scene_surface) continue;
       const Surface& receiver_surface = scene.surfaces[receiver.scene_surface];
-      bool receiver_in_front = false, shooter_in_front = false;
-      for (const Vec3& c : receiver_surface.corners)
-        receiver_in_front = receiver_in_front || shooter_normal.dot(c - sc[0]) > tol::kPlaneDistance_m;
-      for (const Vec3& c : sc)
-        shooter_in_front = shooter_in_front || receiver.normal.dot(c - receiver_surface.corners[0]) > tol::kPlaneDistance_m;
-      if (!receiver_in_front || !shooter_in_front) continue;
-
-      Vec3 lo = sc[0], hi = sc[0];
-      for (const Vec3& c : sc) { lo = lo.cwiseMin(c); hi = hi.cwiseMax(c); }
-      for (const Vec3& c : receiver_surface.corners) { lo = lo.cwiseMin(c); hi = hi.cwiseMax(c); }
-      const std::vector<const Occluder*> blockers =
-          occluders_in_box(occluders, lo, hi, receiver.scene_surface, shooter_side.scene_surface);
+      if (!quads_face(receiver_surface.corners, receiver.normal, sc, shooter_normal)) continue;
+      const std::vector<const Occluder*> blockers = occluders_between(
+          occluders, sc, receiver_surface.corners, receiver.scene_surface, shooter_side.scene_surface);
 
       gain.assign(receiver.elements.size(), Rgb::Zero());
       parallel_for(0, static_cast<std::int64_t>(receiver.elements.size()), [&](std::int64_t e) {

@@ -1,10 +1,9 @@
 #include "solver/solution_io.h"
 
-#include <cmath>
+#include <cerrno>
 #include <cstdio>
-#include <fstream>
+#include <cstring>
 #include <memory>
-#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -30,7 +29,7 @@ void put_rgb(std::FILE* f, const Rgb& c) { std::fprintf(f, "[%.9g, %.9g, %.9g]",
 void write_solution_json(const std::filesystem::path& path, const Solution& sol) {
   write_file_atomically(path, [&](const std::filesystem::path& tmp) {
     std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(tmp.c_str(), "wb"), &std::fclose);
-    if (!file) throw UserError(path.string(), "cannot open for writing");
+    if (!file) throw UserError(path.string(), std::string("cannot open for writing: ") + std::strerror(errno));
     std::FILE* f = file.get();
     std::fprintf(f, "{\n  \"scene\": %s,\n  \"mesh\": %s,\n  \"surfaces\": [", json_string(sol.scene).c_str(),
                  json_string(sol.mesh).c_str());
@@ -68,105 +67,6 @@ void write_solution_json(const std::filesystem::path& path, const Solution& sol)
     if (std::ferror(f)) throw UserError(path.string(), "write failed");
     if (std::fclose(file.release()) != 0) throw UserError(path.string(), "write failed");
   });
-}
-
-namespace {
-
-using json = nlohmann::json;
-
-struct Fields {
-  std::string file;
-  [[noreturn]] void fail(const std::string& field, const std::string& what) const {
-    throw UserError(file + ": " + field, what);
-  }
-  const json& get(const json& o, const char* key, const std::string& path) const {
-    if (!o.is_object() || !o.contains(key)) fail(path + "." + key, "missing");
-    return o[key];
-  }
-  double number(const json& o, const char* key, const std::string& path) const {
-    const json& j = get(o, key, path);
-    if (!j.is_number() || !std::isfinite(j.get<double>())) fail(path + "." + key, "must be a finite number");
-    return j.get<double>();
-  }
-  Eigen::Vector3d triple(const json& o, const char* key, const std::string& path) const {
-    const json& j = get(o, key, path);
-    if (!j.is_array() || j.size() != 3) fail(path + "." + key, "must be an array of 3 numbers");
-    Eigen::Vector3d v;
-    for (int i = 0; i < 3; ++i) {
-      if (!j[i].is_number() || !std::isfinite(j[i].get<double>()))
-        fail(path + "." + key + "[" + std::to_string(i) + "]", "must be a finite number");
-      v[i] = j[i].get<double>();
-    }
-    return v;
-  }
-};
-
-}  // namespace
-
-Solution read_solution_json(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw UserError(path.string(), "cannot open solution file");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  const std::string text = buffer.str();
-  json doc;
-  try {
-    doc = json::parse(text);
-  } catch (const json::out_of_range& e) {  // a number too large for a double, e.g. 1e999
-    throw UserError(path.string(), std::string("not a valid solution: ") + e.what());
-  } catch (const json::parse_error& e) {
-    size_t line = 1;
-    for (size_t i = 0; i < std::min<size_t>(e.byte, text.size()); ++i) line += text[i] == '\n';
-    throw UserError(path.string() + ":" + std::to_string(line), std::string("not valid JSON: ") + e.what());
-  }
-  Fields F{path.string()};
-  Solution sol;
-  if (!doc.is_object()) F.fail("(top level)", "must be a JSON object");
-  if (doc.contains("scene") && doc["scene"].is_string()) sol.scene = doc["scene"];
-  if (doc.contains("mesh") && doc["mesh"].is_string()) sol.mesh = doc["mesh"];
-  const json& surfaces = F.get(doc, "surfaces", "");
-  if (!surfaces.is_array()) F.fail("surfaces", "must be an array");
-  for (size_t s = 0; s < surfaces.size(); ++s) {
-    const std::string sp = "surfaces[" + std::to_string(s) + "]";
-    const json& js = surfaces[s];
-    SurfaceSolution out;
-    const json& name = F.get(js, "name", sp);
-    if (!name.is_string()) F.fail(sp + ".name", "must be a string");
-    out.name = name;
-    out.scene_surface = js.value("scene_surface", out.name);
-    out.back_side = js.value("back_side", false);
-    if (js.contains("length_u_m")) out.length_u_m = F.number(js, "length_u_m", sp);
-    if (js.contains("length_v_m")) out.length_v_m = F.number(js, "length_v_m", sp);
-    if (js.contains("grid")) {
-      const json& g = js["grid"];
-      if (!g.is_array() || g.size() != 2 || !g[0].is_number_integer() || !g[1].is_number_integer())
-        F.fail(sp + ".grid", "must be [nu, nv]");
-      out.grid_nu = g[0];
-      out.grid_nv = g[1];
-    }
-    const json& elements = F.get(js, "elements", sp);
-    if (!elements.is_array()) F.fail(sp + ".elements", "must be an array");
-    for (size_t e = 0; e < elements.size(); ++e) {
-      const std::string ep = sp + ".elements[" + std::to_string(e) + "]";
-      const json& je = elements[e];
-      SolutionElement el;
-      el.u0 = F.number(je, "u0", ep);
-      el.v0 = F.number(je, "v0", ep);
-      el.u1 = F.number(je, "u1", ep);
-      el.v1 = F.number(je, "v1", ep);
-      if (!(0 <= el.u0 && el.u0 < el.u1 && el.u1 <= 1 && 0 <= el.v0 && el.v0 < el.v1 && el.v1 <= 1))
-        F.fail(ep, "(u,v) rectangle must satisfy 0 <= u0 < u1 <= 1 and 0 <= v0 < v1 <= 1");
-      el.center = F.triple(je, "center", ep);
-      el.area_m2 = F.number(je, "area", ep);
-      el.radiosity_w_m2 = F.triple(je, "radiosity", ep).array();
-      out.elements.push_back(el);
-    }
-    if (out.grid_nu * out.grid_nv != 0 &&
-        static_cast<size_t>(out.grid_nu) * out.grid_nv != out.elements.size())
-      F.fail(sp + ".grid", "does not match the number of elements");
-    sol.surfaces.push_back(std::move(out));
-  }
-  return sol;
 }
 
 }  // namespace radrecon

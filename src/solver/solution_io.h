@@ -11,7 +11,4 @@ namespace radrecon {
 /// Writes the solution as JSON, atomically (streamed: reference solutions have 10^5+ elements).
 void write_solution_json(const std::filesystem::path& path, const Solution& solution);
 
-/// Reads a solution file; errors name the file and the field.
-Solution read_solution_json(const std::filesystem::path& path);
-
 }  // namespace radrecon

@@ -41,6 +41,28 @@ std::vector<const Occluder*> occluders_in_box(const std::vector<Occluder>& occlu
   return out;
 }
 
+bool quads_face(const std::array<Vec3, 4>& receiver, const Vec3& receiver_normal,
+                const std::array<Vec3, 4>& source, const Vec3& source_normal) {
+  bool receiver_in_front = false, source_in_front = false;
+  for (const Vec3& c : receiver)
+    receiver_in_front = receiver_in_front || source_normal.dot(c - source[0]) > tol::kPlaneDistance_m;
+  for (const Vec3& c : source)
+    source_in_front = source_in_front || receiver_normal.dot(c - receiver[0]) > tol::kPlaneDistance_m;
+  return receiver_in_front && source_in_front;
+}
+
+std::vector<const Occluder*> occluders_between(const std::vector<Occluder>& occluders,
+                                               const std::array<Vec3, 4>& a, const std::array<Vec3, 4>& b,
+                                               size_t surface_a, size_t surface_b) {
+  Vec3 lo = a[0], hi = a[0];
+  for (const auto* quad : {&a, &b})
+    for (const Vec3& c : *quad) {
+      lo = lo.cwiseMin(c);
+      hi = hi.cwiseMax(c);
+    }
+  return occluders_in_box(occluders, lo, hi, surface_a, surface_b);
+}
+
 namespace {
 
 /// The five half-spaces whose intersection is the shadow volume of `o` seen from `p`; false if

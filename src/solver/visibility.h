@@ -24,6 +24,18 @@ struct Occluder {
 /// All surfaces of a scene as occluders.
 std::vector<Occluder> make_occluders(const Scene& scene);
 
+/// Whether light leaving the front of the quad `source` (unit normal `source_normal`) can reach
+/// the front of the quad `receiver`: some corner of each lies strictly in front of the other's
+/// plane.
+bool quads_face(const std::array<Vec3, 4>& receiver, const Vec3& receiver_normal,
+                const std::array<Vec3, 4>& source, const Vec3& source_normal);
+
+/// Occluders that may stand between two quads (their bounding boxes meet the quads' common
+/// box), other than the quads' own surfaces.
+std::vector<const Occluder*> occluders_between(const std::vector<Occluder>& occluders,
+                                               const std::array<Vec3, 4>& a, const std::array<Vec3, 4>& b,
+                                               size_t surface_a, size_t surface_b);
+
 /// Occluders whose bounding box meets the box [lo, hi] (a conservative pre-selection for every
 /// receiver point and shooter polygon inside that box).
 std::vector<const Occluder*> occluders_in_box(const std::vector<Occluder>& occluders,

@@ -154,7 +154,7 @@ run noout solve --scene paper --mesh grid:2
 expect_nonzero noout
 
 run unwritable solve --scene paper --mesh grid:2 --out /proc/nonexistent/x.json --quiet
-expect_nonzero unwritable
+expect_rc unwritable 2
 expect_stderr_has unwritable "/proc/nonexistent"
 
 if [ "$failures" -ne 0 ]; then

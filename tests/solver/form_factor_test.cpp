@@ -8,9 +8,13 @@
 #include <random>
 
 #include "solver/form_factor.h"
+#include "support/closed_forms.h"
 
 namespace radrecon {
 namespace {
+
+using testing_support::parallel_corner_form_factor;
+using testing_support::perpendicular_corner_form_factor;
 
 /// Both sides evaluate the same integral exactly in double precision.
 constexpr double kClosedFormRelative = 1e-12;

@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "solver/hierarchical.h"
+#include "support/closed_forms.h"
 
 namespace radrecon {
 namespace {
@@ -80,6 +81,31 @@ TEST(Hierarchical, ClosedBoxRadiosityPowerIsEmittedOverOneMinusReflectance) {
   const double expected = E * 1.0 / (1 - rho);
   EXPECT_NEAR(power, expected, 0.01 * expected);
   EXPECT_GT(sol.stats.elements, 6u) << "the box should have been refined";
+}
+
+TEST(Hierarchical, OpenFloorLeavesHoldTheClosedFormAverageOfDirectLight) {
+  // A floor under a black rectangular light: a leaf's radiosity is rho E times the mean over the
+  // leaf of the closed-form point-to-rectangle form factor (computed here by a fine midpoint rule).
+  Scene scene;
+  scene.name = "floor";
+  scene.surfaces.push_back(quad("floor", {0, 0, 0}, {4, 0, 0}, {4, 4, 0}, {0, 4, 0}, 0.5));
+  scene.surfaces.push_back(quad("light", {1, 1, 2.5}, {1, 2, 2.5}, {2, 2, 2.5}, {2, 1, 2.5}, 0.0, 40.0));
+  const Solution sol = solve_hierarchical_leaves(scene, "floor", 100, HierarchicalOptions{}, "test");
+  const SurfaceSolution& floor = *sol.find("floor");
+  ASSERT_EQ(floor.elements.size(), 100u);
+  constexpr int kFine = 64;
+  for (const SolutionElement& e : floor.elements) {
+    double mean = 0;
+    for (int j = 0; j < kFine; ++j)
+      for (int i = 0; i < kFine; ++i) {
+        const double x = 4 * (e.u0 + (i + 0.5) / kFine * (e.u1 - e.u0)), y = 4 * (e.v0 + (j + 0.5) / kFine * (e.v1 - e.v0));
+        mean += testing_support::floor_to_rectangle(x, y, 1, 1, 2, 2, 2.5);
+      }
+    mean /= kFine * kFine;
+    const double expected = 0.5 * 40.0 * mean;
+    // The solver's 4 x 4 rule against the 64 x 64 one: second-order error in the leaf size.
+    EXPECT_NEAR(e.radiosity_w_m2[0], expected, 2e-3 * expected) << "leaf at " << e.center.transpose();
+  }
 }
 
 TEST(Hierarchical, RefinementIsDeterministic) {

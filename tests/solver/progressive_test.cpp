@@ -5,7 +5,7 @@
 #include <omp.h>
 
 #include "mesh/grid_mesh.h"
-#include "solver/form_factor.h"
+#include "support/closed_forms.h"
 #include "solver/progressive.h"
 
 namespace radrecon {
@@ -26,15 +26,9 @@ Surface quad(const std::string& name, const Vec3& c0, const Vec3& c1, const Vec3
   return s;
 }
 
-/// Closed-form F from a point (x, y, 0) facing up to the rectangle [x0,x1] x [y0,y1] at height h
-/// facing down, by superposition of the corner configuration (signed sub-rectangles).
+/// Closed-form F from a floor point to the light [x0,x1] x [y0,y1] at height h.
 double floor_to_light(double x, double y, double x0, double y0, double x1, double y1, double h) {
-  auto corner = [&](double a, double b) {
-    const double sa = a < 0 ? -1 : 1, sb = b < 0 ? -1 : 1;
-    if (a == 0 || b == 0) return 0.0;
-    return sa * sb * parallel_corner_form_factor(std::abs(a), std::abs(b), h);
-  };
-  return corner(x1 - x, y1 - y) - corner(x0 - x, y1 - y) - corner(x1 - x, y0 - y) + corner(x0 - x, y0 - y);
+  return testing_support::floor_to_rectangle(x, y, x0, y0, x1, y1, h);
 }
 
 Solution solve(const Scene& scene, int divisions, double residual = 1e-6, size_t max_shots = 0) {

@@ -1,0 +1,164 @@
+// radrecon interpolate: scattered 2-D samples in, values at query points or on a raster out.
+
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "cli/commands.h"
+#include "core/error.h"
+#include "experiment/samples_io.h"
+#include "reconstruct/methods.h"
+
+namespace radrecon::cli {
+
+namespace {
+
+struct InterpolateArgs {
+  std::string samples;
+  std::string method;
+  std::vector<std::string> params;
+  std::string queries;
+  std::string raster;
+  std::string domain;
+  std::string out;
+  bool quiet = false;
+};
+
+std::string method_list() {
+  std::string names;
+  for (Method m : all_methods()) names += (names.empty() ? "" : ", ") + method_name(m);
+  return names;
+}
+
+void run_interpolate(const InterpolateArgs& args) {
+  const auto start = std::chrono::steady_clock::now();
+
+  // The command line first: cheap checks before any file is read.
+  const OutputFormat format = output_format_of(args.out, "--out");
+  const bool use_queries = !args.queries.empty(), use_raster = !args.raster.empty();
+  if (use_queries == use_raster)
+    throw UserError("--queries/--raster",
+                    use_queries ? "give either --queries or --raster, not both"
+                                : "give the query points: --queries FILE.csv or --raster WxH --domain x0,y0,x1,y1");
+  if (!use_raster && !args.domain.empty()) throw UserError("--domain", "--domain goes with --raster");
+  if (use_queries && format != OutputFormat::csv)
+    throw UserError("--out", "PFM and PNG outputs need a raster (--raster WxH --domain ...); "
+                             "with --queries write a .csv file");
+  Raster raster;
+  if (use_raster) {
+    parse_raster_size(args.raster, "--raster", raster.width, raster.height);
+    if (args.domain.empty()) throw UserError("--domain", "--raster needs --domain x0,y0,x1,y1 (the rectangle it covers)");
+    raster.domain = parse_domain(args.domain, "--domain");
+  }
+  const std::optional<Method> method = parse_method(args.method);
+  if (!method) throw UserError("--method", "unknown method '" + args.method + "'; valid methods: " + method_list());
+  const MethodParams params = parse_params(*method, args.params, "--param");
+
+  // Samples, interpolant, queries.
+  std::vector<std::string> value_names;
+  const ScatteredSamples samples = read_samples_csv(args.samples, &value_names);
+  if (format == OutputFormat::pfm && samples.channels != 1 && samples.channels != 3)
+    throw UserError("--out", "PFM needs 1 or 3 value columns (greyscale or colour); " + args.samples + " has " +
+                                 std::to_string(samples.channels) + "; write .csv instead");
+  std::unique_ptr<Interpolant> interpolant;
+  try {
+    if (is_grid_method(*method)) {
+      const std::optional<GridNodes> grid = as_regular_grid(samples);
+      if (!grid) {
+        const DistinctCoordinates d = count_distinct_coordinates(samples);
+        throw UserError("--samples", "bilinear/bicubic need samples on a regular grid: every "
+                                     "combination of nx equally spaced x values and ny equally spaced y values "
+                                     "(nx, ny >= 2), each exactly once; found " + std::to_string(samples.points.size()) +
+                                     " samples, " + std::to_string(d.x) + " distinct x, " + std::to_string(d.y) +
+                                     " distinct y; use a scattered method (shepard, multiquadric, natural-neighbour, "
+                                     "constant)");
+      }
+      interpolant = make_nodal_interpolant(*method, *grid, params);
+    } else {
+      interpolant = make_scattered_interpolant(*method, samples, params);
+    }
+  } catch (const UserError& e) {
+    // The factories name the field "samples"; say which file.
+    std::string what = e.what();
+    for (const std::string_view prefix : {"--samples: ", "samples: "})
+      if (what.rfind(prefix, 0) == 0) what.erase(0, prefix.size());
+    throw UserError("--samples " + args.samples, what);
+  }
+  const std::vector<Vec2> points = use_queries ? read_queries_csv(args.queries) : raster_points(raster);
+
+  const std::string description = describe_params(*method, params);
+  if (!args.quiet)
+    std::fprintf(stderr, "interpolate: %zu samples (%d value column%s) from %s; %s%s%s; %zu query points\n",
+                 samples.points.size(), samples.channels, samples.channels == 1 ? "" : "s", args.samples.c_str(),
+                 method_name(*method).c_str(), description.empty() ? "" : ", ", description.c_str(), points.size());
+
+  std::vector<double> values(points.size() * static_cast<size_t>(interpolant->channels()));
+  interpolant->evaluate(points, values);
+
+  switch (format) {
+    case OutputFormat::csv: write_values_csv(args.out, points, values, value_names); break;
+    case OutputFormat::pfm: write_values_pfm(args.out, raster, values, samples.channels); break;
+    case OutputFormat::png: write_values_png(args.out, raster, values, samples.channels); break;
+  }
+  if (!args.quiet) {
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::fprintf(stderr, "interpolate: wrote %s (%zu points) in %.3f s\n", args.out.c_str(), points.size(), seconds);
+  }
+}
+
+}  // namespace
+
+void add_interpolate_command(CLI::App& app) {
+  auto args = std::make_shared<InterpolateArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "interpolate",
+      "Interpolate scattered 2-D samples (CSV: x,y,VALUE...) at query points (--queries) or on a raster "
+      "(--raster + --domain) by one of the paper's reconstruction methods; write CSV, PFM or PNG.\n"
+      "Samples at exactly the same point are merged into one with the mean of their values (one warning on "
+      "stderr). Outside the samples' extent: constant and shepard and multiquadric are defined everywhere; "
+      "bilinear and bicubic clamp the point onto the grid; natural-neighbour follows --param outside. "
+      "Exit code 2 for refused input (message names the file:line or option), nothing written then.");
+  cmd->add_option("--samples", args->samples,
+                  "CSV of samples: header x,y,NAME[,NAME...] then one row per sample; '#' lines and blank lines "
+                  "are ignored; values must be finite numbers")
+      ->required();
+  cmd->add_option("--method", args->method,
+                  "constant (value of the nearest sample); bilinear, bicubic (natural bicubic spline): samples "
+                  "on a regular grid, in any order; shepard (inverse distance weighting); multiquadric (Hardy); "
+                  "natural-neighbour (Sibson)")
+      ->required();
+  cmd->add_option("--param", args->params,
+                  "NAME=VALUE, repeatable. shepard: mu (> 0, default 4): weights 1/d^mu; k (integer >= 0, "
+                  "default 0): the k nearest samples, 0 = all. multiquadric: mu (nonzero, default 0.5): basis "
+                  "(d^2 + r^2)^mu; r (> 0, default: per sample, the distance to its nearest other sample "
+                  "(Eck)). natural-neighbour: outside=nearest (default: the value at the nearest point of "
+                  "the convex hull) | none (NaN outside the hull). Others: no parameters");
+  cmd->add_option("--queries", args->queries,
+                  "CSV of query points: header starting x,y (further columns ignored); outputs keep its row "
+                  "order");
+  cmd->add_option("--raster", args->raster,
+                  "WxH: query the W x H cell centres of --domain, row by row from the y0 row upward "
+                  "(1 <= W, H <= 20000)");
+  cmd->add_option("--domain", args->domain, "x0,y0,x1,y1: the rectangle --raster covers (x1 > x0, y1 > y0)");
+  cmd->add_option("--out", args->out,
+                  "Output by extension: .csv (x,y,NAME... per query, in query order, 'nan' where no value), "
+                  ".pfm (raster only; 1 or 3 value columns; 32-bit floats, first stored row = y0 row), .png "
+                  "(raster only; for viewing: [min,max] of the finite values mapped linearly to black..white, "
+                  "sRGB-encoded, RGB when there are exactly 3 value columns, else the first column in grey; "
+                  "NaN black)")
+      ->required();
+  cmd->add_flag("--quiet", args->quiet, "No progress messages (warnings are still printed)");
+  cmd->footer(
+      "Examples:\n"
+      "  radrecon interpolate --samples s.csv --method shepard --param mu=2 --queries q.csv --out v.csv\n"
+      "  radrecon interpolate --samples s.csv --method natural-neighbour --param outside=none \\\n"
+      "      --raster 400x300 --domain 0,0,4,3 --out map.png\n"
+      "  radrecon interpolate --samples grid.csv --method bicubic --raster 200x200 --domain=-1,-1,1,1 --out f.pfm\n"
+      "Details: docs/interpolate.md");
+  cmd->callback([args] { run_interpolate(*args); });
+}
+
+}  // namespace radrecon::cli

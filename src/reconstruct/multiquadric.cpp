@@ -1,0 +1,107 @@
+#include "reconstruct/multiquadric.h"
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include <Eigen/LU>
+
+#include "core/check.h"
+#include "core/error.h"
+#include "core/parallel.h"
+#include "core/tolerances.h"
+#include "reconstruct/kdtree.h"
+
+namespace radrecon {
+
+namespace {
+
+/// (d^2 + r^2)^mu, with mu = 1/2 (Hardy's choice and the default) and -1/2 without pow().
+inline double basis(double dist_sq_plus_r_sq, double mu) {
+  if (mu == 0.5) return std::sqrt(dist_sq_plus_r_sq);
+  if (mu == -0.5) return 1.0 / std::sqrt(dist_sq_plus_r_sq);
+  return std::pow(dist_sq_plus_r_sq, mu);
+}
+
+}  // namespace
+
+Multiquadric::Multiquadric(const ScatteredSamples& samples, double mu, std::optional<double> r_m)
+    : points_(samples.points), channels_(samples.channels), mu_(mu) {
+  RR_CHECK(mu != 0, "multiquadric mu must be nonzero");
+  const size_t n = points_.size();
+  if (n == 0) throw UserError("samples", "multiquadric needs at least one sample");
+  if (!r_m && n < 2) throw UserError("samples", "multiquadric with Eck's r needs at least 2 samples (or give --param r=...)");
+  r_sq_.resize(n);
+  if (r_m) {
+    std::fill(r_sq_.begin(), r_sq_.end(), *r_m * *r_m);
+  } else {
+    // Eck: r_i = distance from p_i to its nearest other sample.
+    const KdTree2 tree(points_);
+    std::vector<unsigned> idx;
+    std::vector<double> d2;
+    for (size_t i = 0; i < n; ++i) {
+      tree.nearest(points_[i], 2, idx, d2);
+      if (d2[1] == 0) throw UserError("samples", "duplicate sample point at (" + std::to_string(points_[i].x()) + ", " +
+                                                     std::to_string(points_[i].y()) + ")");
+      r_sq_[i] = d2[1];
+    }
+  }
+  Eigen::MatrixXd A(n, n);
+  for (size_t i = 0; i < n; ++i)
+    for (size_t j = 0; j < n; ++j) A(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) =
+        basis((points_[i] - points_[j]).squaredNorm() + r_sq_[j], mu_);
+  Eigen::MatrixXd B(n, channels_);
+  for (size_t i = 0; i < n; ++i)
+    for (int c = 0; c < channels_; ++c) B(static_cast<Eigen::Index>(i), c) = samples.values[i * channels_ + c];
+  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(A);
+  rcond_ = lu.rcond();
+  if (!(rcond_ > 0) || !std::isfinite(rcond_))
+    throw UserError("samples", "the multiquadric system is singular (duplicate samples?)");
+  if (rcond_ < tol::kPoorConditioning)
+    std::fprintf(stderr, "radrecon: warning: multiquadric system is poorly conditioned (reciprocal condition %.2e); "
+                         "results may be inaccurate\n", rcond_);
+  const Eigen::MatrixXd alpha = lu.solve(B);
+  alpha_.resize(n * static_cast<size_t>(channels_));
+  for (size_t i = 0; i < n; ++i)
+    for (int c = 0; c < channels_; ++c) alpha_[i * channels_ + c] = alpha(static_cast<Eigen::Index>(i), c);
+}
+
+void Multiquadric::evaluate(std::span<const Vec2> points, std::span<double> out) const {
+  const int C = channels_;
+  RR_CHECK(out.size() == points.size() * static_cast<size_t>(C), "output size does not match the query points");
+  const size_t n = points_.size();
+  // Structure of arrays for a vectorisable inner loop.
+  std::vector<double> px(n), py(n);
+  for (size_t i = 0; i < n; ++i) px[i] = points_[i].x(), py[i] = points_[i].y();
+  parallel_for(0, static_cast<std::int64_t>(points.size()), [&](std::int64_t k) {
+    const size_t q = static_cast<size_t>(k);
+    const Vec2 p = points[q];
+    if (!p.allFinite()) {
+      for (int c = 0; c < C; ++c) out[q * C + c] = std::numeric_limits<double>::quiet_NaN();
+      return;
+    }
+    if (C == 1 || C == 3) {
+      double s0 = 0, s1 = 0, s2 = 0;
+      for (size_t i = 0; i < n; ++i) {
+        const double dx = p.x() - px[i], dy = p.y() - py[i];
+        const double b = basis(dx * dx + dy * dy + r_sq_[i], mu_);
+        s0 += b * alpha_[i * C];
+        if (C == 3) {
+          s1 += b * alpha_[i * C + 1];
+          s2 += b * alpha_[i * C + 2];
+        }
+      }
+      out[q * C] = s0;
+      if (C == 3) out[q * C + 1] = s1, out[q * C + 2] = s2;
+      return;
+    }
+    for (int c = 0; c < C; ++c) out[q * C + c] = 0;
+    for (size_t i = 0; i < n; ++i) {
+      const double dx = p.x() - px[i], dy = p.y() - py[i];
+      const double b = basis(dx * dx + dy * dy + r_sq_[i], mu_);
+      for (int c = 0; c < C; ++c) out[q * C + c] += b * alpha_[i * C + c];
+    }
+  });
+}
+
+}  // namespace radrecon

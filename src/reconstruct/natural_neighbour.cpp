@@ -1,0 +1,138 @@
+#include "reconstruct/natural_neighbour.h"
+
+#include <limits>
+
+#include <omp.h>
+
+#include <CGAL/Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+#include <CGAL/natural_neighbor_coordinates_2.h>
+
+#include "core/check.h"
+#include "core/error.h"
+#include "core/parallel.h"
+
+namespace radrecon {
+
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Vb = CGAL::Triangulation_vertex_base_with_info_2<unsigned, K>;
+using Tds = CGAL::Triangulation_data_structure_2<Vb>;
+using Delaunay = CGAL::Delaunay_triangulation_2<K, Tds>;
+using Point = K::Point_2;
+
+/// Turns CGAL's (vertex, weight) pairs into (sample index, weight).
+struct VertexIndex {
+  using argument_type = std::pair<Delaunay::Vertex_handle, K::FT>;
+  using result_type = std::pair<unsigned, double>;
+  result_type operator()(const argument_type& p) const { return {p.first->info(), p.second}; }
+};
+
+}  // namespace
+
+struct NaturalNeighbour::Impl {
+  Delaunay dt;
+  std::vector<double> values;
+  int channels = 1;
+  OutsideHull outside = OutsideHull::nearest;
+  std::vector<std::pair<unsigned, unsigned>> hull_edges;  ///< sample indices
+  std::vector<Vec2> points;
+
+  /// Coordinates of q; `hint` is a face near q (updated), or a default handle.
+  bool coordinates(const Vec2& q, Delaunay::Face_handle& hint, std::vector<std::pair<unsigned, double>>& out) const {
+    out.clear();
+    const Point p(q.x(), q.y());
+    Delaunay::Locate_type lt;
+    int li;
+    hint = dt.locate(p, lt, li, hint);
+    if (lt == Delaunay::OUTSIDE_CONVEX_HULL || lt == Delaunay::OUTSIDE_AFFINE_HULL) return false;
+    const auto result = CGAL::natural_neighbor_coordinates_2(dt, p, std::back_inserter(out), VertexIndex(), hint);
+    if (!result.third) return false;
+    const double norm = result.second;
+    for (auto& [index, w] : out) w /= norm;
+    return true;
+  }
+
+  /// The value at the point of the hull nearest to q, interpolated along its hull edge.
+  void nearest_on_hull(const Vec2& q, double* o) const {
+    double best = std::numeric_limits<double>::infinity(), best_t = 0;
+    std::pair<unsigned, unsigned> best_edge{0, 0};
+    for (const auto& e : hull_edges) {
+      const Vec2 a = points[e.first], b = points[e.second];
+      const Vec2 ab = b - a;
+      const double t = std::clamp((q - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+      const double d = (a + t * ab - q).squaredNorm();
+      if (d < best) best = d, best_t = t, best_edge = e;
+    }
+    for (int c = 0; c < channels; ++c)
+      o[c] = (1 - best_t) * values[best_edge.first * static_cast<size_t>(channels) + c] +
+             best_t * values[best_edge.second * static_cast<size_t>(channels) + c];
+  }
+};
+
+NaturalNeighbour::NaturalNeighbour(const ScatteredSamples& samples, OutsideHull outside) : impl_(std::make_unique<Impl>()) {
+  const size_t n = samples.points.size();
+  if (n < 3) throw UserError("samples", "natural-neighbour interpolation needs at least 3 samples, got " + std::to_string(n));
+  impl_->values = samples.values;
+  impl_->channels = samples.channels;
+  impl_->outside = outside;
+  impl_->points = samples.points;
+  std::vector<std::pair<Point, unsigned>> input;
+  input.reserve(n);
+  for (size_t i = 0; i < n; ++i) input.emplace_back(Point(samples.points[i].x(), samples.points[i].y()), static_cast<unsigned>(i));
+  impl_->dt.insert(input.begin(), input.end());
+  if (impl_->dt.number_of_vertices() != n)
+    throw UserError("samples", std::to_string(n - impl_->dt.number_of_vertices()) +
+                                   " duplicate sample point(s); natural-neighbour needs distinct points");
+  if (impl_->dt.dimension() < 2) throw UserError("samples", "all samples lie on one line; natural-neighbour needs a 2-D spread");
+  // Hull edges: the finite edges of the infinite faces.
+  auto inf = impl_->dt.infinite_vertex();
+  auto fc = impl_->dt.incident_faces(inf), done = fc;
+  do {
+    const int i = fc->index(inf);
+    impl_->hull_edges.emplace_back(fc->vertex(Delaunay::ccw(i))->info(), fc->vertex(Delaunay::cw(i))->info());
+  } while (++fc != done);
+}
+
+NaturalNeighbour::~NaturalNeighbour() = default;
+
+int NaturalNeighbour::channels() const { return impl_->channels; }
+
+std::vector<std::pair<unsigned, double>> NaturalNeighbour::coordinates(const Vec2& q) const {
+  std::vector<std::pair<unsigned, double>> out;
+  Delaunay::Face_handle hint;
+  impl_->coordinates(q, hint, out);
+  return out;
+}
+
+void NaturalNeighbour::evaluate(std::span<const Vec2> points, std::span<double> out) const {
+  const int C = impl_->channels;
+  RR_CHECK(out.size() == points.size() * static_cast<size_t>(C), "output size does not match the query points");
+  // Per thread: the face found last, where the next (usually nearby) query's walk starts.
+  std::vector<Delaunay::Face_handle> hints(static_cast<size_t>(omp_get_max_threads()));
+  parallel_for(0, static_cast<std::int64_t>(points.size()), [&](std::int64_t k) {
+    thread_local std::vector<std::pair<unsigned, double>> coords;
+    Delaunay::Face_handle& hint = hints[static_cast<size_t>(omp_get_thread_num())];
+    const size_t q = static_cast<size_t>(k);
+    double* o = &out[q * C];
+    if (!points[q].allFinite()) {
+      for (int c = 0; c < C; ++c) o[c] = std::numeric_limits<double>::quiet_NaN();
+      return;
+    }
+    if (!impl_->coordinates(points[q], hint, coords)) {
+      if (impl_->outside == OutsideHull::nearest) {
+        impl_->nearest_on_hull(points[q], o);
+      } else {
+        for (int c = 0; c < C; ++c) o[c] = std::numeric_limits<double>::quiet_NaN();
+      }
+      return;
+    }
+    for (int c = 0; c < C; ++c) o[c] = 0;
+    for (const auto& [index, w] : coords)
+      for (int c = 0; c < C; ++c) o[c] += w * impl_->values[index * static_cast<size_t>(C) + c];
+  });
+}
+
+}  // namespace radrecon

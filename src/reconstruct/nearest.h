@@ -1,0 +1,26 @@
+#pragma once
+// Piecewise-constant reconstruction of scattered samples: the value of the nearest sample (its
+// Voronoi cell). Ties go to the sample listed first.
+
+#include <memory>
+
+#include "reconstruct/interpolant.h"
+#include "reconstruct/samples.h"
+
+namespace radrecon {
+
+class KdTree2;
+
+class NearestSample final : public Interpolant {
+ public:
+  explicit NearestSample(ScatteredSamples samples);
+  ~NearestSample() override;
+  int channels() const override { return samples_.channels; }
+  void evaluate(std::span<const Vec2> points, std::span<double> out) const override;
+
+ private:
+  ScatteredSamples samples_;
+  std::unique_ptr<KdTree2> tree_;
+};
+
+}  // namespace radrecon

@@ -1,0 +1,93 @@
+#include "reconstruct/shepard.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/check.h"
+#include "core/parallel.h"
+#include "reconstruct/kdtree.h"
+
+namespace radrecon {
+
+Shepard::Shepard(ScatteredSamples samples, double mu, int k) : samples_(std::move(samples)), mu_(mu), k_(k) {
+  RR_CHECK(mu > 0 && k >= 0, "Shepard parameters out of range");
+  RR_CHECK(!samples_.points.empty(), "Shepard needs a sample");
+  px_.reserve(samples_.points.size());
+  py_.reserve(samples_.points.size());
+  for (const Vec2& p : samples_.points) px_.push_back(p.x()), py_.push_back(p.y());
+  if (k_ > 0 && static_cast<size_t>(k_) < samples_.points.size()) {
+    tree_ = std::make_unique<KdTree2>(samples_.points);
+  } else {
+    k_ = 0;
+  }
+}
+
+Shepard::~Shepard() = default;
+
+namespace {
+
+/// d^-mu from d^2: (d^2)^(-mu/2), with the common even exponents without pow().
+inline double weight(double dist_sq, double mu) {
+  if (mu == 4.0) return 1.0 / (dist_sq * dist_sq);
+  if (mu == 2.0) return 1.0 / dist_sq;
+  return std::pow(dist_sq, -0.5 * mu);
+}
+
+}  // namespace
+
+void Shepard::evaluate(std::span<const Vec2> points, std::span<double> out) const {
+  const int C = samples_.channels;
+  RR_CHECK(out.size() == points.size() * static_cast<size_t>(C), "output size does not match the query points");
+  const size_t n = samples_.points.size();
+  parallel_for(0, static_cast<std::int64_t>(points.size()), [&](std::int64_t k) {
+    thread_local std::vector<unsigned> idx;
+    thread_local std::vector<double> d2;
+    const size_t q = static_cast<size_t>(k);
+    double* o = &out[q * C];
+    const Vec2 p = points[q];
+    if (!p.allFinite()) {
+      for (int c = 0; c < C; ++c) o[c] = std::numeric_limits<double>::quiet_NaN();
+      return;
+    }
+    if (k_ > 0) {
+      tree_->nearest(p, k_, idx, d2);
+    } else {
+      idx.resize(n);
+      d2.resize(n);
+      for (size_t i = 0; i < n; ++i) {
+        const double dx = p.x() - px_[i], dy = p.y() - py_[i];
+        idx[i] = static_cast<unsigned>(i);
+        d2[i] = dx * dx + dy * dy;
+      }
+    }
+    // At (or so near that the weights overflow) a sample: that sample's value, the limit.
+    size_t nearest = 0;
+    for (size_t j = 1; j < d2.size(); ++j)
+      if (d2[j] < d2[nearest]) nearest = j;
+    const double w_nearest = weight(d2[nearest], mu_);
+    if (d2[nearest] == 0 || !std::isfinite(w_nearest)) {
+      for (int c = 0; c < C; ++c) o[c] = samples_.values[idx[nearest] * static_cast<size_t>(C) + c];
+      return;
+    }
+    double total = 0, s0 = 0, s1 = 0, s2 = 0;
+    for (size_t j = 0; j < d2.size(); ++j) {
+      const double w = weight(d2[j], mu_);
+      const double* v = &samples_.values[idx[j] * static_cast<size_t>(C)];
+      total += w;
+      s0 += w * v[0];
+      if (C > 1) s1 += w * v[1];
+      if (C > 2) s2 += w * v[2];
+    }
+    o[0] = s0 / total;
+    if (C > 1) o[1] = s1 / total;
+    if (C > 2) o[2] = s2 / total;
+    for (int c = 3; c < C; ++c) {
+      double sum = 0;
+      for (size_t j = 0; j < d2.size(); ++j) sum += weight(d2[j], mu_) * samples_.values[idx[j] * static_cast<size_t>(C) + c];
+      o[c] = sum / total;
+    }
+  });
+}
+
+}  // namespace radrecon

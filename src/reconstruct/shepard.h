@@ -1,0 +1,32 @@
+#pragma once
+// Shepard's inverse distance weighting (the paper's sec. 2.2.1):
+//   B(q) = sum_i d(q, p_i)^-mu B_i / sum_i d(q, p_i)^-mu,
+// over all samples (global) or over the k nearest (local, from a k-d tree). Exact at the
+// samples; the weights are positive and sum to one, so B stays within the samples' range.
+
+#include <memory>
+
+#include "reconstruct/interpolant.h"
+#include "reconstruct/samples.h"
+
+namespace radrecon {
+
+class KdTree2;
+
+class Shepard final : public Interpolant {
+ public:
+  /// mu > 0; k = 0 uses every sample, k > 0 the k nearest (at most all).
+  Shepard(ScatteredSamples samples, double mu, int k);
+  ~Shepard() override;
+  int channels() const override { return samples_.channels; }
+  void evaluate(std::span<const Vec2> points, std::span<double> out) const override;
+
+ private:
+  ScatteredSamples samples_;
+  std::vector<double> px_, py_;  ///< sample coordinates, structure of arrays for the inner loop
+  double mu_;
+  int k_;
+  std::unique_ptr<KdTree2> tree_;
+};
+
+}  // namespace radrecon

@@ -1,0 +1,219 @@
+#!/usr/bin/env bash
+# `radrecon interpolate` as a user meets it: every method is exact at its samples, bilinear and
+# natural-neighbour reproduce a linear function, rasters come out with the right size, and every
+# refused input exits with code 2, a message, and no output file.
+# Usage: interpolate_test.sh /path/to/radrecon
+set -u
+
+RADRECON=${1:?usage: interpolate_test.sh /path/to/radrecon}
+TMP=$(mktemp -d "${TMPDIR:-/tmp}/radrecon_interpolate_test.XXXXXX")
+trap 'rm -rf "$TMP"' EXIT
+
+failures=0
+fail() {
+  echo "FAIL: $*" >&2
+  failures=$((failures + 1))
+}
+
+# run NAME ARGS...: runs `radrecon interpolate ARGS`, keeping stdout, stderr and exit code in $TMP/NAME.*
+run() {
+  local name=$1
+  shift
+  "$RADRECON" interpolate "$@" >"$TMP/$name.stdout" 2>"$TMP/$name.stderr"
+  echo $? >"$TMP/$name.rc"
+}
+expect_rc() {  # NAME CODE
+  local got
+  got=$(cat "$TMP/$1.rc")
+  if [ "$got" != "$2" ]; then
+    fail "$1: exit code $got, expected $2; stderr: $(head -c 500 "$TMP/$1.stderr")"
+    return 1
+  fi
+}
+expect_stderr_has() {  # NAME TEXT
+  if ! grep -qF -- "$2" "$TMP/$1.stderr"; then
+    fail "$1: stderr does not mention '$2'; stderr: $(head -c 500 "$TMP/$1.stderr")"
+  fi
+}
+expect_no_output() {  # NAME PATH: neither the file nor a temporary sibling of it exists
+  if compgen -G "$2*" >/dev/null; then fail "$1: output left behind: $(ls "$2"*)"; fi
+}
+
+# check_values NAME OUT.csv EXPECTED.csv TOL: same rows, same x,y, values within TOL (no NaN).
+check_values() {
+  local msg
+  msg=$(awk -F',' -v tol="$4" '
+    NR == FNR { if (FNR > 1) { n++; for (c = 1; c <= NF; c++) e[n, c] = $c; ne = NF }; next }
+    FNR == 1 { if ($1 != "x" || $2 != "y") { print "header " $0; bad = 1 }; next }
+    {
+      m++
+      if (NF != ne) { print "row " m ": " NF " fields, expected " ne; bad = 1; next }
+      for (c = 1; c <= NF; c++) {
+        if ($c == "nan") { print "row " m " column " c ": nan"; bad = 1; continue }
+        d = $c - e[m, c]; if (d < 0) d = -d
+        if (d > tol) { printf "row %d column %d: %s, expected %s\n", m, c, $c, e[m, c]; bad = 1 }
+      }
+    }
+    END { if (m != n) { print m " rows, expected " n; bad = 1 }; exit bad }' "$3" "$2" | head -5)
+  if [ -n "$msg" ]; then fail "$1: $msg"; fi
+}
+
+# linear QUERIES.csv OUT.csv: the expected answer f = 2 + 3x - y at the queries.
+linear() {
+  awk -F',' 'NR == 1 { print "x,y,f"; next } { printf "%s,%s,%.17g\n", $1, $2, 2 + 3 * $1 - $2 }' "$1" >"$2"
+}
+
+# --- data ----------------------------------------------------------------------------------
+# 40 random points in [0,1]^2 plus the corners (so interior queries are inside the hull);
+# values f = 2 + 3x - y and g = 1 - x + 2y.
+awk 'BEGIN {
+  srand(20240611)
+  print "# scattered samples of f = 2 + 3x - y, g = 1 - x + 2y"
+  print "x,y,f,g"
+  split("0 0 1 0 0 1 1 1", c, " ")
+  for (k = 0; k < 4; k++) { x = c[2 * k + 1]; y = c[2 * k + 2]; printf "%.17g,%.17g,%.17g,%.17g\n", x, y, 2 + 3 * x - y, 1 - x + 2 * y }
+  for (k = 0; k < 40; k++) { x = rand(); y = rand(); printf "%.17g, %.17g, %.17g, %.17g\n", x, y, 2 + 3 * x - y, 1 - x + 2 * y }
+}' >"$TMP/scattered.csv"
+awk -F',' '!/^#/ { print $1 "," $2 "," $3 }' "$TMP/scattered.csv" >"$TMP/scattered1.csv"
+# The same as expected answers (no comment line, no spaces).
+grep -v '^#' "$TMP/scattered.csv" | tr -d ' ' >"$TMP/scattered_expected.csv"
+
+# A 5 x 4 regular grid over [0,2] x [-1,0.5], shuffled, same f and g.
+awk 'BEGIN {
+  srand(7)
+  for (j = 0; j < 4; j++) for (i = 0; i < 5; i++) {
+    x = i * 0.5; y = -1 + j * 0.5
+    printf "%.17g %.17g,%.17g,%.17g,%.17g\n", rand(), x, y, 2 + 3 * x - y, 1 - x + 2 * y
+  }
+}' | sort -n | awk 'BEGIN { print "x,y,f,g" } { sub(/^[^ ]* /, ""); print }' >"$TMP/grid.csv"
+tail -n +2 "$TMP/grid.csv" | sort -t, -k2,2g -k1,1g | awk 'BEGIN { print "x,y,f,g" } { print }' >"$TMP/grid_expected.csv"
+grep -v '^x' "$TMP/grid.csv" | sort | cmp -s - <(grep -v '^x' "$TMP/grid_expected.csv" | sort) ||
+  fail "test setup: grid files differ"
+
+# Random interior queries of the unit square and of the grid.
+awk 'BEGIN { srand(99); print "x,y,label"; for (k = 0; k < 30; k++) printf "%.17g,%.17g,q%d\n", 0.02 + 0.96 * rand(), 0.02 + 0.96 * rand(), k }' >"$TMP/queries.csv"
+awk 'BEGIN { srand(5); print "x,y"; for (k = 0; k < 30; k++) printf "%.17g,%.17g\n", 2 * rand(), -1 + 1.5 * rand() }' >"$TMP/grid_queries.csv"
+
+# --- exactness at the samples ----------------------------------------------------------------
+for m in constant shepard multiquadric natural-neighbour; do
+  run "exact_$m" --samples "$TMP/scattered.csv" --method "$m" --queries "$TMP/scattered.csv" --out "$TMP/exact_$m.csv" --quiet
+  if expect_rc "exact_$m" 0; then check_values "exact_$m" "$TMP/exact_$m.csv" "$TMP/scattered_expected.csv" 1e-9; fi
+done
+run exact_shepard_k --samples "$TMP/scattered.csv" --method shepard --param mu=2 --param k=8 \
+  --queries "$TMP/scattered.csv" --out "$TMP/exact_shepard_k.csv" --quiet
+if expect_rc exact_shepard_k 0; then check_values exact_shepard_k "$TMP/exact_shepard_k.csv" "$TMP/scattered_expected.csv" 1e-9; fi
+for m in bilinear bicubic; do
+  run "exact_$m" --samples "$TMP/grid.csv" --method "$m" --queries "$TMP/grid_expected.csv" --out "$TMP/exact_$m.csv" --quiet
+  if expect_rc "exact_$m" 0; then check_values "exact_$m" "$TMP/exact_$m.csv" "$TMP/grid_expected.csv" 1e-9; fi
+done
+
+# --- linear precision at interior points -------------------------------------------------------
+linear "$TMP/queries.csv" "$TMP/queries_expected.csv"
+run linear_nn --samples "$TMP/scattered1.csv" --method natural-neighbour --queries "$TMP/queries.csv" --out "$TMP/linear_nn.csv" --quiet
+if expect_rc linear_nn 0; then check_values linear_nn "$TMP/linear_nn.csv" "$TMP/queries_expected.csv" 1e-9; fi
+awk -F',' '{ print $1 "," $2 "," $3 }' "$TMP/grid.csv" >"$TMP/grid1.csv"
+linear "$TMP/grid_queries.csv" "$TMP/grid_queries_expected.csv"
+run linear_bilinear --samples "$TMP/grid1.csv" --method bilinear --queries "$TMP/grid_queries.csv" --out "$TMP/linear_bilinear.csv" --quiet
+if expect_rc linear_bilinear 0; then check_values linear_bilinear "$TMP/linear_bilinear.csv" "$TMP/grid_queries_expected.csv" 1e-9; fi
+# A natural cubic spline reproduces a linear function too.
+run linear_bicubic --samples "$TMP/grid1.csv" --method bicubic --queries "$TMP/grid_queries.csv" --out "$TMP/linear_bicubic.csv" --quiet
+if expect_rc linear_bicubic 0; then check_values linear_bicubic "$TMP/linear_bicubic.csv" "$TMP/grid_queries_expected.csv" 1e-9; fi
+
+# The progress lines, unless --quiet.
+run talk --samples "$TMP/scattered1.csv" --method constant --queries "$TMP/queries.csv" --out "$TMP/talk.csv"
+expect_rc talk 0 && expect_stderr_has talk "talk.csv"
+if [ -s "$TMP/exact_constant.stderr" ]; then fail "exact_constant: --quiet run printed: $(head -c 300 "$TMP/exact_constant.stderr")"; fi
+
+# --- rasters ---------------------------------------------------------------------------------
+run pfm --samples "$TMP/scattered1.csv" --method natural-neighbour --raster 7x5 --domain 0,0,1,1 --out "$TMP/r.pfm" --quiet
+if expect_rc pfm 0; then
+  header=$(head -c 12 "$TMP/r.pfm" | tr '\n' ' ')
+  [ "$header" = "Pf 7 5 -1.0 " ] || fail "pfm: header '$header', expected 'Pf 7 5 -1.0 '"
+  size=$(stat -c %s "$TMP/r.pfm")
+  [ "$size" = $((12 + 7 * 5 * 4)) ] || fail "pfm: $size bytes, expected $((12 + 7 * 5 * 4))"
+fi
+awk -F',' '!/^#/ { print $1 "," $2 "," $3 "," $4 "," $3 }' "$TMP/scattered.csv" >"$TMP/scattered3.csv"
+run pfm3 --samples "$TMP/scattered3.csv" --method shepard --raster 4x3 --domain=-1,-1,2,2 --out "$TMP/r3.PFM" --quiet
+if expect_rc pfm3 0; then
+  header=$(head -c 12 "$TMP/r3.PFM" | tr '\n' ' ')
+  [ "$header" = "PF 4 3 -1.0 " ] || fail "pfm3: header '$header', expected 'PF 4 3 -1.0 '"
+  size=$(stat -c %s "$TMP/r3.PFM")
+  [ "$size" = $((12 + 4 * 3 * 12)) ] || fail "pfm3: $size bytes, expected $((12 + 4 * 3 * 12))"
+fi
+for spec in "png1 scattered1.csv 37x23" "png3 scattered3.csv 16x9"; do
+  read -r name file size <<<"$spec"
+  run "$name" --samples "$TMP/$file" --method multiquadric --raster "$size" --domain 0,0,1,1 --out "$TMP/$name.png" --quiet
+  if expect_rc "$name" 0; then
+    got=$(python3 -c 'import sys, struct
+b = open(sys.argv[1], "rb").read()
+assert b[:8] == b"\x89PNG\r\n\x1a\n" and b[12:16] == b"IHDR", "not a PNG"
+print("%dx%d" % struct.unpack(">II", b[16:24]))' "$TMP/$name.png" 2>&1)
+    [ "$got" = "$size" ] || fail "$name: PNG size '$got', expected $size"
+  fi
+done
+
+# --- duplicates: merged with one warning -------------------------------------------------------
+printf 'x,y,B\n0,0,1\n1,0,2\n0,1,3\n0,0,5\n1,1,4\n' >"$TMP/dup.csv"
+printf 'x,y\n0,0\n' >"$TMP/origin.csv"
+run dup --samples "$TMP/dup.csv" --method constant --queries "$TMP/origin.csv" --out "$TMP/dup_out.csv" --quiet
+if expect_rc dup 0; then
+  expect_stderr_has dup "warning"
+  [ "$(grep -c . "$TMP/dup.stderr")" = 1 ] || fail "dup: expected one warning line, got: $(cat "$TMP/dup.stderr")"
+  printf 'x,y,B\n0,0,3\n' >"$TMP/dup_expected.csv"
+  check_values dup "$TMP/dup_out.csv" "$TMP/dup_expected.csv" 0
+fi
+
+# --- refusals: exit 2, a message, no output ---------------------------------------------------
+: >"$TMP/empty.csv"
+printf 'x,y,B\n# no rows\n' >"$TMP/header_only.csv"
+printf 'x,y,B\n0,0,1\n1,0,nan\n0,1,2\n' >"$TMP/nan.csv"
+printf 'x,y,B\n0,0,1\n1,0\n0,1,2\n' >"$TMP/short.csv"
+printf 'x,y,B\n0,0,1\n1,0,2\n0,one,2\n' >"$TMP/text.csv"
+printf 'x,y,B\n0,0,1\n1,1,2\n2,2,3\n3,3,5\n' >"$TMP/collinear.csv"
+printf 'x,y\n0,nan\n' >"$TMP/queries_nan.csv"
+
+refuse() {  # NAME TEXT OUT ARGS...: expects exit 2, TEXT on stderr and no OUT
+  local name=$1 text=$2 out=$3
+  shift 3
+  run "$name" "$@" --out "$out" --quiet
+  expect_rc "$name" 2
+  expect_stderr_has "$name" "$text"
+  expect_no_output "$name" "$out"
+}
+S=$TMP/scattered1.csv
+Q=$TMP/queries.csv
+refuse missing_samples "absent.csv" "$TMP/o1.csv" --samples "$TMP/absent.csv" --method constant --queries "$Q"
+refuse empty_samples "empty.csv:1" "$TMP/o2.csv" --samples "$TMP/empty.csv" --method constant --queries "$Q"
+refuse no_rows "no data rows" "$TMP/o3.csv" --samples "$TMP/header_only.csv" --method constant --queries "$Q"
+refuse nan_value "nan.csv:3" "$TMP/o4.csv" --samples "$TMP/nan.csv" --method shepard --queries "$Q"
+refuse short_row "short.csv:3" "$TMP/o5.csv" --samples "$TMP/short.csv" --method shepard --queries "$Q"
+refuse non_numeric "text.csv:4" "$TMP/o6.csv" --samples "$TMP/text.csv" --method shepard --queries "$Q"
+expect_stderr_has non_numeric "column 2"
+refuse unknown_method "natural-neighbour" "$TMP/o7.csv" --samples "$S" --method kriging --queries "$Q"
+expect_stderr_has unknown_method "--method"
+refuse unknown_param "--param" "$TMP/o8.csv" --samples "$S" --method shepard --param nu=2 --queries "$Q"
+refuse negative_mu "mu" "$TMP/o9.csv" --samples "$S" --method shepard --param mu=-1 --queries "$Q"
+refuse bilinear_scattered "regular grid" "$TMP/o10.csv" --samples "$S" --method bilinear --queries "$Q"
+refuse bicubic_scattered "distinct x" "$TMP/o11.png" --samples "$S" --method bicubic --raster 4x4 --domain 0,0,1,1
+refuse nn_collinear "collinear.csv" "$TMP/o12.csv" --samples "$TMP/collinear.csv" --method natural-neighbour --queries "$Q"
+refuse raster_zero "--raster" "$TMP/o13.pfm" --samples "$S" --method constant --raster 0x5 --domain 0,0,1,1
+refuse raster_no_domain "--domain" "$TMP/o14.pfm" --samples "$S" --method constant --raster 5x5
+refuse bad_domain "--domain" "$TMP/o15.pfm" --samples "$S" --method constant --raster 5x5 --domain 1,0,0,1
+refuse both_queries_raster "--queries" "$TMP/o16.csv" --samples "$S" --method constant --queries "$Q" --raster 5x5 --domain 0,0,1,1
+refuse neither "--queries" "$TMP/o17.csv" --samples "$S" --method constant
+refuse pfm_queries "raster" "$TMP/o18.pfm" --samples "$S" --method constant --queries "$Q"
+refuse png_queries "raster" "$TMP/o19.png" --samples "$S" --method constant --queries "$Q"
+refuse unknown_extension ".tif" "$TMP/o20.tif" --samples "$S" --method constant --raster 5x5 --domain 0,0,1,1
+refuse pfm_two_columns "1 or 3" "$TMP/o21.pfm" --samples "$TMP/scattered.csv" --method constant --raster 5x5 --domain 0,0,1,1
+refuse bad_queries "queries_nan.csv:2" "$TMP/o22.csv" --samples "$S" --method constant --queries "$TMP/queries_nan.csv"
+# An output that existed before a refused run is left as it was.
+echo "keep me" >"$TMP/keep.csv"
+run keep --samples "$TMP/nan.csv" --method constant --queries "$Q" --out "$TMP/keep.csv" --quiet
+expect_rc keep 2
+[ "$(cat "$TMP/keep.csv")" = "keep me" ] || fail "keep: a refused run changed an existing output"
+
+if [ "$failures" -ne 0 ]; then
+  echo "interpolate_test: $failures check(s) failed" >&2
+  exit 1
+fi
+echo "interpolate_test: all checks passed"

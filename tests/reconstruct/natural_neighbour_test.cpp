@@ -1,0 +1,171 @@
+// Sibson's coordinates: the defining properties (after CGAL's own interpolation tests) and a
+// brute-force computation of the Voronoi areas that the query point steals.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "core/error.h"
+#include "reconstruct/natural_neighbour.h"
+
+namespace radrecon {
+namespace {
+
+ScatteredSamples random_samples(int n, std::mt19937& rng, double lo = 0, double hi = 4) {
+  std::uniform_real_distribution<double> xy(lo, hi), value(-1, 1);
+  ScatteredSamples s;
+  for (int i = 0; i < n; ++i) {
+    s.points.emplace_back(xy(rng), xy(rng));
+    s.values.push_back(value(rng));
+  }
+  return s;
+}
+
+double eval1(const Interpolant& f, const Vec2& q) {
+  double v;
+  f.evaluate(std::span(&q, 1), std::span(&v, 1));
+  return v;
+}
+
+// --- brute-force Voronoi geometry, independent of CGAL ---------------------------------------
+
+using Polygon = std::vector<Vec2>;
+
+/// The part of `poly` closer to a than to b (half-plane clip).
+Polygon clip_closer(const Polygon& poly, const Vec2& a, const Vec2& b) {
+  const Vec2 n = b - a;
+  const double c = 0.5 * (b.squaredNorm() - a.squaredNorm());  // n . x <= c on a's side
+  Polygon out;
+  for (size_t i = 0; i < poly.size(); ++i) {
+    const Vec2& p = poly[i];
+    const Vec2& q = poly[(i + 1) % poly.size()];
+    const double dp = n.dot(p) - c, dq = n.dot(q) - c;
+    if (dp <= 0) out.push_back(p);
+    if ((dp < 0 && dq > 0) || (dp > 0 && dq < 0)) out.push_back(p + dp / (dp - dq) * (q - p));
+  }
+  return out;
+}
+
+double area(const Polygon& p) {
+  double a = 0;
+  for (size_t i = 0; i < p.size(); ++i) {
+    const Vec2& u = p[i];
+    const Vec2& v = p[(i + 1) % p.size()];
+    a += u.x() * v.y() - u.y() * v.x();
+  }
+  return 0.5 * std::abs(a);
+}
+
+/// The Voronoi cell of `site` among `others`, inside a large box.
+Polygon voronoi_cell(const Vec2& site, const std::vector<Vec2>& others) {
+  const double L = 1e3;
+  Polygon cell = {Vec2(-L, -L), Vec2(L, -L), Vec2(L, L), Vec2(-L, L)};
+  for (const Vec2& o : others)
+    if (o != site) cell = clip_closer(cell, site, o);
+  return cell;
+}
+
+TEST(NaturalNeighbour, CoordinatesEqualStolenVoronoiAreas) {
+  std::mt19937 rng(21);
+  const ScatteredSamples s = random_samples(25, rng);
+  const NaturalNeighbour nn(s, OutsideHull::none);
+  std::uniform_real_distribution<double> inner(1.2, 2.8);
+  for (int t = 0; t < 30; ++t) {
+    const Vec2 q(inner(rng), inner(rng));
+    const auto coords = nn.coordinates(q);
+    ASSERT_FALSE(coords.empty());
+    const Polygon cell_q = voronoi_cell(q, s.points);
+    const double total = area(cell_q);
+    std::vector<double> expected(s.points.size(), 0.0);
+    for (size_t i = 0; i < s.points.size(); ++i) {
+      // The part of q's cell that belonged to p_i: q's cell clipped to p_i's old cell.
+      Polygon stolen = cell_q;
+      for (const Vec2& o : s.points)
+        if (o != s.points[i]) stolen = clip_closer(stolen, s.points[i], o);
+      if (stolen.size() >= 3) expected[i] = area(stolen) / total;
+    }
+    std::vector<double> got(s.points.size(), 0.0);
+    for (const auto& [i, w] : coords) got[i] = w;
+    for (size_t i = 0; i < s.points.size(); ++i) EXPECT_NEAR(got[i], expected[i], 1e-10) << "sample " << i;
+  }
+}
+
+TEST(NaturalNeighbour, SumToOneAndBarycentreIsTheQuery) {
+  std::mt19937 rng(22);
+  const ScatteredSamples s = random_samples(200, rng);
+  const NaturalNeighbour nn(s, OutsideHull::none);
+  std::uniform_real_distribution<double> inner(0.8, 3.2);
+  for (int t = 0; t < 300; ++t) {
+    const Vec2 q(inner(rng), inner(rng));
+    const auto coords = nn.coordinates(q);
+    ASSERT_FALSE(coords.empty());
+    double sum = 0;
+    Vec2 barycentre = Vec2::Zero();
+    for (const auto& [i, w] : coords) {
+      EXPECT_GE(w, 0.0);
+      sum += w;
+      barycentre += w * s.points[i];
+    }
+    EXPECT_NEAR(sum, 1.0, 1e-12);
+    EXPECT_NEAR((barycentre - q).norm(), 0.0, 1e-12);
+  }
+}
+
+TEST(NaturalNeighbour, ExactAtSamplesAndReproducesLinearFunctions) {
+  std::mt19937 rng(23);
+  ScatteredSamples s = random_samples(100, rng);
+  auto f = [](const Vec2& p) { return 1.5 - 2 * p.x() + 0.75 * p.y(); };
+  for (size_t i = 0; i < s.points.size(); ++i) s.values[i] = f(s.points[i]);
+  const NaturalNeighbour nn(s, OutsideHull::none);
+  for (size_t i = 0; i < s.points.size(); ++i) EXPECT_NEAR(eval1(nn, s.points[i]), s.values[i], 1e-12);
+  std::uniform_real_distribution<double> inner(0.8, 3.2);
+  for (int t = 0; t < 300; ++t) {
+    const Vec2 q(inner(rng), inner(rng));
+    EXPECT_NEAR(eval1(nn, q), f(q), 1e-11);
+  }
+}
+
+TEST(NaturalNeighbour, SymmetricConfigurationGivesSymmetricWeights) {
+  ScatteredSamples s;
+  s.points = {Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1), Vec2(0.5, 2), Vec2(0.5, -1)};
+  s.values = {1, 2, 3, 4, 5, 6};
+  const NaturalNeighbour nn(s, OutsideHull::none);
+  // On the vertical symmetry axis x = 0.5, mirrored samples get equal weights.
+  const auto coords = nn.coordinates(Vec2(0.5, 0.3));
+  std::vector<double> w(6, 0.0);
+  for (const auto& [i, x] : coords) w[i] = x;
+  EXPECT_NEAR(w[0], w[1], 1e-15);
+  EXPECT_NEAR(w[2], w[3], 1e-15);
+}
+
+TEST(NaturalNeighbour, OutsideTheHull) {
+  ScatteredSamples s;
+  s.points = {Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1), Vec2(0.4, 0.6)};
+  s.values = {0, 1, 2, 3, 7};
+  const NaturalNeighbour none(s, OutsideHull::none), nearest(s, OutsideHull::nearest);
+  EXPECT_TRUE(none.coordinates(Vec2(-1, 0.25)).empty());
+  EXPECT_TRUE(std::isnan(eval1(none, Vec2(-1, 0.25))));
+  // Nearest hull point of (-1, 0.25) is (0, 0.25) on the edge (0,0)-(0,1): 0.75 * 0 + 0.25 * 3.
+  EXPECT_NEAR(eval1(nearest, Vec2(-1, 0.25)), 0.75, 1e-14);
+  // Beyond a corner: the corner's value.
+  EXPECT_NEAR(eval1(nearest, Vec2(2, 2)), 2.0, 1e-14);
+}
+
+TEST(NaturalNeighbour, RefusesTooFewCollinearOrDuplicateSamples) {
+  ScatteredSamples two;
+  two.points = {Vec2(0, 0), Vec2(1, 1)};
+  two.values = {1, 2};
+  EXPECT_THROW(NaturalNeighbour(two, OutsideHull::none), UserError);
+  ScatteredSamples line;
+  line.points = {Vec2(0, 0), Vec2(1, 1), Vec2(2, 2), Vec2(3, 3)};
+  line.values = {1, 2, 3, 4};
+  EXPECT_THROW(NaturalNeighbour(line, OutsideHull::none), UserError);
+  ScatteredSamples dup;
+  dup.points = {Vec2(0, 0), Vec2(1, 0), Vec2(0, 1), Vec2(1, 0)};
+  dup.values = {1, 2, 3, 4};
+  EXPECT_THROW(NaturalNeighbour(dup, OutsideHull::none), UserError);
+}
+
+}  // namespace
+}  // namespace radrecon

@@ -1,0 +1,99 @@
+// Shepard's method: its defining properties and the k-nearest variant against brute force.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <numeric>
+#include <random>
+
+#include "reconstruct/nearest.h"
+#include "reconstruct/shepard.h"
+
+namespace radrecon {
+namespace {
+
+ScatteredSamples random_samples(int n, std::mt19937& rng, int channels = 1) {
+  std::uniform_real_distribution<double> xy(0, 4), value(-1, 3);
+  ScatteredSamples s;
+  s.channels = channels;
+  for (int i = 0; i < n; ++i) {
+    s.points.emplace_back(xy(rng), xy(rng));
+    for (int c = 0; c < channels; ++c) s.values.push_back(value(rng));
+  }
+  return s;
+}
+
+double eval1(const Interpolant& f, const Vec2& q) {
+  double v;
+  f.evaluate(std::span(&q, 1), std::span(&v, 1));
+  return v;
+}
+
+TEST(Shepard, ExactAtTheSamples) {
+  std::mt19937 rng(1);
+  const ScatteredSamples s = random_samples(50, rng);
+  for (int k : {0, 8}) {
+    const Shepard f(s, 4, k);
+    for (size_t i = 0; i < s.points.size(); ++i) EXPECT_EQ(eval1(f, s.points[i]), s.values[i]);
+  }
+}
+
+TEST(Shepard, StaysWithinTheSampleRangeAndReproducesConstants) {
+  std::mt19937 rng(2);
+  ScatteredSamples s = random_samples(40, rng);
+  const auto [lo, hi] = std::minmax_element(s.values.begin(), s.values.end());
+  const Shepard f(s, 4, 0);
+  std::uniform_real_distribution<double> xy(-1, 5);
+  for (int k = 0; k < 500; ++k) {
+    const double v = eval1(f, Vec2(xy(rng), xy(rng)));
+    EXPECT_GE(v, *lo);
+    EXPECT_LE(v, *hi);
+  }
+  std::fill(s.values.begin(), s.values.end(), 2.5);
+  const Shepard c(s, 3, 0);
+  for (int k = 0; k < 100; ++k) EXPECT_NEAR(eval1(c, Vec2(xy(rng), xy(rng))), 2.5, 1e-14);
+}
+
+TEST(Shepard, MatchesTheFormulaAndItsKNearestRestriction) {
+  std::mt19937 rng(3);
+  const ScatteredSamples s = random_samples(60, rng);
+  std::uniform_real_distribution<double> xy(0, 4);
+  for (int k : {0, 10}) {
+    const Shepard f(s, 2.5, k);
+    for (int t = 0; t < 100; ++t) {
+      const Vec2 q(xy(rng), xy(rng));
+      std::vector<size_t> order(s.points.size());
+      std::iota(order.begin(), order.end(), 0);
+      std::sort(order.begin(), order.end(),
+                [&](size_t a, size_t b) { return (s.points[a] - q).norm() < (s.points[b] - q).norm(); });
+      const size_t used = k ? static_cast<size_t>(k) : s.points.size();
+      double num = 0, den = 0;
+      for (size_t j = 0; j < used; ++j) {
+        const double w = std::pow((s.points[order[j]] - q).norm(), -2.5);
+        num += w * s.values[order[j]];
+        den += w;
+      }
+      EXPECT_NEAR(eval1(f, q), num / den, 1e-12) << "k=" << k;
+    }
+  }
+}
+
+TEST(NearestSample, IsTheValueOfTheClosestSample) {
+  std::mt19937 rng(4);
+  const ScatteredSamples s = random_samples(80, rng, 2);
+  const NearestSample f(s);
+  std::uniform_real_distribution<double> xy(-1, 5);
+  for (int t = 0; t < 200; ++t) {
+    const Vec2 q(xy(rng), xy(rng));
+    size_t best = 0;
+    for (size_t i = 1; i < s.points.size(); ++i)
+      if ((s.points[i] - q).squaredNorm() < (s.points[best] - q).squaredNorm()) best = i;
+    double v[2];
+    f.evaluate(std::span(&q, 1), std::span(v, 2));
+    EXPECT_EQ(v[0], s.values[2 * best]);
+    EXPECT_EQ(v[1], s.values[2 * best + 1]);
+  }
+}
+
+}  // namespace
+}  // namespace radrecon
