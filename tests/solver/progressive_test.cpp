@@ -70,7 +70,9 @@ TEST(Progressive, PaperSceneDirectLightMatchesClosedFormAndUmbraIsDark) {
       ++checked;
     }
     // Behind wall1 at x in [2.9, 3.0] and y in [1.4, 1.6] every ray to the light crosses the wall.
-    if (c.x() > 2.9 && c.x() < 3.0 && c.y() > 1.4 && c.y() < 1.6) EXPECT_EQ(e.radiosity_w_m2[0], 0.0);
+    if (c.x() > 2.9 && c.x() < 3.0 && c.y() > 1.4 && c.y() < 1.6) {
+      EXPECT_EQ(e.radiosity_w_m2[0], 0.0);
+    }
   }
   EXPECT_EQ(checked, 260u * 260u);
 }
