@@ -7,6 +7,7 @@
 #include "reconstruct/bicubic.h"
 #include "reconstruct/bilinear.h"
 #include "reconstruct/constant.h"
+#include "reconstruct/local_multiquadric.h"
 #include "reconstruct/multiquadric.h"
 #include "reconstruct/natural_neighbour.h"
 #include "reconstruct/nearest.h"
@@ -80,6 +81,11 @@ MethodParams parse_params(Method method, const std::vector<std::string>& setting
     } else if (method == Method::multiquadric && name == "r") {
       p.multiquadric_r = parse_number(value, where);
       if (!(*p.multiquadric_r > 0)) throw UserError(where, "must be > 0");
+    } else if (method == Method::multiquadric && name == "k") {
+      const double k = parse_number(value, where);
+      if (k != std::floor(k) || (k != 0 && k < 3) || k > 1e5)
+        throw UserError(where, "must be 0 (one global system) or an integer >= 3 (samples per local patch)");
+      p.multiquadric_k = static_cast<int>(k);
     } else if (method == Method::natural_neighbour && name == "outside") {
       if (value == "nearest") p.outside = OutsideHull::nearest;
       else if (value == "none") p.outside = OutsideHull::none;
@@ -100,7 +106,8 @@ std::string describe_params(Method method, const MethodParams& p) {
     case Method::multiquadric:
       if (p.multiquadric_r) std::snprintf(buf, sizeof buf, "mu=%g, r=%g m", p.multiquadric_mu, *p.multiquadric_r);
       else std::snprintf(buf, sizeof buf, "mu=%g, r_i=Eck (nearest other sample)", p.multiquadric_mu);
-      return buf;
+      if (p.multiquadric_k) return std::string(buf) + ", local patches of ~" + std::to_string(p.multiquadric_k) + " samples";
+      return std::string(buf) + ", global";
     case Method::natural_neighbour:
       return p.outside == OutsideHull::nearest ? "outside the hull: nearest hull point" : "outside the hull: no value";
     default:
@@ -147,7 +154,11 @@ std::unique_ptr<Interpolant> make_scattered_interpolant(Method method, const Sca
     case Method::bicubic:
       throw UserError("samples", method_name(method) + " needs samples on a regular grid");
     case Method::shepard: return std::make_unique<Shepard>(samples, params.shepard_mu, params.shepard_k);
-    case Method::multiquadric: return std::make_unique<Multiquadric>(samples, params.multiquadric_mu, params.multiquadric_r);
+    case Method::multiquadric:
+      if (params.multiquadric_k > 0 && static_cast<size_t>(params.multiquadric_k) < samples.points.size())
+        return std::make_unique<LocalMultiquadric>(samples, params.multiquadric_mu, params.multiquadric_r,
+                                                   params.multiquadric_k);
+      return std::make_unique<Multiquadric>(samples, params.multiquadric_mu, params.multiquadric_r);
     case Method::natural_neighbour: return std::make_unique<NaturalNeighbour>(samples, params.outside);
   }
   RR_CHECK(false, "unknown method");

@@ -37,13 +37,17 @@ enum class OutsideHull {
 ///                      k (integer >= 0, default 0): use the k nearest samples, 0 = all.
 ///   multiquadric:      mu (nonzero, default 0.5): basis (d^2 + r^2)^mu;
 ///                      r (> 0, metres; default: Eck's rule, r_i = distance from sample i to
-///                      its nearest other sample).
+///                      its nearest other sample);
+///                      k (integer, 0 or >= 3, default 0): 0 solves one global system; k > 0
+///                      blends local multiquadrics on patches of about k samples (a partition
+///                      of unity, local_multiquadric.h), for large sample sets.
 ///   natural-neighbour: outside (nearest | none, default nearest).
 struct MethodParams {
   double shepard_mu = 4.0;
   int shepard_k = 0;
   double multiquadric_mu = 0.5;
   std::optional<double> multiquadric_r;
+  int multiquadric_k = 0;
   OutsideHull outside = OutsideHull::nearest;
 };
 

@@ -1,5 +1,6 @@
 #include "reconstruct/natural_neighbour.h"
 
+#include <algorithm>
 #include <limits>
 
 #include <omp.h>
@@ -42,14 +43,33 @@ struct NaturalNeighbour::Impl {
 
   /// Coordinates of q; `hint` is a face near q (updated), or a default handle.
   bool coordinates(const Vec2& q, Delaunay::Face_handle& hint, std::vector<std::pair<unsigned, double>>& out) const {
+    thread_local std::vector<Delaunay::Edge> hole;
     out.clear();
     const Point p(q.x(), q.y());
     Delaunay::Locate_type lt;
     int li;
     hint = dt.locate(p, lt, li, hint);
     if (lt == Delaunay::OUTSIDE_CONVEX_HULL || lt == Delaunay::OUTSIDE_AFFINE_HULL) return false;
-    const auto result = CGAL::natural_neighbor_coordinates_2(dt, p, std::back_inserter(out), VertexIndex(), hint);
-    if (!result.third) return false;
+    if (lt == Delaunay::VERTEX) {
+      out.emplace_back(hint->vertex(li)->info(), 1.0);
+      return true;
+    }
+    if (lt == Delaunay::EDGE && (dt.is_infinite(hint) || dt.is_infinite(hint->neighbor(li)))) {
+      // On the hull: linear along the edge (the limit of the coordinates from inside).
+      const auto a = hint->vertex(Delaunay::cw(li)), b = hint->vertex(Delaunay::ccw(li));
+      const Vec2 pa(a->point().x(), a->point().y()), pb(b->point().x(), b->point().y());
+      const double t = std::clamp((q - pa).dot(pb - pa) / (pb - pa).squaredNorm(), 0.0, 1.0);
+      out.emplace_back(a->info(), 1 - t);
+      out.emplace_back(b->info(), t);
+      return true;
+    }
+    // The boundary of the conflict zone into a reused buffer (CGAL's own entry point builds a
+    // std::list per query), then CGAL's Sibson areas over that hole.
+    hole.clear();
+    dt.get_boundary_of_conflicts(p, std::back_inserter(hole), hint);
+    const auto result = CGAL::natural_neighbor_coordinates_2(dt, p, std::back_inserter(out), VertexIndex(), hole.begin(),
+                                                             hole.end());
+    if (!result.third || !(result.second > 0)) return false;
     const double norm = result.second;
     for (auto& [index, w] : out) w /= norm;
     return true;

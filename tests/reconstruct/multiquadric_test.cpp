@@ -7,6 +7,7 @@
 #include <random>
 
 #include "core/error.h"
+#include "reconstruct/local_multiquadric.h"
 #include "reconstruct/multiquadric.h"
 
 namespace radrecon {
@@ -84,6 +85,49 @@ TEST(Multiquadric, ConstantRadiusAndRefusals) {
   const Vec2 q(1, 1);
   single.evaluate(std::span(&q, 1), std::span(&v, 1));
   EXPECT_NEAR(v, 2.0, 1e-14);
+}
+
+TEST(LocalMultiquadric, ExactAtTheSamplesAndWeightsCoverTheBox) {
+  std::mt19937 rng(11);
+  const ScatteredSamples s = random_samples(3000, rng);
+  const LocalMultiquadric f(s, 0.5, std::nullopt, 32);
+  std::vector<double> at(s.points.size());
+  f.evaluate(s.points, at);
+  for (size_t i = 0; i < s.points.size(); ++i) ASSERT_NEAR(at[i], s.values[i], 1e-8) << "sample " << i;
+  // Anywhere in the box the blend is a finite weighted mean of local interpolants.
+  std::uniform_real_distribution<double> xy(0, 4);
+  std::vector<Vec2> q(2000);
+  for (Vec2& p : q) p = Vec2(xy(rng), xy(rng));
+  std::vector<double> v(q.size());
+  f.evaluate(q, v);
+  for (double x : v) EXPECT_TRUE(std::isfinite(x));
+}
+
+TEST(LocalMultiquadric, ApproachesTheGlobalInterpolantAsPatchesGrow) {
+  // A smooth function sampled densely: the partition of unity's error falls towards the global
+  // interpolant's as the patches hold more samples.
+  std::mt19937 rng(12);
+  ScatteredSamples s = random_samples(1500, rng);
+  auto f = [](const Vec2& p) { return std::sin(p.x()) * std::cos(0.7 * p.y()); };
+  for (size_t i = 0; i < s.points.size(); ++i) s.values[i] = f(s.points[i]);
+  std::uniform_real_distribution<double> xy(0.2, 3.8);
+  std::vector<Vec2> q(500);
+  for (Vec2& p : q) p = Vec2(xy(rng), xy(rng));
+  auto max_error = [&](const Interpolant& g) {
+    std::vector<double> v(q.size());
+    g.evaluate(q, v);
+    double worst = 0;
+    for (size_t t = 0; t < q.size(); ++t) worst = std::max(worst, std::abs(v[t] - f(q[t])));
+    return worst;
+  };
+  const double global = max_error(Multiquadric(s, 0.5, std::nullopt));
+  const double k40 = max_error(LocalMultiquadric(s, 0.5, std::nullopt, 40));
+  const double k100 = max_error(LocalMultiquadric(s, 0.5, std::nullopt, 100));
+  const double k200 = max_error(LocalMultiquadric(s, 0.5, std::nullopt, 200));
+  std::printf("max error: global %.3g, local k=40 %.3g, k=100 %.3g, k=200 %.3g\n", global, k40, k100, k200);
+  EXPECT_GT(k40, k100);
+  EXPECT_GT(k100, k200);
+  EXPECT_LT(k200, 2 * global);
 }
 
 }  // namespace

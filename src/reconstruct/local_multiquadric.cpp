@@ -1,0 +1,137 @@
+#include "reconstruct/local_multiquadric.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numbers>
+
+#include <Eigen/LU>
+
+#include "core/check.h"
+#include "core/error.h"
+#include "core/parallel.h"
+#include "core/tolerances.h"
+#include "reconstruct/kdtree.h"
+
+namespace radrecon {
+
+namespace {
+
+/// Radius of a patch's sample disc over the radius of its support.
+constexpr double kSampleMargin = 1.5;
+
+inline double basis(double dist_sq_plus_r_sq, double mu) {
+  if (mu == 0.5) return std::sqrt(dist_sq_plus_r_sq);
+  if (mu == -0.5) return 1.0 / std::sqrt(dist_sq_plus_r_sq);
+  return std::pow(dist_sq_plus_r_sq, mu);
+}
+
+/// Wendland's C2 function of t = d / h, zero for t >= 1.
+inline double wendland(double t) {
+  if (t >= 1) return 0;
+  const double a = 1 - t, a2 = a * a;
+  return a2 * a2 * (4 * t + 1);
+}
+
+}  // namespace
+
+LocalMultiquadric::LocalMultiquadric(const ScatteredSamples& samples, double mu, std::optional<double> r_m, int k)
+    : points_(samples.points), channels_(samples.channels), mu_(mu) {
+  RR_CHECK(mu != 0 && k >= kMinPatchSamples, "local multiquadric parameters out of range");
+  const size_t n = points_.size();
+  if (n < 2) throw UserError("samples", "the local multiquadric needs at least 2 samples");
+  const KdTree2 tree(points_);
+  std::vector<unsigned> idx;
+  std::vector<double> d2;
+  r_sq_.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    tree.nearest(points_[i], 2, idx, d2);
+    if (d2[1] == 0)
+      throw UserError("samples", "duplicate sample point at (" + std::to_string(points_[i].x()) + ", " +
+                                     std::to_string(points_[i].y()) + ")");
+    r_sq_[i] = r_m ? *r_m * *r_m : d2[1];
+  }
+  Vec2 lo = points_[0], hi = points_[0];
+  for (const Vec2& p : points_) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  const Vec2 extent = (hi - lo).cwiseMax(Vec2::Constant(1e-12 * std::max(1.0, (hi - lo).maxCoeff())));
+  const double area = std::max(extent.x() * extent.y(), extent.maxCoeff() * extent.maxCoeff() * 1e-6);
+  // The patch's samples come from a disc kSampleMargin times its support, so that its
+  // interpolant never extrapolates where its weight is nonzero; that disc holds ~k samples.
+  h_ = std::sqrt(std::min<double>(k, n) * area / (std::numbers::pi * n)) / kSampleMargin;
+  origin_ = lo;
+  nx_ = static_cast<int>(std::ceil(extent.x() / h_)) + 1;
+  ny_ = static_cast<int>(std::ceil(extent.y() / h_)) + 1;
+  patches_.resize(static_cast<size_t>(nx_) * ny_);
+  const int kk = std::min<int>(kMinPatchSamples, static_cast<int>(n));
+  // Each patch: the samples in its disc (found among the nearest ones, growing the query until
+  // the farthest found lies outside the disc), at least kMinPatchSamples.
+  parallel_for(0, static_cast<std::int64_t>(patches_.size()), [&](std::int64_t pk) {
+    thread_local std::vector<unsigned> near;
+    thread_local std::vector<double> near_d2;
+    Patch& patch = patches_[static_cast<size_t>(pk)];
+    const int i = static_cast<int>(pk % nx_), j = static_cast<int>(pk / nx_);
+    patch.center = origin_ + Vec2(i * h_, j * h_);
+    const double reach_sq = kSampleMargin * kSampleMargin * h_ * h_;
+    int want = std::max(kk, 2 * k);
+    while (true) {
+      want = std::min<int>(want, static_cast<int>(n));
+      tree.nearest(patch.center, want, near, near_d2);
+      if (want == static_cast<int>(n) || near_d2.back() > reach_sq) break;
+      want *= 2;
+    }
+    size_t m = 0;
+    while (m < near.size() && (near_d2[m] < reach_sq || m < static_cast<size_t>(kk))) ++m;
+    patch.samples.assign(near.begin(), near.begin() + static_cast<std::ptrdiff_t>(m));
+    const Eigen::Index M = static_cast<Eigen::Index>(m);
+    Eigen::MatrixXd A(M, M), B(M, channels_);
+    for (Eigen::Index a = 0; a < M; ++a) {
+      const unsigned sa = patch.samples[static_cast<size_t>(a)];
+      for (Eigen::Index b = 0; b < M; ++b) {
+        const unsigned sb = patch.samples[static_cast<size_t>(b)];
+        A(a, b) = basis((points_[sa] - points_[sb]).squaredNorm() + r_sq_[sb], mu_);
+      }
+      for (int c = 0; c < channels_; ++c) B(a, c) = samples.values[sa * static_cast<size_t>(channels_) + c];
+    }
+    const Eigen::MatrixXd alpha = Eigen::PartialPivLU<Eigen::MatrixXd>(A).solve(B);
+    patch.alpha.resize(m * static_cast<size_t>(channels_));
+    for (Eigen::Index a = 0; a < M; ++a)
+      for (int c = 0; c < channels_; ++c) patch.alpha[static_cast<size_t>(a) * channels_ + c] = alpha(a, c);
+  });
+}
+
+LocalMultiquadric::~LocalMultiquadric() = default;
+
+void LocalMultiquadric::evaluate(std::span<const Vec2> points, std::span<double> out) const {
+  const int C = channels_;
+  RR_CHECK(out.size() == points.size() * static_cast<size_t>(C), "output size does not match the query points");
+  parallel_for(0, static_cast<std::int64_t>(points.size()), [&](std::int64_t k) {
+    const size_t q = static_cast<size_t>(k);
+    double* o = &out[q * C];
+    for (int c = 0; c < C; ++c) o[c] = 0;
+    const Vec2 p = points[q];
+    if (!p.allFinite()) {
+      for (int c = 0; c < C; ++c) o[c] = std::numeric_limits<double>::quiet_NaN();
+      return;
+    }
+    // Outside the box, the nearest point of the box (the patches cover the box only).
+    const Vec2 top = origin_ + Vec2((nx_ - 1) * h_, (ny_ - 1) * h_);
+    const Vec2 x = p.cwiseMax(origin_).cwiseMin(top);
+    const int ci = static_cast<int>(std::floor((x.x() - origin_.x()) / h_)), cj = static_cast<int>(std::floor((x.y() - origin_.y()) / h_));
+    double total = 0;
+    for (int j = std::max(0, cj - 1); j <= std::min(ny_ - 1, cj + 2); ++j)
+      for (int i = std::max(0, ci - 1); i <= std::min(nx_ - 1, ci + 2); ++i) {
+        const Patch& patch = patches_[static_cast<size_t>(j) * nx_ + i];
+        const double w = wendland((x - patch.center).norm() / h_);
+        if (w == 0) continue;
+        total += w;
+        for (size_t a = 0; a < patch.samples.size(); ++a) {
+          const double b = basis((x - points_[patch.samples[a]]).squaredNorm() + r_sq_[patch.samples[a]], mu_) * w;
+          for (int c = 0; c < C; ++c) o[c] += b * patch.alpha[a * C + c];
+        }
+      }
+    for (int c = 0; c < C; ++c) o[c] /= total;
+  });
+}
+
+}  // namespace radrecon
