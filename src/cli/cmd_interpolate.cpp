@@ -134,7 +134,8 @@ void add_interpolate_command(CLI::App& app) {
                   "NAME=VALUE, repeatable. shepard: mu (> 0, default 4): weights 1/d^mu; k (integer >= 0, "
                   "default 0): the k nearest samples, 0 = all. multiquadric: mu (nonzero, default 0.5): basis "
                   "(d^2 + r^2)^mu; r (> 0, default: per sample, the distance to its nearest other sample "
-                  "(Eck)). natural-neighbour: outside=nearest (default: the value at the nearest point of "
+                  "(Eck)); k (0 = one global system, default; >= 3: local patches of ~k samples blended, for large "
+                  "sample sets). natural-neighbour: outside=nearest (default: the value at the nearest point of "
                   "the convex hull) | none (NaN outside the hull). Others: no parameters");
   cmd->add_option("--queries", args->queries,
                   "CSV of query points: header starting x,y (further columns ignored); outputs keep its row "

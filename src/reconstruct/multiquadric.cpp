@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <limits>
 
+#include <Eigen/Core>
 #include <Eigen/LU>
 
 #include "core/check.h"
@@ -61,18 +62,21 @@ Multiquadric::Multiquadric(const ScatteredSamples& samples, double mu, std::opti
     std::fprintf(stderr, "radrecon: warning: multiquadric system is poorly conditioned (reciprocal condition %.2e); "
                          "results may be inaccurate\n", rcond_);
   const Eigen::MatrixXd alpha = lu.solve(B);
-  alpha_.resize(n * static_cast<size_t>(channels_));
+  alpha_by_channel_.resize(n * static_cast<size_t>(channels_));
   for (size_t i = 0; i < n; ++i)
-    for (int c = 0; c < channels_; ++c) alpha_[i * channels_ + c] = alpha(static_cast<Eigen::Index>(i), c);
+    for (int c = 0; c < channels_; ++c) alpha_by_channel_[static_cast<size_t>(c) * n + i] = alpha(static_cast<Eigen::Index>(i), c);
+  px_.resize(n);
+  py_.resize(n);
+  for (size_t i = 0; i < n; ++i) px_[i] = points_[i].x(), py_[i] = points_[i].y();
 }
 
 void Multiquadric::evaluate(std::span<const Vec2> points, std::span<double> out) const {
   const int C = channels_;
   RR_CHECK(out.size() == points.size() * static_cast<size_t>(C), "output size does not match the query points");
   const size_t n = points_.size();
-  // Structure of arrays for a vectorisable inner loop.
-  std::vector<double> px(n), py(n);
-  for (size_t i = 0; i < n; ++i) px[i] = points_[i].x(), py[i] = points_[i].y();
+  const double* px = px_.data();
+  const double* py = py_.data();
+  const double* r2 = r_sq_.data();
   parallel_for(0, static_cast<std::int64_t>(points.size()), [&](std::int64_t k) {
     const size_t q = static_cast<size_t>(k);
     const Vec2 p = points[q];
@@ -80,27 +84,17 @@ void Multiquadric::evaluate(std::span<const Vec2> points, std::span<double> out)
       for (int c = 0; c < C; ++c) out[q * C + c] = std::numeric_limits<double>::quiet_NaN();
       return;
     }
-    if (C == 1 || C == 3) {
-      double s0 = 0, s1 = 0, s2 = 0;
-      for (size_t i = 0; i < n; ++i) {
-        const double dx = p.x() - px[i], dy = p.y() - py[i];
-        const double b = basis(dx * dx + dy * dy + r_sq_[i], mu_);
-        s0 += b * alpha_[i * C];
-        if (C == 3) {
-          s1 += b * alpha_[i * C + 1];
-          s2 += b * alpha_[i * C + 2];
-        }
-      }
-      out[q * C] = s0;
-      if (C == 3) out[q * C + 1] = s1, out[q * C + 2] = s2;
-      return;
-    }
-    for (int c = 0; c < C; ++c) out[q * C + c] = 0;
-    for (size_t i = 0; i < n; ++i) {
-      const double dx = p.x() - px[i], dy = p.y() - py[i];
-      const double b = basis(dx * dx + dy * dy + r_sq_[i], mu_);
-      for (int c = 0; c < C; ++c) out[q * C + c] += b * alpha_[i * C + c];
-    }
+    // Basis values for all samples at once, as Eigen arrays: SIMD square roots and sums in a
+    // fixed (packet) order, so results do not depend on threads.
+    using Array = Eigen::Map<const Eigen::ArrayXd>;
+    const Eigen::Index N = static_cast<Eigen::Index>(n);
+    thread_local Eigen::ArrayXd b;
+    b = (p.x() - Array(px, N)).square() + (p.y() - Array(py, N)).square() + Array(r2, N);
+    if (mu_ == 0.5) b = b.sqrt();
+    else if (mu_ == -0.5) b = b.rsqrt();
+    else b = b.pow(mu_);
+    for (int c = 0; c < C; ++c)
+      out[q * C + c] = (b * Array(&alpha_by_channel_[static_cast<size_t>(c) * n], N)).sum();
   });
 }
 

@@ -26,8 +26,9 @@ class Multiquadric final : public Interpolant {
 
  private:
   std::vector<Vec2> points_;
+  std::vector<double> px_, py_;             ///< the points as a structure of arrays
   std::vector<double> r_sq_;
-  std::vector<double> alpha_;  ///< points.size() * channels
+  std::vector<double> alpha_by_channel_;  ///< channels * points.size(), channel by channel
   int channels_;
   double mu_;
   double rcond_ = 1;

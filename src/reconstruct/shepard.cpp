@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include <Eigen/Core>
+
 #include "core/check.h"
 #include "core/parallel.h"
 #include "reconstruct/kdtree.h"
@@ -13,9 +15,14 @@ namespace radrecon {
 Shepard::Shepard(ScatteredSamples samples, double mu, int k) : samples_(std::move(samples)), mu_(mu), k_(k) {
   RR_CHECK(mu > 0 && k >= 0, "Shepard parameters out of range");
   RR_CHECK(!samples_.points.empty(), "Shepard needs a sample");
-  px_.reserve(samples_.points.size());
-  py_.reserve(samples_.points.size());
+  const size_t n = samples_.points.size();
+  px_.reserve(n);
+  py_.reserve(n);
   for (const Vec2& p : samples_.points) px_.push_back(p.x()), py_.push_back(p.y());
+  values_by_channel_.resize(samples_.values.size());
+  for (size_t i = 0; i < n; ++i)
+    for (int c = 0; c < samples_.channels; ++c)
+      values_by_channel_[static_cast<size_t>(c) * n + i] = samples_.values[i * samples_.channels + c];
   if (k_ > 0 && static_cast<size_t>(k_) < samples_.points.size()) {
     tree_ = std::make_unique<KdTree2>(samples_.points);
   } else {
@@ -50,17 +57,26 @@ void Shepard::evaluate(std::span<const Vec2> points, std::span<double> out) cons
       for (int c = 0; c < C; ++c) o[c] = std::numeric_limits<double>::quiet_NaN();
       return;
     }
-    if (k_ > 0) {
-      tree_->nearest(p, k_, idx, d2);
-    } else {
-      idx.resize(n);
-      d2.resize(n);
-      for (size_t i = 0; i < n; ++i) {
-        const double dx = p.x() - px_[i], dy = p.y() - py_[i];
-        idx[i] = static_cast<unsigned>(i);
-        d2[i] = dx * dx + dy * dy;
+    if (k_ == 0) {
+      // Global: all samples at once as Eigen arrays (SIMD, sums in a fixed packet order).
+      using Array = Eigen::Map<const Eigen::ArrayXd>;
+      const Eigen::Index N = static_cast<Eigen::Index>(n);
+      thread_local Eigen::ArrayXd dist_sq, w;
+      dist_sq = (p.x() - Array(px_.data(), N)).square() + (p.y() - Array(py_.data(), N)).square();
+      Eigen::Index first = 0;
+      const double nearest_sq = dist_sq.minCoeff(&first);
+      if (mu_ == 4.0) w = (dist_sq * dist_sq).inverse();
+      else if (mu_ == 2.0) w = dist_sq.inverse();
+      else w = dist_sq.pow(-0.5 * mu_);
+      const double total = w.sum();
+      if (nearest_sq == 0 || !std::isfinite(total)) {  // at (or numerically at) a sample
+        for (int c = 0; c < C; ++c) o[c] = samples_.values[static_cast<size_t>(first) * C + c];
+        return;
       }
+      for (int c = 0; c < C; ++c) o[c] = (w * Array(&values_by_channel_[static_cast<size_t>(c) * n], N)).sum() / total;
+      return;
     }
+    tree_->nearest(p, k_, idx, d2);
     // At (or so near that the weights overflow) a sample: that sample's value, the limit.
     size_t nearest = 0;
     for (size_t j = 1; j < d2.size(); ++j)

@@ -23,7 +23,8 @@ class Shepard final : public Interpolant {
 
  private:
   ScatteredSamples samples_;
-  std::vector<double> px_, py_;  ///< sample coordinates, structure of arrays for the inner loop
+  std::vector<double> px_, py_;          ///< sample coordinates, structure of arrays for the inner loop
+  std::vector<double> values_by_channel_;  ///< channels * samples, channel by channel
   double mu_;
   int k_;
   std::unique_ptr<KdTree2> tree_;
