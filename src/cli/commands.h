@@ -8,5 +8,6 @@ namespace radrecon::cli {
 void add_solve_command(CLI::App& app);
 void add_paper_command(CLI::App& app);
 void add_interpolate_command(CLI::App& app);
+void add_render_command(CLI::App& app);
 
 }  // namespace radrecon::cli

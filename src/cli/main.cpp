@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   radrecon::cli::add_solve_command(app);
   radrecon::cli::add_paper_command(app);
   radrecon::cli::add_interpolate_command(app);
+  radrecon::cli::add_render_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -1,0 +1,47 @@
+#include "experiment/solution_reconstruction.h"
+
+#include "core/error.h"
+#include "experiment/surface_data.h"
+#include "mesh/grid_mesh.h"
+#include "reconstruct/constant.h"
+
+namespace radrecon {
+
+SolutionReconstruction::SolutionReconstruction(const Scene& scene, const Solution& solution, Method method,
+                                               const MethodParams& params, const std::string& source) {
+  sides_.resize(2 * scene.surfaces.size());
+  for (const SurfaceSolution& side : solution.surfaces) {
+    std::optional<size_t> index;
+    bool back = false;
+    for (size_t k = 0; k < scene.surfaces.size() && !index; ++k)
+      for (bool b : {false, true})
+        if ((!b || scene.surfaces[k].two_sided) && side_name(scene.surfaces[k], b) == side.name) index = k, back = b;
+    if (!index) throw UserError(source, "surface '" + side.name + "' is not a side of the scene's surfaces");
+    // The scene's edge lengths, so that (s, t) match the renderer's.
+    SurfaceSolution s = side;
+    s.length_u_m = scene.surfaces[*index].length_u_m();
+    s.length_v_m = scene.surfaces[*index].length_v_m();
+    const bool grid = s.grid_nu > 0 && s.grid_nv > 0;
+    std::unique_ptr<Interpolant> f;
+    try {
+      if (grid) f = make_grid_interpolant(method, grid_cells(s), params);
+      else if (method == Method::constant) f = std::make_unique<PiecewiseConstant>(element_cells(s));
+      else if (!is_grid_method(method)) f = make_scattered_interpolant(method, element_centres(s), params);
+    } catch (const UserError&) {
+      f.reset();
+    }
+    if (!f) {
+      fallbacks_.push_back(side.name);
+      f = grid ? make_grid_interpolant(Method::constant, grid_cells(s)) : std::make_unique<PiecewiseConstant>(element_cells(s));
+    }
+    sides_[2 * *index + (back ? 1 : 0)] = std::move(f);
+  }
+}
+
+SolutionReconstruction::~SolutionReconstruction() = default;
+
+const Interpolant* SolutionReconstruction::side(size_t surface, bool back_side) const {
+  return sides_[2 * surface + (back_side ? 1 : 0)].get();
+}
+
+}  // namespace radrecon

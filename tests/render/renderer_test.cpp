@@ -1,0 +1,113 @@
+// The renderer against independent answers: where primary rays land, the inverse of the quad
+// parametrisation, and the pixel value of a surface of known constant radiosity.
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "reconstruct/constant.h"
+#include "render/ground_map.h"
+#include "render/renderer.h"
+
+namespace radrecon {
+namespace {
+
+Surface quad(const std::string& name, const Vec3& c0, const Vec3& c1, const Vec3& c2, const Vec3& c3) {
+  Surface s;
+  s.name = name;
+  s.corners = {c0, c1, c2, c3};
+  return s;
+}
+
+TEST(QuadParameters, InvertsTheBilinearMapOfAGeneralConvexQuad) {
+  // A planar, convex, non-parallelogram quad in a tilted plane.
+  const Vec3 o(0.3, -0.2, 1.0), a(1, 0.2, 0.5), b(-0.1, 1, 0.3);
+  const Surface s = quad("q", o, o + 2.0 * a, o + 1.6 * a + 1.3 * b, o + 0.2 * a + 1.0 * b);
+  std::mt19937 rng(31);
+  std::uniform_real_distribution<double> U(0, 1);
+  for (int k = 0; k < 1000; ++k) {
+    const double u = U(rng), v = U(rng);
+    const auto uv = quad_parameters(s, s.point(u, v));
+    ASSERT_TRUE(uv.has_value());
+    EXPECT_NEAR(uv->x(), u, 1e-10);
+    EXPECT_NEAR(uv->y(), v, 1e-10);
+  }
+  EXPECT_FALSE(quad_parameters(s, s.point(1.2, 0.5)).has_value());
+  EXPECT_FALSE(quad_parameters(s, s.point(0.5, -0.1)).has_value());
+}
+
+TEST(Renderer, PrimaryRaysHitTheRightSurfaceAtTheRightPlace) {
+  Scene scene;
+  scene.surfaces.push_back(quad("floor", {0, 0, 0}, {4, 0, 0}, {4, 4, 0}, {0, 4, 0}));
+  scene.surfaces.push_back(quad("card", {1.5, 1.5, 1}, {2.5, 1.5, 1}, {2.5, 2.5, 1}, {1.5, 2.5, 1}));  // faces up
+  // Looking straight down from (2, 2, 5) with up = +y: image x runs along +x, image y along -y.
+  const Camera cam{"down", Vec3(2, 2, 5), Vec3(2, 2, 0), Vec3(0, 1, 0), 60.0};
+  const int W = 200, H = 200;
+  const double half = 5 * std::tan(30.0 * std::numbers::pi / 180);  // floor half-extent seen
+  for (int k = 0; k < 50; ++k) {
+    const double px = 3 + 3.9 * k, py = 197 - 3.7 * k;
+    const auto [o, d] = camera_ray(cam, W, H, px, py);
+    const auto hit = intersect_scene(scene, o, d);
+    const double x = 2 + (2 * px / W - 1) * half, y = 2 - (2 * py / H - 1) * half;  // on the floor
+    if (std::abs(x - 2) >= 2 || std::abs(y - 2) >= 2) {
+      EXPECT_FALSE(hit.has_value()) << "beyond the floor";
+      continue;
+    }
+    ASSERT_TRUE(hit.has_value());
+    const bool on_card = std::abs((x - 2) * 4 / 5.0) <= 0.5 && std::abs((y - 2) * 4 / 5.0) <= 0.5;
+    if (on_card) {  // the card at z = 1 is seen at 4/5 of the floor's offset from the centre
+      EXPECT_EQ(hit->surface, 1u);
+      EXPECT_NEAR(hit->u, 2 + (x - 2) * 4 / 5.0 - 1.5, 1e-9);
+      EXPECT_NEAR(hit->v, 2 + (y - 2) * 4 / 5.0 - 1.5, 1e-9);
+      EXPECT_NEAR(hit->t, 4 / d.dot(-Vec3::UnitZ()), 1e-9);
+    } else {
+      EXPECT_EQ(hit->surface, 0u);
+      EXPECT_NEAR(hit->u, x / 4, 1e-9);
+      EXPECT_NEAR(hit->v, y / 4, 1e-9);
+    }
+    EXPECT_FALSE(hit->back_side);
+  }
+}
+
+TEST(Renderer, ConstantRadiosityRendersToThePredictedPixelValue) {
+  Scene scene;
+  scene.surfaces.push_back(quad("wall", {-5, -5, 0}, {5, -5, 0}, {5, 5, 0}, {-5, 5, 0}));
+  const Camera cam{"c", Vec3(0.3, -0.2, 4), Vec3(0, 0, 0), Vec3(0, 1, 0), 40.0};
+  const double B = 0.37;
+  CellSamples cells;
+  cells.channels = 3;
+  cells.cells = {Rect{0, 0, 10, 10}};
+  cells.values = {B, 2 * B, 3 * B};
+  const PiecewiseConstant f(cells);
+  RenderOptions options;
+  options.width = 32;
+  options.height = 24;
+  const Image img = render(scene, cam, [&](size_t, bool back) { return back ? nullptr : &f; }, options);
+  for (int y = 0; y < img.height(); ++y)
+    for (int x = 0; x < img.width(); ++x) {
+      EXPECT_NEAR(img.at(x, y)[0], B, 1e-15);  // the mean of 9 equal rays
+      EXPECT_NEAR(img.at(x, y)[2], 3 * B, 1e-15);
+    }
+  // The tone mapping of the PNG: B / white, then sRGB.
+  EXPECT_DOUBLE_EQ(tone_map(B, 1.48), 0.25);
+  EXPECT_NEAR(srgb_encode(0.25), 0.5370987, 1e-6);
+}
+
+TEST(Renderer, BackOfAOneSidedSurfaceWithoutSolutionIsBlack) {
+  Scene scene;
+  scene.surfaces.push_back(quad("floor", {-5, -5, 0}, {5, -5, 0}, {5, 5, 0}, {-5, 5, 0}));  // faces +z
+  const Camera below{"below", Vec3(0, 0, -3), Vec3(0, 0, 0), Vec3(0, 1, 0), 40.0};
+  RenderOptions options;
+  options.width = 8;
+  options.height = 8;
+  CellSamples cells;
+  cells.channels = 3;
+  cells.cells = {Rect{0, 0, 10, 10}};
+  cells.values = {1, 1, 1};
+  const PiecewiseConstant f(cells);
+  const Image img = render(scene, below, [&](size_t, bool back) { return back ? nullptr : &f; }, options);
+  EXPECT_EQ(img.at(4, 4)[0], 0.0);
+}
+
+}  // namespace
+}  // namespace radrecon
