@@ -364,6 +364,9 @@ void parse_raster_size(const std::string& text, const std::string& option, int& 
   const std::string_view all(text);
   width = parse_side(all.substr(0, x), "width");
   height = parse_side(all.substr(x + 1), "height");
+  if (static_cast<long long>(width) * height > kMaxRasterPoints)
+    throw UserError(option, "a raster of " + std::to_string(static_cast<long long>(width) * height) + " points is more than " +
+                                std::to_string(kMaxRasterPoints) + " (about 60 bytes each in memory)");
 }
 
 Rect parse_domain(const std::string& text, const std::string& option) {
@@ -378,6 +381,8 @@ Rect parse_domain(const std::string& text, const std::string& option) {
   }
   if (!(v[2] > v[0])) throw UserError(option, "x1 must be greater than x0, got " + in_quotes(text));
   if (!(v[3] > v[1])) throw UserError(option, "y1 must be greater than y0, got " + in_quotes(text));
+  if (!std::isfinite(v[2] - v[0]) || !std::isfinite(v[3] - v[1]))
+    throw UserError(option, "the domain's width and height must be finite numbers, got " + in_quotes(text));
   return Rect{v[0], v[1], v[2], v[3]};
 }
 

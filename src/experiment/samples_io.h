@@ -63,6 +63,8 @@ struct Raster {
 
 /// Largest width or height accepted by parse_raster_size.
 inline constexpr int kMaxRasterSide = 20000;
+/// At most this many raster points (W x H): 10^8 points need about 6 GB.
+inline constexpr long long kMaxRasterPoints = 100'000'000;
 
 /// Parses "WxH" (or "WXH"), 1 <= W, H <= kMaxRasterSide; throws UserError naming `option`.
 void parse_raster_size(const std::string& text, const std::string& option, int& width, int& height);

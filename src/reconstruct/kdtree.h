@@ -18,7 +18,8 @@ class KdTree2 {
   KdTree2& operator=(const KdTree2&) = delete;
 
   /// The k nearest points to q (k <= size()), nearest first: indices and squared distances
-  /// (m^2). Equal distances are ordered by index.
+  /// (m^2). Among the points found, equal distances are ordered by index (which of several
+  /// equidistant points beyond the k-th is found is up to the tree, but deterministic).
   void nearest(const Vec2& q, int k, std::vector<unsigned>& indices, std::vector<double>& dist_sq) const;
   size_t size() const;
 

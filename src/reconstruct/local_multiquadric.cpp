@@ -60,6 +60,7 @@ LocalMultiquadric::LocalMultiquadric(const ScatteredSamples& samples, double mu,
   // interpolant never extrapolates where its weight is nonzero; that disc holds ~k samples.
   h_ = std::sqrt(std::min<double>(k, n) * area / (std::numbers::pi * n)) / kSampleMargin;
   origin_ = lo;
+  box_max_ = hi;
   nx_ = static_cast<int>(std::ceil(extent.x() / h_)) + 1;
   ny_ = static_cast<int>(std::ceil(extent.y() / h_)) + 1;
   patches_.resize(static_cast<size_t>(nx_) * ny_);
@@ -83,6 +84,7 @@ LocalMultiquadric::LocalMultiquadric(const ScatteredSamples& samples, double mu,
     size_t m = 0;
     while (m < near.size() && (near_d2[m] < reach_sq || m < static_cast<size_t>(kk))) ++m;
     patch.samples.assign(near.begin(), near.begin() + static_cast<std::ptrdiff_t>(m));
+    if (m > kMaxPatchSamples) return;  // refused below, outside the parallel loop
     const Eigen::Index M = static_cast<Eigen::Index>(m);
     Eigen::MatrixXd A(M, M), B(M, channels_);
     for (Eigen::Index a = 0; a < M; ++a) {
@@ -93,14 +95,32 @@ LocalMultiquadric::LocalMultiquadric(const ScatteredSamples& samples, double mu,
       }
       for (int c = 0; c < channels_; ++c) B(a, c) = samples.values[sa * static_cast<size_t>(channels_) + c];
     }
-    const Eigen::MatrixXd alpha = Eigen::PartialPivLU<Eigen::MatrixXd>(A).solve(B);
+    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(A);
+    patch.rcond = lu.rcond();
+    const Eigen::MatrixXd alpha = lu.solve(B);
     patch.alpha.resize(m * static_cast<size_t>(channels_));
     for (Eigen::Index a = 0; a < M; ++a)
       for (int c = 0; c < channels_; ++c) patch.alpha[static_cast<size_t>(a) * channels_ + c] = alpha(a, c);
   });
+  check_patches();
 }
 
 LocalMultiquadric::~LocalMultiquadric() = default;
+
+void LocalMultiquadric::check_patches() const {
+  double worst = 1;
+  for (const Patch& p : patches_) {
+    if (p.samples.size() > kMaxPatchSamples)
+      throw UserError("samples", "a local multiquadric patch at (" + std::to_string(p.center.x()) + ", " +
+                                     std::to_string(p.center.y()) + ") holds " + std::to_string(p.samples.size()) +
+                                     " samples (at most " + std::to_string(kMaxPatchSamples) +
+                                     "): the samples are too clustered for patches of the requested size; use a smaller k");
+    worst = std::min(worst, p.rcond);
+  }
+  if (!(worst > 0) || !std::isfinite(worst)) throw UserError("samples", "a local multiquadric system is singular");
+  if (worst < tol::kPoorConditioning)
+    std::fprintf(stderr, "radrecon: warning: a local multiquadric system is poorly conditioned (reciprocal condition %.2e)\n", worst);
+}
 
 void LocalMultiquadric::evaluate(std::span<const Vec2> points, std::span<double> out) const {
   const int C = channels_;
@@ -114,9 +134,8 @@ void LocalMultiquadric::evaluate(std::span<const Vec2> points, std::span<double>
       for (int c = 0; c < C; ++c) o[c] = std::numeric_limits<double>::quiet_NaN();
       return;
     }
-    // Outside the box, the nearest point of the box (the patches cover the box only).
-    const Vec2 top = origin_ + Vec2((nx_ - 1) * h_, (ny_ - 1) * h_);
-    const Vec2 x = p.cwiseMax(origin_).cwiseMin(top);
+    // Outside the samples' box, the nearest point of the box.
+    const Vec2 x = p.cwiseMax(origin_).cwiseMin(box_max_);
     const int ci = static_cast<int>(std::floor((x.x() - origin_.x()) / h_)), cj = static_cast<int>(std::floor((x.y() - origin_.y()) / h_));
     double total = 0;
     for (int j = std::max(0, cj - 1); j <= std::min(ny_ - 1, cj + 2); ++j)

@@ -28,6 +28,9 @@ class LocalMultiquadric final : public Interpolant {
   void evaluate(std::span<const Vec2> points, std::span<double> out) const override;
 
   static constexpr int kMinPatchSamples = 3;
+  /// A patch holding more samples than this (clustered data) is refused: its dense solve would
+  /// take too long.
+  static constexpr size_t kMaxPatchSamples = 2000;
   /// Patch radius = spacing of the patch grid, metres.
   double patch_radius() const { return h_; }
 
@@ -36,13 +39,16 @@ class LocalMultiquadric final : public Interpolant {
     Vec2 center;
     std::vector<unsigned> samples;
     std::vector<double> alpha;  ///< samples.size() * channels
+    double rcond = 1;           ///< reciprocal condition estimate of its system
   };
+  /// Refuses oversized or singular patches, warns of poorly conditioned ones.
+  void check_patches() const;
   std::vector<Vec2> points_;
   std::vector<double> r_sq_;
   int channels_;
   double mu_;
   double h_ = 1;
-  Vec2 origin_;
+  Vec2 origin_, box_max_;  ///< the samples' bounding box
   int nx_ = 1, ny_ = 1;
   std::vector<Patch> patches_;  ///< row by row over the grid
 };

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <limits>
 
-#include <omp.h>
 
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -13,6 +12,7 @@
 #include "core/check.h"
 #include "core/error.h"
 #include "core/parallel.h"
+#include "reconstruct/kdtree.h"
 
 namespace radrecon {
 
@@ -40,6 +40,8 @@ struct NaturalNeighbour::Impl {
   OutsideHull outside = OutsideHull::nearest;
   std::vector<std::pair<unsigned, unsigned>> hull_edges;  ///< sample indices
   std::vector<Vec2> points;
+  std::vector<Delaunay::Vertex_handle> vertex_of;  ///< by sample index
+  std::unique_ptr<KdTree2> tree;                   ///< to start walks near a query
 
   /// Coordinates of q; `hint` is a face near q (updated), or a default handle.
   bool coordinates(const Vec2& q, Delaunay::Face_handle& hint, std::vector<std::pair<unsigned, double>>& out) const {
@@ -107,6 +109,9 @@ NaturalNeighbour::NaturalNeighbour(const ScatteredSamples& samples, OutsideHull 
     throw UserError("samples", std::to_string(n - impl_->dt.number_of_vertices()) +
                                    " duplicate sample point(s); natural-neighbour needs distinct points");
   if (impl_->dt.dimension() < 2) throw UserError("samples", "all samples lie on one line; natural-neighbour needs a 2-D spread");
+  impl_->vertex_of.resize(n);
+  for (auto v = impl_->dt.finite_vertices_begin(); v != impl_->dt.finite_vertices_end(); ++v) impl_->vertex_of[v->info()] = v;
+  impl_->tree = std::make_unique<KdTree2>(impl_->points);
   // Hull edges: the finite edges of the infinite faces.
   auto inf = impl_->dt.infinite_vertex();
   auto fc = impl_->dt.incident_faces(inf), done = fc;
@@ -130,28 +135,41 @@ std::vector<std::pair<unsigned, double>> NaturalNeighbour::coordinates(const Vec
 void NaturalNeighbour::evaluate(std::span<const Vec2> points, std::span<double> out) const {
   const int C = impl_->channels;
   RR_CHECK(out.size() == points.size() * static_cast<size_t>(C), "output size does not match the query points");
-  // Per thread: the face found last, where the next (usually nearby) query's walk starts.
-  std::vector<Delaunay::Face_handle> hints(static_cast<size_t>(omp_get_max_threads()));
-  parallel_for(0, static_cast<std::int64_t>(points.size()), [&](std::int64_t k) {
-    thread_local std::vector<std::pair<unsigned, double>> coords;
-    Delaunay::Face_handle& hint = hints[static_cast<size_t>(omp_get_thread_num())];
-    const size_t q = static_cast<size_t>(k);
-    double* o = &out[q * C];
-    if (!points[q].allFinite()) {
-      for (int c = 0; c < C; ++c) o[c] = std::numeric_limits<double>::quiet_NaN();
-      return;
+  // Queries in fixed chunks: each chunk's walk starts at a face of the sample nearest to its
+  // first query, then from the face found last (raster queries are coherent). A query on a
+  // Delaunay edge may be located in either face, and the coordinates' last bits depend on which;
+  // fixed chunks with deterministic starts make that independent of the number of threads.
+  constexpr std::int64_t kChunk = 64;
+  const std::int64_t n = static_cast<std::int64_t>(points.size());
+  parallel_for(0, (n + kChunk - 1) / kChunk, [&](std::int64_t chunk) {
+    std::vector<std::pair<unsigned, double>> coords;
+    std::vector<unsigned> nearest;
+    std::vector<double> nearest_d2;
+    Delaunay::Face_handle hint;
+    const size_t first = static_cast<size_t>(chunk * kChunk);
+    if (points[first].allFinite()) {
+      impl_->tree->nearest(points[first], 1, nearest, nearest_d2);
+      hint = impl_->vertex_of[nearest[0]]->face();
     }
-    if (!impl_->coordinates(points[q], hint, coords)) {
-      if (impl_->outside == OutsideHull::nearest) {
-        impl_->nearest_on_hull(points[q], o);
-      } else {
+    for (std::int64_t k = chunk * kChunk; k < std::min(n, (chunk + 1) * kChunk); ++k) {
+      const size_t q = static_cast<size_t>(k);
+      double* o = &out[q * C];
+      if (!points[q].allFinite()) {
         for (int c = 0; c < C; ++c) o[c] = std::numeric_limits<double>::quiet_NaN();
+        continue;
       }
-      return;
+      if (!impl_->coordinates(points[q], hint, coords)) {
+        if (impl_->outside == OutsideHull::nearest) {
+          impl_->nearest_on_hull(points[q], o);
+        } else {
+          for (int c = 0; c < C; ++c) o[c] = std::numeric_limits<double>::quiet_NaN();
+        }
+        continue;
+      }
+      for (int c = 0; c < C; ++c) o[c] = 0;
+      for (const auto& [index, w] : coords)
+        for (int c = 0; c < C; ++c) o[c] += w * impl_->values[index * static_cast<size_t>(C) + c];
     }
-    for (int c = 0; c < C; ++c) o[c] = 0;
-    for (const auto& [index, w] : coords)
-      for (int c = 0; c < C; ++c) o[c] += w * impl_->values[index * static_cast<size_t>(C) + c];
   });
 }
 

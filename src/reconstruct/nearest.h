@@ -1,6 +1,6 @@
 #pragma once
 // Piecewise-constant reconstruction of scattered samples: the value of the nearest sample (its
-// Voronoi cell). Ties go to the sample listed first.
+// Voronoi cell). Ties (equidistant samples) are broken deterministically.
 
 #include <memory>
 

@@ -34,7 +34,8 @@ Shepard::~Shepard() = default;
 
 namespace {
 
-/// d^-mu from d^2: (d^2)^(-mu/2), with the common even exponents without pow().
+/// d^-mu from d^2: (d^2)^(-mu/2), with the common even exponents without pow(). Called with
+/// d^2 relative to the nearest sample's (>= 1), so it never overflows.
 inline double weight(double dist_sq, double mu) {
   if (mu == 4.0) return 1.0 / (dist_sq * dist_sq);
   if (mu == 2.0) return 1.0 / dist_sq;
@@ -65,30 +66,28 @@ void Shepard::evaluate(std::span<const Vec2> points, std::span<double> out) cons
       dist_sq = (p.x() - Array(px_.data(), N)).square() + (p.y() - Array(py_.data(), N)).square();
       Eigen::Index first = 0;
       const double nearest_sq = dist_sq.minCoeff(&first);
-      if (mu_ == 4.0) w = (dist_sq * dist_sq).inverse();
-      else if (mu_ == 2.0) w = dist_sq.inverse();
-      else w = dist_sq.pow(-0.5 * mu_);
-      const double total = w.sum();
-      if (nearest_sq == 0 || !std::isfinite(total)) {  // at (or numerically at) a sample
+      if (nearest_sq == 0) {  // at a sample: its value (the limit of the weights)
         for (int c = 0; c < C; ++c) o[c] = samples_.values[static_cast<size_t>(first) * C + c];
         return;
       }
+      // Weights relative to the nearest sample's, (d_min / d_i)^mu in (0, 1]: no overflow or
+      // underflow whatever mu and the distances (the ratio cancels in the quotient).
+      w = nearest_sq / dist_sq;
+      if (mu_ == 4.0) w = w.square();
+      else if (mu_ != 2.0) w = w.pow(0.5 * mu_);
+      const double total = w.sum();
       for (int c = 0; c < C; ++c) o[c] = (w * Array(&values_by_channel_[static_cast<size_t>(c) * n], N)).sum() / total;
       return;
     }
     tree_->nearest(p, k_, idx, d2);
-    // At (or so near that the weights overflow) a sample: that sample's value, the limit.
-    size_t nearest = 0;
-    for (size_t j = 1; j < d2.size(); ++j)
-      if (d2[j] < d2[nearest]) nearest = j;
-    const double w_nearest = weight(d2[nearest], mu_);
-    if (d2[nearest] == 0 || !std::isfinite(w_nearest)) {
-      for (int c = 0; c < C; ++c) o[c] = samples_.values[idx[nearest] * static_cast<size_t>(C) + c];
+    // k nearest, nearest first.
+    if (d2[0] == 0) {  // at a sample: its value
+      for (int c = 0; c < C; ++c) o[c] = samples_.values[idx[0] * static_cast<size_t>(C) + c];
       return;
     }
     double total = 0, s0 = 0, s1 = 0, s2 = 0;
     for (size_t j = 0; j < d2.size(); ++j) {
-      const double w = weight(d2[j], mu_);
+      const double w = weight(d2[j] / d2[0], mu_);  // relative to the nearest: in (0, 1]
       const double* v = &samples_.values[idx[j] * static_cast<size_t>(C)];
       total += w;
       s0 += w * v[0];
@@ -100,7 +99,7 @@ void Shepard::evaluate(std::span<const Vec2> points, std::span<double> out) cons
     if (C > 2) o[2] = s2 / total;
     for (int c = 3; c < C; ++c) {
       double sum = 0;
-      for (size_t j = 0; j < d2.size(); ++j) sum += weight(d2[j], mu_) * samples_.values[idx[j] * static_cast<size_t>(C) + c];
+      for (size_t j = 0; j < d2.size(); ++j) sum += weight(d2[j] / d2[0], mu_) * samples_.values[idx[j] * static_cast<size_t>(C) + c];
       o[c] = sum / total;
     }
   });
