@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -9,6 +10,7 @@
 
 #include "core/atomic_file.h"
 #include "evaluate/norms.h"
+#include "experiment/report.h"
 #include "experiment/solve.h"
 #include "experiment/surface_data.h"
 #include "reconstruct/constant.h"
@@ -158,6 +160,23 @@ void run_paper(const PaperOptions& opt) {
             quadtree_figure(leaves, 0, 0, std::max(quad_ground.length_u_m, quad_ground.length_v_m), white), false);
   const double t_reconstruct = clock.lap();
 
+  // Views into the scene (Fig. 2-4), every surface reconstructed by the method of the row.
+  RenderOptions view;
+  view.width = opt.view_width;
+  view.height = opt.view_height;
+  view.samples_per_axis = opt.view_samples;
+  std::vector<std::string> notes;
+  std::vector<CameraHits> cameras;
+  for (const Camera& c : scene.cameras) cameras.push_back(trace_camera(scene, c, view));
+  auto views = [&](const Solution& sol, Method m, const std::string& stem) {
+    for (const std::string& side : render_paper_views(scene, cameras, sol, m, params, white, figures, stem))
+      notes.push_back(stem + ": " + side + " has too few samples for " + method_name(m) + "; drawn piecewise constant");
+  };
+  views(reference, Method::constant, "fig2_reference");
+  for (Method m : all_methods()) views(grid, m, "fig3_" + method_name(m));
+  for (Method m : scattered_methods()) views(quadtree, m, "fig4_" + method_name(m));
+  const double t_views = clock.lap();
+
   nlohmann::json errors;
   for (const MethodResult& r : table1) errors["grid"][r.name] = norms_json(r.norms);
   for (const MethodResult& r : table2) errors["quadtree"][r.name] = norms_json(r.norms);
@@ -207,13 +226,42 @@ void run_paper(const PaperOptions& opt) {
                                      std::to_string(quadtree.stats.links) + " links). Reference: " + reference.mesh +
                                      ". Constant: the value of the leaf containing the point; the scattered "
                                      "methods use the leaf centres." + settings_text + common));
+  ReportContent report;
+  auto rows = [](const std::vector<MethodResult>& results, const std::map<std::string, std::array<double, 3>>& paper,
+                 const std::string& figure) {
+    std::vector<ReportRow> out;
+    for (const MethodResult& r : results) {
+      const auto it = paper.find(r.name);
+      const double nan = std::numeric_limits<double>::quiet_NaN();
+      out.push_back({r.name, r.norms, figure + "_" + r.name, it != paper.end() ? it->second : std::array<double, 3>{nan, nan, nan}});
+    }
+    return out;
+  };
+  report.table1 = rows(table1, kPaperTable1, "fig3");
+  report.table2 = rows(table2, kPaperTable2, "fig4");
+  report.settings = {
+      "Reference: " + reference.mesh + " (" + std::to_string(ref_cells.nx) + " x " + std::to_string(ref_cells.ny) +
+          " elements on the ground), progressive refinement to a residual of " + fmt(opt.residual) + " (" +
+          std::to_string(reference.stats.shots) + " shots).",
+      "Grid data: " + grid.mesh + ", " + std::to_string(grid_data.nx) + " x " + std::to_string(grid_data.ny) +
+          " elements on the ground; bilinear and bicubic use nodal values, each the mean of the cells sharing the node.",
+      "Quadtree data: hierarchical radiosity, " + std::to_string(quad_ground.elements.size()) + " leaves on the ground, epsilon " +
+          fmt(quadtree.stats.epsilon_w) + " W, " + std::to_string(quadtree.stats.links) + " links; the scattered methods use the leaf centres.",
+      "Methods:" + settings_text,
+      "Norms over the " + std::to_string(W) + " x " + std::to_string(H) +
+          " reference cell centres, 3 channels; L2 is the mean squared error, RMSE its root.",
+      "Images: display = clamp(B / " + fmt(white) + " W/m^2, 0, 1), sRGB; views with " +
+          std::to_string(view.samples_per_axis * view.samples_per_axis) + " rays per pixel; differences 0.5 + 2 (B - B_ref) / " +
+          fmt(white) + ", linear."};
+  report.notes = notes;
+  write_report(opt.out_dir, report);
   const double t_tables = clock.lap();
 
-  char timing[320];
+  char timing[400];
   std::snprintf(timing, sizeof timing,
                 "done: reference %.2f s, grid %.2f s, quadtree %.2f s, solutions written %.2f s, reconstruction and "
-                "figures %.2f s, tables %.2f s; results in %s",
-                t_reference, t_grid, t_quadtree, t_write, t_reconstruct, t_tables, opt.out_dir.string().c_str());
+                "ground figures %.2f s, views %.2f s, tables and report %.2f s; results in %s",
+                t_reference, t_grid, t_quadtree, t_write, t_reconstruct, t_views, t_tables, opt.out_dir.string().c_str());
   say(timing);
 }
 

@@ -13,6 +13,8 @@ struct PaperOptions {
   int grid_divisions = 16;        ///< the grid data set of Table 1
   int quadtree_leaves = 286;      ///< ground leaves of the quadtree data set of Table 2
   double residual = 1e-4;         ///< progressive refinement stops below this unshot fraction
+  int view_width = 480, view_height = 360;  ///< views into the scene (Fig. 2-4), pixels
+  int view_samples = 2;                     ///< rays per pixel along each axis
   bool progress = true;           ///< stage messages on stderr
 };
 

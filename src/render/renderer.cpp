@@ -67,13 +67,15 @@ std::pair<Vec3, Vec3> camera_ray(const Camera& c, int width, int height, double 
   return {c.eye, (forward + sx * right + sy * up).normalized()};
 }
 
-Image render(const Scene& scene, const Camera& camera, const SideReconstruction& reconstruction,
-             const RenderOptions& options) {
+CameraHits trace_camera(const Scene& scene, const Camera& camera, const RenderOptions& options) {
   RR_CHECK(options.width > 0 && options.height > 0 && options.samples_per_axis > 0, "render options out of range");
   const int W = options.width, H = options.height, S = options.samples_per_axis;
   const size_t rays = static_cast<size_t>(W) * H * S * S;
-  // 1. Primary rays: the hit of every ray (stratified, at the strata centres: deterministic).
-  std::vector<std::optional<SurfaceHit>> hits(rays);
+  CameraHits out;
+  out.options = options;
+  out.hits.resize(rays);
+  auto& hits = out.hits;
+  // The hit of every ray (stratified, at the strata centres: deterministic).
   parallel_for(0, static_cast<std::int64_t>(rays), [&](std::int64_t r) {
     const size_t k = static_cast<size_t>(r);
     const size_t pixel = k / (S * S), sub = k % (S * S);
@@ -82,7 +84,20 @@ Image render(const Scene& scene, const Camera& camera, const SideReconstruction&
     const auto [o, d] = camera_ray(camera, W, H, x, y);
     hits[k] = intersect_scene(scene, o, d);
   });
-  // 2. Radiosity per ray, one batch per surface side.
+  return out;
+}
+
+Image render(const Scene& scene, const Camera& camera, const SideReconstruction& reconstruction,
+             const RenderOptions& options) {
+  return shade(scene, trace_camera(scene, camera, options), reconstruction);
+}
+
+Image shade(const Scene& scene, const CameraHits& traced, const SideReconstruction& reconstruction) {
+  const RenderOptions& options = traced.options;
+  const int W = options.width, H = options.height, S = options.samples_per_axis;
+  const size_t rays = traced.hits.size();
+  const auto& hits = traced.hits;
+  // Radiosity per ray, one batch per surface side.
   std::vector<double> radiosity(rays * 3, 0.0);
   for (size_t k = 0; k < rays; ++k)
     if (!hits[k])
@@ -109,7 +124,7 @@ Image render(const Scene& scene, const Camera& camera, const SideReconstruction&
           radiosity[which[j] * 3 + c] = std::isfinite(v) ? v : 0.0;
         }
     }
-  // 3. Box filter over each pixel's rays.
+  // Box filter over each pixel's rays.
   Image img(W, H);
   for (int y = 0; y < H; ++y)
     for (int x = 0; x < W; ++x) {

@@ -40,7 +40,18 @@ struct RenderOptions {
 /// solution does not have (drawn black).
 using SideReconstruction = std::function<const Interpolant*(size_t surface, bool back_side)>;
 
-/// Renders linear radiosity (W/m^2 per channel) seen through `camera`.
+/// The primary rays of a camera and what they hit: computed once, shaded for any solution and
+/// method (the views of a figure share them).
+struct CameraHits {
+  RenderOptions options;
+  std::vector<std::optional<SurfaceHit>> hits;  ///< per ray: pixel-major, samples_per_axis^2 each
+};
+CameraHits trace_camera(const Scene& scene, const Camera& camera, const RenderOptions& options);
+
+/// Linear radiosity (W/m^2 per channel) of every pixel: the mean over its rays.
+Image shade(const Scene& scene, const CameraHits& hits, const SideReconstruction& reconstruction);
+
+/// trace_camera() then shade().
 Image render(const Scene& scene, const Camera& camera, const SideReconstruction& reconstruction,
              const RenderOptions& options);
 

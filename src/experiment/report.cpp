@@ -1,0 +1,91 @@
+#include "experiment/report.h"
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "core/atomic_file.h"
+#include "experiment/solution_reconstruction.h"
+#include "render/ground_map.h"
+
+namespace radrecon {
+
+std::vector<std::string> render_paper_views(const Scene& scene, const std::vector<CameraHits>& cameras,
+                                            const Solution& solution, Method method, const MethodParams& params,
+                                            double white_w_m2, const std::filesystem::path& dir, const std::string& stem) {
+  const SolutionReconstruction recon(scene, solution, method, params, "solution " + solution.mesh);
+  for (size_t k = 0; k < scene.cameras.size(); ++k) {
+    const Camera& camera = scene.cameras[k];
+    const Image linear = shade(scene, cameras[k], [&](size_t s, bool back) { return recon.side(s, back); });
+    Image display(linear.width(), linear.height());
+    for (int y = 0; y < linear.height(); ++y)
+      for (int x = 0; x < linear.width(); ++x)
+        for (int c = 0; c < 3; ++c) display.at(x, y)[c] = tone_map(linear.at(x, y)[c], white_w_m2);
+    write_png(dir / (stem + "_" + camera.name + ".png"), display, true);
+  }
+  return recon.fallbacks();
+}
+
+namespace {
+
+std::string num(double v) {
+  if (std::isnan(v)) return "";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", v);
+  return buf;
+}
+
+void table(std::ostringstream& html, const std::string& caption, const std::vector<ReportRow>& rows) {
+  html << "<table><caption>" << caption << "</caption>\n<tr><th>method</th><th>L1</th><th>L2 (MSE)</th><th>RMSE</th>"
+       << "<th>Linf</th><th class=paper>paper L1</th><th class=paper>paper L2</th><th class=paper>paper Linf</th></tr>\n";
+  for (const ReportRow& r : rows)
+    html << "<tr><td>" << r.method << "</td><td>" << num(r.norms.l1) << "</td><td>" << num(r.norms.l2) << "</td><td>"
+         << num(r.norms.rmse) << "</td><td>" << num(r.norms.linf) << "</td><td class=paper>" << num(r.paper[0])
+         << "</td><td class=paper>" << num(r.paper[1]) << "</td><td class=paper>" << num(r.paper[2]) << "</td></tr>\n";
+  html << "</table>\n";
+}
+
+void figure_rows(std::ostringstream& html, const std::vector<ReportRow>& rows) {
+  html << "<div class=grid>\n";
+  for (const ReportRow& r : rows) {
+    html << "<div class=label>" << r.method << "</div>";
+    for (const char* part : {"_view", "_closeup", "_ground", "_difference"})
+      html << "<img src=\"figures/" << r.figure_stem << part << ".png\" alt=\"" << r.method << part << "\">";
+    html << "\n";
+  }
+  html << "</div>\n";
+}
+
+}  // namespace
+
+void write_report(const std::filesystem::path& dir, const ReportContent& c) {
+  std::ostringstream html;
+  html << "<!DOCTYPE html>\n<html lang=en><head><meta charset=utf-8><title>radrecon: the paper experiment</title>\n"
+       << "<style>body{font-family:sans-serif;max-width:1200px;margin:2em auto;line-height:1.4}"
+       << "img{width:24%;margin:0.25%;image-rendering:auto}.grid{display:block}.label{font-weight:bold;margin-top:0.8em}"
+       << "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #bbb;padding:0.2em 0.6em;text-align:right}"
+       << "td:first-child{text-align:left}.paper{color:#777}caption{font-weight:bold;text-align:left}</style></head><body>\n"
+       << "<h1>Reconstructing radiosity by scattered data interpolation</h1>\n"
+       << "<p>After Hinkenjann and Pietrek. The scene: a 4 m x 4 m ground (reflectance 0.5) under a 1 m x 1 m light "
+       << "(40 W/m<sup>2</sup>) at 2.5 m, with two perpendicular two-sided walls 1 m high (reflectance 0.5) meeting at "
+       << "(2.6, 2.6) m, whose shadows fall beyond them. Radiosity in W/m<sup>2</sup>.</p>\n<h2>Settings</h2>\n<ul>\n";
+  for (const std::string& s : c.settings) html << "<li>" << s << "</li>\n";
+  for (const std::string& s : c.notes) html << "<li>" << s << "</li>\n";
+  html << "</ul>\n<h2>Fig. 1: the quadtree of the ground and its sample points</h2>\n"
+       << "<img style=\"width:40%\" src=\"figures/fig1_quadtree.png\" alt=quadtree>\n"
+       << "<h2>Fig. 2: reference solution (view, close-up, radiosity over the ground)</h2>\n"
+       << "<img src=\"figures/fig2_reference_view.png\" alt=view><img src=\"figures/fig2_reference_closeup.png\" alt=closeup>"
+       << "<img src=\"figures/fig2_reference_ground.png\" alt=ground>\n"
+       << "<h2>Fig. 3: grid data (view, close-up, ground, difference x 2 against the reference, mid-grey = 0)</h2>\n";
+  figure_rows(html, c.table1);
+  html << "<h2>Fig. 4: quadtree data</h2>\n";
+  figure_rows(html, c.table2);
+  html << "<h2>Errors</h2>\n";
+  table(html, "Table 1: reconstruction of grid data", c.table1);
+  table(html, "Table 2: reconstruction of quadtree data", c.table2);
+  html << "<p>The paper's columns are its published tables, for its own scene: compare rankings, not values.</p>\n"
+       << "</body></html>\n";
+  write_text_file(dir / "report.html", html.str());
+}
+
+}  // namespace radrecon
