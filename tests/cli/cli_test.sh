@@ -134,16 +134,36 @@ run paper paper --out "$TMP/paper" --reference 100 --quiet
 expect_rc paper 0
 for f in errors.json table1.md table2.md solutions/reference.json solutions/grid16.json solutions/quadtree.json \
          figures/fig1_quadtree.png figures/fig2_reference_ground.png figures/fig3_bilinear_difference.png \
-         figures/fig4_constant_difference.png; do
+         figures/fig4_constant_difference.png figures/fig2_reference_view.png figures/fig2_reference_closeup.png \
+         figures/fig3_bicubic_view.png figures/fig4_natural-neighbour_closeup.png report.html; do
   [ -s "$TMP/paper/$f" ] || fail "paper: $f was not written"
 done
 python3 - "$TMP/paper/errors.json" <<'EOF' || fail "paper: errors.json lacks a table entry"
 import json, sys
 doc = json.load(open(sys.argv[1]))
-for table, method in [("grid", "constant"), ("grid", "bilinear"), ("quadtree", "constant")]:
+for table, method in [("grid", "constant"), ("grid", "bilinear"), ("grid", "bicubic"), ("grid", "shepard"),
+                      ("grid", "multiquadric"), ("grid", "natural-neighbour"), ("quadtree", "constant"),
+                      ("quadtree", "shepard"), ("quadtree", "multiquadric"), ("quadtree", "natural-neighbour")]:
     assert set(doc[table][method]) == {"L1", "L2", "RMSE", "Linf"}, (table, method)
 assert doc["settings"]["ground_leaves"] == 286
 EOF
+
+# --- render --------------------------------------------------------------------------------
+run render_png render --scene paper --solution "$TMP/solution.json" --method bilinear --camera view --size 64x48 --out "$TMP/view.png" --quiet
+expect_rc render_png 0
+[ -s "$TMP/view.png" ] || fail "render: view.png was not written"
+run render_pfm render --scene paper --solution "$TMP/solution.json" --camera closeup --size 32x24 --out "$TMP/view.pfm" --quiet
+expect_rc render_pfm 0
+head -c 12 "$TMP/view.pfm" | grep -q "^PF" || fail "render: view.pfm has no PFM header"
+run render_cam render --scene paper --solution "$TMP/solution.json" --camera nosuch --out "$TMP/bad.png"
+expect_rc render_cam 2
+expect_stderr_has render_cam "closeup"
+expect_no_output render_cam "$TMP/bad.png"
+printf '{"surfaces": [{"name": "ground", "elements": 3}]}' > "$TMP/badsol.json"
+run render_sol render --scene paper --solution "$TMP/badsol.json" --camera view --out "$TMP/bad.png"
+expect_rc render_sol 2
+expect_stderr_has render_sol "badsol.json"
+expect_no_output render_sol "$TMP/bad.png"
 
 # --- other failures -----------------------------------------------------------------------
 run unknown frobnicate
