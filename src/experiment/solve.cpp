@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "core/parse.h"
 #include "mesh/grid_mesh.h"
 #include "solver/hierarchical.h"
 #include "solver/progressive.h"
@@ -30,16 +31,9 @@ long long parse_integer(const std::string& text, long long lo, long long hi, con
 }
 
 double parse_positive(const std::string& text, const std::string& field, const std::string& spec) {
-  size_t used = 0;
-  double v = 0;
-  try {
-    v = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != text.size() || !std::isfinite(v) || v <= 0)
-    throw UserError(field, "in '" + spec + "': expected a positive number, got '" + text + "'");
-  return v;
+  const std::optional<double> v = parse_finite(text);
+  if (!v || *v <= 0) throw UserError(field, "in '" + spec + "': expected a positive number, got '" + text + "'");
+  return *v;
 }
 
 std::string default_leaf_side(const Scene& scene) {

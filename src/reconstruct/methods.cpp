@@ -4,6 +4,7 @@
 
 #include "core/check.h"
 #include "core/error.h"
+#include "core/parse.h"
 #include "reconstruct/bicubic.h"
 #include "reconstruct/bilinear.h"
 #include "reconstruct/constant.h"
@@ -51,15 +52,9 @@ namespace {
 constexpr size_t kMaxGlobalMultiquadric = 8000;
 
 double parse_number(const std::string& text, const std::string& where) {
-  size_t used = 0;
-  double v = 0;
-  try {
-    v = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != text.size() || !std::isfinite(v)) throw UserError(where, "expected a finite number, got '" + text + "'");
-  return v;
+  const std::optional<double> v = parse_finite(text);
+  if (!v) throw UserError(where, "expected a finite number, got '" + text + "'");
+  return *v;
 }
 
 }  // namespace

@@ -7,19 +7,13 @@
 #include "core/error.h"
 #include "solver/hierarchical.h"
 #include "support/closed_forms.h"
+#include "support/scenes.h"
 
 namespace radrecon {
 namespace {
 
-Surface quad(const std::string& name, const Vec3& c0, const Vec3& c1, const Vec3& c2, const Vec3& c3,
-             double reflectance, double emission = 0) {
-  Surface s;
-  s.name = name;
-  s.corners = {c0, c1, c2, c3};
-  s.reflectance = Rgb::Constant(reflectance);
-  s.emission_w_m2 = Rgb::Constant(emission);
-  return s;
-}
+using testing_support::quad;
+
 
 Solution paper_leaves(int leaves) {
   return solve_hierarchical_leaves(paper_scene(), "ground", leaves, HierarchicalOptions{}, "test");
@@ -64,14 +58,7 @@ TEST(Hierarchical, RefusesImpossibleLeafCounts) {
 
 TEST(Hierarchical, ClosedBoxRadiosityPowerIsEmittedOverOneMinusReflectance) {
   const double rho = 0.6, E = 10.0;
-  Scene box;
-  box.name = "box";
-  box.surfaces.push_back(quad("bottom", {0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, rho));
-  box.surfaces.push_back(quad("top", {0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1}, rho, E));
-  box.surfaces.push_back(quad("x0", {0, 0, 0}, {0, 1, 0}, {0, 1, 1}, {0, 0, 1}, rho));
-  box.surfaces.push_back(quad("x1", {1, 0, 0}, {1, 0, 1}, {1, 1, 1}, {1, 1, 0}, rho));
-  box.surfaces.push_back(quad("y0", {0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0}, rho));
-  box.surfaces.push_back(quad("y1", {0, 1, 0}, {1, 1, 0}, {1, 1, 1}, {0, 1, 1}, rho));
+  const Scene box = testing_support::closed_box(rho, E);
   HierarchicalOptions options;
   options.epsilon_w = 1e-3;
   const Solution sol = solve_hierarchical(box, options, "quadtree-eps:1e-3");

@@ -6,25 +6,19 @@
 
 #include "mesh/grid_mesh.h"
 #include "support/closed_forms.h"
+#include "support/scenes.h"
 #include "solver/progressive.h"
 
 namespace radrecon {
 namespace {
+
+using testing_support::quad;
 
 /// The bound for direct radiosity against the closed form.
 constexpr double kDirectRelative = 1e-3;
 /// Energy bookkeeping is exact up to round-off in sums of ~10^3..10^5 terms.
 constexpr double kBalanceRelative = 1e-9;
 
-Surface quad(const std::string& name, const Vec3& c0, const Vec3& c1, const Vec3& c2, const Vec3& c3,
-             double reflectance, double emission = 0) {
-  Surface s;
-  s.name = name;
-  s.corners = {c0, c1, c2, c3};
-  s.reflectance = Rgb::Constant(reflectance);
-  s.emission_w_m2 = Rgb::Constant(emission);
-  return s;
-}
 
 /// Closed-form F from a floor point to the light [x0,x1] x [y0,y1] at height h.
 double floor_to_light(double x, double y, double x0, double y0, double x1, double y1, double h) {
@@ -100,15 +94,7 @@ TEST(Progressive, ClosedBoxRadiosityPowerIsEmittedOverOneMinusReflectance) {
   // Every face of a closed unit box has reflectance rho; the top emits. Light can only be
   // absorbed, so sum(A B) = Phi / (1 - rho), and nothing escapes if the form factors close.
   const double rho = 0.6, E = 10.0;
-  Scene box;
-  box.name = "box";
-  // Faces oriented inwards (counter-clockwise seen from inside).
-  box.surfaces.push_back(quad("bottom", {0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, rho));
-  box.surfaces.push_back(quad("top", {0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1}, rho, E));
-  box.surfaces.push_back(quad("x0", {0, 0, 0}, {0, 1, 0}, {0, 1, 1}, {0, 0, 1}, rho));
-  box.surfaces.push_back(quad("x1", {1, 0, 0}, {1, 0, 1}, {1, 1, 1}, {1, 1, 0}, rho));
-  box.surfaces.push_back(quad("y0", {0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0}, rho));
-  box.surfaces.push_back(quad("y1", {0, 1, 0}, {1, 1, 0}, {1, 1, 1}, {0, 1, 1}, rho));
+  const Scene box = testing_support::closed_box(rho, E);
   for (const Surface& s : box.surfaces) ASSERT_GT(s.normal().dot(Vec3(0.5, 0.5, 0.5) - s.corners[0]), 0) << s.name;
   const Solution sol = solve(box, 12, 1e-7);
   double power = 0;

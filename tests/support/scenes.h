@@ -1,0 +1,34 @@
+#pragma once
+// Small scenes the solver tests share.
+
+#include <string>
+
+#include "scene/scene.h"
+
+namespace radrecon::testing_support {
+
+/// A grey quad.
+inline Surface quad(const std::string& name, const Vec3& c0, const Vec3& c1, const Vec3& c2, const Vec3& c3,
+                    double reflectance, double emission = 0) {
+  Surface s;
+  s.name = name;
+  s.corners = {c0, c1, c2, c3};
+  s.reflectance = Rgb::Constant(reflectance);
+  s.emission_w_m2 = Rgb::Constant(emission);
+  return s;
+}
+
+/// A closed unit box, every face of reflectance rho facing inwards; the top emits E W/m^2.
+inline Scene closed_box(double rho, double E) {
+  Scene box;
+  box.name = "box";
+  box.surfaces.push_back(quad("bottom", {0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, rho));
+  box.surfaces.push_back(quad("top", {0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1}, rho, E));
+  box.surfaces.push_back(quad("x0", {0, 0, 0}, {0, 1, 0}, {0, 1, 1}, {0, 0, 1}, rho));
+  box.surfaces.push_back(quad("x1", {1, 0, 0}, {1, 0, 1}, {1, 1, 1}, {1, 1, 0}, rho));
+  box.surfaces.push_back(quad("y0", {0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0}, rho));
+  box.surfaces.push_back(quad("y1", {0, 1, 0}, {1, 1, 0}, {1, 1, 1}, {0, 1, 1}, rho));
+  return box;
+}
+
+}  // namespace radrecon::testing_support
