@@ -37,7 +37,8 @@ std::pair<int, int> parse_size(const std::string& text) {
 void run_render(const RenderArgs& args) {
   std::string ext = args.out.size() >= 4 ? args.out.substr(args.out.size() - 4) : "";
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  if (ext != ".png" && ext != ".pfm") throw UserError("--out", "must end in .png (tone-mapped) or .pfm (linear W/m^2)");
+  if (ext != ".png" && ext != ".pfm" && ext != ".exr")
+    throw UserError("--out", "must end in .png (tone-mapped), .pfm or .exr (linear W/m^2)");
   const auto [width, height] = parse_size(args.size);
   const Scene scene = load_scene(args.scene);
   const Camera* camera = nullptr;
@@ -63,6 +64,8 @@ void run_render(const RenderArgs& args) {
   const Image img = render(scene, *camera, [&](size_t s, bool back) { return recon.side(s, back); }, options);
   if (ext == ".pfm") {
     write_pfm(args.out, img);
+  } else if (ext == ".exr") {
+    write_exr(args.out, img);
   } else {
     double white = args.white;
     if (white <= 0) {  // default: the largest radiosity of a reflecting surface in the solution
@@ -89,7 +92,7 @@ void add_render_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "render",
       "Render a solution seen through one of the scene's cameras, every surface reconstructed by one method. "
-      "PNG: tone-mapped, display = clamp(B / white, 0, 1) with the sRGB curve; PFM: linear radiosity, W/m^2.");
+      "PNG: tone-mapped, display = clamp(B / white, 0, 1) with the sRGB curve; PFM, EXR: linear radiosity, W/m^2.");
   cmd->add_option("--scene", args->scene, "Scene JSON file, or 'paper'")->capture_default_str();
   cmd->add_option("--solution", args->solution, "Solution JSON written by 'radrecon solve'")->required();
   cmd->add_option("--method", args->method,
@@ -104,7 +107,7 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--white", args->white,
                   "PNG: the radiosity (W/m^2) shown as white; default: the largest radiosity of a non-emitting surface")
       ->check(CLI::Range(0.0, 1e12));
-  cmd->add_option("--out", args->out, "Image to write: .png or .pfm")->required();
+  cmd->add_option("--out", args->out, "Image to write: .png (tone-mapped), .pfm or .exr (linear radiosity, W/m^2)")->required();
   cmd->add_flag("--quiet", args->quiet, "No progress messages");
   cmd->callback([args] { run_render(*args); });
 }

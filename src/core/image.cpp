@@ -1,5 +1,6 @@
 #include "core/image.h"
 
+#include <OpenEXR/ImfRgbaFile.h>
 #include <png.h>
 
 #include <algorithm>
@@ -60,6 +61,25 @@ void write_pfm(const std::filesystem::path& path, const Image& image) {
     }
     out.close();
     if (!out) throw UserError(path.string(), "cannot write PFM");
+  });
+}
+
+void write_exr(const std::filesystem::path& path, const Image& image) {
+  std::vector<Imf::Rgba> pixels(static_cast<size_t>(image.width()) * image.height());
+  for (int y = 0; y < image.height(); ++y)
+    for (int x = 0; x < image.width(); ++x) {
+      const Rgb& c = image.at(x, y);
+      pixels[static_cast<size_t>(y) * image.width() + x] =
+          Imf::Rgba(static_cast<float>(c[0]), static_cast<float>(c[1]), static_cast<float>(c[2]), 1.0f);
+    }
+  write_file_atomically(path, [&](const std::filesystem::path& tmp) {
+    try {
+      Imf::RgbaOutputFile file(tmp.c_str(), image.width(), image.height(), Imf::WRITE_RGB);
+      file.setFrameBuffer(pixels.data(), 1, static_cast<size_t>(image.width()));
+      file.writePixels(image.height());
+    } catch (const std::exception& e) {
+      throw UserError(path.string(), std::string("cannot write OpenEXR: ") + e.what());
+    }
   });
 }
 

@@ -31,4 +31,7 @@ void write_png(const std::filesystem::path& path, const Image& image, bool srgb_
 /// Writes the linear values as a colour PFM (32-bit floats, bottom row first as PFM requires).
 void write_pfm(const std::filesystem::path& path, const Image& image);
 
+/// Writes the linear values as an OpenEXR image (RGB, 16-bit half floats).
+void write_exr(const std::filesystem::path& path, const Image& image);
+
 }  // namespace radrecon

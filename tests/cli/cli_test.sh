@@ -155,6 +155,9 @@ expect_rc render_png 0
 run render_pfm render --scene paper --solution "$TMP/solution.json" --camera closeup --size 32x24 --out "$TMP/view.pfm" --quiet
 expect_rc render_pfm 0
 head -c 12 "$TMP/view.pfm" | grep -q "^PF" || fail "render: view.pfm has no PFM header"
+run render_exr render --scene paper --solution "$TMP/solution.json" --camera view --size 16x12 --out "$TMP/view.exr" --quiet
+expect_rc render_exr 0
+[ -s "$TMP/view.exr" ] || fail "render: view.exr was not written"
 run render_cam render --scene paper --solution "$TMP/solution.json" --camera nosuch --out "$TMP/bad.png"
 expect_rc render_cam 2
 expect_stderr_has render_cam "closeup"

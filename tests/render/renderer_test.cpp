@@ -3,7 +3,11 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <random>
+
+#include <OpenEXR/ImfRgbaFile.h>
+#include <OpenEXR/ImfArray.h>
 
 #include "reconstruct/constant.h"
 #include "render/ground_map.h"
@@ -107,6 +111,29 @@ TEST(Renderer, BackOfAOneSidedSurfaceWithoutSolutionIsBlack) {
   const PiecewiseConstant f(cells);
   const Image img = render(scene, below, [&](size_t, bool back) { return back ? nullptr : &f; }, options);
   EXPECT_EQ(img.at(4, 4)[0], 0.0);
+}
+
+TEST(ImageFiles, ExrHoldsTheLinearValuesAsHalfFloats) {
+  Image img(5, 3);
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 5; ++x) img.at(x, y) = Rgb(0.1 * x, 0.37 * y, 40.0);
+  const auto path = std::filesystem::temp_directory_path() / "radrecon_exr_test.exr";
+  write_exr(path, img);
+  Imf::RgbaInputFile file(path.c_str());
+  const auto dw = file.dataWindow();
+  ASSERT_EQ(dw.max.x - dw.min.x + 1, 5);
+  ASSERT_EQ(dw.max.y - dw.min.y + 1, 3);
+  Imf::Array2D<Imf::Rgba> px(3, 5);
+  file.setFrameBuffer(&px[0][0], 1, 5);
+  file.readPixels(dw.min.y, dw.max.y);
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 5; ++x) {
+      // Half floats keep 11 significant bits: relative error below 2^-11.
+      EXPECT_NEAR(float(px[y][x].r), 0.1 * x, 1e-3 * (0.1 * x) + 1e-7);
+      EXPECT_NEAR(float(px[y][x].g), 0.37 * y, 1e-3 * (0.37 * y) + 1e-7);
+      EXPECT_NEAR(float(px[y][x].b), 40.0, 0.04);
+    }
+  std::filesystem::remove(path);
 }
 
 }  // namespace
