@@ -17,7 +17,7 @@ build: setup $(BUILD_DIR)/build.ninja
 
 run: build
 	$(BUILD_DIR)/radrecon paper --out $(OUT)
-	@echo "Results are in $(OUT)/: errors.json, table1.md, solutions/, figures/"
+	@echo "Results are in $(OUT)/: report.html (open it in a browser), errors.json, table1.md, table2.md, solutions/, figures/"
 
 test: build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
