@@ -11,16 +11,14 @@ SolutionReconstruction::SolutionReconstruction(const Scene& scene, const Solutio
                                                const MethodParams& params, const std::string& source) {
   sides_.resize(2 * scene.surfaces.size());
   for (const SurfaceSolution& side : solution.surfaces) {
-    std::optional<size_t> index;
-    bool back = false;
-    for (size_t k = 0; k < scene.surfaces.size() && !index; ++k)
-      for (bool b : {false, true})
-        if ((!b || scene.surfaces[k].two_sided) && side_name(scene.surfaces[k], b) == side.name) index = k, back = b;
-    if (!index) throw UserError(source, "surface '" + side.name + "' is not a side of the scene's surfaces");
+    const std::optional<SideRef> ref = find_side(scene, side.name);
+    if (!ref) throw UserError(source, "surface '" + side.name + "' is not a side of the scene's surfaces (" + side_names(scene) + ")");
+    const size_t index = ref->surface;
+    const bool back = ref->back_side;
     // The scene's edge lengths, so that (s, t) match the renderer's.
     SurfaceSolution s = side;
-    s.length_u_m = scene.surfaces[*index].length_u_m();
-    s.length_v_m = scene.surfaces[*index].length_v_m();
+    s.length_u_m = scene.surfaces[index].length_u_m();
+    s.length_v_m = scene.surfaces[index].length_v_m();
     const bool grid = s.grid_nu > 0 && s.grid_nv > 0;
     std::unique_ptr<Interpolant> f;
     try {
@@ -34,7 +32,7 @@ SolutionReconstruction::SolutionReconstruction(const Scene& scene, const Solutio
       fallbacks_.push_back(side.name);
       f = grid ? make_grid_interpolant(Method::constant, grid_cells(s)) : std::make_unique<PiecewiseConstant>(element_cells(s));
     }
-    sides_[2 * *index + (back ? 1 : 0)] = std::move(f);
+    sides_[2 * index + (back ? 1 : 0)] = std::move(f);
   }
 }
 

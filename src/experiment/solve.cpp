@@ -80,17 +80,8 @@ Solution solve_scene(const Scene& scene, const std::string& spec, const SolveSet
   if (kind == "quadtree") {
     const int leaves = static_cast<int>(parse_integer(value, 1, 10000000, field, spec));
     const std::string side = settings.leaves_on.empty() ? default_leaf_side(scene) : settings.leaves_on;
-    bool known = false;
-    for (const Surface& s : scene.surfaces)
-      known = known || side_name(s, false) == side || (s.two_sided && side_name(s, true) == side);
-    if (!known) {
-      std::string sides;
-      for (const Surface& s : scene.surfaces) {
-        sides += (sides.empty() ? "" : ", ") + side_name(s, false);
-        if (s.two_sided) sides += ", " + side_name(s, true);
-      }
-      throw UserError("--leaves-on", "the scene has no surface side named '" + side + "' (its sides: " + sides + ")");
-    }
+    if (!find_side(scene, side))
+      throw UserError("--leaves-on", "the scene has no surface side named '" + side + "' (its sides: " + side_names(scene) + ")");
     return solve_hierarchical_leaves(scene, side, leaves, ho, field + " " + spec);
   }
   throw UserError(field, "unknown mesh kind '" + kind + "' in '" + spec + "' (expected grid, quadtree or quadtree-eps)");

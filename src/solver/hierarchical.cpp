@@ -158,9 +158,9 @@ class Hierarchy {
     t.name = side_name(s, back);
     t.scene_surface = k;
     t.back_side = back;
-    t.normal = back ? Vec3(-s.normal()) : s.normal();
+    t.normal = side_normal(s, back);
     t.reflectance = s.reflectance;
-    t.emission_w_m2 = back ? Rgb(Rgb::Zero()) : s.emission_w_m2;
+    t.emission_w_m2 = side_emission(s, back);
     t.nodes.push_back(make_node(t, 0, 0, 1, 1));
     trees_.push_back(std::move(t));
   }
@@ -479,10 +479,10 @@ Solution solve_hierarchical_leaves(const Scene& scene, const std::string& side, 
   // The most leaves the side can have: split down to the minimum element size everywhere.
   {
     const double min_size = min_element_size(scene, options);
-    double side_size = 0;
-    for (const Surface& s : scene.surfaces)
-      if (side_name(s, false) == side || (s.two_sided && side_name(s, true) == side))
-        side_size = std::max(s.length_u_m(), s.length_v_m());
+    const std::optional<SideRef> ref = find_side(scene, side);
+    if (!ref) throw UserError(field, "the scene has no surface side named '" + side + "' (its sides: " + side_names(scene) + ")");
+    const Surface& surface = scene.surfaces[ref->surface];
+    const double side_size = std::max(surface.length_u_m(), surface.length_v_m());
     double most = 1;
     for (double size = side_size; size >= 2 * min_size && most <= leaves; size /= 2) most *= 4;
     if (leaves > most)
