@@ -102,28 +102,29 @@ Image shade(const Scene& scene, const CameraHits& traced, const SideReconstructi
   for (size_t k = 0; k < rays; ++k)
     if (!hits[k])
       for (int c = 0; c < 3; ++c) radiosity[k * 3 + c] = options.background_w_m2[c];
-  for (size_t surface = 0; surface < scene.surfaces.size(); ++surface)
-    for (bool back : {false, true}) {
-      std::vector<size_t> which;
-      std::vector<Vec2> at;
-      const Surface& s = scene.surfaces[surface];
-      for (size_t k = 0; k < rays; ++k)
-        if (hits[k] && hits[k]->surface == surface && hits[k]->back_side == back) {
-          which.push_back(k);
-          at.emplace_back(hits[k]->u * s.length_u_m(), hits[k]->v * s.length_v_m());
-        }
-      if (which.empty()) continue;
-      const Interpolant* f = reconstruction(surface, back);
-      if (!f) continue;  // black
-      RR_CHECK(f->channels() == 3, "renderer needs 3-channel reconstructions");
-      std::vector<double> values(which.size() * 3);
-      f->evaluate(at, values);
-      for (size_t j = 0; j < which.size(); ++j)
-        for (int c = 0; c < 3; ++c) {
-          const double v = values[j * 3 + c];
-          radiosity[which[j] * 3 + c] = std::isfinite(v) ? v : 0.0;
-        }
-    }
+  // The rays of each side in one pass (side k = 2 * surface + back), not one scan per side.
+  std::vector<std::vector<size_t>> rays_of(2 * scene.surfaces.size());
+  for (size_t k = 0; k < rays; ++k)
+    if (hits[k]) rays_of[2 * hits[k]->surface + (hits[k]->back_side ? 1 : 0)].push_back(k);
+  for (size_t side = 0; side < rays_of.size(); ++side) {
+    const std::vector<size_t>& which = rays_of[side];
+    if (which.empty()) continue;
+    const size_t surface = side / 2;
+    const Interpolant* f = reconstruction(surface, side % 2 == 1);
+    if (!f) continue;  // black
+    RR_CHECK(f->channels() == 3, "renderer needs 3-channel reconstructions");
+    const Surface& s = scene.surfaces[surface];
+    std::vector<Vec2> at;
+    at.reserve(which.size());
+    for (size_t k : which) at.emplace_back(hits[k]->u * s.length_u_m(), hits[k]->v * s.length_v_m());
+    std::vector<double> values(which.size() * 3);
+    f->evaluate(at, values);
+    for (size_t j = 0; j < which.size(); ++j)
+      for (int c = 0; c < 3; ++c) {
+        const double v = values[j * 3 + c];
+        radiosity[which[j] * 3 + c] = std::isfinite(v) ? v : 0.0;
+      }
+  }
   // Box filter over each pixel's rays.
   Image img(W, H);
   for (int y = 0; y < H; ++y)
