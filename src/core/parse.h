@@ -1,23 +1,36 @@
 #pragma once
-// Parsing numbers from command-line text, whole strings only.
+// The one home of parsing numbers from text (command-line values, CSV fields, mesh
+// specifications): whole strings only, decimal, no surrounding blanks.
 
-#include <cmath>
 #include <optional>
 #include <string>
+#include <string_view>
 
 namespace radrecon {
 
-/// The finite number that is the whole of `text`, or nullopt ("4", "1e-3"; not "4x", "nan").
-inline std::optional<double> parse_finite(const std::string& text) {
-  size_t used = 0;
-  double v = 0;
-  try {
-    v = std::stod(text, &used);
-  } catch (const std::exception&) {
-    return std::nullopt;
-  }
-  if (used == 0 || used != text.size() || !std::isfinite(v)) return std::nullopt;
-  return v;
-}
+enum class NumberStatus { ok, not_a_number, out_of_range, not_finite };
+
+/// Parses all of `text` as a decimal floating-point number ("4", "-2.5", "3e-4", a leading '+'
+/// allowed; not "4x", " 4", "nan", "inf"). On ok, `value` holds a finite double.
+NumberStatus parse_double(std::string_view text, double& value);
+
+/// The finite number that is the whole of `text`, or nullopt.
+std::optional<double> parse_finite(std::string_view text);
+
+/// The integer that is the whole of `text` (decimal, optional sign), or nullopt (also when it
+/// does not fit in a long long).
+std::optional<long long> parse_integer(std::string_view text);
+
+/// "WIDTHxHEIGHT" (or "WIDTHXHEIGHT"), e.g. "400x300".
+struct Size2 {
+  int width = 0, height = 0;
+};
+
+/// Parses a size with 1 <= width, height <= max_side and width * height <= max_pixels; throws
+/// UserError naming `where` (an option or field) otherwise.
+Size2 parse_size(const std::string& text, const std::string& where, int max_side, long long max_pixels);
+
+/// `text` in single quotes for a message, cut to 40 characters.
+std::string quoted(std::string_view text);
 
 }  // namespace radrecon

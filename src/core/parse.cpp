@@ -1,0 +1,65 @@
+#include "core/parse.h"
+
+#include <charconv>
+#include <cmath>
+
+#include "core/error.h"
+
+namespace radrecon {
+
+NumberStatus parse_double(std::string_view f, double& v) {
+  std::string_view d = f;
+  if (!d.empty() && d.front() == '+') d.remove_prefix(1);
+  if (d.empty() || d.front() == '+' || (f.front() == '+' && d.front() == '-')) return NumberStatus::not_a_number;
+  const auto [end, ec] = std::from_chars(d.data(), d.data() + d.size(), v);
+  if (ec == std::errc::result_out_of_range) return NumberStatus::out_of_range;
+  if (ec != std::errc() || end != d.data() + d.size()) return NumberStatus::not_a_number;
+  return std::isfinite(v) ? NumberStatus::ok : NumberStatus::not_finite;
+}
+
+std::optional<double> parse_finite(std::string_view text) {
+  double v = 0;
+  if (parse_double(text, v) != NumberStatus::ok) return std::nullopt;
+  return v;
+}
+
+std::optional<long long> parse_integer(std::string_view text) {
+  std::string_view d = text;
+  if (!d.empty() && d.front() == '+') d.remove_prefix(1);
+  if (d.empty() || d.front() == '+' || (text.front() == '+' && d.front() == '-')) return std::nullopt;
+  long long v = 0;
+  const auto [end, ec] = std::from_chars(d.data(), d.data() + d.size(), v);
+  if (ec != std::errc() || end != d.data() + d.size()) return std::nullopt;
+  return v;
+}
+
+std::string quoted(std::string_view s) {
+  constexpr size_t kMax = 40;
+  std::string out = "'";
+  out += s.size() > kMax ? std::string(s.substr(0, kMax)) + "..." : std::string(s);
+  return out + "'";
+}
+
+Size2 parse_size(const std::string& text, const std::string& where, int max_side, long long max_pixels) {
+  const std::string expected = "expected WIDTHxHEIGHT, e.g. 400x300, got " + quoted(text);
+  const size_t x = text.find_first_of("xX");
+  if (x == std::string::npos) throw UserError(where, expected);
+  const auto side = [&](std::string_view s, const char* name) {
+    const bool digits = !s.empty() && s.find_first_not_of("0123456789") == std::string_view::npos;
+    if (!digits) throw UserError(where, expected);
+    const std::optional<long long> v = parse_integer(s);
+    if (!v || *v < 1 || *v > max_side)
+      throw UserError(where, std::string("the ") + name + " must be between 1 and " + std::to_string(max_side) +
+                                 ", got " + quoted(s));
+    return static_cast<int>(*v);
+  };
+  const std::string_view all(text);
+  Size2 size{side(all.substr(0, x), "width"), side(all.substr(x + 1), "height")};
+  const long long pixels = static_cast<long long>(size.width) * size.height;
+  if (pixels > max_pixels)
+    throw UserError(where, std::to_string(size.width) + "x" + std::to_string(size.height) + " is " + std::to_string(pixels) +
+                               " points, more than the " + std::to_string(max_pixels) + " that fit in memory");
+  return size;
+}
+
+}  // namespace radrecon
