@@ -25,7 +25,7 @@ void BM_GridReconstruct(benchmark::State& state) {
   for (int j = 0; j < 400; ++j)
     for (int i = 0; i < 400; ++i) points.emplace_back((i + 0.5) * 0.01, (j + 0.5) * 0.01);
   std::vector<double> out(points.size() * 3);
-  const auto interpolant = make_grid_interpolant(method, cells);
+  const auto interpolant = make_grid_interpolant(method, cells).value();
   for (auto _ : state) {
     interpolant->evaluate(points, out);
     benchmark::DoNotOptimize(out.data());
@@ -71,7 +71,7 @@ void run_scattered(benchmark::State& state, Method method, int points, int side,
   const Workload& w = workload(points, side);
   std::vector<double> out(w.raster.size());
   for (auto _ : state) {
-    const auto f = make_scattered_interpolant(method, w.samples, params);
+    const auto f = make_scattered_interpolant(method, w.samples, params).value();
     f->evaluate(w.raster, out);
     benchmark::DoNotOptimize(out.data());
   }

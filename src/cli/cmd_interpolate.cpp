@@ -63,13 +63,13 @@ void run_interpolate(const InterpolateArgs& args) {
   if (format == OutputFormat::pfm && samples.channels != 1 && samples.channels != 3)
     throw UserError("--out", "PFM needs 1 or 3 value columns (greyscale or colour); " + args.samples + " has " +
                                  std::to_string(samples.channels) + "; write .csv instead");
-  std::unique_ptr<Interpolant> interpolant;
-  try {
+  InterpolantResult interpolant = Failure{};
+  {
     if (is_grid_method(*method)) {
       const std::optional<GridNodes> grid = as_regular_grid(samples);
       if (!grid) {
         const DistinctCoordinates d = count_distinct_coordinates(samples);
-        throw UserError("--samples", "bilinear/bicubic need samples on a regular grid: every "
+        throw UserError(args.samples, "bilinear/bicubic need samples on a regular grid: every "
                                      "combination of nx equally spaced x values and ny equally spaced y values "
                                      "(nx, ny >= 2), each exactly once; found " + std::to_string(samples.points.size()) +
                                      " samples, " + std::to_string(d.x) + " distinct x, " + std::to_string(d.y) +
@@ -80,13 +80,8 @@ void run_interpolate(const InterpolateArgs& args) {
     } else {
       interpolant = make_scattered_interpolant(*method, samples, params);
     }
-  } catch (const UserError& e) {
-    // The factories name the field "samples"; say which file.
-    std::string what = e.what();
-    for (const std::string_view prefix : {"--samples: ", "samples: "})
-      if (what.rfind(prefix, 0) == 0) what.erase(0, prefix.size());
-    throw UserError("--samples " + args.samples, what);
   }
+  if (!interpolant) throw UserError(args.samples, interpolant.reason());
   const std::vector<Vec2> points = use_queries ? read_queries_csv(args.queries) : raster_points(raster);
 
   const std::string description = describe_params(*method, params);
@@ -95,8 +90,8 @@ void run_interpolate(const InterpolateArgs& args) {
                  samples.points.size(), samples.channels, samples.channels == 1 ? "" : "s", args.samples.c_str(),
                  method_name(*method).c_str(), description.empty() ? "" : ", ", description.c_str(), points.size());
 
-  std::vector<double> values(points.size() * static_cast<size_t>(interpolant->channels()));
-  interpolant->evaluate(points, values);
+  std::vector<double> values(points.size() * static_cast<size_t>(interpolant.value()->channels()));
+  interpolant.value()->evaluate(points, values);
 
   switch (format) {
     case OutputFormat::csv: write_values_csv(args.out, points, values, value_names); break;

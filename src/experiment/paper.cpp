@@ -143,7 +143,7 @@ void run_paper(const PaperOptions& opt) {
   const MethodParams params;  // the defaults of methods.h, stated in the tables
   std::vector<MethodResult> table1;
   for (Method m : all_methods())
-    table1.push_back(evaluate(*make_grid_interpolant(m, grid_data, params), method_name(m), "fig3"));
+    table1.push_back(evaluate(*make_grid_interpolant(m, grid_data, params).value(), method_name(m), "fig3"));
 
   // Table 2: the quadtree data (its leaves; the scattered methods will use their centres).
   const SurfaceSolution& quad_ground = require_surface(quadtree, "ground", "quadtree solution");
@@ -154,7 +154,7 @@ void run_paper(const PaperOptions& opt) {
     if (m == Method::constant)
       table2.push_back(evaluate(PiecewiseConstant(leaves), "constant", "fig4"));
     else
-      table2.push_back(evaluate(*make_scattered_interpolant(m, centres, params), method_name(m), "fig4"));
+      table2.push_back(evaluate(*make_scattered_interpolant(m, centres, params).value(), method_name(m), "fig4"));
   }
   write_png(figures / "fig1_quadtree.png",
             quadtree_figure(leaves, 0, 0, std::max(quad_ground.length_u_m, quad_ground.length_v_m), white), false);

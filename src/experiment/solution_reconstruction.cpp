@@ -20,17 +20,16 @@ SolutionReconstruction::SolutionReconstruction(const Scene& scene, const Solutio
     s.length_u_m = scene.surfaces[index].length_u_m();
     s.length_v_m = scene.surfaces[index].length_v_m();
     const bool grid = s.grid_nu > 0 && s.grid_nv > 0;
+    InterpolantResult built = Failure{method_name(method) + " needs grid data; the side is an adaptive subdivision"};
+    if (grid) built = make_grid_interpolant(method, grid_cells(s), params);
+    else if (method == Method::constant) built = std::unique_ptr<Interpolant>(std::make_unique<PiecewiseConstant>(element_cells(s)));
+    else if (!is_grid_method(method)) built = make_scattered_interpolant(method, element_centres(s), params);
     std::unique_ptr<Interpolant> f;
-    try {
-      if (grid) f = make_grid_interpolant(method, grid_cells(s), params);
-      else if (method == Method::constant) f = std::make_unique<PiecewiseConstant>(element_cells(s));
-      else if (!is_grid_method(method)) f = make_scattered_interpolant(method, element_centres(s), params);
-    } catch (const UserError&) {
-      f.reset();
-    }
-    if (!f) {
+    if (built) {
+      f = std::move(built).value();
+    } else {
       fallbacks_.push_back(side.name);
-      f = grid ? make_grid_interpolant(Method::constant, grid_cells(s)) : std::make_unique<PiecewiseConstant>(element_cells(s));
+      f = grid ? make_grid_interpolant(Method::constant, grid_cells(s)).value() : std::make_unique<PiecewiseConstant>(element_cells(s));
     }
     sides_[2 * index + (back ? 1 : 0)] = std::move(f);
   }

@@ -3,10 +3,20 @@
 // (one virtual call per batch, none per point).
 
 #include <span>
+#include <stdexcept>
 
 #include "core/vec.h"
 
 namespace radrecon {
+
+/// Thrown by an interpolant's constructor when it cannot be built from its samples (too few,
+/// duplicates, all on one line, a singular system). The message says why in plain words, naming
+/// no file or option. The factories of methods.h catch it and return it as a Failure
+/// (core/result.h): callers outside reconstruct/ never see the exception.
+class ReconstructionError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 class Interpolant {
  public:

@@ -9,7 +9,6 @@
 #include <Eigen/LU>
 
 #include "core/check.h"
-#include "core/error.h"
 #include "core/parallel.h"
 #include "core/tolerances.h"
 #include "reconstruct/kdtree.h"
@@ -40,7 +39,7 @@ LocalMultiquadric::LocalMultiquadric(const ScatteredSamples& samples, double mu,
     : points_(samples.points), channels_(samples.channels), mu_(mu) {
   RR_CHECK(mu != 0 && k >= kMinPatchSamples, "local multiquadric parameters out of range");
   const size_t n = points_.size();
-  if (n < 2) throw UserError("samples", "the local multiquadric needs at least 2 samples");
+  if (n < 2) throw ReconstructionError("the local multiquadric needs at least 2 samples");
   const KdTree2 tree(points_);
   std::vector<unsigned> idx;
   std::vector<double> d2;
@@ -48,7 +47,7 @@ LocalMultiquadric::LocalMultiquadric(const ScatteredSamples& samples, double mu,
   for (size_t i = 0; i < n; ++i) {
     tree.nearest(points_[i], 2, idx, d2);
     if (d2[1] == 0)
-      throw UserError("samples", "duplicate sample point at (" + std::to_string(points_[i].x()) + ", " +
+      throw ReconstructionError("duplicate sample point at (" + std::to_string(points_[i].x()) + ", " +
                                      std::to_string(points_[i].y()) + ")");
     r_sq_[i] = r_m ? *r_m * *r_m : d2[1];
   }
@@ -111,13 +110,13 @@ void LocalMultiquadric::check_patches() const {
   double worst = 1;
   for (const Patch& p : patches_) {
     if (p.samples.size() > kMaxPatchSamples)
-      throw UserError("samples", "a local multiquadric patch at (" + std::to_string(p.center.x()) + ", " +
+      throw ReconstructionError("a local multiquadric patch at (" + std::to_string(p.center.x()) + ", " +
                                      std::to_string(p.center.y()) + ") holds " + std::to_string(p.samples.size()) +
                                      " samples (at most " + std::to_string(kMaxPatchSamples) +
                                      "): the samples are too clustered for patches of the requested size; use a smaller k");
     worst = std::min(worst, p.rcond);
   }
-  if (!(worst > 0) || !std::isfinite(worst)) throw UserError("samples", "a local multiquadric system is singular");
+  if (!(worst > 0) || !std::isfinite(worst)) throw ReconstructionError("a local multiquadric system is singular");
   if (worst < tol::kPoorConditioning)
     std::fprintf(stderr, "radrecon: warning: a local multiquadric system is poorly conditioned (reciprocal condition %.2e)\n", worst);
 }

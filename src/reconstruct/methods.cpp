@@ -60,6 +60,7 @@ double parse_number(const std::string& text, const std::string& where) {
 }  // namespace
 
 MethodParams parse_params(Method method, const std::vector<std::string>& settings, const std::string& field) {
+  // `field` is the caller's location of the settings; each parameter is named after it.
   MethodParams p;
   for (const std::string& s : settings) {
     const auto eq = s.find('=');
@@ -115,8 +116,22 @@ std::string describe_params(Method method, const MethodParams& p) {
   }
 }
 
-std::unique_ptr<Interpolant> make_grid_interpolant(Method method, const GridCells& cells, const MethodParams& params) {
-  if (method == Method::constant) return std::make_unique<PiecewiseConstant>(to_cells(cells));
+namespace {
+
+/// Builds an interpolant, turning a constructor's ReconstructionError into a Failure.
+template <typename T, typename... Args>
+InterpolantResult build(Args&&... args) {
+  try {
+    return InterpolantResult(std::unique_ptr<Interpolant>(std::make_unique<T>(std::forward<Args>(args)...)));
+  } catch (const ReconstructionError& e) {
+    return Failure{e.what()};
+  }
+}
+
+}  // namespace
+
+InterpolantResult make_grid_interpolant(Method method, const GridCells& cells, const MethodParams& params) {
+  if (method == Method::constant) return build<PiecewiseConstant>(to_cells(cells));
   if (is_grid_method(method)) return make_nodal_interpolant(method, nodal_average(cells), params);
   ScatteredSamples centres;
   centres.channels = cells.channels;
@@ -126,14 +141,11 @@ std::unique_ptr<Interpolant> make_grid_interpolant(Method method, const GridCell
   return make_scattered_interpolant(method, centres, params);
 }
 
-std::unique_ptr<Interpolant> make_nodal_interpolant(Method method, const GridNodes& nodes, const MethodParams& params) {
-  if (method == Method::bilinear) {
-    if (nodes.nx < 2 || nodes.ny < 2) throw UserError("samples", "bilinear needs a grid of at least 2 x 2 samples");
-    return std::make_unique<Bilinear>(nodes);
-  }
-  if (method == Method::bicubic) {
-    if (nodes.nx < 2 || nodes.ny < 2) throw UserError("samples", "bicubic needs a grid of at least 2 x 2 samples");
-    return std::make_unique<Bicubic>(nodes);
+InterpolantResult make_nodal_interpolant(Method method, const GridNodes& nodes, const MethodParams& params) {
+  if (method == Method::bilinear || method == Method::bicubic) {
+    if (nodes.nx < 2 || nodes.ny < 2) return Failure{method_name(method) + " needs a grid of at least 2 x 2 samples"};
+    if (method == Method::bilinear) return build<Bilinear>(nodes);
+    return build<Bicubic>(nodes);
   }
   ScatteredSamples s;
   s.channels = nodes.channels;
@@ -143,29 +155,28 @@ std::unique_ptr<Interpolant> make_nodal_interpolant(Method method, const GridNod
   return make_scattered_interpolant(method, s, params);
 }
 
-std::unique_ptr<Interpolant> make_scattered_interpolant(Method method, const ScatteredSamples& samples,
-                                                        const MethodParams& params) {
-  RR_CHECK(samples.values.size() == samples.points.size() * static_cast<size_t>(samples.channels),
-           "sample values do not match the points");
-  if (samples.points.empty()) throw UserError("samples", "no samples");
+InterpolantResult make_scattered_interpolant(Method method, const ScatteredSamples& samples,
+                                             const MethodParams& params) {
+  RR_CHECK_EQ(samples.values.size(), samples.points.size() * static_cast<size_t>(samples.channels),
+              "sample values do not match the points");
+  if (samples.points.empty()) return Failure{"no samples"};
   switch (method) {
-    case Method::constant: return std::make_unique<NearestSample>(samples);
+    case Method::constant: return build<NearestSample>(samples);
     case Method::bilinear:
-    case Method::bicubic:
-      throw UserError("samples", method_name(method) + " needs samples on a regular grid");
-    case Method::shepard: return std::make_unique<Shepard>(samples, params.shepard_mu, params.shepard_k);
+    case Method::bicubic: return Failure{method_name(method) + " needs samples on a regular grid"};
+    case Method::shepard: return build<Shepard>(samples, params.shepard_mu, params.shepard_k);
     case Method::multiquadric:
       if (params.multiquadric_k > 0 && static_cast<size_t>(params.multiquadric_k) < samples.points.size())
-        return std::make_unique<LocalMultiquadric>(samples, params.multiquadric_mu, params.multiquadric_r,
-                                                   params.multiquadric_k);
+        return build<LocalMultiquadric>(samples, params.multiquadric_mu, params.multiquadric_r, params.multiquadric_k);
       if (samples.points.size() > kMaxGlobalMultiquadric)
-        throw UserError("samples", std::to_string(samples.points.size()) + " samples are too many for one global multiquadric system (at most " +
-                                       std::to_string(kMaxGlobalMultiquadric) + "); use local patches, e.g. --param k=32");
-      return std::make_unique<Multiquadric>(samples, params.multiquadric_mu, params.multiquadric_r);
-    case Method::natural_neighbour: return std::make_unique<NaturalNeighbour>(samples, params.outside);
+        return Failure{std::to_string(samples.points.size()) +
+                       " samples are too many for one global multiquadric system (at most " +
+                       std::to_string(kMaxGlobalMultiquadric) + "); use local patches, e.g. k=32"};
+      return build<Multiquadric>(samples, params.multiquadric_mu, params.multiquadric_r);
+    case Method::natural_neighbour: return build<NaturalNeighbour>(samples, params.outside);
   }
   RR_CHECK(false, "unknown method");
-  return nullptr;
+  return Failure{"unknown method"};
 }
 
 }  // namespace radrecon

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/result.h"
 #include "reconstruct/interpolant.h"
 #include "reconstruct/samples.h"
 
@@ -51,28 +52,33 @@ struct MethodParams {
   OutsideHull outside = OutsideHull::nearest;
 };
 
-/// Parses NAME=VALUE settings for `method`. Throws UserError naming `field` and the parameter
-/// for an unknown parameter, a malformed value or one out of range.
-MethodParams parse_params(Method method, const std::vector<std::string>& settings, const std::string& field);
+/// Parses NAME=VALUE settings for `method`. Throws UserError naming `where` (the caller's
+/// location of the settings, e.g. an option) and the parameter for an unknown parameter, a
+/// malformed value or one out of range.
+MethodParams parse_params(Method method, const std::vector<std::string>& settings, const std::string& where);
 
 /// A one-line description of the parameters in effect, for reports ("mu=4, k=all").
 std::string describe_params(Method method, const MethodParams& params);
 
+/// The factories: an interpolant, or the reason the method cannot be built from the data (a
+/// Failure naming no file or option; the caller says where the data came from).
+using InterpolantResult = Result<std::unique_ptr<Interpolant>>;
+
 /// Grid data (cell values), as in the paper: constant uses the cells; bilinear and bicubic
 /// interpolate nodal values (nodal_average()); the scattered methods use the cell centres.
-std::unique_ptr<Interpolant> make_grid_interpolant(Method method, const GridCells& cells,
+InterpolantResult make_grid_interpolant(Method method, const GridCells& cells,
                                                    const MethodParams& params = {});
 
 /// Values at the nodes of a regular grid: bilinear and bicubic interpolate them; the other
 /// methods take the nodes as scattered samples.
-std::unique_ptr<Interpolant> make_nodal_interpolant(Method method, const GridNodes& nodes,
+InterpolantResult make_nodal_interpolant(Method method, const GridNodes& nodes,
                                                     const MethodParams& params = {});
 
 /// Scattered samples: constant is the nearest sample's value (Voronoi cells); shepard,
-/// multiquadric and natural-neighbour as documented. Throws UserError (field "samples") when
-/// the method cannot be built from them: a grid method, too few samples, duplicate points,
-/// or (natural-neighbour) all samples on one line.
-std::unique_ptr<Interpolant> make_scattered_interpolant(Method method, const ScatteredSamples& samples,
+/// multiquadric and natural-neighbour as documented. Fails when the method cannot be built from
+/// them: a grid method, too few samples, duplicate points, too many for a global system, or
+/// (natural-neighbour) all samples on one line.
+InterpolantResult make_scattered_interpolant(Method method, const ScatteredSamples& samples,
                                                         const MethodParams& params = {});
 
 }  // namespace radrecon

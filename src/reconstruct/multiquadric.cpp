@@ -8,7 +8,6 @@
 #include <Eigen/LU>
 
 #include "core/check.h"
-#include "core/error.h"
 #include "core/parallel.h"
 #include "core/tolerances.h"
 #include "reconstruct/kdtree.h"
@@ -30,8 +29,8 @@ Multiquadric::Multiquadric(const ScatteredSamples& samples, double mu, std::opti
     : points_(samples.points), channels_(samples.channels), mu_(mu) {
   RR_CHECK(mu != 0, "multiquadric mu must be nonzero");
   const size_t n = points_.size();
-  if (n == 0) throw UserError("samples", "multiquadric needs at least one sample");
-  if (!r_m && n < 2) throw UserError("samples", "multiquadric with Eck's r needs at least 2 samples (or give --param r=...)");
+  if (n == 0) throw ReconstructionError("multiquadric needs at least one sample");
+  if (!r_m && n < 2) throw ReconstructionError("multiquadric with Eck's r needs at least 2 samples (or a fixed radius r)");
   r_sq_.resize(n);
   if (r_m) {
     std::fill(r_sq_.begin(), r_sq_.end(), *r_m * *r_m);
@@ -42,7 +41,7 @@ Multiquadric::Multiquadric(const ScatteredSamples& samples, double mu, std::opti
     std::vector<double> d2;
     for (size_t i = 0; i < n; ++i) {
       tree.nearest(points_[i], 2, idx, d2);
-      if (d2[1] == 0) throw UserError("samples", "duplicate sample point at (" + std::to_string(points_[i].x()) + ", " +
+      if (d2[1] == 0) throw ReconstructionError("duplicate sample point at (" + std::to_string(points_[i].x()) + ", " +
                                                      std::to_string(points_[i].y()) + ")");
       r_sq_[i] = d2[1];
     }
@@ -57,7 +56,7 @@ Multiquadric::Multiquadric(const ScatteredSamples& samples, double mu, std::opti
   const Eigen::PartialPivLU<Eigen::MatrixXd> lu(A);
   rcond_ = lu.rcond();
   if (!(rcond_ > 0) || !std::isfinite(rcond_))
-    throw UserError("samples", "the multiquadric system is singular (duplicate samples?)");
+    throw ReconstructionError("the multiquadric system is singular (duplicate samples?)");
   if (rcond_ < tol::kPoorConditioning)
     std::fprintf(stderr, "radrecon: warning: multiquadric system is poorly conditioned (reciprocal condition %.2e); "
                          "results may be inaccurate\n", rcond_);

@@ -10,7 +10,6 @@
 #include <CGAL/natural_neighbor_coordinates_2.h>
 
 #include "core/check.h"
-#include "core/error.h"
 #include "core/parallel.h"
 #include "reconstruct/kdtree.h"
 
@@ -96,7 +95,7 @@ struct NaturalNeighbour::Impl {
 
 NaturalNeighbour::NaturalNeighbour(const ScatteredSamples& samples, OutsideHull outside) : impl_(std::make_unique<Impl>()) {
   const size_t n = samples.points.size();
-  if (n < 3) throw UserError("samples", "natural-neighbour interpolation needs at least 3 samples, got " + std::to_string(n));
+  if (n < 3) throw ReconstructionError("natural-neighbour interpolation needs at least 3 samples, got " + std::to_string(n));
   impl_->values = samples.values;
   impl_->channels = samples.channels;
   impl_->outside = outside;
@@ -106,9 +105,9 @@ NaturalNeighbour::NaturalNeighbour(const ScatteredSamples& samples, OutsideHull 
   for (size_t i = 0; i < n; ++i) input.emplace_back(Point(samples.points[i].x(), samples.points[i].y()), static_cast<unsigned>(i));
   impl_->dt.insert(input.begin(), input.end());
   if (impl_->dt.number_of_vertices() != n)
-    throw UserError("samples", std::to_string(n - impl_->dt.number_of_vertices()) +
+    throw ReconstructionError(std::to_string(n - impl_->dt.number_of_vertices()) +
                                    " duplicate sample point(s); natural-neighbour needs distinct points");
-  if (impl_->dt.dimension() < 2) throw UserError("samples", "all samples lie on one line; natural-neighbour needs a 2-D spread");
+  if (impl_->dt.dimension() < 2) throw ReconstructionError("all samples lie on one line; natural-neighbour needs a 2-D spread");
   impl_->vertex_of.resize(n);
   for (auto v = impl_->dt.finite_vertices_begin(); v != impl_->dt.finite_vertices_end(); ++v) impl_->vertex_of[v->info()] = v;
   impl_->tree = std::make_unique<KdTree2>(impl_->points);

@@ -109,7 +109,7 @@ TEST(PiecewiseConstant, GridQueryInsideACellGivesThatCellsValue) {
   g.dy = dy;
   g.channels = 2;
   g.values = s.values;
-  const auto f = make_grid_interpolant(Method::constant, g);
+  const auto f = make_grid_interpolant(Method::constant, g).value();
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i) {
       const Vec2 p(x0 + (i + 0.5) * dx, y0 + (j + 0.5) * dy);

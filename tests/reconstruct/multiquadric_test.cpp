@@ -75,11 +75,11 @@ TEST(Multiquadric, ConstantRadiusAndRefusals) {
   ScatteredSamples dup = s;
   dup.points.push_back(dup.points[3]);
   dup.values.push_back(0.5);
-  EXPECT_THROW(Multiquadric(dup, 0.5, std::nullopt), UserError);
+  EXPECT_THROW(Multiquadric(dup, 0.5, std::nullopt), ReconstructionError);
   ScatteredSamples one;
   one.points = {Vec2(1, 1)};
   one.values = {2};
-  EXPECT_THROW(Multiquadric(one, 0.5, std::nullopt), UserError);
+  EXPECT_THROW(Multiquadric(one, 0.5, std::nullopt), ReconstructionError);
   const Multiquadric single(one, 0.5, 1.0);  // one sample with a given r: a scaled basis function
   double v;
   const Vec2 q(1, 1);

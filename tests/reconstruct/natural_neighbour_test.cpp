@@ -156,15 +156,15 @@ TEST(NaturalNeighbour, RefusesTooFewCollinearOrDuplicateSamples) {
   ScatteredSamples two;
   two.points = {Vec2(0, 0), Vec2(1, 1)};
   two.values = {1, 2};
-  EXPECT_THROW(NaturalNeighbour(two, OutsideHull::none), UserError);
+  EXPECT_THROW(NaturalNeighbour(two, OutsideHull::none), ReconstructionError);
   ScatteredSamples line;
   line.points = {Vec2(0, 0), Vec2(1, 1), Vec2(2, 2), Vec2(3, 3)};
   line.values = {1, 2, 3, 4};
-  EXPECT_THROW(NaturalNeighbour(line, OutsideHull::none), UserError);
+  EXPECT_THROW(NaturalNeighbour(line, OutsideHull::none), ReconstructionError);
   ScatteredSamples dup;
   dup.points = {Vec2(0, 0), Vec2(1, 0), Vec2(0, 1), Vec2(1, 0)};
   dup.values = {1, 2, 3, 4};
-  EXPECT_THROW(NaturalNeighbour(dup, OutsideHull::none), UserError);
+  EXPECT_THROW(NaturalNeighbour(dup, OutsideHull::none), ReconstructionError);
 }
 
 }  // namespace

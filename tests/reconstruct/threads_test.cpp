@@ -36,7 +36,7 @@ TEST(Threads, ScatteredMethodsGiveIdenticalResultsOnOneAndTwoThreads) {
   cases.emplace_back(Method::multiquadric, local_mq);
   const int threads = omp_get_max_threads();
   for (const auto& [method, params] : cases) {
-    const auto f = make_scattered_interpolant(method, s, params);
+    const auto f = make_scattered_interpolant(method, s, params).value();
     std::vector<double> one(q.size() * 3), two(q.size() * 3);
     omp_set_num_threads(1);
     f->evaluate(q, one);
