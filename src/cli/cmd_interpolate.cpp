@@ -9,7 +9,12 @@
 
 #include "cli/commands.h"
 #include "core/error.h"
-#include "experiment/samples_io.h"
+#include "core/parse.h"
+#include "io/image_io.h"
+#include "io/paths.h"
+#include "io/raster.h"
+#include "io/samples_csv.h"
+#include "reconstruct/sample_set.h"
 #include "reconstruct/methods.h"
 
 namespace radrecon::cli {
@@ -37,30 +42,37 @@ void run_interpolate(const InterpolateArgs& args) {
   const auto start = std::chrono::steady_clock::now();
 
   // The command line first: cheap checks before any file is read.
-  const OutputFormat format = output_format_of(args.out, "--out");
+  const FileFormat format = file_format(args.out, {FileFormat::csv, FileFormat::pfm, FileFormat::png}, "--out");
   const bool use_queries = !args.queries.empty(), use_raster = !args.raster.empty();
   if (use_queries == use_raster)
     throw UserError("--queries/--raster",
                     use_queries ? "give either --queries or --raster, not both"
                                 : "give the query points: --queries FILE.csv or --raster WxH --domain x0,y0,x1,y1");
   if (!use_raster && !args.domain.empty()) throw UserError("--domain", "--domain goes with --raster");
-  if (use_queries && format != OutputFormat::csv)
+  if (use_queries && format != FileFormat::csv)
     throw UserError("--out", "PFM and PNG outputs need a raster (--raster WxH --domain ...); "
                              "with --queries write a .csv file");
   Raster raster;
   if (use_raster) {
-    parse_raster_size(args.raster, "--raster", raster.width, raster.height);
+    const Size2 size = parse_size(args.raster, "--raster", kMaxRasterSide, kMaxRasterPoints);
+    raster.width = size.width;
+    raster.height = size.height;
     if (args.domain.empty()) throw UserError("--domain", "--raster needs --domain x0,y0,x1,y1 (the rectangle it covers)");
     raster.domain = parse_domain(args.domain, "--domain");
   }
   const std::optional<Method> method = parse_method(args.method);
   if (!method) throw UserError("--method", "unknown method '" + args.method + "'; valid methods: " + method_list());
   const MethodParams params = parse_params(*method, args.params, "--param");
+  // No input is ever overwritten, and an unwritable output is refused before any work.
+  std::vector<std::string> inputs = {args.samples};
+  if (use_queries) inputs.push_back(args.queries);
+  refuse_overwriting_inputs(args.out, "--out", inputs);
+  check_output_file(args.out, "--out");
 
   // Samples, interpolant, queries.
   std::vector<std::string> value_names;
   const ScatteredSamples samples = read_samples_csv(args.samples, &value_names);
-  if (format == OutputFormat::pfm && samples.channels != 1 && samples.channels != 3)
+  if (format == FileFormat::pfm && samples.channels != 1 && samples.channels != 3)
     throw UserError("--out", "PFM needs 1 or 3 value columns (greyscale or colour); " + args.samples + " has " +
                                  std::to_string(samples.channels) + "; write .csv instead");
   InterpolantResult interpolant = Failure{};
@@ -94,9 +106,10 @@ void run_interpolate(const InterpolateArgs& args) {
   interpolant.value()->evaluate(points, values);
 
   switch (format) {
-    case OutputFormat::csv: write_values_csv(args.out, points, values, value_names); break;
-    case OutputFormat::pfm: write_values_pfm(args.out, raster, values, samples.channels); break;
-    case OutputFormat::png: write_values_png(args.out, raster, values, samples.channels); break;
+    case FileFormat::csv: write_values_csv(args.out, points, values, value_names); break;
+    case FileFormat::pfm: write_raster_pfm(args.out, raster, values, samples.channels); break;
+    case FileFormat::png: write_raster_png(args.out, raster, values, samples.channels); break;
+    case FileFormat::exr: break;  // refused by file_format() above
   }
   if (!args.quiet) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

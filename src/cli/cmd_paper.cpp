@@ -1,5 +1,5 @@
 #include "cli/commands.h"
-#include "experiment/paper.h"
+#include "paper/paper.h"
 
 namespace radrecon::cli {
 
@@ -23,7 +23,7 @@ void add_paper_command(CLI::App& app) {
   cmd->callback([opt, out, quiet] {
     opt->out_dir = *out;
     opt->progress = !*quiet;
-    run_paper(*opt);
+    run_paper(*opt, "--out");
   });
 }
 

@@ -4,10 +4,13 @@
 
 #include "cli/commands.h"
 #include "core/error.h"
-#include "experiment/solution_reconstruction.h"
-#include "render/ground_map.h"
+#include "sampling/solution_reconstruction.h"
 #include "render/renderer.h"
-#include "solver/solution_io.h"
+#include "core/parse.h"
+#include "io/image_io.h"
+#include "io/paths.h"
+#include "io/scene_json.h"
+#include "io/solution_json.h"
 
 namespace radrecon::cli {
 
@@ -26,20 +29,18 @@ struct RenderArgs {
   bool quiet = false;
 };
 
-std::pair<int, int> parse_size(const std::string& text) {
-  int w = 0, h = 0;
-  char x = 0, extra = 0;
-  if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w < 1 || h < 1 || w > 8192 || h > 8192)
-    throw UserError("--size", "expected WxH with 1 <= W, H <= 8192, got '" + text + "'");
-  return {w, h};
-}
+/// Largest width or height of a rendered image, pixels.
+constexpr int kMaxImageSide = 8192;
+/// At most this many pixels: the linear and the display image take 24 bytes a pixel each.
+constexpr long long kMaxImagePixels = 8192LL * 8192;
 
 void run_render(const RenderArgs& args) {
-  std::string ext = args.out.size() >= 4 ? args.out.substr(args.out.size() - 4) : "";
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  if (ext != ".png" && ext != ".pfm" && ext != ".exr")
-    throw UserError("--out", "must end in .png (tone-mapped), .pfm or .exr (linear W/m^2)");
-  const auto [width, height] = parse_size(args.size);
+  const FileFormat format = file_format(args.out, {FileFormat::png, FileFormat::pfm, FileFormat::exr}, "--out");
+  const auto [width, height] = parse_size(args.size, "--size", kMaxImageSide, kMaxImagePixels);
+  std::vector<std::string> inputs = {args.solution};
+  if (args.scene != "paper") inputs.push_back(args.scene);
+  refuse_overwriting_inputs(args.out, "--out", inputs);
+  check_output_file(args.out, "--out");
   const Scene scene = load_scene(args.scene);
   const Camera* camera = nullptr;
   for (const Camera& c : scene.cameras)
@@ -54,17 +55,17 @@ void run_render(const RenderArgs& args) {
   const MethodParams params = parse_params(*method, args.params, "--param");
   const Solution solution = read_solution_json(args.solution);
   const SolutionReconstruction recon(scene, solution, *method, params, args.solution);
-  for (const std::string& side : recon.fallbacks())
-    std::fprintf(stderr, "radrecon: warning: %s cannot be reconstructed by %s; drawn piecewise constant\n", side.c_str(),
-                 args.method.c_str());
+  for (const Fallback& f : recon.fallbacks())
+    std::fprintf(stderr, "radrecon: warning: %s: %s cannot reconstruct side %s (%s); drawn piecewise constant\n",
+                 args.solution.c_str(), args.method.c_str(), f.side.c_str(), f.reason.c_str());
   RenderOptions options;
   options.width = width;
   options.height = height;
   options.samples_per_axis = args.samples;
-  const Image img = render(scene, *camera, [&](size_t s, bool back) { return recon.side(s, back); }, options);
-  if (ext == ".pfm") {
+  const Image img = render(scene, *camera, [&](SideRef side) { return recon.side(side); }, options);
+  if (format == FileFormat::pfm) {
     write_pfm(args.out, img);
-  } else if (ext == ".exr") {
+  } else if (format == FileFormat::exr) {
     write_exr(args.out, img);
   } else {
     double white = args.white;
@@ -100,7 +101,7 @@ void add_render_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--param", args->params, "NAME=VALUE method parameter, repeatable (see 'interpolate --help')");
   cmd->add_option("--camera", args->camera, "Name of a camera of the scene (paper: view, closeup)")->required();
-  cmd->add_option("--size", args->size, "Image size WxH in pixels")->capture_default_str();
+  cmd->add_option("--size", args->size, "Image size WxH in pixels (each at most 8192)")->capture_default_str();
   cmd->add_option("--samples", args->samples, "Stratified rays per pixel along each axis (N x N rays)")
       ->check(CLI::Range(1, 16))
       ->capture_default_str();

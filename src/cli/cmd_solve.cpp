@@ -3,8 +3,10 @@
 
 #include "cli/commands.h"
 #include "core/error.h"
-#include "experiment/solve.h"
-#include "solver/solution_io.h"
+#include "solver/solve.h"
+#include "io/paths.h"
+#include "io/scene_json.h"
+#include "io/solution_json.h"
 
 namespace radrecon::cli {
 
@@ -14,7 +16,7 @@ struct SolveArgs {
   std::string scene = "paper";
   std::string mesh = "grid:16";
   std::string out;
-  double residual = 1e-4;
+  double residual = kDefaultResidual;
   int patches = 2;
   std::string leaves_on;
   bool quiet = false;
@@ -26,13 +28,16 @@ void run_solve(const SolveArgs& args, const CLI::App& cmd) {
   if (!grid && (cmd.count("--residual") || cmd.count("--patches")))
     throw UserError(cmd.count("--residual") ? "--residual" : "--patches", "applies to grid:N meshes only");
   if (!leaves && cmd.count("--leaves-on")) throw UserError("--leaves-on", "applies to quadtree:LEAVES meshes only");
+  if (args.scene != "paper") refuse_overwriting_inputs(args.out, "--out", {args.scene});
+  check_output_file(args.out, "--out");
   const Scene scene = load_scene(args.scene);
   SolveSettings settings;
   settings.residual = args.residual;
   settings.patches = args.patches;
   settings.leaves_on = args.leaves_on;
+  settings.leaves_on_where = "--leaves-on";
   settings.progress_label = args.quiet ? "" : "solve";
-  const Solution sol = solve_scene(scene, args.mesh, settings);
+  const Solution sol = solve_scene(scene, args.mesh, settings, "--mesh");
   write_solution_json(args.out, sol);
   if (!args.quiet) std::fprintf(stderr, "solve: wrote %s\n", args.out.c_str());
 }

@@ -35,8 +35,10 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "radrecon: error: %s\n", e.what());
     return radrecon::kUserErrorExitCode;
   } catch (const std::bad_alloc&) {
-    std::fprintf(stderr, "radrecon: error: out of memory\n");
-    return 1;
+    std::fprintf(stderr,
+                 "radrecon: error: out of memory; nothing was written. Ask for less: a smaller raster, image or mesh, "
+                 "fewer samples, or local patches (--param k=...)\n");
+    return radrecon::kOutOfMemoryExitCode;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "radrecon: error: %s\n", e.what());
     return 1;

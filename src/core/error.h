@@ -1,8 +1,11 @@
 #pragma once
-// Errors caused by user input (a malformed file, a bad option): they carry where the problem
-// is (file, line, field) and end the program with exit code kUserErrorExitCode. Broken internal
-// invariants are RR_CHECK failures instead (check.h); results that cannot be computed are
-// returned values (std::optional), not exceptions.
+// radrecon's three kinds of error:
+//   - bad user input (a malformed file, a bad option): a UserError that carries where the
+//     problem is (file, line, field or option, passed down by the caller: library code never
+//     names a command-line option), ending the program with exit code kUserErrorExitCode;
+//   - a result that cannot be computed (too few samples for a method, a query outside the hull):
+//     a returned value (std::optional, Result in result.h, NaN), not an exception;
+//   - a broken internal invariant: an RR_CHECK (check.h), in every build, printing its operands.
 
 #include <stdexcept>
 #include <string>
@@ -11,6 +14,8 @@ namespace radrecon {
 
 /// Exit code for every refused input, as the command-line contract fixes it.
 inline constexpr int kUserErrorExitCode = 2;
+/// Exit code when memory runs out (std::bad_alloc): the request was too large for the machine.
+inline constexpr int kOutOfMemoryExitCode = 3;
 
 class UserError : public std::runtime_error {
  public:

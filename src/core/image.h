@@ -1,7 +1,7 @@
 #pragma once
-// A linear floating-point RGB image and its writers. Row 0 is the top row of the picture.
+// A linear floating-point RGB image, and the one tone mapping of radrecon's pictures. Row 0 is
+// the top row of the picture. Files are written by io/image_io.h.
 
-#include <filesystem>
 #include <vector>
 
 #include "core/vec.h"
@@ -24,14 +24,8 @@ class Image {
 /// The sRGB transfer curve: a linear display value in [0,1] to its encoded value.
 double srgb_encode(double linear);
 
-/// Writes display values in [0,1] (clamped) as an 8-bit RGB PNG. With `srgb_encode` the values
-/// are taken as linear and encoded with the sRGB transfer curve; without, written as they are.
-void write_png(const std::filesystem::path& path, const Image& image, bool srgb_encode);
-
-/// Writes the linear values as a colour PFM (32-bit floats, bottom row first as PFM requires).
-void write_pfm(const std::filesystem::path& path, const Image& image);
-
-/// Writes the linear values as an OpenEXR image (RGB, 16-bit half floats).
-void write_exr(const std::filesystem::path& path, const Image& image);
+/// The one tone mapping of radrecon's pictures: display = clamp(B / white_w_m2, 0, 1) (encode
+/// with the sRGB curve when writing). `white_w_m2` (> 0) is the radiosity shown as white.
+double tone_map(double radiosity_w_m2, double white_w_m2);
 
 }  // namespace radrecon

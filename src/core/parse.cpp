@@ -33,7 +33,28 @@ std::optional<long long> parse_integer(std::string_view text) {
   return v;
 }
 
-std::string quoted(std::string_view s) {
+std::string_view trim_blanks(std::string_view s) {
+  const auto blank = [](char c) { return c == ' ' || c == '\t' || c == '\r'; };
+  while (!s.empty() && blank(s.front())) s.remove_prefix(1);
+  while (!s.empty() && blank(s.back())) s.remove_suffix(1);
+  return s;
+}
+
+void split_fields(std::string_view line, std::vector<std::string_view>& fields) {
+  fields.clear();
+  size_t start = 0;
+  while (true) {
+    const size_t comma = line.find(',', start);
+    if (comma == std::string_view::npos) {
+      fields.push_back(trim_blanks(line.substr(start)));
+      return;
+    }
+    fields.push_back(trim_blanks(line.substr(start, comma - start)));
+    start = comma + 1;
+  }
+}
+
+std::string in_quotes(std::string_view s) {
   constexpr size_t kMax = 40;
   std::string out = "'";
   out += s.size() > kMax ? std::string(s.substr(0, kMax)) + "..." : std::string(s);
@@ -41,7 +62,7 @@ std::string quoted(std::string_view s) {
 }
 
 Size2 parse_size(const std::string& text, const std::string& where, int max_side, long long max_pixels) {
-  const std::string expected = "expected WIDTHxHEIGHT, e.g. 400x300, got " + quoted(text);
+  const std::string expected = "expected WIDTHxHEIGHT, e.g. 400x300, got " + in_quotes(text);
   const size_t x = text.find_first_of("xX");
   if (x == std::string::npos) throw UserError(where, expected);
   const auto side = [&](std::string_view s, const char* name) {
@@ -50,7 +71,7 @@ Size2 parse_size(const std::string& text, const std::string& where, int max_side
     const std::optional<long long> v = parse_integer(s);
     if (!v || *v < 1 || *v > max_side)
       throw UserError(where, std::string("the ") + name + " must be between 1 and " + std::to_string(max_side) +
-                                 ", got " + quoted(s));
+                                 ", got " + in_quotes(s));
     return static_cast<int>(*v);
   };
   const std::string_view all(text);

@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace radrecon {
 
@@ -30,7 +31,14 @@ struct Size2 {
 /// UserError naming `where` (an option or field) otherwise.
 Size2 parse_size(const std::string& text, const std::string& where, int max_side, long long max_pixels);
 
+/// `text` without the blanks (spaces, tabs, a carriage return) at either end.
+std::string_view trim_blanks(std::string_view text);
+
+/// Splits `line` at every comma into `fields` (cleared first), each trimmed of blanks; no
+/// quoting. "a, b,,c" gives "a", "b", "", "c".
+void split_fields(std::string_view line, std::vector<std::string_view>& fields);
+
 /// `text` in single quotes for a message, cut to 40 characters.
-std::string quoted(std::string_view text);
+std::string in_quotes(std::string_view text);
 
 }  // namespace radrecon

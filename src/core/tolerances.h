@@ -43,4 +43,16 @@ inline constexpr double kMinElementFraction = 1.0 / 256;
 /// below this: about 4 of double precision's 16 digits then survive in the coefficients.
 inline constexpr double kPoorConditioning = 1e-12;
 
+/// Inverse quad mapping (Surface::parameters): a point whose (u, v) lies within this of [0,1]
+/// is on the quad (rays that hit an edge between two quads are not lost to round-off).
+inline constexpr double kQuadEdgeParameter = 1e-12;
+/// ... and a quad counts as a parallelogram (the mapping's quadratic term vanishes) when that
+/// term is below this fraction of the linear one.
+inline constexpr double kParallelogramRelative = 1e-12;
+
+/// Scattered samples count as the nodes of a regular grid when their coordinates lie within
+/// this fraction of the samples' extent from the grid lines: far above the round-off of
+/// coordinates printed with 10+ digits, far below any intended offset.
+inline constexpr double kGridCoordinateRelative = 1e-9;
+
 }  // namespace radrecon::tol

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "scene/scene.h"
+#include "scene/side.h"
 
 namespace radrecon {
 
@@ -54,28 +55,6 @@ struct GridMeshOptions {
   /// ceil(divisions / max_patches) elements per edge on every surface.
   int max_patches = 2;
 };
-
-/// The name of one side of a surface: the surface's name, or "NAME/front" and "NAME/back" for
-/// the sides of a two-sided surface.
-std::string side_name(const Surface& surface, bool back_side);
-
-/// One side of a scene surface.
-struct SideRef {
-  size_t surface;
-  bool back_side;
-};
-
-/// The side named `name` (side_name()), if the scene has it.
-std::optional<SideRef> find_side(const Scene& scene, const std::string& name);
-
-/// The names of every side of the scene, comma separated (for messages).
-std::string side_names(const Scene& scene);
-
-/// Unit normal of one side: the surface's, reversed on a back side.
-Vec3 side_normal(const Surface& surface, bool back_side);
-
-/// Emitted exitance of one side, W/m^2: only fronts emit.
-Rgb side_emission(const Surface& surface, bool back_side);
 
 /// Elements along u and v of one surface under `options` (the rule of GridMeshOptions).
 std::pair<int, int> grid_divisions(const Scene& scene, const Surface& surface, const GridMeshOptions& options);

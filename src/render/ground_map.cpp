@@ -6,10 +6,6 @@
 
 namespace radrecon {
 
-double tone_map(double radiosity_w_m2, double white_w_m2) {
-  return std::clamp(radiosity_w_m2 / white_w_m2, 0.0, 1.0);
-}
-
 double difference_tone(double error_w_m2, double white_w_m2) {
   return std::clamp(0.5 + 2.0 * error_w_m2 / white_w_m2, 0.0, 1.0);
 }

@@ -10,9 +10,8 @@
 
 namespace radrecon {
 
-/// The one tone mapping of radrecon's pictures: display = clamp(B / white_w_m2, 0, 1), encoded
-/// with the sRGB curve. `white_w_m2` (> 0) is the radiosity shown as white; every image of a
-/// figure uses the same one.
+/// The radiosity over the patch under tone_map() (core/image.h) with `white_w_m2` (> 0), the
+/// radiosity shown as white; every image of a figure uses the same one. Encode with sRGB.
 Image radiosity_map(std::span<const double> values, int width, int height, double white_w_m2);
 
 /// The paper's difference image: display = clamp(0.5 + 2 (approx - reference) / white_w_m2, 0, 1),
@@ -21,8 +20,6 @@ Image radiosity_map(std::span<const double> values, int width, int height, doubl
 Image difference_map(std::span<const double> approx, std::span<const double> reference, int width,
                      int height, double white_w_m2);
 
-/// Display value of a radiosity under radiosity_map's tone mapping, before sRGB encoding.
-double tone_map(double radiosity_w_m2, double white_w_m2);
 /// Display value of an error under difference_map's mapping.
 double difference_tone(double error_w_m2, double white_w_m2);
 

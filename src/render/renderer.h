@@ -11,6 +11,7 @@
 #include "core/image.h"
 #include "reconstruct/interpolant.h"
 #include "scene/scene.h"
+#include "scene/side.h"
 
 namespace radrecon {
 
@@ -25,10 +26,6 @@ struct SurfaceHit {
 /// The nearest surface hit by the ray o + t d (d of unit length), t > 0, if any.
 std::optional<SurfaceHit> intersect_scene(const Scene& scene, const Vec3& o, const Vec3& d);
 
-/// (u,v) of a point on the plane of a planar convex quad (the inverse of Surface::point);
-/// nullopt if the point lies outside the quad.
-std::optional<Vec2> quad_parameters(const Surface& surface, const Vec3& p);
-
 struct RenderOptions {
   int width = 640, height = 480;
   int samples_per_axis = 3;  ///< stratified rays per pixel: samples_per_axis^2, >= 1
@@ -38,20 +35,30 @@ struct RenderOptions {
 /// The reconstruction of one surface side: radiosity in W/m^2 (3 channels) at points given in
 /// the side's metric coordinates (s, t) = (u * length_u, v * length_v); null for a side the
 /// solution does not have (drawn black).
-using SideReconstruction = std::function<const Interpolant*(size_t surface, bool back_side)>;
+using SideReconstruction = std::function<const Interpolant*(SideRef side)>;
 
-/// The primary rays of a camera and what they hit: computed once, shaded for any solution and
-/// method (the views of a figure share them).
+/// The primary rays of a camera (all its rows, or a band of rows) and what they hit: computed
+/// once, shaded for any solution and method (the views of a figure share them).
 struct CameraHits {
   RenderOptions options;
+  int row_begin = 0, row_end = 0;               ///< the image rows [row_begin, row_end) traced
   std::vector<std::optional<SurfaceHit>> hits;  ///< per ray: pixel-major, samples_per_axis^2 each
 };
 CameraHits trace_camera(const Scene& scene, const Camera& camera, const RenderOptions& options);
+CameraHits trace_camera(const Scene& scene, const Camera& camera, const RenderOptions& options, int row_begin,
+                        int row_end);
 
-/// Linear radiosity (W/m^2 per channel) of every pixel: the mean over its rays.
+/// Linear radiosity (W/m^2 per channel) of every pixel of `hits` (all rows): the mean over its
+/// rays.
 Image shade(const Scene& scene, const CameraHits& hits, const SideReconstruction& reconstruction);
+/// The same for the rows that `hits` covers, written into `image` (of the camera's size).
+void shade(const Scene& scene, const CameraHits& hits, const SideReconstruction& reconstruction, Image& image);
 
-/// trace_camera() then shade().
+/// Rays traced and shaded at a time by render(): memory stays at the image plus about 80 bytes
+/// a ray of one band (~80 MB), whatever the image size and rays per pixel.
+inline constexpr size_t kRenderBandRays = size_t{1} << 20;
+
+/// trace_camera() then shade(), band by band of rows.
 Image render(const Scene& scene, const Camera& camera, const SideReconstruction& reconstruction,
              const RenderOptions& options);
 

@@ -1,5 +1,6 @@
 #include "scene/scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -29,6 +30,37 @@ double Surface::length_u_m() const {
 
 double Surface::length_v_m() const {
   return 0.5 * ((corners[3] - corners[0]).norm() + (corners[2] - corners[1]).norm());
+}
+
+std::optional<Vec2> Surface::parameters(const Vec3& p) const {
+  const Surface& s = *this;
+  // Solve p = (1-u)(1-v) c0 + u(1-v) c1 + u v c2 + (1-u) v c3 in the quad's plane, projected to
+  // the two axes where the quad is largest: a quadratic in v (linear for a parallelogram).
+  const Vec3 n = s.normal();
+  int drop = 0;
+  n.cwiseAbs().maxCoeff(&drop);
+  const int a = (drop + 1) % 3, b = (drop + 2) % 3;
+  auto xy = [&](const Vec3& q) { return Vec2(q[a], q[b]); };
+  const Vec2 c0 = xy(s.corners[0]), c1 = xy(s.corners[1]), c2 = xy(s.corners[2]), c3 = xy(s.corners[3]);
+  const Vec2 q = xy(p) - c0, e = c1 - c0, f = c3 - c0, g = c0 - c1 + c2 - c3;
+  auto cross = [](const Vec2& x, const Vec2& y) { return x.x() * y.y() - x.y() * y.x(); };
+  const double k2 = cross(g, f), k1 = cross(e, f) + cross(q, g), k0 = cross(q, e);
+  double v;
+  const double scale = std::abs(cross(e, f));
+  if (std::abs(k2) <= tol::kParallelogramRelative * scale) {
+    v = -k0 / k1;
+  } else {
+    const double disc = k1 * k1 - 4 * k0 * k2;
+    if (disc < 0) return std::nullopt;
+    const double w = std::sqrt(disc);
+    v = (-k1 - w) / (2 * k2);
+    if (v < 0 || v > 1) v = (-k1 + w) / (2 * k2);
+  }
+  const Vec2 denom = e + v * g;
+  const double u = std::abs(denom.x()) > std::abs(denom.y()) ? (q.x() - v * f.x()) / denom.x() : (q.y() - v * f.y()) / denom.y();
+  const double kEdge = tol::kQuadEdgeParameter;  // points on the border belong to the quad
+  if (!(u >= -kEdge && u <= 1 + kEdge && v >= -kEdge && v <= 1 + kEdge)) return std::nullopt;
+  return Vec2(std::clamp(u, 0.0, 1.0), std::clamp(v, 0.0, 1.0));
 }
 
 std::optional<size_t> Scene::find_surface(const std::string& name) const {

@@ -25,7 +25,12 @@ struct Surface {
   /// edge gets proportionally fewer). Unset: the global mesh density applies.
   std::optional<int> max_divisions;
 
+  /// The point at parameters (u, v): the bilinear blend of the corners.
   Vec3 point(double u, double v) const;
+  /// The parameters (u, v) of a point on the quad's plane (the inverse of point()); nullopt if
+  /// the point lies outside the quad (points on its border, up to tol::kQuadEdgeParameter, are
+  /// inside and clamped to [0,1]).
+  std::optional<Vec2> parameters(const Vec3& p) const;
   /// Unit normal of the front side.
   Vec3 normal() const;
   double area_m2() const;
@@ -59,12 +64,5 @@ void validate_scene(const Scene& scene, const std::string& source);
 /// The built-in scene of the paper experiment (design brief): a 4 m x 4 m ground, a 1 m x 1 m
 /// light of 40 W/m^2 at 2.5 m, and two perpendicular two-sided walls meeting at (2.6, 2.6).
 Scene paper_scene();
-
-/// Reads and validates a scene: the name "paper" gives the built-in scene, anything else is
-/// read as a JSON scene file.
-Scene load_scene(const std::string& file_or_builtin);
-
-/// Parses and validates a JSON scene; `source` names it in error messages.
-Scene parse_scene_json(const std::string& text, const std::string& source);
 
 }  // namespace radrecon

@@ -12,7 +12,8 @@
 #include "core/check.h"
 #include "core/error.h"
 #include "core/tolerances.h"
-#include "mesh/grid_mesh.h"
+#include "mesh/quadtree.h"
+#include "scene/side.h"
 #include "solver/form_factor.h"
 #include "solver/visibility.h"
 
@@ -20,29 +21,32 @@ namespace radrecon {
 
 namespace {
 
-struct Node {
-  double u0, v0, u1, v1;
-  std::array<Vec3, 4> corners;
-  Vec3 center;
-  double area_m2 = 0;
-  double size_m = 0;        ///< longer edge
-  int first_child = -1;     ///< four consecutive children, or -1 for a leaf
+/// The radiometry of one quadtree node (the geometry is the Quadtree's, at the same index).
+struct NodeState {
   Rgb radiosity = Rgb::Zero();
   Rgb gathered = Rgb::Zero();  ///< irradiance through this node's own links, W/m^2
   Rgb irradiance = Rgb::Zero();  ///< leaves: total irradiance including the ancestors', W/m^2
   double spread_w_m2 = 0;        ///< max - min of the children's radiosity (channel mean); 0 at leaves
 };
 
-/// One side of one surface as a quadtree.
+/// One side of one surface: its quadtree and the radiometry of every node.
 struct Tree {
+  Tree(const Surface& surface, size_t index, bool back)
+      : name(side_name(surface, back)), scene_surface(index), back_side(back), normal(side_normal(surface, back)),
+        reflectance(surface.reflectance), emission_w_m2(side_emission(surface, back)), quad(surface, back) {
+    state.push_back({emission_w_m2});
+  }
   std::string name;
   size_t scene_surface = 0;
   bool back_side = false;
   Vec3 normal;
   Rgb reflectance, emission_w_m2;
-  std::vector<Node> nodes;
-  int leaves = 1;
-  int leaf_cap = 0;  ///< 0: no cap
+  Quadtree quad;
+  std::vector<NodeState> state;  ///< by node index
+  int leaf_cap = 0;              ///< 0: no cap
+  const QuadNode& node(int k) const { return quad.node(k); }
+  NodeState& at(int k) { return state[static_cast<size_t>(k)]; }
+  const NodeState& at(int k) const { return state[static_cast<size_t>(k)]; }
 };
 
 struct Link {
@@ -96,10 +100,10 @@ class Hierarchy {
       for (size_t s = 0; s < trees_.size(); ++s) {
         const Tree& R = trees_[r];
         const Tree& S = trees_[s];
-        if (R.scene_surface == S.scene_surface || !quads_face(R.nodes[0].corners, R.normal, S.nodes[0].corners, S.normal))
+        if (R.scene_surface == S.scene_surface || !quads_face(R.node(0).corners, R.normal, S.node(0).corners, S.normal))
           continue;
         pair_occluders_[r * trees_.size() + s] =
-            occluders_between(occluders_, R.nodes[0].corners, S.nodes[0].corners, R.scene_surface, S.scene_surface);
+            occluders_between(occluders_, R.node(0).corners, S.node(0).corners, R.scene_surface, S.scene_surface);
         links_.push_back(make_link(static_cast<int>(r), 0, static_cast<int>(s), 0));
       }
   }
@@ -132,6 +136,7 @@ class Hierarchy {
     st.links = hierarchy_links_;
     st.epsilon_w = options_.epsilon_w;
     st.residual = residual_;
+    st.converged = converged_;
     st.seconds = seconds_;
     for (const Tree& t : trees_) {
       const Surface& surface = scene_.surfaces[t.scene_surface];
@@ -141,45 +146,18 @@ class Hierarchy {
       out.back_side = t.back_side;
       out.length_u_m = surface.length_u_m();
       out.length_v_m = surface.length_v_m();
-      collect_leaves(t, 0, out);
-      st.emitted_w += t.nodes[0].area_m2 * t.emission_w_m2;
+      collect_leaves(t, out);
+      st.emitted_w += t.node(0).area_m2 * t.emission_w_m2;
       st.elements += out.elements.size();
       sol.surfaces.push_back(std::move(out));
     }
-    for (const Tree& t : trees_) add_absorbed(t, 0, st.absorbed_w);
+    for (const Tree& t : trees_) add_absorbed(t, st.absorbed_w);
     st.escaped_w = st.emitted_w - st.absorbed_w;  // what is not absorbed has left the scene
     return sol;
   }
 
  private:
-  void add_tree(size_t k, bool back) {
-    const Surface& s = scene_.surfaces[k];
-    Tree t;
-    t.name = side_name(s, back);
-    t.scene_surface = k;
-    t.back_side = back;
-    t.normal = side_normal(s, back);
-    t.reflectance = s.reflectance;
-    t.emission_w_m2 = side_emission(s, back);
-    t.nodes.push_back(make_node(t, 0, 0, 1, 1));
-    trees_.push_back(std::move(t));
-  }
-
-  Node make_node(const Tree& t, double u0, double v0, double u1, double v1) const {
-    const Surface& s = scene_.surfaces[t.scene_surface];
-    const MeshElement e = make_element(s, t.back_side, u0, v0, u1, v1);
-    Node n;
-    n.u0 = u0;
-    n.v0 = v0;
-    n.u1 = u1;
-    n.v1 = v1;
-    n.corners = e.corners;
-    n.center = e.center;
-    n.area_m2 = e.area_m2;
-    n.size_m = std::max((u1 - u0) * s.length_u_m(), (v1 - v0) * s.length_v_m());
-    n.radiosity = t.emission_w_m2;
-    return n;
-  }
+  void add_tree(size_t k, bool back) { trees_.emplace_back(scene_.surfaces[k], k, back); }
 
   const std::vector<const Occluder*>& occluders(int r, int s) const {
     return pair_occluders_[static_cast<size_t>(r) * trees_.size() + static_cast<size_t>(s)];
@@ -201,8 +179,8 @@ class Hierarchy {
   Link sample_link(int rt, int rn, int st, int sn, int n) const {
     const Tree& R = trees_[static_cast<size_t>(rt)];
     const Tree& S = trees_[static_cast<size_t>(st)];
-    const Node& r = R.nodes[static_cast<size_t>(rn)];
-    const Node& s = S.nodes[static_cast<size_t>(sn)];
+    const QuadNode& r = R.node(rn);
+    const QuadNode& s = S.node(sn);
     const Surface& surface = scene_.surfaces[R.scene_surface];
     ConvexPolygon source;
     for (const Vec3& c : s.corners) source.push(c);
@@ -231,35 +209,27 @@ class Hierarchy {
   };
   Estimate error_estimate(const Link& l) const {
     const Tree& R = trees_[static_cast<size_t>(l.receiver_tree)];
-    const Node& r = R.nodes[static_cast<size_t>(l.receiver_node)];
-    const Node& s = trees_[static_cast<size_t>(l.source_tree)].nodes[static_cast<size_t>(l.source_node)];
+    const QuadNode& r = R.node(l.receiver_node);
+    const NodeState& s = trees_[static_cast<size_t>(l.source_tree)].at(l.source_node);
     const double scale = R.reflectance.mean() * r.area_m2;
     return {scale * s.radiosity.mean() * l.f_spread, scale * s.spread_w_m2 * l.f};
   }
 
   bool splittable(int tree, int node) const {
     const Tree& t = trees_[static_cast<size_t>(tree)];
-    const Node& n = t.nodes[static_cast<size_t>(node)];
-    if (n.first_child >= 0) return true;
+    const QuadNode& n = t.node(node);
+    if (!n.is_leaf()) return true;
     if (n.size_m < 2 * min_size_m_) return false;
-    return t.leaf_cap == 0 || t.leaves + 3 <= t.leaf_cap;
+    return t.leaf_cap == 0 || t.quad.leaf_count() + 3 <= t.leaf_cap;
   }
 
+  /// Splits a leaf; its children start with its radiosity until the next solve.
   void split(int tree, int node) {
     Tree& t = trees_[static_cast<size_t>(tree)];
-    if (t.nodes[static_cast<size_t>(node)].first_child >= 0) return;
-    const Node parent = t.nodes[static_cast<size_t>(node)];
-    const double um = 0.5 * (parent.u0 + parent.u1), vm = 0.5 * (parent.v0 + parent.v1);
-    const int first = static_cast<int>(t.nodes.size());
-    const std::array<std::array<double, 4>, 4> quads = {
-        {{parent.u0, parent.v0, um, vm}, {um, parent.v0, parent.u1, vm}, {parent.u0, vm, um, parent.v1}, {um, vm, parent.u1, parent.v1}}};
-    for (const auto& q : quads) {
-      Node child = make_node(t, q[0], q[1], q[2], q[3]);
-      child.radiosity = parent.radiosity;  // until the next solve
-      t.nodes.push_back(child);
-    }
-    t.nodes[static_cast<size_t>(node)].first_child = first;
-    t.leaves += 3;
+    if (!t.node(node).is_leaf()) return;
+    t.quad.split(node);
+    const Rgb radiosity = t.at(node).radiosity;
+    for (int c = 0; c < 4; ++c) t.state.push_back({radiosity});
   }
 
   /// One refinement pass, best first: the link with the largest error estimate is refined one
@@ -298,7 +268,7 @@ class Hierarchy {
       const int tree = split_receiver ? l.receiver_tree : l.source_tree;
       const int node = split_receiver ? l.receiver_node : l.source_node;
       split(tree, node);
-      const int first = trees_[static_cast<size_t>(tree)].nodes[static_cast<size_t>(node)].first_child;
+      const int first = trees_[static_cast<size_t>(tree)].node(node).first_child;
       for (int c = 0; c < 4; ++c) {
         const Link child = split_receiver ? make_link(l.receiver_tree, first + c, l.source_tree, l.source_node)
                                           : make_link(l.receiver_tree, l.receiver_node, l.source_tree, first + c);
@@ -326,7 +296,7 @@ class Hierarchy {
     std::vector<int> stack;
     for (const Link& l : links_) {
       const Tree& R = trees_[static_cast<size_t>(l.receiver_tree)];
-      if (R.nodes[static_cast<size_t>(l.receiver_node)].first_child < 0) {
+      if (R.node(l.receiver_node).is_leaf()) {
         leaf_links.push_back(l);
         continue;
       }
@@ -334,8 +304,8 @@ class Hierarchy {
       while (!stack.empty()) {
         const int k = stack.back();
         stack.pop_back();
-        const Node& n = R.nodes[static_cast<size_t>(k)];
-        if (n.first_child < 0) {
+        const QuadNode& n = R.node(k);
+        if (n.is_leaf()) {
           leaf_links.push_back(make_link(l.receiver_tree, k, l.source_tree, l.source_node));
           if (leaf_links.size() > options_.max_links) throw TooManyLinks{};
         } else {
@@ -354,69 +324,64 @@ class Hierarchy {
   void gather_until_converged() {
     for (int iteration = 0; iteration < kMaxGatherIterations; ++iteration) {
       for (Tree& t : trees_)
-        for (Node& n : t.nodes) n.gathered = Rgb::Zero();
+        for (NodeState& n : t.state) n.gathered = Rgb::Zero();
       for (const Link& l : links_) {
-        const Node& s = trees_[static_cast<size_t>(l.source_tree)].nodes[static_cast<size_t>(l.source_node)];
-        trees_[static_cast<size_t>(l.receiver_tree)].nodes[static_cast<size_t>(l.receiver_node)].gathered += l.f * s.radiosity;
+        const NodeState& s = trees_[static_cast<size_t>(l.source_tree)].at(l.source_node);
+        trees_[static_cast<size_t>(l.receiver_tree)].at(l.receiver_node).gathered += l.f * s.radiosity;
       }
       double change = 0, largest = 0;
       for (Tree& t : trees_) push_pull(t, 0, Rgb::Zero(), change, largest);
       residual_ = largest > 0 ? change / largest : 0;
       if (change <= options_.tolerance * largest) return;
     }
+    converged_ = false;  // the iteration limit, not the tolerance, stopped it
   }
 
   /// Pushes irradiance down to the leaves and pulls area-weighted radiosity up; returns the
   /// node's new radiosity.
   Rgb push_pull(Tree& t, int index, const Rgb& irradiance_above, double& change, double& largest) {
-    Node& n = t.nodes[static_cast<size_t>(index)];
+    const QuadNode& node = t.node(index);
+    NodeState& n = t.at(index);
     const Rgb irradiance = irradiance_above + n.gathered;
     Rgb b;
-    if (n.first_child < 0) {
+    if (node.is_leaf()) {
       b = t.emission_w_m2 + t.reflectance * irradiance;
       n.irradiance = irradiance;
       change = std::max(change, (b - n.radiosity).abs().maxCoeff());
       largest = std::max(largest, b.abs().maxCoeff());
     } else {
-      const int first = n.first_child;
+      const int first = node.first_child;
       b = Rgb::Zero();
       double area = 0, lo = std::numeric_limits<double>::infinity(), hi = -lo;
       for (int c = 0; c < 4; ++c) {
         const Rgb bc = push_pull(t, first + c, irradiance, change, largest);
-        const double a = t.nodes[static_cast<size_t>(first + c)].area_m2;
+        const double a = t.node(first + c).area_m2;
         b += a * bc;
         area += a;
         lo = std::min(lo, bc.mean());
         hi = std::max(hi, bc.mean());
       }
       b /= area;
-      t.nodes[static_cast<size_t>(index)].spread_w_m2 = hi - lo;
+      t.at(index).spread_w_m2 = hi - lo;
     }
-    t.nodes[static_cast<size_t>(index)].radiosity = b;
+    t.at(index).radiosity = b;
     return b;
   }
 
-  void collect_leaves(const Tree& t, int index, SurfaceSolution& out) const {
-    const Node& n = t.nodes[static_cast<size_t>(index)];
-    if (n.first_child >= 0) {
-      for (int c = 0; c < 4; ++c) collect_leaves(t, n.first_child + c, out);
-      return;
+  void collect_leaves(const Tree& t, SurfaceSolution& out) const {
+    for (const int k : t.quad.leaves()) {
+      const QuadNode& n = t.node(k);
+      out.elements.push_back({n.u0, n.v0, n.u1, n.v1, n.center, n.area_m2, t.at(k).radiosity});
     }
-    out.elements.push_back({n.u0, n.v0, n.u1, n.v1, n.center, n.area_m2, n.radiosity});
   }
 
-  void add_absorbed(const Tree& t, int index, Rgb& absorbed) const {
-    const Node& n = t.nodes[static_cast<size_t>(index)];
-    if (n.first_child >= 0) {
-      for (int c = 0; c < 4; ++c) add_absorbed(t, n.first_child + c, absorbed);
-      return;
-    }
-    absorbed += n.area_m2 * (1.0 - t.reflectance) * n.irradiance;
+  void add_absorbed(const Tree& t, Rgb& absorbed) const {
+    for (const int k : t.quad.leaves()) absorbed += t.node(k).area_m2 * (1.0 - t.reflectance) * t.at(k).irradiance;
   }
 
   int total_leaves() const {
     int n = 0;
-    for (const Tree& t : trees_) n += t.leaves;
+    for (const Tree& t : trees_) n += t.quad.leaf_count();
     return n;
   }
 
@@ -429,6 +394,7 @@ class Hierarchy {
   std::vector<Link> links_;
   size_t hierarchy_links_ = 0;
   double residual_ = 0;
+  bool converged_ = true;
   double seconds_ = 0;
 };
 
@@ -523,7 +489,10 @@ Solution solve_hierarchical_leaves(const Scene& scene, const std::string& side, 
   options.leaf_cap = std::make_pair(side, leaves);
   options.progress_label = label;
   Solution sol = solve_hierarchical(scene, options, spec);
-  RR_CHECK(static_cast<int>(leaf_count(sol, side)) == leaves, "leaf cap did not give the requested count");
+  const size_t made = leaf_count(sol, side);
+  if (made != static_cast<size_t>(leaves))
+    throw UserError(field, "refinement gives " + std::to_string(made) + " leaves on '" + side + "', not exactly " +
+                               std::to_string(leaves) + "; try a neighbouring count (1 + 3k)");
   sol.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!label.empty())
     std::fprintf(stderr, "%s: epsilon %.4g W gives %d leaves on %s\n", label.c_str(), lo, leaves, side.c_str());

@@ -245,6 +245,7 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
     sol.surfaces.push_back(std::move(out));
   }
   stats.residual = stats.unshot_w.sum() / emitted_sum;
+  stats.converged = stats.residual < options.residual;
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!options.progress_label.empty())
     std::fprintf(stderr, "%s: %zu shots, unshot %.2e of emitted, %.2f s\n", options.progress_label.c_str(),

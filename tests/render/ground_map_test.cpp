@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/image.h"
+#include "io/image_io.h"
 #include "render/ground_map.h"
 
 namespace radrecon {
@@ -125,54 +126,6 @@ TEST_F(RenderFiles, ZeroDifferenceIsByte128InThePng) {
   ASSERT_EQ(rh, h);
   ASSERT_EQ(bytes.size(), static_cast<size_t>(w) * h * 3);
   for (std::uint8_t b : bytes) EXPECT_EQ(b, 128);  // round(0.5 * 255) = round(127.5) = 128
-}
-
-TEST_F(RenderFiles, PngTopRowFirstAndSrgbCurve) {
-  // Column of two pixels: top linear 0.5, bottom 1.0; a third channel check of 0.
-  Image img(1, 2);
-  img.at(0, 0) = Rgb(0.5, 0.0, 1.0);
-  img.at(0, 1) = Rgb(1.0, 2.0, -1.0);  // out of range: clamped to 1 and 0
-  const fs::path path = dir_ / "srgb.png";
-  write_png(path, img, /*srgb_encode=*/true);
-  int rw = 0, rh = 0;
-  const std::vector<std::uint8_t> bytes = ReadPngRgb(path, rw, rh);
-  ASSERT_EQ(bytes.size(), 6u);
-  // sRGB of 0.5: 1.055 * 0.5^(1/2.4) - 0.055 = 0.73536 -> 0.73536 * 255 = 187.5 -> 188.
-  const double srgb_half = 1.055 * std::pow(0.5, 1 / 2.4) - 0.055;
-  EXPECT_EQ(bytes[0], static_cast<int>(std::lround(srgb_half * 255)));
-  EXPECT_EQ(bytes[1], 0);
-  EXPECT_EQ(bytes[2], 255);
-  EXPECT_EQ(bytes[3], 255);
-  EXPECT_EQ(bytes[4], 255);
-  EXPECT_EQ(bytes[5], 0);
-}
-
-TEST_F(RenderFiles, PfmHeaderAndBottomRowFirst) {
-  const int w = 2, h = 3;
-  Image img(w, h);
-  auto value = [](int x, int y, int c) { return static_cast<float>(100 * y + 10 * x + c + 0.25); };
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x)
-      for (int c = 0; c < 3; ++c) img.at(x, y)[c] = value(x, y, c);
-  const fs::path path = dir_ / "map.pfm";
-  write_pfm(path, img);
-
-  std::ifstream in(path, std::ios::binary);
-  ASSERT_TRUE(in);
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const std::string header = "PF\n2 3\n-1.0\n";  // colour, width height, little-endian scale
-  ASSERT_EQ(bytes.size(), header.size() + static_cast<size_t>(w) * h * 3 * sizeof(float));
-  EXPECT_EQ(bytes.substr(0, header.size()), header);
-  // The test host is little-endian (x86-64/arm64), as the -1.0 scale declares.
-  size_t at = header.size();
-  for (int y = h - 1; y >= 0; --y)  // PFM rows go bottom to top
-    for (int x = 0; x < w; ++x)
-      for (int c = 0; c < 3; ++c) {
-        float f;
-        std::memcpy(&f, bytes.data() + at, sizeof f);
-        at += sizeof f;
-        EXPECT_EQ(f, value(x, y, c)) << "pixel " << x << "," << y << " channel " << c;
-      }
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 
 #include "reconstruct/constant.h"
 #include "render/ground_map.h"
+#include "io/image_io.h"
 #include "render/renderer.h"
 
 namespace radrecon {
@@ -31,13 +32,13 @@ TEST(QuadParameters, InvertsTheBilinearMapOfAGeneralConvexQuad) {
   std::uniform_real_distribution<double> U(0, 1);
   for (int k = 0; k < 1000; ++k) {
     const double u = U(rng), v = U(rng);
-    const auto uv = quad_parameters(s, s.point(u, v));
+    const auto uv = s.parameters(s.point(u, v));
     ASSERT_TRUE(uv.has_value());
     EXPECT_NEAR(uv->x(), u, 1e-10);
     EXPECT_NEAR(uv->y(), v, 1e-10);
   }
-  EXPECT_FALSE(quad_parameters(s, s.point(1.2, 0.5)).has_value());
-  EXPECT_FALSE(quad_parameters(s, s.point(0.5, -0.1)).has_value());
+  EXPECT_FALSE(s.parameters(s.point(1.2, 0.5)).has_value());
+  EXPECT_FALSE(s.parameters(s.point(0.5, -0.1)).has_value());
 }
 
 TEST(Renderer, PrimaryRaysHitTheRightSurfaceAtTheRightPlace) {
@@ -86,7 +87,7 @@ TEST(Renderer, ConstantRadiosityRendersToThePredictedPixelValue) {
   RenderOptions options;
   options.width = 32;
   options.height = 24;
-  const Image img = render(scene, cam, [&](size_t, bool back) { return back ? nullptr : &f; }, options);
+  const Image img = render(scene, cam, [&](SideRef side) { return side.back_side ? nullptr : &f; }, options);
   for (int y = 0; y < img.height(); ++y)
     for (int x = 0; x < img.width(); ++x) {
       EXPECT_NEAR(img.at(x, y)[0], B, 1e-15);  // the mean of 9 equal rays
@@ -109,7 +110,7 @@ TEST(Renderer, BackOfAOneSidedSurfaceWithoutSolutionIsBlack) {
   cells.cells = {Rect{0, 0, 10, 10}};
   cells.values = {1, 1, 1};
   const PiecewiseConstant f(cells);
-  const Image img = render(scene, below, [&](size_t, bool back) { return back ? nullptr : &f; }, options);
+  const Image img = render(scene, below, [&](SideRef side) { return side.back_side ? nullptr : &f; }, options);
   EXPECT_EQ(img.at(4, 4)[0], 0.0);
 }
 

@@ -7,8 +7,8 @@
 
 namespace radrecon {
 
-/// The elements of a regular-grid surface as grid cells. Throws UserError when the surface is
-/// not a regular grid.
+/// The elements of a regular-grid surface (grid_nu x grid_nv > 0, as solution readers check)
+/// as grid cells.
 GridCells grid_cells(const SurfaceSolution& surface);
 
 /// The elements of any surface (grid or quadtree) as cells of a piecewise-constant function.

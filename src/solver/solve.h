@@ -7,22 +7,26 @@
 #include <string>
 
 #include "scene/scene.h"
+#include "solver/progressive.h"
 #include "solver/solution.h"
 
 namespace radrecon {
 
 struct SolveSettings {
-  double residual = 1e-4;  ///< progressive: stop below this unshot fraction of the emitted power
+  double residual = kDefaultResidual;  ///< progressive: stop below this unshot fraction of the emitted power
   int patches = 2;         ///< progressive: shooting patches along the longest edge
   /// quadtree:LEAVES: the side that gets LEAVES leaves; empty: "ground" if the scene has such a
   /// side, else the side of the largest surface.
   std::string leaves_on;
+  /// Where leaves_on came from (an option or field), named if it is refused.
+  std::string leaves_on_where = "leaves_on";
   std::string progress_label;  ///< empty: quiet
 };
 
-/// Solves `scene` as `mesh_spec` says. Throws UserError naming `field` for a malformed or
+/// Solves `scene` as `mesh_spec` says. Throws UserError naming `where` (the caller's location
+/// of the specification, e.g. an option) for a malformed or
 /// impossible specification.
 Solution solve_scene(const Scene& scene, const std::string& mesh_spec, const SolveSettings& settings,
-                     const std::string& field = "--mesh");
+                     const std::string& where);
 
 }  // namespace radrecon

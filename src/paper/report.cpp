@@ -1,30 +1,12 @@
-#include "experiment/report.h"
+#include "paper/report.h"
 
 #include <cmath>
 #include <cstdio>
 #include <sstream>
 
-#include "core/atomic_file.h"
-#include "experiment/solution_reconstruction.h"
-#include "render/ground_map.h"
+#include "io/atomic_file.h"
 
 namespace radrecon {
-
-std::vector<std::string> render_paper_views(const Scene& scene, const std::vector<CameraHits>& cameras,
-                                            const Solution& solution, Method method, const MethodParams& params,
-                                            double white_w_m2, const std::filesystem::path& dir, const std::string& stem) {
-  const SolutionReconstruction recon(scene, solution, method, params, "solution " + solution.mesh);
-  for (size_t k = 0; k < scene.cameras.size(); ++k) {
-    const Camera& camera = scene.cameras[k];
-    const Image linear = shade(scene, cameras[k], [&](size_t s, bool back) { return recon.side(s, back); });
-    Image display(linear.width(), linear.height());
-    for (int y = 0; y < linear.height(); ++y)
-      for (int x = 0; x < linear.width(); ++x)
-        for (int c = 0; c < 3; ++c) display.at(x, y)[c] = tone_map(linear.at(x, y)[c], white_w_m2);
-    write_png(dir / (stem + "_" + camera.name + ".png"), display, true);
-  }
-  return recon.fallbacks();
-}
 
 namespace {
 

@@ -1,24 +1,15 @@
 #pragma once
-// The paper's figures of views into the scene, and the one-page HTML report.
+// The one-page HTML report of the paper experiment: the scene, the settings, Fig. 1-4 and
+// Tables 1 and 2.
 
 #include <filesystem>
 #include <string>
+#include <array>
 #include <vector>
 
 #include "evaluate/norms.h"
-#include "reconstruct/methods.h"
-#include "render/renderer.h"
-#include "scene/scene.h"
-#include "solver/solution.h"
 
 namespace radrecon {
-
-/// Renders every camera of the scene (traced once: `cameras[k]` for scene.cameras[k]) for
-/// `solution`, every surface reconstructed by `method`, tone-mapped with `white_w_m2`, to
-/// DIR/STEM_CAMERA.png. Returns the sides that fell back to piecewise constant.
-std::vector<std::string> render_paper_views(const Scene& scene, const std::vector<CameraHits>& cameras,
-                                            const Solution& solution, Method method, const MethodParams& params,
-                                            double white_w_m2, const std::filesystem::path& dir, const std::string& stem);
 
 struct ReportRow {
   std::string method;

@@ -1,10 +1,11 @@
-#include "experiment/solve.h"
+#include "solver/solve.h"
 
 #include <cmath>
 
 #include "core/error.h"
 #include "core/parse.h"
 #include "mesh/grid_mesh.h"
+#include "scene/side.h"
 #include "solver/hierarchical.h"
 #include "solver/progressive.h"
 
@@ -15,19 +16,14 @@ namespace {
 /// About 1 KiB per element (mesh, solver state, output): 10^7 elements need ~10 GiB.
 constexpr size_t kMaxGridElements = 10'000'000;
 
-long long parse_integer(const std::string& text, long long lo, long long hi, const std::string& field,
-                        const std::string& spec) {
-  size_t used = 0;
-  long long v = 0;
-  try {
-    v = std::stoll(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != text.size() || v < lo || v > hi)
+/// The integer in [lo, hi] that is all of `text`, a part of the specification `spec`.
+long long spec_integer(const std::string& text, long long lo, long long hi, const std::string& field,
+                       const std::string& spec) {
+  const std::optional<long long> v = parse_integer(text);
+  if (!v || *v < lo || *v > hi)
     throw UserError(field, "in '" + spec + "': expected an integer in [" + std::to_string(lo) + ", " +
                                std::to_string(hi) + "], got '" + text + "'");
-  return v;
+  return *v;
 }
 
 double parse_positive(const std::string& text, const std::string& field, const std::string& spec) {
@@ -56,7 +52,7 @@ Solution solve_scene(const Scene& scene, const std::string& spec, const SolveSet
     throw UserError(field, "expected grid:N, quadtree:LEAVES or quadtree-eps:E, got '" + spec + "'");
   const std::string kind = spec.substr(0, colon), value = spec.substr(colon + 1);
   if (kind == "grid") {
-    const int n = static_cast<int>(parse_integer(value, 1, 100000, field, spec));
+    const int n = static_cast<int>(spec_integer(value, 1, 100000, field, spec));
     const GridMeshOptions mesh_options{n, settings.patches};
     const size_t elements = grid_element_count(scene, mesh_options);
     if (elements > kMaxGridElements)
@@ -78,10 +74,10 @@ Solution solve_scene(const Scene& scene, const std::string& spec, const SolveSet
     return solve_hierarchical(scene, ho, spec);
   }
   if (kind == "quadtree") {
-    const int leaves = static_cast<int>(parse_integer(value, 1, 10000000, field, spec));
+    const int leaves = static_cast<int>(spec_integer(value, 1, 10000000, field, spec));
     const std::string side = settings.leaves_on.empty() ? default_leaf_side(scene) : settings.leaves_on;
     if (!find_side(scene, side))
-      throw UserError("--leaves-on", "the scene has no surface side named '" + side + "' (its sides: " + side_names(scene) + ")");
+      throw UserError(settings.leaves_on_where, "the scene has no surface side named '" + side + "' (its sides: " + side_names(scene) + ")");
     return solve_hierarchical_leaves(scene, side, leaves, ho, field + " " + spec);
   }
   throw UserError(field, "unknown mesh kind '" + kind + "' in '" + spec + "' (expected grid, quadtree or quadtree-eps)");

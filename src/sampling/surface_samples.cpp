@@ -1,13 +1,13 @@
-#include "experiment/surface_data.h"
+#include "sampling/surface_samples.h"
 
+#include "core/check.h"
 #include "core/error.h"
 
 namespace radrecon {
 
 GridCells grid_cells(const SurfaceSolution& s) {
-  if (s.grid_nu <= 0 || s.grid_nv <= 0 ||
-      static_cast<size_t>(s.grid_nu) * s.grid_nv != s.elements.size())
-    throw UserError("surface " + s.name, "is not a regular grid of elements");
+  RR_CHECK(s.grid_nu > 0 && s.grid_nv > 0, "grid_cells() of an adaptive subdivision");
+  RR_CHECK_EQ(static_cast<size_t>(s.grid_nu) * s.grid_nv, s.elements.size(), "grid size does not match the elements");
   GridCells g;
   g.nx = s.grid_nu;
   g.ny = s.grid_nv;

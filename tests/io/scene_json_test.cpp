@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "io/scene_json.h"
 #include "scene/scene.h"
 
 namespace radrecon {

@@ -1,0 +1,42 @@
+#pragma once
+// The one home of image and raster files: PNG (8-bit, for looking at), PFM (32-bit floats) and
+// OpenEXR (16-bit half floats), and the choice of a format by file extension. Every writer is
+// atomic (atomic_file.h): the file appears whole or not at all.
+
+#include <filesystem>
+#include <initializer_list>
+#include <span>
+#include <string>
+
+#include "core/image.h"
+
+namespace radrecon {
+
+enum class FileFormat { csv, pfm, png, exr };
+
+/// ".csv", ".pfm", ".png", ".exr".
+std::string extension_of(FileFormat format);
+
+/// The format named by the extension of `path` (any case), if it is one of `allowed`; else
+/// UserError naming `where` (the option or field that gave the path) and the allowed ones.
+FileFormat file_format(const std::string& path, std::initializer_list<FileFormat> allowed, const std::string& where);
+
+/// Writes display values in [0,1] (clamped; NaN as 0) as an 8-bit RGB PNG. With
+/// `srgb_encode_values` the values are taken as linear and encoded with the sRGB transfer curve;
+/// without, written as they are.
+void write_png(const std::filesystem::path& path, const Image& image, bool srgb_encode_values);
+
+/// Writes an image's linear values as a colour PFM (little endian, bottom row first as PFM
+/// requires).
+void write_pfm(const std::filesystem::path& path, const Image& image);
+
+/// Writes `channels` (1: "Pf" greyscale, 3: "PF" colour) values per pixel as a little-endian
+/// PFM, whatever the machine's byte order. `values_bottom_up` holds the rows in PFM's order, the
+/// bottom row of the picture first, width * height * channels values.
+void write_pfm(const std::filesystem::path& path, int width, int height, int channels,
+               std::span<const double> values_bottom_up);
+
+/// Writes an image's linear values as OpenEXR (RGB, 16-bit half floats).
+void write_exr(const std::filesystem::path& path, const Image& image);
+
+}  // namespace radrecon

@@ -1,0 +1,88 @@
+#include "io/json_reader.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "core/error.h"
+
+namespace radrecon {
+
+std::string read_text_file(const std::string& path, const std::string& what) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw UserError(path, "cannot open " + what);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  if (in.bad()) throw UserError(path, "cannot read " + what);
+  return buffer.str();
+}
+
+JsonReader::json JsonReader::parse(const std::string& text, const std::string& kind) const {
+  try {
+    return json::parse(text);
+  } catch (const json::out_of_range& e) {  // a number too large for a double, e.g. 1e999
+    throw UserError(source_, "not a valid " + kind + ": " + e.what());
+  } catch (const json::parse_error& e) {
+    // nlohmann reports a byte offset; turn it into a line number.
+    size_t line = 1;
+    for (size_t i = 0; i < std::min<size_t>(e.byte, text.size()); ++i) line += text[i] == '\n';
+    throw UserError(source_ + ":" + std::to_string(line), std::string("not valid JSON: ") + e.what());
+  }
+}
+
+std::string JsonReader::join(const std::string& path, const std::string& key) {
+  return path.empty() ? key : path + "." + key;
+}
+
+std::string JsonReader::at(const std::string& path, size_t index) { return path + "[" + std::to_string(index) + "]"; }
+
+void JsonReader::fail(const std::string& field, const std::string& what) const {
+  throw UserError(source_ + ": " + field, what);
+}
+
+const JsonReader::json& JsonReader::member(const json& obj, const std::string& key, const std::string& path) const {
+  if (!obj.is_object()) fail(path.empty() ? "(top level)" : path, "must be an object");
+  const auto it = obj.find(key);
+  if (it == obj.end()) fail(join(path, key), "missing");
+  return *it;
+}
+
+double JsonReader::number(const json& j, const std::string& path) const {
+  if (!j.is_number()) fail(path, "must be a number");
+  const double v = j.get<double>();
+  if (!std::isfinite(v)) fail(path, "must be finite");
+  return v;
+}
+
+std::string JsonReader::string(const json& j, const std::string& path) const {
+  if (!j.is_string()) fail(path, "must be a string");
+  return j.get<std::string>();
+}
+
+bool JsonReader::boolean(const json& j, const std::string& path) const {
+  if (!j.is_boolean()) fail(path, "must be true or false");
+  return j.get<bool>();
+}
+
+Vec3 JsonReader::vec3(const json& j, const std::string& path) const {
+  if (!j.is_array() || j.size() != 3) fail(path, "must be an array of 3 numbers");
+  return Vec3(number(j[0], at(path, 0)), number(j[1], at(path, 1)), number(j[2], at(path, 2)));
+}
+
+Rgb JsonReader::colour(const json& j, const std::string& path) const {
+  if (j.is_number()) return Rgb::Constant(number(j, path));
+  if (!j.is_array() || j.size() != 3) fail(path, "must be a number or an array [r, g, b]");
+  return Rgb(number(j[0], at(path, 0)), number(j[1], at(path, 1)), number(j[2], at(path, 2)));
+}
+
+void JsonReader::no_unknown_keys(const json& obj, std::initializer_list<const char*> known,
+                                 const std::string& path) const {
+  for (auto it = obj.begin(); it != obj.end(); ++it) {
+    bool ok = false;
+    for (const char* k : known) ok = ok || it.key() == k;
+    if (!ok) fail(join(path, it.key()), "unknown field");
+  }
+}
+
+}  // namespace radrecon

@@ -1,0 +1,48 @@
+#pragma once
+// Rasters of query points (the W x H cell centres of a rectangle) and their files: PFM with the
+// raw values, PNG for looking at.
+
+#include <span>
+#include <string>
+#include <vector>
+
+#include "core/vec.h"
+#include "reconstruct/samples.h"
+
+namespace radrecon {
+
+/// A raster of query points: width x height cell centres of `domain`,
+/// point (i, j) = (x0 + (i + 0.5) (x1 - x0) / width, y0 + (j + 0.5) (y1 - y0) / height),
+/// in the order row by row, the y0 row first (index j * width + i).
+struct Raster {
+  int width = 0, height = 0;
+  Rect domain{0, 0, 1, 1};
+};
+
+/// Largest width or height of a raster (parse_size(), core/parse.h).
+inline constexpr int kMaxRasterSide = 20000;
+/// At most this many raster points (W x H): 10^8 points need about 6 GB.
+inline constexpr long long kMaxRasterPoints = 100'000'000;
+
+/// Parses "x0,y0,x1,y1" (finite, x1 > x0, y1 > y0); throws UserError naming `where`.
+Rect parse_domain(const std::string& text, const std::string& where);
+/// The query points of a raster, in raster order.
+std::vector<Vec2> raster_points(const Raster& raster);
+
+/// Writes raster values (raster order, `channels` per point, channels 1 or 3) as a little-endian
+/// PFM: "Pf" (greyscale) for 1 channel, "PF" (colour) for 3. PFM stores the
+/// bottom row of the picture first, and the picture shows y upward, so the file's first row is
+/// the raster's y0 row and the values are written exactly in raster order, as 32-bit floats.
+/// The caller checks the channel count first (a broken check otherwise).
+void write_raster_pfm(const std::string& path, const Raster& raster, std::span<const double> values,
+                      int channels);
+
+/// Writes raster values as an 8-bit RGB PNG for looking at, y upward (the picture's top row is
+/// the raster's last row, largest y). With exactly 3 channels the pixels are RGB, mapped with
+/// one common [min, max] of the finite values of all three; otherwise greyscale from the first
+/// channel's finite [min, max]. The mapping is linear, display = (v - min) / (max - min), then
+/// sRGB-encoded; NaN and -inf show black, +inf white; if max == min every finite value is 0.5.
+void write_raster_png(const std::string& path, const Raster& raster, std::span<const double> values,
+                      int channels);
+
+}  // namespace radrecon

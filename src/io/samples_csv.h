@@ -1,0 +1,45 @@
+#pragma once
+// Files of `radrecon interpolate`: scattered samples and query points in (CSV), interpolated
+// values out (CSV). Rasters of query points and their files: raster.h.
+//
+// CSV input rules (samples and queries):
+//   - the first line that is neither blank nor a comment is the header; its first two column
+//     names are x and y (case-insensitive);
+//   - lines whose first non-blank character is '#' and blank lines are ignored anywhere;
+//   - fields are separated by ',' with optional spaces or tabs around them; no quoting;
+//     a trailing '\r' (Windows line ends) is ignored;
+//   - every data row has as many fields as the header; numbers are decimal floating point
+//     ("1", "-2.5", "3e-4", a leading '+' allowed) and must be finite (no nan, no inf).
+// A violation throws UserError naming "FILE:LINE" and the column.
+
+#include <cstddef>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "core/vec.h"
+#include "reconstruct/samples.h"
+
+namespace radrecon {
+
+/// Reads scattered samples: columns x, y, then one or more value columns (channels = number of
+/// value columns). The names of the value columns go to `*value_names` when it is not null.
+/// Samples at exactly the same point (x and y equal as numbers) are merged into one, whose
+/// values are the mean of theirs, in the place of the first of them; one warning line on stderr
+/// says how many were merged (merge_duplicate_points(), reconstruct/sample_set.h). Throws UserError ("FILE:LINE: ...") for a missing file, a missing
+/// or short header (fewer than 3 columns), a header not starting with x,y, an unnamed column, a
+/// row with the wrong number of fields, a field that is not a finite number, or no data rows.
+ScatteredSamples read_samples_csv(const std::string& path, std::vector<std::string>* value_names);
+
+/// Reads query points: a header whose first two columns are x, y; further columns are allowed
+/// and ignored (their fields are not checked, but every row needs the header's field count).
+std::vector<Vec2> read_queries_csv(const std::string& path);
+
+/// Writes "x,y,NAME..." then one row per point, in the given order; numbers in their shortest
+/// form that reads back to the same double, NaN as "nan" (and infinities as "inf", "-inf").
+/// `values` is point-major, value_names.size() per point. Atomic: the file appears whole or not.
+void write_values_csv(const std::string& path, std::span<const Vec2> points, std::span<const double> values,
+                      const std::vector<std::string>& value_names);
+
+}  // namespace radrecon

@@ -1,0 +1,134 @@
+#include "io/solution_json.h"
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+#include "io/atomic_file.h"
+#include "io/json_reader.h"
+
+namespace radrecon {
+
+namespace {
+
+std::string json_string(const std::string& s) { return nlohmann::json(s).dump(); }
+
+void put_rgb(std::FILE* f, const Rgb& c) { std::fprintf(f, "[%.9g, %.9g, %.9g]", c[0], c[1], c[2]); }
+
+}  // namespace
+
+void write_solution_json(const std::filesystem::path& path, const Solution& sol) {
+  write_file_atomically(path, [&](const std::filesystem::path& tmp) {
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(tmp.c_str(), "wb"), &std::fclose);
+    if (!file) throw UserError(path.string(), std::string("cannot open for writing: ") + std::strerror(errno));
+    std::FILE* f = file.get();
+    std::fprintf(f, "{\n  \"scene\": %s,\n  \"mesh\": %s,\n  \"surfaces\": [", json_string(sol.scene).c_str(),
+                 json_string(sol.mesh).c_str());
+    for (size_t s = 0; s < sol.surfaces.size(); ++s) {
+      const SurfaceSolution& surf = sol.surfaces[s];
+      std::fprintf(f, "%s\n    {\"name\": %s, \"scene_surface\": %s, \"back_side\": %s,\n", s ? "," : "",
+                   json_string(surf.name).c_str(), json_string(surf.scene_surface).c_str(),
+                   surf.back_side ? "true" : "false");
+      std::fprintf(f, "     \"length_u_m\": %.17g, \"length_v_m\": %.17g, \"grid\": [%d, %d],\n     \"elements\": [",
+                   surf.length_u_m, surf.length_v_m, surf.grid_nu, surf.grid_nv);
+      for (size_t e = 0; e < surf.elements.size(); ++e) {
+        const SolutionElement& el = surf.elements[e];
+        std::fprintf(f, "%s\n      {\"u0\": %.17g, \"v0\": %.17g, \"u1\": %.17g, \"v1\": %.17g, \"center\": [%.9g, %.9g, %.9g], \"area\": %.9g, \"radiosity\": ",
+                     e ? "," : "", el.u0, el.v0, el.u1, el.v1, el.center.x(), el.center.y(), el.center.z(),
+                     el.area_m2);
+        put_rgb(f, el.radiosity_w_m2);
+        std::fputc('}', f);
+      }
+      std::fprintf(f, "\n    ]}");
+    }
+    const SolveStats& st = sol.stats;
+    std::fprintf(f, "\n  ],\n  \"stats\": {\"method\": %s, \"shots\": %zu, \"elements\": %zu, \"patches\": %zu,\n",
+                 json_string(st.method).c_str(), st.shots, st.elements, st.patches);
+    if (st.method == "hierarchical")
+      std::fprintf(f, "    \"links\": %zu, \"epsilon_w\": %.9g,\n", st.links, st.epsilon_w);
+    std::fprintf(f, "    \"emitted_w\": ");
+    put_rgb(f, st.emitted_w);
+    std::fprintf(f, ", \"absorbed_w\": ");
+    put_rgb(f, st.absorbed_w);
+    std::fprintf(f, ", \"unshot_w\": ");
+    put_rgb(f, st.unshot_w);
+    std::fprintf(f, ", \"escaped_w\": ");
+    put_rgb(f, st.escaped_w);
+    std::fprintf(f, ",\n    \"residual\": %.9g, \"converged\": %s, \"seconds\": %.6g}\n}\n", st.residual,
+                 st.converged ? "true" : "false", st.seconds);
+    if (std::ferror(f)) throw UserError(path.string(), "write failed");
+    if (std::fclose(file.release()) != 0) throw UserError(path.string(), "write failed");
+  });
+}
+
+namespace {
+
+using json = nlohmann::json;
+
+double positive_or_fail(const JsonReader& r, double v, const std::string& path) {
+  if (!(v > 0)) r.fail(path, "must be positive");
+  return v;
+}
+
+}  // namespace
+
+Solution read_solution_json(const std::filesystem::path& path) {
+  const std::string text = read_text_file(path.string(), "solution file");
+  const JsonReader r(path.string());
+  const json doc = r.parse(text, "solution");
+  if (!doc.is_object()) r.fail("(top level)", "must be a JSON object");
+  Solution sol;
+  if (doc.contains("scene")) sol.scene = r.string(doc["scene"], "scene");
+  if (doc.contains("mesh")) sol.mesh = r.string(doc["mesh"], "mesh");
+  const json& surfaces = r.member(doc, "surfaces", "");
+  if (!surfaces.is_array()) r.fail("surfaces", "must be an array");
+  for (size_t s = 0; s < surfaces.size(); ++s) {
+    const std::string sp = JsonReader::at("surfaces", s);
+    const json& js = surfaces[s];
+    SurfaceSolution out;
+    out.name = r.string(r.member(js, "name", sp), sp + ".name");
+    out.scene_surface = js.contains("scene_surface") ? r.string(js["scene_surface"], sp + ".scene_surface") : out.name;
+    if (js.contains("back_side")) out.back_side = r.boolean(js["back_side"], sp + ".back_side");
+    out.length_u_m = positive_or_fail(r, r.number(r.member(js, "length_u_m", sp), sp + ".length_u_m"), sp + ".length_u_m");
+    out.length_v_m = positive_or_fail(r, r.number(r.member(js, "length_v_m", sp), sp + ".length_v_m"), sp + ".length_v_m");
+    const json& elements = r.member(js, "elements", sp);
+    if (!elements.is_array() || elements.empty()) r.fail(sp + ".elements", "must be a non-empty array");
+    if (js.contains("grid")) {
+      const json& g = js["grid"];
+      if (!g.is_array() || g.size() != 2 || !g[0].is_number_integer() || !g[1].is_number_integer())
+        r.fail(sp + ".grid", "must be [nu, nv]");
+      const long long nu = g[0].get<long long>(), nv = g[1].get<long long>();
+      const bool adaptive = nu == 0 && nv == 0;
+      if (!adaptive && (nu < 1 || nv < 1 || nu > 1'000'000 || nv > 1'000'000 ||
+                        static_cast<unsigned long long>(nu) * static_cast<unsigned long long>(nv) != elements.size()))
+        r.fail(sp + ".grid", "must be [0, 0] or [nu, nv] with nu * nv = the number of elements");
+      out.grid_nu = static_cast<int>(nu);
+      out.grid_nv = static_cast<int>(nv);
+    }
+    out.elements.reserve(elements.size());
+    for (size_t e = 0; e < elements.size(); ++e) {
+      const std::string ep = JsonReader::at(sp + ".elements", e);
+      const json& je = elements[e];
+      const auto num = [&](const char* key) { return r.number(r.member(je, key, ep), ep + "." + key); };
+      SolutionElement el;
+      el.u0 = num("u0");
+      el.v0 = num("v0");
+      el.u1 = num("u1");
+      el.v1 = num("v1");
+      if (!(0 <= el.u0 && el.u0 < el.u1 && el.u1 <= 1 && 0 <= el.v0 && el.v0 < el.v1 && el.v1 <= 1))
+        r.fail(ep, "its (u,v) rectangle must satisfy 0 <= u0 < u1 <= 1 and 0 <= v0 < v1 <= 1");
+      el.center = r.vec3(r.member(je, "center", ep), ep + ".center");
+      el.area_m2 = num("area");
+      el.radiosity_w_m2 = r.vec3(r.member(je, "radiosity", ep), ep + ".radiosity").array();
+      out.elements.push_back(el);
+    }
+    sol.surfaces.push_back(std::move(out));
+  }
+  return sol;
+}
+
+}  // namespace radrecon

@@ -1,0 +1,44 @@
+#include "paper/data_sets.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+
+#include "sampling/surface_samples.h"
+#include "solver/solve.h"
+
+namespace radrecon {
+
+PaperDataSets solve_data_sets(const Scene& scene, const PaperOptions& opt) {
+  SolveSettings settings;
+  settings.residual = opt.residual;
+  auto solve = [&](const std::string& spec, const std::string& label, double& seconds) {
+    if (opt.progress) std::fprintf(stderr, "paper: solving %s (%s)\n", label.c_str(), spec.c_str());
+    settings.progress_label = opt.progress ? label : "";
+    const auto start = std::chrono::steady_clock::now();
+    Solution s = solve_scene(scene, spec, settings, "paper data set " + label);
+    seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return s;
+  };
+  PaperDataSets d;
+  d.reference = solve("grid:" + std::to_string(opt.reference_divisions), "reference", d.reference_s);
+  d.grid = solve("grid:" + std::to_string(opt.grid_divisions), "grid16", d.grid_s);
+  d.quadtree = solve("quadtree:" + std::to_string(opt.quadtree_leaves), "quadtree", d.quadtree_s);
+  return d;
+}
+
+EvaluationGrid evaluation_grid(const Solution& reference) {
+  const GridCells cells = grid_cells(require_surface(reference, "ground", "reference solution"));
+  EvaluationGrid e;
+  e.width = cells.nx;
+  e.height = cells.ny;
+  e.points.reserve(static_cast<size_t>(e.width) * e.height);
+  for (int j = 0; j < e.height; ++j)
+    for (int i = 0; i < e.width; ++i) e.points.emplace_back(cells.x0 + (i + 0.5) * cells.dx, cells.y0 + (j + 0.5) * cells.dy);
+  e.reference_w_m2 = cells.values;
+  e.white_w_m2 = 0;
+  for (double v : e.reference_w_m2) e.white_w_m2 = std::max(e.white_w_m2, v);
+  return e;
+}
+
+}  // namespace radrecon

@@ -1,0 +1,88 @@
+#include "paper/paper.h"
+
+#include <chrono>
+#include <cstdio>
+
+#include "io/image_io.h"
+#include "io/paths.h"
+#include "io/solution_json.h"
+#include "paper/data_sets.h"
+#include "paper/evaluation.h"
+#include "paper/tables.h"
+#include "paper/views.h"
+#include "render/ground_map.h"
+
+namespace radrecon {
+
+namespace {
+
+class Stopwatch {
+ public:
+  double lap() {
+    const auto now = std::chrono::steady_clock::now();
+    const double s = std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+    return s;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+}  // namespace
+
+void run_paper(const PaperOptions& opt, const std::string& out_where) {
+  namespace fs = std::filesystem;
+  check_output_folder(opt.out_dir.string(), out_where);  // before any work
+  Stopwatch clock;
+  const Scene scene = paper_scene();
+  const PaperDataSets data = solve_data_sets(scene, opt);
+  clock.lap();
+
+  const fs::path solutions = opt.out_dir / "solutions";
+  write_solution_json(solutions / "reference.json", data.reference);
+  write_solution_json(solutions / "grid16.json", data.grid);
+  write_solution_json(solutions / "quadtree.json", data.quadtree);
+  const double t_write = clock.lap();
+
+  // Tables 1 and 2 with the ground figures (Fig. 1-4).
+  const fs::path figures = opt.out_dir / "figures";
+  const EvaluationGrid at = evaluation_grid(data.reference);
+  write_png(figures / "fig2_reference_ground.png", radiosity_map(at.reference_w_m2, at.width, at.height, at.white_w_m2), true);
+  const MethodParams params;  // the defaults of methods.h, stated in the tables
+  PaperRun run{opt, data, at, params, evaluate_grid_data(data.grid, at, params, figures),
+               evaluate_quadtree_data(data.quadtree, at, params, figures)};
+  const double t_reconstruct = clock.lap();
+
+  // Views into the scene (Fig. 2-4), every surface reconstructed by the method of the row.
+  RenderOptions view;
+  view.width = opt.view_width;
+  view.height = opt.view_height;
+  view.samples_per_axis = opt.view_samples;
+  std::vector<CameraHits> cameras;
+  for (const Camera& c : scene.cameras) cameras.push_back(trace_camera(scene, c, view));
+  std::vector<std::string> notes;
+  auto views = [&](const Solution& sol, Method m, const std::string& stem) {
+    for (const Fallback& f : render_paper_views(scene, cameras, sol, m, params, at.white_w_m2, figures, stem))
+      notes.push_back(stem + ": " + f.side + " drawn piecewise constant, as " + method_name(m) + " cannot serve it: " + f.reason);
+  };
+  views(data.reference, Method::constant, "fig2_reference");
+  for (Method m : all_methods()) views(data.grid, m, "fig3_" + method_name(m));
+  for (Method m : scattered_methods()) views(data.quadtree, m, "fig4_" + method_name(m));
+  const double t_views = clock.lap();
+
+  write_tables(opt.out_dir, run);
+  ReportContent report = report_content(run, view.samples_per_axis * view.samples_per_axis);
+  report.notes = notes;
+  write_report(opt.out_dir, report);
+  const double t_tables = clock.lap();
+
+  if (opt.progress)
+    std::fprintf(stderr,
+                 "paper: done: reference %.2f s, grid %.2f s, quadtree %.2f s, solutions written %.2f s, reconstruction "
+                 "and ground figures %.2f s, views %.2f s, tables and report %.2f s; results in %s\n",
+                 data.reference_s, data.grid_s, data.quadtree_s, t_write, t_reconstruct, t_views, t_tables,
+                 opt.out_dir.string().c_str());
+}
+
+}  // namespace radrecon

@@ -1,0 +1,165 @@
+#include "paper/tables.h"
+
+#include <cstdio>
+#include <limits>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "io/atomic_file.h"
+#include "sampling/surface_samples.h"
+
+namespace radrecon {
+
+const PublishedTable& published_table1() {
+  static const PublishedTable table = {
+      {"constant", {0.00506, 0.000226, 0.337}},   {"bilinear", {0.00746, 0.000842, 0.329}},
+      {"bicubic", {0.0142, 0.00107, 0.31}},       {"shepard", {0.00685, 0.000487, 0.333}},
+      {"multiquadric", {0.0113, 0.00087, 0.329}}, {"natural-neighbour", {0.0127, 0.00135, 0.329}},
+  };
+  return table;
+}
+
+const PublishedTable& published_table2() {
+  static const PublishedTable table = {
+      {"constant", {0.014, 0.000622, 0.169}},
+      {"shepard", {0.0742, 0.00964, 0.302}},
+      {"multiquadric", {0.033, 0.00244, 0.412}},
+      {"natural-neighbour", {0.0328, 0.00273, 0.329}},
+  };
+  return table;
+}
+
+std::string format_3g(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", v);
+  return buf;
+}
+
+namespace {
+
+const auto& fmt = format_3g;
+
+std::string table_markdown(const std::string& title, const std::vector<MethodResult>& rows,
+                           const PublishedTable& paper,
+                           const std::string& notes) {
+  std::ostringstream md;
+  md << "# " << title << "\n\n"
+     << "| method | L1 | L2 (MSE) | RMSE | Linf | paper L1 | paper L2 | paper Linf |\n"
+     << "|---|---|---|---|---|---|---|---|\n";
+  for (const MethodResult& r : rows) {
+    md << "| " << r.name << " | " << fmt(r.norms.l1) << " | " << fmt(r.norms.l2) << " | " << fmt(r.norms.rmse)
+       << " | " << fmt(r.norms.linf);
+    auto it = paper.find(r.name);
+    if (it != paper.end())
+      md << " | " << fmt(it->second[0]) << " | " << fmt(it->second[1]) << " | " << fmt(it->second[2]) << " |\n";
+    else
+      md << " | | | |\n";
+  }
+  md << "\n" << notes << "\n";
+  return md.str();
+}
+
+nlohmann::json norms_json(const ErrorNorms& n) {
+  return {{"L1", n.l1}, {"L2", n.l2}, {"RMSE", n.rmse}, {"Linf", n.linf}};
+}
+
+nlohmann::json stats_json(const Solution& s) {
+  nlohmann::json j = {{"mesh", s.mesh}, {"method", s.stats.method}, {"elements", s.stats.elements},
+                      {"residual", s.stats.residual}, {"seconds", s.stats.seconds}};
+  if (s.stats.method == "hierarchical") {
+    j["links"] = s.stats.links;
+    j["epsilon_w"] = s.stats.epsilon_w;
+  } else {
+    j["shots"] = s.stats.shots;
+  }
+  return j;
+}
+
+/// " shepard: mu=4, k=all. multiquadric: ... natural-neighbour: ...".
+std::string method_settings(const MethodParams& params) {
+  std::string text;
+  for (Method m : {Method::shepard, Method::multiquadric, Method::natural_neighbour})
+    text.append(" ").append(method_name(m)).append(": ").append(describe_params(m, params)).append(".");
+  return text;
+}
+
+}  // namespace
+
+void write_tables(const std::filesystem::path& dir, const PaperRun& run) {
+  const PaperDataSets& d = run.data;
+  const SurfaceSolution& grid_ground = require_surface(d.grid, "ground", "grid solution");
+  const SurfaceSolution& quad_ground = require_surface(d.quadtree, "ground", "quadtree solution");
+  const int W = run.at.width, H = run.at.height;
+  nlohmann::json errors;
+  for (const MethodResult& r : run.table1) errors["grid"][r.name] = norms_json(r.norms);
+  for (const MethodResult& r : run.table2) errors["quadtree"][r.name] = norms_json(r.norms);
+  errors["settings"] = {
+      {"reference", stats_json(d.reference)}, {"grid", stats_json(d.grid)}, {"quadtree", stats_json(d.quadtree)},
+      {"ground_leaves", quad_ground.elements.size()}, {"residual", run.options.residual},
+      {"evaluated_at", std::to_string(W) + "x" + std::to_string(H) + " reference cell centres, 3 channels"},
+      {"white_w_m2", run.at.white_w_m2}, {"nodal_rule", "mean of the adjacent cells (1, 2 or 4)"},
+      {"shepard", describe_params(Method::shepard, run.params)},
+      {"multiquadric", describe_params(Method::multiquadric, run.params)},
+      {"natural-neighbour", describe_params(Method::natural_neighbour, run.params)}};
+  write_text_file(dir / "errors.json", errors.dump(2) + "\n");
+
+  const std::string common =
+      " Norms in W/m^2 over the " + std::to_string(W) + " x " + std::to_string(H) +
+      " reference cell centres (all three channels; the scene is grey). L2 is the mean squared error as in the "
+      "paper; RMSE = sqrt(L2). The paper's columns are its published tables (its own scene, whose radiometry "
+      "differs), for comparing rankings.";
+  const std::string settings_text = method_settings(run.params);
+  write_text_file(dir / "table1.md",
+                  table_markdown("Table 1: errors for the reconstruction of grid data", run.table1, published_table1(),
+                                 "Grid data: " + d.grid.mesh + " (" + std::to_string(grid_ground.grid_nu) + " x " +
+                                     std::to_string(grid_ground.grid_nv) + " elements on the ground). Reference: " +
+                                     d.reference.mesh + ". Bilinear and bicubic (natural splines) interpolate nodal "
+                                     "values, each the mean of the cells sharing the node (border nodes: of the "
+                                     "border cells only); the scattered methods use the cell centres." +
+                                     settings_text + common));
+  char eps[64];
+  std::snprintf(eps, sizeof eps, "%.4g", d.quadtree.stats.epsilon_w);
+  write_text_file(dir / "table2.md",
+                  table_markdown("Table 2: errors for the reconstruction of quadtree data", run.table2, published_table2(),
+                                 "Quadtree data: hierarchical radiosity, " + std::to_string(quad_ground.elements.size()) +
+                                     " leaves on the ground (epsilon " + eps + " W, " +
+                                     std::to_string(d.quadtree.stats.links) + " links). Reference: " + d.reference.mesh +
+                                     ". Constant: the value of the leaf containing the point; the scattered "
+                                     "methods use the leaf centres." + settings_text + common));
+}
+
+ReportContent report_content(const PaperRun& run, int rays_per_pixel) {
+  const PaperDataSets& d = run.data;
+  const SurfaceSolution& grid_ground = require_surface(d.grid, "ground", "grid solution");
+  const SurfaceSolution& quad_ground = require_surface(d.quadtree, "ground", "quadtree solution");
+  const double white = run.at.white_w_m2;
+  auto rows = [](const std::vector<MethodResult>& results, const PublishedTable& paper, const std::string& figure) {
+    std::vector<ReportRow> out;
+    for (const MethodResult& r : results) {
+      const auto it = paper.find(r.name);
+      const double nan = std::numeric_limits<double>::quiet_NaN();
+      out.push_back({r.name, r.norms, figure + "_" + r.name, it != paper.end() ? it->second : std::array<double, 3>{nan, nan, nan}});
+    }
+    return out;
+  };
+  ReportContent report;
+  report.table1 = rows(run.table1, published_table1(), "fig3");
+  report.table2 = rows(run.table2, published_table2(), "fig4");
+  report.settings = {
+      "Reference: " + d.reference.mesh + " (" + std::to_string(run.at.width) + " x " + std::to_string(run.at.height) +
+          " elements on the ground), progressive refinement to a residual of " + fmt(run.options.residual) + " (" +
+          std::to_string(d.reference.stats.shots) + " shots).",
+      "Grid data: " + d.grid.mesh + ", " + std::to_string(grid_ground.grid_nu) + " x " + std::to_string(grid_ground.grid_nv) +
+          " elements on the ground; bilinear and bicubic use nodal values, each the mean of the cells sharing the node.",
+      "Quadtree data: hierarchical radiosity, " + std::to_string(quad_ground.elements.size()) + " leaves on the ground, epsilon " +
+          fmt(d.quadtree.stats.epsilon_w) + " W, " + std::to_string(d.quadtree.stats.links) + " links; the scattered methods use the leaf centres.",
+      "Methods:" + method_settings(run.params),
+      "Norms over the " + std::to_string(run.at.width) + " x " + std::to_string(run.at.height) +
+          " reference cell centres, 3 channels; L2 is the mean squared error, RMSE its root.",
+      "Images: display = clamp(B / " + fmt(white) + " W/m^2, 0, 1), sRGB; views with " + std::to_string(rays_per_pixel) +
+          " rays per pixel; differences 0.5 + 2 (B - B_ref) / " + fmt(white) + ", linear."};
+  return report;
+}
+
+}  // namespace radrecon

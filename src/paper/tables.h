@@ -1,0 +1,40 @@
+#pragma once
+// Tables 1 and 2 as Markdown beside the paper's published figures, and errors.json.
+
+#include <array>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "paper/data_sets.h"
+#include "paper/evaluation.h"
+#include "paper/report.h"
+
+namespace radrecon {
+
+/// A published table: method name -> the paper's L1, L2 (MSE), Linf.
+using PublishedTable = std::map<std::string, std::array<double, 3>>;
+/// Hinkenjann & Pietrek, Table 1 (grid data) and Table 2 (quadtree data).
+const PublishedTable& published_table1();
+const PublishedTable& published_table2();
+
+/// What the tables and the report state about one run.
+struct PaperRun {
+  const PaperOptions& options;
+  const PaperDataSets& data;
+  const EvaluationGrid& at;
+  const MethodParams& params;
+  std::vector<MethodResult> table1, table2;
+};
+
+/// Writes DIR/errors.json, DIR/table1.md and DIR/table2.md.
+void write_tables(const std::filesystem::path& dir, const PaperRun& run);
+
+/// The report's rows and settings (its notes are the caller's).
+ReportContent report_content(const PaperRun& run, int rays_per_pixel);
+
+/// "%.3g" of v.
+std::string format_3g(double v);
+
+}  // namespace radrecon

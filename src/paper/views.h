@@ -1,0 +1,25 @@
+#pragma once
+// The views into the scene of the paper's Fig. 2-4: every camera of the scene, every surface
+// side reconstructed by one method.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "reconstruct/methods.h"
+#include "render/renderer.h"
+#include "sampling/solution_reconstruction.h"
+#include "scene/scene.h"
+#include "solver/solution.h"
+
+namespace radrecon {
+
+/// Shades every camera of the scene (traced once: `cameras[k]` for scene.cameras[k]) for
+/// `solution`, every side reconstructed by `method`, tone-mapped with `white_w_m2`, to
+/// DIR/STEM_CAMERA.png. Returns the sides the method could not serve (drawn piecewise
+/// constant) with the reasons.
+std::vector<Fallback> render_paper_views(const Scene& scene, const std::vector<CameraHits>& cameras,
+                                         const Solution& solution, Method method, const MethodParams& params,
+                                         double white_w_m2, const std::filesystem::path& dir, const std::string& stem);
+
+}  // namespace radrecon

@@ -1,0 +1,29 @@
+#pragma once
+// Operations on a set of scattered samples before reconstruction: merging samples at the same
+// point, and recognising samples that are the nodes of a regular grid.
+
+#include <cstddef>
+#include <optional>
+
+#include "reconstruct/samples.h"
+
+namespace radrecon {
+
+/// Merges samples at exactly the same point into one with the mean of their values, keeping
+/// the order of first appearance. Returns the number of samples removed (0: no duplicates).
+std::size_t merge_duplicate_points(ScatteredSamples& samples);
+
+/// The samples as the nodes of a regular grid, if they are one: the distinct x values (values
+/// within tol::kGridCoordinateRelative (1e-9) of the x extent of each other count as one) are nx >= 2 equally spaced values,
+/// each within tol::kGridCoordinateRelative (1e-9) of the x extent from x0 + i (x1 - x0) / (nx - 1); the same for y; and every
+/// (x, y) combination is present exactly once (nx * ny samples, in any order). The nodes are
+/// returned row by row from y0 upward (GridNodes' layout) with the samples' channels.
+std::optional<GridNodes> as_regular_grid(const ScatteredSamples& samples);
+
+/// Distinct-coordinate counts reported when samples are not a grid (the same tolerance).
+struct DistinctCoordinates {
+  std::size_t x = 0, y = 0;
+};
+DistinctCoordinates count_distinct_coordinates(const ScatteredSamples& samples);
+
+}  // namespace radrecon

@@ -1,0 +1,47 @@
+#include "sampling/solution_reconstruction.h"
+
+#include "core/error.h"
+#include "reconstruct/constant.h"
+#include "sampling/surface_samples.h"
+
+namespace radrecon {
+
+namespace {
+
+/// The method's reconstruction of one side (with the scene's edge lengths).
+InterpolantResult build_side(const SurfaceSolution& s, Method method, const MethodParams& params) {
+  const bool grid = s.grid_nu > 0 && s.grid_nv > 0;
+  if (grid) return make_grid_interpolant(method, grid_cells(s), params);
+  if (method == Method::constant) return std::unique_ptr<Interpolant>(std::make_unique<PiecewiseConstant>(element_cells(s)));
+  if (is_grid_method(method))
+    return Failure{method_name(method) + " needs grid data; this side is an adaptive subdivision"};
+  return make_scattered_interpolant(method, element_centres(s), params);
+}
+
+}  // namespace
+
+SolutionReconstruction::SolutionReconstruction(const Scene& scene, const Solution& solution, Method method,
+                                               const MethodParams& params, const std::string& source) {
+  sides_.resize(side_slots(scene));
+  for (const SurfaceSolution& side : solution.surfaces) {
+    const std::optional<SideRef> ref = find_side(scene, side.name);
+    if (!ref)
+      throw UserError(source, "surface '" + side.name + "' is not a side of the scene's surfaces (" + side_names(scene) + ")");
+    // The scene's edge lengths, so that (s, t) match the renderer's.
+    SurfaceSolution s = side;
+    s.length_u_m = scene.surfaces[ref->surface].length_u_m();
+    s.length_v_m = scene.surfaces[ref->surface].length_v_m();
+    InterpolantResult built = build_side(s, method, params);
+    if (!built) {
+      fallbacks_.push_back({side.name, built.reason()});
+      built = build_side(s, Method::constant, params);  // piecewise constant never fails
+    }
+    sides_[ref->slot()] = std::move(built).value();
+  }
+}
+
+SolutionReconstruction::~SolutionReconstruction() = default;
+
+const Interpolant* SolutionReconstruction::side(SideRef side) const { return sides_[side.slot()].get(); }
+
+}  // namespace radrecon

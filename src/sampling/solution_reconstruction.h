@@ -1,0 +1,43 @@
+#pragma once
+// A solved scene reconstructed: one interpolant per surface side of a solution, by one method,
+// in the side's metric coordinates (s, t) = (u * length_u_m, v * length_v_m). The renderer and
+// the exporters read radiosity from it.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "reconstruct/methods.h"
+#include "scene/scene.h"
+#include "scene/side.h"
+#include "solver/solution.h"
+
+namespace radrecon {
+
+/// A side the method could not serve, drawn piecewise constant instead, and why.
+struct Fallback {
+  std::string side;    ///< the side's name
+  std::string reason;  ///< e.g. "natural-neighbour interpolation needs at least 3 samples, got 1"
+};
+
+class SolutionReconstruction {
+ public:
+  /// Grid sides are reconstructed as grid data (make_grid_interpolant), adaptive sides as
+  /// scattered data: their leaves for constant, the leaf centres otherwise. A side the method
+  /// cannot serve (a grid method on an adaptive side, too few or collinear samples) falls back
+  /// to piecewise constant and is listed with the reason in fallbacks(). The solution's sides
+  /// must belong to `scene`: UserError naming `source` (the solution's file) otherwise.
+  SolutionReconstruction(const Scene& scene, const Solution& solution, Method method, const MethodParams& params,
+                         const std::string& source);
+  ~SolutionReconstruction();
+
+  /// The side's reconstruction, or null if the solution has no such side.
+  const Interpolant* side(SideRef side) const;
+  const std::vector<Fallback>& fallbacks() const { return fallbacks_; }
+
+ private:
+  std::vector<std::unique_ptr<Interpolant>> sides_;  ///< by SideRef::slot()
+  std::vector<Fallback> fallbacks_;
+};
+
+}  // namespace radrecon

@@ -1,0 +1,138 @@
+// The image writers checked for content, read back with libpng and by hand (PFM): orientation,
+// the min/max mapping of rasters, NaN, byte order.
+
+#include <gtest/gtest.h>
+#include <png.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <vector>
+
+#include "core/error.h"
+#include "io/image_io.h"
+#include "io/raster.h"
+
+namespace radrecon {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path temp_file(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("radrecon_image_io_test_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  return dir / name;
+}
+
+struct Png {
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> rgb;  ///< row 0 = top
+  std::array<int, 3> at(int x, int y) const {
+    const size_t k = (static_cast<size_t>(y) * width + x) * 3;
+    return {rgb[k], rgb[k + 1], rgb[k + 2]};
+  }
+};
+
+Png read_png(const fs::path& path) {
+  png_image image{};
+  image.version = PNG_IMAGE_VERSION;
+  EXPECT_TRUE(png_image_begin_read_from_file(&image, path.c_str())) << image.message;
+  image.format = PNG_FORMAT_RGB;
+  Png out;
+  out.width = static_cast<int>(image.width);
+  out.height = static_cast<int>(image.height);
+  out.rgb.resize(PNG_IMAGE_SIZE(image));
+  EXPECT_TRUE(png_image_finish_read(&image, nullptr, out.rgb.data(), 0, nullptr)) << image.message;
+  return out;
+}
+
+TEST(Png, WritesImageRowsTopFirstWithSrgbOrLinearValues) {
+  Image img(3, 2);
+  img.at(0, 0) = Rgb(1, 0, 0);    // top left: red
+  img.at(2, 1) = Rgb(0, 0, 1);    // bottom right: blue
+  img.at(1, 0) = Rgb(0.5, 0.5, 0.5);
+  img.at(1, 1) = Rgb(std::numeric_limits<double>::quiet_NaN(), 2.0, -1.0);  // NaN black, clamped
+  const fs::path linear = temp_file("linear.png"), srgb = temp_file("srgb.png");
+  write_png(linear, img, false);
+  write_png(srgb, img, true);
+  const Png a = read_png(linear), b = read_png(srgb);
+  ASSERT_EQ(a.width, 3);
+  ASSERT_EQ(a.height, 2);
+  EXPECT_EQ(a.at(0, 0), (std::array<int, 3>{255, 0, 0}));
+  EXPECT_EQ(a.at(2, 1), (std::array<int, 3>{0, 0, 255}));
+  EXPECT_EQ(a.at(1, 0), (std::array<int, 3>{128, 128, 128}));  // round(0.5 * 255)
+  EXPECT_EQ(a.at(1, 1), (std::array<int, 3>{0, 255, 0}));
+  // sRGB of 0.5 is 0.7354: 188 (IEC 61966-2-1).
+  EXPECT_EQ(b.at(1, 0), (std::array<int, 3>{188, 188, 188}));
+}
+
+TEST(RasterPng, ShowsYUpwardAndMapsMinToBlackMaxToWhiteNanBlack) {
+  // A 2 x 2 raster over [0,2]^2, one channel: row y0 (bottom) = {0, 1}, row y1 (top) = {NaN, 4}.
+  Raster r;
+  r.width = 2;
+  r.height = 2;
+  r.domain = {0, 0, 2, 2};
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const std::vector<double> values = {0, 1, nan, 4};
+  const fs::path path = temp_file("raster.png");
+  write_raster_png(path.string(), r, values, 1);
+  const Png p = read_png(path);
+  EXPECT_EQ(p.at(0, 1), (std::array<int, 3>{0, 0, 0}));        // min, bottom left
+  EXPECT_EQ(p.at(1, 0), (std::array<int, 3>{255, 255, 255}));  // max, top right
+  EXPECT_EQ(p.at(0, 0), (std::array<int, 3>{0, 0, 0}));        // NaN
+  // 1 of [0, 4]: linear 0.25, sRGB-encoded 0.5371 -> 137.
+  EXPECT_EQ(p.at(1, 1), (std::array<int, 3>{137, 137, 137}));
+}
+
+TEST(Pfm, WritesLittleEndianFloatsBottomRowFirst) {
+  Image img(2, 2);
+  img.at(0, 0) = Rgb(1, 2, 3);  // top row
+  img.at(1, 1) = Rgb(-0.5, 0.25, 8);  // bottom row
+  const fs::path path = temp_file("image.pfm");
+  write_pfm(path, img);
+  std::ifstream in(path, std::ios::binary);
+  std::string magic, scale;
+  int w = 0, h = 0;
+  in >> magic >> w >> h >> scale;
+  in.get();  // the single whitespace before the data
+  EXPECT_EQ(magic, "PF");
+  EXPECT_EQ(w, 2);
+  EXPECT_EQ(h, 2);
+  EXPECT_EQ(scale, "-1.0");  // little endian
+  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_EQ(bytes.size(), 2u * 2 * 3 * 4);
+  auto float_at = [&](size_t index) {  // decoded as little endian, whatever this machine is
+    const std::uint32_t bits = std::uint32_t(bytes[index * 4]) | std::uint32_t(bytes[index * 4 + 1]) << 8 |
+                               std::uint32_t(bytes[index * 4 + 2]) << 16 | std::uint32_t(bytes[index * 4 + 3]) << 24;
+    float f;
+    std::memcpy(&f, &bits, 4);
+    return f;
+  };
+  // First stored row = bottom row of the picture: pixel (0, 1) then (1, 1).
+  EXPECT_EQ(float_at(3), -0.5f);
+  EXPECT_EQ(float_at(4), 0.25f);
+  EXPECT_EQ(float_at(5), 8.0f);
+  // Second stored row = top row: pixel (0, 0).
+  EXPECT_EQ(float_at(6), 1.0f);
+  EXPECT_EQ(float_at(8), 3.0f);
+}
+
+TEST(FileFormat, ChoosesByExtensionInAnyCaseAndRefusesOthers) {
+  EXPECT_EQ(file_format("a/b.PNG", {FileFormat::png, FileFormat::exr}, "--out"), FileFormat::png);
+  EXPECT_EQ(file_format("x.exr", {FileFormat::png, FileFormat::exr}, "--out"), FileFormat::exr);
+  try {
+    file_format("x.tif", {FileFormat::png, FileFormat::pfm}, "--out");
+    FAIL() << "accepted .tif";
+  } catch (const UserError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("--out"), std::string::npos) << what;
+    EXPECT_NE(what.find(".png, .pfm"), std::string::npos) << what;
+  }
+  EXPECT_THROW(file_format("noext", {FileFormat::csv}, "--out"), UserError);
+}
+
+}  // namespace
+}  // namespace radrecon
