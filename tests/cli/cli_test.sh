@@ -129,6 +129,33 @@ ground = [s for s in doc["surfaces"] if s["name"] == "ground"][0]
 sys.exit(0 if len(ground["elements"]) == 100 and doc["stats"]["method"] == "hierarchical" else 1)
 EOF
 
+# --- no input overwritten, outputs checked before any work ---------------------------------
+cp "$TMP/solution.json" "$TMP/sol_copy.json"
+ln -s "$TMP/sol_copy.json" "$TMP/sol_link.png"  # an image name that is the solution
+run render_over render --scene paper --solution "$TMP/sol_copy.json" --camera view --size 8x6 --out "$TMP/sol_link.png" --quiet
+expect_rc render_over 2
+expect_stderr_has render_over "refusing to overwrite"
+cmp -s "$TMP/solution.json" "$TMP/sol_copy.json" || fail "render_over: the solution was changed"
+cat >"$TMP/scene_in.json" <<'EOF'
+{"surfaces": [{"name": "floor", "corners": [[0,0,0],[1,0,0],[1,1,0],[0,1,0]], "reflectance": 0.5},
+              {"name": "lamp", "corners": [[0,0,1],[0,1,1],[1,1,1],[1,0,1]], "reflectance": 0, "emission": 1}]}
+EOF
+cp "$TMP/scene_in.json" "$TMP/scene_keep.json"
+run solve_over solve --scene "$TMP/scene_in.json" --mesh grid:2 --out "$TMP/./scene_in.json" --quiet
+expect_rc solve_over 2
+expect_stderr_has solve_over "refusing to overwrite"
+cmp -s "$TMP/scene_in.json" "$TMP/scene_keep.json" || fail "solve_over: the scene was changed"
+echo "a file" >"$TMP/afile"
+start=$(date +%s%N)
+run paper_file paper --out "$TMP/afile" --quiet
+elapsed_ms=$(( ($(date +%s%N) - start) / 1000000 ))
+expect_rc paper_file 2
+expect_stderr_has paper_file "not a folder"
+[ "$elapsed_ms" -lt 1000 ] || fail "paper_file: refused after $elapsed_ms ms; the folder must be checked before the solve"
+run solve_dir solve --scene paper --mesh grid:4 --out "$TMP" --quiet
+expect_rc solve_dir 2
+expect_stderr_has solve_dir "is a folder"
+
 # --- the paper experiment, with a small reference to stay quick ---------------------------
 run paper paper --out "$TMP/paper" --reference 100 --quiet
 expect_rc paper 0
