@@ -62,14 +62,6 @@ constexpr int kLinkQuadrature = 4;
 constexpr int kLinkQuadratureFine = 16;
 constexpr double kDiscontinuousSpread = 0.5;
 
-/// The minimum element size of `options`, or its default: a fraction of the longest edge.
-double min_element_size(const Scene& scene, const HierarchicalOptions& options) {
-  if (options.min_size_m > 0) return options.min_size_m;
-  double longest = 0;
-  for (const Surface& s : scene.surfaces) longest = std::max({longest, s.length_u_m(), s.length_v_m()});
-  return longest * tol::kMinElementFraction;
-}
-
 /// Thrown when a hierarchy would exceed HierarchicalOptions::max_links.
 struct TooManyLinks {};
 
@@ -80,7 +72,7 @@ constexpr int kMaxGatherIterations = 10000;
 class Hierarchy {
  public:
   Hierarchy(const Scene& scene, const HierarchicalOptions& options) : scene_(scene), options_(options) {
-    min_size_m_ = min_element_size(scene, options);
+    min_size_m_ = min_element_size_m(scene, options);
     occluders_ = make_occluders(scene);
     for (size_t k = 0; k < scene.surfaces.size(); ++k) {
       add_tree(k, false);
@@ -400,103 +392,35 @@ class Hierarchy {
 
 }  // namespace
 
-Solution solve_hierarchical(const Scene& scene, const HierarchicalOptions& options, const std::string& mesh_spec) {
+std::optional<Solution> try_solve_hierarchical(const Scene& scene, const HierarchicalOptions& options,
+                                               const std::string& mesh_spec) {
   RR_CHECK(options.epsilon_w > 0 && options.tolerance > 0, "hierarchical options out of range");
   Hierarchy h(scene, options);
   try {
     h.solve();
   } catch (const TooManyLinks&) {
+    return std::nullopt;
+  }
+  return h.solution(mesh_spec);
+}
+
+Solution solve_hierarchical(const Scene& scene, const HierarchicalOptions& options, const std::string& mesh_spec) {
+  std::optional<Solution> sol = try_solve_hierarchical(scene, options, mesh_spec);
+  if (!sol) {
     char eps[32];
     std::snprintf(eps, sizeof eps, "%g", options.epsilon_w);
     throw UserError(mesh_spec, std::string("epsilon ") + eps + " W would need more than " +
                                    std::to_string(options.max_links) + " links; use a larger epsilon or fewer leaves");
   }
-  return h.solution(mesh_spec);
+  return std::move(*sol);
 }
 
-size_t leaf_count(const Solution& solution, const std::string& side) {
-  const SurfaceSolution* s = solution.find(side);
-  return s ? s->elements.size() : 0;
-}
-
-Solution solve_hierarchical_leaves(const Scene& scene, const std::string& side, int leaves,
-                                   HierarchicalOptions options, const std::string& field) {
-  if (leaves < 1 || (leaves - 1) % 3 != 0)
-    throw UserError(field, "a quadtree has 1 + 3k leaves; " + std::to_string(leaves) + " is not of that form");
-  const std::string spec = "quadtree:" + std::to_string(leaves);
-  const std::string label = options.progress_label;
-  const bool leaf_gather = options.leaf_gather;
-  options.progress_label.clear();
-  options.leaf_cap.reset();
-  options.leaf_gather = false;  // the final gather does not change the count
-  constexpr int kTooFine = std::numeric_limits<int>::max();
-  // Leaves of `side` at epsilon `eps` (W); kTooFine when the links would not fit.
-  auto count = [&](double eps) {
-    options.epsilon_w = eps;
-    Hierarchy h(scene, options);
-    try {
-      h.solve();
-    } catch (const TooManyLinks&) {
-      return kTooFine;
-    }
-    return static_cast<int>(leaf_count(h.solution(spec), side));
-  };
-  const auto start = std::chrono::steady_clock::now();
-  // The most leaves the side can have: split down to the minimum element size everywhere.
-  {
-    const double min_size = min_element_size(scene, options);
-    const std::optional<SideRef> ref = find_side(scene, side);
-    if (!ref) throw UserError(field, "the scene has no surface side named '" + side + "' (its sides: " + side_names(scene) + ")");
-    const Surface& surface = scene.surfaces[ref->surface];
-    const double side_size = std::max(surface.length_u_m(), surface.length_v_m());
-    double most = 1;
-    for (double size = side_size; size >= 2 * min_size && most <= leaves; size /= 2) most *= 4;
-    if (leaves > most)
-      throw UserError(field, std::to_string(leaves) + " leaves on '" + side + "' cannot be reached above the minimum element size (" +
-                                 std::to_string(min_size) + " m allows at most " + std::to_string(static_cast<long long>(most)) + ")");
-  }
-  // Bracket count(lo) >= leaves > count(hi), stepping by kStep, then bisect on log epsilon until
-  // the bracket is kBracket wide or lo gives exactly `leaves`.
-  constexpr double kStep = 10, kBracket = 1.001, kStart = 1e-3, kLargest = 1e12;
-  constexpr int kMaxSteps = 12, kMaxBisections = 60;
-  double hi = 1.0, lo = kStart;
-  while (count(hi) >= leaves && hi < kLargest) hi *= kStep;
-  int c_lo = count(lo), previous = -1;
-  for (int k = 0; c_lo < leaves && c_lo > previous && k < kMaxSteps; ++k) {
-    hi = lo;
-    lo /= kStep;
-    previous = c_lo;
-    c_lo = count(lo);
-  }
-  if (c_lo < leaves)
-    throw UserError(field, std::to_string(leaves) + " leaves on '" + side + "' cannot be reached: refinement stops at " +
-                               std::to_string(c_lo));
-  for (int k = 0; k < kMaxBisections && c_lo != leaves && hi / lo > kBracket; ++k) {
-    const double mid = std::sqrt(lo * hi);
-    const int c = count(mid);
-    if (c >= leaves) {
-      lo = mid;
-      c_lo = c;
-    } else {
-      hi = mid;
-    }
-  }
-  if (c_lo == kTooFine)
-    throw UserError(field, std::to_string(leaves) + " leaves on '" + side + "' need more than " +
-                               std::to_string(options.max_links) + " links");
-  options.leaf_gather = leaf_gather;
-  options.epsilon_w = lo;
-  options.leaf_cap = std::make_pair(side, leaves);
-  options.progress_label = label;
-  Solution sol = solve_hierarchical(scene, options, spec);
-  const size_t made = leaf_count(sol, side);
-  if (made != static_cast<size_t>(leaves))
-    throw UserError(field, "refinement gives " + std::to_string(made) + " leaves on '" + side + "', not exactly " +
-                               std::to_string(leaves) + "; try a neighbouring count (1 + 3k)");
-  sol.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (!label.empty())
-    std::fprintf(stderr, "%s: epsilon %.4g W gives %d leaves on %s\n", label.c_str(), lo, leaves, side.c_str());
-  return sol;
+/// The minimum element size of `options`, or its default: a fraction of the longest edge.
+double min_element_size_m(const Scene& scene, const HierarchicalOptions& options) {
+  if (options.min_size_m > 0) return options.min_size_m;
+  double longest = 0;
+  for (const Surface& s : scene.surfaces) longest = std::max({longest, s.length_u_m(), s.length_v_m()});
+  return longest * tol::kMinElementFraction;
 }
 
 }  // namespace radrecon

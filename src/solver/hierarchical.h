@@ -43,7 +43,16 @@ struct HierarchicalOptions {
 };
 
 /// Solves the scene by hierarchical radiosity; the elements of the solution are the leaves.
+/// nullopt when the refinement would need more than options.max_links links.
+std::optional<Solution> try_solve_hierarchical(const Scene& scene, const HierarchicalOptions& options,
+                                               const std::string& mesh_spec);
+
+/// try_solve_hierarchical(), with too many links refused (UserError naming `mesh_spec`).
 Solution solve_hierarchical(const Scene& scene, const HierarchicalOptions& options, const std::string& mesh_spec);
+
+/// The smallest element of `options` (metres): its min_size_m, or by default
+/// tol::kMinElementFraction of the scene's longest edge.
+double min_element_size_m(const Scene& scene, const HierarchicalOptions& options);
 
 /// Number of leaves of the named surface side in a solution.
 size_t leaf_count(const Solution& solution, const std::string& side);
