@@ -17,7 +17,7 @@ void add_paper_command(CLI::App& app) {
       ->check(CLI::Range(16, 2000))
       ->capture_default_str();
   cmd->add_option("--residual", opt->residual, "Progressive refinement stops below this unshot fraction")
-      ->check(CLI::Range(1e-12, 0.5))
+      ->check(CLI::Range(kMinResidual, kMaxResidual))
       ->capture_default_str();
   cmd->add_flag("--quiet", *quiet, "No progress messages");
   cmd->callback([opt, out, quiet] {

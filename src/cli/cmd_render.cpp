@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <string>
 
@@ -22,8 +23,8 @@ struct RenderArgs {
   std::string method = "constant";
   std::vector<std::string> params;
   std::string camera;
-  std::string size = "640x480";
-  int samples = 3;
+  std::string size = std::to_string(RenderOptions{}.width) + "x" + std::to_string(RenderOptions{}.height);
+  int samples = RenderOptions{}.samples_per_axis;
   double white = 0;
   std::string out;
   bool quiet = false;
@@ -62,7 +63,16 @@ void run_render(const RenderArgs& args) {
   options.width = width;
   options.height = height;
   options.samples_per_axis = args.samples;
-  const Image img = render(scene, *camera, [&](SideRef side) { return recon.side(side); }, options);
+  const auto start = std::chrono::steady_clock::now();
+  auto last_report = start;
+  const RenderProgress progress = [&](double done) {
+    const auto now = std::chrono::steady_clock::now();
+    if (args.quiet || done >= 1 || now - last_report < std::chrono::seconds(2)) return;
+    last_report = now;
+    const double elapsed = std::chrono::duration<double>(now - start).count();
+    std::fprintf(stderr, "render: %.0f%% of the rows, %.0f s left\n", 100 * done, elapsed * (1 - done) / done);
+  };
+  const Image img = render(scene, *camera, [&](SideRef side) { return recon.side(side); }, options, progress);
   if (format == FileFormat::pfm) {
     write_pfm(args.out, img);
   } else if (format == FileFormat::exr) {

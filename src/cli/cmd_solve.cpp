@@ -14,10 +14,10 @@ namespace {
 
 struct SolveArgs {
   std::string scene = "paper";
-  std::string mesh = "grid:16";
+  std::string mesh = "grid:" + std::to_string(GridMeshOptions{}.divisions);
   std::string out;
   double residual = kDefaultResidual;
-  int patches = 2;
+  int patches = SolveSettings{}.patches;
   std::string leaves_on;
   bool quiet = false;
 };
@@ -66,7 +66,7 @@ void add_solve_command(CLI::App& app) {
   cmd->add_option("--out", args->out, "Solution file to write (JSON)")->required();
   cmd->add_option("--residual", args->residual,
                   "grid: stop when the unshot power falls below this fraction of the emitted power")
-      ->check(CLI::Range(1e-12, 0.5))
+      ->check(CLI::Range(kMinResidual, kMaxResidual))
       ->capture_default_str();
   cmd->add_option("--patches", args->patches,
                   "grid: shooting patches along the longest edge (patches group elements; receivers are elements)")

@@ -68,13 +68,16 @@ CameraHits trace_camera(const Scene& scene, const Camera& camera, const RenderOp
 }
 
 Image render(const Scene& scene, const Camera& camera, const SideReconstruction& reconstruction,
-             const RenderOptions& options) {
+             const RenderOptions& options, const RenderProgress& progress) {
   // Bands of rows, so that memory holds the image and one band's rays, whatever the size.
   const size_t rays_per_row = static_cast<size_t>(options.width) * options.samples_per_axis * options.samples_per_axis;
   const int band_rows = static_cast<int>(std::clamp<size_t>(kRenderBandRays / rays_per_row, 1, options.height));
   Image img(options.width, options.height);
-  for (int row = 0; row < options.height; row += band_rows)
-    shade(scene, trace_camera(scene, camera, options, row, std::min(options.height, row + band_rows)), reconstruction, img);
+  for (int row = 0; row < options.height; row += band_rows) {
+    const int end = std::min(options.height, row + band_rows);
+    shade(scene, trace_camera(scene, camera, options, row, end), reconstruction, img);
+    if (progress) progress(static_cast<double>(end) / options.height);
+  }
   return img;
 }
 

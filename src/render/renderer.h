@@ -58,9 +58,12 @@ void shade(const Scene& scene, const CameraHits& hits, const SideReconstruction&
 /// a ray of one band (~80 MB), whatever the image size and rays per pixel.
 inline constexpr size_t kRenderBandRays = size_t{1} << 20;
 
+/// Called after each band with the fraction of rows done, in (0, 1].
+using RenderProgress = std::function<void(double fraction_done)>;
+
 /// trace_camera() then shade(), band by band of rows.
 Image render(const Scene& scene, const Camera& camera, const SideReconstruction& reconstruction,
-             const RenderOptions& options);
+             const RenderOptions& options, const RenderProgress& progress = {});
 
 /// A primary ray through the image position (x, y) in pixels (x right, y down; pixel centres at
 /// half-integers): origin and unit direction.

@@ -19,6 +19,9 @@ namespace radrecon {
 /// Progressive refinement stops by default when the unshot power falls below this fraction of
 /// the emitted power: 1e-4 keeps the paper's reference within 0.1% of converged.
 inline constexpr double kDefaultResidual = 1e-4;
+/// The residuals a user may ask for: below 1e-12 round-off dominates; above 0.5 half the light
+/// is never distributed.
+inline constexpr double kMinResidual = 1e-12, kMaxResidual = 0.5;
 
 struct ProgressiveOptions {
   /// Stop when the unshot power falls below this fraction of the emitted power, in (0, 1).

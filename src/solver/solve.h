@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "mesh/grid_mesh.h"
 #include "scene/scene.h"
 #include "solver/progressive.h"
 #include "solver/solution.h"
@@ -14,7 +15,7 @@ namespace radrecon {
 
 struct SolveSettings {
   double residual = kDefaultResidual;  ///< progressive: stop below this unshot fraction of the emitted power
-  int patches = 2;         ///< progressive: shooting patches along the longest edge
+  int patches = GridMeshOptions{}.max_patches;  ///< progressive: shooting patches along the longest edge
   /// quadtree:LEAVES: the side that gets LEAVES leaves; empty: "ground" if the scene has such a
   /// side, else the side of the largest surface.
   std::string leaves_on;

@@ -10,6 +10,7 @@
 #include <OpenEXR/ImfArray.h>
 
 #include "reconstruct/constant.h"
+#include "reconstruct/methods.h"
 #include "render/ground_map.h"
 #include "io/image_io.h"
 #include "render/renderer.h"
@@ -22,23 +23,6 @@ Surface quad(const std::string& name, const Vec3& c0, const Vec3& c1, const Vec3
   s.name = name;
   s.corners = {c0, c1, c2, c3};
   return s;
-}
-
-TEST(QuadParameters, InvertsTheBilinearMapOfAGeneralConvexQuad) {
-  // A planar, convex, non-parallelogram quad in a tilted plane.
-  const Vec3 o(0.3, -0.2, 1.0), a(1, 0.2, 0.5), b(-0.1, 1, 0.3);
-  const Surface s = quad("q", o, o + 2.0 * a, o + 1.6 * a + 1.3 * b, o + 0.2 * a + 1.0 * b);
-  std::mt19937 rng(31);
-  std::uniform_real_distribution<double> U(0, 1);
-  for (int k = 0; k < 1000; ++k) {
-    const double u = U(rng), v = U(rng);
-    const auto uv = s.parameters(s.point(u, v));
-    ASSERT_TRUE(uv.has_value());
-    EXPECT_NEAR(uv->x(), u, 1e-10);
-    EXPECT_NEAR(uv->y(), v, 1e-10);
-  }
-  EXPECT_FALSE(s.parameters(s.point(1.2, 0.5)).has_value());
-  EXPECT_FALSE(s.parameters(s.point(0.5, -0.1)).has_value());
 }
 
 TEST(Renderer, PrimaryRaysHitTheRightSurfaceAtTheRightPlace) {
@@ -135,6 +119,34 @@ TEST(ImageFiles, ExrHoldsTheLinearValuesAsHalfFloats) {
       EXPECT_NEAR(float(px[y][x].b), 40.0, 0.04);
     }
   std::filesystem::remove(path);
+}
+
+TEST(Renderer, BandsOfRowsGiveTheSameImageAsOneTrace) {
+  // 1500 x 9 rays a row: kRenderBandRays (2^20) gives bands of 77 rows, so 200 rows take 3 bands.
+  Scene scene;
+  scene.surfaces.push_back(quad("floor", {0, 0, 0}, {4, 0, 0}, {4, 4, 0}, {0, 4, 0}));
+  scene.surfaces.push_back(quad("wall", {2, 0, 0}, {2, 4, 0}, {2, 4, 1}, {2, 0, 1}));
+  const Camera cam{"oblique", Vec3(5, -3, 3), Vec3(2, 2, 0), Vec3(0, 0, 1), 50.0};
+  RenderOptions options;
+  options.width = 1500;
+  options.height = 200;
+  ASSERT_LT(kRenderBandRays / (static_cast<size_t>(options.width) * 9), static_cast<size_t>(options.height) / 2);
+  ScatteredSamples samples;
+  samples.channels = 3;
+  for (double x : {0.0, 1.3, 4.0})
+    for (double y : {0.0, 2.2, 4.0}) {
+      samples.points.emplace_back(x, y);
+      for (int c = 0; c < 3; ++c) samples.values.push_back(x + 2 * y + c);
+    }
+  const auto f = make_scattered_interpolant(Method::shepard, samples).value();
+  const SideReconstruction recon = [&](SideRef) { return f.get(); };
+  int calls = 0;
+  const Image banded = render(scene, cam, recon, options, [&](double) { ++calls; });
+  const Image whole = shade(scene, trace_camera(scene, cam, options), recon);
+  EXPECT_EQ(calls, 3);
+  for (int y = 0; y < options.height; ++y)
+    for (int x = 0; x < options.width; ++x)
+      for (int c = 0; c < 3; ++c) ASSERT_EQ(banded.at(x, y)[c], whole.at(x, y)[c]) << x << "," << y;
 }
 
 }  // namespace
