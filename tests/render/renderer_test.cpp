@@ -15,14 +15,14 @@
 #include "io/image_io.h"
 #include "render/renderer.h"
 
+#include "support/scenes.h"
+
 namespace radrecon {
 namespace {
 
+/// A black quad (reflectance and emission 0).
 Surface quad(const std::string& name, const Vec3& c0, const Vec3& c1, const Vec3& c2, const Vec3& c3) {
-  Surface s;
-  s.name = name;
-  s.corners = {c0, c1, c2, c3};
-  return s;
+  return testing_support::quad(name, c0, c1, c2, c3, 0.0);
 }
 
 TEST(Renderer, PrimaryRaysHitTheRightSurfaceAtTheRightPlace) {
