@@ -12,6 +12,7 @@
 #include "core/parallel.h"
 #include "core/tolerances.h"
 #include "reconstruct/kdtree.h"
+#include "reconstruct/parallel_scratch.h"
 
 namespace radrecon {
 
@@ -33,6 +34,12 @@ inline double wendland(double t) {
   return a2 * a2 * (4 * t + 1);
 }
 
+/// Per-thread buffers of the patch loop: the nearest samples to a patch centre.
+struct NearestScratch {
+  std::vector<unsigned> indices;
+  std::vector<double> dist_sq;
+};
+
 }  // namespace
 
 LocalMultiquadric::LocalMultiquadric(const ScatteredSamples& samples, double mu, std::optional<double> r_m, int k)
@@ -41,8 +48,8 @@ LocalMultiquadric::LocalMultiquadric(const ScatteredSamples& samples, double mu,
   const size_t n = points_.size();
   if (n < 2) throw ReconstructionError("the local multiquadric needs at least 2 samples");
   const KdTree2 tree(points_);
-  std::vector<unsigned> idx;
-  std::vector<double> d2;
+  unsigned idx[2];
+  double d2[2];
   r_sq_.resize(n);
   for (size_t i = 0; i < n; ++i) {
     tree.nearest(points_[i], 2, idx, d2);
@@ -66,23 +73,26 @@ LocalMultiquadric::LocalMultiquadric(const ScatteredSamples& samples, double mu,
   const int kk = std::min<int>(kMinPatchSamples, static_cast<int>(n));
   // Each patch: the samples in its disc (found among the nearest ones, growing the query until
   // the farthest found lies outside the disc), at least kMinPatchSamples.
-  parallel_for(0, static_cast<std::int64_t>(patches_.size()), [&](std::int64_t pk) {
-    thread_local std::vector<unsigned> near;
-    thread_local std::vector<double> near_d2;
+  parallel_for_with_scratch<NearestScratch>(0, static_cast<std::int64_t>(patches_.size()), [&](std::int64_t pk, NearestScratch& s) {
     Patch& patch = patches_[static_cast<size_t>(pk)];
     const int i = static_cast<int>(pk % nx_), j = static_cast<int>(pk / nx_);
     patch.center = origin_ + Vec2(i * h_, j * h_);
     const double reach_sq = kSampleMargin * kSampleMargin * h_ * h_;
     int want = std::max(kk, 2 * k);
+    size_t found = 0;
     while (true) {
       want = std::min<int>(want, static_cast<int>(n));
-      tree.nearest(patch.center, want, near, near_d2);
-      if (want == static_cast<int>(n) || near_d2.back() > reach_sq) break;
+      if (s.indices.size() < static_cast<size_t>(want)) {  // grows with the largest query so far
+        s.indices.resize(static_cast<size_t>(want));
+        s.dist_sq.resize(static_cast<size_t>(want));
+      }
+      found = tree.nearest(patch.center, want, s.indices, s.dist_sq);
+      if (want == static_cast<int>(n) || s.dist_sq[found - 1] > reach_sq) break;
       want *= 2;
     }
     size_t m = 0;
-    while (m < near.size() && (near_d2[m] < reach_sq || m < static_cast<size_t>(kk))) ++m;
-    patch.samples.assign(near.begin(), near.begin() + static_cast<std::ptrdiff_t>(m));
+    while (m < found && (s.dist_sq[m] < reach_sq || m < static_cast<size_t>(kk))) ++m;
+    patch.samples.assign(s.indices.begin(), s.indices.begin() + static_cast<std::ptrdiff_t>(m));
     if (m > kMaxPatchSamples) return;  // refused below, outside the parallel loop
     const Eigen::Index M = static_cast<Eigen::Index>(m);
     Eigen::MatrixXd A(M, M), B(M, channels_);

@@ -8,9 +8,9 @@
 #include <Eigen/LU>
 
 #include "core/check.h"
-#include "core/parallel.h"
 #include "core/tolerances.h"
 #include "reconstruct/kdtree.h"
+#include "reconstruct/parallel_scratch.h"
 
 namespace radrecon {
 
@@ -37,8 +37,8 @@ Multiquadric::Multiquadric(const ScatteredSamples& samples, double mu, std::opti
   } else {
     // Eck: r_i = distance from p_i to its nearest other sample.
     const KdTree2 tree(points_);
-    std::vector<unsigned> idx;
-    std::vector<double> d2;
+    unsigned idx[2];
+    double d2[2];
     for (size_t i = 0; i < n; ++i) {
       tree.nearest(points_[i], 2, idx, d2);
       if (d2[1] == 0) throw ReconstructionError("duplicate sample point at (" + std::to_string(points_[i].x()) + ", " +
@@ -76,7 +76,7 @@ void Multiquadric::evaluate(std::span<const Vec2> points, std::span<double> out)
   const double* px = px_.data();
   const double* py = py_.data();
   const double* r2 = r_sq_.data();
-  parallel_for(0, static_cast<std::int64_t>(points.size()), [&](std::int64_t k) {
+  parallel_for_with_scratch<Eigen::ArrayXd>(0, static_cast<std::int64_t>(points.size()), [&](std::int64_t k, Eigen::ArrayXd& b) {
     const size_t q = static_cast<size_t>(k);
     const Vec2 p = points[q];
     if (!p.allFinite()) {
@@ -87,7 +87,6 @@ void Multiquadric::evaluate(std::span<const Vec2> points, std::span<double> out)
     // fixed (packet) order, so results do not depend on threads.
     using Array = Eigen::Map<const Eigen::ArrayXd>;
     const Eigen::Index N = static_cast<Eigen::Index>(n);
-    thread_local Eigen::ArrayXd b;
     b = (p.x() - Array(px, N)).square() + (p.y() - Array(py, N)).square() + Array(r2, N);
     if (mu_ == 0.5) b = b.sqrt();
     else if (mu_ == -0.5) b = b.rsqrt();
