@@ -12,6 +12,7 @@
 #include "core/parallel.h"
 #include "core/tolerances.h"
 #include "reconstruct/kdtree.h"
+#include "reconstruct/multiquadric_basis.h"
 #include "reconstruct/parallel_scratch.h"
 
 namespace radrecon {
@@ -20,12 +21,6 @@ namespace {
 
 /// Radius of a patch's sample disc over the radius of its support.
 constexpr double kSampleMargin = 1.5;
-
-inline double basis(double dist_sq_plus_r_sq, double mu) {
-  if (mu == 0.5) return std::sqrt(dist_sq_plus_r_sq);
-  if (mu == -0.5) return 1.0 / std::sqrt(dist_sq_plus_r_sq);
-  return std::pow(dist_sq_plus_r_sq, mu);
-}
 
 /// Wendland's C2 function of t = d / h, zero for t >= 1.
 inline double wendland(double t) {
@@ -48,16 +43,8 @@ LocalMultiquadric::LocalMultiquadric(const ScatteredSamples& samples, double mu,
   const size_t n = points_.size();
   if (n < 2) throw ReconstructionError("the local multiquadric needs at least 2 samples");
   const KdTree2 tree(points_);
-  unsigned idx[2];
-  double d2[2];
-  r_sq_.resize(n);
-  for (size_t i = 0; i < n; ++i) {
-    tree.nearest(points_[i], 2, idx, d2);
-    if (d2[1] == 0)
-      throw ReconstructionError("duplicate sample point at (" + std::to_string(points_[i].x()) + ", " +
-                                     std::to_string(points_[i].y()) + ")");
-    r_sq_[i] = r_m ? *r_m * *r_m : d2[1];
-  }
+  r_sq_ = eck_radii_sq(points_, tree);  // also refuses duplicate points, whatever r
+  if (r_m) r_sq_.assign(n, *r_m * *r_m);
   Vec2 lo = points_[0], hi = points_[0];
   for (const Vec2& p : points_) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
   const Vec2 extent = (hi - lo).cwiseMax(Vec2::Constant(1e-12 * std::max(1.0, (hi - lo).maxCoeff())));
@@ -100,7 +87,7 @@ LocalMultiquadric::LocalMultiquadric(const ScatteredSamples& samples, double mu,
       const unsigned sa = patch.samples[static_cast<size_t>(a)];
       for (Eigen::Index b = 0; b < M; ++b) {
         const unsigned sb = patch.samples[static_cast<size_t>(b)];
-        A(a, b) = basis((points_[sa] - points_[sb]).squaredNorm() + r_sq_[sb], mu_);
+        A(a, b) = multiquadric_basis((points_[sa] - points_[sb]).squaredNorm() + r_sq_[sb], mu_);
       }
       for (int c = 0; c < channels_; ++c) B(a, c) = samples.values[sa * static_cast<size_t>(channels_) + c];
     }
@@ -154,7 +141,7 @@ void LocalMultiquadric::evaluate(std::span<const Vec2> points, std::span<double>
         if (w == 0) continue;
         total += w;
         for (size_t a = 0; a < patch.samples.size(); ++a) {
-          const double b = basis((x - points_[patch.samples[a]]).squaredNorm() + r_sq_[patch.samples[a]], mu_) * w;
+          const double b = multiquadric_basis((x - points_[patch.samples[a]]).squaredNorm() + r_sq_[patch.samples[a]], mu_) * w;
           for (int c = 0; c < C; ++c) o[c] += b * patch.alpha[a * C + c];
         }
       }
