@@ -103,16 +103,21 @@ LocalMultiquadric::LocalMultiquadric(const ScatteredSamples& samples, double mu,
 
 LocalMultiquadric::~LocalMultiquadric() = default;
 
-void LocalMultiquadric::check_patches() const {
+double LocalMultiquadric::reciprocal_condition() const {
   double worst = 1;
+  for (const Patch& p : patches_) worst = std::min(worst, p.rcond);
+  return worst;
+}
+
+void LocalMultiquadric::check_patches() const {
   for (const Patch& p : patches_) {
     if (p.samples.size() > kMaxPatchSamples)
       throw ReconstructionError("a local multiquadric patch at (" + std::to_string(p.center.x()) + ", " +
                                      std::to_string(p.center.y()) + ") holds " + std::to_string(p.samples.size()) +
                                      " samples (at most " + std::to_string(kMaxPatchSamples) +
                                      "): the samples are too clustered for patches of the requested size; use a smaller k");
-    worst = std::min(worst, p.rcond);
   }
+  const double worst = reciprocal_condition();
   if (!(worst > 0) || !std::isfinite(worst)) throw ReconstructionError("a local multiquadric system is singular");
   if (worst < tol::kPoorConditioning)
     std::fprintf(stderr, "radrecon: warning: a local multiquadric system is poorly conditioned (reciprocal condition %.2e)\n", worst);
