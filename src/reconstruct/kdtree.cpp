@@ -1,8 +1,5 @@
 #include "reconstruct/kdtree.h"
 
-#include <algorithm>
-#include <numeric>
-
 #include <nanoflann.hpp>
 
 #include "core/check.h"
@@ -35,28 +32,27 @@ KdTree2::KdTree2(std::span<const Vec2> points) : impl_(std::make_unique<Impl>(po
 KdTree2::~KdTree2() = default;
 size_t KdTree2::size() const { return impl_->cloud.pts.size(); }
 
-void KdTree2::nearest(const Vec2& q, int k, std::vector<unsigned>& indices, std::vector<double>& dist_sq) const {
+size_t KdTree2::nearest(const Vec2& q, int k, std::span<unsigned> indices, std::span<double> dist_sq) const {
   RR_CHECK(k >= 1 && static_cast<size_t>(k) <= size(), "k must be in [1, number of points]");
-  indices.resize(static_cast<size_t>(k));
-  dist_sq.resize(static_cast<size_t>(k));
+  RR_CHECK(indices.size() >= static_cast<size_t>(k) && dist_sq.size() >= static_cast<size_t>(k),
+           "the result buffers must hold k entries");
   const double query[2] = {q.x(), q.y()};
+  // nanoflann's KNNResultSet keeps its k best sorted by distance alone, in the caller's buffers.
   const size_t found = impl_->tree.knnSearch(query, static_cast<size_t>(k), indices.data(), dist_sq.data());
-  indices.resize(found);
-  dist_sq.resize(found);
-  // Deterministic order for equal distances (nanoflann's order among ties is unspecified).
-  std::vector<size_t> order(found);
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-    return dist_sq[a] < dist_sq[b] || (dist_sq[a] == dist_sq[b] && indices[a] < indices[b]);
-  });
-  std::vector<unsigned> idx(found);
-  std::vector<double> d(found);
-  for (size_t i = 0; i < found; ++i) {
-    idx[i] = indices[order[i]];
-    d[i] = dist_sq[order[i]];
+  // Equal distances by index (nanoflann's order among ties is unspecified). Insertion sort: the
+  // entries are already sorted by distance, so only runs of ties move.
+  for (size_t i = 1; i < found; ++i) {
+    const double d = dist_sq[i];
+    const unsigned index = indices[i];
+    size_t j = i;
+    for (; j > 0 && (dist_sq[j - 1] > d || (dist_sq[j - 1] == d && indices[j - 1] > index)); --j) {
+      dist_sq[j] = dist_sq[j - 1];
+      indices[j] = indices[j - 1];
+    }
+    dist_sq[j] = d;
+    indices[j] = index;
   }
-  indices.swap(idx);
-  dist_sq.swap(d);
+  return found;
 }
 
 }  // namespace radrecon

@@ -3,7 +3,6 @@
 
 #include <memory>
 #include <span>
-#include <vector>
 
 #include "core/vec.h"
 
@@ -17,10 +16,16 @@ class KdTree2 {
   KdTree2(const KdTree2&) = delete;
   KdTree2& operator=(const KdTree2&) = delete;
 
-  /// The k nearest points to q (k <= size()), nearest first: indices and squared distances
-  /// (m^2). Among the points found, equal distances are ordered by index (which of several
-  /// equidistant points beyond the k-th is found is up to the tree, but deterministic).
-  void nearest(const Vec2& q, int k, std::vector<unsigned>& indices, std::vector<double>& dist_sq) const;
+  /// The k nearest points to q (1 <= k <= size()), written to the caller's buffers (each of size
+  /// >= k; entries past the count returned are unspecified): indices and squared distances (m^2).
+  /// Returns the number found (k, since k <= size()). No allocation.
+  ///
+  /// Order: by (dist_sq, index), nearest first, equal distances by increasing index.
+  /// Which points: every point strictly closer than the k-th distance is found. When several
+  /// points are equidistant at the k-th distance and not all fit, which of them are found is
+  /// up to the tree (deterministic for a given tree and query, but not necessarily the lowest
+  /// indices).
+  size_t nearest(const Vec2& q, int k, std::span<unsigned> indices, std::span<double> dist_sq) const;
   size_t size() const;
 
  private:

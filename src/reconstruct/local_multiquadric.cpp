@@ -12,6 +12,8 @@
 #include "core/parallel.h"
 #include "core/tolerances.h"
 #include "reconstruct/kdtree.h"
+#include "reconstruct/multiquadric_basis.h"
+#include "reconstruct/parallel_scratch.h"
 
 namespace radrecon {
 
@@ -20,18 +22,18 @@ namespace {
 /// Radius of a patch's sample disc over the radius of its support.
 constexpr double kSampleMargin = 1.5;
 
-inline double basis(double dist_sq_plus_r_sq, double mu) {
-  if (mu == 0.5) return std::sqrt(dist_sq_plus_r_sq);
-  if (mu == -0.5) return 1.0 / std::sqrt(dist_sq_plus_r_sq);
-  return std::pow(dist_sq_plus_r_sq, mu);
-}
-
 /// Wendland's C2 function of t = d / h, zero for t >= 1.
 inline double wendland(double t) {
   if (t >= 1) return 0;
   const double a = 1 - t, a2 = a * a;
   return a2 * a2 * (4 * t + 1);
 }
+
+/// Per-thread buffers of the patch loop: the nearest samples to a patch centre.
+struct NearestScratch {
+  std::vector<unsigned> indices;
+  std::vector<double> dist_sq;
+};
 
 }  // namespace
 
@@ -41,16 +43,8 @@ LocalMultiquadric::LocalMultiquadric(const ScatteredSamples& samples, double mu,
   const size_t n = points_.size();
   if (n < 2) throw ReconstructionError("the local multiquadric needs at least 2 samples");
   const KdTree2 tree(points_);
-  std::vector<unsigned> idx;
-  std::vector<double> d2;
-  r_sq_.resize(n);
-  for (size_t i = 0; i < n; ++i) {
-    tree.nearest(points_[i], 2, idx, d2);
-    if (d2[1] == 0)
-      throw ReconstructionError("duplicate sample point at (" + std::to_string(points_[i].x()) + ", " +
-                                     std::to_string(points_[i].y()) + ")");
-    r_sq_[i] = r_m ? *r_m * *r_m : d2[1];
-  }
+  r_sq_ = eck_radii_sq(points_, tree);  // also refuses duplicate points, whatever r
+  if (r_m) r_sq_.assign(n, *r_m * *r_m);
   Vec2 lo = points_[0], hi = points_[0];
   for (const Vec2& p : points_) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
   const Vec2 extent = (hi - lo).cwiseMax(Vec2::Constant(1e-12 * std::max(1.0, (hi - lo).maxCoeff())));
@@ -66,23 +60,26 @@ LocalMultiquadric::LocalMultiquadric(const ScatteredSamples& samples, double mu,
   const int kk = std::min<int>(kMinPatchSamples, static_cast<int>(n));
   // Each patch: the samples in its disc (found among the nearest ones, growing the query until
   // the farthest found lies outside the disc), at least kMinPatchSamples.
-  parallel_for(0, static_cast<std::int64_t>(patches_.size()), [&](std::int64_t pk) {
-    thread_local std::vector<unsigned> near;
-    thread_local std::vector<double> near_d2;
+  parallel_for_with_scratch<NearestScratch>(0, static_cast<std::int64_t>(patches_.size()), [&](std::int64_t pk, NearestScratch& s) {
     Patch& patch = patches_[static_cast<size_t>(pk)];
     const int i = static_cast<int>(pk % nx_), j = static_cast<int>(pk / nx_);
     patch.center = origin_ + Vec2(i * h_, j * h_);
     const double reach_sq = kSampleMargin * kSampleMargin * h_ * h_;
     int want = std::max(kk, 2 * k);
+    size_t found = 0;
     while (true) {
       want = std::min<int>(want, static_cast<int>(n));
-      tree.nearest(patch.center, want, near, near_d2);
-      if (want == static_cast<int>(n) || near_d2.back() > reach_sq) break;
+      if (s.indices.size() < static_cast<size_t>(want)) {  // grows with the largest query so far
+        s.indices.resize(static_cast<size_t>(want));
+        s.dist_sq.resize(static_cast<size_t>(want));
+      }
+      found = tree.nearest(patch.center, want, s.indices, s.dist_sq);
+      if (want == static_cast<int>(n) || s.dist_sq[found - 1] > reach_sq) break;
       want *= 2;
     }
     size_t m = 0;
-    while (m < near.size() && (near_d2[m] < reach_sq || m < static_cast<size_t>(kk))) ++m;
-    patch.samples.assign(near.begin(), near.begin() + static_cast<std::ptrdiff_t>(m));
+    while (m < found && (s.dist_sq[m] < reach_sq || m < static_cast<size_t>(kk))) ++m;
+    patch.samples.assign(s.indices.begin(), s.indices.begin() + static_cast<std::ptrdiff_t>(m));
     if (m > kMaxPatchSamples) return;  // refused below, outside the parallel loop
     const Eigen::Index M = static_cast<Eigen::Index>(m);
     Eigen::MatrixXd A(M, M), B(M, channels_);
@@ -90,7 +87,7 @@ LocalMultiquadric::LocalMultiquadric(const ScatteredSamples& samples, double mu,
       const unsigned sa = patch.samples[static_cast<size_t>(a)];
       for (Eigen::Index b = 0; b < M; ++b) {
         const unsigned sb = patch.samples[static_cast<size_t>(b)];
-        A(a, b) = basis((points_[sa] - points_[sb]).squaredNorm() + r_sq_[sb], mu_);
+        A(a, b) = multiquadric_basis((points_[sa] - points_[sb]).squaredNorm() + r_sq_[sb], mu_);
       }
       for (int c = 0; c < channels_; ++c) B(a, c) = samples.values[sa * static_cast<size_t>(channels_) + c];
     }
@@ -106,16 +103,21 @@ LocalMultiquadric::LocalMultiquadric(const ScatteredSamples& samples, double mu,
 
 LocalMultiquadric::~LocalMultiquadric() = default;
 
-void LocalMultiquadric::check_patches() const {
+double LocalMultiquadric::reciprocal_condition() const {
   double worst = 1;
+  for (const Patch& p : patches_) worst = std::min(worst, p.rcond);
+  return worst;
+}
+
+void LocalMultiquadric::check_patches() const {
   for (const Patch& p : patches_) {
     if (p.samples.size() > kMaxPatchSamples)
       throw ReconstructionError("a local multiquadric patch at (" + std::to_string(p.center.x()) + ", " +
                                      std::to_string(p.center.y()) + ") holds " + std::to_string(p.samples.size()) +
                                      " samples (at most " + std::to_string(kMaxPatchSamples) +
                                      "): the samples are too clustered for patches of the requested size; use a smaller k");
-    worst = std::min(worst, p.rcond);
   }
+  const double worst = reciprocal_condition();
   if (!(worst > 0) || !std::isfinite(worst)) throw ReconstructionError("a local multiquadric system is singular");
   if (worst < tol::kPoorConditioning)
     std::fprintf(stderr, "radrecon: warning: a local multiquadric system is poorly conditioned (reciprocal condition %.2e)\n", worst);
@@ -144,7 +146,7 @@ void LocalMultiquadric::evaluate(std::span<const Vec2> points, std::span<double>
         if (w == 0) continue;
         total += w;
         for (size_t a = 0; a < patch.samples.size(); ++a) {
-          const double b = basis((x - points_[patch.samples[a]]).squaredNorm() + r_sq_[patch.samples[a]], mu_) * w;
+          const double b = multiquadric_basis((x - points_[patch.samples[a]]).squaredNorm() + r_sq_[patch.samples[a]], mu_) * w;
           for (int c = 0; c < C; ++c) o[c] += b * patch.alpha[a * C + c];
         }
       }

@@ -33,6 +33,8 @@ class LocalMultiquadric final : public Interpolant {
   static constexpr size_t kMaxPatchSamples = 2000;
   /// Patch radius = spacing of the patch grid, metres.
   double patch_radius() const { return h_; }
+  /// The smallest reciprocal condition estimate of the patches' systems (LU's rcond()).
+  double reciprocal_condition() const;
 
  private:
   struct Patch {

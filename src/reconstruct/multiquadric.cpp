@@ -8,22 +8,12 @@
 #include <Eigen/LU>
 
 #include "core/check.h"
-#include "core/parallel.h"
 #include "core/tolerances.h"
 #include "reconstruct/kdtree.h"
+#include "reconstruct/multiquadric_basis.h"
+#include "reconstruct/parallel_scratch.h"
 
 namespace radrecon {
-
-namespace {
-
-/// (d^2 + r^2)^mu, with mu = 1/2 (Hardy's choice and the default) and -1/2 without pow().
-inline double basis(double dist_sq_plus_r_sq, double mu) {
-  if (mu == 0.5) return std::sqrt(dist_sq_plus_r_sq);
-  if (mu == -0.5) return 1.0 / std::sqrt(dist_sq_plus_r_sq);
-  return std::pow(dist_sq_plus_r_sq, mu);
-}
-
-}  // namespace
 
 Multiquadric::Multiquadric(const ScatteredSamples& samples, double mu, std::optional<double> r_m)
     : points_(samples.points), channels_(samples.channels), mu_(mu) {
@@ -31,25 +21,16 @@ Multiquadric::Multiquadric(const ScatteredSamples& samples, double mu, std::opti
   const size_t n = points_.size();
   if (n == 0) throw ReconstructionError("multiquadric needs at least one sample");
   if (!r_m && n < 2) throw ReconstructionError("multiquadric with Eck's r needs at least 2 samples (or a fixed radius r)");
-  r_sq_.resize(n);
   if (r_m) {
-    std::fill(r_sq_.begin(), r_sq_.end(), *r_m * *r_m);
+    r_sq_.assign(n, *r_m * *r_m);
   } else {
-    // Eck: r_i = distance from p_i to its nearest other sample.
     const KdTree2 tree(points_);
-    std::vector<unsigned> idx;
-    std::vector<double> d2;
-    for (size_t i = 0; i < n; ++i) {
-      tree.nearest(points_[i], 2, idx, d2);
-      if (d2[1] == 0) throw ReconstructionError("duplicate sample point at (" + std::to_string(points_[i].x()) + ", " +
-                                                     std::to_string(points_[i].y()) + ")");
-      r_sq_[i] = d2[1];
-    }
+    r_sq_ = eck_radii_sq(points_, tree);
   }
   Eigen::MatrixXd A(n, n);
   for (size_t i = 0; i < n; ++i)
     for (size_t j = 0; j < n; ++j) A(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) =
-        basis((points_[i] - points_[j]).squaredNorm() + r_sq_[j], mu_);
+        multiquadric_basis((points_[i] - points_[j]).squaredNorm() + r_sq_[j], mu_);
   Eigen::MatrixXd B(n, channels_);
   for (size_t i = 0; i < n; ++i)
     for (int c = 0; c < channels_; ++c) B(static_cast<Eigen::Index>(i), c) = samples.values[i * channels_ + c];
@@ -76,7 +57,7 @@ void Multiquadric::evaluate(std::span<const Vec2> points, std::span<double> out)
   const double* px = px_.data();
   const double* py = py_.data();
   const double* r2 = r_sq_.data();
-  parallel_for(0, static_cast<std::int64_t>(points.size()), [&](std::int64_t k) {
+  parallel_for_with_scratch<Eigen::ArrayXd>(0, static_cast<std::int64_t>(points.size()), [&](std::int64_t k, Eigen::ArrayXd& b) {
     const size_t q = static_cast<size_t>(k);
     const Vec2 p = points[q];
     if (!p.allFinite()) {
@@ -87,11 +68,8 @@ void Multiquadric::evaluate(std::span<const Vec2> points, std::span<double> out)
     // fixed (packet) order, so results do not depend on threads.
     using Array = Eigen::Map<const Eigen::ArrayXd>;
     const Eigen::Index N = static_cast<Eigen::Index>(n);
-    thread_local Eigen::ArrayXd b;
     b = (p.x() - Array(px, N)).square() + (p.y() - Array(py, N)).square() + Array(r2, N);
-    if (mu_ == 0.5) b = b.sqrt();
-    else if (mu_ == -0.5) b = b.rsqrt();
-    else b = b.pow(mu_);
+    multiquadric_basis_in_place(b, mu_);
     for (int c = 0; c < C; ++c)
       out[q * C + c] = (b * Array(&alpha_by_channel_[static_cast<size_t>(c) * n], N)).sum();
   });

@@ -3,15 +3,14 @@
 #include <algorithm>
 #include <limits>
 
-
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 #include <CGAL/natural_neighbor_coordinates_2.h>
 
 #include "core/check.h"
-#include "core/parallel.h"
 #include "reconstruct/kdtree.h"
+#include "reconstruct/parallel_scratch.h"
 
 namespace radrecon {
 
@@ -42,9 +41,16 @@ struct NaturalNeighbour::Impl {
   std::vector<Delaunay::Vertex_handle> vertex_of;  ///< by sample index
   std::unique_ptr<KdTree2> tree;                   ///< to start walks near a query
 
-  /// Coordinates of q; `hint` is a face near q (updated), or a default handle.
-  bool coordinates(const Vec2& q, Delaunay::Face_handle& hint, std::vector<std::pair<unsigned, double>>& out) const {
-    thread_local std::vector<Delaunay::Edge> hole;
+  /// Buffers of coordinates(), reused from query to query.
+  struct Scratch {
+    std::vector<std::pair<unsigned, double>> coords;
+    std::vector<Delaunay::Edge> hole;  ///< boundary of the conflict zone
+  };
+
+  /// Coordinates of q into scratch.coords; `hint` is a face near q (updated), or a default handle.
+  bool coordinates(const Vec2& q, Delaunay::Face_handle& hint, Scratch& scratch) const {
+    std::vector<std::pair<unsigned, double>>& out = scratch.coords;
+    std::vector<Delaunay::Edge>& hole = scratch.hole;
     out.clear();
     const Point p(q.x(), q.y());
     Delaunay::Locate_type lt;
@@ -125,10 +131,10 @@ NaturalNeighbour::~NaturalNeighbour() = default;
 int NaturalNeighbour::channels() const { return impl_->channels; }
 
 std::vector<std::pair<unsigned, double>> NaturalNeighbour::coordinates(const Vec2& q) const {
-  std::vector<std::pair<unsigned, double>> out;
+  Impl::Scratch scratch;
   Delaunay::Face_handle hint;
-  impl_->coordinates(q, hint, out);
-  return out;
+  impl_->coordinates(q, hint, scratch);
+  return std::move(scratch.coords);
 }
 
 void NaturalNeighbour::evaluate(std::span<const Vec2> points, std::span<double> out) const {
@@ -140,13 +146,12 @@ void NaturalNeighbour::evaluate(std::span<const Vec2> points, std::span<double> 
   // fixed chunks with deterministic starts make that independent of the number of threads.
   constexpr std::int64_t kChunk = 64;
   const std::int64_t n = static_cast<std::int64_t>(points.size());
-  parallel_for(0, (n + kChunk - 1) / kChunk, [&](std::int64_t chunk) {
-    std::vector<std::pair<unsigned, double>> coords;
-    std::vector<unsigned> nearest;
-    std::vector<double> nearest_d2;
+  parallel_for_with_scratch<Impl::Scratch>(0, (n + kChunk - 1) / kChunk, [&](std::int64_t chunk, Impl::Scratch& scratch) {
     Delaunay::Face_handle hint;
     const size_t first = static_cast<size_t>(chunk * kChunk);
     if (points[first].allFinite()) {
+      unsigned nearest[1];
+      double nearest_d2[1];
       impl_->tree->nearest(points[first], 1, nearest, nearest_d2);
       hint = impl_->vertex_of[nearest[0]]->face();
     }
@@ -157,7 +162,7 @@ void NaturalNeighbour::evaluate(std::span<const Vec2> points, std::span<double> 
         for (int c = 0; c < C; ++c) o[c] = std::numeric_limits<double>::quiet_NaN();
         continue;
       }
-      if (!impl_->coordinates(points[q], hint, coords)) {
+      if (!impl_->coordinates(points[q], hint, scratch)) {
         if (impl_->outside == OutsideHull::nearest) {
           impl_->nearest_on_hull(points[q], o);
         } else {
@@ -166,7 +171,7 @@ void NaturalNeighbour::evaluate(std::span<const Vec2> points, std::span<double> 
         continue;
       }
       for (int c = 0; c < C; ++c) o[c] = 0;
-      for (const auto& [index, w] : coords)
+      for (const auto& [index, w] : scratch.coords)
         for (int c = 0; c < C; ++c) o[c] += w * impl_->values[index * static_cast<size_t>(C) + c];
     }
   });

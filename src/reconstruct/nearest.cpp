@@ -19,13 +19,13 @@ void NearestSample::evaluate(std::span<const Vec2> points, std::span<double> out
   const int C = samples_.channels;
   RR_CHECK(out.size() == points.size() * static_cast<size_t>(C), "output size does not match the query points");
   parallel_for(0, static_cast<std::int64_t>(points.size()), [&](std::int64_t k) {
-    thread_local std::vector<unsigned> idx;
-    thread_local std::vector<double> d2;
     const size_t q = static_cast<size_t>(k);
     if (!points[q].allFinite()) {
       for (int c = 0; c < C; ++c) out[q * C + c] = std::numeric_limits<double>::quiet_NaN();
       return;
     }
+    unsigned idx[1];
+    double d2[1];
     tree_->nearest(points[q], 1, idx, d2);
     for (int c = 0; c < C; ++c) out[q * C + c] = samples_.values[idx[0] * static_cast<size_t>(C) + c];
   });

@@ -7,8 +7,8 @@
 #include <Eigen/Core>
 
 #include "core/check.h"
-#include "core/parallel.h"
 #include "reconstruct/kdtree.h"
+#include "reconstruct/parallel_scratch.h"
 
 namespace radrecon {
 
@@ -42,15 +42,21 @@ inline double weight(double dist_sq, double mu) {
   return std::pow(dist_sq, -0.5 * mu);
 }
 
+/// Per-thread buffers of Shepard::evaluate: the global path's distances and weights (one per
+/// sample), the local path's k nearest.
+struct Scratch {
+  Eigen::ArrayXd dist_sq, w;
+  std::vector<unsigned> idx;
+  std::vector<double> d2;
+};
+
 }  // namespace
 
 void Shepard::evaluate(std::span<const Vec2> points, std::span<double> out) const {
   const int C = samples_.channels;
   RR_CHECK(out.size() == points.size() * static_cast<size_t>(C), "output size does not match the query points");
   const size_t n = samples_.points.size();
-  parallel_for(0, static_cast<std::int64_t>(points.size()), [&](std::int64_t k) {
-    thread_local std::vector<unsigned> idx;
-    thread_local std::vector<double> d2;
+  parallel_for_with_scratch<Scratch>(0, static_cast<std::int64_t>(points.size()), [&](std::int64_t k, Scratch& s) {
     const size_t q = static_cast<size_t>(k);
     double* o = &out[q * C];
     const Vec2 p = points[q];
@@ -62,7 +68,8 @@ void Shepard::evaluate(std::span<const Vec2> points, std::span<double> out) cons
       // Global: all samples at once as Eigen arrays (SIMD, sums in a fixed packet order).
       using Array = Eigen::Map<const Eigen::ArrayXd>;
       const Eigen::Index N = static_cast<Eigen::Index>(n);
-      thread_local Eigen::ArrayXd dist_sq, w;
+      Eigen::ArrayXd& dist_sq = s.dist_sq;
+      Eigen::ArrayXd& w = s.w;
       dist_sq = (p.x() - Array(px_.data(), N)).square() + (p.y() - Array(py_.data(), N)).square();
       Eigen::Index first = 0;
       const double nearest_sq = dist_sq.minCoeff(&first);
@@ -79,14 +86,18 @@ void Shepard::evaluate(std::span<const Vec2> points, std::span<double> out) cons
       for (int c = 0; c < C; ++c) o[c] = (w * Array(&values_by_channel_[static_cast<size_t>(c) * n], N)).sum() / total;
       return;
     }
-    tree_->nearest(p, k_, idx, d2);
     // k nearest, nearest first.
+    s.idx.resize(static_cast<size_t>(k_));  // allocates on a thread's first query only
+    s.d2.resize(static_cast<size_t>(k_));
+    const size_t found = tree_->nearest(p, k_, s.idx, s.d2);
+    const std::vector<unsigned>& idx = s.idx;
+    const std::vector<double>& d2 = s.d2;
     if (d2[0] == 0) {  // at a sample: its value
       for (int c = 0; c < C; ++c) o[c] = samples_.values[idx[0] * static_cast<size_t>(C) + c];
       return;
     }
     double total = 0, s0 = 0, s1 = 0, s2 = 0;
-    for (size_t j = 0; j < d2.size(); ++j) {
+    for (size_t j = 0; j < found; ++j) {
       const double w = weight(d2[j] / d2[0], mu_);  // relative to the nearest: in (0, 1]
       const double* v = &samples_.values[idx[j] * static_cast<size_t>(C)];
       total += w;
@@ -99,7 +110,7 @@ void Shepard::evaluate(std::span<const Vec2> points, std::span<double> out) cons
     if (C > 2) o[2] = s2 / total;
     for (int c = 3; c < C; ++c) {
       double sum = 0;
-      for (size_t j = 0; j < d2.size(); ++j) sum += weight(d2[j] / d2[0], mu_) * samples_.values[idx[j] * static_cast<size_t>(C) + c];
+      for (size_t j = 0; j < found; ++j) sum += weight(d2[j] / d2[0], mu_) * samples_.values[idx[j] * static_cast<size_t>(C) + c];
       o[c] = sum / total;
     }
   });
