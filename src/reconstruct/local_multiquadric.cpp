@@ -13,7 +13,6 @@
 #include "core/tolerances.h"
 #include "reconstruct/kdtree.h"
 #include "reconstruct/multiquadric_basis.h"
-#include "reconstruct/parallel_scratch.h"
 
 namespace radrecon {
 

@@ -11,7 +11,7 @@
 #include "core/tolerances.h"
 #include "reconstruct/kdtree.h"
 #include "reconstruct/multiquadric_basis.h"
-#include "reconstruct/parallel_scratch.h"
+#include "core/parallel.h"
 
 namespace radrecon {
 

@@ -1,6 +1,7 @@
 #include "reconstruct/natural_neighbour.h"
 
 #include <algorithm>
+#include <array>
 #include <limits>
 
 #include <CGAL/Delaunay_triangulation_2.h>
@@ -10,7 +11,7 @@
 
 #include "core/check.h"
 #include "reconstruct/kdtree.h"
-#include "reconstruct/parallel_scratch.h"
+#include "core/parallel.h"
 
 namespace radrecon {
 
@@ -47,6 +48,13 @@ struct NaturalNeighbour::Impl {
     std::vector<Delaunay::Edge> hole;  ///< boundary of the conflict zone
   };
 
+  /// A finite face's sample indices, sorted: a canonical order of faces.
+  static std::array<unsigned, 3> face_key(const Delaunay::Face_handle& f) {
+    std::array<unsigned, 3> key = {f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()};
+    std::sort(key.begin(), key.end());
+    return key;
+  }
+
   /// Coordinates of q into scratch.coords; `hint` is a face near q (updated), or a default handle.
   bool coordinates(const Vec2& q, Delaunay::Face_handle& hint, Scratch& scratch) const {
     std::vector<std::pair<unsigned, double>>& out = scratch.coords;
@@ -62,13 +70,24 @@ struct NaturalNeighbour::Impl {
       return true;
     }
     if (lt == Delaunay::EDGE && (dt.is_infinite(hint) || dt.is_infinite(hint->neighbor(li)))) {
-      // On the hull: linear along the edge (the limit of the coordinates from inside).
-      const auto a = hint->vertex(Delaunay::cw(li)), b = hint->vertex(Delaunay::ccw(li));
+      // On the hull: linear along the edge (the limit of the coordinates from inside), its ends
+      // in sample order, whichever face the walk found.
+      auto a = hint->vertex(Delaunay::cw(li)), b = hint->vertex(Delaunay::ccw(li));
+      if (b->info() < a->info()) std::swap(a, b);
       const Vec2 pa(a->point().x(), a->point().y()), pb(b->point().x(), b->point().y());
       const double t = std::clamp((q - pa).dot(pb - pa) / (pb - pa).squaredNorm(), 0.0, 1.0);
       out.emplace_back(a->info(), 1 - t);
       out.emplace_back(b->info(), t);
       return true;
+    }
+    // A point on an inner edge lies in both of its faces, and the walk may end in either (it
+    // depends on where it started). The conflict zone is the same from both, but the order of
+    // its boundary, and so the last bits of the sums, is not: start from the face with the
+    // smaller sorted sample indices, so that the result depends on the point alone (a batch
+    // gives what one point at a time gives).
+    if (lt == Delaunay::EDGE) {
+      const Delaunay::Face_handle other = hint->neighbor(li);
+      if (face_key(other) < face_key(hint)) hint = other;
     }
     // The boundary of the conflict zone into a reused buffer (CGAL's own entry point builds a
     // std::list per query), then CGAL's Sibson areas over that hole.

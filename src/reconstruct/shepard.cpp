@@ -8,7 +8,7 @@
 
 #include "core/check.h"
 #include "reconstruct/kdtree.h"
-#include "reconstruct/parallel_scratch.h"
+#include "core/parallel.h"
 
 namespace radrecon {
 

@@ -51,12 +51,6 @@ struct Case {
   MethodParams params;
   /// Largest relative deviation from a constant inside the samples' hull.
   double constant_relative = kRoundingRelative;
-  /// Whether a point gets the same bits in any batch. Natural-neighbour does not, yet: a query on
-  /// a Delaunay edge (lattice data are full of them) is located in either of its two faces
-  /// depending on where the walk starts, which is the previous query of its chunk in a batch and
-  /// the nearest sample's face alone; the Sibson areas are then summed in another order (a few
-  /// ulps). Making the start face canonical would change the last bits of current results.
-  bool batch_independent = true;
 };
 
 /// Every method with its default parameters, plus the variants that take other code paths.
@@ -105,7 +99,6 @@ std::vector<Case> cases() {
         out.push_back(c);
         break;
       case Method::natural_neighbour:
-        c.batch_independent = false;
         out.push_back(c);                 // outside = nearest, the default
         c.params.outside = OutsideHull::none;
         c.name = "natural-neighbour outside=none";
@@ -336,8 +329,8 @@ TEST(InterpolantContract, ChannelsAreIndependent) {
 }
 
 TEST(InterpolantContract, BatchEqualsOnePointAtATime) {
-  // See Case::batch_independent for the one known exception, held to a few ulps meanwhile.
-  constexpr double kWalkOrderRelative = 1e-15;
+  // Bit for bit: lattice data put many queries on Delaunay edges and co-circular points, where
+  // natural-neighbour's walk could end in either face (it starts from the canonical one).
   for_each_case([](const Case& c, const DataSet& d) {
     const auto f = d.build(c).value();
     const std::vector<Vec2> q = queries(d);
@@ -346,12 +339,8 @@ TEST(InterpolantContract, BatchEqualsOnePointAtATime) {
       const std::vector<double> one = evaluate(*f, std::span(&q[k], 1));
       for (size_t ch = 0; ch < 3; ++ch) {
         const double b = batch[k * 3 + ch];
-        if (c.batch_independent || std::isnan(b))
-          ASSERT_TRUE(same(one[ch], b)) << "query " << k << " (" << q[k].x() << ", " << q[k].y() << ") channel " << ch
-                                        << ": alone " << one[ch] << ", in the batch " << b;
-        else
-          ASSERT_LE(std::abs(one[ch] - b), kWalkOrderRelative * std::abs(b))
-              << "query " << k << " (" << q[k].x() << ", " << q[k].y() << ") channel " << ch;
+        ASSERT_TRUE(same(one[ch], b)) << c.name << ", query " << k << " (" << q[k].x() << ", " << q[k].y()
+                                      << ") channel " << ch << ": alone " << one[ch] << ", in the batch " << b;
       }
     }
   });
