@@ -206,6 +206,16 @@ refuse png_queries "raster" "$TMP/o19.png" --samples "$S" --method constant --qu
 refuse unknown_extension ".tif" "$TMP/o20.tif" --samples "$S" --method constant --raster 5x5 --domain 0,0,1,1
 refuse pfm_two_columns "1 or 3" "$TMP/o21.pfm" --samples "$TMP/scattered.csv" --method constant --raster 5x5 --domain 0,0,1,1
 refuse bad_queries "queries_nan.csv:2" "$TMP/o22.csv" --samples "$S" --method constant --queries "$TMP/queries_nan.csv"
+# Out of memory: exit code 3, a message, nothing written (not under AddressSanitizer, which
+# reserves more address space than the limit allows).
+if ! ldd "$RADRECON" 2>/dev/null | grep -q libasan; then
+  (ulimit -v 600000; "$RADRECON" interpolate --samples "$TMP/scattered1.csv" --method shepard --raster 20000x5000 \
+     --domain 0,0,1,1 --out "$TMP/oom.pfm" >"$TMP/oom.stdout" 2>"$TMP/oom.stderr"; echo $? >"$TMP/oom.rc")
+  expect_rc oom 3
+  expect_stderr_has oom "out of memory"
+  expect_no_output oom "$TMP/oom.pfm"
+fi
+
 # An output that existed before a refused run is left as it was.
 echo "keep me" >"$TMP/keep.csv"
 run keep --samples "$TMP/nan.csv" --method constant --queries "$Q" --out "$TMP/keep.csv" --quiet

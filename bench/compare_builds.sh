@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# Two builds of radrecon side by side, whole commands interleaved run by run (the machine is
+# noisy; ratios within one run are what count): the paper run, quadtree solves, a large render
+# and interpolation workloads W1 (286 points -> 400 x 400) and W3 (100,000 points -> 2000 x 2000).
+# Prints the median wall time of each and the ratio NEW / OLD.
+# Usage: bench/compare_builds.sh OLD_RADRECON NEW_RADRECON [RUNS=5]
+set -euo pipefail
+OLD=${1:?usage: compare_builds.sh OLD_RADRECON NEW_RADRECON [RUNS]}
+NEW=${2:?usage: compare_builds.sh OLD_RADRECON NEW_RADRECON [RUNS]}
+RUNS=${3:-5}
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+python3 - "$work" <<'PY'
+import math, random, sys
+work = sys.argv[1]
+for name, n in [("w1", 286), ("w3", 100000)]:
+    rng = random.Random(2024)
+    with open(f"{work}/{name}.csv", "w") as f:
+        f.write("x,y,value\n")
+        for _ in range(n):
+            x, y = rng.random(), rng.random()
+            f.write(f"{x!r},{y!r},{math.sin(6 * x) * math.cos(4 * y)!r}\n")
+PY
+"$NEW" solve --scene paper --mesh grid:16 --out "$work/grid16.json" --quiet
+
+median() { sort -g | awk '{a[NR]=$1} END {print (NR%2) ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2}'; }
+# compare LABEL ARGS...: ARGS with OUT in place of the output path, run alternately by both builds.
+compare() {
+  local label=$1
+  shift
+  : > "$work/old.t"
+  : > "$work/new.t"
+  for _ in $(seq "$RUNS"); do
+    for which in old new; do
+      local bin=$OLD
+      [ "$which" = new ] && bin=$NEW
+      local args=("${@//OUT/$work/out_$which}")
+      /usr/bin/time -f "%e" -o "$work/t" "$bin" "${args[@]}" >/dev/null 2>&1
+      cat "$work/t" >> "$work/$which.t"
+    done
+  done
+  local o n
+  o=$(median < "$work/old.t")
+  n=$(median < "$work/new.t")
+  printf '%-44s old %7.3f s   new %7.3f s   new/old %.3f\n' "$label" "$o" "$n" "$(awk -v n="$n" -v o="$o" 'BEGIN { print n / o }')"
+}
+
+echo "== $RUNS runs each, interleaved, $(nproc) cores"
+compare "paper" paper --out OUT --quiet
+compare "solve quadtree:1000" solve --mesh quadtree:1000 --out OUT.json --quiet
+compare "render 1600x1200, 9 rays/pixel, shepard" render --solution "$work/grid16.json" --method shepard \
+  --camera view --size 1600x1200 --out OUT.png --quiet
+compare "W1 natural-neighbour" interpolate --samples "$work/w1.csv" --method natural-neighbour --raster 400x400 --domain 0,0,1,1 --out OUT.pfm --quiet
+compare "W1 shepard" interpolate --samples "$work/w1.csv" --method shepard --raster 400x400 --domain 0,0,1,1 --out OUT.pfm --quiet
+compare "W1 multiquadric" interpolate --samples "$work/w1.csv" --method multiquadric --raster 400x400 --domain 0,0,1,1 --out OUT.pfm --quiet
+compare "W3 natural-neighbour" interpolate --samples "$work/w3.csv" --method natural-neighbour --raster 2000x2000 --domain 0,0,1,1 --out OUT.pfm --quiet
+compare "W3 shepard k=32" interpolate --samples "$work/w3.csv" --method shepard --param k=32 --raster 2000x2000 --domain 0,0,1,1 --out OUT.pfm --quiet
+compare "W3 multiquadric k=32" interpolate --samples "$work/w3.csv" --method multiquadric --param k=32 --raster 2000x2000 --domain 0,0,1,1 --out OUT.pfm --quiet
