@@ -140,7 +140,7 @@ void add_interpolate_command(CLI::App& app) {
       ->required();
   cmd->add_option("--param", args->params,
                   "NAME=VALUE, repeatable. shepard: mu (> 0, default 4): weights 1/d^mu; k (integer >= 0, "
-                  "default 0): the k nearest samples, 0 = all. multiquadric: mu (nonzero, default 0.5): basis "
+                  "default 0): the k nearest samples, 0 = all. multiquadric: mu (nonzero, not a positive integer; default 0.5): basis "
                   "(d^2 + r^2)^mu; r (> 0, default: per sample, the distance to its nearest other sample "
                   "(Eck)); k (0 = one global system, default; >= 3: local patches of ~k samples blended, for large "
                   "sample sets). natural-neighbour: outside=nearest (default: the value at the nearest point of "
@@ -150,7 +150,7 @@ void add_interpolate_command(CLI::App& app) {
                   "order");
   cmd->add_option("--raster", args->raster,
                   "WxH: query the W x H cell centres of --domain, row by row from the y0 row upward "
-                  "(1 <= W, H <= 20000)");
+                  "(1 <= W, H <= " + std::to_string(kMaxRasterSide) + ")");
   cmd->add_option("--domain", args->domain, "x0,y0,x1,y1: the rectangle --raster covers (x1 > x0, y1 > y0)");
   cmd->add_option("--out", args->out,
                   "Output by extension: .csv (x,y,NAME... per query, in query order, 'nan' where no value), "

@@ -33,11 +33,13 @@ struct RenderArgs {
 /// Largest width or height of a rendered image, pixels.
 constexpr int kMaxImageSide = 8192;
 /// At most this many pixels: the linear and the display image take 24 bytes a pixel each.
-constexpr long long kMaxImagePixels = 8192LL * 8192;
+constexpr long long kMaxImagePixels = static_cast<long long>(kMaxImageSide) * kMaxImageSide;
 
 void run_render(const RenderArgs& args) {
   const FileFormat format = file_format(args.out, {FileFormat::png, FileFormat::pfm, FileFormat::exr}, "--out");
   const auto [width, height] = parse_size(args.size, "--size", kMaxImageSide, kMaxImagePixels);
+  if (args.white > 0 && format != FileFormat::png)
+    throw UserError("--white", "applies to .png outputs only (.pfm and .exr hold linear radiosity)");
   std::vector<std::string> inputs = {args.solution};
   if (args.scene != "paper") inputs.push_back(args.scene);
   refuse_overwriting_inputs(args.out, "--out", inputs);
@@ -87,11 +89,7 @@ void run_render(const RenderArgs& args) {
       }
       if (white <= 0) white = 1;
     }
-    Image display(img.width(), img.height());
-    for (int y = 0; y < img.height(); ++y)
-      for (int x = 0; x < img.width(); ++x)
-        for (int c = 0; c < 3; ++c) display.at(x, y)[c] = tone_map(img.at(x, y)[c], white);
-    write_png(args.out, display, true);
+    write_png(args.out, tone_mapped(img, white), true);
   }
   if (!args.quiet) std::fprintf(stderr, "render: wrote %s (%dx%d, %d rays per pixel)\n", args.out.c_str(), width, height, args.samples * args.samples);
 }
@@ -111,7 +109,7 @@ void add_render_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--param", args->params, "NAME=VALUE method parameter, repeatable (see 'interpolate --help')");
   cmd->add_option("--camera", args->camera, "Name of a camera of the scene (paper: view, closeup)")->required();
-  cmd->add_option("--size", args->size, "Image size WxH in pixels (each at most 8192)")->capture_default_str();
+  cmd->add_option("--size", args->size, "Image size WxH in pixels (each at most " + std::to_string(kMaxImageSide) + ")")->capture_default_str();
   cmd->add_option("--samples", args->samples, "Stratified rays per pixel along each axis (N x N rays)")
       ->check(CLI::Range(1, 16))
       ->capture_default_str();

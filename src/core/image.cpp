@@ -21,4 +21,12 @@ double tone_map(double radiosity_w_m2, double white_w_m2) {
   return std::clamp(radiosity_w_m2 / white_w_m2, 0.0, 1.0);
 }
 
+Image tone_mapped(const Image& linear, double white_w_m2) {
+  Image display(linear.width(), linear.height());
+  for (int y = 0; y < linear.height(); ++y)
+    for (int x = 0; x < linear.width(); ++x)
+      for (int c = 0; c < 3; ++c) display.at(x, y)[c] = tone_map(linear.at(x, y)[c], white_w_m2);
+  return display;
+}
+
 }  // namespace radrecon

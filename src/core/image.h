@@ -28,4 +28,7 @@ double srgb_encode(double linear);
 /// with the sRGB curve when writing). `white_w_m2` (> 0) is the radiosity shown as white.
 double tone_map(double radiosity_w_m2, double white_w_m2);
 
+/// Every channel of every pixel through tone_map(): display values in [0,1], still linear.
+Image tone_mapped(const Image& linear_w_m2, double white_w_m2);
+
 }  // namespace radrecon

@@ -33,6 +33,13 @@ std::optional<long long> parse_integer(std::string_view text) {
   return v;
 }
 
+std::string format_number(double v) {
+  if (std::isnan(v)) return "nan";
+  char buf[64];
+  const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);
+  return ec == std::errc() ? std::string(buf, end) : std::string("?");
+}
+
 std::string_view trim_blanks(std::string_view s) {
   const auto blank = [](char c) { return c == ' ' || c == '\t' || c == '\r'; };
   while (!s.empty() && blank(s.front())) s.remove_prefix(1);

@@ -31,6 +31,9 @@ struct Size2 {
 /// UserError naming `where` (an option or field) otherwise.
 Size2 parse_size(const std::string& text, const std::string& where, int max_side, long long max_pixels);
 
+/// The shortest decimal text that reads back as `v` ("1e+100", "0.1", "nan").
+std::string format_number(double v);
+
 /// `text` without the blanks (spaces, tabs, a carriage return) at either end.
 std::string_view trim_blanks(std::string_view text);
 

@@ -50,6 +50,15 @@ inline constexpr double kQuadEdgeParameter = 1e-12;
 /// term is below this fraction of the linear one.
 inline constexpr double kParallelogramRelative = 1e-12;
 
+/// Largest magnitude of a sample or query coordinate: squared distances then stay below 1e201,
+/// far from double overflow (1.8e308), with room for the products the methods form. Beyond it
+/// distances overflow and neighbour searches lose points.
+inline constexpr double kMaxSampleCoordinate = 1e100;
+
+/// A grid solution's element (i, j) must start within this of (i / nu, j / nv) in (u, v): the
+/// files hold 17 significant digits, so only a misplaced element is farther.
+inline constexpr double kSolutionGridParameter = 1e-9;
+
 /// Scattered samples count as the nodes of a regular grid when their coordinates lie within
 /// this fraction of the samples' extent from the grid lines: far above the round-off of
 /// coordinates printed with 10+ digits, far below any intended offset.

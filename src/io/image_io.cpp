@@ -110,6 +110,8 @@ void write_exr(const std::filesystem::path& path, const Image& image) {
       Imf::RgbaOutputFile file(tmp.c_str(), image.width(), image.height(), Imf::WRITE_RGB);
       file.setFrameBuffer(pixels.data(), 1, static_cast<size_t>(image.width()));
       file.writePixels(image.height());
+    } catch (const std::bad_alloc&) {
+      throw;  // out of memory, not a file problem
     } catch (const std::exception& e) {
       throw UserError(path.string(), std::string("cannot write OpenEXR: ") + e.what());
     }

@@ -48,6 +48,9 @@ void refuse_overwriting_inputs(const std::string& output, const std::string& whe
 }
 
 void check_output_file(const std::string& path, const std::string& where) {
+  if (path.empty()) throw UserError(where, "the output file name is empty");
+  if (fs::path(path).filename().empty())
+    throw UserError(where, "'" + path + "' names a folder (it ends in '/'); give a file name");
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);
   if (fs::is_directory(status)) throw UserError(where, "'" + path + "' is a folder, not a file");
@@ -57,6 +60,7 @@ void check_output_file(const std::string& path, const std::string& where) {
 }
 
 void check_output_folder(const std::string& path, const std::string& where) {
+  if (path.empty()) throw UserError(where, "the output folder name is empty");
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);
   if (fs::exists(status) && !fs::is_directory(status))

@@ -13,13 +13,13 @@ namespace radrecon {
 void refuse_overwriting_inputs(const std::string& output, const std::string& where,
                                const std::vector<std::string>& inputs);
 
-/// Refuses (UserError naming `where`) an output file path that cannot be written: an existing
-/// folder or non-regular file, or a path whose nearest existing ancestor is not a writable
+/// Refuses (UserError naming `where`) an output file path that cannot be written: an empty path
+/// or one ending in '/', an existing folder or non-regular file, or a path whose nearest existing ancestor is not a writable
 /// folder. Creates nothing.
 void check_output_file(const std::string& path, const std::string& where);
 
-/// Refuses (UserError naming `where`) an output folder that cannot be used: an existing path
-/// that is not a folder, or one whose nearest existing ancestor is not a writable folder.
+/// Refuses (UserError naming `where`) an output folder that cannot be used: an empty path, an
+/// existing path that is not a folder, or one whose nearest existing ancestor is not a writable folder.
 /// Creates nothing.
 void check_output_folder(const std::string& path, const std::string& where);
 

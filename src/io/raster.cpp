@@ -9,15 +9,12 @@
 #include "core/error.h"
 #include "core/image.h"
 #include "core/parse.h"
+#include "core/tolerances.h"
 #include "io/image_io.h"
 
 namespace radrecon {
 
 namespace {
-
-
-
-
 
 void check_raster_values(const Raster& raster, std::span<const double> values, int channels) {
   RR_CHECK(channels >= 1 && values.size() == static_cast<size_t>(raster.width) * raster.height * channels,
@@ -38,8 +35,9 @@ Rect parse_domain(const std::string& text, const std::string& where) {
   }
   if (!(v[2] > v[0])) throw UserError(where, "x1 must be greater than x0, got " + in_quotes(text));
   if (!(v[3] > v[1])) throw UserError(where, "y1 must be greater than y0, got " + in_quotes(text));
-  if (!std::isfinite(v[2] - v[0]) || !std::isfinite(v[3] - v[1]))
-    throw UserError(where, "the domain's width and height must be finite numbers, got " + in_quotes(text));
+  for (int k = 0; k < 4; ++k)
+    if (std::abs(v[k]) > tol::kMaxSampleCoordinate)
+      throw UserError(where, std::string(names[k]) + ": beyond the largest coordinate, " + format_number(tol::kMaxSampleCoordinate) + ", got " + in_quotes(text));
   return Rect{v[0], v[1], v[2], v[3]};
 }
 

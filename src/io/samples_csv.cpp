@@ -16,6 +16,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/parse.h"
+#include "core/tolerances.h"
 #include "io/atomic_file.h"
 #include "reconstruct/sample_set.h"
 
@@ -25,13 +26,11 @@ namespace {
 
 // --- CSV reading ------------------------------------------------------------------------------
 
-
 std::string lower(std::string_view s) {
   std::string out(s);
   for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return out;
 }
-
 
 /// A CSV table read line by line: the header, then each data row through a callback.
 class CsvTable {
@@ -103,6 +102,16 @@ class CsvTable {
       case NumberStatus::not_finite:
         throw UserError(where(), what + ": " + in_quotes(f) + " is not finite (NaN and Inf are refused)");
     }
+    return v;
+  }
+
+  /// The coordinate in field `column`: a finite number of magnitude at most
+  /// tol::kMaxSampleCoordinate.
+  double coordinate(const std::vector<std::string_view>& fields, size_t column) const {
+    const double v = number(fields, column);
+    if (std::abs(v) > tol::kMaxSampleCoordinate)
+      throw UserError(where(), "column " + std::to_string(column + 1) + " (" + header_[column] + "): " +
+                                   in_quotes(fields[column]) + " is beyond the largest coordinate, " + format_number(tol::kMaxSampleCoordinate));
     return v;
   }
 

@@ -1,6 +1,7 @@
 #include "io/solution_json.h"
 
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <memory>
@@ -8,6 +9,8 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "core/parse.h"
+#include "core/tolerances.h"
 #include "io/atomic_file.h"
 #include "io/json_reader.h"
 
@@ -91,6 +94,7 @@ Solution read_solution_json(const std::filesystem::path& path) {
     const json& js = surfaces[s];
     SurfaceSolution out;
     out.name = r.string(r.member(js, "name", sp), sp + ".name");
+    if (sol.find(out.name)) r.fail(sp + ".name", "duplicate surface side '" + out.name + "'");
     out.scene_surface = js.contains("scene_surface") ? r.string(js["scene_surface"], sp + ".scene_surface") : out.name;
     if (js.contains("back_side")) out.back_side = r.boolean(js["back_side"], sp + ".back_side");
     out.length_u_m = positive_or_fail(r, r.number(r.member(js, "length_u_m", sp), sp + ".length_u_m"), sp + ".length_u_m");
@@ -121,6 +125,14 @@ Solution read_solution_json(const std::filesystem::path& path) {
       el.v1 = num("v1");
       if (!(0 <= el.u0 && el.u0 < el.u1 && el.u1 <= 1 && 0 <= el.v0 && el.v0 < el.v1 && el.v1 <= 1))
         r.fail(ep, "its (u,v) rectangle must satisfy 0 <= u0 < u1 <= 1 and 0 <= v0 < v1 <= 1");
+      if (out.grid_nu > 0) {  // a regular grid stores element (i, j) at index j * nu + i
+        const size_t i = e % static_cast<size_t>(out.grid_nu), j = e / static_cast<size_t>(out.grid_nu);
+        const double u0 = double(i) / out.grid_nu, v0 = double(j) / out.grid_nv;
+        if (std::abs(el.u0 - u0) > tol::kSolutionGridParameter || std::abs(el.v0 - v0) > tol::kSolutionGridParameter)
+          r.fail(ep, "a grid [" + std::to_string(out.grid_nu) + ", " + std::to_string(out.grid_nv) + "] stores element (" +
+                         std::to_string(i) + ", " + std::to_string(j) + ") here, at (u0, v0) = (" + format_number(u0) +
+                         ", " + format_number(v0) + "); this element is elsewhere");
+      }
       el.center = r.vec3(r.member(je, "center", ep), ep + ".center");
       el.area_m2 = num("area");
       el.radiosity_w_m2 = r.vec3(r.member(je, "radiosity", ep), ep + ".radiosity").array();

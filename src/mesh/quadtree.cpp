@@ -39,10 +39,10 @@ int Quadtree::split(int index) {
   return first;
 }
 
-std::vector<int> Quadtree::leaves() const {
+std::vector<int> Quadtree::leaves(int root) const {
+  RR_CHECK(root >= 0 && root < node_count(), "quadtree node index out of range");
   std::vector<int> out;
-  out.reserve(static_cast<size_t>(leaves_));
-  std::vector<int> stack{0};
+  std::vector<int> stack{root};
   while (!stack.empty()) {
     const int k = stack.back();
     stack.pop_back();

@@ -38,8 +38,8 @@ class Quadtree {
   /// that has children already keeps them (their first index is returned).
   int split(int index);
 
-  /// The leaves, depth first, children in order.
-  std::vector<int> leaves() const;
+  /// The leaves below `root` (the whole tree by default), depth first, children in order.
+  std::vector<int> leaves(int root = 0) const;
 
   /// The leaf containing (u, v) in [0,1]^2 (clamped into it). Leaves are half-open,
   /// [u0, u1) x [v0, v1), closed on the side's far border, so every point has exactly one.

@@ -1,10 +1,9 @@
 #include "paper/evaluation.h"
 
 #include <algorithm>
+#include <stdexcept>
 
-#include "core/error.h"
 #include "io/image_io.h"
-#include "reconstruct/constant.h"
 #include "render/ground_map.h"
 #include "render/quadtree_figure.h"
 #include "sampling/surface_samples.h"
@@ -16,8 +15,8 @@ namespace {
 /// The method's norms at the evaluation grid, and its ground figures FIGURE_METHOD_*.png.
 MethodResult evaluate(const InterpolantResult& built, const std::string& name, const EvaluationGrid& at,
                       const std::filesystem::path& figures, const std::string& figure) {
-  // The paper's data sets are fixed: every method builds from them; if one ever did not, say so.
-  if (!built) throw UserError("paper: " + name, "cannot reconstruct the " + figure + " data: " + built.reason());
+  // The paper's data sets are fixed: every method builds from them; one that did not is a bug.
+  if (!built) throw std::runtime_error("paper: " + name + " cannot reconstruct the " + figure + " data: " + built.reason());
   std::vector<double> values(at.reference_w_m2.size());
   built.value()->evaluate(at.points, values);
   write_png(figures / (figure + "_" + name + "_ground.png"), radiosity_map(values, at.width, at.height, at.white_w_m2), true);
@@ -44,9 +43,8 @@ std::vector<MethodResult> evaluate_quadtree_data(const Solution& quadtree, const
   const ScatteredSamples centres = element_centres(ground);
   std::vector<MethodResult> table;
   for (Method m : scattered_methods()) {
-    const InterpolantResult built = m == Method::constant
-                                        ? InterpolantResult(std::unique_ptr<Interpolant>(std::make_unique<PiecewiseConstant>(leaves)))
-                                        : make_scattered_interpolant(m, centres, params);
+    const InterpolantResult built =
+        m == Method::constant ? make_cell_interpolant(leaves) : make_scattered_interpolant(m, centres, params);
     table.push_back(evaluate(built, method_name(m), at, figures, "fig4"));
   }
   write_png(figures / "fig1_quadtree.png",

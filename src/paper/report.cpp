@@ -10,6 +10,21 @@ namespace radrecon {
 
 namespace {
 
+/// `text` with the characters that HTML gives a meaning (&, <, >, ") escaped.
+std::string html_escaped(const std::string& text) {
+  std::string out;
+  for (char ch : text) {
+    switch (ch) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += ch;
+    }
+  }
+  return out;
+}
+
 std::string num(double v) {
   if (std::isnan(v)) return "";
   char buf[32];
@@ -52,7 +67,7 @@ void write_report(const std::filesystem::path& dir, const ReportContent& c) {
        << "(40 W/m<sup>2</sup>) at 2.5 m, with two perpendicular two-sided walls 1 m high (reflectance 0.5) meeting at "
        << "(2.6, 2.6) m, whose shadows fall beyond them. Radiosity in W/m<sup>2</sup>.</p>\n<h2>Settings</h2>\n<ul>\n";
   for (const std::string& s : c.settings) html << "<li>" << s << "</li>\n";
-  for (const std::string& s : c.notes) html << "<li>" << s << "</li>\n";
+  for (const std::string& s : c.notes) html << "<li>" << html_escaped(s) << "</li>\n";
   html << "</ul>\n<h2>Fig. 1: the quadtree of the ground and its sample points</h2>\n"
        << "<img style=\"width:40%\" src=\"figures/fig1_quadtree.png\" alt=quadtree>\n"
        << "<h2>Fig. 2: reference solution (view, close-up, radiosity over the ground)</h2>\n"

@@ -66,7 +66,7 @@ nlohmann::json norms_json(const ErrorNorms& n) {
 
 nlohmann::json stats_json(const Solution& s) {
   nlohmann::json j = {{"mesh", s.mesh}, {"method", s.stats.method}, {"elements", s.stats.elements},
-                      {"residual", s.stats.residual}, {"seconds", s.stats.seconds}};
+                      {"residual", s.stats.residual}, {"converged", s.stats.converged}, {"seconds", s.stats.seconds}};
   if (s.stats.method == "hierarchical") {
     j["links"] = s.stats.links;
     j["epsilon_w"] = s.stats.epsilon_w;

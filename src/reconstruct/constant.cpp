@@ -3,18 +3,21 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include "core/check.h"
 
 namespace radrecon {
 
 PiecewiseConstant::PiecewiseConstant(CellSamples samples) : samples_(std::move(samples)) {
-  RR_CHECK(!samples_.cells.empty(), "piecewise constant needs at least one cell");
+  if (samples_.cells.empty()) throw ReconstructionError("piecewise constant needs at least one cell");
   RR_CHECK(samples_.values.size() == samples_.cells.size() * samples_.channels, "values do not match cells");
   bounds_ = samples_.cells[0];
   double min_w = std::numeric_limits<double>::infinity(), min_h = min_w;
   for (const Rect& r : samples_.cells) {
-    RR_CHECK(r.x1 > r.x0 && r.y1 > r.y0, "cells must have a positive size");
+    if (!(r.x1 > r.x0 && r.y1 > r.y0))
+      throw ReconstructionError("a cell has no extent: [" + std::to_string(r.x0) + ", " + std::to_string(r.x1) +
+                                "] x [" + std::to_string(r.y0) + ", " + std::to_string(r.y1) + "]");
     bounds_.x0 = std::min(bounds_.x0, r.x0);
     bounds_.y0 = std::min(bounds_.y0, r.y0);
     bounds_.x1 = std::max(bounds_.x1, r.x1);

@@ -9,7 +9,7 @@
 
 namespace radrecon {
 
-/// Cells must not overlap. A point on a shared edge takes the cell with the larger lower bound
+/// Cells must not overlap and must have a positive extent (ReconstructionError otherwise). A point on a shared edge takes the cell with the larger lower bound
 /// (cells are half-open [x0, x1) x [y0, y1), closed on the far border of the domain). A point
 /// outside the cells' bounding box is first clamped into it; a point in a gap between cells gets
 /// NaN.

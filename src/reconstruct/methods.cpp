@@ -141,6 +141,8 @@ InterpolantResult make_grid_interpolant(Method method, const GridCells& cells, c
   return make_scattered_interpolant(method, centres, params);
 }
 
+InterpolantResult make_cell_interpolant(const CellSamples& cells) { return build<PiecewiseConstant>(cells); }
+
 InterpolantResult make_nodal_interpolant(Method method, const GridNodes& nodes, const MethodParams& params) {
   if (method == Method::bilinear || method == Method::bicubic) {
     if (nodes.nx < 2 || nodes.ny < 2) return Failure{method_name(method) + " needs a grid of at least 2 x 2 samples"};
@@ -171,7 +173,7 @@ InterpolantResult make_scattered_interpolant(Method method, const ScatteredSampl
       if (samples.points.size() > kMaxGlobalMultiquadric)
         return Failure{std::to_string(samples.points.size()) +
                        " samples are too many for one global multiquadric system (at most " +
-                       std::to_string(kMaxGlobalMultiquadric) + "); use local patches, e.g. k=32"};
+                       std::to_string(kMaxGlobalMultiquadric) + "); use local patches (parameter k, e.g. 32)"};
       return build<Multiquadric>(samples, params.multiquadric_mu, params.multiquadric_r);
     case Method::natural_neighbour: return build<NaturalNeighbour>(samples, params.outside);
   }

@@ -33,10 +33,10 @@ enum class OutsideHull {
   none,     ///< no value (NaN)
 };
 
-/// Method parameters, as given on the command line with --param NAME=VALUE:
+/// Method parameters, as NAME=VALUE settings (parse_params()):
 ///   shepard:           mu (> 0, default 4): weights 1 / d^mu;
 ///                      k (integer >= 0, default 0): use the k nearest samples, 0 = all.
-///   multiquadric:      mu (nonzero, default 0.5): basis (d^2 + r^2)^mu;
+///   multiquadric:      mu (nonzero, not a positive integer; default 0.5): basis (d^2 + r^2)^mu;
 ///                      r (> 0, metres; default: Eck's rule, r_i = distance from sample i to
 ///                      its nearest other sample);
 ///                      k (integer, 0 or >= 3, default 0): 0 solves one global system; k > 0
@@ -68,6 +68,9 @@ using InterpolantResult = Result<std::unique_ptr<Interpolant>>;
 /// interpolate nodal values (nodal_average()); the scattered methods use the cell centres.
 InterpolantResult make_grid_interpolant(Method method, const GridCells& cells,
                                                    const MethodParams& params = {});
+
+/// The cells of a piecewise-constant function (a quadtree's leaves) as they are: constant only.
+InterpolantResult make_cell_interpolant(const CellSamples& cells);
 
 /// Values at the nodes of a regular grid: bilinear and bicubic interpolate them; the other
 /// methods take the nodes as scattered samples.

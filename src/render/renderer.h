@@ -54,8 +54,9 @@ Image shade(const Scene& scene, const CameraHits& hits, const SideReconstruction
 /// The same for the rows that `hits` covers, written into `image` (of the camera's size).
 void shade(const Scene& scene, const CameraHits& hits, const SideReconstruction& reconstruction, Image& image);
 
-/// Rays traced and shaded at a time by render(): memory stays at the image plus about 80 bytes
-/// a ray of one band (~80 MB), whatever the image size and rays per pixel.
+/// Rays traced and shaded at a time by render(): memory stays at the image plus about 120 bytes
+/// a ray of one band (the hit 48, its radiosity 24, the batch's point, value and index 48; ~125
+/// MB), whatever the image size and rays per pixel.
 inline constexpr size_t kRenderBandRays = size_t{1} << 20;
 
 /// Called after each band with the fraction of rows done, in (0, 1].

@@ -1,7 +1,6 @@
 #include "sampling/solution_reconstruction.h"
 
 #include "core/error.h"
-#include "reconstruct/constant.h"
 #include "sampling/surface_samples.h"
 
 namespace radrecon {
@@ -12,7 +11,7 @@ namespace {
 InterpolantResult build_side(const SurfaceSolution& s, Method method, const MethodParams& params) {
   const bool grid = s.grid_nu > 0 && s.grid_nv > 0;
   if (grid) return make_grid_interpolant(method, grid_cells(s), params);
-  if (method == Method::constant) return std::unique_ptr<Interpolant>(std::make_unique<PiecewiseConstant>(element_cells(s)));
+  if (method == Method::constant) return make_cell_interpolant(element_cells(s));
   if (is_grid_method(method))
     return Failure{method_name(method) + " needs grid data; this side is an adaptive subdivision"};
   return make_scattered_interpolant(method, element_centres(s), params);
@@ -34,7 +33,8 @@ SolutionReconstruction::SolutionReconstruction(const Scene& scene, const Solutio
     InterpolantResult built = build_side(s, method, params);
     if (!built) {
       fallbacks_.push_back({side.name, built.reason()});
-      built = build_side(s, Method::constant, params);  // piecewise constant never fails
+      built = build_side(s, Method::constant, params);
+      if (!built) throw UserError(source, "surface '" + side.name + "': " + built.reason());
     }
     sides_[ref->slot()] = std::move(built).value();
   }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 
 #include "core/error.h"
@@ -147,9 +148,12 @@ void validate_scene(const Scene& scene, const std::string& source) {
     if (!camera_names.insert(scene.cameras[i].name).second)
       throw UserError(where + ".name", "duplicate camera name '" + scene.cameras[i].name + "'");
   }
+  // Some surface must emit a power (W) that is a normal double: an exitance so small that the
+  // power underflows would leave nothing to distribute.
   bool emits = false;
-  for (const Surface& s : scene.surfaces) emits = emits || (s.emission_w_m2 > 0).any();
-  if (!emits) throw UserError(source + ": surfaces", "no surface emits light (all emission is 0)");
+  for (const Surface& s : scene.surfaces)
+    emits = emits || (s.area_m2() * s.emission_w_m2 >= std::numeric_limits<double>::min()).any();
+  if (!emits) throw UserError(source + ": surfaces", "no surface emits light (every emitted power is 0 or underflows)");
 }
 
 }  // namespace radrecon

@@ -65,9 +65,6 @@ constexpr double kDiscontinuousSpread = 0.5;
 /// Thrown when a hierarchy would exceed HierarchicalOptions::max_links.
 struct TooManyLinks {};
 
-/// Gathering iterations before giving up on convergence (each removes a factor of about the
-/// largest reflectance; 1e-6 needs a few dozen).
-constexpr int kMaxGatherIterations = 10000;
 
 class Hierarchy {
  public:
@@ -285,24 +282,15 @@ class Hierarchy {
   void push_links_to_leaves() {
     std::vector<Link> leaf_links;
     leaf_links.reserve(links_.size());
-    std::vector<int> stack;
     for (const Link& l : links_) {
       const Tree& R = trees_[static_cast<size_t>(l.receiver_tree)];
       if (R.node(l.receiver_node).is_leaf()) {
         leaf_links.push_back(l);
         continue;
       }
-      stack.assign(1, l.receiver_node);
-      while (!stack.empty()) {
-        const int k = stack.back();
-        stack.pop_back();
-        const QuadNode& n = R.node(k);
-        if (n.is_leaf()) {
-          leaf_links.push_back(make_link(l.receiver_tree, k, l.source_tree, l.source_node));
-          if (leaf_links.size() > options_.max_links) throw TooManyLinks{};
-        } else {
-          for (int c = 3; c >= 0; --c) stack.push_back(n.first_child + c);
-        }
+      for (const int k : R.quad.leaves(l.receiver_node)) {
+        leaf_links.push_back(make_link(l.receiver_tree, k, l.source_tree, l.source_node));
+        if (leaf_links.size() > options_.max_links) throw TooManyLinks{};
       }
     }
     std::sort(leaf_links.begin(), leaf_links.end(), [](const Link& a, const Link& b) {
@@ -314,7 +302,8 @@ class Hierarchy {
 
   /// Jacobi gathering over all links, then push-pull, until the radiosity settles.
   void gather_until_converged() {
-    for (int iteration = 0; iteration < kMaxGatherIterations; ++iteration) {
+    converged_ = true;
+    for (int iteration = 0; iteration < options_.max_gather_iterations; ++iteration) {
       for (Tree& t : trees_)
         for (NodeState& n : t.state) n.gathered = Rgb::Zero();
       for (const Link& l : links_) {
@@ -326,7 +315,8 @@ class Hierarchy {
       residual_ = largest > 0 ? change / largest : 0;
       if (change <= options_.tolerance * largest) return;
     }
-    converged_ = false;  // the iteration limit, not the tolerance, stopped it
+    converged_ = false;  // the iteration limit, not the tolerance, stopped it (the last gather's
+                         // state is what the solution reports)
   }
 
   /// Pushes irradiance down to the leaves and pulls area-weighted radiosity up; returns the

@@ -29,14 +29,18 @@ struct HierarchicalOptions {
   double min_size_m = 0;
   /// Gathering stops when no radiosity changes by more than this fraction of the largest.
   double tolerance = 1e-6;
+  /// ... or after this many Jacobi iterations (each removes a factor of about the largest
+  /// reflectance; 1e-6 needs a few dozen). Reaching it is reported as stats.converged = false.
+  int max_gather_iterations = 10000;
   /// If set: the surface side with this name (e.g. "ground") is split at most so often that
   /// it has at most this many leaves; the splits with the largest error estimates go first.
   std::optional<std::pair<std::string, int>> leaf_cap;
   /// After refinement, give every leaf its own links to the sources of its ancestors' links
   /// (a final gather at the leaves' resolution; the sources keep theirs).
   bool leaf_gather = true;
-  /// Refinement that needs more links than this is refused (UserError): a guard against an
-  /// epsilon so small that the links (which grow as the square of the elements) exhaust memory.
+  /// Refinement that needs more links than this is given up (try_solve_hierarchical() returns
+  /// nullopt, solve_hierarchical() refuses it): a guard against an epsilon so small that the
+  /// links (which grow as the square of the elements) exhaust memory.
   size_t max_links = 4'000'000;
   /// Name printed in progress messages on stderr; empty: quiet.
   std::string progress_label;

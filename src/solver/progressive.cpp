@@ -154,6 +154,7 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
   auto last_report = start;
   std::vector<Rgb> gain;
   double residual = 1.0;
+  bool converged = false;  // the residual, not the shot limit, ended the loop
 
   while (true) {
     size_t best = 0;
@@ -169,7 +170,10 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
                    shots, residual);
       last_report = now;
     }
-    if (residual < options.residual) break;
+    if (residual < options.residual) {
+      converged = true;
+      break;
+    }
     if (options.max_shots != 0 && shots >= options.max_shots) break;
 
     const Patch shooter = patches[best];
@@ -245,7 +249,7 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
     sol.surfaces.push_back(std::move(out));
   }
   stats.residual = stats.unshot_w.sum() / emitted_sum;
-  stats.converged = stats.residual < options.residual;
+  stats.converged = converged;
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!options.progress_label.empty())
     std::fprintf(stderr, "%s: %zu shots, unshot %.2e of emitted, %.2f s\n", options.progress_label.c_str(),

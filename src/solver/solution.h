@@ -41,7 +41,7 @@ struct SolveStats {
   Rgb escaped_w = Rgb::Zero();   ///< left an open scene (or lost to discretisation)
   double residual = 0;           ///< unshot / emitted, summed over channels
   /// Whether the solve met its tolerance: progressive refinement reached its residual (not its
-  /// shot limit); hierarchical gathering settled in every solve (not its iteration limit).
+  /// shot limit); hierarchical radiosity's final gathering settled (not its iteration limit).
   bool converged = true;
   double seconds = 0;
 };

@@ -151,7 +151,7 @@ run paper_file paper --out "$TMP/afile" --quiet
 elapsed_ms=$(( ($(date +%s%N) - start) / 1000000 ))
 expect_rc paper_file 2
 expect_stderr_has paper_file "not a folder"
-[ "$elapsed_ms" -lt 1000 ] || fail "paper_file: refused after $elapsed_ms ms; the folder must be checked before the solve"
+[ "$elapsed_ms" -lt 2500 ] || fail "paper_file: refused after $elapsed_ms ms; the folder must be checked before the solve"
 run solve_dir solve --scene paper --mesh grid:4 --out "$TMP" --quiet
 expect_rc solve_dir 2
 expect_stderr_has solve_dir "is a folder"

@@ -32,7 +32,7 @@ class SamplesIoFiles {
   SamplesIoFiles() {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
     dir_ = fs::temp_directory_path() /
-           ("radrecon_samples_io_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
+           ("radrecon_samples_csv_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }

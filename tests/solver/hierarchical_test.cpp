@@ -68,6 +68,23 @@ TEST(Hierarchical, ClosedBoxRadiosityPowerIsEmittedOverOneMinusReflectance) {
   const double expected = E * 1.0 / (1 - rho);
   EXPECT_NEAR(power, expected, 0.01 * expected);
   EXPECT_GT(sol.stats.elements, 6u) << "the box should have been refined";
+  EXPECT_TRUE(sol.stats.converged);
+}
+
+TEST(Hierarchical, GatheringStoppedByItsIterationLimitIsReportedNotConverged) {
+  // In a closed box of reflectance 0.6 each Jacobi step removes about a factor 0.6 of the
+  // change: 3 steps cannot reach 1e-6, 200 can (0.6^200 ~ 1e-44).
+  const Scene box = testing_support::closed_box(0.6, 10.0);
+  HierarchicalOptions options;
+  options.epsilon_w = 1e-2;
+  options.max_gather_iterations = 3;
+  const Solution stopped = solve_hierarchical(box, options, "quadtree-eps:1e-2");
+  EXPECT_FALSE(stopped.stats.converged);
+  EXPECT_GT(stopped.stats.residual, options.tolerance);
+  options.max_gather_iterations = 200;
+  const Solution settled = solve_hierarchical(box, options, "quadtree-eps:1e-2");
+  EXPECT_TRUE(settled.stats.converged);
+  EXPECT_LE(settled.stats.residual, options.tolerance);
 }
 
 TEST(Hierarchical, OpenFloorLeavesHoldTheClosedFormAverageOfDirectLight) {

@@ -103,6 +103,20 @@ TEST(Progressive, ClosedBoxRadiosityPowerIsEmittedOverOneMinusReflectance) {
   const double phi = E * 1.0;
   EXPECT_NEAR(power, phi / (1 - rho), 0.01 * phi / (1 - rho));
   EXPECT_LT(std::abs(sol.stats.escaped_w[0]), 0.01 * phi);
+  EXPECT_TRUE(sol.stats.converged);
+  EXPECT_LT(sol.stats.residual, 1e-7);
+}
+
+TEST(Progressive, ShotLimitIsReportedNotConverged) {
+  const Scene box = testing_support::closed_box(0.6, 10.0);
+  const Mesh mesh = make_grid_mesh(box, GridMeshOptions{8, 2});
+  ProgressiveOptions options;
+  options.residual = 1e-9;
+  options.max_shots = 5;
+  const Solution sol = solve_progressive(box, mesh, options, "grid:8");
+  EXPECT_EQ(sol.stats.shots, 5u);
+  EXPECT_FALSE(sol.stats.converged);
+  EXPECT_GT(sol.stats.residual, options.residual);
 }
 
 TEST(Progressive, ResultDoesNotDependOnThreadCount) {

@@ -1,0 +1,75 @@
+// Output paths checked before any work: an output that is an input (directly, through a
+// symbolic link, "..", or a hard link) is refused; so are outputs that cannot be written.
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "core/error.h"
+#include "io/paths.h"
+
+namespace radrecon {
+namespace {
+
+namespace fs = std::filesystem;
+
+class Paths : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("radrecon_paths_test_" + std::to_string(::getpid()));
+    fs::create_directories(dir_ / "sub");
+    std::ofstream(dir_ / "in.csv") << "x,y,v\n";
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string at(const std::string& name) const { return (dir_ / name).string(); }
+  fs::path dir_;
+};
+
+/// The message of the UserError that f throws, or "" if it throws none.
+template <typename F>
+std::string refusal(F f) {
+  try {
+    f();
+  } catch (const UserError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST_F(Paths, AnOutputThatIsAnInputIsRefusedHoweverItIsSpelled) {
+  fs::create_symlink(at("in.csv"), at("link.csv"));
+  fs::create_hard_link(at("in.csv"), at("hard.csv"));
+  for (const std::string& out : {at("in.csv"), at("sub/../in.csv"), at("./in.csv"), at("link.csv"), at("hard.csv")}) {
+    const std::string message = refusal([&] { refuse_overwriting_inputs(out, "--out", {at("in.csv")}); });
+    EXPECT_NE(message.find("refusing to overwrite"), std::string::npos) << out << ": " << message;
+    EXPECT_NE(message.find("--out"), std::string::npos) << message;
+  }
+  // The input named through a link is caught too.
+  EXPECT_NE(refusal([&] { refuse_overwriting_inputs(at("in.csv"), "--out", {at("link.csv")}); }), "");
+}
+
+TEST_F(Paths, OtherOutputsPass) {
+  EXPECT_EQ(refusal([&] { refuse_overwriting_inputs(at("out.csv"), "--out", {at("in.csv")}); }), "");
+  EXPECT_EQ(refusal([&] { refuse_overwriting_inputs(at("sub/in.csv"), "--out", {at("in.csv")}); }), "");
+  EXPECT_EQ(refusal([&] { check_output_file(at("new/folder/out.csv"), "--out"); }), "");
+  EXPECT_EQ(refusal([&] { check_output_file(at("in.csv"), "--out"); }), "");  // replacing a file is allowed
+  EXPECT_EQ(refusal([&] { check_output_folder(at("sub"), "--out"); }), "");
+  EXPECT_EQ(refusal([&] { check_output_folder(at("new/folder"), "--out"); }), "");
+  EXPECT_FALSE(fs::exists(at("new"))) << "checks create nothing";
+}
+
+TEST_F(Paths, UnwritableOutputsAreRefused) {
+  EXPECT_NE(refusal([&] { check_output_file("", "--out"); }).find("empty"), std::string::npos);
+  EXPECT_NE(refusal([&] { check_output_file(at("sub") + "/", "--out"); }).find("ends in '/'"), std::string::npos);
+  EXPECT_NE(refusal([&] { check_output_file(at("newdir") + "/", "--out"); }).find("ends in '/'"), std::string::npos);
+  EXPECT_NE(refusal([&] { check_output_file(at("sub"), "--out"); }).find("is a folder"), std::string::npos);
+  EXPECT_NE(refusal([&] { check_output_file(at("in.csv/x.csv"), "--out"); }).find("not a folder"), std::string::npos);
+  EXPECT_NE(refusal([&] { check_output_folder(at("in.csv"), "--out"); }).find("not a folder"), std::string::npos);
+  EXPECT_NE(refusal([&] { check_output_folder(at("in.csv/deeper"), "--out"); }).find("not a folder"), std::string::npos);
+  EXPECT_NE(refusal([&] { check_output_folder("", "--out"); }).find("empty"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace radrecon

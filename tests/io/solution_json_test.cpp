@@ -1,0 +1,107 @@
+// Solution files: what is written reads back to the same numbers, and a malformed file is
+// refused naming the file and the field (or the line).
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <limits>
+
+#include "core/error.h"
+#include "io/solution_json.h"
+
+namespace radrecon {
+namespace {
+
+namespace fs = std::filesystem;
+
+class SolutionFiles : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("radrecon_solution_json_test_" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path write(const std::string& name, const std::string& text) const {
+    std::ofstream(dir_ / name) << text;
+    return dir_ / name;
+  }
+  /// The message of reading `text` as a solution file, or "" if it is accepted.
+  std::string refusal(const std::string& text) const {
+    try {
+      read_solution_json(write("s.json", text));
+    } catch (const UserError& e) {
+      return e.what();
+    }
+    return "";
+  }
+  fs::path dir_;
+};
+
+/// A 2 x 1 grid side, elements in row order, as the writer lays it out.
+Solution two_element_grid() {
+  Solution sol;
+  sol.scene = "test";
+  sol.mesh = "grid:2";
+  SurfaceSolution s;
+  s.name = "floor";
+  s.scene_surface = "floor";
+  s.grid_nu = 2;
+  s.grid_nv = 1;
+  s.length_u_m = 2;
+  s.length_v_m = 1;
+  s.elements.push_back({0, 0, 0.5, 1, Vec3(0.5, 0.5, 0), 1.0, Rgb(0.1, 1.0 / 3, 2e-300)});
+  s.elements.push_back({0.5, 0, 1, 1, Vec3(1.5, 0.5, 0), 1.0, Rgb(7, 8, 9)});
+  sol.surfaces.push_back(s);
+  sol.stats.method = "progressive";
+  sol.stats.converged = false;
+  return sol;
+}
+
+TEST_F(SolutionFiles, WhatIsWrittenReadsBack) {
+  const fs::path path = dir_ / "round.json";
+  write_solution_json(path, two_element_grid());
+  const Solution back = read_solution_json(path);
+  ASSERT_EQ(back.surfaces.size(), 1u);
+  const SurfaceSolution& s = back.surfaces[0];
+  EXPECT_EQ(s.name, "floor");
+  EXPECT_EQ(s.grid_nu, 2);
+  EXPECT_EQ(s.grid_nv, 1);
+  ASSERT_EQ(s.elements.size(), 2u);
+  EXPECT_EQ(s.elements[1].u0, 0.5);
+  // Radiosity is written with 9 significant digits (float precision is ample for W/m^2).
+  EXPECT_NEAR(s.elements[0].radiosity_w_m2[1], 1.0 / 3, 1e-9);
+  EXPECT_EQ(s.elements[1].radiosity_w_m2[2], 9.0);
+  std::ifstream in(path);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("\"converged\": false"), std::string::npos);
+}
+
+TEST_F(SolutionFiles, MalformedFilesAreRefusedWithTheFieldOrLine) {
+  const std::string element = R"({"u0": 0, "v0": 0, "u1": 1, "v1": 1, "center": [0,0,0], "area": 1, "radiosity": [1,1,1]})";
+  auto side = [&](const std::string& name, const std::string& grid, const std::string& elements) {
+    return R"({"name": ")" + name + R"(", "length_u_m": 1, "length_v_m": 1, "grid": )" + grid +
+           R"(, "elements": [)" + elements + "]}";
+  };
+  EXPECT_EQ(refusal(R"({"surfaces": [)" + side("a", "[1, 1]", element) + "]}"), "");
+  // Invalid JSON: the line.
+  EXPECT_NE(refusal("{\n\"surfaces\": [\n,]}").find("s.json:3"), std::string::npos);
+  // A missing field: its path.
+  EXPECT_NE(refusal(R"({"surfaces": [{"name": "a"}]})").find("surfaces[0].length_u_m: missing"), std::string::npos);
+  // The same side twice.
+  EXPECT_NE(refusal(R"({"surfaces": [)" + side("a", "[0, 0]", element) + "," + side("a", "[0, 0]", element) + "]}")
+                .find("duplicate surface side 'a'"),
+            std::string::npos);
+  // A grid whose elements are not stored row by row.
+  const std::string e0 = R"({"u0": 0, "v0": 0, "u1": 0.5, "v1": 1, "center": [0,0,0], "area": 1, "radiosity": [1,1,1]})";
+  const std::string e1 = R"({"u0": 0.5, "v0": 0, "u1": 1, "v1": 1, "center": [0,0,0], "area": 1, "radiosity": [1,1,1]})";
+  EXPECT_EQ(refusal(R"({"surfaces": [)" + side("a", "[2, 1]", e0 + "," + e1) + "]}"), "");
+  EXPECT_NE(refusal(R"({"surfaces": [)" + side("a", "[2, 1]", e1 + "," + e0) + "]}").find("surfaces[0].elements[0]"),
+            std::string::npos);
+  // A number too large for a double.
+  EXPECT_NE(refusal(R"({"surfaces": [], "x": 1e999})").find("s.json"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace radrecon
