@@ -34,7 +34,7 @@ EvaluationGrid evaluation_grid(const Solution& reference) {
   e.height = cells.ny;
   e.points.reserve(static_cast<size_t>(e.width) * e.height);
   for (int j = 0; j < e.height; ++j)
-    for (int i = 0; i < e.width; ++i) e.points.emplace_back(cells.x0 + (i + 0.5) * cells.dx, cells.y0 + (j + 0.5) * cells.dy);
+    for (int i = 0; i < e.width; ++i) e.points.push_back(cells.center(i, j));
   e.reference_w_m2 = cells.values;
   e.white_w_m2 = 0;
   for (double v : e.reference_w_m2) e.white_w_m2 = std::max(e.white_w_m2, v);

@@ -39,6 +39,9 @@ size_t KdTree2::nearest(const Vec2& q, int k, std::span<unsigned> indices, std::
   const double query[2] = {q.x(), q.y()};
   // nanoflann's KNNResultSet keeps its k best sorted by distance alone, in the caller's buffers.
   const size_t found = impl_->tree.knnSearch(query, static_cast<size_t>(k), indices.data(), dist_sq.data());
+  // Only an overflowing squared distance (coordinates beyond tol::kMaxSampleCoordinate, which the
+  // readers refuse) can make nanoflann keep fewer than k.
+  RR_CHECK_EQ(found, static_cast<size_t>(k), "neighbour search lost points (coordinates too large?)");
   // Equal distances by index (nanoflann's order among ties is unspecified). Insertion sort: the
   // entries are already sorted by distance, so only runs of ties move.
   for (size_t i = 1; i < found; ++i) {

@@ -137,7 +137,7 @@ InterpolantResult make_grid_interpolant(Method method, const GridCells& cells, c
   centres.channels = cells.channels;
   centres.values = cells.values;
   for (int j = 0; j < cells.ny; ++j)
-    for (int i = 0; i < cells.nx; ++i) centres.points.emplace_back(cells.x0 + (i + 0.5) * cells.dx, cells.y0 + (j + 0.5) * cells.dy);
+    for (int i = 0; i < cells.nx; ++i) centres.points.push_back(cells.center(i, j));
   return make_scattered_interpolant(method, centres, params);
 }
 

@@ -28,6 +28,8 @@ struct GridCells {
   double x0 = 0, y0 = 0, dx = 1, dy = 1;
   int channels = 1;
   std::vector<double> values;  ///< nx * ny * channels
+  /// The centre of cell (i, j).
+  Vec2 center(int i, int j) const { return {x0 + (i + 0.5) * dx, y0 + (j + 0.5) * dy}; }
 };
 
 /// Values at the nodes of a regular grid: node (i, j) at (x0 + i dx, y0 + j dy), i in [0, nx),

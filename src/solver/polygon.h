@@ -15,7 +15,8 @@ namespace radrecon {
 /// A convex polygon with at most kCapacity vertices, in order.
 struct ConvexPolygon {
   /// Clipping a convex polygon by a plane adds at most one vertex; a quad clipped by the
-  /// receiver's horizon and up to six occluders' five planes each stays below this.
+  /// receiver's horizon and up to six occluders' five planes each stays below this, and the
+  /// visibility code cuts larger fragments in two before clipping them further.
   static constexpr int kCapacity = 40;
   std::array<Vec3, kCapacity> v;
   int n = 0;

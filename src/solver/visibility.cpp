@@ -97,9 +97,22 @@ ConvexPolygon clip_all(ConvexPolygon poly, const std::array<HalfSpace, 5>& volum
   return poly;
 }
 
-/// Appends the convex pieces of q minus the intersection of the half-spaces to `out`.
+/// Appends the convex pieces of q minus the intersection of the half-spaces to `out`. Each of the
+/// five clips adds at most one vertex, so a polygon too close to ConvexPolygon::kCapacity is
+/// first cut into two convex halves along a diagonal (form factors add up over the pieces): the
+/// fragments of any number of overlapping shadows fit, and the result stays exact.
 void subtract(const ConvexPolygon& q, const std::array<HalfSpace, 5>& volume,
               std::vector<ConvexPolygon>& out) {
+  if (q.n > ConvexPolygon::kCapacity - 6) {
+    ConvexPolygon a, b;
+    const int m = q.n / 2;
+    for (int i = 0; i <= m; ++i) a.push(q.v[i]);
+    for (int i = m; i < q.n; ++i) b.push(q.v[i]);
+    b.push(q.v[0]);
+    subtract(a, volume, out);
+    subtract(b, volume, out);
+    return;
+  }
   ConvexPolygon rest = q;
   for (const HalfSpace& h : volume) {
     ConvexPolygon outside = clip(rest, h.complement());

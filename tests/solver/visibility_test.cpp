@@ -124,3 +124,36 @@ TEST(VisibleFormFactor, ZeroBehindTheShooter) {
 
 }  // namespace
 }  // namespace radrecon
+
+namespace radrecon {
+namespace {
+
+TEST(VisibleFormFactor, ManyVertexFragmentsAreCutAndStayAdditive) {
+  // A 36-gon shooter (near kCapacity: the general path cuts it in two before clipping) seen past
+  // two overlapping occluders, against the sum over its two halves, each small enough to be
+  // clipped whole: form factors add up over disjoint pieces.
+  const int kSides = 36;
+  ConvexPolygon disc, half_a, half_b;
+  for (int i = 0; i < kSides; ++i) {
+    const double a = -2 * std::numbers::pi * i / kSides;  // clockwise from above: faces down
+    disc.push(Vec3(std::cos(a), std::sin(a), 2));
+  }
+  for (int i = 0; i <= kSides / 2; ++i) half_a.push(disc.v[i]);
+  for (int i = kSides / 2; i < kSides; ++i) half_b.push(disc.v[i]);
+  half_b.push(disc.v[0]);
+  const Vec3 down(0, 0, -1), p(0.1, -0.05, 0), n(0, 0, 1);
+  Scene scene;
+  scene.surfaces.push_back(make_quad("o1", {-0.3, -0.2, 1}, {0.2, -0.2, 1}, {0.2, 0.3, 1}, {-0.3, 0.3, 1}));
+  scene.surfaces.push_back(make_quad("o2", {-0.1, -0.4, 1.3}, {0.4, -0.3, 1.3}, {0.3, 0.2, 1.3}, {-0.2, 0.1, 1.3}));
+  const std::vector<Occluder> occ = make_occluders(scene);
+  const std::vector<const Occluder*> both = {&occ[0], &occ[1]};
+  const double whole = visible_form_factor(p, n, disc, down, both);
+  const double halves = visible_form_factor(p, n, half_a, down, both) + visible_form_factor(p, n, half_b, down, both);
+  const double unoccluded = visible_form_factor(p, n, disc, down, {});
+  EXPECT_NEAR(whole, halves, 1e-13) << "whole " << whole << ", halves " << halves;
+  EXPECT_GT(whole, 0.1 * unoccluded);
+  EXPECT_LT(whole, 0.9 * unoccluded);
+}
+
+}  // namespace
+}  // namespace radrecon
