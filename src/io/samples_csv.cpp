@@ -167,7 +167,7 @@ ScatteredSamples read_samples_csv(const std::string& path, std::vector<std::stri
   s.points.reserve(rows);
   s.values.reserve(rows * (columns - 2));
   table.for_each_row([&](const std::vector<std::string_view>& f) {
-    const double x = table.number(f, 0), y = table.number(f, 1);
+    const double x = table.coordinate(f, 0), y = table.coordinate(f, 1);
     s.points.emplace_back(x, y);
     for (size_t c = 2; c < columns; ++c) s.values.push_back(table.number(f, c));
   });
@@ -187,7 +187,7 @@ std::vector<Vec2> read_queries_csv(const std::string& path) {
   std::vector<Vec2> points;
   points.reserve(table.remaining_lines());
   table.for_each_row([&](const std::vector<std::string_view>& f) {
-    const double x = table.number(f, 0), y = table.number(f, 1);
+    const double x = table.coordinate(f, 0), y = table.coordinate(f, 1);
     points.emplace_back(x, y);
   });
   return points;
