@@ -97,22 +97,14 @@ ConvexPolygon clip_all(ConvexPolygon poly, const std::array<HalfSpace, 5>& volum
   return poly;
 }
 
-/// Appends the convex pieces of q minus the intersection of the half-spaces to `out`. Each of the
-/// five clips adds at most one vertex, so a polygon too close to ConvexPolygon::kCapacity is
-/// first cut into two convex halves along a diagonal (form factors add up over the pieces): the
-/// fragments of any number of overlapping shadows fit, and the result stays exact.
+/// Each of subtract()'s five clips adds at most one vertex: a polygon with more vertices than this
+/// is cut in two first (subtract_large()).
+constexpr int kMaxSubtractVertices = ConvexPolygon::kCapacity - 6;
+
+/// Appends the convex pieces of q (at most kMaxSubtractVertices vertices) minus the
+/// intersection of the half-spaces to `out`.
 void subtract(const ConvexPolygon& q, const std::array<HalfSpace, 5>& volume,
               std::vector<ConvexPolygon>& out) {
-  if (q.n > ConvexPolygon::kCapacity - 6) {
-    ConvexPolygon a, b;
-    const int m = q.n / 2;
-    for (int i = 0; i <= m; ++i) a.push(q.v[i]);
-    for (int i = m; i < q.n; ++i) b.push(q.v[i]);
-    b.push(q.v[0]);
-    subtract(a, volume, out);
-    subtract(b, volume, out);
-    return;
-  }
   ConvexPolygon rest = q;
   for (const HalfSpace& h : volume) {
     ConvexPolygon outside = clip(rest, h.complement());
@@ -120,6 +112,24 @@ void subtract(const ConvexPolygon& q, const std::array<HalfSpace, 5>& volume,
     rest = clip(rest, h);
     if (rest.empty()) break;
   }
+}
+
+/// subtract() for a polygon of any size: one with too many vertices is cut into two convex halves
+/// along a diagonal first (form factors add up over the pieces), so the fragments of any number of
+/// overlapping shadows fit in a ConvexPolygon and the result stays exact. Rare: kept out of line.
+[[gnu::noinline]] void subtract_large(const ConvexPolygon& q, const std::array<HalfSpace, 5>& volume,
+                                      std::vector<ConvexPolygon>& out) {
+  if (q.n <= kMaxSubtractVertices) {
+    subtract(q, volume, out);
+    return;
+  }
+  ConvexPolygon a, b;
+  const int m = q.n / 2;
+  for (int i = 0; i <= m; ++i) a.push(q.v[i]);
+  for (int i = m; i < q.n; ++i) b.push(q.v[i]);
+  b.push(q.v[0]);
+  subtract_large(a, volume, out);
+  subtract_large(b, volume, out);
 }
 
 }  // namespace
@@ -159,7 +169,10 @@ double visible_form_factor(const Vec3& p, const Vec3& n, const ConvexPolygon& sh
   for (const Occluder* o : occluders) {
     if (!shadow_volume(p, *o, front, volume)) continue;
     next.clear();
-    for (const ConvexPolygon& q : fragments) subtract(q, volume, next);
+    for (const ConvexPolygon& q : fragments) {
+      if (q.n <= kMaxSubtractVertices) subtract(q, volume, next);
+      else subtract_large(q, volume, next);
+    }
     fragments.swap(next);
     if (fragments.empty()) return 0.0;
   }
