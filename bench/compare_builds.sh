@@ -36,8 +36,10 @@ compare() {
       local bin=$OLD
       [ "$which" = new ] && bin=$NEW
       local args=("${@//OUT/$work/out_$which}")
-      /usr/bin/time -f "%e" -o "$work/t" "$bin" "${args[@]}" >/dev/null 2>&1
-      cat "$work/t" >> "$work/$which.t"
+      local t0=$EPOCHREALTIME
+      "$bin" "${args[@]}" >/dev/null 2>&1
+      local t1=$EPOCHREALTIME
+      awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.4f\n", b - a }' >> "$work/$which.t"
     done
   done
   local o n

@@ -3,6 +3,7 @@
 // independent and write disjoint outputs, so results never depend on the number of threads;
 // reductions are done by the caller over per-index results in a fixed order.
 
+#include <algorithm>
 #include <atomic>
 #include <cstdint>
 #include <exception>
@@ -12,6 +13,8 @@ namespace radrecon {
 
 /// Ranges shorter than this run on the calling thread: waking the team costs more than they do.
 inline constexpr std::int64_t kParallelMinIterations = 512;
+/// Iterations handed out to a thread at a time.
+inline constexpr std::int64_t kParallelChunk = 256;
 
 /// An exception thrown by an iteration (std::bad_alloc, a ReconstructionError) must not leave an
 /// OpenMP region, which would terminate the program: the first one is kept, the remaining
@@ -38,13 +41,18 @@ class LoopException {
   std::atomic<bool> failed_{false};  // a hint to skip work; error_ is the truth
 };
 
-/// Calls body(i) for every i in [begin, end), on all threads (OpenMP, chunks of 256 handed out
-/// dynamically). An exception from body is rethrown after the loop (LoopException).
+/// Calls body(i) for every i in [begin, end), on all threads (OpenMP, chunks of kParallelChunk
+/// handed out dynamically). An exception from body is rethrown after the loop (LoopException).
 template <typename Body>
 void parallel_for(std::int64_t begin, std::int64_t end, Body&& body) {
   LoopException error;
-#pragma omp parallel for schedule(dynamic, 256) if (end - begin >= kParallelMinIterations)
-  for (std::int64_t i = begin; i < end; ++i) error.run([&] { body(i); });
+  const std::int64_t chunks = end > begin ? (end - begin + kParallelChunk - 1) / kParallelChunk : 0;
+#pragma omp parallel for schedule(dynamic, 1) if (end - begin >= kParallelMinIterations)
+  for (std::int64_t c = 0; c < chunks; ++c)
+    error.run([&] {  // one exception guard a chunk: the iterations inside run as a plain loop
+      const std::int64_t lo = begin + c * kParallelChunk, hi = std::min(end, lo + kParallelChunk);
+      for (std::int64_t i = lo; i < hi; ++i) body(i);
+    });
   error.rethrow();
 }
 
@@ -57,13 +65,18 @@ void parallel_for(std::int64_t begin, std::int64_t end, Body&& body) {
 template <typename Scratch, typename Body>
 void parallel_for_with_scratch(std::int64_t begin, std::int64_t end, Body&& body) {
   LoopException error;
+  const std::int64_t chunks = end > begin ? (end - begin + kParallelChunk - 1) / kParallelChunk : 0;
 #pragma omp parallel if (end - begin >= kParallelMinIterations)
   {
     std::optional<Scratch> scratch;
     error.run([&] { scratch.emplace(); });
-#pragma omp for schedule(dynamic, 256)
-    for (std::int64_t i = begin; i < end; ++i)
-      if (scratch) error.run([&] { body(i, *scratch); });
+#pragma omp for schedule(dynamic, 1)
+    for (std::int64_t c = 0; c < chunks; ++c)
+      error.run([&] {
+        if (!scratch) return;
+        const std::int64_t lo = begin + c * kParallelChunk, hi = std::min(end, lo + kParallelChunk);
+        for (std::int64_t i = lo; i < hi; ++i) body(i, *scratch);
+      });
   }
   error.rethrow();
 }
