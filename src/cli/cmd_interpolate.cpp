@@ -38,6 +38,23 @@ std::string method_list() {
   return names;
 }
 
+/// The method's interpolant of the samples (read from `file`); grid methods need the samples
+/// to be the nodes of a regular grid (UserError naming the file otherwise).
+InterpolantResult build_interpolant(Method method, const ScatteredSamples& samples, const MethodParams& params,
+                                    const std::string& file) {
+  if (!is_grid_method(method)) return make_scattered_interpolant(method, samples, params);
+  const std::optional<GridNodes> grid = as_regular_grid(samples);
+  if (!grid) {
+    const DistinctCoordinates d = count_distinct_coordinates(samples);
+    throw UserError(file, "bilinear/bicubic need samples on a regular grid: every combination of nx equally spaced "
+                          "x values and ny equally spaced y values (nx, ny >= 2), each exactly once; found " +
+                              std::to_string(samples.points.size()) + " samples, " + std::to_string(d.x) +
+                              " distinct x, " + std::to_string(d.y) +
+                              " distinct y; use a scattered method (shepard, multiquadric, natural-neighbour, constant)");
+  }
+  return make_nodal_interpolant(method, *grid, params);
+}
+
 void run_interpolate(const InterpolateArgs& args) {
   const auto start = std::chrono::steady_clock::now();
 
@@ -75,24 +92,7 @@ void run_interpolate(const InterpolateArgs& args) {
   if (format == FileFormat::pfm && samples.channels != 1 && samples.channels != 3)
     throw UserError("--out", "PFM needs 1 or 3 value columns (greyscale or colour); " + args.samples + " has " +
                                  std::to_string(samples.channels) + "; write .csv instead");
-  InterpolantResult interpolant = Failure{};
-  {
-    if (is_grid_method(*method)) {
-      const std::optional<GridNodes> grid = as_regular_grid(samples);
-      if (!grid) {
-        const DistinctCoordinates d = count_distinct_coordinates(samples);
-        throw UserError(args.samples, "bilinear/bicubic need samples on a regular grid: every "
-                                     "combination of nx equally spaced x values and ny equally spaced y values "
-                                     "(nx, ny >= 2), each exactly once; found " + std::to_string(samples.points.size()) +
-                                     " samples, " + std::to_string(d.x) + " distinct x, " + std::to_string(d.y) +
-                                     " distinct y; use a scattered method (shepard, multiquadric, natural-neighbour, "
-                                     "constant)");
-      }
-      interpolant = make_nodal_interpolant(*method, *grid, params);
-    } else {
-      interpolant = make_scattered_interpolant(*method, samples, params);
-    }
-  }
+  const InterpolantResult interpolant = build_interpolant(*method, samples, params, args.samples);
   if (!interpolant) throw UserError(args.samples, interpolant.reason());
   const std::vector<Vec2> points = use_queries ? read_queries_csv(args.queries) : raster_points(raster);
 
