@@ -59,6 +59,13 @@ inline constexpr double kMaxSampleCoordinate = 1e100;
 /// files hold 17 significant digits, so only a misplaced element is farther.
 inline constexpr double kSolutionGridParameter = 1e-9;
 
+/// The local multiquadric's patch grid over the samples' bounding box: a box of no width (samples
+/// on a line) gets this fraction of its length as width, and at least this fraction of its
+/// squared length as area, so that the patch size (from the area per sample) stays finite and
+/// the patches along the line still hold about k samples each.
+inline constexpr double kFlatBoxWidthRelative = 1e-12;
+inline constexpr double kFlatBoxAreaRelative = 1e-6;
+
 /// Scattered samples count as the nodes of a regular grid when their coordinates lie within
 /// this fraction of the samples' extent from the grid lines: far above the round-off of
 /// coordinates printed with 10+ digits, far below any intended offset.

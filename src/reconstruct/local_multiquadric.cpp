@@ -46,8 +46,12 @@ LocalMultiquadric::LocalMultiquadric(const ScatteredSamples& samples, double mu,
   if (r_m) r_sq_.assign(n, *r_m * *r_m);
   Vec2 lo = points_[0], hi = points_[0];
   for (const Vec2& p : points_) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-  const Vec2 extent = (hi - lo).cwiseMax(Vec2::Constant(1e-12 * std::max(1.0, (hi - lo).maxCoeff())));
-  const double area = std::max(extent.x() * extent.y(), extent.maxCoeff() * extent.maxCoeff() * 1e-6);
+  // Samples on a line (or nearly) have a box of no width: give it a sliver of width and area so
+  // that the patch grid stays finite.
+  const Vec2 extent = (hi - lo).cwiseMax(
+      Vec2::Constant(tol::kFlatBoxWidthRelative * std::max(1.0, (hi - lo).maxCoeff())));
+  const double area =
+      std::max(extent.x() * extent.y(), extent.maxCoeff() * extent.maxCoeff() * tol::kFlatBoxAreaRelative);
   // The patch's samples come from a disc kSampleMargin times its support, so that its
   // interpolant never extrapolates where its weight is nonzero; that disc holds ~k samples.
   h_ = std::sqrt(std::min<double>(k, n) * area / (std::numbers::pi * n)) / kSampleMargin;
