@@ -58,6 +58,9 @@ void run_render(const RenderArgs& args) {
   const MethodParams params = parse_params(*method, args.params, "--param");
   const Solution solution = read_solution_json(args.solution);
   const SolutionReconstruction recon(scene, solution, *method, params, args.solution);
+  if (!recon.fallbacks().empty() && recon.fallbacks().size() == solution.surfaces.size())
+    throw UserError(args.solution, args.method + " cannot reconstruct any side of this solution (" +
+                                       recon.fallbacks().front().reason + "); use constant, or a solution it fits");
   for (const Fallback& f : recon.fallbacks())
     std::fprintf(stderr, "radrecon: warning: %s: %s cannot reconstruct side %s (%s); drawn piecewise constant\n",
                  args.solution.c_str(), args.method.c_str(), f.side.c_str(), f.reason.c_str());

@@ -86,7 +86,7 @@ Size2 parse_size(const std::string& text, const std::string& where, int max_side
   const long long pixels = static_cast<long long>(size.width) * size.height;
   if (pixels > max_pixels)
     throw UserError(where, std::to_string(size.width) + "x" + std::to_string(size.height) + " is " + std::to_string(pixels) +
-                               " points, more than the " + std::to_string(max_pixels) + " that fit in memory");
+                               " points, more than the limit of " + std::to_string(max_pixels));
   return size;
 }
 

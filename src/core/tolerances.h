@@ -66,6 +66,11 @@ inline constexpr double kSolutionGridParameter = 1e-9;
 inline constexpr double kFlatBoxWidthRelative = 1e-12;
 inline constexpr double kFlatBoxAreaRelative = 1e-6;
 
+/// A solution's side belongs to a scene's surface when their edge lengths agree to this fraction:
+/// both come from the same corners (solution files hold 17 digits), so a larger difference
+/// means another scene.
+inline constexpr double kSolutionLengthRelative = 1e-9;
+
 /// Scattered samples count as the nodes of a regular grid when their coordinates lie within
 /// this fraction of the samples' extent from the grid lines: far above the round-off of
 /// coordinates printed with 10+ digits, far below any intended offset.

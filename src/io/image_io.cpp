@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <fstream>
+#include <limits>
 #include <vector>
 
 #include "core/check.h"
@@ -68,6 +69,10 @@ void write_pfm(const std::filesystem::path& path, int width, int height, int cha
                std::span<const double> values) {
   RR_CHECK(channels == 1 || channels == 3, "PFM holds 1 or 3 channels");
   RR_CHECK_EQ(values.size(), static_cast<size_t>(width) * height * channels, "PFM values do not match the size");
+  for (const double v : values)
+    if (std::isfinite(v) && std::abs(v) > std::numeric_limits<float>::max())
+      throw UserError(path.string(), "a value, " + format_number(v) +
+                                         ", is beyond the range of PFM's 32-bit floats (3.4e38); write .csv instead");
   write_file_atomically(path, [&](const std::filesystem::path& tmp) {
     std::ofstream out(tmp, std::ios::binary);
     // The scale -1.0 declares little-endian floats; they are swapped on a big-endian machine.

@@ -27,7 +27,11 @@ JsonReader::json JsonReader::parse(const std::string& text, const std::string& k
     // nlohmann reports a byte offset; turn it into a line number.
     size_t line = 1;
     for (size_t i = 0; i < std::min<size_t>(e.byte, text.size()); ++i) line += text[i] == '\n';
-    throw UserError(source_ + ":" + std::to_string(line), std::string("not valid JSON: ") + e.what());
+    // nlohmann's text starts "[json.exception.parse_error.101] parse error at line L, column C: ";
+    // keep what follows "parse error" (the position and the reason).
+    std::string what = e.what();
+    if (const size_t at = what.find("parse error"); at != std::string::npos) what = what.substr(at);
+    throw UserError(source_ + ":" + std::to_string(line), "not valid JSON: " + what);
   }
 }
 

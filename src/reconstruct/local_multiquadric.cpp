@@ -97,6 +97,9 @@ LocalMultiquadric::LocalMultiquadric(const ScatteredSamples& samples, double mu,
     const Eigen::PartialPivLU<Eigen::MatrixXd> lu(A);
     patch.rcond = lu.rcond();
     const Eigen::MatrixXd alpha = lu.solve(B);
+    if (!alpha.allFinite())
+      throw ReconstructionError("the multiquadric coefficients overflow: the sample values are too large for the "
+                                "system (scale them down)");
     patch.alpha.resize(m * static_cast<size_t>(channels_));
     for (Eigen::Index a = 0; a < M; ++a)
       for (int c = 0; c < channels_; ++c) patch.alpha[static_cast<size_t>(a) * channels_ + c] = alpha(a, c);

@@ -42,6 +42,9 @@ Multiquadric::Multiquadric(const ScatteredSamples& samples, double mu, std::opti
     std::fprintf(stderr, "radrecon: warning: multiquadric system is poorly conditioned (reciprocal condition %.2e); "
                          "results may be inaccurate\n", rcond_);
   const Eigen::MatrixXd alpha = lu.solve(B);
+  if (!alpha.allFinite())
+    throw ReconstructionError("the multiquadric coefficients overflow: the sample values are too large for the "
+                              "system (scale them down)");
   alpha_by_channel_.resize(n * static_cast<size_t>(channels_));
   for (size_t i = 0; i < n; ++i)
     for (int c = 0; c < channels_; ++c) alpha_by_channel_[static_cast<size_t>(c) * n + i] = alpha(static_cast<Eigen::Index>(i), c);

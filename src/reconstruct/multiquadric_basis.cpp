@@ -3,6 +3,7 @@
 #include <string>
 
 #include "core/check.h"
+#include "core/parse.h"
 #include "reconstruct/interpolant.h"
 #include "reconstruct/kdtree.h"
 
@@ -17,8 +18,8 @@ std::vector<double> eck_radii_sq(std::span<const Vec2> points, const KdTree2& tr
   for (size_t i = 0; i < points.size(); ++i) {
     tree.nearest(points[i], 2, idx, d2);  // the point itself (or a duplicate of it) and the next
     if (d2[1] == 0)
-      throw ReconstructionError("duplicate sample point at (" + std::to_string(points[i].x()) + ", " +
-                                std::to_string(points[i].y()) + ")");
+      throw ReconstructionError("two samples at the same point (" + format_number(points[i].x()) + ", " +
+                                format_number(points[i].y()) + ")");
     r_sq[i] = d2[1];
   }
   return r_sq;

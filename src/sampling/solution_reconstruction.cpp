@@ -1,6 +1,10 @@
 #include "sampling/solution_reconstruction.h"
 
+#include <cmath>
+
 #include "core/error.h"
+#include "core/parse.h"
+#include "core/tolerances.h"
 #include "sampling/surface_samples.h"
 
 namespace radrecon {
@@ -26,10 +30,18 @@ SolutionReconstruction::SolutionReconstruction(const Scene& scene, const Solutio
     const std::optional<SideRef> ref = find_side(scene, side.name);
     if (!ref)
       throw UserError(source, "surface '" + side.name + "' is not a side of the scene's surfaces (" + side_names(scene) + ")");
-    // The scene's edge lengths, so that (s, t) match the renderer's.
+    // The scene's edge lengths, so that (s, t) match the renderer's; a solution of another scene
+    // whose sides have the same names has other lengths.
+    const Surface& surface = scene.surfaces[ref->surface];
+    const auto differs = [](double a, double b) { return std::abs(a - b) > tol::kSolutionLengthRelative * b; };
+    if (differs(side.length_u_m, surface.length_u_m()) || differs(side.length_v_m, surface.length_v_m()))
+      throw UserError(source, "surface '" + side.name + "' is " + format_number(side.length_u_m) + " m x " +
+                                  format_number(side.length_v_m) + " m in the solution but " +
+                                  format_number(surface.length_u_m()) + " m x " + format_number(surface.length_v_m()) +
+                                  " m in the scene: the solution belongs to another scene");
     SurfaceSolution s = side;
-    s.length_u_m = scene.surfaces[ref->surface].length_u_m();
-    s.length_v_m = scene.surfaces[ref->surface].length_v_m();
+    s.length_u_m = surface.length_u_m();
+    s.length_v_m = surface.length_v_m();
     InterpolantResult built = build_side(s, method, params);
     if (!built) {
       fallbacks_.push_back({side.name, built.reason()});

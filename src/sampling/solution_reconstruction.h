@@ -26,7 +26,8 @@ class SolutionReconstruction {
   /// scattered data: their leaves for constant, the leaf centres otherwise. A side the method
   /// cannot serve (a grid method on an adaptive side, too few or collinear samples) falls back
   /// to piecewise constant and is listed with the reason in fallbacks(). The solution's sides
-  /// must belong to `scene`: UserError naming `source` (the solution's file) otherwise.
+  /// must belong to `scene`, with its edge lengths: UserError naming `source` (the solution's
+  /// file) otherwise.
   SolutionReconstruction(const Scene& scene, const Solution& solution, Method method, const MethodParams& params,
                          const std::string& source);
   ~SolutionReconstruction();

@@ -56,8 +56,8 @@ Solution solve_scene(const Scene& scene, const std::string& spec, const SolveSet
     const GridMeshOptions mesh_options{n, settings.patches};
     const size_t elements = grid_element_count(scene, mesh_options);
     if (elements > kMaxGridElements)
-      throw UserError(field, "'" + spec + "' would make " + std::to_string(elements) + " elements; at most " +
-                                 std::to_string(kMaxGridElements) + " fit in memory");
+      throw UserError(field, "'" + spec + "' would make " + std::to_string(elements) + " elements, more than the limit of " +
+                                 std::to_string(kMaxGridElements) + " (about 1 KiB each)");
     const Mesh mesh = make_grid_mesh(scene, mesh_options);
     if (!settings.progress_label.empty())
       std::fprintf(stderr, "%s: %s, %zu elements on %zu surface sides\n", settings.progress_label.c_str(), spec.c_str(),

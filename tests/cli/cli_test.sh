@@ -156,6 +156,19 @@ run solve_dir solve --scene paper --mesh grid:4 --out "$TMP" --quiet
 expect_rc solve_dir 2
 expect_stderr_has solve_dir "is a folder"
 
+# A solution of another scene (same side names, other lengths) is refused, not drawn wrongly;
+# so is a method that fits no side of the solution.
+sed 's/"length_u_m": 4,/"length_u_m": 8,/' "$TMP/solution.json" > "$TMP/other_scene.json"
+run render_other render --scene paper --solution "$TMP/other_scene.json" --camera view --size 8x6 --out "$TMP/other.png" --quiet
+expect_rc render_other 2
+expect_stderr_has render_other "another scene"
+expect_no_output render_other "$TMP/other.png"
+run qt_sol solve --scene paper --mesh quadtree:4 --out "$TMP/qt4.json" --quiet
+run render_nofit render --scene paper --solution "$TMP/qt4.json" --method bilinear --camera view --size 8x6 --out "$TMP/nofit.png" --quiet
+expect_rc render_nofit 2
+expect_stderr_has render_nofit "cannot reconstruct any side"
+expect_no_output render_nofit "$TMP/nofit.png"
+
 # --- the paper experiment, with a small reference to stay quick ---------------------------
 run paper paper --out "$TMP/paper" --reference 100 --quiet
 expect_rc paper 0

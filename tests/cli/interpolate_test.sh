@@ -172,6 +172,7 @@ printf 'x,y,B\n0,0,1\n1,0,2\n0,one,2\n' >"$TMP/text.csv"
 printf 'x,y,B\n0,0,1\n1,1,2\n2,2,3\n3,3,5\n' >"$TMP/collinear.csv"
 printf 'x,y\n0,nan\n' >"$TMP/queries_nan.csv"
 printf 'x,y,B\n0,0,1\n1e200,0,2\n0,1,3\n' >"$TMP/huge.csv"
+printf 'x,y,B\n0,0,1e308\n1,0,-1e308\n0,1,1e308\n1,1,-1e308\n' >"$TMP/huge_values.csv"
 
 refuse() {  # NAME TEXT OUT ARGS...: expects exit 2, TEXT on stderr and no OUT
   local name=$1 text=$2 out=$3
@@ -208,6 +209,8 @@ refuse unknown_extension ".tif" "$TMP/o20.tif" --samples "$S" --method constant 
 refuse pfm_two_columns "1 or 3" "$TMP/o21.pfm" --samples "$TMP/scattered.csv" --method constant --raster 5x5 --domain 0,0,1,1
 refuse huge_coordinate "huge.csv:3" "$TMP/o23.csv" --samples "$TMP/huge.csv" --method shepard --queries "$Q"
 refuse huge_domain "--domain" "$TMP/o24.pfm" --samples "$S" --method constant --raster 5x5 --domain=-1e200,0,1,1
+refuse mq_overflow "too large" "$TMP/o25.csv" --samples "$TMP/huge_values.csv" --method multiquadric --queries "$Q"
+refuse pfm_float_range "32-bit floats" "$TMP/o26.pfm" --samples "$TMP/huge_values.csv" --method bilinear --raster 4x4 --domain 0,0,1,1
 refuse bad_queries "queries_nan.csv:2" "$TMP/o22.csv" --samples "$S" --method constant --queries "$TMP/queries_nan.csv"
 # Out of memory: exit code 3, a message, nothing written (not under AddressSanitizer, which
 # reserves more address space than the limit allows).
