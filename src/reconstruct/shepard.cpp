@@ -30,6 +30,10 @@ Shepard::Shepard(ScatteredSamples samples, double mu, int k) : samples_(std::mov
   }
 }
 
+Shepard::Shepard(ScatteredSamples samples, double mu, Barriers barriers) : Shepard(std::move(samples), mu, 0) {
+  barriers_ = std::move(barriers);
+}
+
 Shepard::~Shepard() = default;
 
 namespace {
@@ -71,8 +75,18 @@ void Shepard::evaluate(std::span<const Vec2> points, std::span<double> out) cons
       Eigen::ArrayXd& dist_sq = s.dist_sq;
       Eigen::ArrayXd& w = s.w;
       dist_sq = (p.x() - Array(px_.data(), N)).square() + (p.y() - Array(py_.data(), N)).square();
+      if (!barriers_.empty()) {
+        // A hidden sample is infinitely far: its weight is 0 below.
+        for (Eigen::Index i = 0; i < N; ++i)
+          if (barriers_.blocks(p, samples_.points[static_cast<size_t>(i)]))
+            dist_sq[i] = std::numeric_limits<double>::infinity();
+      }
       Eigen::Index first = 0;
       const double nearest_sq = dist_sq.minCoeff(&first);
+      if (!(nearest_sq < std::numeric_limits<double>::infinity())) {  // sees no sample: no value
+        for (int c = 0; c < C; ++c) o[c] = std::numeric_limits<double>::quiet_NaN();
+        return;
+      }
       if (nearest_sq == 0) {  // at a sample: its value (the limit of the weights)
         for (int c = 0; c < C; ++c) o[c] = samples_.values[static_cast<size_t>(first) * C + c];
         return;

@@ -6,6 +6,7 @@
 
 #include <memory>
 
+#include "reconstruct/barriers.h"
 #include "reconstruct/interpolant.h"
 #include "reconstruct/samples.h"
 
@@ -17,6 +18,9 @@ class Shepard final : public Interpolant {
  public:
   /// mu > 0; k = 0 uses every sample, k > 0 the k nearest (at most all).
   Shepard(ScatteredSamples samples, double mu, int k);
+  /// The global form (k = 0) with barriers (barriers.h): only the samples visible from a query
+  /// contribute; a query that sees none gets NaN (no value).
+  Shepard(ScatteredSamples samples, double mu, Barriers barriers);
   ~Shepard() override;
   int channels() const override { return samples_.channels; }
   void evaluate(std::span<const Vec2> points, std::span<double> out) const override;
@@ -28,6 +32,7 @@ class Shepard final : public Interpolant {
   double mu_;
   int k_;
   std::unique_ptr<KdTree2> tree_;
+  Barriers barriers_;
 };
 
 }  // namespace radrecon

@@ -1,0 +1,142 @@
+#include "reconstruct/barriers.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#include "core/check.h"
+#include "core/parse.h"
+
+namespace radrecon {
+
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+
+/// Sign of the orientation of (a, b, c): +1 counter-clockwise, -1 clockwise, 0 collinear; exact.
+int orientation(const Vec2& a, const Vec2& b, const Vec2& c) {
+  const CGAL::Orientation o = CGAL::orientation(K::Point_2(a.x(), a.y()), K::Point_2(b.x(), b.y()),
+                                                K::Point_2(c.x(), c.y()));
+  return o == CGAL::LEFT_TURN ? 1 : (o == CGAL::RIGHT_TURN ? -1 : 0);
+}
+
+/// Cells of the barrier grid per segment, on average: a few segments per cell keeps the tests
+/// per cell low without a grid much larger than the segments.
+constexpr double kSegmentsPerCell = 2.0;
+/// At most this many cells along an axis.
+constexpr int kMaxGridSide = 1024;
+/// A cell is skipped only when all its corners lie beyond this fraction of |d| x cell size on
+/// one side of the query's line: far above the round-off of the corner tests, so that no cell
+/// the segment touches is skipped (the exact tests then decide).
+constexpr double kCellSkipRelative = 1e-12;
+
+}  // namespace
+
+bool segment_blocked(const Vec2& p, const Vec2& q, const BarrierSegment& s) {
+  const int o1 = orientation(p, q, s.a), o2 = orientation(p, q, s.b);
+  if (o1 == 0 && o2 == 0) {
+    // All four on one line: blocked when the open interval (p, q) overlaps [a, b] along it.
+    const int axis = std::abs(q.x() - p.x()) >= std::abs(q.y() - p.y()) ? 0 : 1;
+    const double lo = std::min(p[axis], q[axis]), hi = std::max(p[axis], q[axis]);
+    const double a = std::min(s.a[axis], s.b[axis]), b = std::max(s.a[axis], s.b[axis]);
+    return lo < b && a < hi && lo < hi;
+  }
+  const int o3 = orientation(s.a, s.b, p), o4 = orientation(s.a, s.b, q);
+  // p or q on the barrier's line (or both strictly on one side): the open segment does not meet it.
+  if (o3 * o4 >= 0) return false;
+  // p and q strictly on opposite sides of the barrier's line: the lines meet strictly between
+  // p and q; blocked if that point is on [a, b] (an end point included).
+  return o1 * o2 <= 0;
+}
+
+Result<Barriers> Barriers::from_polylines(std::span<const Polyline> polylines) {
+  std::vector<BarrierSegment> segments;
+  for (size_t k = 0; k < polylines.size(); ++k) {
+    const Polyline& line = polylines[k];
+    const std::string where = "barrier " + std::to_string(k + 1);
+    if (line.size() < 2) return Failure{where + " has " + std::to_string(line.size()) + " point(s); a line needs 2"};
+    for (size_t i = 0; i < line.size(); ++i)
+      if (!line[i].allFinite())
+        return Failure{where + ", point " + std::to_string(i + 1) + ": coordinates must be finite numbers"};
+    for (size_t i = 0; i + 1 < line.size(); ++i) {
+      if (line[i] == line[i + 1])
+        return Failure{where + ", points " + std::to_string(i + 1) + " and " + std::to_string(i + 2) +
+                       " coincide at (" + format_number(line[i].x()) + ", " + format_number(line[i].y()) +
+                       "): a segment of zero length"};
+      segments.push_back({line[i], line[i + 1]});
+    }
+  }
+  return Barriers(std::move(segments));
+}
+
+Barriers::Barriers(std::vector<BarrierSegment> segments) : segments_(std::move(segments)) {
+  if (segments_.empty()) return;
+  Vec2 lo = segments_[0].a, hi = lo;
+  for (const BarrierSegment& s : segments_) {
+    lo = lo.cwiseMin(s.a).cwiseMin(s.b);
+    hi = hi.cwiseMax(s.a).cwiseMax(s.b);
+  }
+  const Vec2 extent = hi - lo;
+  const double side = extent.maxCoeff();  // > 0: segments have a length
+  // About kSegmentsPerCell segments a cell over the box's area (segments on one line: along it),
+  // at most kMaxGridSide cells a side.
+  const double cells = std::max(1.0, static_cast<double>(segments_.size()) / kSegmentsPerCell);
+  const double area = extent.x() * extent.y();
+  cell_m_ = std::max(area > 0 ? std::sqrt(area / cells) : side / cells, side / kMaxGridSide);
+  origin_ = lo;
+  nx_ = std::clamp(static_cast<int>(std::floor(extent.x() / cell_m_)) + 1, 1, kMaxGridSide + 1);
+  ny_ = std::clamp(static_cast<int>(std::floor(extent.y() / cell_m_)) + 1, 1, kMaxGridSide + 1);
+  // Each segment goes into every cell its bounding box covers (conservative).
+  std::vector<std::vector<unsigned>> buckets(static_cast<size_t>(nx_) * ny_);
+  const auto cell = [&](double v, double o, int n) { return std::clamp(static_cast<int>(std::floor((v - o) / cell_m_)), 0, n - 1); };
+  for (size_t k = 0; k < segments_.size(); ++k) {
+    const BarrierSegment& s = segments_[k];
+    const int i0 = cell(std::min(s.a.x(), s.b.x()), origin_.x(), nx_), i1 = cell(std::max(s.a.x(), s.b.x()), origin_.x(), nx_);
+    const int j0 = cell(std::min(s.a.y(), s.b.y()), origin_.y(), ny_), j1 = cell(std::max(s.a.y(), s.b.y()), origin_.y(), ny_);
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) buckets[static_cast<size_t>(j) * nx_ + i].push_back(static_cast<unsigned>(k));
+  }
+  cell_start_.assign(buckets.size() + 1, 0);
+  for (size_t c = 0; c < buckets.size(); ++c) cell_start_[c + 1] = cell_start_[c] + static_cast<unsigned>(buckets[c].size());
+  cell_segments_.reserve(cell_start_.back());
+  for (const auto& b : buckets) cell_segments_.insert(cell_segments_.end(), b.begin(), b.end());
+}
+
+bool Barriers::blocks(const Vec2& p, const Vec2& q) const {
+  if (segments_.empty()) return false;
+  return blocks_on_grid(p, q);
+}
+
+bool Barriers::blocks_on_grid(const Vec2& p, const Vec2& q) const {
+  // The cells of the query segment's bounding box, clipped to the grid; a segment outside the
+  // grid's box meets no barrier there. Cells are visited in the box (simple and exact: every
+  // cell the segment passes through is in it); each candidate is tested exactly.
+  const Vec2 lo = p.cwiseMin(q), hi = p.cwiseMax(q);
+  const double gx1 = origin_.x() + nx_ * cell_m_, gy1 = origin_.y() + ny_ * cell_m_;
+  if (hi.x() < origin_.x() || hi.y() < origin_.y() || lo.x() > gx1 || lo.y() > gy1) return false;
+  const auto cell = [&](double v, double o, int n) { return std::clamp(static_cast<int>(std::floor((v - o) / cell_m_)), 0, n - 1); };
+  const int i0 = cell(lo.x(), origin_.x(), nx_), i1 = cell(hi.x(), origin_.x(), nx_);
+  const int j0 = cell(lo.y(), origin_.y(), ny_), j1 = cell(hi.y(), origin_.y(), ny_);
+  const Vec2 d = q - p;
+  for (int j = j0; j <= j1; ++j)
+    for (int i = i0; i <= i1; ++i) {
+      // Skip cells of the box that the segment's line misses (the cell's corners all on one side).
+      const Vec2 c0 = origin_ + Vec2(i * cell_m_, j * cell_m_);
+      const double s00 = d.x() * (c0.y() - p.y()) - d.y() * (c0.x() - p.x());
+      const double s10 = d.x() * (c0.y() - p.y()) - d.y() * (c0.x() + cell_m_ - p.x());
+      const double s01 = d.x() * (c0.y() + cell_m_ - p.y()) - d.y() * (c0.x() - p.x());
+      const double s11 = d.x() * (c0.y() + cell_m_ - p.y()) - d.y() * (c0.x() + cell_m_ - p.x());
+      const double margin = kCellSkipRelative * (std::abs(d.x()) + std::abs(d.y())) * cell_m_;
+      if ((s00 > margin && s10 > margin && s01 > margin && s11 > margin) ||
+          (s00 < -margin && s10 < -margin && s01 < -margin && s11 < -margin))
+        continue;
+      const size_t c = static_cast<size_t>(j) * nx_ + i;
+      for (unsigned k = cell_start_[c]; k < cell_start_[c + 1]; ++k)
+        if (segment_blocked(p, q, segments_[cell_segments_[k]])) return true;
+    }
+  return false;
+}
+
+}  // namespace radrecon

@@ -1,0 +1,63 @@
+#pragma once
+// Barriers: lines in the sample domain that no sample's influence crosses (discontinuities of
+// the function: the foot of a wall on the ground, a fault, a breakline). A sample is visible from
+// a query when the straight segment between them crosses no barrier.
+//
+// The rule, exact (orientation tests with exact predicates):
+//   - the open segment (p, q) is blocked when it meets a closed barrier segment [a, b]: a proper
+//     crossing, a barrier end point lying on it, or a collinear overlap;
+//   - p and q themselves never block: a sample or query lying on a barrier sees both sides;
+//   - light passes around a barrier's free end (a segment that misses the end point by any
+//     amount is not blocked).
+
+#include <span>
+#include <vector>
+
+#include "core/result.h"
+#include "core/vec.h"
+
+namespace radrecon {
+
+/// One barrier segment, metres.
+struct BarrierSegment {
+  Vec2 a, b;
+};
+
+/// A polyline: consecutive points joined by segments.
+using Polyline = std::vector<Vec2>;
+
+class Barriers {
+ public:
+  /// No barrier: every sample sees every query.
+  Barriers() = default;
+
+  /// The segments of `polylines`, or a Failure naming the polyline and point when a coordinate
+  /// is not finite, a polyline has fewer than 2 points, or a segment has zero length.
+  static Result<Barriers> from_polylines(std::span<const Polyline> polylines);
+
+  bool empty() const { return segments_.empty(); }
+  const std::vector<BarrierSegment>& segments() const { return segments_; }
+
+  /// Whether the open segment (p, q) meets a barrier (the rule above). Thread-safe, allocation
+  /// free: the segments are bucketed on a uniform grid, and only the cells the segment passes
+  /// through are tested.
+  bool blocks(const Vec2& p, const Vec2& q) const;
+
+ private:
+  explicit Barriers(std::vector<BarrierSegment> segments);
+  /// Tests every segment of the cells that (p, q) passes through.
+  bool blocks_on_grid(const Vec2& p, const Vec2& q) const;
+
+  std::vector<BarrierSegment> segments_;
+  Vec2 origin_ = Vec2::Zero();   ///< lower corner of the grid (the segments' bounding box)
+  double cell_m_ = 1;            ///< cell side, metres
+  int nx_ = 0, ny_ = 0;
+  std::vector<unsigned> cell_start_;  ///< nx * ny + 1 offsets into cell_segments_
+  std::vector<unsigned> cell_segments_;
+};
+
+/// Whether the open segment (p, q) meets the closed segment [a, b] (the rule of barriers.h),
+/// by exact orientation tests: the brute-force definition that Barriers::blocks() accelerates.
+bool segment_blocked(const Vec2& p, const Vec2& q, const BarrierSegment& s);
+
+}  // namespace radrecon

@@ -1,0 +1,152 @@
+// Barriers: the exact blocking rule on its degenerate cases, the gridded search against the
+// brute-force definition (every segment tested) on random barriers, and Shepard with barriers
+// against its defining properties (zero influence across, each side as if alone).
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "reconstruct/barriers.h"
+#include "reconstruct/shepard.h"
+
+namespace radrecon {
+namespace {
+
+TEST(SegmentBlocked, FollowsTheRuleOnItsDegenerateCases) {
+  const BarrierSegment wall{{0, -1}, {0, 1}};  // x = 0, y in [-1, 1]
+  EXPECT_TRUE(segment_blocked({-1, 0}, {1, 0}, wall));       // a proper crossing
+  EXPECT_FALSE(segment_blocked({-1, 2}, {1, 2}, wall));      // around the free end
+  EXPECT_TRUE(segment_blocked({-1, 0}, {1, 2}, wall));       // through the end point (0, 1)
+  EXPECT_FALSE(segment_blocked({-1, 0.5}, {-0.5, 0}, wall)); // on one side
+  EXPECT_FALSE(segment_blocked({0, 0.5}, {1, 0}, wall));     // a sample on the barrier sees both sides
+  EXPECT_FALSE(segment_blocked({-1, 0}, {0, 0}, wall));      // a query on the barrier too
+  EXPECT_FALSE(segment_blocked({0, 3}, {1, 3}, wall));       // p on the barrier's line, beyond its end
+  EXPECT_TRUE(segment_blocked({0, -2}, {0, 2}, wall));       // along the barrier, overlapping
+  EXPECT_TRUE(segment_blocked({0, 0.5}, {0, 2}, wall));      // along it from a point on it
+  EXPECT_FALSE(segment_blocked({0, 1}, {0, 2}, wall));       // along its line, touching its end only
+  EXPECT_FALSE(segment_blocked({0, 1.5}, {0, 2}, wall));     // along its line, beyond it
+  // Symmetric in p and q, and in a and b.
+  EXPECT_TRUE(segment_blocked({1, 2}, {-1, 0}, BarrierSegment{{0, 1}, {0, -1}}));
+}
+
+TEST(Barriers, RefusesMalformedPolylinesWithTheirPlace) {
+  const std::vector<Polyline> one_point = {{{0, 0}}};
+  EXPECT_NE(Barriers::from_polylines(one_point).reason().find("barrier 1"), std::string::npos);
+  const std::vector<Polyline> repeated = {{{0, 0}, {1, 0}}, {{2, 2}, {3, 3}, {3, 3}}};
+  const auto r = Barriers::from_polylines(repeated);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.reason().find("barrier 2, points 2 and 3"), std::string::npos) << r.reason();
+  const std::vector<Polyline> nan = {{{0, 0}, {std::nan(""), 1}}};
+  EXPECT_NE(Barriers::from_polylines(nan).reason().find("point 2"), std::string::npos);
+  EXPECT_TRUE(Barriers().empty());
+  EXPECT_FALSE(Barriers().blocks({0, 0}, {1, 1}));
+}
+
+TEST(Barriers, GridSearchAgreesWithBruteForceOnRandomBarriers) {
+  std::mt19937 rng(2026);
+  std::uniform_real_distribution<double> u(0, 10), step(-1.5, 1.5);
+  for (int trial = 0; trial < 4; ++trial) {
+    std::vector<Polyline> lines;
+    const int count = trial == 0 ? 1 : 40 * trial;
+    for (int k = 0; k < count; ++k) {
+      Polyline line = {Vec2(u(rng), u(rng))};
+      for (int i = 0; i < 3; ++i) line.push_back(line.back() + Vec2(step(rng), step(rng)));
+      lines.push_back(line);
+    }
+    // Lattice points too: segments through barrier end points and along grid lines.
+    lines.push_back({{2, 2}, {2, 8}});
+    lines.push_back({{3, 5}, {7, 5}});
+    const Barriers barriers = Barriers::from_polylines(lines).value();
+    std::vector<Vec2> points;
+    for (int k = 0; k < 150; ++k) points.emplace_back(u(rng), u(rng));
+    for (int i = 0; i <= 10; ++i)
+      for (int j = 0; j <= 10; j += 5) points.emplace_back(i, j);
+    points.emplace_back(2, 8);  // a barrier's end point
+    size_t blocked = 0;
+    for (const Vec2& p : points)
+      for (const Vec2& q : points) {
+        bool brute = false;
+        for (const BarrierSegment& s : barriers.segments()) brute = brute || segment_blocked(p, q, s);
+        ASSERT_EQ(barriers.blocks(p, q), brute) << "(" << p.transpose() << ") - (" << q.transpose() << "), trial " << trial;
+        blocked += brute;
+      }
+    EXPECT_GT(blocked, 0u);  // the test sees both outcomes
+  }
+}
+
+/// Random samples on both sides of x = 0.5, values a step across it plus a slope.
+ScatteredSamples two_sided_samples(double left_value, double right_value) {
+  ScatteredSamples s;
+  s.channels = 1;
+  std::mt19937 rng(77);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int k = 0; k < 200; ++k) {
+    const Vec2 p(u(rng), u(rng));
+    if (std::abs(p.x() - 0.5) < 1e-3) continue;
+    s.points.push_back(p);
+    s.values.push_back((p.x() < 0.5 ? left_value : right_value) + 0.3 * p.y());
+  }
+  return s;
+}
+
+/// A wall across the whole domain (and beyond it), at x = 0.5.
+Barriers wall() { return Barriers::from_polylines(std::vector<Polyline>{{{0.5, -1}, {0.5, 2}}}).value(); }
+
+std::vector<Vec2> left_queries() {
+  std::vector<Vec2> q;
+  for (int j = 0; j < 30; ++j)
+    for (int i = 0; i < 15; ++i) q.emplace_back(0.49 * i / 14.0, j / 29.0);
+  return q;
+}
+
+std::vector<double> evaluate(const Interpolant& f, const std::vector<Vec2>& q) {
+  std::vector<double> out(q.size() * static_cast<size_t>(f.channels()));
+  f.evaluate(q, out);
+  return out;
+}
+
+TEST(ShepardWithBarriers, ASampleAcrossABarrierHasExactlyZeroInfluence) {
+  const std::vector<Vec2> q = left_queries();
+  const Shepard a(two_sided_samples(1.0, 5.0), 4.0, wall());
+  const Shepard b(two_sided_samples(1.0, -300.0), 4.0, wall());
+  const std::vector<double> va = evaluate(a, q), vb = evaluate(b, q);
+  for (size_t k = 0; k < q.size(); ++k) ASSERT_EQ(va[k], vb[k]) << "query " << k;
+  // Without the wall the right side's values do leak in.
+  const Shepard leaky(two_sided_samples(1.0, 5.0), 4.0, 0);
+  EXPECT_GT(evaluate(leaky, q)[q.size() / 2], evaluate(a, q)[q.size() / 2] + 1e-6);
+}
+
+TEST(ShepardWithBarriers, EachSideIsReconstructedAsIfTheOtherDidNotExist) {
+  const ScatteredSamples all = two_sided_samples(1.0, 5.0);
+  ScatteredSamples left;
+  for (size_t k = 0; k < all.points.size(); ++k)
+    if (all.points[k].x() < 0.5) {
+      left.points.push_back(all.points[k]);
+      left.values.push_back(all.values[k]);
+    }
+  const std::vector<Vec2> q = left_queries();
+  const std::vector<double> walled = evaluate(Shepard(all, 2.0, wall()), q);
+  const std::vector<double> alone = evaluate(Shepard(left, 2.0, 0), q);
+  // The same weights summed in another order (hidden samples contribute exact zeros).
+  for (size_t k = 0; k < q.size(); ++k) ASSERT_NEAR(walled[k], alone[k], 1e-14 * std::abs(alone[k])) << "query " << k;
+}
+
+TEST(ShepardWithBarriers, AQueryThatSeesNoSampleHasNoValue) {
+  // Samples inside a closed square of barriers, a query outside it.
+  ScatteredSamples s;
+  s.channels = 1;
+  s.points = {{0.4, 0.4}, {0.6, 0.5}, {0.5, 0.6}};
+  s.values = {1, 2, 3};
+  const Barriers box =
+      Barriers::from_polylines(std::vector<Polyline>{{{0.2, 0.2}, {0.8, 0.2}, {0.8, 0.8}, {0.2, 0.8}, {0.2, 0.2}}}).value();
+  const Shepard f(s, 4.0, box);
+  const std::vector<double> v = evaluate(f, {Vec2(0.9, 0.9), Vec2(0.5, 0.5), Vec2(0.6, 0.5)});
+  EXPECT_TRUE(std::isnan(v[0]));
+  EXPECT_GE(v[1], 1.0);
+  EXPECT_LE(v[1], 3.0);
+  EXPECT_EQ(v[2], 2.0);  // exact at a sample
+}
+
+}  // namespace
+}  // namespace radrecon
