@@ -71,6 +71,15 @@ inline constexpr double kFlatBoxAreaRelative = 1e-6;
 /// means another scene.
 inline constexpr double kSolutionLengthRelative = 1e-9;
 
+/// A surface touches another's plane (a wall standing on the ground) when its corners lie within
+/// this fraction of its own size of that plane: scenes written by hand or exported in single
+/// precision put them there to round-off, far below any real gap.
+inline constexpr double kContactRelative = 1e-6;
+
+/// A contact line whose ends lie within this of the same edge of a quad's (u, v) square runs
+/// along that edge: it bounds the side and is no barrier inside it.
+inline constexpr double kOnBorderParameter = 1e-9;
+
 /// Scattered samples count as the nodes of a regular grid when their coordinates lie within
 /// this fraction of the samples' extent from the grid lines: far above the round-off of
 /// coordinates printed with 10+ digits, far below any intended offset.

@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <vector>
 
 namespace radrecon {
 
@@ -12,5 +13,7 @@ using Vec2 = Eigen::Vector2d;
 using Vec3 = Eigen::Vector3d;
 /// Linear RGB triple: radiosity or exitance in W/m^2 per channel, or a reflectance in [0,1).
 using Rgb = Eigen::Array3d;
+/// A polyline in a plane: consecutive points joined by segments, metres.
+using Polyline = std::vector<Vec2>;
 
 }  // namespace radrecon

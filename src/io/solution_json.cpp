@@ -36,8 +36,15 @@ void write_solution_json(const std::filesystem::path& path, const Solution& sol)
       std::fprintf(f, "%s\n    {\"name\": %s, \"scene_surface\": %s, \"back_side\": %s,\n", s ? "," : "",
                    json_string(surf.name).c_str(), json_string(surf.scene_surface).c_str(),
                    surf.back_side ? "true" : "false");
-      std::fprintf(f, "     \"length_u_m\": %.17g, \"length_v_m\": %.17g, \"grid\": [%d, %d],\n     \"elements\": [",
+      std::fprintf(f, "     \"length_u_m\": %.17g, \"length_v_m\": %.17g, \"grid\": [%d, %d],\n     \"barriers\": [",
                    surf.length_u_m, surf.length_v_m, surf.grid_nu, surf.grid_nv);
+      for (size_t b = 0; b < surf.barriers.size(); ++b) {
+        std::fprintf(f, "%s[", b ? ", " : "");
+        for (size_t i = 0; i < surf.barriers[b].size(); ++i)
+          std::fprintf(f, "%s[%.17g, %.17g]", i ? ", " : "", surf.barriers[b][i].x(), surf.barriers[b][i].y());
+        std::fputc(']', f);
+      }
+      std::fprintf(f, "],\n     \"elements\": [");
       for (size_t e = 0; e < surf.elements.size(); ++e) {
         const SolutionElement& el = surf.elements[e];
         std::fprintf(f, "%s\n      {\"u0\": %.17g, \"v0\": %.17g, \"u1\": %.17g, \"v1\": %.17g, \"center\": [%.9g, %.9g, %.9g], \"area\": %.9g, \"radiosity\": ",
@@ -112,6 +119,23 @@ Solution read_solution_json(const std::filesystem::path& path) {
         r.fail(sp + ".grid", "must be [0, 0] or [nu, nv] with nu * nv = the number of elements");
       out.grid_nu = static_cast<int>(nu);
       out.grid_nv = static_cast<int>(nv);
+    }
+    if (js.contains("barriers")) {  // optional: files of earlier versions lack it
+      const json& bs = js["barriers"];
+      const std::string bp = sp + ".barriers";
+      if (!bs.is_array()) r.fail(bp, "must be an array of polylines [[s, t], ...]");
+      for (size_t b = 0; b < bs.size(); ++b) {
+        const std::string lp = JsonReader::at(bp, b);
+        if (!bs[b].is_array() || bs[b].size() < 2) r.fail(lp, "must be a polyline of at least 2 points [s, t]");
+        Polyline line;
+        for (size_t i = 0; i < bs[b].size(); ++i) {
+          const std::string pp = JsonReader::at(lp, i);
+          const json& pt = bs[b][i];
+          if (!pt.is_array() || pt.size() != 2) r.fail(pp, "must be a point [s, t]");
+          line.emplace_back(r.number(pt[0], JsonReader::at(pp, 0)), r.number(pt[1], JsonReader::at(pp, 1)));
+        }
+        out.barriers.push_back(std::move(line));
+      }
     }
     out.elements.reserve(elements.size());
     for (size_t e = 0; e < elements.size(); ++e) {

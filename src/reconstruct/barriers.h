@@ -23,9 +23,6 @@ struct BarrierSegment {
   Vec2 a, b;
 };
 
-/// A polyline: consecutive points joined by segments.
-using Polyline = std::vector<Vec2>;
-
 class Barriers {
  public:
   /// No barrier: every sample sees every query.

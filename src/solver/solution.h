@@ -25,6 +25,9 @@ struct SurfaceSolution {
   int grid_nu = 0, grid_nv = 0;
   double length_u_m = 0, length_v_m = 0;  ///< surface edge lengths, to map (u,v) to metres
   std::vector<SolutionElement> elements;
+  /// The side's discontinuity lines from the scene's geometry (scene/contacts.h), in its (s, t)
+  /// metres: where other surfaces stand on it. Barriers of its reconstruction.
+  std::vector<Polyline> barriers;
 };
 
 /// Solver statistics. Powers are per colour channel, in W.

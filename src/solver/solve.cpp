@@ -5,6 +5,7 @@
 #include "core/error.h"
 #include "core/parse.h"
 #include "mesh/grid_mesh.h"
+#include "scene/contacts.h"
 #include "scene/side.h"
 #include "solver/hierarchical.h"
 #include "solver/progressive.h"
@@ -45,8 +46,32 @@ std::string default_leaf_side(const Scene& scene) {
 
 }  // namespace
 
+namespace {
+
+/// Every side's contact lines (scene/contacts.h) as its barriers.
+Solution with_contact_lines(const Scene& scene, Solution sol) {
+  for (SurfaceSolution& side : sol.surfaces) {
+    const std::optional<SideRef> ref = find_side(scene, side.name);
+    if (!ref) continue;
+    for (const Segment2& c : contact_lines(scene, *ref)) side.barriers.push_back({c.a, c.b});
+  }
+  return sol;
+}
+
+Solution solve_by_spec(const Scene& scene, const std::string& spec, const SolveSettings& settings,
+                       const std::string& field);
+
+}  // namespace
+
 Solution solve_scene(const Scene& scene, const std::string& spec, const SolveSettings& settings,
-                     const std::string& field) {
+                     const std::string& where) {
+  return with_contact_lines(scene, solve_by_spec(scene, spec, settings, where));
+}
+
+namespace {
+
+Solution solve_by_spec(const Scene& scene, const std::string& spec, const SolveSettings& settings,
+                       const std::string& field) {
   const auto colon = spec.find(':');
   if (colon == std::string::npos)
     throw UserError(field, "expected grid:N, quadtree:LEAVES or quadtree-eps:E, got '" + spec + "'");
@@ -82,5 +107,7 @@ Solution solve_scene(const Scene& scene, const std::string& spec, const SolveSet
   }
   throw UserError(field, "unknown mesh kind '" + kind + "' in '" + spec + "' (expected grid, quadtree or quadtree-eps)");
 }
+
+}  // namespace
 
 }  // namespace radrecon
