@@ -4,6 +4,7 @@
 
 #include <memory>
 
+#include "reconstruct/barriers.h"
 #include "reconstruct/interpolant.h"
 #include "reconstruct/samples.h"
 
@@ -14,6 +15,9 @@ class KdTree2;
 class NearestSample final : public Interpolant {
  public:
   explicit NearestSample(ScatteredSamples samples);
+  /// With barriers (barriers.h): the nearest sample visible from the query (ties as above); a
+  /// query that sees none gets NaN (no value).
+  NearestSample(ScatteredSamples samples, Barriers barriers);
   ~NearestSample() override;
   int channels() const override { return samples_.channels; }
   void evaluate(std::span<const Vec2> points, std::span<double> out) const override;
@@ -21,6 +25,7 @@ class NearestSample final : public Interpolant {
  private:
   ScatteredSamples samples_;
   std::unique_ptr<KdTree2> tree_;
+  Barriers barriers_;
 };
 
 }  // namespace radrecon

@@ -8,6 +8,7 @@
 #include <random>
 
 #include "reconstruct/barriers.h"
+#include "reconstruct/nearest.h"
 #include "reconstruct/shepard.h"
 
 namespace radrecon {
@@ -146,6 +147,35 @@ TEST(ShepardWithBarriers, AQueryThatSeesNoSampleHasNoValue) {
   EXPECT_GE(v[1], 1.0);
   EXPECT_LE(v[1], 3.0);
   EXPECT_EQ(v[2], 2.0);  // exact at a sample
+}
+
+}  // namespace
+}  // namespace radrecon
+
+namespace radrecon {
+namespace {
+
+TEST(NearestSampleWithBarriers, IsTheNearestVisibleSampleByBruteForce) {
+  const ScatteredSamples s = two_sided_samples(1.0, 5.0);
+  const Barriers barriers =
+      Barriers::from_polylines(std::vector<Polyline>{{{0.5, -1}, {0.5, 0.7}}, {{0.2, 0.3}, {0.3, 0.3}, {0.3, 0.2}}}).value();
+  const NearestSample f(s, barriers);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Vec2> q;
+  for (int k = 0; k < 500; ++k) q.emplace_back(u(rng), u(rng));
+  const std::vector<double> got = evaluate(f, q);
+  for (size_t k = 0; k < q.size(); ++k) {
+    // Brute force: the visible sample of least (distance, index).
+    size_t best = s.points.size();
+    for (size_t i = 0; i < s.points.size(); ++i) {
+      if (barriers.blocks(q[k], s.points[i])) continue;
+      const double d = (s.points[i] - q[k]).squaredNorm();
+      if (best == s.points.size() || d < (s.points[best] - q[k]).squaredNorm()) best = i;
+    }
+    ASSERT_LT(best, s.points.size());
+    ASSERT_EQ(got[k], s.values[best]) << "query " << k;
+  }
 }
 
 }  // namespace
