@@ -36,7 +36,9 @@ void NearestSample::evaluate(std::span<const Vec2> points, std::span<double> out
   RR_CHECK(out.size() == points.size() * static_cast<size_t>(C), "output size does not match the query points");
   if (!barriers_.empty()) {
     // The nearest visible sample: the k nearest, k doubling until one of them is visible (in
-    // (distance, index) order, so ties go as without barriers) or every sample was tried.
+    // (distance, index) order, so ties go as without barriers) or every sample was tried. Each
+    // round tests its k from the first: equidistant points at the k-th place may come back in
+    // another order with a larger k.
     const size_t n = samples_.points.size();
     parallel_for_with_scratch<VisibleScratch>(0, static_cast<std::int64_t>(points.size()), [&](std::int64_t k, VisibleScratch& s) {
       const size_t q = static_cast<size_t>(k);
@@ -47,7 +49,7 @@ void NearestSample::evaluate(std::span<const Vec2> points, std::span<double> out
         s.idx.resize(want);
         s.d2.resize(want);
         tree_->nearest(points[q], static_cast<int>(want), s.idx, s.d2);
-        for (size_t j = tried; j < want; ++j)
+        for (size_t j = 0; j < want; ++j)
           if (!barriers_.blocks(points[q], samples_.points[s.idx[j]])) {
             for (int c = 0; c < C; ++c) o[c] = samples_.values[s.idx[j] * static_cast<size_t>(C) + c];
             return;
