@@ -34,6 +34,10 @@ Shepard::Shepard(ScatteredSamples samples, double mu, Barriers barriers) : Shepa
   barriers_ = std::move(barriers);
 }
 
+Shepard::Shepard(ScatteredSamples samples, double mu, int k, Barriers barriers) : Shepard(std::move(samples), mu, k) {
+  barriers_ = std::move(barriers);
+}
+
 Shepard::~Shepard() = default;
 
 namespace {
@@ -46,21 +50,44 @@ inline double weight(double dist_sq, double mu) {
   return std::pow(dist_sq, -0.5 * mu);
 }
 
+}  // namespace
+
 /// Per-thread buffers of Shepard::evaluate: the global path's distances and weights (one per
 /// sample), the local path's k nearest.
-struct Scratch {
+struct Shepard::Scratch {
   Eigen::ArrayXd dist_sq, w;
   std::vector<unsigned> idx;
   std::vector<double> d2;
+  std::vector<unsigned> visible_idx;  ///< with barriers: the k nearest visible samples
+  std::vector<double> visible_d2;
 };
 
-}  // namespace
+/// The k nearest samples visible from p, in (distance, index) order, into scratch.visible_*:
+/// the nearest 2k, 4k, ... until k of them are visible or every sample was tried (each round
+/// tests its candidates from the first: equidistant points at the last place may reorder).
+/// Returns how many were found (fewer than k only when fewer are visible).
+size_t Shepard::nearest_visible(const Vec2& p, Scratch& s) const {
+  const size_t n = samples_.points.size(), k = static_cast<size_t>(k_);
+  for (size_t want = std::min(2 * k, n);; want = std::min(2 * want, n)) {
+    s.idx.resize(want);
+    s.d2.resize(want);
+    tree_->nearest(p, static_cast<int>(want), s.idx, s.d2);
+    s.visible_idx.clear();
+    s.visible_d2.clear();
+    for (size_t j = 0; j < want && s.visible_idx.size() < k; ++j)
+      if (!barriers_.blocks(p, samples_.points[s.idx[j]])) {
+        s.visible_idx.push_back(s.idx[j]);
+        s.visible_d2.push_back(s.d2[j]);
+      }
+    if (s.visible_idx.size() == k || want == n) return s.visible_idx.size();
+  }
+}
 
 void Shepard::evaluate(std::span<const Vec2> points, std::span<double> out) const {
   const int C = samples_.channels;
   RR_CHECK(out.size() == points.size() * static_cast<size_t>(C), "output size does not match the query points");
   const size_t n = samples_.points.size();
-  parallel_for_with_scratch<Scratch>(0, static_cast<std::int64_t>(points.size()), [&](std::int64_t k, Scratch& s) {
+  parallel_for_with_scratch<Shepard::Scratch>(0, static_cast<std::int64_t>(points.size()), [&](std::int64_t k, Scratch& s) {
     const size_t q = static_cast<size_t>(k);
     double* o = &out[q * C];
     const Vec2 p = points[q];
@@ -101,11 +128,20 @@ void Shepard::evaluate(std::span<const Vec2> points, std::span<double> out) cons
       return;
     }
     // k nearest, nearest first.
-    s.idx.resize(static_cast<size_t>(k_));  // allocates on a thread's first query only
-    s.d2.resize(static_cast<size_t>(k_));
-    const size_t found = tree_->nearest(p, k_, s.idx, s.d2);
-    const std::vector<unsigned>& idx = s.idx;
-    const std::vector<double>& d2 = s.d2;
+    size_t found = 0;
+    if (barriers_.empty()) {
+      s.idx.resize(static_cast<size_t>(k_));  // allocates on a thread's first query only
+      s.d2.resize(static_cast<size_t>(k_));
+      found = tree_->nearest(p, k_, s.idx, s.d2);
+    } else {
+      found = nearest_visible(p, s);
+      if (found == 0) {  // sees no sample: no value
+        for (int c = 0; c < C; ++c) o[c] = std::numeric_limits<double>::quiet_NaN();
+        return;
+      }
+    }
+    const std::vector<unsigned>& idx = barriers_.empty() ? s.idx : s.visible_idx;
+    const std::vector<double>& d2 = barriers_.empty() ? s.d2 : s.visible_d2;
     if (d2[0] == 0) {  // at a sample: its value
       for (int c = 0; c < C; ++c) o[c] = samples_.values[idx[0] * static_cast<size_t>(C) + c];
       return;

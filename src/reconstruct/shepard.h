@@ -21,6 +21,8 @@ class Shepard final : public Interpolant {
   /// The global form (k = 0) with barriers (barriers.h): only the samples visible from a query
   /// contribute; a query that sees none gets NaN (no value).
   Shepard(ScatteredSamples samples, double mu, Barriers barriers);
+  /// The k-nearest form with barriers: the k nearest visible samples weigh.
+  Shepard(ScatteredSamples samples, double mu, int k, Barriers barriers);
   ~Shepard() override;
   int channels() const override { return samples_.channels; }
   void evaluate(std::span<const Vec2> points, std::span<double> out) const override;
@@ -33,6 +35,9 @@ class Shepard final : public Interpolant {
   int k_;
   std::unique_ptr<KdTree2> tree_;
   Barriers barriers_;
+  /// Per-thread buffers of evaluate().
+  struct Scratch;
+  size_t nearest_visible(const Vec2& p, Scratch& scratch) const;
 };
 
 }  // namespace radrecon

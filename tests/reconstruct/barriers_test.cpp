@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -175,6 +176,42 @@ TEST(NearestSampleWithBarriers, IsTheNearestVisibleSampleByBruteForce) {
     }
     ASSERT_LT(best, s.points.size());
     ASSERT_EQ(got[k], s.values[best]) << "query " << k;
+  }
+}
+
+}  // namespace
+}  // namespace radrecon
+
+namespace radrecon {
+namespace {
+
+TEST(ShepardWithBarriers, KNearestUsesTheKNearestVisibleSamplesAsTheFormulaSays) {
+  const ScatteredSamples s = two_sided_samples(1.0, 5.0);
+  const Barriers barriers =
+      Barriers::from_polylines(std::vector<Polyline>{{{0.5, -1}, {0.5, 0.7}}, {{0.2, 0.3}, {0.3, 0.3}, {0.3, 0.2}}}).value();
+  constexpr int k = 8;
+  constexpr double mu = 2.5;  // the general pow() path
+  const Shepard f(s, mu, k, barriers);
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Vec2> q;
+  for (int i = 0; i < 400; ++i) q.emplace_back(u(rng), u(rng));
+  const std::vector<double> got = evaluate(f, q);
+  for (size_t i = 0; i < q.size(); ++i) {
+    // Brute force: the visible samples by (distance, index), the first k, sum d^-mu B / sum d^-mu.
+    std::vector<std::pair<double, size_t>> visible;
+    for (size_t j = 0; j < s.points.size(); ++j)
+      if (!barriers.blocks(q[i], s.points[j])) visible.emplace_back((s.points[j] - q[i]).squaredNorm(), j);
+    std::sort(visible.begin(), visible.end());
+    visible.resize(std::min<size_t>(k, visible.size()));
+    ASSERT_FALSE(visible.empty());
+    double num = 0, den = 0;
+    for (const auto& [d2, j] : visible) {
+      const double w = std::pow(std::sqrt(d2), -mu);
+      num += w * s.values[j];
+      den += w;
+    }
+    ASSERT_NEAR(got[i], num / den, 1e-13 * std::abs(num / den)) << "query " << i;
   }
 }
 
