@@ -52,9 +52,8 @@ std::vector<Vec2> raster_points(const Raster& r) {
 }
 
 void write_raster_pfm(const std::string& path, const Raster& raster, std::span<const double> values, int channels) {
-  RR_CHECK(channels == 1 || channels == 3, "PFM holds 1 or 3 channels; callers check first");
-  check_raster_values(raster, values, channels);
-  // PFM's rows go bottom to top, raster rows y0 upward: the same order.
+  // PFM's rows go bottom to top, raster rows y0 upward: the same order (write_pfm checks the
+  // channels and the size).
   write_pfm(path, raster.width, raster.height, channels, values);
 }
 

@@ -38,8 +38,6 @@ std::string format_3g(double v) {
 
 namespace {
 
-const auto& fmt = format_3g;
-
 std::string table_markdown(const std::string& title, const std::vector<MethodResult>& rows,
                            const PublishedTable& paper,
                            const std::string& notes) {
@@ -48,11 +46,11 @@ std::string table_markdown(const std::string& title, const std::vector<MethodRes
      << "| method | L1 | L2 (MSE) | RMSE | Linf | paper L1 | paper L2 | paper Linf |\n"
      << "|---|---|---|---|---|---|---|---|\n";
   for (const MethodResult& r : rows) {
-    md << "| " << r.name << " | " << fmt(r.norms.l1) << " | " << fmt(r.norms.l2) << " | " << fmt(r.norms.rmse)
-       << " | " << fmt(r.norms.linf);
+    md << "| " << r.name << " | " << format_3g(r.norms.l1) << " | " << format_3g(r.norms.l2) << " | " << format_3g(r.norms.rmse)
+       << " | " << format_3g(r.norms.linf);
     auto it = paper.find(r.name);
     if (it != paper.end())
-      md << " | " << fmt(it->second[0]) << " | " << fmt(it->second[1]) << " | " << fmt(it->second[2]) << " |\n";
+      md << " | " << format_3g(it->second[0]) << " | " << format_3g(it->second[1]) << " | " << format_3g(it->second[2]) << " |\n";
     else
       md << " | | | |\n";
   }
@@ -148,17 +146,17 @@ ReportContent report_content(const PaperRun& run, int rays_per_pixel) {
   report.table2 = rows(run.table2, published_table2(), "fig4");
   report.settings = {
       "Reference: " + d.reference.mesh + " (" + std::to_string(run.at.width) + " x " + std::to_string(run.at.height) +
-          " elements on the ground), progressive refinement to a residual of " + fmt(run.options.residual) + " (" +
+          " elements on the ground), progressive refinement to a residual of " + format_3g(run.options.residual) + " (" +
           std::to_string(d.reference.stats.shots) + " shots).",
       "Grid data: " + d.grid.mesh + ", " + std::to_string(grid_ground.grid_nu) + " x " + std::to_string(grid_ground.grid_nv) +
           " elements on the ground; bilinear and bicubic use nodal values, each the mean of the cells sharing the node.",
       "Quadtree data: hierarchical radiosity, " + std::to_string(quad_ground.elements.size()) + " leaves on the ground, epsilon " +
-          fmt(d.quadtree.stats.epsilon_w) + " W, " + std::to_string(d.quadtree.stats.links) + " links; the scattered methods use the leaf centres.",
+          format_3g(d.quadtree.stats.epsilon_w) + " W, " + std::to_string(d.quadtree.stats.links) + " links; the scattered methods use the leaf centres.",
       "Methods:" + method_settings(run.params),
       "Norms over the " + std::to_string(run.at.width) + " x " + std::to_string(run.at.height) +
           " reference cell centres, 3 channels; L2 is the mean squared error, RMSE its root.",
-      "Images: display = clamp(B / " + fmt(white) + " W/m^2, 0, 1), sRGB; views with " + std::to_string(rays_per_pixel) +
-          " rays per pixel; differences 0.5 + 2 (B - B_ref) / " + fmt(white) + ", linear."};
+      "Images: display = clamp(B / " + format_3g(white) + " W/m^2, 0, 1), sRGB; views with " + std::to_string(rays_per_pixel) +
+          " rays per pixel; differences 0.5 + 2 (B - B_ref) / " + format_3g(white) + ", linear."};
   return report;
 }
 

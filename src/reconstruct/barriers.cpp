@@ -8,6 +8,7 @@
 
 #include "core/check.h"
 #include "core/parse.h"
+#include "reconstruct/kdtree.h"
 
 namespace radrecon {
 
@@ -106,10 +107,6 @@ Barriers::Barriers(std::vector<BarrierSegment> segments) : segments_(std::move(s
 
 bool Barriers::blocks(const Vec2& p, const Vec2& q) const {
   if (segments_.empty()) return false;
-  return blocks_on_grid(p, q);
-}
-
-bool Barriers::blocks_on_grid(const Vec2& p, const Vec2& q) const {
   // The cells of the query segment's bounding box, clipped to the grid; a segment outside the
   // grid's box meets no barrier there. Cells are visited in the box (simple and exact: every
   // cell the segment passes through is in it); each candidate is tested exactly.
@@ -137,6 +134,25 @@ bool Barriers::blocks_on_grid(const Vec2& p, const Vec2& q) const {
         if (segment_blocked(p, q, segments_[cell_segments_[k]])) return true;
     }
   return false;
+}
+
+size_t nearest_visible(const KdTree2& tree, std::span<const Vec2> points, const Barriers& barriers, const Vec2& q,
+                       size_t k, VisibleNeighbours& found) {
+  constexpr size_t kFirstRound = 8;
+  const size_t n = points.size();
+  for (size_t want = std::min(std::max(2 * k, kFirstRound), n);; want = std::min(2 * want, n)) {
+    found.candidates.resize(want);
+    found.candidates_dist_sq.resize(want);
+    tree.nearest(q, static_cast<int>(want), found.candidates, found.candidates_dist_sq);
+    found.idx.clear();
+    found.dist_sq.clear();
+    for (size_t j = 0; j < want && found.idx.size() < k; ++j)
+      if (!barriers.blocks(q, points[found.candidates[j]])) {
+        found.idx.push_back(found.candidates[j]);
+        found.dist_sq.push_back(found.candidates_dist_sq[j]);
+      }
+    if (found.idx.size() == k || want == n) return found.idx.size();
+  }
 }
 
 }  // namespace radrecon

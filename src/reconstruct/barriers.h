@@ -36,14 +36,12 @@ class Barriers {
   const std::vector<BarrierSegment>& segments() const { return segments_; }
 
   /// Whether the open segment (p, q) meets a barrier (the rule above). Thread-safe, allocation
-  /// free: the segments are bucketed on a uniform grid, and only the cells the segment passes
-  /// through are tested.
+  /// free: the segments are bucketed on a uniform grid, and only the segments of the cells the
+  /// segment passes through are tested.
   bool blocks(const Vec2& p, const Vec2& q) const;
 
  private:
   explicit Barriers(std::vector<BarrierSegment> segments);
-  /// Tests every segment of the cells that (p, q) passes through.
-  bool blocks_on_grid(const Vec2& p, const Vec2& q) const;
 
   std::vector<BarrierSegment> segments_;
   Vec2 origin_ = Vec2::Zero();   ///< lower corner of the grid (the segments' bounding box)
@@ -52,6 +50,24 @@ class Barriers {
   std::vector<unsigned> cell_start_;  ///< nx * ny + 1 offsets into cell_segments_
   std::vector<unsigned> cell_segments_;
 };
+
+class KdTree2;
+
+/// Buffers of nearest_visible(), reused from query to query (per-thread scratch).
+struct VisibleNeighbours {
+  std::vector<unsigned> idx;         ///< the visible neighbours found, nearest first
+  std::vector<double> dist_sq;       ///< their squared distances, m^2
+  std::vector<unsigned> candidates;  ///< the k-d tree's candidates of the current round
+  std::vector<double> candidates_dist_sq;
+};
+
+/// The k nearest of `points` (indexed by `tree`) visible from q past `barriers`, in (squared
+/// distance, index) order, into found.idx and found.dist_sq; returns how many (fewer than k only
+/// when fewer are visible). Searches the nearest 2k (at least 8), then twice as many, until k of
+/// them are visible or every point was tried; each round tests its candidates from the first,
+/// since equidistant points at the last place may come back in another order.
+size_t nearest_visible(const KdTree2& tree, std::span<const Vec2> points, const Barriers& barriers, const Vec2& q,
+                       size_t k, VisibleNeighbours& found);
 
 /// Whether the open segment (p, q) meets the closed segment [a, b] (the rule of barriers.h),
 /// by exact orientation tests: the brute-force definition that Barriers::blocks() accelerates.

@@ -1,8 +1,6 @@
 #include "reconstruct/nearest.h"
 
-#include <algorithm>
 #include <limits>
-#include <vector>
 
 #include "core/check.h"
 #include "core/parallel.h"
@@ -21,41 +19,18 @@ NearestSample::NearestSample(ScatteredSamples samples, Barriers barriers) : Near
 
 NearestSample::~NearestSample() = default;
 
-namespace {
-
-/// Buffers of the search for the nearest visible sample.
-struct VisibleScratch {
-  std::vector<unsigned> idx;
-  std::vector<double> d2;
-};
-
-}  // namespace
-
 void NearestSample::evaluate(std::span<const Vec2> points, std::span<double> out) const {
   const int C = samples_.channels;
   RR_CHECK(out.size() == points.size() * static_cast<size_t>(C), "output size does not match the query points");
   if (!barriers_.empty()) {
-    // The nearest visible sample: the k nearest, k doubling until one of them is visible (in
-    // (distance, index) order, so ties go as without barriers) or every sample was tried. Each
-    // round tests its k from the first: equidistant points at the k-th place may come back in
-    // another order with a larger k.
-    const size_t n = samples_.points.size();
-    parallel_for_with_scratch<VisibleScratch>(0, static_cast<std::int64_t>(points.size()), [&](std::int64_t k, VisibleScratch& s) {
+    // The nearest visible sample, ties as without barriers ((distance, index) order).
+    parallel_for_with_scratch<VisibleNeighbours>(0, static_cast<std::int64_t>(points.size()),
+                                                 [&](std::int64_t k, VisibleNeighbours& found) {
       const size_t q = static_cast<size_t>(k);
       double* o = &out[q * C];
-      for (int c = 0; c < C; ++c) o[c] = std::numeric_limits<double>::quiet_NaN();
-      if (!points[q].allFinite()) return;
-      for (size_t want = std::min<size_t>(8, n), tried = 0; tried < n; want = std::min(2 * want, n)) {
-        s.idx.resize(want);
-        s.d2.resize(want);
-        tree_->nearest(points[q], static_cast<int>(want), s.idx, s.d2);
-        for (size_t j = 0; j < want; ++j)
-          if (!barriers_.blocks(points[q], samples_.points[s.idx[j]])) {
-            for (int c = 0; c < C; ++c) o[c] = samples_.values[s.idx[j] * static_cast<size_t>(C) + c];
-            return;
-          }
-        tried = want;
-      }
+      const bool seen = points[q].allFinite() && nearest_visible(*tree_, samples_.points, barriers_, points[q], 1, found) == 1;
+      for (int c = 0; c < C; ++c)
+        o[c] = seen ? samples_.values[found.idx[0] * static_cast<size_t>(C) + c] : std::numeric_limits<double>::quiet_NaN();
     });
     return;
   }

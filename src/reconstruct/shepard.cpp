@@ -30,10 +30,6 @@ Shepard::Shepard(ScatteredSamples samples, double mu, int k) : samples_(std::mov
   }
 }
 
-Shepard::Shepard(ScatteredSamples samples, double mu, Barriers barriers) : Shepard(std::move(samples), mu, 0) {
-  barriers_ = std::move(barriers);
-}
-
 Shepard::Shepard(ScatteredSamples samples, double mu, int k, Barriers barriers) : Shepard(std::move(samples), mu, k) {
   barriers_ = std::move(barriers);
 }
@@ -58,30 +54,8 @@ struct Shepard::Scratch {
   Eigen::ArrayXd dist_sq, w;
   std::vector<unsigned> idx;
   std::vector<double> d2;
-  std::vector<unsigned> visible_idx;  ///< with barriers: the k nearest visible samples
-  std::vector<double> visible_d2;
+  VisibleNeighbours visible;  ///< with barriers: the k nearest visible samples
 };
-
-/// The k nearest samples visible from p, in (distance, index) order, into scratch.visible_*:
-/// the nearest 2k, 4k, ... until k of them are visible or every sample was tried (each round
-/// tests its candidates from the first: equidistant points at the last place may reorder).
-/// Returns how many were found (fewer than k only when fewer are visible).
-size_t Shepard::nearest_visible(const Vec2& p, Scratch& s) const {
-  const size_t n = samples_.points.size(), k = static_cast<size_t>(k_);
-  for (size_t want = std::min(2 * k, n);; want = std::min(2 * want, n)) {
-    s.idx.resize(want);
-    s.d2.resize(want);
-    tree_->nearest(p, static_cast<int>(want), s.idx, s.d2);
-    s.visible_idx.clear();
-    s.visible_d2.clear();
-    for (size_t j = 0; j < want && s.visible_idx.size() < k; ++j)
-      if (!barriers_.blocks(p, samples_.points[s.idx[j]])) {
-        s.visible_idx.push_back(s.idx[j]);
-        s.visible_d2.push_back(s.d2[j]);
-      }
-    if (s.visible_idx.size() == k || want == n) return s.visible_idx.size();
-  }
-}
 
 void Shepard::evaluate(std::span<const Vec2> points, std::span<double> out) const {
   const int C = samples_.channels;
@@ -134,14 +108,14 @@ void Shepard::evaluate(std::span<const Vec2> points, std::span<double> out) cons
       s.d2.resize(static_cast<size_t>(k_));
       found = tree_->nearest(p, k_, s.idx, s.d2);
     } else {
-      found = nearest_visible(p, s);
+      found = nearest_visible(*tree_, samples_.points, barriers_, p, static_cast<size_t>(k_), s.visible);
       if (found == 0) {  // sees no sample: no value
         for (int c = 0; c < C; ++c) o[c] = std::numeric_limits<double>::quiet_NaN();
         return;
       }
     }
-    const std::vector<unsigned>& idx = barriers_.empty() ? s.idx : s.visible_idx;
-    const std::vector<double>& d2 = barriers_.empty() ? s.d2 : s.visible_d2;
+    const std::vector<unsigned>& idx = barriers_.empty() ? s.idx : s.visible.idx;
+    const std::vector<double>& d2 = barriers_.empty() ? s.d2 : s.visible.dist_sq;
     if (d2[0] == 0) {  // at a sample: its value
       for (int c = 0; c < C; ++c) o[c] = samples_.values[idx[0] * static_cast<size_t>(C) + c];
       return;

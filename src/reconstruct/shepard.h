@@ -18,10 +18,8 @@ class Shepard final : public Interpolant {
  public:
   /// mu > 0; k = 0 uses every sample, k > 0 the k nearest (at most all).
   Shepard(ScatteredSamples samples, double mu, int k);
-  /// The global form (k = 0) with barriers (barriers.h): only the samples visible from a query
-  /// contribute; a query that sees none gets NaN (no value).
-  Shepard(ScatteredSamples samples, double mu, Barriers barriers);
-  /// The k-nearest form with barriers: the k nearest visible samples weigh.
+  /// With barriers (barriers.h): only the samples visible from a query contribute (with k > 0,
+  /// the k nearest visible ones); a query that sees none gets NaN (no value).
   Shepard(ScatteredSamples samples, double mu, int k, Barriers barriers);
   ~Shepard() override;
   int channels() const override { return samples_.channels; }
@@ -37,7 +35,6 @@ class Shepard final : public Interpolant {
   Barriers barriers_;
   /// Per-thread buffers of evaluate().
   struct Scratch;
-  size_t nearest_visible(const Vec2& p, Scratch& scratch) const;
 };
 
 }  // namespace radrecon

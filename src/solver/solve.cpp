@@ -44,31 +44,6 @@ std::string default_leaf_side(const Scene& scene) {
   return side_name(scene.surfaces[best], false);
 }
 
-}  // namespace
-
-namespace {
-
-/// Every side's contact lines (scene/contacts.h) as its barriers.
-Solution with_contact_lines(const Scene& scene, Solution sol) {
-  for (SurfaceSolution& side : sol.surfaces) {
-    const std::optional<SideRef> ref = find_side(scene, side.name);
-    if (!ref) continue;
-    for (const Segment2& c : contact_lines(scene, *ref)) side.barriers.push_back({c.a, c.b});
-  }
-  return sol;
-}
-
-Solution solve_by_spec(const Scene& scene, const std::string& spec, const SolveSettings& settings,
-                       const std::string& field);
-
-}  // namespace
-
-Solution solve_scene(const Scene& scene, const std::string& spec, const SolveSettings& settings,
-                     const std::string& where) {
-  return with_contact_lines(scene, solve_by_spec(scene, spec, settings, where));
-}
-
-namespace {
 
 Solution solve_by_spec(const Scene& scene, const std::string& spec, const SolveSettings& settings,
                        const std::string& field) {
@@ -108,6 +83,22 @@ Solution solve_by_spec(const Scene& scene, const std::string& spec, const SolveS
   throw UserError(field, "unknown mesh kind '" + kind + "' in '" + spec + "' (expected grid, quadtree or quadtree-eps)");
 }
 
+
+/// Every side's contact lines (scene/contacts.h) as its barriers.
+Solution with_contact_lines(const Scene& scene, Solution sol) {
+  for (SurfaceSolution& side : sol.surfaces) {
+    const std::optional<SideRef> ref = find_side(scene, side.name);
+    if (!ref) continue;
+    for (const Segment2& c : contact_lines(scene, *ref)) side.barriers.push_back({c.a, c.b});
+  }
+  return sol;
+}
+
 }  // namespace
+
+Solution solve_scene(const Scene& scene, const std::string& spec, const SolveSettings& settings,
+                     const std::string& where) {
+  return with_contact_lines(scene, solve_by_spec(scene, spec, settings, where));
+}
 
 }  // namespace radrecon

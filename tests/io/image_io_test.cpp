@@ -15,17 +15,20 @@
 #include "core/error.h"
 #include "io/image_io.h"
 #include "io/raster.h"
+#include "support/temp_dir.h"
 
 namespace radrecon {
 namespace {
 
 namespace fs = std::filesystem;
 
-fs::path temp_file(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("radrecon_image_io_test_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir / name;
+/// Every test's files, removed at the end of the run.
+const testing_support::TempDir& files() {
+  static const testing_support::TempDir dir("radrecon_image_io_test");
+  return dir;
 }
+
+fs::path temp_file(const std::string& name) { return files() / name; }
 
 struct Png {
   int width = 0, height = 0;

@@ -2,13 +2,13 @@
 // symbolic link, "..", or a hard link) is refused; so are outputs that cannot be written.
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 
 #include "core/error.h"
 #include "io/paths.h"
+#include "support/temp_dir.h"
 
 namespace radrecon {
 namespace {
@@ -18,24 +18,16 @@ namespace fs = std::filesystem;
 class Paths : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("radrecon_paths_test_" + std::to_string(::getpid()));
     fs::create_directories(dir_ / "sub");
     std::ofstream(dir_ / "in.csv") << "x,y,v\n";
   }
-  void TearDown() override { fs::remove_all(dir_); }
   std::string at(const std::string& name) const { return (dir_ / name).string(); }
-  fs::path dir_;
+  testing_support::TempDir dir_{"radrecon_paths_test"};
 };
 
-/// The message of the UserError that f throws, or "" if it throws none.
 template <typename F>
 std::string refusal(F f) {
-  try {
-    f();
-  } catch (const UserError& e) {
-    return e.what();
-  }
-  return "";
+  return testing_support::user_error_message(f);
 }
 
 TEST_F(Paths, AnOutputThatIsAnInputIsRefusedHoweverItIsSpelled) {

@@ -2,7 +2,6 @@
 // refused naming the file and the field (or the line).
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -10,6 +9,7 @@
 
 #include "core/error.h"
 #include "io/solution_json.h"
+#include "support/temp_dir.h"
 
 namespace radrecon {
 namespace {
@@ -18,25 +18,15 @@ namespace fs = std::filesystem;
 
 class SolutionFiles : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("radrecon_solution_json_test_" + std::to_string(::getpid()));
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
   fs::path write(const std::string& name, const std::string& text) const {
     std::ofstream(dir_ / name) << text;
     return dir_ / name;
   }
   /// The message of reading `text` as a solution file, or "" if it is accepted.
   std::string refusal(const std::string& text) const {
-    try {
-      read_solution_json(write("s.json", text));
-    } catch (const UserError& e) {
-      return e.what();
-    }
-    return "";
+    return testing_support::user_error_message([&] { read_solution_json(write("s.json", text)); });
   }
-  fs::path dir_;
+  testing_support::TempDir dir_{"radrecon_solution_json_test"};
 };
 
 /// A 2 x 1 grid side, elements in row order, as the writer lays it out.

@@ -110,8 +110,8 @@ std::vector<double> evaluate(const Interpolant& f, const std::vector<Vec2>& q) {
 
 TEST(ShepardWithBarriers, ASampleAcrossABarrierHasExactlyZeroInfluence) {
   const std::vector<Vec2> q = left_queries();
-  const Shepard a(two_sided_samples(1.0, 5.0), 4.0, wall());
-  const Shepard b(two_sided_samples(1.0, -300.0), 4.0, wall());
+  const Shepard a(two_sided_samples(1.0, 5.0), 4.0, 0, wall());
+  const Shepard b(two_sided_samples(1.0, -300.0), 4.0, 0, wall());
   const std::vector<double> va = evaluate(a, q), vb = evaluate(b, q);
   for (size_t k = 0; k < q.size(); ++k) ASSERT_EQ(va[k], vb[k]) << "query " << k;
   // Without the wall the right side's values do leak in.
@@ -128,7 +128,7 @@ TEST(ShepardWithBarriers, EachSideIsReconstructedAsIfTheOtherDidNotExist) {
       left.values.push_back(all.values[k]);
     }
   const std::vector<Vec2> q = left_queries();
-  const std::vector<double> walled = evaluate(Shepard(all, 2.0, wall()), q);
+  const std::vector<double> walled = evaluate(Shepard(all, 2.0, 0, wall()), q);
   const std::vector<double> alone = evaluate(Shepard(left, 2.0, 0), q);
   // The same weights summed in another order (hidden samples contribute exact zeros).
   for (size_t k = 0; k < q.size(); ++k) ASSERT_NEAR(walled[k], alone[k], 1e-14 * std::abs(alone[k])) << "query " << k;
@@ -142,7 +142,7 @@ TEST(ShepardWithBarriers, AQueryThatSeesNoSampleHasNoValue) {
   s.values = {1, 2, 3};
   const Barriers box =
       Barriers::from_polylines(std::vector<Polyline>{{{0.2, 0.2}, {0.8, 0.2}, {0.8, 0.8}, {0.2, 0.8}, {0.2, 0.2}}}).value();
-  const Shepard f(s, 4.0, box);
+  const Shepard f(s, 4.0, 0, box);
   const std::vector<double> v = evaluate(f, {Vec2(0.9, 0.9), Vec2(0.5, 0.5), Vec2(0.6, 0.5)});
   EXPECT_TRUE(std::isnan(v[0]));
   EXPECT_GE(v[1], 1.0);
@@ -150,59 +150,58 @@ TEST(ShepardWithBarriers, AQueryThatSeesNoSampleHasNoValue) {
   EXPECT_EQ(v[2], 2.0);  // exact at a sample
 }
 
-}  // namespace
-}  // namespace radrecon
+/// A wall from below the domain to y = 0.7 (light passes above it) and a corner.
+Barriers wall_and_corner() {
+  return Barriers::from_polylines(std::vector<Polyline>{{{0.5, -1}, {0.5, 0.7}}, {{0.2, 0.3}, {0.3, 0.3}, {0.3, 0.2}}})
+      .value();
+}
 
-namespace radrecon {
-namespace {
+std::vector<Vec2> random_queries(unsigned seed, int count) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Vec2> q;
+  for (int i = 0; i < count; ++i) q.emplace_back(u(rng), u(rng));
+  return q;
+}
+
+/// Brute force: the samples visible from q (every barrier segment tested), by (squared
+/// distance, index).
+std::vector<std::pair<double, size_t>> visible_by_distance(const ScatteredSamples& s, const Barriers& barriers,
+                                                           const Vec2& q) {
+  std::vector<std::pair<double, size_t>> visible;
+  for (size_t j = 0; j < s.points.size(); ++j) {
+    bool hidden = false;
+    for (const BarrierSegment& b : barriers.segments()) hidden = hidden || segment_blocked(q, s.points[j], b);
+    if (!hidden) visible.emplace_back((s.points[j] - q).squaredNorm(), j);
+  }
+  std::sort(visible.begin(), visible.end());
+  return visible;
+}
 
 TEST(NearestSampleWithBarriers, IsTheNearestVisibleSampleByBruteForce) {
   const ScatteredSamples s = two_sided_samples(1.0, 5.0);
-  const Barriers barriers =
-      Barriers::from_polylines(std::vector<Polyline>{{{0.5, -1}, {0.5, 0.7}}, {{0.2, 0.3}, {0.3, 0.3}, {0.3, 0.2}}}).value();
+  const Barriers barriers = wall_and_corner();
   const NearestSample f(s, barriers);
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<double> u(0, 1);
-  std::vector<Vec2> q;
-  for (int k = 0; k < 500; ++k) q.emplace_back(u(rng), u(rng));
+  const std::vector<Vec2> q = random_queries(5, 500);
   const std::vector<double> got = evaluate(f, q);
   for (size_t k = 0; k < q.size(); ++k) {
-    // Brute force: the visible sample of least (distance, index).
-    size_t best = s.points.size();
-    for (size_t i = 0; i < s.points.size(); ++i) {
-      if (barriers.blocks(q[k], s.points[i])) continue;
-      const double d = (s.points[i] - q[k]).squaredNorm();
-      if (best == s.points.size() || d < (s.points[best] - q[k]).squaredNorm()) best = i;
-    }
-    ASSERT_LT(best, s.points.size());
-    ASSERT_EQ(got[k], s.values[best]) << "query " << k;
+    const auto visible = visible_by_distance(s, barriers, q[k]);
+    ASSERT_FALSE(visible.empty());
+    ASSERT_EQ(got[k], s.values[visible[0].second]) << "query " << k;
   }
 }
 
-}  // namespace
-}  // namespace radrecon
-
-namespace radrecon {
-namespace {
-
 TEST(ShepardWithBarriers, KNearestUsesTheKNearestVisibleSamplesAsTheFormulaSays) {
   const ScatteredSamples s = two_sided_samples(1.0, 5.0);
-  const Barriers barriers =
-      Barriers::from_polylines(std::vector<Polyline>{{{0.5, -1}, {0.5, 0.7}}, {{0.2, 0.3}, {0.3, 0.3}, {0.3, 0.2}}}).value();
+  const Barriers barriers = wall_and_corner();
   constexpr int k = 8;
   constexpr double mu = 2.5;  // the general pow() path
   const Shepard f(s, mu, k, barriers);
-  std::mt19937 rng(9);
-  std::uniform_real_distribution<double> u(0, 1);
-  std::vector<Vec2> q;
-  for (int i = 0; i < 400; ++i) q.emplace_back(u(rng), u(rng));
+  const std::vector<Vec2> q = random_queries(9, 400);
   const std::vector<double> got = evaluate(f, q);
   for (size_t i = 0; i < q.size(); ++i) {
-    // Brute force: the visible samples by (distance, index), the first k, sum d^-mu B / sum d^-mu.
-    std::vector<std::pair<double, size_t>> visible;
-    for (size_t j = 0; j < s.points.size(); ++j)
-      if (!barriers.blocks(q[i], s.points[j])) visible.emplace_back((s.points[j] - q[i]).squaredNorm(), j);
-    std::sort(visible.begin(), visible.end());
+    // The first k visible by (distance, index): sum d^-mu B / sum d^-mu.
+    auto visible = visible_by_distance(s, barriers, q[i]);
     visible.resize(std::min<size_t>(k, visible.size()));
     ASSERT_FALSE(visible.empty());
     double num = 0, den = 0;
