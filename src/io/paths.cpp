@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <array>
 #include <filesystem>
 #include <system_error>
 
@@ -14,11 +15,18 @@ namespace fs = std::filesystem;
 namespace {
 
 /// The absolute path with every symbolic link of its existing part and every "." and ".."
-/// resolved.
-fs::path resolved(const std::string& path) {
+/// resolved, spelt two ways: as written, and with "." and ".." removed first. The system
+/// resolves "missing/.." only once "missing" exists, and writing an output creates its folders,
+/// so "missing/../input.csv" must be caught as the input too.
+std::array<fs::path, 2> spellings(const std::string& path) {
   std::error_code ec;
-  fs::path p = fs::weakly_canonical(fs::absolute(path, ec), ec);
-  return ec ? fs::absolute(path).lexically_normal() : p;
+  const fs::path absolute = fs::absolute(path, ec).lexically_normal();
+  std::array<fs::path, 2> out;
+  out[0] = fs::weakly_canonical(fs::absolute(path, ec), ec);
+  if (ec) out[0] = absolute;
+  out[1] = fs::weakly_canonical(absolute, ec);
+  if (ec) out[1] = absolute;
+  return out;
 }
 
 /// The path's nearest ancestor that exists must be a folder we may write into.
@@ -39,10 +47,14 @@ void check_writable_ancestor(const fs::path& path, const std::string& where) {
 
 void refuse_overwriting_inputs(const std::string& output, const std::string& where,
                                const std::vector<std::string>& inputs) {
-  const fs::path out = resolved(output);
+  const std::array<fs::path, 2> out = spellings(output);
   for (const std::string& input : inputs) {
-    std::error_code ec;
-    const bool same = out == resolved(input) || (fs::exists(output, ec) && fs::equivalent(output, input, ec));
+    const std::array<fs::path, 2> in = spellings(input);
+    bool same = false;
+    for (const fs::path& o : out) {
+      std::error_code ec;
+      same = same || o == in[0] || o == in[1] || (fs::exists(o, ec) && fs::equivalent(o, input, ec));
+    }
     if (same) throw UserError(where, "'" + output + "' is the input file '" + input + "'; refusing to overwrite it");
   }
 }

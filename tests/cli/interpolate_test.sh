@@ -212,6 +212,30 @@ refuse huge_domain "--domain" "$TMP/o24.pfm" --samples "$S" --method constant --
 refuse mq_overflow "too large" "$TMP/o25.csv" --samples "$TMP/huge_values.csv" --method multiquadric --queries "$Q"
 refuse pfm_float_range "32-bit floats" "$TMP/o26.pfm" --samples "$TMP/huge_values.csv" --method bilinear --raster 4x4 --domain 0,0,1,1
 refuse bad_queries "queries_nan.csv:2" "$TMP/o22.csv" --samples "$S" --method constant --queries "$TMP/queries_nan.csv"
+# No input is ever overwritten: the samples or queries named as the output, directly, through a
+# symbolic link, through "..", or as a hard link, are refused before any work; so are outputs
+# that cannot be written.
+cp "$S" "$TMP/own.csv"
+cp "$Q" "$TMP/ownq.csv"
+mkdir -p "$TMP/sub"
+ln -s "$TMP/own.csv" "$TMP/link.csv"
+ln "$TMP/own.csv" "$TMP/hard.csv"
+for out in "$TMP/own.csv" "$TMP/sub/../own.csv" "$TMP/link.csv" "$TMP/hard.csv" "$TMP/ownq.csv" \
+           "$TMP/missing/../link.csv"; do
+  run overwrite --samples "$TMP/own.csv" --method constant --queries "$TMP/ownq.csv" --out "$out" --quiet
+  expect_rc overwrite 2
+  expect_stderr_has overwrite "refusing to overwrite"
+done
+cmp -s "$S" "$TMP/own.csv" || fail "overwrite: the samples file was changed"
+cmp -s "$Q" "$TMP/ownq.csv" || fail "overwrite: the queries file was changed"
+[ -L "$TMP/link.csv" ] || fail "overwrite: the link to the samples was replaced"
+[ ! -e "$TMP/missing" ] || fail "overwrite: a refused run created a folder"
+refuse out_under_file "not a folder" "$TMP/own.csv/o.csv" --samples "$S" --method constant --queries "$Q"
+mkdir -p "$TMP/folder.csv"
+run out_is_folder --samples "$S" --method constant --queries "$Q" --out "$TMP/folder.csv" --quiet
+expect_rc out_is_folder 2
+expect_stderr_has out_is_folder "is a folder"
+
 # Out of memory: exit code 3, a message, nothing written (not under AddressSanitizer, which
 # reserves more address space than the limit allows).
 if ! ldd "$RADRECON" 2>/dev/null | grep -q libasan; then

@@ -33,7 +33,8 @@ std::string refusal(F f) {
 TEST_F(Paths, AnOutputThatIsAnInputIsRefusedHoweverItIsSpelled) {
   fs::create_symlink(at("in.csv"), at("link.csv"));
   fs::create_hard_link(at("in.csv"), at("hard.csv"));
-  for (const std::string& out : {at("in.csv"), at("sub/../in.csv"), at("./in.csv"), at("link.csv"), at("hard.csv")}) {
+  for (const std::string& out : {at("in.csv"), at("sub/../in.csv"), at("./in.csv"), at("link.csv"), at("hard.csv"),
+                                 at("missing/../in.csv"), at("missing/../link.csv")}) {
     const std::string message = refusal([&] { refuse_overwriting_inputs(out, "--out", {at("in.csv")}); });
     EXPECT_NE(message.find("refusing to overwrite"), std::string::npos) << out << ": " << message;
     EXPECT_NE(message.find("--out"), std::string::npos) << message;
