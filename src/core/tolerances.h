@@ -85,4 +85,9 @@ inline constexpr double kOnBorderParameter = 1e-9;
 /// coordinates printed with 10+ digits, far below any intended offset.
 inline constexpr double kGridCoordinateRelative = 1e-9;
 
+/// Natural neighbours with barriers: a local triangulation's Sibson coordinates are certified
+/// when the next visible sample lies beyond the bound rho + max(rho, r) by this relative margin
+/// (the bound's own round-off is some 1e-15).
+inline constexpr double kSibsonCertificateRelative = 1e-9;
+
 }  // namespace radrecon::tol

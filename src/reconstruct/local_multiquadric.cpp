@@ -36,8 +36,10 @@ struct NearestScratch {
 
 }  // namespace
 
-LocalMultiquadric::LocalMultiquadric(const ScatteredSamples& samples, double mu, std::optional<double> r_m, int k)
-    : points_(samples.points), channels_(samples.channels), mu_(mu) {
+LocalMultiquadric::LocalMultiquadric(const ScatteredSamples& samples, double mu, std::optional<double> r_m, int k,
+                                     Barriers barriers)
+    : points_(samples.points), channels_(samples.channels), mu_(mu), barriers_(std::move(barriers)) {
+  if (!barriers_.empty()) values_ = samples.values;
   RR_CHECK(mu != 0 && k >= kMinPatchSamples, "local multiquadric parameters out of range");
   const size_t n = points_.size();
   if (n < 2) throw ReconstructionError("the local multiquadric needs at least 2 samples");
@@ -84,25 +86,9 @@ LocalMultiquadric::LocalMultiquadric(const ScatteredSamples& samples, double mu,
     while (m < found && (s.dist_sq[m] < reach_sq || m < static_cast<size_t>(kk))) ++m;
     patch.samples.assign(s.indices.begin(), s.indices.begin() + static_cast<std::ptrdiff_t>(m));
     if (m > kMaxPatchSamples) return;  // refused below, outside the parallel loop
-    const Eigen::Index M = static_cast<Eigen::Index>(m);
-    Eigen::MatrixXd A(M, M), B(M, channels_);
-    for (Eigen::Index a = 0; a < M; ++a) {
-      const unsigned sa = patch.samples[static_cast<size_t>(a)];
-      for (Eigen::Index b = 0; b < M; ++b) {
-        const unsigned sb = patch.samples[static_cast<size_t>(b)];
-        A(a, b) = multiquadric_basis((points_[sa] - points_[sb]).squaredNorm() + r_sq_[sb], mu_);
-      }
-      for (int c = 0; c < channels_; ++c) B(a, c) = samples.values[sa * static_cast<size_t>(channels_) + c];
-    }
-    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(A);
-    patch.rcond = lu.rcond();
-    const Eigen::MatrixXd alpha = lu.solve(B);
-    if (!alpha.allFinite())
-      throw ReconstructionError("the multiquadric coefficients overflow: the sample values are too large for the "
-                                "system (scale them down)");
-    patch.alpha.resize(m * static_cast<size_t>(channels_));
-    for (Eigen::Index a = 0; a < M; ++a)
-      for (int c = 0; c < channels_; ++c) patch.alpha[static_cast<size_t>(a) * channels_ + c] = alpha(a, c);
+    MultiquadricFit fit = fit_multiquadric(points_, r_sq_, samples.values, channels_, mu_, patch.samples);
+    patch.rcond = fit.rcond;
+    patch.alpha = std::move(fit.alpha);
   });
   check_patches();
 }
@@ -132,7 +118,8 @@ void LocalMultiquadric::check_patches() const {
 void LocalMultiquadric::evaluate(std::span<const Vec2> points, std::span<double> out) const {
   const int C = channels_;
   RR_CHECK(out.size() == points.size() * static_cast<size_t>(C), "output size does not match the query points");
-  parallel_for(0, static_cast<std::int64_t>(points.size()), [&](std::int64_t k) {
+  parallel_for_with_scratch<std::vector<unsigned>>(0, static_cast<std::int64_t>(points.size()),
+                                                   [&](std::int64_t k, std::vector<unsigned>& visible) {
     const size_t q = static_cast<size_t>(k);
     double* o = &out[q * C];
     for (int c = 0; c < C; ++c) o[c] = 0;
@@ -147,16 +134,34 @@ void LocalMultiquadric::evaluate(std::span<const Vec2> points, std::span<double>
     double total = 0;
     for (int j = std::max(0, cj - 1); j <= std::min(ny_ - 1, cj + 2); ++j)
       for (int i = std::max(0, ci - 1); i <= std::min(nx_ - 1, ci + 2); ++i) {
-        const Patch& patch = patches_[static_cast<size_t>(j) * nx_ + i];
+        const size_t index = static_cast<size_t>(j) * nx_ + i;
+        const Patch& patch = patches_[index];
         const double w = wendland((x - patch.center).norm() / h_);
         if (w == 0) continue;
+        // The patch's fit, or with barriers the fit through its samples x sees.
+        const std::vector<unsigned>* subset = &patch.samples;
+        const std::vector<double>* alpha = &patch.alpha;
+        std::shared_ptr<const MultiquadricFit> fit;
+        if (!barriers_.empty()) {
+          visible.clear();
+          for (unsigned s : patch.samples)
+            if (!barriers_.blocks(x, points_[s])) visible.push_back(s);
+          if (visible.empty()) continue;  // the patch sees nothing of x: no weight
+          if (visible.size() < patch.samples.size()) {
+            fit = fits_.get(static_cast<unsigned>(index), visible,
+                            [&] { return fit_multiquadric(points_, r_sq_, values_, channels_, mu_, visible); });
+            subset = &fit->subset;
+            alpha = &fit->alpha;
+          }
+        }
         total += w;
-        for (size_t a = 0; a < patch.samples.size(); ++a) {
-          const double b = multiquadric_basis((x - points_[patch.samples[a]]).squaredNorm() + r_sq_[patch.samples[a]], mu_) * w;
-          for (int c = 0; c < C; ++c) o[c] += b * patch.alpha[a * C + c];
+        for (size_t a = 0; a < subset->size(); ++a) {
+          const unsigned s = (*subset)[a];
+          const double b = multiquadric_basis((x - points_[s]).squaredNorm() + r_sq_[s], mu_) * w;
+          for (int c = 0; c < C; ++c) o[c] += b * (*alpha)[a * C + c];
         }
       }
-    for (int c = 0; c < C; ++c) o[c] /= total;
+    for (int c = 0; c < C; ++c) o[c] = total > 0 ? o[c] / total : std::numeric_limits<double>::quiet_NaN();
   });
 }
 

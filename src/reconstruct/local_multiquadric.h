@@ -7,12 +7,18 @@
 // that about k samples lie within 1.5 h on average. The patches are blended with Wendland's C2
 // weights (1 - d/h)^4 (4 d/h + 1), positive everywhere in the box (the discs cover it). Exact at
 // the samples; outside the box, the value at the nearest point of the box.
+//
+// With barriers (barriers.h): each patch contributes the multiquadric through those of its
+// samples the query sees (solved once per patch and subset, multiquadric_basis.h), and a patch
+// that sees none of them no weight; a query no patch serves gets NaN.
 
 #include <memory>
 #include <optional>
 #include <vector>
 
+#include "reconstruct/barriers.h"
 #include "reconstruct/interpolant.h"
+#include "reconstruct/multiquadric_basis.h"
 #include "reconstruct/samples.h"
 
 namespace radrecon {
@@ -22,7 +28,8 @@ class KdTree2;
 class LocalMultiquadric final : public Interpolant {
  public:
   /// mu != 0; k >= kMinPatchSamples; r > 0 if given, else Eck's rule. Needs 2 distinct samples.
-  LocalMultiquadric(const ScatteredSamples& samples, double mu, std::optional<double> r_m, int k);
+  LocalMultiquadric(const ScatteredSamples& samples, double mu, std::optional<double> r_m, int k,
+                    Barriers barriers = {});
   ~LocalMultiquadric() override;
   int channels() const override { return channels_; }
   void evaluate(std::span<const Vec2> points, std::span<double> out) const override;
@@ -53,6 +60,9 @@ class LocalMultiquadric final : public Interpolant {
   Vec2 origin_, box_max_;  ///< the samples' bounding box
   int nx_ = 1, ny_ = 1;
   std::vector<Patch> patches_;  ///< row by row over the grid
+  Barriers barriers_;
+  std::vector<double> values_;  ///< with barriers: the samples' values, for the subsets' fits
+  MultiquadricFitCache fits_;   ///< keyed by patch index
 };
 
 }  // namespace radrecon

@@ -163,19 +163,20 @@ InterpolantResult make_scattered_interpolant(Method method, const ScatteredSampl
               "sample values do not match the points");
   if (samples.points.empty()) return Failure{"no samples"};
   switch (method) {
-    case Method::constant: return build<NearestSample>(samples);
+    case Method::constant: return build<NearestSample>(samples, params.barriers);
     case Method::bilinear:
     case Method::bicubic: return Failure{method_name(method) + " needs samples on a regular grid"};
-    case Method::shepard: return build<Shepard>(samples, params.shepard_mu, params.shepard_k);
+    case Method::shepard: return build<Shepard>(samples, params.shepard_mu, params.shepard_k, params.barriers);
     case Method::multiquadric:
       if (params.multiquadric_k > 0 && static_cast<size_t>(params.multiquadric_k) < samples.points.size())
-        return build<LocalMultiquadric>(samples, params.multiquadric_mu, params.multiquadric_r, params.multiquadric_k);
+        return build<LocalMultiquadric>(samples, params.multiquadric_mu, params.multiquadric_r, params.multiquadric_k,
+                                        params.barriers);
       if (samples.points.size() > kMaxGlobalMultiquadric)
         return Failure{std::to_string(samples.points.size()) +
                        " samples are too many for one global multiquadric system (at most " +
                        std::to_string(kMaxGlobalMultiquadric) + "); use local patches (parameter k, e.g. 32)"};
-      return build<Multiquadric>(samples, params.multiquadric_mu, params.multiquadric_r);
-    case Method::natural_neighbour: return build<NaturalNeighbour>(samples, params.outside);
+      return build<Multiquadric>(samples, params.multiquadric_mu, params.multiquadric_r, params.barriers);
+    case Method::natural_neighbour: return build<NaturalNeighbour>(samples, params.outside, params.barriers);
   }
   RR_CHECK(false, "unknown method");
   return Failure{"unknown method"};

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/result.h"
+#include "reconstruct/barriers.h"
 #include "reconstruct/interpolant.h"
 #include "reconstruct/samples.h"
 
@@ -43,6 +44,8 @@ enum class OutsideHull {
 ///                      blends local multiquadrics on patches of about k samples (a partition
 ///                      of unity, local_multiquadric.h), for large sample sets.
 ///   natural-neighbour: outside (nearest | none, default nearest).
+/// and, for every method, the barriers (not a NAME=VALUE setting: they come from a file or the
+/// scene).
 struct MethodParams {
   double shepard_mu = 4.0;
   int shepard_k = 0;
@@ -50,6 +53,9 @@ struct MethodParams {
   std::optional<double> multiquadric_r;
   int multiquadric_k = 0;
   OutsideHull outside = OutsideHull::nearest;
+  /// Lines no sample's influence crosses (barriers.h); none by default. Every method honours
+  /// them (see each method's header) except constant on cells, which is the data as it is.
+  Barriers barriers;
 };
 
 /// Parses NAME=VALUE settings for `method`. Throws UserError naming `where` (the caller's

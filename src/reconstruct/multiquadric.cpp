@@ -15,8 +15,8 @@
 
 namespace radrecon {
 
-Multiquadric::Multiquadric(const ScatteredSamples& samples, double mu, std::optional<double> r_m)
-    : points_(samples.points), channels_(samples.channels), mu_(mu) {
+Multiquadric::Multiquadric(const ScatteredSamples& samples, double mu, std::optional<double> r_m, Barriers barriers)
+    : points_(samples.points), channels_(samples.channels), mu_(mu), barriers_(std::move(barriers)) {
   RR_CHECK(mu != 0, "multiquadric mu must be nonzero");
   const size_t n = points_.size();
   if (n == 0) throw ReconstructionError("multiquadric needs at least one sample");
@@ -27,30 +27,40 @@ Multiquadric::Multiquadric(const ScatteredSamples& samples, double mu, std::opti
     const KdTree2 tree(points_);
     r_sq_ = eck_radii_sq(points_, tree);
   }
-  Eigen::MatrixXd A(n, n);
-  for (size_t i = 0; i < n; ++i)
-    for (size_t j = 0; j < n; ++j) A(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) =
-        multiquadric_basis((points_[i] - points_[j]).squaredNorm() + r_sq_[j], mu_);
-  Eigen::MatrixXd B(n, channels_);
-  for (size_t i = 0; i < n; ++i)
-    for (int c = 0; c < channels_; ++c) B(static_cast<Eigen::Index>(i), c) = samples.values[i * channels_ + c];
-  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(A);
-  rcond_ = lu.rcond();
-  if (!(rcond_ > 0) || !std::isfinite(rcond_))
-    throw ReconstructionError("the multiquadric system is singular (duplicate samples?)");
+  std::vector<unsigned> all(n);
+  for (size_t i = 0; i < n; ++i) all[i] = static_cast<unsigned>(i);
+  const MultiquadricFit fit = fit_multiquadric(points_, r_sq_, samples.values, channels_, mu_, std::move(all));
+  rcond_ = fit.rcond;
   if (rcond_ < tol::kPoorConditioning)
     std::fprintf(stderr, "radrecon: warning: multiquadric system is poorly conditioned (reciprocal condition %.2e); "
                          "results may be inaccurate\n", rcond_);
-  const Eigen::MatrixXd alpha = lu.solve(B);
-  if (!alpha.allFinite())
-    throw ReconstructionError("the multiquadric coefficients overflow: the sample values are too large for the "
-                              "system (scale them down)");
   alpha_by_channel_.resize(n * static_cast<size_t>(channels_));
   for (size_t i = 0; i < n; ++i)
-    for (int c = 0; c < channels_; ++c) alpha_by_channel_[static_cast<size_t>(c) * n + i] = alpha(static_cast<Eigen::Index>(i), c);
+    for (int c = 0; c < channels_; ++c) alpha_by_channel_[static_cast<size_t>(c) * n + i] = fit.alpha[i * channels_ + c];
   px_.resize(n);
   py_.resize(n);
   for (size_t i = 0; i < n; ++i) px_[i] = points_[i].x(), py_[i] = points_[i].y();
+  if (!barriers_.empty()) values_ = samples.values;
+}
+
+bool Multiquadric::evaluate_visible(const Vec2& p, std::vector<unsigned>& visible, double* out) const {
+  visible.clear();
+  for (size_t j = 0; j < points_.size(); ++j)
+    if (!barriers_.blocks(p, points_[j])) visible.push_back(static_cast<unsigned>(j));
+  if (visible.size() == points_.size()) return false;  // the global fit, as without barriers
+  if (visible.empty()) {
+    for (int c = 0; c < channels_; ++c) out[c] = std::numeric_limits<double>::quiet_NaN();
+    return true;
+  }
+  const std::shared_ptr<const MultiquadricFit> fit =
+      fits_.get(0, visible, [&] { return fit_multiquadric(points_, r_sq_, values_, channels_, mu_, visible); });
+  for (int c = 0; c < channels_; ++c) out[c] = 0;
+  for (size_t a = 0; a < fit->subset.size(); ++a) {
+    const unsigned j = fit->subset[a];
+    const double b = multiquadric_basis((p - points_[j]).squaredNorm() + r_sq_[j], mu_);
+    for (int c = 0; c < channels_; ++c) out[c] += b * fit->alpha[a * channels_ + c];
+  }
+  return true;
 }
 
 void Multiquadric::evaluate(std::span<const Vec2> points, std::span<double> out) const {
@@ -60,13 +70,19 @@ void Multiquadric::evaluate(std::span<const Vec2> points, std::span<double> out)
   const double* px = px_.data();
   const double* py = py_.data();
   const double* r2 = r_sq_.data();
-  parallel_for_with_scratch<Eigen::ArrayXd>(0, static_cast<std::int64_t>(points.size()), [&](std::int64_t k, Eigen::ArrayXd& b) {
+  struct Scratch {
+    Eigen::ArrayXd b;
+    std::vector<unsigned> visible;
+  };
+  parallel_for_with_scratch<Scratch>(0, static_cast<std::int64_t>(points.size()), [&](std::int64_t k, Scratch& s) {
     const size_t q = static_cast<size_t>(k);
     const Vec2 p = points[q];
     if (!p.allFinite()) {
       for (int c = 0; c < C; ++c) out[q * C + c] = std::numeric_limits<double>::quiet_NaN();
       return;
     }
+    if (!barriers_.empty() && evaluate_visible(p, s.visible, &out[q * C])) return;
+    Eigen::ArrayXd& b = s.b;
     // Basis values for all samples at once, as Eigen arrays: SIMD square roots and sums in a
     // fixed (packet) order, so results do not depend on threads.
     using Array = Eigen::Map<const Eigen::ArrayXd>;

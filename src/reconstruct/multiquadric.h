@@ -4,10 +4,18 @@
 // pivoting (Eigen). r_j is a constant r, or by Eck's rule the distance from p_j to its nearest
 // other sample. A poorly conditioned system (reciprocal condition estimate below
 // kPoorConditioning) is reported on stderr.
+//
+// With barriers (barriers.h): a query's value is the multiquadric through the samples it sees
+// (the same radii r_j), each such subset's system solved once and shared by every query that
+// sees it. Exact at the samples, continuous except across barriers and the sight lines grazing a
+// barrier's free end; a query that sees no sample gets NaN.
 
+#include <memory>
 #include <optional>
 
+#include "reconstruct/barriers.h"
 #include "reconstruct/interpolant.h"
+#include "reconstruct/multiquadric_basis.h"
 #include "reconstruct/samples.h"
 
 namespace radrecon {
@@ -15,7 +23,7 @@ namespace radrecon {
 class Multiquadric final : public Interpolant {
  public:
   /// mu != 0; r > 0 if given. Needs 2 distinct samples without r, 1 with it.
-  Multiquadric(const ScatteredSamples& samples, double mu, std::optional<double> r_m);
+  Multiquadric(const ScatteredSamples& samples, double mu, std::optional<double> r_m, Barriers barriers = {});
   int channels() const override { return channels_; }
   void evaluate(std::span<const Vec2> points, std::span<double> out) const override;
 
@@ -32,6 +40,13 @@ class Multiquadric final : public Interpolant {
   int channels_;
   double mu_;
   double rcond_ = 1;
+  // With barriers: the samples' values, and the fits through the subsets queries see.
+  Barriers barriers_;
+  std::vector<double> values_;
+  MultiquadricFitCache fits_;
+  /// The value at p from the samples visible from it, into out; false (nothing written) when p
+  /// sees every sample. `visible` is a per-thread buffer.
+  bool evaluate_visible(const Vec2& p, std::vector<unsigned>& visible, double* out) const;
 };
 
 }  // namespace radrecon

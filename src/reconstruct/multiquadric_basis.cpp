@@ -2,6 +2,8 @@
 
 #include <string>
 
+#include <Eigen/LU>
+
 #include "core/check.h"
 #include "core/parse.h"
 #include "reconstruct/interpolant.h"
@@ -23,6 +25,35 @@ std::vector<double> eck_radii_sq(std::span<const Vec2> points, const KdTree2& tr
     r_sq[i] = d2[1];
   }
   return r_sq;
+}
+
+MultiquadricFit fit_multiquadric(std::span<const Vec2> points, std::span<const double> r_sq,
+                                 std::span<const double> values, int channels, double mu,
+                                 std::vector<unsigned> subset) {
+  const Eigen::Index m = static_cast<Eigen::Index>(subset.size());
+  Eigen::MatrixXd A(m, m), B(m, channels);
+  for (Eigen::Index a = 0; a < m; ++a) {
+    const unsigned sa = subset[static_cast<size_t>(a)];
+    for (Eigen::Index b = 0; b < m; ++b) {
+      const unsigned sb = subset[static_cast<size_t>(b)];
+      A(a, b) = multiquadric_basis((points[sa] - points[sb]).squaredNorm() + r_sq[sb], mu);
+    }
+    for (int c = 0; c < channels; ++c) B(a, c) = values[sa * static_cast<size_t>(channels) + c];
+  }
+  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(A);
+  MultiquadricFit fit;
+  fit.rcond = lu.rcond();
+  if (!(fit.rcond > 0) || !std::isfinite(fit.rcond))
+    throw ReconstructionError("the multiquadric system is singular (duplicate samples?)");
+  const Eigen::MatrixXd alpha = lu.solve(B);
+  if (!alpha.allFinite())
+    throw ReconstructionError("the multiquadric coefficients overflow: the sample values are too large for the "
+                              "system (scale them down)");
+  fit.alpha.resize(subset.size() * static_cast<size_t>(channels));
+  for (Eigen::Index a = 0; a < m; ++a)
+    for (int c = 0; c < channels; ++c) fit.alpha[static_cast<size_t>(a) * channels + c] = alpha(a, c);
+  fit.subset = std::move(subset);
+  return fit;
 }
 
 }  // namespace radrecon

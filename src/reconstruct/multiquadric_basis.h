@@ -3,6 +3,10 @@
 // (multiquadric.h) and its partition of unity of local patches (local_multiquadric.h).
 
 #include <cmath>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <shared_mutex>
 #include <span>
 #include <vector>
 
@@ -35,5 +39,44 @@ inline void multiquadric_basis_in_place(Eigen::ArrayXd& dist_sq_plus_r_sq, doubl
 /// point, found with `tree` (built over `points`). Needs at least 2 points; throws
 /// ReconstructionError naming the point when two coincide.
 std::vector<double> eck_radii_sq(std::span<const Vec2> points, const KdTree2& tree);
+
+/// The multiquadric through the samples `subset` of `points`: coefficients alpha_j for
+/// sum_j alpha_j (d(q, p_j)^2 + r_j^2)^mu, by dense LU with partial pivoting (Eigen).
+struct MultiquadricFit {
+  std::vector<unsigned> subset;  ///< sample indices
+  std::vector<double> alpha;     ///< subset.size() * channels, sample-major
+  double rcond = 1;              ///< reciprocal condition estimate of the system
+};
+
+/// Fits the multiquadric through `subset` (values: channels per point, point-major). Throws
+/// ReconstructionError when the system is singular or its coefficients overflow.
+MultiquadricFit fit_multiquadric(std::span<const Vec2> points, std::span<const double> r_sq,
+                                 std::span<const double> values, int channels, double mu,
+                                 std::vector<unsigned> subset);
+
+/// Fits over subsets of the samples, each solved once and shared: with barriers, a query's
+/// multiquadric is the one through the samples it sees, and neighbouring queries see the same.
+/// Thread-safe; a fit depends on its subset alone, so results do not depend on which thread
+/// solved it first.
+class MultiquadricFitCache {
+ public:
+  /// The fit through `subset` (sorted sample indices) under `key` (e.g. a patch), solved with
+  /// `solve` the first time.
+  template <typename Solve>
+  std::shared_ptr<const MultiquadricFit> get(unsigned key, const std::vector<unsigned>& subset, Solve&& solve) const {
+    {
+      std::shared_lock lock(mutex_);
+      const auto it = fits_.find({key, subset});
+      if (it != fits_.end()) return it->second;
+    }
+    auto fit = std::make_shared<const MultiquadricFit>(solve());
+    std::unique_lock lock(mutex_);
+    return fits_.try_emplace({key, subset}, std::move(fit)).first->second;
+  }
+
+ private:
+  mutable std::shared_mutex mutex_;
+  mutable std::map<std::pair<unsigned, std::vector<unsigned>>, std::shared_ptr<const MultiquadricFit>> fits_;
+};
 
 }  // namespace radrecon

@@ -10,8 +10,9 @@
 #include <CGAL/natural_neighbor_coordinates_2.h>
 
 #include "core/check.h"
-#include "reconstruct/kdtree.h"
 #include "core/parallel.h"
+#include "core/tolerances.h"
+#include "reconstruct/kdtree.h"
 
 namespace radrecon {
 
@@ -41,12 +42,22 @@ struct NaturalNeighbour::Impl {
   std::vector<Vec2> points;
   std::vector<Delaunay::Vertex_handle> vertex_of;  ///< by sample index
   std::unique_ptr<KdTree2> tree;                   ///< to start walks near a query
+  Barriers barriers;
 
   /// Buffers of coordinates(), reused from query to query.
   struct Scratch {
     std::vector<std::pair<unsigned, double>> coords;
     std::vector<Delaunay::Edge> hole;  ///< boundary of the conflict zone
+    // With barriers: the visible samples near the query and their triangulation.
+    VisibleNeighbours visible;
+    Delaunay local;
+    std::vector<std::pair<Point, unsigned>> local_input;
+    std::vector<Delaunay::Face_handle> conflicts;
   };
+
+  /// What a query gets: Sibson coordinates, the value of a point on a hull edge (outside the
+  /// hull), or nothing (NaN).
+  enum class Kind { coordinates, on_hull, nothing };
 
   /// A finite face's sample indices, sorted: a canonical order of faces.
   static std::array<unsigned, 3> face_key(const Delaunay::Face_handle& f) {
@@ -56,6 +67,7 @@ struct NaturalNeighbour::Impl {
   }
 
   /// Coordinates of q into scratch.coords; `hint` is a face near q (updated), or a default handle.
+  /// Without regard to barriers.
   bool coordinates(const Vec2& q, Delaunay::Face_handle& hint, Scratch& scratch) const {
     std::vector<std::pair<unsigned, double>>& out = scratch.coords;
     std::vector<Delaunay::Edge>& hole = scratch.hole;
@@ -101,24 +113,139 @@ struct NaturalNeighbour::Impl {
     return true;
   }
 
-  /// The value at the point of the hull nearest to q, interpolated along its hull edge.
-  void nearest_on_hull(const Vec2& q, double* o) const {
+  /// The point of `edges` (pairs of sample indices) nearest to q, as coordinates of its edge's
+  /// end points into `out` (pairs in sample order, as the plain hull rule).
+  void nearest_on_edges(const Vec2& q, std::span<const std::pair<unsigned, unsigned>> edges,
+                        std::vector<std::pair<unsigned, double>>& out) const {
     double best = std::numeric_limits<double>::infinity(), best_t = 0;
     std::pair<unsigned, unsigned> best_edge{0, 0};
-    for (const auto& e : hull_edges) {
+    for (auto e : edges) {
+      if (e.second < e.first) std::swap(e.first, e.second);
       const Vec2 a = points[e.first], b = points[e.second];
       const Vec2 ab = b - a;
-      const double t = std::clamp((q - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+      const double t = ab.squaredNorm() > 0 ? std::clamp((q - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
       const double d = (a + t * ab - q).squaredNorm();
-      if (d < best) best = d, best_t = t, best_edge = e;
+      if (d < best || (d == best && e < best_edge)) best = d, best_t = t, best_edge = e;
     }
-    for (int c = 0; c < channels; ++c)
-      o[c] = (1 - best_t) * values[best_edge.first * static_cast<size_t>(channels) + c] +
-             best_t * values[best_edge.second * static_cast<size_t>(channels) + c];
+    out.clear();
+    out.emplace_back(best_edge.first, 1 - best_t);
+    out.emplace_back(best_edge.second, best_t);
+  }
+
+  /// Sum of coordinates times values, per channel, into o.
+  void combine(std::span<const std::pair<unsigned, double>> coords, double* o) const {
+    for (int c = 0; c < channels; ++c) o[c] = 0;
+    for (const auto& [index, w] : coords)
+      for (int c = 0; c < channels; ++c) o[c] += w * values[index * static_cast<size_t>(channels) + c];
+  }
+
+  bool all_visible(const Vec2& q, std::span<const std::pair<unsigned, double>> coords) const {
+    for (const auto& [index, w] : coords)
+      if (barriers.blocks(q, points[index])) return false;
+    return true;
+  }
+
+  /// What q gets (the rules of the header), into scratch.coords; `hint` as in coordinates().
+  Kind query(const Vec2& q, Delaunay::Face_handle& hint, Scratch& s) const {
+    if (coordinates(q, hint, s)) {
+      if (barriers.empty() || all_visible(q, s.coords)) return Kind::coordinates;
+    } else {
+      nearest_on_edges(q, hull_edges, s.coords);
+      // Outside the hull: its nearest point, if nothing hides it (or its edge) from q.
+      if (barriers.empty()) return Kind::on_hull;
+      Vec2 nearest = Vec2::Zero();
+      for (const auto& [index, w] : s.coords) nearest += w * points[index];
+      if (all_visible(q, s.coords) && !barriers.blocks(q, nearest) &&
+          !barriers.blocks(points[s.coords[0].first], points[s.coords[1].first]))
+        return Kind::on_hull;
+    }
+    return visible_coordinates(q, s);
+  }
+
+  /// With barriers: what q gets over the samples visible from it (the rule of the header), into
+  /// scratch.coords.
+  Kind visible_coordinates(const Vec2& q, Scratch& s) const {
+    constexpr size_t kFirstRound = 16;
+    const size_t n = points.size();
+    const Point p(q.x(), q.y());
+    for (size_t k = std::min(kFirstRound, n);; k = std::min({2 * k, n, kMaxVisibleNeighbours})) {
+      // The k nearest visible samples, and the next one's distance (the certificate's).
+      const size_t found = nearest_visible(*tree, points, barriers, q, std::min(k + 1, n), s.visible);
+      const size_t m = std::min(found, k);
+      const bool complete = found <= k;  // every visible sample is in the triangulation
+      const bool last = complete || k >= kMaxVisibleNeighbours;
+      if (m == 0) return Kind::nothing;
+      s.local_input.clear();
+      for (size_t i = 0; i < m; ++i) {
+        const Vec2& v = points[s.visible.idx[i]];
+        s.local_input.emplace_back(Point(v.x(), v.y()), s.visible.idx[i]);
+      }
+      Delaunay& dt = s.local;
+      dt.clear();
+      dt.insert(s.local_input.begin(), s.local_input.end());
+      if (dt.dimension() < 2) {  // one point, or all on a line: q is outside their hull
+        if (!last) continue;
+        std::vector<std::pair<unsigned, unsigned>> edges;
+        if (dt.dimension() == 0) edges.emplace_back(dt.finite_vertices_begin()->info(), dt.finite_vertices_begin()->info());
+        for (auto e = dt.finite_edges_begin(); e != dt.finite_edges_end(); ++e)
+          edges.emplace_back(e->first->vertex(Delaunay::cw(e->second))->info(), e->first->vertex(Delaunay::ccw(e->second))->info());
+        nearest_on_edges(q, edges, s.coords);
+        return Kind::on_hull;
+      }
+      Delaunay::Locate_type lt;
+      int li;
+      Delaunay::Face_handle f = dt.locate(p, lt, li);
+      if (lt == Delaunay::VERTEX) {
+        s.coords.assign(1, {f->vertex(li)->info(), 1.0});
+        return Kind::coordinates;
+      }
+      const bool on_hull_edge = lt == Delaunay::EDGE && (dt.is_infinite(f) || dt.is_infinite(f->neighbor(li)));
+      if (lt == Delaunay::OUTSIDE_CONVEX_HULL || on_hull_edge) {
+        // Outside (or on) the hull of these samples: a farther visible sample may still close it.
+        if (!last) continue;
+        std::vector<std::pair<unsigned, unsigned>> edges;
+        auto inf = dt.infinite_vertex();
+        auto fc = dt.incident_faces(inf), done = fc;
+        do {
+          const int i = fc->index(inf);
+          edges.emplace_back(fc->vertex(Delaunay::ccw(i))->info(), fc->vertex(Delaunay::cw(i))->info());
+        } while (++fc != done);
+        nearest_on_edges(q, edges, s.coords);
+        return on_hull_edge ? Kind::coordinates : Kind::on_hull;
+      }
+      // Inside: the conflict zone, its boundary, and the certificate.
+      s.conflicts.clear();
+      s.hole.clear();
+      dt.get_conflicts_and_boundary(p, std::back_inserter(s.conflicts), std::back_inserter(s.hole), f);
+      double r_max_sq = 0, rho_max_sq = 0;
+      for (const auto& face : s.conflicts)
+        r_max_sq = std::max(r_max_sq, CGAL::squared_radius(face->vertex(0)->point(), face->vertex(1)->point(),
+                                                           face->vertex(2)->point()));
+      for (const auto& [face, i] : s.hole) {
+        const Point& a = face->vertex(Delaunay::ccw(i))->point();
+        const Point& b = face->vertex(Delaunay::cw(i))->point();
+        rho_max_sq = std::max(rho_max_sq, CGAL::squared_radius(p, a, b));
+      }
+      s.coords.clear();
+      const auto result = CGAL::natural_neighbor_coordinates_2(dt, p, std::back_inserter(s.coords), VertexIndex(),
+                                                               s.hole.begin(), s.hole.end());
+      if (!result.third || !(result.second > 0)) {
+        if (!last) continue;
+        return Kind::nothing;
+      }
+      const double rho = std::sqrt(rho_max_sq), bound = rho + std::max(rho, std::sqrt(r_max_sq));
+      const bool certified = std::isfinite(bound) && (complete || std::sqrt(s.visible.dist_sq[m]) >
+                                                                     bound * (1 + tol::kSibsonCertificateRelative));
+      if (!certified && !last) continue;
+      for (auto& [index, w] : s.coords) w /= result.second;
+      return Kind::coordinates;
+    }
   }
 };
 
-NaturalNeighbour::NaturalNeighbour(const ScatteredSamples& samples, OutsideHull outside) : impl_(std::make_unique<Impl>()) {
+NaturalNeighbour::NaturalNeighbour(const ScatteredSamples& samples, OutsideHull outside, Barriers barriers)
+    : impl_(std::make_unique<Impl>()) {
+  impl_->barriers = std::move(barriers);
   const size_t n = samples.points.size();
   if (n < 3) throw ReconstructionError("natural-neighbour interpolation needs at least 3 samples, got " + std::to_string(n));
   impl_->values = samples.values;
@@ -152,7 +279,7 @@ int NaturalNeighbour::channels() const { return impl_->channels; }
 std::vector<std::pair<unsigned, double>> NaturalNeighbour::coordinates(const Vec2& q) const {
   Impl::Scratch scratch;
   Delaunay::Face_handle hint;
-  impl_->coordinates(q, hint, scratch);
+  if (impl_->query(q, hint, scratch) != Impl::Kind::coordinates) return {};
   return std::move(scratch.coords);
 }
 
@@ -177,21 +304,12 @@ void NaturalNeighbour::evaluate(std::span<const Vec2> points, std::span<double> 
     for (std::int64_t k = chunk * kChunk; k < std::min(n, (chunk + 1) * kChunk); ++k) {
       const size_t q = static_cast<size_t>(k);
       double* o = &out[q * C];
-      if (!points[q].allFinite()) {
+      const Impl::Kind kind = points[q].allFinite() ? impl_->query(points[q], hint, scratch) : Impl::Kind::nothing;
+      if (kind == Impl::Kind::coordinates || (kind == Impl::Kind::on_hull && impl_->outside == OutsideHull::nearest)) {
+        impl_->combine(scratch.coords, o);
+      } else {
         for (int c = 0; c < C; ++c) o[c] = std::numeric_limits<double>::quiet_NaN();
-        continue;
       }
-      if (!impl_->coordinates(points[q], hint, scratch)) {
-        if (impl_->outside == OutsideHull::nearest) {
-          impl_->nearest_on_hull(points[q], o);
-        } else {
-          for (int c = 0; c < C; ++c) o[c] = std::numeric_limits<double>::quiet_NaN();
-        }
-        continue;
-      }
-      for (int c = 0; c < C; ++c) o[c] = 0;
-      for (const auto& [index, w] : scratch.coords)
-        for (int c = 0; c < C; ++c) o[c] += w * impl_->values[index * static_cast<size_t>(C) + c];
     }
   });
 }

@@ -4,10 +4,28 @@
 // robust Delaunay triangulation (CGAL). Exact at the samples, C0, reproduces linear functions
 // inside the convex hull. Outside the hull: OutsideHull::nearest (the value at the nearest hull
 // point, interpolated linearly along the hull edge) or OutsideHull::none (NaN).
+//
+// With barriers (barriers.h): Sibson's coordinates of q over the samples VISIBLE from q, exactly
+// (not an approximation):
+//   - Where every natural neighbour of q among all samples is visible, those coordinates are
+//     already the ones over the visible samples (q's Voronoi cell, and the part of it each
+//     neighbour loses, depend on the natural neighbours alone), so they are used as they are.
+//   - Otherwise the Delaunay triangulation of q's k nearest visible samples is built, and its
+//     coordinates are taken when they are certified: no farther visible sample can cut q's cell
+//     nor be nearer than its sample to any point of it (the next visible sample farther than
+//     rho + max(rho, r), rho the farthest vertex of q's cell, r the largest circumradius of the
+//     triangles q's insertion destroys); else k doubles.
+//   - A query outside the hull of the samples it sees: the outside rule over those samples (the
+//     nearest point of their hull, or NaN); past kMaxVisibleNeighbours visible samples, the hull
+//     of the nearest kMaxVisibleNeighbours. A query that sees no sample: NaN.
+// So the interpolant is exact at the samples, continuous away from barriers and from the sight
+// lines that graze a barrier's free end (where a sample comes into view), jumps across barriers,
+// and reproduces linear functions wherever q is inside the hull of what it sees.
 
 #include <memory>
 #include <vector>
 
+#include "reconstruct/barriers.h"
 #include "reconstruct/interpolant.h"
 #include "reconstruct/methods.h"
 #include "reconstruct/samples.h"
@@ -17,13 +35,16 @@ namespace radrecon {
 class NaturalNeighbour final : public Interpolant {
  public:
   /// Needs 3 samples not all on one line; duplicate points are refused.
-  NaturalNeighbour(const ScatteredSamples& samples, OutsideHull outside);
+  NaturalNeighbour(const ScatteredSamples& samples, OutsideHull outside, Barriers barriers = {});
   ~NaturalNeighbour() override;
   int channels() const override;
   void evaluate(std::span<const Vec2> points, std::span<double> out) const override;
 
+  /// Visible samples a query's local triangulation may hold (with barriers).
+  static constexpr size_t kMaxVisibleNeighbours = 512;
+
   /// Sibson coordinates of q: pairs (sample index, lambda), lambda summing to one; empty outside
-  /// the convex hull.
+  /// the convex hull (of the samples visible from q, with barriers).
   std::vector<std::pair<unsigned, double>> coordinates(const Vec2& q) const;
 
  private:

@@ -11,9 +11,12 @@
 #include "reconstruct/barriers.h"
 #include "reconstruct/nearest.h"
 #include "reconstruct/shepard.h"
+#include "support/barrier_cases.h"
 
 namespace radrecon {
 namespace {
+
+using namespace testing_support;
 
 TEST(SegmentBlocked, FollowsTheRuleOnItsDegenerateCases) {
   const BarrierSegment wall{{0, -1}, {0, 1}};  // x = 0, y in [-1, 1]
@@ -77,37 +80,6 @@ TEST(Barriers, GridSearchAgreesWithBruteForceOnRandomBarriers) {
   }
 }
 
-/// Random samples on both sides of x = 0.5, values a step across it plus a slope.
-ScatteredSamples two_sided_samples(double left_value, double right_value) {
-  ScatteredSamples s;
-  s.channels = 1;
-  std::mt19937 rng(77);
-  std::uniform_real_distribution<double> u(0, 1);
-  for (int k = 0; k < 200; ++k) {
-    const Vec2 p(u(rng), u(rng));
-    if (std::abs(p.x() - 0.5) < 1e-3) continue;
-    s.points.push_back(p);
-    s.values.push_back((p.x() < 0.5 ? left_value : right_value) + 0.3 * p.y());
-  }
-  return s;
-}
-
-/// A wall across the whole domain (and beyond it), at x = 0.5.
-Barriers wall() { return Barriers::from_polylines(std::vector<Polyline>{{{0.5, -1}, {0.5, 2}}}).value(); }
-
-std::vector<Vec2> left_queries() {
-  std::vector<Vec2> q;
-  for (int j = 0; j < 30; ++j)
-    for (int i = 0; i < 15; ++i) q.emplace_back(0.49 * i / 14.0, j / 29.0);
-  return q;
-}
-
-std::vector<double> evaluate(const Interpolant& f, const std::vector<Vec2>& q) {
-  std::vector<double> out(q.size() * static_cast<size_t>(f.channels()));
-  f.evaluate(q, out);
-  return out;
-}
-
 TEST(ShepardWithBarriers, ASampleAcrossABarrierHasExactlyZeroInfluence) {
   const std::vector<Vec2> q = left_queries();
   const Shepard a(two_sided_samples(1.0, 5.0), 4.0, 0, wall());
@@ -148,34 +120,6 @@ TEST(ShepardWithBarriers, AQueryThatSeesNoSampleHasNoValue) {
   EXPECT_GE(v[1], 1.0);
   EXPECT_LE(v[1], 3.0);
   EXPECT_EQ(v[2], 2.0);  // exact at a sample
-}
-
-/// A wall from below the domain to y = 0.7 (light passes above it) and a corner.
-Barriers wall_and_corner() {
-  return Barriers::from_polylines(std::vector<Polyline>{{{0.5, -1}, {0.5, 0.7}}, {{0.2, 0.3}, {0.3, 0.3}, {0.3, 0.2}}})
-      .value();
-}
-
-std::vector<Vec2> random_queries(unsigned seed, int count) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(0, 1);
-  std::vector<Vec2> q;
-  for (int i = 0; i < count; ++i) q.emplace_back(u(rng), u(rng));
-  return q;
-}
-
-/// Brute force: the samples visible from q (every barrier segment tested), by (squared
-/// distance, index).
-std::vector<std::pair<double, size_t>> visible_by_distance(const ScatteredSamples& s, const Barriers& barriers,
-                                                           const Vec2& q) {
-  std::vector<std::pair<double, size_t>> visible;
-  for (size_t j = 0; j < s.points.size(); ++j) {
-    bool hidden = false;
-    for (const BarrierSegment& b : barriers.segments()) hidden = hidden || segment_blocked(q, s.points[j], b);
-    if (!hidden) visible.emplace_back((s.points[j] - q).squaredNorm(), j);
-  }
-  std::sort(visible.begin(), visible.end());
-  return visible;
 }
 
 TEST(NearestSampleWithBarriers, IsTheNearestVisibleSampleByBruteForce) {
