@@ -131,8 +131,13 @@ InterpolantResult build(Args&&... args) {
 }  // namespace
 
 InterpolantResult make_grid_interpolant(Method method, const GridCells& cells, const MethodParams& params) {
-  if (method == Method::constant) return build<PiecewiseConstant>(to_cells(cells));
-  if (is_grid_method(method)) return make_nodal_interpolant(method, nodal_average(cells), params);
+  // Constant is the cells themselves; with barriers, the nearest visible cell centre (the cell
+  // that holds the point, unless a barrier hides its centre).
+  if (method == Method::constant && params.barriers.empty()) return build<PiecewiseConstant>(to_cells(cells));
+  if (is_grid_method(method)) {
+    if (!params.barriers.empty()) return Failure{method_name(method) + " with barriers is not available yet"};
+    return make_nodal_interpolant(method, nodal_average(cells), params);
+  }
   ScatteredSamples centres;
   centres.channels = cells.channels;
   centres.values = cells.values;
@@ -146,6 +151,7 @@ InterpolantResult make_cell_interpolant(const CellSamples& cells) { return build
 InterpolantResult make_nodal_interpolant(Method method, const GridNodes& nodes, const MethodParams& params) {
   if (method == Method::bilinear || method == Method::bicubic) {
     if (nodes.nx < 2 || nodes.ny < 2) return Failure{method_name(method) + " needs a grid of at least 2 x 2 samples"};
+    if (!params.barriers.empty()) return Failure{method_name(method) + " with barriers is not available yet"};
     if (method == Method::bilinear) return build<Bilinear>(nodes);
     return build<Bicubic>(nodes);
   }

@@ -9,22 +9,25 @@
 
 namespace radrecon {
 
-namespace {
-
-/// The method's reconstruction of one side (with the scene's edge lengths).
-InterpolantResult build_side(const SurfaceSolution& s, Method method, const MethodParams& params) {
+InterpolantResult reconstruct_side(const SurfaceSolution& s, Method method, const MethodParams& plain,
+                                   const SideSampling& sampling) {
+  MethodParams params = plain;
+  if (sampling.barriers && !s.barriers.empty()) {
+    Result<Barriers> barriers = Barriers::from_polylines(s.barriers);
+    if (!barriers) return Failure{"its barriers: " + barriers.reason()};
+    params.barriers = std::move(barriers).value();
+  }
   const bool grid = s.grid_nu > 0 && s.grid_nv > 0;
   if (grid) return make_grid_interpolant(method, grid_cells(s), params);
-  if (method == Method::constant) return make_cell_interpolant(element_cells(s));
+  if (method == Method::constant && params.barriers.empty()) return make_cell_interpolant(element_cells(s));
   if (is_grid_method(method))
     return Failure{method_name(method) + " needs grid data; this side is an adaptive subdivision"};
   return make_scattered_interpolant(method, element_centres(s), params);
 }
 
-}  // namespace
-
 SolutionReconstruction::SolutionReconstruction(const Scene& scene, const Solution& solution, Method method,
-                                               const MethodParams& params, const std::string& source) {
+                                               const MethodParams& params, const std::string& source,
+                                               const SideSampling& sampling) {
   sides_.resize(side_slots(scene));
   for (const SurfaceSolution& side : solution.surfaces) {
     const std::optional<SideRef> ref = find_side(scene, side.name);
@@ -42,10 +45,10 @@ SolutionReconstruction::SolutionReconstruction(const Scene& scene, const Solutio
     SurfaceSolution s = side;
     s.length_u_m = surface.length_u_m();
     s.length_v_m = surface.length_v_m();
-    InterpolantResult built = build_side(s, method, params);
+    InterpolantResult built = reconstruct_side(s, method, params, sampling);
     if (!built) {
       fallbacks_.push_back({side.name, built.reason()});
-      built = build_side(s, Method::constant, params);
+      built = reconstruct_side(s, Method::constant, params, SideSampling{.barriers = false});
       if (!built) throw UserError(source, "surface '" + side.name + "': " + built.reason());
     }
     sides_[ref->slot()] = std::move(built).value();

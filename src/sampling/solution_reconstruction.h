@@ -14,6 +14,20 @@
 
 namespace radrecon {
 
+/// How a side's samples feed its reconstruction.
+struct SideSampling {
+  /// Honour the side's barriers (the solution's contact lines, scene/contacts.h): no sample's
+  /// influence crosses them.
+  bool barriers = true;
+};
+
+/// One side's reconstruction by `method` from its solution: grid sides as grid data
+/// (make_grid_interpolant), adaptive sides as scattered data (their leaves for constant, the leaf
+/// centres otherwise), with the side's barriers if `sampling` says so. A Failure when the method
+/// cannot serve the side (a grid method on an adaptive side, too few or collinear samples).
+InterpolantResult reconstruct_side(const SurfaceSolution& side, Method method, const MethodParams& params,
+                                   const SideSampling& sampling);
+
 /// A side the method could not serve, drawn piecewise constant instead, and why.
 struct Fallback {
   std::string side;    ///< the side's name
@@ -22,14 +36,11 @@ struct Fallback {
 
 class SolutionReconstruction {
  public:
-  /// Grid sides are reconstructed as grid data (make_grid_interpolant), adaptive sides as
-  /// scattered data: their leaves for constant, the leaf centres otherwise. A side the method
-  /// cannot serve (a grid method on an adaptive side, too few or collinear samples) falls back
-  /// to piecewise constant and is listed with the reason in fallbacks(). The solution's sides
-  /// must belong to `scene`, with its edge lengths: UserError naming `source` (the solution's
-  /// file) otherwise.
+  /// Every side by reconstruct_side(). A side the method cannot serve falls back to piecewise
+  /// constant and is listed with the reason in fallbacks(). The solution's sides must belong to
+  /// `scene`, with its edge lengths: UserError naming `source` (the solution's file) otherwise.
   SolutionReconstruction(const Scene& scene, const Solution& solution, Method method, const MethodParams& params,
-                         const std::string& source);
+                         const std::string& source, const SideSampling& sampling = {});
   ~SolutionReconstruction();
 
   /// The side's reconstruction, or null if the solution has no such side.
