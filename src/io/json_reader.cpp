@@ -18,15 +18,56 @@ std::string read_text_file(const std::string& path, const std::string& what) {
   return buffer.str();
 }
 
+namespace {
+
+/// The 1-based line of byte `offset` of `text`.
+size_t line_of(const std::string& text, size_t offset) {
+  size_t line = 1;
+  for (size_t i = 0; i < std::min(offset, text.size()); ++i) line += text[i] == '\n';
+  return line;
+}
+
+/// A SAX handler that builds nothing and keeps the byte offset of the first error: nlohmann's
+/// out_of_range exception (a number too large for a double) carries no position, its SAX
+/// interface does.
+class ErrorOffset final : public nlohmann::json_sax<nlohmann::json> {
+ public:
+  size_t offset = 0;
+  bool null() override { return true; }
+  bool boolean(bool) override { return true; }
+  bool number_integer(number_integer_t) override { return true; }
+  bool number_unsigned(number_unsigned_t) override { return true; }
+  bool number_float(number_float_t, const string_t&) override { return true; }
+  bool string(string_t&) override { return true; }
+  bool binary(binary_t&) override { return true; }
+  bool start_object(std::size_t) override { return true; }
+  bool key(string_t&) override { return true; }
+  bool end_object() override { return true; }
+  bool start_array(std::size_t) override { return true; }
+  bool end_array() override { return true; }
+  bool parse_error(std::size_t position, const std::string&, const nlohmann::detail::exception&) override {
+    offset = position;
+    return false;
+  }
+};
+
+}  // namespace
+
 JsonReader::json JsonReader::parse(const std::string& text, const std::string& kind) const {
   try {
     return json::parse(text);
   } catch (const json::out_of_range& e) {  // a number too large for a double, e.g. 1e999
-    throw UserError(source_, "not a valid " + kind + ": " + e.what());
+    // Parse again without a document (only on this error path) for the number's line, and keep
+    // nlohmann's reason without its "[json.exception.out_of_range.406] " tag.
+    ErrorOffset sax;
+    json::sax_parse(text, &sax);
+    std::string what = e.what();
+    if (const size_t tag_end = what.find("] "); what.starts_with("[json.exception") && tag_end != std::string::npos)
+      what = what.substr(tag_end + 2);
+    throw UserError(source_ + ":" + std::to_string(line_of(text, sax.offset)), "not a valid " + kind + ": " + what);
   } catch (const json::parse_error& e) {
     // nlohmann reports a byte offset; turn it into a line number.
-    size_t line = 1;
-    for (size_t i = 0; i < std::min<size_t>(e.byte, text.size()); ++i) line += text[i] == '\n';
+    const size_t line = line_of(text, e.byte);
     // nlohmann's text starts "[json.exception.parse_error.101] parse error at line L, column C: ";
     // keep what follows "parse error" (the position and the reason).
     std::string what = e.what();

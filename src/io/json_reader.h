@@ -24,7 +24,8 @@ class JsonReader {
   explicit JsonReader(std::string source) : source_(std::move(source)) {}
 
   /// Parses `text`. Invalid JSON throws UserError "SOURCE:LINE: not valid JSON: ..."; a number
-  /// too large for a double "SOURCE: not a valid KIND: ..." (`kind`: "scene", "solution").
+  /// too large for a double "SOURCE:LINE: not a valid KIND: number overflow parsing '1e999'"
+  /// (`kind`: "scene", "solution").
   json parse(const std::string& text, const std::string& kind) const;
 
   /// "path.key", or "key" at the top level.

@@ -89,8 +89,9 @@ TEST_F(SolutionFiles, MalformedFilesAreRefusedWithTheFieldOrLine) {
   EXPECT_EQ(refusal(R"({"surfaces": [)" + side("a", "[2, 1]", e0 + "," + e1) + "]}"), "");
   EXPECT_NE(refusal(R"({"surfaces": [)" + side("a", "[2, 1]", e1 + "," + e0) + "]}").find("surfaces[0].elements[0]"),
             std::string::npos);
-  // A number too large for a double.
-  EXPECT_NE(refusal(R"({"surfaces": [], "x": 1e999})").find("s.json"), std::string::npos);
+  // A number too large for a double: the line, and the number.
+  EXPECT_NE(refusal("{\"surfaces\": [],\n \"x\": 1e999}").find("s.json:2: not a valid solution: number overflow parsing '1e999'"),
+            std::string::npos);
 }
 
 }  // namespace

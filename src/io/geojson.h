@@ -1,0 +1,30 @@
+#pragma once
+// Barrier files (docs/formats.md): the barrier lines of `interpolate --barriers`, read from a
+// GeoJSON file (RFC 7946).
+
+#include <string>
+#include <vector>
+
+#include "core/vec.h"
+
+namespace radrecon {
+
+/// The barrier polylines of a GeoJSON file (RFC 7946), in document order: the file holds one
+/// geometry, a Feature or a FeatureCollection; the geometries are LineString (one polyline),
+/// MultiLineString (one per line), Polygon and MultiPolygon (one closed polyline per ring, its
+/// first point repeated at its end as in the file, holes included) or GeometryCollection (its
+/// members, recursively). Positions are [x, y] or longer ([x, y, z, ...]): only x and y are
+/// read, as metres of the sample domain ("crs", "bbox" and other members are ignored). A
+/// Feature whose geometry is null contributes no line.
+///
+/// Refused with a UserError naming the file and the field path
+/// ("b.geojson: features[3].geometry.coordinates[0][2]: expected a position [x, y]"), or the
+/// line for invalid JSON: a file that cannot be read, is empty or holds no barrier line; an
+/// object without "type" or of a type not listed above; a Point or MultiPoint (a point cannot
+/// be a barrier); a LineString of fewer than 2 positions; a Polygon without rings, or a ring of
+/// fewer than 4 positions or not closed; a position repeating the one before it (a segment of
+/// zero length); a coordinate that is not a number, or beyond tol::kMaxSampleCoordinate.
+/// What is returned therefore always passes Barriers::from_polylines().
+std::vector<Polyline> read_geojson_barriers(const std::string& path);
+
+}  // namespace radrecon
