@@ -10,6 +10,7 @@
 #include "cli/commands.h"
 #include "core/error.h"
 #include "core/parse.h"
+#include "io/geojson.h"
 #include "io/image_io.h"
 #include "io/paths.h"
 #include "io/raster.h"
@@ -29,6 +30,7 @@ struct InterpolateArgs {
   std::string raster;
   std::string domain;
   std::string out;
+  std::string barriers;
   bool quiet = false;
 };
 
@@ -79,14 +81,20 @@ void run_interpolate(const InterpolateArgs& args) {
   }
   const std::optional<Method> method = parse_method(args.method);
   if (!method) throw UserError("--method", "unknown method '" + args.method + "'; valid methods: " + method_list());
-  const MethodParams params = parse_params(*method, args.params, "--param");
+  MethodParams params = parse_params(*method, args.params, "--param");
   // No input is ever overwritten, and an unwritable output is refused before any work.
   std::vector<std::string> inputs = {args.samples};
   if (use_queries) inputs.push_back(args.queries);
+  if (!args.barriers.empty()) inputs.push_back(args.barriers);
   refuse_overwriting_inputs(args.out, "--out", inputs);
   check_output_file(args.out, "--out");
 
-  // Samples, interpolant, queries.
+  // Barriers, samples, interpolant, queries.
+  if (!args.barriers.empty()) {
+    Result<Barriers> barriers = Barriers::from_polylines(read_geojson_barriers(args.barriers));
+    if (!barriers) throw UserError(args.barriers, barriers.reason());
+    params.barriers = std::move(barriers).value();
+  }
   std::vector<std::string> value_names;
   const ScatteredSamples samples = read_samples_csv(args.samples, &value_names);
   if (format == FileFormat::pfm && samples.channels != 1 && samples.channels != 3)
@@ -98,9 +106,12 @@ void run_interpolate(const InterpolateArgs& args) {
 
   const std::string description = describe_params(*method, params);
   if (!args.quiet)
-    std::fprintf(stderr, "interpolate: %zu samples (%d value column%s) from %s; %s%s%s; %zu query points\n",
+    std::fprintf(stderr, "interpolate: %zu samples (%d value column%s) from %s; %s%s%s; %zu query points%s\n",
                  samples.points.size(), samples.channels, samples.channels == 1 ? "" : "s", args.samples.c_str(),
-                 method_name(*method).c_str(), description.empty() ? "" : ", ", description.c_str(), points.size());
+                 method_name(*method).c_str(), description.empty() ? "" : ", ", description.c_str(), points.size(),
+                 params.barriers.empty() ? ""
+                                         : ("; " + std::to_string(params.barriers.segments().size()) +
+                                            " barrier segments from " + args.barriers).c_str());
 
   std::vector<double> values(points.size() * static_cast<size_t>(interpolant.value()->channels()));
   interpolant.value()->evaluate(points, values);
@@ -159,6 +170,12 @@ void add_interpolate_command(CLI::App& app) {
                   "sRGB-encoded, RGB when there are exactly 3 value columns, else the first column in grey; "
                   "NaN black)")
       ->required();
+  cmd->add_option("--barriers", args->barriers,
+                  "GeoJSON file of barrier lines (LineString, MultiLineString, Polygon/MultiPolygon rings; a "
+                  "geometry, Feature or FeatureCollection; coordinates in the samples' units, CRS ignored): no "
+                  "sample's influence crosses them. A sample counts for a query only if the straight segment "
+                  "between them crosses no barrier; a query that sees no sample gets no value (NaN). Every "
+                  "method honours them; see docs/method.md");
   cmd->add_flag("--quiet", args->quiet, "No progress messages (warnings are still printed)");
   cmd->footer(
       "Examples:\n"
@@ -166,6 +183,8 @@ void add_interpolate_command(CLI::App& app) {
       "  radrecon interpolate --samples s.csv --method natural-neighbour --param outside=none \\\n"
       "      --raster 400x300 --domain 0,0,4,3 --out map.png\n"
       "  radrecon interpolate --samples grid.csv --method bicubic --raster 200x200 --domain=-1,-1,1,1 --out f.pfm\n"
+      "  radrecon interpolate --samples s.csv --method natural-neighbour --barriers faults.geojson \\\n"
+      "      --raster 400x400 --domain 0,0,4,4 --out map.pfm\n"
       "Details: docs/interpolate.md");
   cmd->callback([args] { run_interpolate(*args); });
 }

@@ -252,6 +252,48 @@ run keep --samples "$TMP/nan.csv" --method constant --queries "$Q" --out "$TMP/k
 expect_rc keep 2
 [ "$(cat "$TMP/keep.csv")" = "keep me" ] || fail "keep: a refused run changed an existing output"
 
+# --- barriers (--barriers FILE.geojson) --------------------------------------------------------
+# A wall across the unit square at x = 0.5; the right side's values moved by +100 or +200: no
+# query left of the wall may change, for any method, on the CSV and the raster path alike.
+printf '{"type": "Feature", "properties": {}, "geometry": {"type": "LineString", "coordinates": [[0.5, -1], [0.5, 2, 7]]}}\n' >"$TMP/wall.geojson"
+for shift in 100 200; do
+  awk -F',' -v s="$shift" 'NR == 1 { print; next } /^#/ { next } { v = $3; if ($1 > 0.5) v += s; print $1 "," $2 "," v }' \
+    "$TMP/scattered1.csv" >"$TMP/walled_$shift.csv"
+  # Left of the wall, its corners too: the left queries are inside the hull of what they see.
+  printf '0.49,0,3.47\n0.49,1,2.47\n' >>"$TMP/walled_$shift.csv"
+done
+awk 'BEGIN { srand(3); print "x,y"; for (k = 0; k < 40; k++) printf "%.17g,%.17g\n", 0.45 * rand(), rand() }' >"$TMP/left_queries.csv"
+for m in constant shepard multiquadric natural-neighbour; do
+  for shift in 100 200; do
+    run "wall_${m}_$shift" --samples "$TMP/walled_$shift.csv" --method "$m" --barriers "$TMP/wall.geojson" \
+      --queries "$TMP/left_queries.csv" --out "$TMP/wall_${m}_$shift.csv" --quiet
+    expect_rc "wall_${m}_$shift" 0
+  done
+  cmp -s "$TMP/wall_${m}_100.csv" "$TMP/wall_${m}_200.csv" || fail "wall_$m: a sample across the wall changed a value"
+done
+# Natural neighbours with the wall: the left side's plane f = 2 + 3x - y exactly.
+linear "$TMP/left_queries.csv" "$TMP/left_expected.csv"
+check_values wall_nn "$TMP/wall_natural-neighbour_100.csv" "$TMP/left_expected.csv" 1e-9
+run wall_raster --samples "$TMP/walled_100.csv" --method natural-neighbour --barriers "$TMP/wall.geojson" \
+  --raster 20x20 --domain 0,0,1,1 --out "$TMP/wall_raster.pfm"
+expect_rc wall_raster 0 && expect_stderr_has wall_raster "1 barrier segments from"
+printf '{"type": "LineString", "coordinates": [[0.5, 0]]}' >"$TMP/one_point.geojson"
+printf '{"type": "FeatureCollection", "features": [{"type": "Feature", "geometry": {"type": "Point", "coordinates": [0, 0]}}]}' >"$TMP/point.geojson"
+printf '{"type": "LineString", "coordinates": [[0, 0], [1, 1e999]]}' >"$TMP/overflow.geojson"
+printf '{"type": "LineString", "coordinates": [[0, 0], [0, 0]]}' >"$TMP/zero_length.geojson"
+printf '{"type": "LineString", "coordinates": [[0, 0], [1, ' >"$TMP/truncated.geojson"
+refuse barrier_one_point "one_point.geojson" "$TMP/b1.csv" --samples "$S" --method shepard --queries "$Q" --barriers "$TMP/one_point.geojson"
+expect_stderr_has barrier_one_point "coordinates"
+refuse barrier_point "features[0].geometry" "$TMP/b2.csv" --samples "$S" --method shepard --queries "$Q" --barriers "$TMP/point.geojson"
+refuse barrier_overflow "overflow.geojson:1" "$TMP/b3.csv" --samples "$S" --method shepard --queries "$Q" --barriers "$TMP/overflow.geojson"
+refuse barrier_zero_length "zero_length.geojson" "$TMP/b4.csv" --samples "$S" --method natural-neighbour --queries "$Q" --barriers "$TMP/zero_length.geojson"
+refuse barrier_truncated "truncated.geojson" "$TMP/b5.pfm" --samples "$S" --method constant --raster 5x5 --domain 0,0,1,1 --barriers "$TMP/truncated.geojson"
+refuse barrier_missing "absent.geojson" "$TMP/b6.csv" --samples "$S" --method constant --queries "$Q" --barriers "$TMP/absent.geojson"
+cp "$TMP/wall.geojson" "$TMP/wall_geojson.csv"  # a barrier file named as the output
+run barrier_overwrite --samples "$S" --method constant --queries "$Q" --barriers "$TMP/wall_geojson.csv" \
+  --out "$TMP/wall_geojson.csv" --quiet
+expect_rc barrier_overwrite 2 && expect_stderr_has barrier_overwrite "refusing to overwrite"
+
 if [ "$failures" -ne 0 ]; then
   echo "interpolate_test: $failures check(s) failed" >&2
   exit 1
