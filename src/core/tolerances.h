@@ -90,4 +90,23 @@ inline constexpr double kGridCoordinateRelative = 1e-9;
 /// (the bound's own round-off is some 1e-15).
 inline constexpr double kSibsonCertificateRelative = 1e-9;
 
+/// Border samples (reconstruct/border_samples.h): a barrier's samples stand this fraction of the
+/// domain's longer side from it (one on each side), and an added sample within this distance of
+/// an interior sample, of an earlier added one or (a border sample) of a barrier is not added.
+/// Far above the round-off of coordinates (1e-16 relative: 1e10 ulps away, so the side of a
+/// barrier a sample is on never depends on rounding), far below any sample spacing (a million
+/// samples along a side), and the values extrapolated to the barrier move by only 1e-6 of the
+/// domain times the function's slope.
+inline constexpr double kBorderOffsetRelative = 1e-6;
+/// A border side or barrier whose length is within this fraction of a whole number of spacings
+/// gets that many parts: a length of 1 at a spacing of 0.09999999999999999 (the distance of two
+/// cell centres 0.1 apart) gets 10, not 11.
+inline constexpr double kBorderSpacingRelative = 1e-9;
+/// A border sample's plane fit counts its neighbours as collinear (and takes the nearest one's
+/// value instead) when they all lie within this fraction of their extent of one line: far above
+/// the round-off of coordinate differences (1e-16 of the coordinates, 1e-10 of the extent for
+/// neighbours a millionth of the domain apart), while a fit across a sliver that thin would
+/// extrapolate any noise in the values without bound.
+inline constexpr double kFitCollinearRelative = 1e-8;
+
 }  // namespace radrecon::tol

@@ -27,29 +27,22 @@ MethodResult evaluate(const InterpolantResult& built, const std::string& name, c
 
 }  // namespace
 
-std::vector<MethodResult> evaluate_grid_data(const Solution& grid, const EvaluationGrid& at, const MethodParams& params,
-                                             const std::filesystem::path& figures) {
-  const GridCells cells = grid_cells(require_surface(grid, "ground", "grid solution"));
+std::vector<MethodResult> evaluate_data_set(const Solution& data, const std::vector<Method>& methods,
+                                            const EvaluationGrid& at, const MethodParams& params,
+                                            const SideSampling& sampling, const std::filesystem::path& figures,
+                                            const std::string& figure) {
+  const SurfaceSolution& ground = require_surface(data, "ground", "solution " + data.mesh);
   std::vector<MethodResult> table;
-  for (Method m : all_methods())
-    table.push_back(evaluate(make_grid_interpolant(m, cells, params), method_name(m), at, figures, "fig3"));
+  for (Method m : methods)
+    table.push_back(evaluate(reconstruct_side(ground, m, params, sampling), method_name(m), at, figures, figure));
   return table;
 }
 
-std::vector<MethodResult> evaluate_quadtree_data(const Solution& quadtree, const EvaluationGrid& at,
-                                                 const MethodParams& params, const std::filesystem::path& figures) {
+void write_quadtree_figure(const Solution& quadtree, const EvaluationGrid& at, const std::filesystem::path& figures) {
   const SurfaceSolution& ground = require_surface(quadtree, "ground", "quadtree solution");
-  const CellSamples leaves = element_cells(ground);
-  const ScatteredSamples centres = element_centres(ground);
-  std::vector<MethodResult> table;
-  for (Method m : scattered_methods()) {
-    const InterpolantResult built =
-        m == Method::constant ? make_cell_interpolant(leaves) : make_scattered_interpolant(m, centres, params);
-    table.push_back(evaluate(built, method_name(m), at, figures, "fig4"));
-  }
   write_png(figures / "fig1_quadtree.png",
-            quadtree_figure(leaves, 0, 0, std::max(ground.length_u_m, ground.length_v_m), at.white_w_m2), false);
-  return table;
+            quadtree_figure(element_cells(ground), 0, 0, std::max(ground.length_u_m, ground.length_v_m), at.white_w_m2),
+            false);
 }
 
 }  // namespace radrecon

@@ -9,6 +9,7 @@
 #include "evaluate/norms.h"
 #include "paper/data_sets.h"
 #include "reconstruct/methods.h"
+#include "sampling/solution_reconstruction.h"
 
 namespace radrecon {
 
@@ -17,15 +18,17 @@ struct MethodResult {
   ErrorNorms norms;
 };
 
-/// Table 1: every method on the grid data set's ground (cells; nodal values for bilinear and
-/// bicubic, cell centres for the scattered methods). Writes figures/fig3_METHOD_{ground,difference}.png.
-std::vector<MethodResult> evaluate_grid_data(const Solution& grid, const EvaluationGrid& at, const MethodParams& params,
-                                             const std::filesystem::path& figures);
+/// Every method of `methods` on the ground of `data`, reconstructed as the renderer does
+/// (reconstruct_side(): grid data as cells, nodal values for bilinear and bicubic and cell centres
+/// for the scattered methods; quadtree data as leaves for constant and leaf centres otherwise),
+/// with the ground's barriers if `sampling` says so. Writes
+/// figures/FIGURE_METHOD_{ground,difference}.png.
+std::vector<MethodResult> evaluate_data_set(const Solution& data, const std::vector<Method>& methods,
+                                            const EvaluationGrid& at, const MethodParams& params,
+                                            const SideSampling& sampling, const std::filesystem::path& figures,
+                                            const std::string& figure);
 
-/// Table 2: the scattered methods on the quadtree data set's ground (constant: the leaf that
-/// contains the point; the others: the leaf centres). Writes fig4_METHOD_{ground,difference}.png
-/// and Fig. 1 (fig1_quadtree.png).
-std::vector<MethodResult> evaluate_quadtree_data(const Solution& quadtree, const EvaluationGrid& at,
-                                                 const MethodParams& params, const std::filesystem::path& figures);
+/// Fig. 1: the quadtree data set's ground leaves, figures/fig1_quadtree.png.
+void write_quadtree_figure(const Solution& quadtree, const EvaluationGrid& at, const std::filesystem::path& figures);
 
 }  // namespace radrecon

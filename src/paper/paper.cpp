@@ -50,8 +50,15 @@ void run_paper(const PaperOptions& opt, const std::string& out_where) {
   const EvaluationGrid at = evaluation_grid(data.reference);
   write_png(figures / "fig2_reference_ground.png", radiosity_map(at.reference_w_m2, at.width, at.height, at.white_w_m2), true);
   const MethodParams params;  // the defaults of methods.h, stated in the tables
-  PaperRun run{opt, data, at, params, evaluate_grid_data(data.grid, at, params, figures),
-               evaluate_quadtree_data(data.quadtree, at, params, figures)};
+  const SideSampling plain{.barriers = false}, walled{.barriers = true};
+  PaperRun run{opt, data, at, params, evaluate_data_set(data.grid, all_methods(), at, params, plain, figures, "fig3"),
+               evaluate_data_set(data.quadtree, scattered_methods(), at, params, plain, figures, "fig4")};
+  write_quadtree_figure(data.quadtree, at, figures);
+  // Table 3 (Fig. 5 and 6): the same data and methods with the scene's barriers.
+  if (opt.barriers) {
+    run.grid_barriers = evaluate_data_set(data.grid, scattered_methods(), at, params, walled, figures, "fig5");
+    run.quadtree_barriers = evaluate_data_set(data.quadtree, scattered_methods(), at, params, walled, figures, "fig6");
+  }
   const double t_reconstruct = clock.lap();
 
   // Views into the scene (Fig. 2-4), every surface reconstructed by the method of the row.
@@ -62,13 +69,17 @@ void run_paper(const PaperOptions& opt, const std::string& out_where) {
   std::vector<CameraHits> cameras;
   for (const Camera& c : scene.cameras) cameras.push_back(trace_camera(scene, c, view));
   std::vector<std::string> notes;
-  auto views = [&](const Solution& sol, Method m, const std::string& stem) {
-    for (const Fallback& f : render_paper_views(scene, cameras, sol, m, params, at.white_w_m2, figures, stem))
+  auto views = [&](const Solution& sol, Method m, const SideSampling& sampling, const std::string& stem) {
+    for (const Fallback& f : render_paper_views(scene, cameras, sol, m, params, sampling, at.white_w_m2, figures, stem))
       notes.push_back(stem + ": " + f.side + " drawn piecewise constant, as " + method_name(m) + " cannot serve it: " + f.reason);
   };
-  views(data.reference, Method::constant, "fig2_reference");
-  for (Method m : all_methods()) views(data.grid, m, "fig3_" + method_name(m));
-  for (Method m : scattered_methods()) views(data.quadtree, m, "fig4_" + method_name(m));
+  views(data.reference, Method::constant, plain, "fig2_reference");
+  for (Method m : all_methods()) views(data.grid, m, plain, "fig3_" + method_name(m));
+  for (Method m : scattered_methods()) views(data.quadtree, m, plain, "fig4_" + method_name(m));
+  if (opt.barriers) {
+    for (Method m : scattered_methods()) views(data.grid, m, walled, "fig5_" + method_name(m));
+    for (Method m : scattered_methods()) views(data.quadtree, m, walled, "fig6_" + method_name(m));
+  }
   const double t_views = clock.lap();
 
   write_tables(opt.out_dir, run);

@@ -21,6 +21,9 @@ struct PaperOptions {
   int view_width = 480, view_height = 360;  ///< views into the scene (Fig. 2-4), pixels
   int view_samples = 2;                     ///< rays per pixel along each axis
   bool progress = true;                     ///< stage messages on stderr
+  /// Also the data sets with the scene's barriers (grid+barriers, quadtree+barriers: Table 3,
+  /// Fig. 5 and 6).
+  bool barriers = true;
 };
 
 /// Runs the experiment into options.out_dir. The output folder is checked before any work

@@ -77,9 +77,22 @@ void write_report(const std::filesystem::path& dir, const ReportContent& c) {
   figure_rows(html, c.table1);
   html << "<h2>Fig. 4: quadtree data</h2>\n";
   figure_rows(html, c.table2);
+  const bool barriers = !c.grid_barriers.empty();
+  if (barriers) {
+    html << "<h2>Fig. 5: grid data with the scene's barriers (the wall feet)</h2>\n";
+    figure_rows(html, c.grid_barriers);
+    html << "<h2>Fig. 6: quadtree data with the scene's barriers</h2>\n";
+    figure_rows(html, c.quadtree_barriers);
+  }
   html << "<h2>Errors</h2>\n";
   table(html, "Table 1: reconstruction of grid data", c.table1);
   table(html, "Table 2: reconstruction of quadtree data", c.table2);
+  if (barriers) {
+    html << "<p>Table 3: the same data and methods with the scene's barriers; no sample's influence crosses a wall's "
+            "foot.</p>\n";
+    table(html, "Table 3a: grid data with barriers", c.grid_barriers);
+    table(html, "Table 3b: quadtree data with barriers", c.quadtree_barriers);
+  }
   html << "<p>The paper's columns are its published tables, for its own scene: compare rankings, not values.</p>\n"
        << "</body></html>\n";
   write_text_file(dir / "report.html", html.str());

@@ -30,6 +30,11 @@ const PublishedTable& published_table2() {
   return table;
 }
 
+const char* const kBarrierRule =
+    "the ground's contact lines with the walls (the solution's barriers): a sample counts for a point only if "
+    "the segment between them crosses no wall foot; constant is the nearest visible sample, bilinear and "
+    "bicubic take each node's value from the cells the point sees";
+
 std::string format_3g(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.3g", v);
@@ -84,6 +89,8 @@ std::string method_settings(const MethodParams& params) {
 
 }  // namespace
 
+void write_table3(const std::filesystem::path& dir, const PaperRun& run);
+
 void write_tables(const std::filesystem::path& dir, const PaperRun& run) {
   const PaperDataSets& d = run.data;
   const SurfaceSolution& grid_ground = require_surface(d.grid, "ground", "grid solution");
@@ -92,6 +99,8 @@ void write_tables(const std::filesystem::path& dir, const PaperRun& run) {
   nlohmann::json errors;
   for (const MethodResult& r : run.table1) errors["grid"][r.name] = norms_json(r.norms);
   for (const MethodResult& r : run.table2) errors["quadtree"][r.name] = norms_json(r.norms);
+  for (const MethodResult& r : run.grid_barriers) errors["grid+barriers"][r.name] = norms_json(r.norms);
+  for (const MethodResult& r : run.quadtree_barriers) errors["quadtree+barriers"][r.name] = norms_json(r.norms);
   errors["settings"] = {
       {"reference", stats_json(d.reference)}, {"grid", stats_json(d.grid)}, {"quadtree", stats_json(d.quadtree)},
       {"ground_leaves", quad_ground.elements.size()}, {"residual", run.options.residual},
@@ -99,7 +108,8 @@ void write_tables(const std::filesystem::path& dir, const PaperRun& run) {
       {"white_w_m2", run.at.white_w_m2}, {"nodal_rule", "mean of the adjacent cells (1, 2 or 4)"},
       {"shepard", describe_params(Method::shepard, run.params)},
       {"multiquadric", describe_params(Method::multiquadric, run.params)},
-      {"natural-neighbour", describe_params(Method::natural_neighbour, run.params)}};
+      {"natural-neighbour", describe_params(Method::natural_neighbour, run.params)},
+      {"barriers", kBarrierRule}};
   write_text_file(dir / "errors.json", errors.dump(2) + "\n");
 
   const std::string common =
@@ -125,6 +135,37 @@ void write_tables(const std::filesystem::path& dir, const PaperRun& run) {
                                      std::to_string(d.quadtree.stats.links) + " links). Reference: " + d.reference.mesh +
                                      ". Constant: the value of the leaf containing the point; the scattered "
                                      "methods use the leaf centres." + settings_text + common));
+  if (!run.grid_barriers.empty() || !run.quadtree_barriers.empty()) write_table3(dir, run);
+}
+
+namespace {
+
+/// Table 3's rows: with barriers, and the same method without them (Table 1 or 2) beside.
+std::string barrier_table(const std::string& title, const std::vector<MethodResult>& with,
+                          const std::vector<MethodResult>& without) {
+  std::ostringstream md;
+  md << "## " << title << "\n\n"
+     << "| method | L1 | L2 (MSE) | RMSE | Linf | without barriers: L1 | L2 | Linf |\n"
+     << "|---|---|---|---|---|---|---|---|\n";
+  for (const MethodResult& r : with) {
+    md << "| " << r.name << " | " << format_3g(r.norms.l1) << " | " << format_3g(r.norms.l2) << " | "
+       << format_3g(r.norms.rmse) << " | " << format_3g(r.norms.linf);
+    for (const MethodResult& p : without)
+      if (p.name == r.name)
+        md << " | " << format_3g(p.norms.l1) << " | " << format_3g(p.norms.l2) << " | " << format_3g(p.norms.linf);
+    md << " |\n";
+  }
+  return md.str() + "\n";
+}
+
+}  // namespace
+
+void write_table3(const std::filesystem::path& dir, const PaperRun& run) {
+  write_text_file(dir / "table3.md",
+                  "# Table 3: errors with the scene's barriers\n\n" +
+                      barrier_table("Grid data (" + run.data.grid.mesh + ")", run.grid_barriers, run.table1) +
+                      barrier_table("Quadtree data (" + run.data.quadtree.mesh + ")", run.quadtree_barriers, run.table2) +
+                      "Barriers: " + kBarrierRule + ". Same data, methods, settings and norms as Tables 1 and 2.\n");
 }
 
 ReportContent report_content(const PaperRun& run, int rays_per_pixel) {
@@ -144,6 +185,9 @@ ReportContent report_content(const PaperRun& run, int rays_per_pixel) {
   ReportContent report;
   report.table1 = rows(run.table1, published_table1(), "fig3");
   report.table2 = rows(run.table2, published_table2(), "fig4");
+  const PublishedTable none;
+  report.grid_barriers = rows(run.grid_barriers, none, "fig5");
+  report.quadtree_barriers = rows(run.quadtree_barriers, none, "fig6");
   report.settings = {
       "Reference: " + d.reference.mesh + " (" + std::to_string(run.at.width) + " x " + std::to_string(run.at.height) +
           " elements on the ground), progressive refinement to a residual of " + format_3g(run.options.residual) + " (" +

@@ -26,10 +26,15 @@ struct PaperRun {
   const EvaluationGrid& at;
   const MethodParams& params;
   std::vector<MethodResult> table1, table2;
+  /// Table 3: the grid and quadtree data with the scene's barriers (empty if not run).
+  std::vector<MethodResult> grid_barriers, quadtree_barriers;
 };
 
-/// Writes DIR/errors.json, DIR/table1.md and DIR/table2.md.
+/// Writes DIR/errors.json, DIR/table1.md, DIR/table2.md and (with barriers) DIR/table3.md.
 void write_tables(const std::filesystem::path& dir, const PaperRun& run);
+
+/// How the paper's data sets with barriers are reconstructed, in words.
+extern const char* const kBarrierRule;
 
 /// The report's rows and settings (its notes are the caller's).
 ReportContent report_content(const PaperRun& run, int rays_per_pixel);

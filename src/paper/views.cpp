@@ -6,8 +6,8 @@ namespace radrecon {
 
 std::vector<Fallback> render_paper_views(const Scene& scene, const std::vector<CameraHits>& cameras,
                                          const Solution& solution, Method method, const MethodParams& params,
-                                         double white_w_m2, const std::filesystem::path& dir, const std::string& stem) {
-  const SolutionReconstruction recon(scene, solution, method, params, "solution " + solution.mesh);
+                                         const SideSampling& sampling, double white_w_m2, const std::filesystem::path& dir, const std::string& stem) {
+  const SolutionReconstruction recon(scene, solution, method, params, "solution " + solution.mesh, sampling);
   for (size_t k = 0; k < scene.cameras.size(); ++k) {
     const Image linear = shade(scene, cameras[k], [&](SideRef side) { return recon.side(side); });
     write_png(dir / (stem + "_" + scene.cameras[k].name + ".png"), tone_mapped(linear, white_w_m2), true);
