@@ -1,0 +1,386 @@
+#include "reconstruct/barrier_grid.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+#include "core/check.h"
+#include "core/parallel.h"
+#include "reconstruct/bicubic.h"
+#include "reconstruct/bilinear.h"
+#include "reconstruct/nodal.h"
+
+namespace radrecon {
+
+namespace {
+
+/// The visibility cache of a query covers sites i-3..i+4 x j-3..j+4 around its cell (i, j):
+/// every N(n) of its stencil and W(q), for cell and node sites.
+constexpr int kWindowBefore = 3;
+constexpr int kWindow = 8;
+/// At most 4 x 4 stencil nodes.
+constexpr int kStencil = 4;
+/// Barrier marking: points along each barrier segment at most this fraction of the smaller grid
+/// spacing apart; each marks its cell and the cells around it, so that every cell the segment
+/// touches is marked.
+constexpr double kMarkStep = 0.5;
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+/// Second derivatives times h^2 of the natural cubic spline through y[0..n), n in [2, 4], into
+/// w[0..n): w[0] = w[n-1] = 0 and w[k-1] + 4 w[k] + w[k+1] = 6 (y[k-1] - 2 y[k] + y[k+1]).
+void natural_moments(const double* y, int n, double* w) {
+  std::fill(w, w + n, 0.0);
+  if (n == 3) {
+    w[1] = 1.5 * (y[0] - 2 * y[1] + y[2]);
+  } else if (n == 4) {
+    const double r1 = 6 * (y[0] - 2 * y[1] + y[2]), r2 = 6 * (y[1] - 2 * y[2] + y[3]);
+    w[1] = (4 * r1 - r2) / 15;
+    w[2] = (4 * r2 - r1) / 15;
+  }
+}
+
+/// The natural cubic spline through y[0..n) (unit spacing) at k + t, t in [0, 1] (Numerical
+/// Recipes eq. 3.3.3 with the moments times h^2).
+double natural_spline_at(const double* y, int n, int k, double t) {
+  double w[kStencil];
+  natural_moments(y, n, w);
+  const double b = t, a = 1 - t;
+  return a * y[k] + b * y[k + 1] + ((a * a * a - a) * w[k] + (b * b * b - b) * w[k + 1]) / 6;
+}
+
+}  // namespace
+
+/// One query near a barrier: where it is on the grid and which nodes it interpolates.
+struct BarrierGrid::Stencil {
+  Vec2 p;             ///< the query clamped onto the grid: visibility is judged from it
+  int i, j;           ///< its grid cell
+  double u, v;        ///< its position in the cell, [0, 1]
+  int a0, a1, b0, b1; ///< the stencil's nodes a0..a1 x b0..b1
+  int bi, bj;         ///< q's own site (centre of W(q))
+};
+
+/// Per-thread buffers of evaluate(); overwritten per query before use.
+struct BarrierGrid::Scratch {
+  signed char vis[kWindow * kWindow];  ///< -1 not tested yet, 0 hidden, 1 visible
+  int wi0 = 0, wj0 = 0;                ///< the cache's first site
+  long nearest = -2;                   ///< rule (e)'s site, -1 none, -2 not searched yet
+  bool plain[kStencil * kStencil];     ///< per stencil node: rule (a)
+  std::vector<double> values;          ///< stencil node values, ((b - b0) * 4 + (a - a0)) * C + c
+  std::vector<double> sums;            ///< plane fits: sum f, u f, v f per channel
+  std::vector<double> column;          ///< bicubic: the rows' values at x, per channel
+};
+
+BarrierGrid::BarrierGrid(const GridCells& cells, Kind kind, Barriers barriers)
+    : BarrierGrid(nodal_average(cells), cells.values, true, cells.nx, cells.ny, kind, std::move(barriers)) {}
+
+BarrierGrid::BarrierGrid(const GridNodes& nodes, Kind kind, Barriers barriers)
+    : BarrierGrid(nodes, nodes.values, false, nodes.nx, nodes.ny, kind, std::move(barriers)) {}
+
+BarrierGrid::BarrierGrid(GridNodes plain_nodes, std::vector<double> site_values, bool cell_sites, int sites_x,
+                         int sites_y, Kind kind, Barriers barriers)
+    : kind_(kind),
+      nodes_(std::move(plain_nodes)),
+      site_values_(std::move(site_values)),
+      cell_sites_(cell_sites),
+      sites_x_(sites_x),
+      sites_y_(sites_y),
+      barriers_(std::move(barriers)) {
+  RR_CHECK(nodes_.nx >= 2 && nodes_.ny >= 2, "grid interpolation needs at least 2 x 2 nodes");
+  RR_CHECK(nodes_.dx > 0 && nodes_.dy > 0, "grid spacing must be positive");
+  RR_CHECK(site_values_.size() == static_cast<size_t>(sites_x_) * sites_y_ * nodes_.channels,
+           "grid values do not match the grid");
+  if (kind_ == Kind::bilinear) plain_ = std::make_unique<Bilinear>(nodes_);
+  else plain_ = std::make_unique<Bicubic>(nodes_);
+  mark_cells_near_barriers();
+}
+
+BarrierGrid::~BarrierGrid() = default;
+
+Vec2 BarrierGrid::site(int si, int sj) const {
+  const double half = cell_sites_ ? 0.5 : 0.0;
+  return {nodes_.x0 + (si + half) * nodes_.dx, nodes_.y0 + (sj + half) * nodes_.dy};
+}
+
+void BarrierGrid::mark_cells_near_barriers() {
+  const int cx = nodes_.nx - 1, cy = nodes_.ny - 1;
+  near_.assign(static_cast<size_t>(cx) * cy, 0);
+  if (barriers_.empty()) return;
+  // A query in cell (i, j) tests segments from it to sites whose segments stay within the cells
+  // up to `reach` away (bilinear: the 3 x 3 cells whose centres the corners share, or the cell
+  // itself for nodes; bicubic: the 5 x 5 cells of the stencil's shared centres, or 3 x 3 for
+  // nodes). A barrier can only block them if it touches one of those cells.
+  const int reach = (kind_ == Kind::bilinear ? 0 : 1) + (cell_sites_ ? 1 : 0);
+  // Every sample point marks its cell and those around it: one more than reach.
+  const int r = reach + 1;
+  const double dx = nodes_.dx, dy = nodes_.dy;
+  // The grid's box, one cell wider: the part of a barrier that can matter (all sites and clamped
+  // queries lie in the grid's closed box).
+  const Vec2 lo(nodes_.x0 - dx, nodes_.y0 - dy), hi(nodes_.x0 + (cx + 1) * dx, nodes_.y0 + (cy + 1) * dy);
+  const double step = kMarkStep * std::min(dx, dy);
+  for (const BarrierSegment& seg : barriers_.segments()) {
+    const Vec2 d = seg.b - seg.a;
+    double t0 = 0, t1 = 1;
+    bool outside = false;
+    for (int axis = 0; axis < 2 && !outside; ++axis) {
+      if (d[axis] == 0) {
+        outside = seg.a[axis] < lo[axis] || seg.a[axis] > hi[axis];
+        continue;
+      }
+      double ta = (lo[axis] - seg.a[axis]) / d[axis], tb = (hi[axis] - seg.a[axis]) / d[axis];
+      if (ta > tb) std::swap(ta, tb);
+      t0 = std::max(t0, ta);
+      t1 = std::min(t1, tb);
+      outside = t0 > t1;
+    }
+    if (outside) continue;
+    const double length = d.norm() * (t1 - t0);
+    const long n = static_cast<long>(std::ceil(length / step));
+    int last_i = -1, last_j = -1;
+    for (long k = 0; k <= n; ++k) {
+      const double t = n == 0 ? t0 : t0 + (t1 - t0) * static_cast<double>(k) / static_cast<double>(n);
+      const Vec2 p = seg.a + t * d;
+      const int ci = std::clamp(static_cast<int>(std::floor((p.x() - nodes_.x0) / dx)), 0, cx - 1);
+      const int cj = std::clamp(static_cast<int>(std::floor((p.y() - nodes_.y0) / dy)), 0, cy - 1);
+      if (ci == last_i && cj == last_j) continue;
+      last_i = ci, last_j = cj;
+      for (int j = std::max(0, cj - r); j <= std::min(cy - 1, cj + r); ++j)
+        for (int i = std::max(0, ci - r); i <= std::min(cx - 1, ci + r); ++i) near_[static_cast<size_t>(j) * cx + i] = 1;
+    }
+  }
+}
+
+bool BarrierGrid::near_barrier(const Vec2& q) const {
+  if (near_.empty() || barriers_.empty()) return false;
+  const int nx = nodes_.nx, ny = nodes_.ny;
+  const double gx = std::clamp((q.x() - nodes_.x0) / nodes_.dx, 0.0, double(nx - 1));
+  const double gy = std::clamp((q.y() - nodes_.y0) / nodes_.dy, 0.0, double(ny - 1));
+  const int i = std::min(static_cast<int>(gx), nx - 2), j = std::min(static_cast<int>(gy), ny - 2);
+  return near_[static_cast<size_t>(j) * (nx - 1) + i] != 0;
+}
+
+void BarrierGrid::evaluate(std::span<const Vec2> points, std::span<double> out) const {
+  const size_t C = static_cast<size_t>(channels());
+  RR_CHECK(out.size() == points.size() * C, "output size does not match the query points");
+  if (barriers_.empty()) {  // the plain method, as it is
+    plain_->evaluate(points, out);
+    return;
+  }
+  // Runs of points far from barriers go to the plain method as they come (as cheap as it); the
+  // points near one, which test visibility, are computed afterwards, in parallel.
+  std::vector<size_t> near;
+  const size_t n = points.size();
+  size_t run = 0;  // first point of the current run for the plain method
+  for (size_t k = 0; k < n; ++k) {
+    if (!points[k].allFinite() || !near_barrier(points[k])) continue;
+    if (run < k) plain_->evaluate(points.subspan(run, k - run), out.subspan(run * C, (k - run) * C));
+    near.push_back(k);
+    run = k + 1;
+  }
+  if (run < n) plain_->evaluate(points.subspan(run), out.subspan(run * C));
+  parallel_for_with_scratch<Scratch>(0, static_cast<std::int64_t>(near.size()), [&](std::int64_t m, Scratch& s) {
+    const size_t k = near[static_cast<size_t>(m)];
+    evaluate_near(points[k], &out[k * C], s);
+  });
+}
+
+bool BarrierGrid::visible(int si, int sj, const Stencil& st, Scratch& s) const {
+  const int wi = si - s.wi0, wj = sj - s.wj0;
+  if (wi < 0 || wi >= kWindow || wj < 0 || wj >= kWindow) return !barriers_.blocks(st.p, site(si, sj));
+  signed char& cached = s.vis[wj * kWindow + wi];
+  if (cached < 0) cached = barriers_.blocks(st.p, site(si, sj)) ? 0 : 1;
+  return cached == 1;
+}
+
+void BarrierGrid::evaluate_near(const Vec2& q, double* out, Scratch& s) const {
+  const int C = channels(), nx = nodes_.nx, ny = nodes_.ny;
+  // Where q is, exactly as the plain methods place it.
+  const double gx = std::clamp((q.x() - nodes_.x0) / nodes_.dx, 0.0, double(nx - 1));
+  const double gy = std::clamp((q.y() - nodes_.y0) / nodes_.dy, 0.0, double(ny - 1));
+  Stencil st;
+  st.i = std::min(static_cast<int>(gx), nx - 2);
+  st.j = std::min(static_cast<int>(gy), ny - 2);
+  st.u = gx - st.i;
+  st.v = gy - st.j;
+  st.p = Vec2(std::clamp(q.x(), nodes_.x0, nodes_.x0 + (nx - 1) * nodes_.dx),
+              std::clamp(q.y(), nodes_.y0, nodes_.y0 + (ny - 1) * nodes_.dy));
+  if (kind_ == Kind::bilinear) {
+    st.a0 = st.i, st.a1 = st.i + 1, st.b0 = st.j, st.b1 = st.j + 1;
+  } else {
+    st.a0 = std::max(0, st.i - 1), st.a1 = std::min(nx - 1, st.i + 2);
+    st.b0 = std::max(0, st.j - 1), st.b1 = std::min(ny - 1, st.j + 2);
+  }
+  // q's own site: the cell it lies in, or the nearest node.
+  st.bi = cell_sites_ ? std::min(st.i, sites_x_ - 1) : (st.u < 0.5 ? st.i : st.i + 1);
+  st.bj = cell_sites_ ? std::min(st.j, sites_y_ - 1) : (st.v < 0.5 ? st.j : st.j + 1);
+  s.wi0 = st.i - kWindowBefore;
+  s.wj0 = st.j - kWindowBefore;
+  std::fill(std::begin(s.vis), std::end(s.vis), static_cast<signed char>(-1));
+  s.nearest = -2;
+
+  // Rule (a) for every stencil node: are all the sites it shares visible?
+  bool all_plain = true;
+  for (int b = st.b0; b <= st.b1; ++b)
+    for (int a = st.a0; a <= st.a1; ++a) {
+      bool seen = true;
+      if (cell_sites_) {
+        for (int cj = std::max(0, b - 1); cj <= std::min(sites_y_ - 1, b) && seen; ++cj)
+          for (int ci = std::max(0, a - 1); ci <= std::min(sites_x_ - 1, a) && seen; ++ci) seen = visible(ci, cj, st, s);
+      } else {
+        seen = visible(a, b, st, s);
+      }
+      s.plain[(b - st.b0) * kStencil + (a - st.a0)] = seen;
+      all_plain = all_plain && seen;
+    }
+  if (all_plain) {  // nothing hidden in the stencil: the plain method, the same arithmetic
+    plain_->evaluate(std::span(&q, 1), std::span(out, static_cast<size_t>(C)));
+    return;
+  }
+
+  s.values.resize(static_cast<size_t>(kStencil * kStencil) * C);
+  s.sums.resize(3 * static_cast<size_t>(C));
+  s.column.resize(static_cast<size_t>(kStencil) * C);
+  for (int b = st.b0; b <= st.b1; ++b)
+    for (int a = st.a0; a <= st.a1; ++a) {
+      const int slot = (b - st.b0) * kStencil + (a - st.a0);
+      double* value = &s.values[static_cast<size_t>(slot) * C];
+      if (s.plain[slot]) {
+        const double* node = &nodes_.values[(static_cast<size_t>(b) * nx + a) * C];
+        std::copy(node, node + C, value);
+      } else if (!hidden_node_value(a, b, st, s, value)) {
+        std::fill(out, out + C, kNaN);  // q sees no site at all
+        return;
+      }
+    }
+
+  if (kind_ == Kind::bilinear) {
+    const double u = st.u, v = st.v;
+    const double* b00 = &s.values[0];
+    const double* b10 = b00 + C;
+    const double* b01 = b00 + static_cast<size_t>(kStencil) * C;
+    const double* b11 = b01 + C;
+    for (int c = 0; c < C; ++c)
+      out[c] = (1 - u) * (1 - v) * b00[c] + u * (1 - v) * b10[c] + u * v * b11[c] + (1 - u) * v * b01[c];
+    return;
+  }
+  // Bicubic: the natural spline of the stencil's sub-grid, rows first, then the column.
+  const int na = st.a1 - st.a0 + 1, nb = st.b1 - st.b0 + 1;
+  const int ka = st.i - st.a0, kb = st.j - st.b0;
+  double y[kStencil];
+  for (int c = 0; c < C; ++c) {
+    for (int row = 0; row < nb; ++row) {
+      for (int col = 0; col < na; ++col) y[col] = s.values[static_cast<size_t>(row * kStencil + col) * C + c];
+      s.column[static_cast<size_t>(row) * C + c] = natural_spline_at(y, na, ka, st.u);
+    }
+    for (int row = 0; row < nb; ++row) y[row] = s.column[static_cast<size_t>(row) * C + c];
+    out[c] = natural_spline_at(y, nb, kb, st.v);
+  }
+}
+
+bool BarrierGrid::hidden_node_value(int a, int b, const Stencil& st, Scratch& s, double* out) const {
+  const int C = channels();
+  // (b) the plane through the visible sites of N(n).
+  const int lo = 2, hi = cell_sites_ ? 1 : 2;
+  if (plane_at_node(a, b, std::max(0, a - lo), std::min(sites_x_ - 1, a + hi), std::max(0, b - lo),
+                    std::min(sites_y_ - 1, b + hi), st, s, out))
+    return true;
+  // (c) the mean of the visible cells sharing n.
+  if (cell_sites_) {
+    int count = 0;
+    std::fill(out, out + C, 0.0);
+    for (int cj = std::max(0, b - 1); cj <= std::min(sites_y_ - 1, b); ++cj)
+      for (int ci = std::max(0, a - 1); ci <= std::min(sites_x_ - 1, a); ++ci)
+        if (visible(ci, cj, st, s)) {
+          const double* cell = &site_values_[(static_cast<size_t>(cj) * sites_x_ + ci) * C];
+          for (int c = 0; c < C; ++c) out[c] += cell[c];
+          ++count;
+        }
+    if (count > 0) {
+      for (int c = 0; c < C; ++c) out[c] /= count;
+      return true;
+    }
+  }
+  // (d) the plane through the visible sites of W(q).
+  if (plane_at_node(a, b, std::max(0, st.bi - 2), std::min(sites_x_ - 1, st.bi + 2), std::max(0, st.bj - 2),
+                    std::min(sites_y_ - 1, st.bj + 2), st, s, out))
+    return true;
+  // (e) the nearest visible site.
+  if (s.nearest == -2) s.nearest = nearest_visible_site(st.p);
+  if (s.nearest < 0) return false;
+  const double* v = &site_values_[static_cast<size_t>(s.nearest) * C];
+  std::copy(v, v + C, out);
+  return true;
+}
+
+bool BarrierGrid::plane_at_node(int a, int b, int si0, int si1, int sj0, int sj1, const Stencil& st, Scratch& s,
+                                double* out) const {
+  const int C = channels();
+  // Coordinates relative to the node in half spacings: integers, so that the collinearity test
+  // (the determinant of the positions' scatter) is exact.
+  const int offset = cell_sites_ ? 1 : 0;
+  std::int64_t n = 0, su = 0, sv = 0, suu = 0, svv = 0, suv = 0;
+  double* sf = &s.sums[0];
+  double* suf = sf + C;
+  double* svf = suf + C;
+  std::fill(sf, sf + 3 * C, 0.0);
+  for (int sj = sj0; sj <= sj1; ++sj)
+    for (int si = si0; si <= si1; ++si) {
+      if (!visible(si, sj, st, s)) continue;
+      const std::int64_t u = 2 * si + offset - 2 * a, v = 2 * sj + offset - 2 * b;
+      ++n, su += u, sv += v, suu += u * u, svv += v * v, suv += u * v;
+      const double* f = &site_values_[(static_cast<size_t>(sj) * sites_x_ + si) * C];
+      for (int c = 0; c < C; ++c) {
+        sf[c] += f[c];
+        suf[c] += static_cast<double>(u) * f[c];
+        svf[c] += static_cast<double>(v) * f[c];
+      }
+    }
+  if (n < 3) return false;
+  // n^2 times the positions' covariance: [A X; X B], singular exactly when they are collinear.
+  const std::int64_t A = n * suu - su * su, B = n * svv - sv * sv, X = n * suv - su * sv;
+  const std::int64_t D = A * B - X * X;
+  if (D == 0) return false;
+  const double dn = static_cast<double>(n), dD = static_cast<double>(D);
+  for (int c = 0; c < C; ++c) {
+    const double P = dn * suf[c] - static_cast<double>(su) * sf[c], Q = dn * svf[c] - static_cast<double>(sv) * sf[c];
+    const double slope_u = (P * static_cast<double>(B) - Q * static_cast<double>(X)) / dD;
+    const double slope_v = (Q * static_cast<double>(A) - P * static_cast<double>(X)) / dD;
+    out[c] = (sf[c] - slope_u * static_cast<double>(su) - slope_v * static_cast<double>(sv)) / dn;  // at u = v = 0
+  }
+  return true;
+}
+
+long BarrierGrid::nearest_visible_site(const Vec2& p) const {
+  // Rings of sites (Chebyshev distance r in index space) around p's nearest site; p lies within
+  // half a spacing of it along each axis, so a site of ring r is at least (r - 1/2) h away: once
+  // (r - 1) h exceeds the best distance found, no farther ring can do better.
+  const double dx = nodes_.dx, dy = nodes_.dy, h = std::min(dx, dy);
+  const double half = cell_sites_ ? 0.5 : 0.0;
+  const int bi = std::clamp(static_cast<int>(std::floor((p.x() - nodes_.x0) / dx - half + 0.5)), 0, sites_x_ - 1);
+  const int bj = std::clamp(static_cast<int>(std::floor((p.y() - nodes_.y0) / dy - half + 0.5)), 0, sites_y_ - 1);
+  long best = -1;
+  double best_d2 = std::numeric_limits<double>::infinity();
+  const auto consider = [&](int si, int sj) {
+    const long index = static_cast<long>(sj) * sites_x_ + si;
+    const double d2 = (site(si, sj) - p).squaredNorm();
+    if (d2 > best_d2 || (d2 == best_d2 && index > best)) return;
+    if (barriers_.blocks(p, site(si, sj))) return;
+    best = index, best_d2 = d2;
+  };
+  const int rings = std::max(sites_x_, sites_y_);
+  for (int r = 0; r <= rings; ++r) {
+    if (best >= 0 && r >= 1 && (r - 1) * h * ((r - 1) * h) > best_d2) break;
+    for (int sj = std::max(0, bj - r); sj <= std::min(sites_y_ - 1, bj + r); ++sj) {
+      if (sj == bj - r || sj == bj + r) {
+        for (int si = std::max(0, bi - r); si <= std::min(sites_x_ - 1, bi + r); ++si) consider(si, sj);
+      } else {
+        if (bi - r >= 0) consider(bi - r, sj);
+        if (bi + r < sites_x_ && r > 0) consider(bi + r, sj);
+      }
+    }
+  }
+  return best;
+}
+
+}  // namespace radrecon

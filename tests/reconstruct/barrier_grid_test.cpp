@@ -1,0 +1,441 @@
+// Bilinear and bicubic with barriers against independent answers: the plain methods where no
+// barrier is near, exactly zero influence across a barrier, planes reproduced on each side of
+// one (half-plane geometry, not the visibility code), the rule's plane fit and local natural
+// spline against Eigen's least squares and a dense spline system, and no value where nothing
+// is seen.
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+
+#include <cmath>
+#include <cstring>
+#include <functional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "reconstruct/barrier_grid.h"
+#include "reconstruct/bicubic.h"
+#include "reconstruct/bilinear.h"
+#include "reconstruct/nodal.h"
+
+namespace radrecon {
+namespace {
+
+using Kind = BarrierGrid::Kind;
+using Fn = std::function<double(const Vec2&)>;
+
+/// Arithmetic of a few dozen operations on values of order 1..10: agreement to 1e-12 relative
+/// leaves ample room for round-off and catches any wrong weight.
+constexpr double kRelative = 1e-12;
+
+// A 12 x 10 cell grid on [-1, 2] x [0.5, 3.5] (cells 0.25 x 0.3, not square), or its 13 x 11
+// corners as a node grid.
+constexpr int kCellsX = 12, kCellsY = 10;
+constexpr double kX0 = -1.0, kY0 = 0.5, kDx = 0.25, kDy = 0.3;
+constexpr double kX1 = kX0 + kCellsX * kDx, kY1 = kY0 + kCellsY * kDy;
+
+GridCells cells_of(const std::vector<Fn>& fns) {
+  GridCells g;
+  g.nx = kCellsX, g.ny = kCellsY, g.x0 = kX0, g.y0 = kY0, g.dx = kDx, g.dy = kDy;
+  g.channels = static_cast<int>(fns.size());
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i)
+      for (const Fn& f : fns) g.values.push_back(f(g.center(i, j)));
+  return g;
+}
+
+Vec2 node_position(int i, int j) { return {kX0 + i * kDx, kY0 + j * kDy}; }
+
+GridNodes nodes_of(const std::vector<Fn>& fns) {
+  GridNodes g;
+  g.nx = kCellsX + 1, g.ny = kCellsY + 1, g.x0 = kX0, g.y0 = kY0, g.dx = kDx, g.dy = kDy;
+  g.channels = static_cast<int>(fns.size());
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i)
+      for (const Fn& f : fns) g.values.push_back(f(node_position(i, j)));
+  return g;
+}
+
+/// Arbitrary values per site (not smooth): a hash of the position and a seed.
+Fn noise(unsigned seed) {
+  return [seed](const Vec2& p) {
+    const double h = std::sin(12.9898 * p.x() + 78.233 * p.y() + 37.719 * seed) * 43758.5453;
+    return 2.0 + 3.0 * (h - std::floor(h));
+  };
+}
+
+Barriers lines(const std::vector<Polyline>& polylines) { return Barriers::from_polylines(polylines).value(); }
+
+std::vector<double> eval(const Interpolant& f, const std::vector<Vec2>& q) {
+  std::vector<double> out(q.size() * static_cast<size_t>(f.channels()));
+  f.evaluate(q, out);
+  return out;
+}
+
+std::vector<Vec2> random_points(double x0, double x1, double y0, double y1, int count, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> ux(x0, x1), uy(y0, y1);
+  std::vector<Vec2> p;
+  for (int k = 0; k < count; ++k) p.emplace_back(ux(rng), uy(rng));
+  return p;
+}
+
+std::string at(const Vec2& q) { return "at (" + std::to_string(q.x()) + ", " + std::to_string(q.y()) + ")"; }
+
+/// An oblique line across the whole grid and beyond: (-1.5, 0.2) to (2.5, 3.1). Its side of a
+/// point: > 0 above-left, < 0 below-right (a cross product, by plain geometry).
+const Vec2 kCutA(-1.5, 0.2), kCutB(2.5, 3.1);
+Barriers oblique_cut() { return lines({{kCutA, kCutB}}); }
+double side(const Vec2& p) {
+  const Vec2 d = kCutB - kCutA, r = p - kCutA;
+  return (d.x() * r.y() - d.y() * r.x()) / d.norm();  // signed distance, metres
+}
+
+struct Variant {
+  Kind kind;
+  bool cells;
+  std::string name() const {
+    return std::string(kind == Kind::bilinear ? "bilinear" : "bicubic") + (cells ? " of cells" : " of nodes");
+  }
+};
+const Variant kVariants[] = {{Kind::bilinear, true}, {Kind::bilinear, false}, {Kind::bicubic, true}, {Kind::bicubic, false}};
+
+/// The interpolant of a variant, with barriers, and the plain one, from the same functions.
+std::unique_ptr<Interpolant> with_barriers(const Variant& v, const std::vector<Fn>& fns, Barriers b) {
+  if (v.cells) return std::make_unique<BarrierGrid>(cells_of(fns), v.kind, std::move(b));
+  return std::make_unique<BarrierGrid>(nodes_of(fns), v.kind, std::move(b));
+}
+std::unique_ptr<Interpolant> plain(const Variant& v, const std::vector<Fn>& fns) {
+  GridNodes n = v.cells ? nodal_average(cells_of(fns)) : nodes_of(fns);
+  if (v.kind == Kind::bilinear) return std::make_unique<Bilinear>(std::move(n));
+  return std::make_unique<Bicubic>(std::move(n));
+}
+
+TEST(BarrierGrid, EqualsThePlainMethodWhereNoBarrierIsNear) {
+  const std::vector<Fn> fns = {noise(1), noise(2)};
+  // (1) a short barrier in the top right corner, queries more than 4 cells away from it (some
+  // outside the grid: clamped); (2) barriers just outside two borders, blocking nothing, with
+  // queries everywhere: every query then takes the barrier path and must still find the plain
+  // values.
+  const Barriers corner = lines({{{1.6, 3.0}, {1.9, 3.3}}});
+  const Barriers borders = lines({{{kX0 - 1, kY0 - 0.01}, {kX1 + 1, kY0 - 0.01}}, {{kX0 - 0.01, kY0 - 1}, {kX0 - 0.01, kY1 + 1}}});
+  const std::vector<Vec2> far = random_points(kX0 - 0.3, 0.5, kY0 - 0.3, 2.0, 3000, 11);
+  const std::vector<Vec2> everywhere = random_points(kX0 - 0.3, kX1 + 0.3, kY0 - 0.3, kY1 + 0.3, 3000, 12);
+  for (const Variant& v : kVariants) {
+    const std::vector<double> plain_far = eval(*plain(v, fns), far), plain_all = eval(*plain(v, fns), everywhere);
+    const std::vector<double> got_far = eval(*with_barriers(v, fns, corner), far);
+    const std::vector<double> got_all = eval(*with_barriers(v, fns, borders), everywhere);
+    for (size_t k = 0; k < plain_far.size(); ++k)
+      ASSERT_NEAR(got_far[k], plain_far[k], kRelative * std::abs(plain_far[k])) << v.name() << " " << at(far[k / 2]);
+    for (size_t k = 0; k < plain_all.size(); ++k)
+      ASSERT_NEAR(got_all[k], plain_all[k], kRelative * std::abs(plain_all[k])) << v.name() << " " << at(everywhere[k / 2]);
+  }
+}
+
+/// Cells of the grid whose 4 corners are not all on the query's side of the oblique cut.
+bool cell_is_cut(const Vec2& q) {
+  const int i = std::clamp(static_cast<int>((q.x() - kX0) / kDx), 0, kCellsX - 1);
+  const int j = std::clamp(static_cast<int>((q.y() - kY0) / kDy), 0, kCellsY - 1);
+  const bool up = side(q) > 0;
+  for (int b = j; b <= j + 1; ++b)
+    for (int a = i; a <= i + 1; ++a)
+      if ((side(node_position(a, b)) > 0) != up) return true;
+  return false;
+}
+
+/// Whether a bicubic query in q's cell uses its local spline across the oblique cut (by the
+/// half-plane geometry): some node of its 4 x 4 stencil shares a site on the other side (cell
+/// data: a cell having the node as a corner; node data: the node itself).
+bool stencil_sees_across(const Vec2& q, bool cells) {
+  const int i = std::clamp(static_cast<int>((q.x() - kX0) / kDx), 0, kCellsX - 1);
+  const int j = std::clamp(static_cast<int>((q.y() - kY0) / kDy), 0, kCellsY - 1);
+  const bool up = side(q) > 0;
+  for (int b = std::max(0, j - 1); b <= std::min(kCellsY, j + 2); ++b)
+    for (int a = std::max(0, i - 1); a <= std::min(kCellsX, i + 2); ++a) {
+      if (!cells) {
+        if ((side(node_position(a, b)) > 0) != up) return true;
+        continue;
+      }
+      for (int cj = std::max(0, b - 1); cj <= std::min(kCellsY - 1, b); ++cj)
+        for (int ci = std::max(0, a - 1); ci <= std::min(kCellsX - 1, a); ++ci)
+          if ((side(node_position(ci, cj) + Vec2(kDx / 2, kDy / 2)) > 0) != up) return true;
+    }
+  return false;
+}
+
+TEST(BarrierGrid, ValuesAcrossABarrierHaveExactlyNoInfluence) {
+  // Two data sets equal above the cut and unrelated below it; queries above it.
+  const Fn above = noise(3), below_a = noise(4), below_b = [](const Vec2& p) { return -500.0 + 40 * p.x(); };
+  const auto split = [&](const Fn& below) { return [&, below](const Vec2& p) { return side(p) > 0 ? above(p) : below(p); }; };
+  const std::vector<Fn> a = {split(below_a), noise(5)}, b = {split(below_b), noise(5)};
+  std::vector<Vec2> q;
+  for (const Vec2& p : random_points(kX0, kX1, kY0, kY1, 6000, 13))
+    if (side(p) > 1e-9) q.push_back(p);
+  for (const Variant& v : kVariants) {
+    const std::vector<double> va = eval(*with_barriers(v, a, oblique_cut()), q);
+    const std::vector<double> vb = eval(*with_barriers(v, b, oblique_cut()), q);
+    int compared = 0;
+    for (size_t k = 0; k < q.size(); ++k) {
+      // Bilinear: everywhere. Bicubic: where its stencil has a node sharing a site across the
+      // cut (the spline is then local); elsewhere the global spline couples all nodes
+      // (barrier_grid.h).
+      if (v.kind == Kind::bicubic && !stencil_sees_across(q[k], v.cells)) continue;
+      ASSERT_EQ(va[2 * k], vb[2 * k]) << v.name() << " " << at(q[k]);
+      ASSERT_EQ(va[2 * k + 1], vb[2 * k + 1]) << v.name() << " " << at(q[k]);
+      ++compared;
+    }
+    EXPECT_GT(compared, 200) << v.name();
+    // Without the barrier the values below do reach the queries above.
+    const std::vector<double> pa = eval(*plain(v, a), q), pb = eval(*plain(v, b), q);
+    int differ = 0;
+    for (size_t k = 0; k < q.size(); ++k) differ += pa[2 * k] != pb[2 * k];
+    EXPECT_GT(differ, 200) << v.name();
+  }
+}
+
+// Two planes, one on each side of a barrier.
+double plane_up(const Vec2& p) { return 1.5 + 0.8 * p.x() - 0.6 * p.y(); }
+double plane_down(const Vec2& p) { return -2.0 + 0.3 * p.x() + 1.1 * p.y(); }
+
+void expect_planes(const Interpolant& f, const std::vector<Vec2>& q, const std::function<bool(const Vec2&)>& up,
+                   const std::string& what) {
+  const std::vector<double> got = eval(f, q);
+  for (size_t k = 0; k < q.size(); ++k) {
+    const double want = up(q[k]) ? plane_up(q[k]) : plane_down(q[k]);
+    ASSERT_NEAR(got[k], want, kRelative * std::max(1.0, std::abs(want))) << what << " " << at(q[k]);
+  }
+}
+
+TEST(BarrierGrid, BilinearReproducesAPlaneOnEachSideOfABarrier) {
+  // Cell data: queries in cells whose corners are inner nodes (the plain mean of cells is exact
+  // for planes there, not on the border). Node data: queries anywhere.
+  std::vector<Vec2> inner, all;
+  for (const Vec2& p : random_points(kX0 + kDx, kX1 - kDx, kY0 + kDy, kY1 - kDy, 4000, 14)) inner.push_back(p);
+  for (const Vec2& p : random_points(kX0, kX1, kY0, kY1, 4000, 15)) all.push_back(p);
+
+  // A barrier along the cell boundary x = 0.25 (and beyond the grid).
+  const double wall = kX0 + 5 * kDx;
+  const auto left = [&](const Vec2& p) { return p.x() < wall; };
+  const Fn by_wall = [&](const Vec2& p) { return left(p) ? plane_up(p) : plane_down(p); };
+  std::vector<Vec2> off_wall;
+  for (const Vec2& p : inner)
+    if (std::abs(p.x() - wall) > 1e-9) off_wall.push_back(p);
+  expect_planes(BarrierGrid(cells_of({by_wall}), Kind::bilinear, lines({{{wall, 0}, {wall, 4}}})), off_wall, left,
+                "cells, wall on a cell boundary");
+
+  // The oblique cut, through cells and between nodes.
+  const auto up = [](const Vec2& p) { return side(p) > 0; };
+  const Fn by_cut = [&](const Vec2& p) { return up(p) ? plane_up(p) : plane_down(p); };
+  std::vector<Vec2> inner_off, all_off;
+  for (const Vec2& p : inner)
+    if (std::abs(side(p)) > 1e-9) inner_off.push_back(p);
+  for (const Vec2& p : all)
+    if (std::abs(side(p)) > 1e-9) all_off.push_back(p);
+  int cut = 0;
+  for (const Vec2& p : inner_off) cut += cell_is_cut(p);
+  EXPECT_GT(cut, 200);  // many queries in cells the barrier cuts
+  expect_planes(BarrierGrid(cells_of({by_cut}), Kind::bilinear, oblique_cut()), inner_off, up, "cells, oblique cut");
+  expect_planes(BarrierGrid(nodes_of({by_cut}), Kind::bilinear, oblique_cut()), all_off, up, "nodes, oblique cut");
+}
+
+TEST(BarrierGrid, BicubicReproducesAPlaneOnEachSideInCutCells) {
+  // Where q's cell is cut the spline is local to its stencil; with cell data its nodes must be
+  // inner nodes (1 <= i - 1, i + 2 <= 11).
+  const auto up = [](const Vec2& p) { return side(p) > 0; };
+  const Fn by_cut = [&](const Vec2& p) { return up(p) ? plane_up(p) : plane_down(p); };
+  std::vector<Vec2> cells_q, nodes_q;
+  for (const Vec2& p : random_points(kX0, kX1, kY0, kY1, 8000, 16)) {
+    if (std::abs(side(p)) <= 1e-9 || !cell_is_cut(p)) continue;
+    nodes_q.push_back(p);
+    const int i = static_cast<int>((p.x() - kX0) / kDx), j = static_cast<int>((p.y() - kY0) / kDy);
+    if (i >= 2 && i <= kCellsX - 3 && j >= 2 && j <= kCellsY - 3) cells_q.push_back(p);
+  }
+  ASSERT_GT(cells_q.size(), 100u);
+  expect_planes(BarrierGrid(cells_of({by_cut}), Kind::bicubic, oblique_cut()), cells_q, up, "cells");
+  expect_planes(BarrierGrid(nodes_of({by_cut}), Kind::bicubic, oblique_cut()), nodes_q, up, "nodes");
+}
+
+TEST(BarrierGrid, ReproducesOnePlaneWhateverTheBarriers) {
+  // Node data (exact at every node, border included): one plane, barriers of several shapes (a
+  // full cut, an L with free ends, a short segment): every query, near them or not, gets it.
+  const Fn f = [](const Vec2& p) { return 0.7 - 1.2 * p.x() + 0.45 * p.y(); };
+  const Barriers b = lines({{kCutA, kCutB}, {{0.1, 1.2}, {0.9, 1.2}, {0.9, 2.4}}, {{-0.6, 2.7}, {-0.2, 3.2}}});
+  const std::vector<Vec2> q = random_points(kX0 - 0.2, kX1 + 0.2, kY0 - 0.2, kY1 + 0.2, 6000, 17);
+  for (Kind kind : {Kind::bilinear, Kind::bicubic}) {
+    const std::vector<double> got = eval(BarrierGrid(nodes_of({f}), kind, b), q);
+    for (size_t k = 0; k < q.size(); ++k) {
+      const Vec2 c(std::clamp(q[k].x(), kX0, kX1), std::clamp(q[k].y(), kY0, kY1));
+      ASSERT_NEAR(got[k], f(c), kRelative * std::max(1.0, std::abs(f(c)))) << at(q[k]);
+    }
+  }
+}
+
+/// The least-squares plane through (points, values), at x (Eigen's QR: an independent solver).
+double plane_fit_at(const std::vector<Vec2>& points, const std::vector<double>& values, const Vec2& x) {
+  Eigen::MatrixXd A(points.size(), 3);
+  Eigen::VectorXd y(points.size());
+  for (size_t k = 0; k < points.size(); ++k) {
+    A.row(static_cast<Eigen::Index>(k)) << 1, points[k].x(), points[k].y();
+    y(static_cast<Eigen::Index>(k)) = values[k];
+  }
+  const Eigen::Vector3d c = A.colPivHouseholderQr().solve(y);
+  return c(0) + c(1) * x.x() + c(2) * x.y();
+}
+
+TEST(BarrierGrid, BilinearHiddenCornersAreThePlanesOfTheirVisibleNeighbourhood) {
+  // 6 x 6 unit cells, arbitrary values; a full cut x + y = 5.8. A query in cell (2, 2) below
+  // it sees exactly the cells with i + j + 1 < 5.8. Corner (2, 2) sees its 4 cells (their
+  // mean); corners (3, 2), (2, 3), (3, 3) do not: each gets the least-squares plane through the
+  // visible cells of its 4 x 4 cells (i - 2..i + 1, j - 2..j + 1).
+  GridCells g;
+  g.nx = g.ny = 6, g.x0 = g.y0 = 0, g.dx = g.dy = 1, g.channels = 1;
+  const Fn value = noise(6);
+  for (int j = 0; j < 6; ++j)
+    for (int i = 0; i < 6; ++i) g.values.push_back(value(g.center(i, j)));
+  const auto cell = [&](int i, int j) { return g.values[static_cast<size_t>(j) * 6 + i]; };
+  const auto seen = [](int i, int j) { return i + j + 1 < 5.8; };
+  const auto corner = [&](int a, int b) {
+    std::vector<Vec2> p;
+    std::vector<double> v;
+    for (int j = std::max(0, b - 2); j <= std::min(5, b + 1); ++j)
+      for (int i = std::max(0, a - 2); i <= std::min(5, a + 1); ++i)
+        if (seen(i, j)) p.push_back(g.center(i, j)), v.push_back(cell(i, j));
+    return plane_fit_at(p, v, Vec2(a, b));
+  };
+  const double n22 = (cell(1, 1) + cell(2, 1) + cell(1, 2) + cell(2, 2)) / 4;
+  const double n32 = corner(3, 2), n23 = corner(2, 3), n33 = corner(3, 3);
+  const BarrierGrid f(g, Kind::bilinear, lines({{{-1, 6.8}, {6.8, -1}}}));
+  std::vector<Vec2> q;
+  for (const Vec2& p : random_points(2, 3, 2, 3, 400, 18))
+    if (p.x() + p.y() < 5.8 - 1e-9) q.push_back(p);
+  const std::vector<double> got = eval(f, q);
+  for (size_t k = 0; k < q.size(); ++k) {
+    const double u = q[k].x() - 2, v = q[k].y() - 2;
+    const double want = (1 - u) * (1 - v) * n22 + u * (1 - v) * n32 + (1 - u) * v * n23 + u * v * n33;
+    ASSERT_NEAR(got[k], want, kRelative * std::abs(want)) << at(q[k]);
+  }
+}
+
+/// The natural cubic spline through y at 0, 1, ..., n-1, at t: its second derivatives from the
+/// full tridiagonal system (Eigen), then the cubic of t's interval in Hermite-free form
+/// (the value plus the correction by the second derivatives).
+double natural_spline(const std::vector<double>& y, double t) {
+  const int n = static_cast<int>(y.size());
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, n);
+  Eigen::VectorXd r = Eigen::VectorXd::Zero(n);
+  A(0, 0) = A(n - 1, n - 1) = 1;  // M_0 = M_n-1 = 0
+  for (int i = 1; i < n - 1; ++i) {
+    A(i, i - 1) = 1, A(i, i) = 4, A(i, i + 1) = 1;
+    r(i) = 6 * (y[i - 1] - 2 * y[i] + y[i + 1]);
+  }
+  const Eigen::VectorXd M = A.lu().solve(r);
+  const int k = std::clamp(static_cast<int>(t), 0, n - 2);
+  const double s = t - k;
+  // On [k, k+1]: the linear interpolant plus the cubic vanishing at both ends with those moments.
+  return (1 - s) * y[k] + s * y[k + 1] - s * (1 - s) * ((2 - s) * M(k) + (1 + s) * M(k + 1)) / 6;
+}
+
+TEST(BarrierGrid, BicubicWithAHiddenNodeIsTheNaturalSplineOfTheSeenValues) {
+  // 4 x 4 unit nodes, arbitrary values; a short barrier x + y = 5.5 near node (3, 3). From the
+  // centre cell [1, 2]^2 only that node is hidden: it gets the least-squares plane through the
+  // visible nodes of its 5 x 5 neighbourhood (the other 8 of 1..3 x 1..3), and the value is the
+  // natural bicubic spline (rows, then the column) of the 16 nodes.
+  GridNodes g;
+  g.nx = g.ny = 4, g.x0 = g.y0 = 0, g.dx = g.dy = 1, g.channels = 1;
+  const Fn value = noise(7);
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) g.values.push_back(value(Vec2(i, j)));
+  std::vector<Vec2> p;
+  std::vector<double> v;
+  for (int j = 1; j <= 3; ++j)
+    for (int i = 1; i <= 3; ++i)
+      if (i + j < 6) p.emplace_back(i, j), v.push_back(g.values[static_cast<size_t>(j) * 4 + i]);
+  std::vector<double> seen = g.values;
+  seen[15] = plane_fit_at(p, v, Vec2(3, 3));
+  const BarrierGrid f(g, Kind::bicubic, lines({{{2.4, 3.1}, {3.1, 2.4}}}));
+  const std::vector<Vec2> q = random_points(1, 2, 1, 2, 300, 19);
+  const std::vector<double> got = eval(f, q);
+  for (size_t k = 0; k < q.size(); ++k) {
+    std::vector<double> column(4);
+    for (int j = 0; j < 4; ++j)
+      column[static_cast<size_t>(j)] = natural_spline(std::vector<double>(seen.begin() + 4 * j, seen.begin() + 4 * j + 4), q[k].x());
+    const double want = natural_spline(column, q[k].y());
+    ASSERT_NEAR(got[k], want, kRelative * std::abs(want)) << at(q[k]);
+  }
+  // And the plain spline (the barrier ignored) is another function there.
+  const std::vector<double> plain = eval(Bicubic(g), q);
+  EXPECT_GT(std::abs(plain[0] - got[0]), 1e-6);
+}
+
+TEST(BarrierGrid, AQueryThatSeesNothingHasNoValue) {
+  // 6 x 6 unit cells (7 x 7 nodes); a closed square inside cell (2, 2) holding no centre and no
+  // node; a query inside it.
+  GridCells cells;
+  cells.nx = cells.ny = 6, cells.x0 = cells.y0 = 0, cells.dx = cells.dy = 1, cells.channels = 2;
+  for (int k = 0; k < 72; ++k) cells.values.push_back(1.0 + k);
+  GridNodes nodes;
+  nodes.nx = nodes.ny = 7, nodes.x0 = nodes.y0 = 0, nodes.dx = nodes.dy = 1, nodes.channels = 2;
+  for (int k = 0; k < 98; ++k) nodes.values.push_back(1.0 + k);
+  const Barriers box = lines({{{2.1, 2.1}, {2.4, 2.1}, {2.4, 2.4}, {2.1, 2.4}, {2.1, 2.1}}});
+  const std::vector<Vec2> q = {Vec2(2.2, 2.3), Vec2(2.6, 2.6), Vec2(2.3, 2.15)};
+  for (Kind kind : {Kind::bilinear, Kind::bicubic})
+    for (const std::vector<double>& got : {eval(BarrierGrid(cells, kind, box), q), eval(BarrierGrid(nodes, kind, box), q)}) {
+      for (int k : {0, 1, 4, 5}) EXPECT_TRUE(std::isnan(got[static_cast<size_t>(k)])) << k;
+      EXPECT_TRUE(std::isfinite(got[2]) && std::isfinite(got[3]));  // outside the square
+    }
+}
+
+TEST(BarrierGrid, AQueryEnclosedWithOneSiteGetsItsValue) {
+  // A closed square around the centre of cell (2, 2) (and around node (2, 2)): a query inside
+  // sees that site alone, and every nodal value is its value.
+  GridCells cells;
+  cells.nx = cells.ny = 6, cells.x0 = cells.y0 = 0, cells.dx = cells.dy = 1, cells.channels = 1;
+  for (int k = 0; k < 36; ++k) cells.values.push_back(noise(8)(Vec2(k, 0)));
+  GridNodes nodes;
+  nodes.nx = nodes.ny = 7, nodes.x0 = nodes.y0 = 0, nodes.dx = nodes.dy = 1, nodes.channels = 1;
+  for (int k = 0; k < 49; ++k) nodes.values.push_back(noise(9)(Vec2(k, 0)));
+  const Barriers around_centre = lines({{{2.2, 2.2}, {2.8, 2.2}, {2.8, 2.8}, {2.2, 2.8}, {2.2, 2.2}}});
+  const Barriers around_node = lines({{{1.8, 1.8}, {2.2, 1.8}, {2.2, 2.2}, {1.8, 2.2}, {1.8, 1.8}}});
+  for (Kind kind : {Kind::bilinear, Kind::bicubic}) {
+    const double want_cell = cells.values[2 * 6 + 2], want_node = nodes.values[2 * 7 + 2];
+    for (const Vec2& q : {Vec2(2.3, 2.6), Vec2(2.7, 2.25)})
+      EXPECT_NEAR(eval(BarrierGrid(cells, kind, around_centre), {q})[0], want_cell, kRelative * want_cell) << at(q);
+    for (const Vec2& q : {Vec2(1.9, 2.1), Vec2(2.15, 1.85)})
+      EXPECT_NEAR(eval(BarrierGrid(nodes, kind, around_node), {q})[0], want_node, kRelative * want_node) << at(q);
+  }
+}
+
+TEST(BarrierGrid, NodesSharingTheOnlyVisibleCellsGetTheirMean) {
+  // A closed rectangle around the centres of cells (2, 2) and (3, 2): a query inside sees two
+  // cells, on a line (no plane). Each corner of its cell gets the mean of the visible cells it
+  // shares: (2, 2) and (2, 3) cell (2, 2)'s value, (3, 2) and (3, 3) the mean of both.
+  GridCells cells;
+  cells.nx = cells.ny = 6, cells.x0 = cells.y0 = 0, cells.dx = cells.dy = 1, cells.channels = 1;
+  for (int k = 0; k < 36; ++k) cells.values.push_back(noise(13)(Vec2(k, 1)));
+  const Barriers around = lines({{{2.2, 2.2}, {3.8, 2.2}, {3.8, 2.8}, {2.2, 2.8}, {2.2, 2.2}}});
+  const double v22 = cells.values[2 * 6 + 2], v32 = cells.values[2 * 6 + 3], mean = (v22 + v32) / 2;
+  for (const Vec2& q : {Vec2(2.3, 2.6), Vec2(2.9, 2.25)}) {
+    const double u = q.x() - 2, want = (1 - u) * v22 + u * mean;
+    EXPECT_NEAR(eval(BarrierGrid(cells, Kind::bilinear, around), {q})[0], want, kRelative * want) << at(q);
+  }
+}
+
+TEST(BarrierGrid, ABatchGivesWhatEachPointAloneGives) {
+  // Enough points for the parallel loop; each point alone runs on one thread.
+  const std::vector<Fn> fns = {noise(10), noise(11), noise(12)};
+  const Barriers b = lines({{kCutA, kCutB}, {{0.1, 1.2}, {0.9, 1.2}, {0.9, 2.4}}, {{1.1, 0.7}, {1.3, 0.7}, {1.3, 0.9}, {1.1, 0.9}, {1.1, 0.7}}});
+  const std::vector<Vec2> q = random_points(kX0 - 0.2, kX1 + 0.2, kY0 - 0.2, kY1 + 0.2, 40000, 20);
+  for (const Variant& v : kVariants) {
+    const auto f = with_barriers(v, fns, b);
+    const std::vector<double> batch = eval(*f, q);
+    for (size_t k = 0; k < q.size(); k += 7) {
+      const std::vector<double> alone = eval(*f, {q[k]});
+      ASSERT_EQ(std::memcmp(alone.data(), &batch[3 * k], 3 * sizeof(double)), 0) << v.name() << " " << at(q[k]);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace radrecon
