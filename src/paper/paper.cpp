@@ -50,14 +50,17 @@ void run_paper(const PaperOptions& opt, const std::string& out_where) {
   const EvaluationGrid at = evaluation_grid(data.reference);
   write_png(figures / "fig2_reference_ground.png", radiosity_map(at.reference_w_m2, at.width, at.height, at.white_w_m2), true);
   const MethodParams params;  // the defaults of methods.h, stated in the tables
-  const SideSampling plain{.barriers = false}, walled{.barriers = true};
+  const SideSampling plain{.barriers = false}, walled{.barriers = true}, bordered{.barriers = true, .border_samples = true};
   PaperRun run{opt, data, at, params, evaluate_data_set(data.grid, all_methods(), at, params, plain, figures, "fig3"),
                evaluate_data_set(data.quadtree, scattered_methods(), at, params, plain, figures, "fig4")};
   write_quadtree_figure(data.quadtree, at, figures);
-  // Table 3 (Fig. 5 and 6): the same data and methods with the scene's barriers.
+  // Table 3 (Fig. 5-8): the same data and methods with the scene's barriers, then with border
+  // samples too.
   if (opt.barriers) {
-    run.grid_barriers = evaluate_data_set(data.grid, scattered_methods(), at, params, walled, figures, "fig5");
+    run.grid_barriers = evaluate_data_set(data.grid, all_methods(), at, params, walled, figures, "fig5");
     run.quadtree_barriers = evaluate_data_set(data.quadtree, scattered_methods(), at, params, walled, figures, "fig6");
+    run.grid_border = evaluate_data_set(data.grid, all_methods(), at, params, bordered, figures, "fig7");
+    run.quadtree_border = evaluate_data_set(data.quadtree, scattered_methods(), at, params, bordered, figures, "fig8");
   }
   const double t_reconstruct = clock.lap();
 
@@ -77,8 +80,10 @@ void run_paper(const PaperOptions& opt, const std::string& out_where) {
   for (Method m : all_methods()) views(data.grid, m, plain, "fig3_" + method_name(m));
   for (Method m : scattered_methods()) views(data.quadtree, m, plain, "fig4_" + method_name(m));
   if (opt.barriers) {
-    for (Method m : scattered_methods()) views(data.grid, m, walled, "fig5_" + method_name(m));
+    for (Method m : all_methods()) views(data.grid, m, walled, "fig5_" + method_name(m));
     for (Method m : scattered_methods()) views(data.quadtree, m, walled, "fig6_" + method_name(m));
+    for (Method m : all_methods()) views(data.grid, m, bordered, "fig7_" + method_name(m));
+    for (Method m : scattered_methods()) views(data.quadtree, m, bordered, "fig8_" + method_name(m));
   }
   const double t_views = clock.lap();
 

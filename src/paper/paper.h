@@ -22,7 +22,8 @@ struct PaperOptions {
   int view_samples = 2;                     ///< rays per pixel along each axis
   bool progress = true;                     ///< stage messages on stderr
   /// Also the data sets with the scene's barriers (grid+barriers, quadtree+barriers: Table 3,
-  /// Fig. 5 and 6).
+  /// Fig. 5 and 6), and with border samples too (grid+barriers+border, quadtree+barriers+border:
+  /// Fig. 7 and 8).
   bool barriers = true;
 };
 

@@ -83,6 +83,10 @@ void write_report(const std::filesystem::path& dir, const ReportContent& c) {
     figure_rows(html, c.grid_barriers);
     html << "<h2>Fig. 6: quadtree data with the scene's barriers</h2>\n";
     figure_rows(html, c.quadtree_barriers);
+    html << "<h2>Fig. 7: grid data with barriers and border samples</h2>\n";
+    figure_rows(html, c.grid_border);
+    html << "<h2>Fig. 8: quadtree data with barriers and border samples</h2>\n";
+    figure_rows(html, c.quadtree_border);
   }
   html << "<h2>Errors</h2>\n";
   table(html, "Table 1: reconstruction of grid data", c.table1);
@@ -92,6 +96,8 @@ void write_report(const std::filesystem::path& dir, const ReportContent& c) {
             "foot.</p>\n";
     table(html, "Table 3a: grid data with barriers", c.grid_barriers);
     table(html, "Table 3b: quadtree data with barriers", c.quadtree_barriers);
+    table(html, "Table 3c: grid data with barriers and border samples", c.grid_border);
+    table(html, "Table 3d: quadtree data with barriers and border samples", c.quadtree_border);
   }
   html << "<p>The paper's columns are its published tables, for its own scene: compare rankings, not values.</p>\n"
        << "</body></html>\n";

@@ -21,6 +21,7 @@ struct ReportRow {
 struct ReportContent {
   std::vector<ReportRow> table1, table2;
   std::vector<ReportRow> grid_barriers, quadtree_barriers;  ///< Table 3; empty if not run
+  std::vector<ReportRow> grid_border, quadtree_border;      ///< with border samples too
   std::vector<std::string> settings;  ///< one line each, shown as a list
   std::vector<std::string> notes;     ///< e.g. fallbacks of the renderer
 };

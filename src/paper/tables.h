@@ -28,6 +28,8 @@ struct PaperRun {
   std::vector<MethodResult> table1, table2;
   /// Table 3: the grid and quadtree data with the scene's barriers (empty if not run).
   std::vector<MethodResult> grid_barriers, quadtree_barriers;
+  /// The same with border samples too (the interpolating scattered methods).
+  std::vector<MethodResult> grid_border, quadtree_border;
 };
 
 /// Writes DIR/errors.json, DIR/table1.md, DIR/table2.md and (with barriers) DIR/table3.md.
@@ -35,6 +37,8 @@ void write_tables(const std::filesystem::path& dir, const PaperRun& run);
 
 /// How the paper's data sets with barriers are reconstructed, in words.
 extern const char* const kBarrierRule;
+/// How border samples are added, in words.
+extern const char* const kBorderRule;
 
 /// The report's rows and settings (its notes are the caller's).
 ReportContent report_content(const PaperRun& run, int rays_per_pixel);

@@ -16,8 +16,20 @@ namespace {
 
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 
+/// Shewchuk's bound on the round-off of the orientation determinant computed in doubles
+/// ("Adaptive precision floating-point arithmetic", 1997: ccwerrboundA): when the computed value
+/// exceeds it in magnitude, its sign is the exact sign.
+constexpr double kOrientationErrorBound = (3.0 + 16.0 * 0x1p-53) * 0x1p-53;
+
 /// Sign of the orientation of (a, b, c): +1 counter-clockwise, -1 clockwise, 0 collinear; exact.
+/// The double determinant decides when it clears its error bound (almost always); CGAL's exact
+/// predicate decides the rest.
 int orientation(const Vec2& a, const Vec2& b, const Vec2& c) {
+  const double left = (b.x() - a.x()) * (c.y() - a.y()), right = (b.y() - a.y()) * (c.x() - a.x());
+  const double det = left - right;
+  const double bound = kOrientationErrorBound * (std::abs(left) + std::abs(right));
+  if (det > bound) return 1;
+  if (det < -bound) return -1;
   const CGAL::Orientation o = CGAL::orientation(K::Point_2(a.x(), a.y()), K::Point_2(b.x(), b.y()),
                                                 K::Point_2(c.x(), c.y()));
   return o == CGAL::LEFT_TURN ? 1 : (o == CGAL::RIGHT_TURN ? -1 : 0);
@@ -105,8 +117,26 @@ Barriers::Barriers(std::vector<BarrierSegment> segments) : segments_(std::move(s
   for (const auto& b : buckets) cell_segments_.insert(cell_segments_.end(), b.begin(), b.end());
 }
 
+namespace {
+
+/// Whether the boxes of [p, q] and of s overlap (closed): a segment whose box misses the
+/// barrier's cannot meet it, and the test is far cheaper than the predicates.
+inline bool boxes_overlap(const Vec2& p, const Vec2& q, const BarrierSegment& s) {
+  return std::max(p.x(), q.x()) >= std::min(s.a.x(), s.b.x()) && std::min(p.x(), q.x()) <= std::max(s.a.x(), s.b.x()) &&
+         std::max(p.y(), q.y()) >= std::min(s.a.y(), s.b.y()) && std::min(p.y(), q.y()) <= std::max(s.a.y(), s.b.y());
+}
+
+/// Up to this many segments are tested one by one, without the grid.
+constexpr size_t kDirectTestSegments = 8;
+
+}  // namespace
+
 bool Barriers::blocks(const Vec2& p, const Vec2& q) const {
-  if (segments_.empty()) return false;
+  if (segments_.size() <= kDirectTestSegments) {
+    for (const BarrierSegment& s : segments_)
+      if (boxes_overlap(p, q, s) && segment_blocked(p, q, s)) return true;
+    return false;
+  }
   // The cells of the query segment's bounding box, clipped to the grid; a segment outside the
   // grid's box meets no barrier there. Cells are visited in the box (simple and exact: every
   // cell the segment passes through is in it); each candidate is tested exactly.
@@ -130,8 +160,10 @@ bool Barriers::blocks(const Vec2& p, const Vec2& q) const {
           (s00 < -margin && s10 < -margin && s01 < -margin && s11 < -margin))
         continue;
       const size_t c = static_cast<size_t>(j) * nx_ + i;
-      for (unsigned k = cell_start_[c]; k < cell_start_[c + 1]; ++k)
-        if (segment_blocked(p, q, segments_[cell_segments_[k]])) return true;
+      for (unsigned k = cell_start_[c]; k < cell_start_[c + 1]; ++k) {
+        const BarrierSegment& s = segments_[cell_segments_[k]];
+        if (boxes_overlap(p, q, s) && segment_blocked(p, q, s)) return true;
+      }
     }
   return false;
 }

@@ -5,6 +5,7 @@
 #include "core/check.h"
 #include "core/error.h"
 #include "core/parse.h"
+#include "reconstruct/barrier_grid.h"
 #include "reconstruct/bicubic.h"
 #include "reconstruct/bilinear.h"
 #include "reconstruct/constant.h"
@@ -128,6 +129,10 @@ InterpolantResult build(Args&&... args) {
   }
 }
 
+BarrierGrid::Kind grid_kind(Method m) {
+  return m == Method::bilinear ? BarrierGrid::Kind::bilinear : BarrierGrid::Kind::bicubic;
+}
+
 }  // namespace
 
 InterpolantResult make_grid_interpolant(Method method, const GridCells& cells, const MethodParams& params) {
@@ -135,15 +140,10 @@ InterpolantResult make_grid_interpolant(Method method, const GridCells& cells, c
   // that holds the point, unless a barrier hides its centre).
   if (method == Method::constant && params.barriers.empty()) return build<PiecewiseConstant>(to_cells(cells));
   if (is_grid_method(method)) {
-    if (!params.barriers.empty()) return Failure{method_name(method) + " with barriers is not available yet"};
+    if (!params.barriers.empty()) return build<BarrierGrid>(cells, grid_kind(method), params.barriers);
     return make_nodal_interpolant(method, nodal_average(cells), params);
   }
-  ScatteredSamples centres;
-  centres.channels = cells.channels;
-  centres.values = cells.values;
-  for (int j = 0; j < cells.ny; ++j)
-    for (int i = 0; i < cells.nx; ++i) centres.points.push_back(cells.center(i, j));
-  return make_scattered_interpolant(method, centres, params);
+  return make_scattered_interpolant(method, cells.centres(), params);
 }
 
 InterpolantResult make_cell_interpolant(const CellSamples& cells) { return build<PiecewiseConstant>(cells); }
@@ -151,7 +151,7 @@ InterpolantResult make_cell_interpolant(const CellSamples& cells) { return build
 InterpolantResult make_nodal_interpolant(Method method, const GridNodes& nodes, const MethodParams& params) {
   if (method == Method::bilinear || method == Method::bicubic) {
     if (nodes.nx < 2 || nodes.ny < 2) return Failure{method_name(method) + " needs a grid of at least 2 x 2 samples"};
-    if (!params.barriers.empty()) return Failure{method_name(method) + " with barriers is not available yet"};
+    if (!params.barriers.empty()) return build<BarrierGrid>(nodes, grid_kind(method), params.barriers);
     if (method == Method::bilinear) return build<Bilinear>(nodes);
     return build<Bicubic>(nodes);
   }

@@ -18,6 +18,16 @@ CellSamples to_cells(const GridCells& grid) {
   return out;
 }
 
+ScatteredSamples GridCells::centres() const {
+  ScatteredSamples out;
+  out.channels = channels;
+  out.values = values;
+  out.points.reserve(static_cast<size_t>(nx) * ny);
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) out.points.push_back(center(i, j));
+  return out;
+}
+
 GridNodes nodal_average(const GridCells& cells) {
   RR_CHECK(cells.nx >= 1 && cells.ny >= 1, "a grid needs at least one cell");
   RR_CHECK(cells.values.size() == static_cast<size_t>(cells.nx) * cells.ny * cells.channels,

@@ -21,6 +21,13 @@ struct CellSamples {
   int channels = 1;
 };
 
+/// Scattered samples: arbitrary points, values per point.
+struct ScatteredSamples {
+  std::vector<Vec2> points;
+  std::vector<double> values;  ///< points.size() * channels
+  int channels = 1;
+};
+
 /// A regular grid of nx x ny cells of size dx x dy starting at (x0, y0), one value per cell,
 /// stored row by row from y0 upward (cell (i, j) at j * nx + i).
 struct GridCells {
@@ -30,6 +37,8 @@ struct GridCells {
   std::vector<double> values;  ///< nx * ny * channels
   /// The centre of cell (i, j).
   Vec2 center(int i, int j) const { return {x0 + (i + 0.5) * dx, y0 + (j + 0.5) * dy}; }
+  /// The cells as scattered samples at their centres, in cell order.
+  ScatteredSamples centres() const;
 };
 
 /// Values at the nodes of a regular grid: node (i, j) at (x0 + i dx, y0 + j dy), i in [0, nx),
@@ -41,12 +50,6 @@ struct GridNodes {
   std::vector<double> values;  ///< nx * ny * channels
 };
 
-/// Scattered samples: arbitrary points, values per point.
-struct ScatteredSamples {
-  std::vector<Vec2> points;
-  std::vector<double> values;  ///< points.size() * channels
-  int channels = 1;
-};
 
 /// The cells of a grid as a general piecewise-constant function.
 CellSamples to_cells(const GridCells& grid);

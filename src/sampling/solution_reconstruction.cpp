@@ -5,6 +5,7 @@
 #include "core/error.h"
 #include "core/parse.h"
 #include "core/tolerances.h"
+#include "reconstruct/border_samples.h"
 #include "sampling/surface_samples.h"
 
 namespace radrecon {
@@ -18,6 +19,13 @@ InterpolantResult reconstruct_side(const SurfaceSolution& s, Method method, cons
     params.barriers = std::move(barriers).value();
   }
   const bool grid = s.grid_nu > 0 && s.grid_nv > 0;
+  if (sampling.border_samples && method != Method::constant && !is_grid_method(method)) {
+    ScatteredSamples samples = grid ? grid_cells(s).centres() : element_centres(s);
+    Result<ScatteredSamples> bordered =
+        with_border_samples(samples, Rect{0, 0, s.length_u_m, s.length_v_m}, params.barriers);
+    if (!bordered) return Failure{"its border samples: " + bordered.reason()};
+    return make_scattered_interpolant(method, bordered.value(), params);
+  }
   if (grid) return make_grid_interpolant(method, grid_cells(s), params);
   if (method == Method::constant && params.barriers.empty()) return make_cell_interpolant(element_cells(s));
   if (is_grid_method(method))

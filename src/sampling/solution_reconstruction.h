@@ -19,6 +19,10 @@ struct SideSampling {
   /// Honour the side's barriers (the solution's contact lines, scene/contacts.h): no sample's
   /// influence crosses them.
   bool barriers = true;
+  /// Add border samples (reconstruct/border_samples.h) on the side's border and both sides of its
+  /// barriers, for the scattered methods that interpolate (shepard, multiquadric,
+  /// natural-neighbour); constant and the grid methods use the data as it is.
+  bool border_samples = false;
 };
 
 /// One side's reconstruction by `method` from its solution: grid sides as grid data
