@@ -27,6 +27,8 @@ struct RenderArgs {
   int samples = RenderOptions{}.samples_per_axis;
   double white = 0;
   std::string out;
+  bool no_barriers = false;
+  bool border_samples = false;
   bool quiet = false;
 };
 
@@ -57,7 +59,8 @@ void run_render(const RenderArgs& args) {
   if (!method) throw UserError("--method", "unknown method '" + args.method + "'");
   const MethodParams params = parse_params(*method, args.params, "--param");
   const Solution solution = read_solution_json(args.solution);
-  const SolutionReconstruction recon(scene, solution, *method, params, args.solution);
+  const SideSampling sampling{.barriers = !args.no_barriers, .border_samples = args.border_samples};
+  const SolutionReconstruction recon(scene, solution, *method, params, args.solution, sampling);
   if (!recon.fallbacks().empty() && recon.fallbacks().size() == solution.surfaces.size())
     throw UserError(args.solution, args.method + " cannot reconstruct any side of this solution (" +
                                        recon.fallbacks().front().reason + "); use constant, or a solution it fits");
@@ -120,6 +123,12 @@ void add_render_command(CLI::App& app) {
                   "PNG: the radiosity (W/m^2) shown as white; default: the largest radiosity of a non-emitting surface")
       ->check(CLI::Range(0.0, 1e12));
   cmd->add_option("--out", args->out, "Image to write: .png (tone-mapped), .pfm or .exr (linear radiosity, W/m^2)")->required();
+  cmd->add_flag("--no-barriers", args->no_barriers,
+                "Ignore the solution's barriers (by default no sample's influence crosses the lines where surfaces "
+                "meet, e.g. the foot of a wall: the paper's leaking light)");
+  cmd->add_flag("--border-samples", args->border_samples,
+                "shepard, multiquadric, natural-neighbour: add samples on each side's border and along both sides "
+                "of its barriers, extrapolated from the nearest samples they see (docs/method.md)");
   cmd->add_flag("--quiet", args->quiet, "No progress messages");
   cmd->callback([args] { run_render(*args); });
 }

@@ -208,6 +208,18 @@ expect_rc render_sol 2
 expect_stderr_has render_sol "badsol.json"
 expect_no_output render_sol "$TMP/bad.png"
 
+# --- barriers: the solution lists the wall feet on the ground; render honours them unless told not
+# to, and the pictures differ (light no longer leaks under the walls).
+grep -q '"barriers": \[\[\[2.6' "$TMP/solution.json" || fail "solve: the ground's barriers are missing from the solution"
+for flags in "" "--no-barriers" "--border-samples"; do
+  name=render_nn${flags//-/_}
+  run "$name" render --scene paper --solution "$TMP/solution.json" --method natural-neighbour --camera closeup \
+    --size 48x36 --out "$TMP/$name.pfm" --quiet $flags
+  expect_rc "$name" 0
+done
+cmp -s "$TMP/render_nn.pfm" "$TMP/render_nn__no_barriers.pfm" && fail "render --no-barriers: the same image as with barriers"
+cmp -s "$TMP/render_nn.pfm" "$TMP/render_nn__border_samples.pfm" && fail "render --border-samples: the same image as without"
+
 # --- other failures -----------------------------------------------------------------------
 run unknown frobnicate
 expect_nonzero unknown
