@@ -6,10 +6,12 @@
 
 #include <cmath>
 #include <random>
+#include <string>
 
 #include "reconstruct/local_multiquadric.h"
 #include "reconstruct/multiquadric.h"
 #include "reconstruct/natural_neighbour.h"
+#include "reconstruct/shepard.h"
 #include "support/barrier_cases.h"
 
 namespace radrecon {
@@ -145,6 +147,69 @@ TEST(MultiquadricWithBarriers, ExactAtTheSamples) {
   for (size_t i = 0; i < s.points.size(); ++i) {
     ASSERT_NEAR(g[i], s.values[i], 1e-8) << "sample " << i;
     ASSERT_NEAR(l[i], s.values[i], 1e-8) << "sample " << i;
+  }
+}
+
+/// The samples left of the wall (x < 0.5).
+ScatteredSamples left_side(const ScatteredSamples& all) {
+  ScatteredSamples left;
+  left.channels = all.channels;
+  for (size_t k = 0; k < all.points.size(); ++k)
+    if (all.points[k].x() < 0.5) {
+      left.points.push_back(all.points[k]);
+      left.values.push_back(all.values[k]);
+    }
+  return left;
+}
+
+TEST(BarrierMethods, EachSideOfAFullWallIsReconstructedAsIfTheOtherDidNotExist) {
+  const ScatteredSamples all = two_sided_samples(1.0, 5.0);
+  const ScatteredSamples left = left_side(all);
+  const std::vector<Vec2> q = left_queries();
+  const auto compare = [&](const Interpolant& walled, const Interpolant& alone, double tol, const char* name) {
+    const std::vector<double> a = evaluate(walled, q), b = evaluate(alone, q);
+    for (size_t k = 0; k < q.size(); ++k) ASSERT_NEAR(a[k], b[k], tol * std::max(1.0, std::abs(b[k]))) << name << ", query " << k;
+  };
+  compare(NaturalNeighbour(all, OutsideHull::nearest, wall()), NaturalNeighbour(left, OutsideHull::nearest), 1e-12,
+          "natural-neighbour");
+  compare(Multiquadric(all, 0.5, 0.1, wall()), Multiquadric(left, 0.5, 0.1), 1e-9, "multiquadric");
+}
+
+/// The largest difference between the values at consecutive points of n + 1 equally spaced
+/// points from a to b.
+double largest_step(const Interpolant& f, const Vec2& a, const Vec2& b, int n) {
+  std::vector<Vec2> path;
+  for (int i = 0; i <= n; ++i) path.push_back(a + (b - a) * (static_cast<double>(i) / n));
+  const std::vector<double> v = evaluate(f, path);
+  double step = 0;
+  for (int i = 0; i < n; ++i) step = std::max(step, std::abs(v[i + 1] - v[i]));
+  return step;
+}
+
+TEST(BarrierMethods, ContinuousOnEachSideAndJumpingAcrossTheWall) {
+  // A wall across the whole domain (no free end inside it, so no sight line grazes an end):
+  // along paths on one side, the largest step between neighbouring points shrinks with the
+  // spacing (continuous); across the wall the values jump by about the step in the data.
+  const ScatteredSamples s = two_sided_samples(1.0, 5.0);
+  const std::vector<std::pair<std::string, std::unique_ptr<Interpolant>>> methods = [&] {
+    std::vector<std::pair<std::string, std::unique_ptr<Interpolant>>> m;
+    m.emplace_back("shepard", std::make_unique<Shepard>(s, 4.0, 0, wall()));
+    m.emplace_back("natural-neighbour", std::make_unique<NaturalNeighbour>(s, OutsideHull::nearest, wall()));
+    m.emplace_back("multiquadric", std::make_unique<Multiquadric>(s, 0.5, std::nullopt, wall()));
+    m.emplace_back("local multiquadric", std::make_unique<LocalMultiquadric>(s, 0.5, std::nullopt, 12, wall()));
+    return m;
+  }();
+  std::mt19937 rng(31);
+  std::uniform_real_distribution<double> u(0.02, 0.98), left(0.02, 0.48);
+  for (const auto& [name, f] : methods) {
+    for (int path = 0; path < 6; ++path) {
+      const Vec2 a(left(rng), u(rng)), b(left(rng), u(rng));
+      const double coarse = largest_step(*f, a, b, 1000), fine = largest_step(*f, a, b, 100000);
+      EXPECT_LT(fine, coarse / 20 + 1e-12) << name << ": a jump on a path that crosses no barrier";
+    }
+    // Across the wall: a jump of about 4 (the data's step) between 0.5 - 1e-9 and 0.5 + 1e-9.
+    const double jump = std::abs(evaluate(*f, {Vec2(0.5 + 1e-9, 0.5)})[0] - evaluate(*f, {Vec2(0.5 - 1e-9, 0.5)})[0]);
+    EXPECT_GT(jump, 2.0) << name;
   }
 }
 
