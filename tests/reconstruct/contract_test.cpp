@@ -4,7 +4,8 @@
 // samples (make_scattered_interpolant: every method that takes them). A new method, or a new
 // variant in cases(), gets the whole contract:
 //   exact at the samples; reproduces constants; a NaN query gives NaN; channels are independent;
-//   a batch equals one point at a time; 1 and 2 threads agree bit for bit.
+//   a batch equals one point at a time; 1 and 2 threads agree bit for bit. Every method is also
+//   run with barriers.
 
 #include <gtest/gtest.h>
 #include <omp.h>
@@ -108,6 +109,13 @@ std::vector<Case> cases() {
         out.push_back(c);
         break;
     }
+    // With barriers: an L-shaped wall with free ends inside both data sets' boxes, so that every
+    // query sees some sample (visibility paths, local triangulations, subset systems).
+    Case walled{method_name(m) + " with barriers", m, {}};
+    walled.params.barriers =
+        Barriers::from_polylines(std::vector<Polyline>{{{0.3, 0.6}, {1.3, 0.6}, {1.3, 1.9}}}).value();
+    if (m == Method::multiquadric) walled.constant_relative = kGlobalMultiquadricConstantRelative;
+    out.push_back(walled);
   }
   return out;
 }
