@@ -19,6 +19,7 @@ struct SolveArgs {
   double residual = kDefaultResidual;
   int patches = SolveSettings{}.patches;
   std::string leaves_on;
+  bool shadow_barriers = false;
   bool quiet = false;
 };
 
@@ -37,6 +38,7 @@ void run_solve(const SolveArgs& args, const CLI::App& cmd) {
   settings.leaves_on = args.leaves_on;
   settings.leaves_on_where = "--leaves-on";
   settings.progress_label = args.quiet ? "" : "solve";
+  settings.shadow_barriers = args.shadow_barriers;
   const Solution sol = solve_scene(scene, args.mesh, settings, "--mesh");
   write_solution_json(args.out, sol);
   if (!args.quiet) std::fprintf(stderr, "solve: wrote %s\n", args.out.c_str());
@@ -72,6 +74,9 @@ void add_solve_command(CLI::App& app) {
                   "grid: shooting patches along the longest edge (patches group elements; receivers are elements)")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
+  cmd->add_flag("--shadow-barriers", args->shadow_barriers,
+                "Also list the direct light's D1/D2 lines (umbra and penumbra boundaries cast by occluder edges) "
+                "among each side's barriers; experimental (docs/method.md)");
   cmd->add_flag("--quiet", args->quiet, "No progress messages");
   cmd->callback([args, cmd] { run_solve(*args, *cmd); });
 }

@@ -12,6 +12,7 @@ namespace radrecon {
 PaperDataSets solve_data_sets(const Scene& scene, const PaperOptions& opt) {
   SolveSettings settings;
   settings.residual = opt.residual;
+  settings.shadow_barriers = opt.shadow_barriers;
   auto solve = [&](const std::string& spec, const std::string& label, double& seconds) {
     if (opt.progress) std::fprintf(stderr, "paper: solving %s (%s)\n", label.c_str(), spec.c_str());
     settings.progress_label = opt.progress ? label : "";

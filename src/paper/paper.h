@@ -25,6 +25,9 @@ struct PaperOptions {
   /// Fig. 5 and 6), and with border samples too (grid+barriers+border, quadtree+barriers+border:
   /// Fig. 7 and 8).
   bool barriers = true;
+  /// Solve the data sets with the direct light's D1/D2 lines among the barriers too (an
+  /// experiment: SolveSettings::shadow_barriers).
+  bool shadow_barriers = false;
 };
 
 /// Runs the experiment into options.out_dir. The output folder is checked before any work

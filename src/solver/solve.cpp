@@ -6,6 +6,7 @@
 #include "core/parse.h"
 #include "mesh/grid_mesh.h"
 #include "scene/contacts.h"
+#include "scene/shadow_lines.h"
 #include "scene/side.h"
 #include "solver/hierarchical.h"
 #include "solver/progressive.h"
@@ -84,12 +85,15 @@ Solution solve_by_spec(const Scene& scene, const std::string& spec, const SolveS
 }
 
 
-/// Every side's contact lines (scene/contacts.h) as its barriers.
-Solution with_contact_lines(const Scene& scene, Solution sol) {
+/// Every side's contact lines (scene/contacts.h) as its barriers, and its shadow lines
+/// (scene/shadow_lines.h) if asked.
+Solution with_barriers(const Scene& scene, Solution sol, bool shadow_lines_too) {
   for (SurfaceSolution& side : sol.surfaces) {
     const std::optional<SideRef> ref = find_side(scene, side.name);
     if (!ref) continue;
     for (const Segment2& c : contact_lines(scene, *ref)) side.barriers.push_back({c.a, c.b});
+    if (shadow_lines_too)
+      for (const Segment2& c : shadow_lines(scene, *ref)) side.barriers.push_back({c.a, c.b});
   }
   return sol;
 }
@@ -98,7 +102,7 @@ Solution with_contact_lines(const Scene& scene, Solution sol) {
 
 Solution solve_scene(const Scene& scene, const std::string& spec, const SolveSettings& settings,
                      const std::string& where) {
-  return with_contact_lines(scene, solve_by_spec(scene, spec, settings, where));
+  return with_barriers(scene, solve_by_spec(scene, spec, settings, where), settings.shadow_barriers);
 }
 
 }  // namespace radrecon

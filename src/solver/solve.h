@@ -22,6 +22,10 @@ struct SolveSettings {
   /// Where leaves_on came from (an option or field), named if it is refused.
   std::string leaves_on_where = "leaves_on";
   std::string progress_label;  ///< empty: quiet
+  /// Also list the direct light's D1/D2 lines (scene/shadow_lines.h) among each side's barriers,
+  /// after its contact lines. Off by default: measured on the paper scene, as barriers they cut
+  /// off regions that hold no sample (docs/method.md).
+  bool shadow_barriers = false;
 };
 
 /// Solves `scene` as `mesh_spec` says. Throws UserError naming `where` (the caller's location
