@@ -84,12 +84,13 @@ Solution solve_by_spec(const Scene& scene, const std::string& spec, const SolveS
 }
 
 
-/// Every side's contact lines (scene/contacts.h) as its barriers.
+/// Every side's contact lines (scene/contacts.h) as its barriers, and its excluded regions.
 Solution with_contact_lines(const Scene& scene, Solution sol) {
   for (SurfaceSolution& side : sol.surfaces) {
     const std::optional<SideRef> ref = find_side(scene, side.name);
     if (!ref) continue;
     for (const Segment2& c : contact_lines(scene, *ref)) side.barriers.push_back({c.a, c.b});
+    side.excluded = excluded_regions(scene, *ref);
   }
   return sol;
 }
