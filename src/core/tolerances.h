@@ -80,6 +80,20 @@ inline constexpr double kContactRelative = 1e-6;
 /// along that edge: it bounds the side and is no barrier inside it.
 inline constexpr double kOnBorderParameter = 1e-9;
 
+/// Contact lines and covered regions of a side (scene/contacts.h), in its (s, t) metres: two
+/// points within this fraction of the side's longer edge are one point (the ends of two contact
+/// lines meet there and chain into a loop; two lines with such ends are one line), a polygon's
+/// vertex this close to the line through its neighbours is dropped, and a region no wider than
+/// this is no region. The ends come from the corners of different surfaces, equal up to the
+/// round-off of scenes written by hand or exported in single precision (6e-8 relative): far
+/// below 1e-6, and 1e-6 of the side is far below any real gap or sliver.
+inline constexpr double kContactJoinRelative = 1e-6;
+/// A surface lying flat on a side covers it only when its area is below (1 - this) times the
+/// side's: of two coplanar overlapping quads the smaller lies on the larger (a plate on a floor,
+/// never the floor on the plate), and two equal ones up to round-off (a duplicated quad, its
+/// corners listed in another order) cover neither.
+inline constexpr double kLyingSmallerRelative = 1e-6;
+
 /// Scattered samples count as the nodes of a regular grid when their coordinates lie within
 /// this fraction of the samples' extent from the grid lines: far above the round-off of
 /// coordinates printed with 10+ digits, far below any intended offset.

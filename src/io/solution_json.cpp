@@ -44,6 +44,13 @@ void write_solution_json(const std::filesystem::path& path, const Solution& sol)
           std::fprintf(f, "%s[%.17g, %.17g]", i ? ", " : "", surf.barriers[b][i].x(), surf.barriers[b][i].y());
         std::fputc(']', f);
       }
+      std::fprintf(f, "],\n     \"excluded\": [");
+      for (size_t r = 0; r < surf.excluded.size(); ++r) {
+        std::fprintf(f, "%s[", r ? ", " : "");
+        for (size_t i = 0; i < surf.excluded[r].size(); ++i)
+          std::fprintf(f, "%s[%.17g, %.17g]", i ? ", " : "", surf.excluded[r][i].x(), surf.excluded[r][i].y());
+        std::fputc(']', f);
+      }
       std::fprintf(f, "],\n     \"elements\": [");
       for (size_t e = 0; e < surf.elements.size(); ++e) {
         const SolutionElement& el = surf.elements[e];
@@ -84,6 +91,28 @@ double positive_or_fail(const JsonReader& r, double v, const std::string& path) 
   return v;
 }
 
+/// An array of polylines [[[s, t], ...], ...] of at least `min_points` finite points each (a
+/// `what`: "polyline" or "polygon"), or a refusal naming the offending element's path.
+std::vector<Polyline> polylines(const JsonReader& r, const json& j, const std::string& path, size_t min_points,
+                                const std::string& what) {
+  if (!j.is_array()) r.fail(path, "must be an array of " + what + "s [[s, t], ...]");
+  std::vector<Polyline> out;
+  for (size_t b = 0; b < j.size(); ++b) {
+    const std::string lp = JsonReader::at(path, b);
+    if (!j[b].is_array() || j[b].size() < min_points)
+      r.fail(lp, "must be a " + what + " of at least " + std::to_string(min_points) + " points [s, t]");
+    Polyline line;
+    for (size_t i = 0; i < j[b].size(); ++i) {
+      const std::string pp = JsonReader::at(lp, i);
+      const json& pt = j[b][i];
+      if (!pt.is_array() || pt.size() != 2) r.fail(pp, "must be a point [s, t]");
+      line.emplace_back(r.number(pt[0], JsonReader::at(pp, 0)), r.number(pt[1], JsonReader::at(pp, 1)));
+    }
+    out.push_back(std::move(line));
+  }
+  return out;
+}
+
 }  // namespace
 
 Solution read_solution_json(const std::filesystem::path& path) {
@@ -120,23 +149,9 @@ Solution read_solution_json(const std::filesystem::path& path) {
       out.grid_nu = static_cast<int>(nu);
       out.grid_nv = static_cast<int>(nv);
     }
-    if (js.contains("barriers")) {  // optional: files of earlier versions lack it
-      const json& bs = js["barriers"];
-      const std::string bp = sp + ".barriers";
-      if (!bs.is_array()) r.fail(bp, "must be an array of polylines [[s, t], ...]");
-      for (size_t b = 0; b < bs.size(); ++b) {
-        const std::string lp = JsonReader::at(bp, b);
-        if (!bs[b].is_array() || bs[b].size() < 2) r.fail(lp, "must be a polyline of at least 2 points [s, t]");
-        Polyline line;
-        for (size_t i = 0; i < bs[b].size(); ++i) {
-          const std::string pp = JsonReader::at(lp, i);
-          const json& pt = bs[b][i];
-          if (!pt.is_array() || pt.size() != 2) r.fail(pp, "must be a point [s, t]");
-          line.emplace_back(r.number(pt[0], JsonReader::at(pp, 0)), r.number(pt[1], JsonReader::at(pp, 1)));
-        }
-        out.barriers.push_back(std::move(line));
-      }
-    }
+    // Both optional: files of earlier versions lack them.
+    if (js.contains("barriers")) out.barriers = polylines(r, js["barriers"], sp + ".barriers", 2, "polyline");
+    if (js.contains("excluded")) out.excluded = polylines(r, js["excluded"], sp + ".excluded", 3, "polygon");
     out.elements.reserve(elements.size());
     for (size_t e = 0; e < elements.size(); ++e) {
       const std::string ep = JsonReader::at(sp + ".elements", e);

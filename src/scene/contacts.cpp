@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <set>
 #include <tuple>
+#include <utility>
 
 #include "core/tolerances.h"
 
@@ -59,18 +62,129 @@ bool clip_to_quad(const Surface& quad, Vec3& a, Vec3& b) {
   return true;
 }
 
-}  // namespace
+/// The convex polygon `poly`, projected onto the quad's plane, clipped to the convex quad
+/// (Sutherland-Hodgman, one inward half-plane per edge).
+std::vector<Vec3> clip_polygon_to_quad(const Surface& quad, std::vector<Vec3> poly) {
+  const Vec3 n = quad.normal();
+  const double offset = n.dot(quad.corners[0]);
+  for (Vec3& p : poly) p -= (n.dot(p) - offset) * n;
+  for (int i = 0; i < 4 && !poly.empty(); ++i) {
+    const Vec3& c = quad.corners[static_cast<size_t>(i)];
+    const Vec3 inward = n.cross(quad.corners[static_cast<size_t>((i + 1) % 4)] - c);
+    std::vector<Vec3> kept;
+    for (size_t k = 0; k < poly.size(); ++k) {
+      const Vec3& p = poly[k];
+      const Vec3& q = poly[(k + 1) % poly.size()];
+      const double fp = inward.dot(p - c), fq = inward.dot(q - c);
+      if (fp >= 0) kept.push_back(p);
+      if ((fp > 0 && fq < 0) || (fp < 0 && fq > 0)) kept.push_back(p + (fp / (fp - fq)) * (q - p));
+    }
+    poly = std::move(kept);
+  }
+  return poly;
+}
 
-std::vector<Segment2> contact_lines(const Scene& scene, SideRef side) {
+double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+/// Twice the signed area of a closed polygon (positive counter-clockwise).
+double twice_signed_area(const Polyline& p) {
+  double a = 0;
+  for (size_t i = 0; i < p.size(); ++i) a += cross2(p[i], p[(i + 1) % p.size()]);
+  return a;
+}
+
+bool lexicographically_less(const Vec2& a, const Vec2& b) { return std::tie(a.x(), a.y()) < std::tie(b.x(), b.y()); }
+
+/// The closed polygon `p` as a region: points within `join_m` of their predecessor and vertices
+/// within `join_m` of the line through their neighbours dropped, counter-clockwise, starting at
+/// its lexicographically smallest vertex; nullopt if fewer than 3 vertices remain or it is no
+/// wider than `join_m` (its area at most join_m times its bounding box's diagonal).
+std::optional<Polyline> as_region(Polyline p, double join_m) {
+  for (bool changed = true; changed && p.size() >= 3;) {
+    changed = false;
+    for (size_t i = 0; i < p.size() && p.size() >= 3; ++i) {
+      const Vec2& prev = p[(i + p.size() - 1) % p.size()];
+      const Vec2& next = p[(i + 1) % p.size()];
+      const double base = (next - prev).norm();
+      // A repeated point, the tip of a spike, or a vertex on the line through its neighbours.
+      const bool drop = (p[i] - prev).norm() <= join_m || base <= join_m ||
+                        std::abs(cross2(next - prev, p[i] - prev)) <= join_m * base;
+      if (drop) {
+        p.erase(p.begin() + static_cast<std::ptrdiff_t>(i));
+        changed = true;
+        break;
+      }
+    }
+  }
+  if (p.size() < 3) return std::nullopt;
+  Vec2 lo = p[0], hi = p[0];
+  for (const Vec2& q : p) {
+    lo = lo.cwiseMin(q);
+    hi = hi.cwiseMax(q);
+  }
+  const double area2 = twice_signed_area(p);
+  if (std::abs(area2) <= 2 * join_m * (hi - lo).norm()) return std::nullopt;
+  if (area2 < 0) std::reverse(p.begin(), p.end());
+  std::rotate(p.begin(), std::min_element(p.begin(), p.end(), lexicographically_less), p.end());
+  return p;
+}
+
+/// Whether two regions (as_region()) are the same polygon: as many vertices, each within
+/// `join_m` of one of the other's.
+bool same_region(const Polyline& a, const Polyline& b, double join_m) {
+  if (a.size() != b.size()) return false;
+  for (const Vec2& p : a)
+    if (std::none_of(b.begin(), b.end(), [&](const Vec2& q) { return (p - q).norm() <= join_m; })) return false;
+  return true;
+}
+
+/// Everything contacts.h computes for one side, in its (s, t) metres.
+struct SideContacts {
+  std::vector<Segment2> lines;    ///< contact_lines()
+  std::vector<Polyline> covered;  ///< regions under the surfaces lying on the side, surface order
+};
+
+SideContacts side_contacts(const Scene& scene, SideRef side) {
   const Surface& s = scene.surfaces[side.surface];
   const Vec3 n = side_normal(s, side.back_side);
   const double offset = n.dot(s.corners[0]);
   const double lu = s.length_u_m(), lv = s.length_v_m();
   const double border = tol::kOnBorderParameter;
-  std::vector<Segment2> out;
+  const double join_m = tol::kContactJoinRelative * std::max(lu, lv);
+  const auto on_border = [&](double x, double y) {
+    return (std::abs(x) <= border && std::abs(y) <= border) || (std::abs(x - 1) <= border && std::abs(y - 1) <= border);
+  };
+  SideContacts out;
+  // A segment from parameters ua to ub, unless along the quad's border, zero-length or a repeat.
+  const auto add_line = [&](const Vec2& ua, const Vec2& ub) {
+    if (on_border(ua.x(), ub.x()) || on_border(ua.y(), ub.y())) return;  // along an edge of the quad
+    Vec2 pa(ua.x() * lu, ua.y() * lv), pb(ub.x() * lu, ub.y() * lv);
+    if (pa == pb) return;
+    if (lexicographically_less(pb, pa)) std::swap(pa, pb);
+    for (const Segment2& l : out.lines)
+      if (((l.a - pa).norm() <= join_m && (l.b - pb).norm() <= join_m) ||
+          ((l.a - pb).norm() <= join_m && (l.b - pa).norm() <= join_m))
+        return;
+    out.lines.push_back({pa, pb});
+  };
   for (size_t k = 0; k < scene.surfaces.size(); ++k) {
     if (k == side.surface) continue;
     const Surface& t = scene.surfaces[k];
+    if (lies_on(t, s)) {
+      std::vector<Vec3> clipped = clip_polygon_to_quad(s, std::vector<Vec3>(t.corners.begin(), t.corners.end()));
+      Polyline st;  // the clipped outline in the side's metres
+      for (const Vec3& p : clipped)
+        if (const std::optional<Vec2> q = s.parameters(p)) st.emplace_back(q->x() * lu, q->y() * lv);
+      std::optional<Polyline> region = as_region(std::move(st), join_m);
+      if (!region) continue;  // no overlap, or only along an edge
+      for (size_t i = 0; i < region->size(); ++i) {
+        const Vec2& a = (*region)[i];
+        const Vec2& b = (*region)[(i + 1) % region->size()];
+        add_line(Vec2(a.x() / lu, a.y() / lv), Vec2(b.x() / lu, b.y() / lv));
+      }
+      out.covered.push_back(std::move(*region));
+      continue;
+    }
     const double touch_m = tol::kContactRelative * std::max(t.length_u_m(), t.length_v_m());
     std::array<double, 4> dist;
     bool in_front = false, all_on = true;
@@ -81,20 +195,105 @@ std::vector<Segment2> contact_lines(const Scene& scene, SideRef side) {
       in_front = in_front || d > 0;
       all_on = all_on && d == 0;
     }
-    if (all_on || !in_front) continue;  // lying flat on the side, or only behind it
+    if (all_on || !in_front) continue;  // lying flat on the side but not smaller, or only behind it
     Vec3 a, b;
     if (!plane_section(t.corners, dist, a, b) || !clip_to_quad(s, a, b)) continue;
     const std::optional<Vec2> ua = s.parameters(a), ub = s.parameters(b);
     if (!ua || !ub) continue;
-    const auto on_border = [&](double x, double y) {
-      return (std::abs(x) <= border && std::abs(y) <= border) || (std::abs(x - 1) <= border && std::abs(y - 1) <= border);
-    };
-    if (on_border(ua->x(), ub->x()) || on_border(ua->y(), ub->y())) continue;  // along an edge of the quad
-    Vec2 pa(ua->x() * lu, ua->y() * lv), pb(ub->x() * lu, ub->y() * lv);
-    if (pa == pb) continue;
-    if (std::tie(pb.x(), pb.y()) < std::tie(pa.x(), pa.y())) std::swap(pa, pb);
-    out.push_back({pa, pb});
+    add_line(*ua, *ub);
   }
+  return out;
+}
+
+/// The bounded faces of the graph of `lines` joined at their end points (within `join_m`), after
+/// removing dangling lines, as regions (as_region()).
+std::vector<Polyline> enclosed_regions(const std::vector<Segment2>& lines, double join_m) {
+  std::vector<Vec2> nodes;
+  const auto node_of = [&](const Vec2& p) {
+    for (size_t i = 0; i < nodes.size(); ++i)
+      if ((nodes[i] - p).norm() <= join_m) return i;
+    nodes.push_back(p);
+    return nodes.size() - 1;
+  };
+  std::set<std::pair<size_t, size_t>> edges;
+  for (const Segment2& l : lines) {
+    const size_t i = node_of(l.a), j = node_of(l.b);
+    if (i != j) edges.insert(std::minmax(i, j));
+  }
+  // Dangling lines bound no area: remove every edge at a node of degree 1, until none is left.
+  for (bool pruned = true; pruned;) {
+    pruned = false;
+    std::vector<int> degree(nodes.size(), 0);
+    for (const auto& [i, j] : edges) ++degree[i], ++degree[j];
+    for (auto e = edges.begin(); e != edges.end();)
+      if (degree[e->first] == 1 || degree[e->second] == 1) {
+        e = edges.erase(e);
+        pruned = true;
+      } else {
+        ++e;
+      }
+  }
+  // Each node's neighbours counter-clockwise by direction. Walking a face keeps it on the left:
+  // from the edge a -> b, on along b's next neighbour clockwise from a. Bounded faces are walked
+  // counter-clockwise (positive area), the unbounded one of each connected part clockwise.
+  std::vector<std::vector<size_t>> around(nodes.size());
+  for (const auto& [i, j] : edges) {
+    around[i].push_back(j);
+    around[j].push_back(i);
+  }
+  for (size_t i = 0; i < nodes.size(); ++i)
+    std::sort(around[i].begin(), around[i].end(), [&](size_t a, size_t b) {
+      const Vec2 da = nodes[a] - nodes[i], db = nodes[b] - nodes[i];
+      return std::atan2(da.y(), da.x()) < std::atan2(db.y(), db.x());
+    });
+  std::vector<std::vector<bool>> walked(nodes.size());
+  for (size_t i = 0; i < nodes.size(); ++i) walked[i].assign(around[i].size(), false);
+  std::vector<Polyline> out;
+  for (size_t start = 0; start < nodes.size(); ++start)
+    for (size_t k0 = 0; k0 < around[start].size(); ++k0) {
+      if (walked[start][k0]) continue;
+      Polyline face;
+      size_t node = start, k = k0;
+      while (!walked[node][k]) {
+        walked[node][k] = true;
+        face.push_back(nodes[node]);
+        const size_t next = around[node][k];
+        const std::vector<size_t>& nb = around[next];
+        const size_t back = static_cast<size_t>(std::find(nb.begin(), nb.end(), node) - nb.begin());
+        k = (back + nb.size() - 1) % nb.size();
+        node = next;
+      }
+      if (twice_signed_area(face) <= 0) continue;  // the unbounded face
+      if (std::optional<Polyline> region = as_region(std::move(face), join_m)) out.push_back(std::move(*region));
+    }
+  return out;
+}
+
+}  // namespace
+
+bool lies_on(const Surface& other, const Surface& base) {
+  const Vec3 n = base.normal();
+  const double offset = n.dot(base.corners[0]);
+  const double touch_m = tol::kContactRelative * std::max(other.length_u_m(), other.length_v_m());
+  for (const Vec3& c : other.corners)
+    if (std::abs(n.dot(c) - offset) > touch_m) return false;
+  return other.area_m2() < (1 - tol::kLyingSmallerRelative) * base.area_m2();
+}
+
+std::vector<Segment2> contact_lines(const Scene& scene, SideRef side) { return side_contacts(scene, side).lines; }
+
+std::vector<Polyline> excluded_regions(const Scene& scene, SideRef side) {
+  const Surface& s = scene.surfaces[side.surface];
+  const double join_m = tol::kContactJoinRelative * std::max(s.length_u_m(), s.length_v_m());
+  SideContacts contacts = side_contacts(scene, side);
+  std::vector<Polyline> out;
+  const auto add = [&](Polyline region) {
+    for (const Polyline& r : out)
+      if (same_region(r, region, join_m)) return;
+    out.push_back(std::move(region));
+  };
+  for (Polyline& r : contacts.covered) add(std::move(r));
+  for (Polyline& r : enclosed_regions(contacts.lines, join_m)) add(std::move(r));
   return out;
 }
 

@@ -2,6 +2,8 @@
 // Where surfaces touch: the lines on a surface side along which another surface of the scene
 // stands on it or passes through it (the foot of a wall on the ground, a block on a floor). The
 // radiosity jumps across them (a D0 discontinuity), so reconstructions treat them as barriers.
+// And the parts of a side that nothing sees: under a surface lying flat on it, or enclosed by
+// surfaces standing on it.
 
 #include <vector>
 
@@ -16,12 +18,46 @@ struct Segment2 {
   Vec2 a, b;
 };
 
-/// The contact lines on `side`: for every other surface whose polygon meets the side's plane
-/// (within tol::kContactRelative of that surface's size) from the side's front half-space (or
-/// crosses the plane), the segment where it meets it, clipped to the side's quad. Segments that
-/// lie on the quad's border are left out (nothing lies beyond them), as are zero-length ones.
-/// Each segment runs from its lexicographically smaller end point; the list is in surface order.
-/// Not yet: surfaces lying flat on the side (coplanar), whose covered area is not excluded.
+/// The contact lines on `side`, the lines along which the radiosity of the side may jump:
+/// - for every other surface whose polygon meets the side's plane (within tol::kContactRelative
+///   of that surface's size) from the side's front half-space (or crosses the plane), the segment
+///   where it meets it, clipped to the side's quad;
+/// - for every other surface lying flat on the side (lies_on()), the edges of its polygon clipped
+///   to the side's quad (the outline of the region it covers, see excluded_regions()).
+/// Segments that lie on the quad's border are left out (nothing lies beyond them), as are
+/// zero-length ones and repeats (both ends within tol::kContactJoinRelative of the side's longer
+/// edge of an earlier segment's: a wall's foot along the edge of a box's bottom lying on the
+/// floor is one line). Each segment runs from its lexicographically smaller end point; the list
+/// is in surface order, a lying surface's edges counter-clockwise around its clipped outline.
 std::vector<Segment2> contact_lines(const Scene& scene, SideRef side);
+
+/// Whether surface `other` lies flat on surface `base` (either side of it): its four corners lie
+/// within tol::kContactRelative of its size of base's plane, it faces either way, and its area is
+/// below (1 - tol::kLyingSmallerRelative) times base's (of two coplanar overlapping quads the
+/// smaller lies on the larger: a plate on a floor covers the floor, the floor does not cover the
+/// plate; two equal ones cover neither). Whether they overlap is not asked.
+bool lies_on(const Surface& other, const Surface& base);
+
+/// The parts of `side` that are neither samples nor queries, as closed polygons in the side's
+/// (s, t) metres: each a simple polygon of at least 3 vertices, counter-clockwise in (s, t),
+/// starting at its lexicographically smallest vertex, the last vertex joined back to the first
+/// (the first is NOT repeated at the end). Regions may overlap. They are
+/// (a) covered: every other surface lying flat on the side (lies_on(): coplanar, facing either
+///     way, smaller), its polygon clipped to the side's quad, in surface order. The surface has no
+///     thickness, so both sides of a two-sided side are covered alike;
+/// (b) enclosed: every area bounded by a closed loop of the side's contact_lines() chained end to
+///     end (ends within tol::kContactJoinRelative of the side's longer edge are one point), e.g.
+///     the four walls of a box standing on a floor: the bounded faces of that graph of lines
+///     after removing dangling lines, each as its outline polygon, unless equal to a covered
+///     region of (a) (a box's bottom lying on the floor and its walls standing around it give one
+///     region). Lines are joined at their end points only: lines crossing in their middles, or
+///     one ending in the middle of another, close no loop, nor do lines dropped along the
+///     quad's border (a box standing in a corner of the floor, or the walls of a closed box on
+///     its bottom, enclose nothing). Enclosure is read from the lines alone: four walls without
+///     a roof enclose their yard too.
+/// Collinear vertices (within tol::kContactJoinRelative) are dropped, and so are regions no wider
+/// than that (a coplanar neighbour touching the side along its border). A quad side that is not a
+/// parallelogram maps the vertices exactly and joins them by straight lines in (s, t).
+std::vector<Polyline> excluded_regions(const Scene& scene, SideRef side);
 
 }  // namespace radrecon

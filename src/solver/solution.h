@@ -28,6 +28,10 @@ struct SurfaceSolution {
   /// The side's discontinuity lines from the scene's geometry (scene/contacts.h), in its (s, t)
   /// metres: where other surfaces stand on it. Barriers of its reconstruction.
   std::vector<Polyline> barriers;
+  /// The side's parts that are neither samples nor queries (scene/contacts.h excluded_regions()):
+  /// closed polygons in its (s, t) metres, counter-clockwise, the first vertex not repeated at the
+  /// end; under a surface lying flat on it, or enclosed by surfaces standing on it.
+  std::vector<Polyline> excluded;
 };
 
 /// Solver statistics. Powers are per colour channel, in W.

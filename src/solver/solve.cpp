@@ -85,8 +85,8 @@ Solution solve_by_spec(const Scene& scene, const std::string& spec, const SolveS
 }
 
 
-/// Every side's contact lines (scene/contacts.h) as its barriers, and its shadow lines
-/// (scene/shadow_lines.h) if asked.
+/// Every side's contact lines (scene/contacts.h) as its barriers, its shadow lines
+/// (scene/shadow_lines.h) too if asked, and its excluded regions.
 Solution with_barriers(const Scene& scene, Solution sol, bool shadow_lines_too) {
   for (SurfaceSolution& side : sol.surfaces) {
     const std::optional<SideRef> ref = find_side(scene, side.name);
@@ -94,6 +94,7 @@ Solution with_barriers(const Scene& scene, Solution sol, bool shadow_lines_too) 
     for (const Segment2& c : contact_lines(scene, *ref)) side.barriers.push_back({c.a, c.b});
     if (shadow_lines_too)
       for (const Segment2& c : shadow_lines(scene, *ref)) side.barriers.push_back({c.a, c.b});
+    side.excluded = excluded_regions(scene, *ref);
   }
   return sol;
 }

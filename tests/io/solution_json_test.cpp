@@ -68,6 +68,28 @@ TEST_F(SolutionFiles, WhatIsWrittenReadsBack) {
   EXPECT_NE(text.find("\"converged\": false"), std::string::npos);
 }
 
+TEST_F(SolutionFiles, BarriersAndExcludedRegionsReadBackToTheLastBit) {
+  Solution sol = two_element_grid();
+  SurfaceSolution& s = sol.surfaces[0];
+  s.barriers = {{Vec2(0.5, 0), Vec2(0.5, 1.0 / 3)}, {Vec2(0.1, 0.2), Vec2(0.3, 0.2), Vec2(0.3, 0.7)}};
+  s.excluded = {{Vec2(0.1, 0.1), Vec2(0.4, 0.1), Vec2(0.4, 2.0 / 3), Vec2(0.1, 2.0 / 3)},
+                {Vec2(1.2, 0.2), Vec2(1.9, 0.2), Vec2(1.5, 1e-300)}};
+  const fs::path path = dir_ / "regions.json";
+  write_solution_json(path, sol);
+  const Solution read = read_solution_json(path);
+  const SurfaceSolution& back = read.surfaces[0];
+  EXPECT_EQ(back.barriers, s.barriers);
+  EXPECT_EQ(back.excluded, s.excluded);
+  // None is written as an empty list, and read back as none.
+  s.barriers.clear();
+  s.excluded.clear();
+  write_solution_json(path, sol);
+  const Solution reread = read_solution_json(path);
+  const SurfaceSolution& none = reread.surfaces[0];
+  EXPECT_TRUE(none.barriers.empty());
+  EXPECT_TRUE(none.excluded.empty());
+}
+
 TEST_F(SolutionFiles, MalformedFilesAreRefusedWithTheFieldOrLine) {
   const std::string element = R"({"u0": 0, "v0": 0, "u1": 1, "v1": 1, "center": [0,0,0], "area": 1, "radiosity": [1,1,1]})";
   auto side = [&](const std::string& name, const std::string& grid, const std::string& elements) {
@@ -75,6 +97,23 @@ TEST_F(SolutionFiles, MalformedFilesAreRefusedWithTheFieldOrLine) {
            R"(, "elements": [)" + elements + "]}";
   };
   EXPECT_EQ(refusal(R"({"surfaces": [)" + side("a", "[1, 1]", element) + "]}"), "");
+  // Excluded regions are optional; when present, polygons of at least 3 points [s, t].
+  auto with_excluded = [&](const std::string& excluded) {
+    return R"({"surfaces": [{"name": "a", "length_u_m": 1, "length_v_m": 1, "excluded": )" + excluded +
+           R"(, "elements": [)" + element + "]}]}";
+  };
+  EXPECT_EQ(refusal(with_excluded("[]")), "");
+  EXPECT_EQ(refusal(with_excluded("[[[0, 0], [1, 0], [1, 1]]]")), "");
+  EXPECT_NE(refusal(with_excluded("{}")).find("surfaces[0].excluded: must be an array of polygons"), std::string::npos);
+  EXPECT_NE(refusal(with_excluded("[[[0, 0], [1, 0], [1, 1]], [[0, 0], [1, 0]]]"))
+                .find("surfaces[0].excluded[1]: must be a polygon of at least 3 points"),
+            std::string::npos);
+  EXPECT_NE(refusal(with_excluded("[[[0, 0], [1, 0], [1]]]")).find("surfaces[0].excluded[0][2]: must be a point [s, t]"),
+            std::string::npos);
+  EXPECT_NE(refusal(with_excluded(R"([[[0, 0], [1, 0], [1, "x"]]])")).find("surfaces[0].excluded[0][2][1]: must be a number"),
+            std::string::npos);
+  EXPECT_NE(refusal(with_excluded("[[[0, 0], [1, 0], [1, 1e999]]]")).find("number overflow parsing '1e999'"),
+            std::string::npos);
   // Invalid JSON: the line.
   EXPECT_NE(refusal("{\n\"surfaces\": [\n,]}").find("s.json:3"), std::string::npos);
   // A missing field: its path.

@@ -1,5 +1,7 @@
-// Contact lines against the scenes' closed forms: the paper's wall feet on the ground, the base
-// of a box on a floor, a card through a floor, and nothing where surfaces do not touch.
+// Contact lines and excluded regions against hand-computed coordinates: the paper's wall feet on
+// the ground (and nothing excluded there), the base of a box on a floor and the square under it,
+// a plate lying on a floor, a card through a floor, a closed box, and nothing where surfaces do
+// not touch.
 
 #include <gtest/gtest.h>
 
@@ -22,6 +24,49 @@ void expect_segment(const Segment2& got, const Vec2& a, const Vec2& b) {
   EXPECT_NEAR(got.b.y(), b.y(), kExact);
 }
 
+/// `lines` are exactly `expected` (each from its lexicographically smaller end), in any order.
+void expect_lines(const std::vector<Segment2>& lines, const std::vector<Segment2>& expected) {
+  ASSERT_EQ(lines.size(), expected.size());
+  for (const Segment2& e : expected) {
+    const auto same = [&](const Segment2& l) { return (l.a - e.a).norm() <= kExact && (l.b - e.b).norm() <= kExact; };
+    EXPECT_EQ(std::count_if(lines.begin(), lines.end(), same), 1)
+        << "(" << e.a.x() << ", " << e.a.y() << ") - (" << e.b.x() << ", " << e.b.y() << ")";
+  }
+}
+
+/// `region` is exactly `corners`: counter-clockwise from the lexicographically smallest, the first
+/// not repeated.
+void expect_region(const Polyline& region, const std::vector<Vec2>& corners) {
+  ASSERT_EQ(region.size(), corners.size());
+  for (size_t i = 0; i < corners.size(); ++i) {
+    EXPECT_NEAR(region[i].x(), corners[i].x(), kExact) << "vertex " << i;
+    EXPECT_NEAR(region[i].y(), corners[i].y(), kExact) << "vertex " << i;
+  }
+}
+
+/// A wall of height h standing on z = 0 along (x0, y0) -> (x1, y1).
+Surface wall(const std::string& name, double x0, double y0, double x1, double y1, double h = 1) {
+  return quad(name, {x0, y0, 0}, {x1, y1, 0}, {x1, y1, h}, {x0, y0, h}, 0.5);
+}
+
+/// A 4 m x 4 m floor at z = 0, facing up, (s, t) = (x, y).
+Surface floor4() { return quad("floor", {0, 0, 0}, {4, 0, 0}, {4, 4, 0}, {0, 4, 0}, 0.5); }
+
+/// A unit box standing on the 4 m floor at (1..2, 1..2): four walls (normals outward) and a top.
+Scene unit_box_on_a_floor() {
+  Scene scene;
+  scene.surfaces.push_back(floor4());
+  scene.surfaces.push_back(wall("south", 1, 1, 2, 1));
+  scene.surfaces.push_back(wall("east", 2, 1, 2, 2));
+  scene.surfaces.push_back(wall("north", 2, 2, 1, 2));
+  scene.surfaces.push_back(wall("west", 1, 2, 1, 1));
+  scene.surfaces.push_back(quad("top", {1, 1, 1}, {2, 1, 1}, {2, 2, 1}, {1, 2, 1}, 0.5));
+  return scene;
+}
+
+const std::vector<Segment2> kUnitBoxBase = {{{1, 1}, {2, 1}}, {{2, 1}, {2, 2}}, {{1, 2}, {2, 2}}, {{1, 1}, {1, 2}}};
+const std::vector<Vec2> kUnitBoxSquare = {{1, 1}, {2, 1}, {2, 2}, {1, 2}};
+
 TEST(ContactLines, ThePaperGroundHasExactlyTheTwoWallFeet) {
   const Scene scene = paper_scene();
   const SideRef ground = *find_side(scene, "ground");
@@ -33,6 +78,119 @@ TEST(ContactLines, ThePaperGroundHasExactlyTheTwoWallFeet) {
   // nothing.
   for (const char* side : {"wall1/front", "wall1/back", "wall2/front", "wall2/back", "light"})
     EXPECT_TRUE(contact_lines(scene, *find_side(scene, side)).empty()) << side;
+}
+
+TEST(ExcludedRegions, ThePaperSceneHasNoneItsLShapedWallsCloseNoLoop) {
+  const Scene scene = paper_scene();
+  for (const char* side : {"ground", "wall1/front", "wall1/back", "wall2/front", "wall2/back", "light"})
+    EXPECT_TRUE(excluded_regions(scene, *find_side(scene, side)).empty()) << side;
+}
+
+TEST(ExcludedRegions, AUnitBoxOnAFloorGivesItsFourBaseEdgesAndTheSquareUnderIt) {
+  const Scene scene = unit_box_on_a_floor();
+  expect_lines(contact_lines(scene, SideRef{0, false}), kUnitBoxBase);
+  const std::vector<Polyline> regions = excluded_regions(scene, SideRef{0, false});
+  ASSERT_EQ(regions.size(), 1u);
+  expect_region(regions[0], kUnitBoxSquare);
+  // The box's own faces: the floor and the neighbouring walls meet them along their borders.
+  for (size_t k = 1; k < scene.surfaces.size(); ++k) {
+    EXPECT_TRUE(contact_lines(scene, SideRef{k, false}).empty()) << scene.surfaces[k].name;
+    EXPECT_TRUE(excluded_regions(scene, SideRef{k, false}).empty()) << scene.surfaces[k].name;
+  }
+}
+
+TEST(ExcludedRegions, AClosedBoxsBottomLyingOnTheFloorAddsNothingToItsWalls) {
+  // The bottom facing down (outward) or up (inward): either way it lies on the floor, its edges
+  // are the walls' feet (one line each), and the square it covers is the one they enclose.
+  for (const bool up : {false, true}) {
+    Scene scene = unit_box_on_a_floor();
+    scene.surfaces.push_back(up ? quad("bottom", {1, 1, 0}, {2, 1, 0}, {2, 2, 0}, {1, 2, 0}, 0.5)
+                                : quad("bottom", {1, 1, 0}, {1, 2, 0}, {2, 2, 0}, {2, 1, 0}, 0.5));
+    expect_lines(contact_lines(scene, SideRef{0, false}), kUnitBoxBase);
+    const std::vector<Polyline> regions = excluded_regions(scene, SideRef{0, false});
+    ASSERT_EQ(regions.size(), 1u) << (up ? "up" : "down");
+    expect_region(regions[0], kUnitBoxSquare);
+    // The floor is larger: it does not lie on the bottom.
+    const SideRef bottom{scene.surfaces.size() - 1, false};
+    EXPECT_TRUE(contact_lines(scene, bottom).empty());
+    EXPECT_TRUE(excluded_regions(scene, bottom).empty());
+  }
+}
+
+TEST(ExcludedRegions, APlateLyingOnAFloorIsCoveredAndOutlinedInTheFloorsMetres) {
+  // The floor's corner 0 at (4, 4), u along -x, v along -y: (s, t) = (4 - x, 4 - y).
+  Scene scene;
+  scene.surfaces.push_back(quad("floor", {4, 4, 0}, {0, 4, 0}, {0, 0, 0}, {4, 0, 0}, 0.5));
+  scene.surfaces.push_back(quad("plate", {0.5, 2, 0}, {1.5, 2, 0}, {1.5, 3, 0}, {0.5, 3, 0}, 0.5));
+  // Covering x in [0.5, 1.5], y in [2, 3]: s in [2.5, 3.5], t in [1, 2].
+  expect_lines(contact_lines(scene, SideRef{0, false}),
+               {{{2.5, 1}, {3.5, 1}}, {{3.5, 1}, {3.5, 2}}, {{2.5, 2}, {3.5, 2}}, {{2.5, 1}, {2.5, 2}}});
+  const std::vector<Polyline> regions = excluded_regions(scene, SideRef{0, false});
+  ASSERT_EQ(regions.size(), 1u);
+  expect_region(regions[0], {{2.5, 1}, {3.5, 1}, {3.5, 2}, {2.5, 2}});
+  // The plate itself is neither cut nor covered.
+  EXPECT_TRUE(contact_lines(scene, SideRef{1, false}).empty());
+  EXPECT_TRUE(excluded_regions(scene, SideRef{1, false}).empty());
+}
+
+TEST(ExcludedRegions, APlateOverTheFloorsEdgeIsClippedAndItsEdgeOnTheBorderIsNoBarrier) {
+  // Facing down, 1e-7 m above the floor: within the contact tolerance (1e-6 of its 2 m).
+  Scene scene;
+  auto floor = floor4();
+  floor.two_sided = true;
+  scene.surfaces.push_back(floor);
+  scene.surfaces.push_back(quad("plate", {3, 1, 1e-7}, {3, 2, 1e-7}, {5, 2, 1e-7}, {5, 1, 1e-7}, 0.5));
+  for (const bool back : {false, true}) {  // no thickness: both sides are covered
+    expect_lines(contact_lines(scene, SideRef{0, back}), {{{3, 1}, {4, 1}}, {{3, 1}, {3, 2}}, {{3, 2}, {4, 2}}});
+    const std::vector<Polyline> regions = excluded_regions(scene, SideRef{0, back});
+    ASSERT_EQ(regions.size(), 1u) << (back ? "back" : "front");
+    expect_region(regions[0], {{3, 1}, {4, 1}, {4, 2}, {3, 2}});
+  }
+}
+
+TEST(ExcludedRegions, NeighboursAndDuplicatesCoverNothingAndAGapIsNoContact) {
+  Scene scene;
+  scene.surfaces.push_back(floor4());
+  scene.surfaces.push_back(quad("next tile", {4, 0, 0}, {6, 0, 0}, {6, 4, 0}, {4, 4, 0}, 0.5));      // beside it
+  scene.surfaces.push_back(quad("duplicate", {4, 0, 0}, {4, 4, 0}, {0, 4, 0}, {0, 0, 0}, 0.5));      // itself, again
+  scene.surfaces.push_back(quad("hovering", {1, 1, 1e-3}, {2, 1, 1e-3}, {2, 2, 1e-3}, {1, 2, 1e-3}, 0.5));  // 1 mm up
+  for (size_t k = 0; k < scene.surfaces.size(); ++k) {
+    EXPECT_TRUE(contact_lines(scene, SideRef{k, false}).empty()) << scene.surfaces[k].name;
+    EXPECT_TRUE(excluded_regions(scene, SideRef{k, false}).empty()) << scene.surfaces[k].name;
+  }
+}
+
+TEST(ExcludedRegions, TwoRoomsSharingAWallAreTwoRegionsAndDanglingOrOpenWallsEncloseNothing) {
+  Scene scene;
+  scene.surfaces.push_back(floor4());
+  // Two unit rooms side by side at (1..2, 1..2) and (2..3, 1..2), the wall x = 2 between them.
+  scene.surfaces.push_back(wall("south left", 1, 1, 2, 1));
+  scene.surfaces.push_back(wall("south right", 2, 1, 3, 1));
+  scene.surfaces.push_back(wall("east", 3, 1, 3, 2));
+  scene.surfaces.push_back(wall("north right", 3, 2, 2, 2));
+  scene.surfaces.push_back(wall("north left", 2, 2, 1, 2));
+  scene.surfaces.push_back(wall("west", 1, 2, 1, 1));
+  scene.surfaces.push_back(wall("between", 2, 1, 2, 2));
+  scene.surfaces.push_back(wall("fence", 3, 2, 3.5, 3));           // from a corner, ending in the open
+  scene.surfaces.push_back(wall("partition", 3, 1, 2.5, 1.5, 0.5));  // from a corner into the right room
+  // Elsewhere, an open yard of three walls.
+  scene.surfaces.push_back(wall("yard west", 1, 3, 1, 3.8));
+  scene.surfaces.push_back(wall("yard north", 1, 3.8, 2, 3.8));
+  scene.surfaces.push_back(wall("yard east", 2, 3.8, 2, 3));
+  EXPECT_EQ(contact_lines(scene, SideRef{0, false}).size(), 12u);
+  const std::vector<Polyline> regions = excluded_regions(scene, SideRef{0, false});
+  ASSERT_EQ(regions.size(), 2u);
+  const bool left_first = regions[0][0].x() < 1.5;
+  expect_region(regions[left_first ? 0 : 1], {{1, 1}, {2, 1}, {2, 2}, {1, 2}});
+  expect_region(regions[left_first ? 1 : 0], {{2, 1}, {3, 1}, {3, 2}, {2, 2}});
+}
+
+TEST(ExcludedRegions, AClosedBoxExcludesNothingItsWallsStandOnItsFloorsBorder) {
+  const Scene box = testing_support::closed_box(0.5, 1);
+  for (size_t k = 0; k < box.surfaces.size(); ++k) {
+    EXPECT_TRUE(contact_lines(box, SideRef{k, false}).empty()) << box.surfaces[k].name;
+    EXPECT_TRUE(excluded_regions(box, SideRef{k, false}).empty()) << box.surfaces[k].name;
+  }
 }
 
 TEST(ContactLines, ABoxOnAFloorGivesItsFourBaseEdges) {
