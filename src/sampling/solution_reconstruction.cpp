@@ -1,6 +1,7 @@
 #include "sampling/solution_reconstruction.h"
 
 #include <cmath>
+#include <limits>
 
 #include "core/error.h"
 #include "core/parse.h"
@@ -10,8 +11,62 @@
 
 namespace radrecon {
 
-InterpolantResult reconstruct_side(const SurfaceSolution& s, Method method, const MethodParams& plain,
-                                   const SideSampling& sampling) {
+namespace {
+
+/// Whether p lies inside the polygon (crossing number; a point on its outline may count either
+/// way: the outline is a barrier, and the renderer never sees the covered floor).
+bool inside(const Polyline& polygon, const Vec2& p) {
+  bool in = false;
+  for (size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
+    const Vec2 &a = polygon[i], &b = polygon[j];
+    if ((a.y() > p.y()) != (b.y() > p.y()) && p.x() < a.x() + (p.y() - a.y()) / (b.y() - a.y()) * (b.x() - a.x()))
+      in = !in;
+  }
+  return in;
+}
+
+bool excluded(const std::vector<Polyline>& regions, const Vec2& p) {
+  for (const Polyline& r : regions)
+    if (inside(r, p)) return true;
+  return false;
+}
+
+/// An interpolant that has no value (NaN) inside the side's excluded regions.
+class OutsideExcluded final : public Interpolant {
+ public:
+  OutsideExcluded(std::unique_ptr<Interpolant> inner, std::vector<Polyline> regions)
+      : inner_(std::move(inner)), regions_(std::move(regions)) {}
+  int channels() const override { return inner_->channels(); }
+  void evaluate(std::span<const Vec2> points, std::span<double> out) const override {
+    inner_->evaluate(points, out);
+    const size_t C = static_cast<size_t>(channels());
+    for (size_t k = 0; k < points.size(); ++k)
+      if (points[k].allFinite() && excluded(regions_, points[k]))
+        for (size_t c = 0; c < C; ++c) out[k * C + c] = std::numeric_limits<double>::quiet_NaN();
+  }
+
+ private:
+  std::unique_ptr<Interpolant> inner_;
+  std::vector<Polyline> regions_;
+};
+
+/// The samples outside the excluded regions.
+ScatteredSamples outside_regions(const ScatteredSamples& all, const std::vector<Polyline>& regions) {
+  if (regions.empty()) return all;
+  ScatteredSamples kept;
+  kept.channels = all.channels;
+  for (size_t k = 0; k < all.points.size(); ++k)
+    if (!excluded(regions, all.points[k])) {
+      kept.points.push_back(all.points[k]);
+      kept.values.insert(kept.values.end(), all.values.begin() + static_cast<std::ptrdiff_t>(k * all.channels),
+                         all.values.begin() + static_cast<std::ptrdiff_t>((k + 1) * all.channels));
+    }
+  return kept;
+}
+
+/// reconstruct_side() without the excluded regions' masking.
+InterpolantResult reconstruct_unmasked(const SurfaceSolution& s, Method method, const MethodParams& plain,
+                                       const SideSampling& sampling) {
   MethodParams params = plain;
   if (sampling.barriers && !s.barriers.empty()) {
     Result<Barriers> barriers = Barriers::from_polylines(s.barriers);
@@ -20,7 +75,7 @@ InterpolantResult reconstruct_side(const SurfaceSolution& s, Method method, cons
   }
   const bool grid = s.grid_nu > 0 && s.grid_nv > 0;
   if (sampling.border_samples && method != Method::constant && !is_grid_method(method)) {
-    ScatteredSamples samples = grid ? grid_cells(s).centres() : element_centres(s);
+    const ScatteredSamples samples = outside_regions(grid ? grid_cells(s).centres() : element_centres(s), s.excluded);
     Result<ScatteredSamples> bordered =
         with_border_samples(samples, Rect{0, 0, s.length_u_m, s.length_v_m}, params.barriers);
     if (!bordered) return Failure{"its border samples: " + bordered.reason()};
@@ -30,7 +85,16 @@ InterpolantResult reconstruct_side(const SurfaceSolution& s, Method method, cons
   if (method == Method::constant && params.barriers.empty()) return make_cell_interpolant(element_cells(s));
   if (is_grid_method(method))
     return Failure{method_name(method) + " needs grid data; this side is an adaptive subdivision"};
-  return make_scattered_interpolant(method, element_centres(s), params);
+  return make_scattered_interpolant(method, outside_regions(element_centres(s), s.excluded), params);
+}
+
+}  // namespace
+
+InterpolantResult reconstruct_side(const SurfaceSolution& s, Method method, const MethodParams& params,
+                                   const SideSampling& sampling) {
+  InterpolantResult built = reconstruct_unmasked(s, method, params, sampling);
+  if (!built || s.excluded.empty()) return built;
+  return InterpolantResult(std::make_unique<OutsideExcluded>(std::move(built).value(), s.excluded));
 }
 
 SolutionReconstruction::SolutionReconstruction(const Scene& scene, const Solution& solution, Method method,
