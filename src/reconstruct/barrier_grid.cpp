@@ -15,12 +15,17 @@ namespace radrecon {
 
 namespace {
 
-/// The visibility cache of a query covers sites i-3..i+4 x j-3..j+4 around its cell (i, j):
-/// every N(n) of its stencil and W(q), for cell and node sites.
-constexpr int kWindowBefore = 3;
-constexpr int kWindow = 8;
+/// The visibility cache of a query covers sites i-5..i+6 x j-5..j+6 around its cell (i, j):
+/// every N(n), N3(n) and N4(n) of its stencil (nodes i-1..i+2), for cell and node sites.
+constexpr int kWindowBefore = 5;
+constexpr int kWindow = 12;
 /// At most 4 x 4 stencil nodes.
 constexpr int kStencil = 4;
+/// Bicubic skips the visibility tests of a query nearer a barrier than d1 when the barrier is
+/// farther than the stencil's farthest site by this many cell diagonals: the distances' round-off
+/// is some 1e-16 of the coordinates and of the barrier segments' lengths, far below it unless
+/// those exceed 1e12 cells.
+constexpr double kSeenMarginDiagonals = 1e-3;
 /// Barrier marking: points along each barrier segment at most this fraction of the smaller grid
 /// spacing apart; each marks its cell and the cells around it, so that every cell the segment
 /// touches is marked.
@@ -28,26 +33,26 @@ constexpr double kMarkStep = 0.5;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-/// Second derivatives times h^2 of the natural cubic spline through y[0..n), n in [2, 4], into
-/// w[0..n): w[0] = w[n-1] = 0 and w[k-1] + 4 w[k] + w[k+1] = 6 (y[k-1] - 2 y[k] + y[k+1]).
-void natural_moments(const double* y, int n, double* w) {
-  std::fill(w, w + n, 0.0);
-  if (n == 3) {
-    w[1] = 1.5 * (y[0] - 2 * y[1] + y[2]);
-  } else if (n == 4) {
-    const double r1 = 6 * (y[0] - 2 * y[1] + y[2]), r2 = 6 * (y[1] - 2 * y[2] + y[3]);
-    w[1] = (4 * r1 - r2) / 15;
-    w[2] = (4 * r2 - r1) / 15;
-  }
-}
+/// Keys' cubic convolution (a = -1/2, the Catmull-Rom spline) along one axis of n >= 2 nodes,
+/// unit spacing, at k + t (cell k, t in [0, 1]): the weights of nodes first..first + count - 1.
+/// Inside, the 4 nodes k-1..k+2 with the kernel's weights; at an end, the missing node is Keys'
+/// extrapolation f(-1) = 3 f(0) - 3 f(1) + f(2) (and its mirror image), folded into the
+/// weights of the 3 nodes it uses; with 2 nodes, the linear extrapolations f(-1) = 2 f(0) - f(1)
+/// and f(2) = 2 f(1) - f(0). All exact for quadratics (linear with 2 nodes), and at t = 0 or 1
+/// only node k or k + 1 weighs (every folded-in weight then vanishes).
+struct AxisWeights {
+  int first, count;
+  double w[4];
+};
 
-/// The natural cubic spline through y[0..n) (unit spacing) at k + t, t in [0, 1] (Numerical
-/// Recipes eq. 3.3.3 with the moments times h^2).
-double natural_spline_at(const double* y, int n, int k, double t) {
-  double w[kStencil];
-  natural_moments(y, n, w);
-  const double b = t, a = 1 - t;
-  return a * y[k] + b * y[k + 1] + ((a * a * a - a) * w[k] + (b * b * b - b) * w[k + 1]) / 6;
+AxisWeights keys_weights(int n, int k, double t) {
+  const double t2 = t * t, t3 = t2 * t;
+  const double c0 = 0.5 * (-t + 2 * t2 - t3), c1 = 0.5 * (2 - 5 * t2 + 3 * t3), c2 = 0.5 * (t + 4 * t2 - 3 * t3),
+               c3 = 0.5 * (t3 - t2);  // nodes k-1, k, k+1, k+2
+  if (n == 2) return {0, 2, {c1 + 2 * c0 - c3, c2 - c0 + 2 * c3, 0, 0}};
+  if (k == 0) return {0, 3, {c1 + 3 * c0, c2 - 3 * c0, c3 + c0, 0}};
+  if (k == n - 2) return {k - 1, 3, {c0 + c3, c1 - 3 * c3, c2 + 3 * c3, 0}};
+  return {k - 1, 4, {c0, c1, c2, c3}};
 }
 
 }  // namespace
@@ -58,18 +63,17 @@ struct BarrierGrid::Stencil {
   int i, j;           ///< its grid cell
   double u, v;        ///< its position in the cell, [0, 1]
   int a0, a1, b0, b1; ///< the stencil's nodes a0..a1 x b0..b1
-  int bi, bj;         ///< q's own site (centre of W(q))
 };
 
 /// Per-thread buffers of evaluate(); overwritten per query before use.
 struct BarrierGrid::Scratch {
   signed char vis[kWindow * kWindow];  ///< -1 not tested yet, 0 hidden, 1 visible
   int wi0 = 0, wj0 = 0;                ///< the cache's first site
-  long nearest = -2;                   ///< rule (e)'s site, -1 none, -2 not searched yet
+  bool sees_nothing = false;           ///< rule (e) found no visible site: q sees none
   bool plain[kStencil * kStencil];     ///< per stencil node: rule (a)
   std::vector<double> values;          ///< stencil node values, ((b - b0) * 4 + (a - a0)) * C + c
   std::vector<double> sums;            ///< plane fits: sum f, u f, v f per channel
-  std::vector<double> column;          ///< bicubic: the rows' values at x, per channel
+  std::vector<double> plain_values;    ///< bicubic: the plain spline's values at q, per channel
 };
 
 BarrierGrid::BarrierGrid(const GridCells& cells, Kind kind, Barriers barriers)
@@ -93,6 +97,9 @@ BarrierGrid::BarrierGrid(GridNodes plain_nodes, std::vector<double> site_values,
            "grid values do not match the grid");
   if (kind_ == Kind::bilinear) plain_ = std::make_unique<Bilinear>(nodes_);
   else plain_ = std::make_unique<Bicubic>(nodes_);
+  const double diagonal = std::hypot(nodes_.dx, nodes_.dy);
+  local_distance_ = kLocalDiagonals * diagonal;
+  plain_distance_ = kPlainDiagonals * diagonal;
   mark_cells_near_barriers();
 }
 
@@ -107,18 +114,33 @@ void BarrierGrid::mark_cells_near_barriers() {
   const int cx = nodes_.nx - 1, cy = nodes_.ny - 1;
   near_.assign(static_cast<size_t>(cx) * cy, 0);
   if (barriers_.empty()) return;
-  // A query in cell (i, j) tests segments from it to sites whose segments stay within the cells
-  // up to `reach` away (bilinear: the 3 x 3 cells whose centres the corners share, or the cell
-  // itself for nodes; bicubic: the 5 x 5 cells of the stencil's shared centres, or 3 x 3 for
-  // nodes). A barrier can only block them if it touches one of those cells.
-  const int reach = (kind_ == Kind::bilinear ? 0 : 1) + (cell_sites_ ? 1 : 0);
-  // Every sample point marks its cell and those around it: one more than reach.
-  const int r = reach + 1;
   const double dx = nodes_.dx, dy = nodes_.dy;
-  // The grid's box, one cell wider: the part of a barrier that can matter (all sites and clamped
-  // queries lie in the grid's closed box).
-  const Vec2 lo(nodes_.x0 - dx, nodes_.y0 - dy), hi(nodes_.x0 + (cx + 1) * dx, nodes_.y0 + (cy + 1) * dy);
   const double step = kMarkStep * std::min(dx, dy);
+  // The cells to mark around each sample point of a barrier (rx, ry along x, y), and how far
+  // beyond the grid a barrier can matter (margin).
+  int rx, ry;
+  double margin;
+  if (kind_ == Kind::bilinear) {
+    // A query in cell (i, j) tests segments from it to sites whose segments stay within the
+    // cells up to `reach` away (the 3 x 3 cells whose centres the corners share, or the cell
+    // itself for nodes). A barrier can only block them if it touches one of those cells. Every
+    // sample point marks its cell and those around it: one more than reach.
+    const int reach = cell_sites_ ? 1 : 0;
+    rx = ry = reach + 1;
+    margin = 0;  // all sites and clamped queries lie in the grid's closed box
+  } else {
+    // Bicubic: every cell with a point nearer a barrier than plain_distance_. Such a point is
+    // within plain_distance_ of a point of the barrier, which lies within step / 2 of a sample
+    // point; so within plain_distance_ + step of a sample point along each axis, hence at most
+    // ceil(that / spacing) + 1 cells from the sample point's cell (clamping onto the grid only
+    // brings them closer).
+    margin = plain_distance_ + step;
+    rx = static_cast<int>(std::ceil(margin / dx)) + 1;
+    ry = static_cast<int>(std::ceil(margin / dy)) + 1;
+  }
+  // The grid's box, one cell wider and widened by the margin: the part of a barrier that can matter.
+  const Vec2 lo(nodes_.x0 - margin - dx, nodes_.y0 - margin - dy),
+      hi(nodes_.x0 + cx * dx + margin + dx, nodes_.y0 + cy * dy + margin + dy);
   for (const BarrierSegment& seg : barriers_.segments()) {
     const Vec2 d = seg.b - seg.a;
     double t0 = 0, t1 = 1;
@@ -145,8 +167,8 @@ void BarrierGrid::mark_cells_near_barriers() {
       const int cj = std::clamp(static_cast<int>(std::floor((p.y() - nodes_.y0) / dy)), 0, cy - 1);
       if (ci == last_i && cj == last_j) continue;
       last_i = ci, last_j = cj;
-      for (int j = std::max(0, cj - r); j <= std::min(cy - 1, cj + r); ++j)
-        for (int i = std::max(0, ci - r); i <= std::min(cx - 1, ci + r); ++i) near_[static_cast<size_t>(j) * cx + i] = 1;
+      for (int j = std::max(0, cj - ry); j <= std::min(cy - 1, cj + ry); ++j)
+        for (int i = std::max(0, ci - rx); i <= std::min(cx - 1, ci + rx); ++i) near_[static_cast<size_t>(j) * cx + i] = 1;
     }
   }
 }
@@ -211,13 +233,42 @@ void BarrierGrid::evaluate_near(const Vec2& q, double* out, Scratch& s) const {
     st.a0 = std::max(0, st.i - 1), st.a1 = std::min(nx - 1, st.i + 2);
     st.b0 = std::max(0, st.j - 1), st.b1 = std::min(ny - 1, st.j + 2);
   }
-  // q's own site: the cell it lies in, or the nearest node.
-  st.bi = cell_sites_ ? std::min(st.i, sites_x_ - 1) : (st.u < 0.5 ? st.i : st.i + 1);
-  st.bj = cell_sites_ ? std::min(st.j, sites_y_ - 1) : (st.v < 0.5 ? st.j : st.j + 1);
   s.wi0 = st.i - kWindowBefore;
   s.wj0 = st.j - kWindowBefore;
   std::fill(std::begin(s.vis), std::end(s.vis), static_cast<signed char>(-1));
-  s.nearest = -2;
+  s.sees_nothing = false;
+
+  // Bicubic: the distance to the nearest barrier sets the blend (barrier_grid.h).
+  double w = 1;  // the local scheme's weight
+  bool all_seen = false;
+  if (kind_ == Kind::bicubic) {
+    const double d = barriers_.distance_to(st.p, plain_distance_);
+    if (d >= plain_distance_) {  // the plain spline alone, the same arithmetic
+      plain_->evaluate(std::span(&q, 1), std::span(out, static_cast<size_t>(C)));
+      return;
+    }
+    if (d > local_distance_) {
+      const double t = (plain_distance_ - d) / (plain_distance_ - local_distance_);
+      w = t * t * (3 - 2 * t);
+      all_seen = true;  // every site of the stencil is nearer q than any barrier (barrier_grid.h)
+    } else {
+      // The same when the barriers are farther than the stencil's farthest site: no sight
+      // segment, all within that distance of q, can meet one; the margin is far above the
+      // round-off of the distances (and only spares the visibility tests).
+      all_seen = d > stencil_reach(st) + kSeenMarginDiagonals * std::hypot(nodes_.dx, nodes_.dy);
+    }
+  }
+
+  s.values.resize(static_cast<size_t>(kStencil * kStencil) * C);
+  if (all_seen) {
+    for (int b = st.b0; b <= st.b1; ++b)
+      for (int a = st.a0; a <= st.a1; ++a) {
+        const double* node = &nodes_.values[(static_cast<size_t>(b) * nx + a) * C];
+        std::copy(node, node + C, &s.values[static_cast<size_t>((b - st.b0) * kStencil + (a - st.a0)) * C]);
+      }
+    keys_blend(st, w, s, q, out);
+    return;
+  }
 
   // Rule (a) for every stencil node: are all the sites it shares visible?
   bool all_plain = true;
@@ -233,14 +284,12 @@ void BarrierGrid::evaluate_near(const Vec2& q, double* out, Scratch& s) const {
       s.plain[(b - st.b0) * kStencil + (a - st.a0)] = seen;
       all_plain = all_plain && seen;
     }
-  if (all_plain) {  // nothing hidden in the stencil: the plain method, the same arithmetic
+  if (all_plain && kind_ == Kind::bilinear) {  // nothing hidden: the plain method, the same arithmetic
     plain_->evaluate(std::span(&q, 1), std::span(out, static_cast<size_t>(C)));
     return;
   }
 
-  s.values.resize(static_cast<size_t>(kStencil * kStencil) * C);
   s.sums.resize(3 * static_cast<size_t>(C));
-  s.column.resize(static_cast<size_t>(kStencil) * C);
   for (int b = st.b0; b <= st.b1; ++b)
     for (int a = st.a0; a <= st.a1; ++a) {
       const int slot = (b - st.b0) * kStencil + (a - st.a0);
@@ -264,18 +313,38 @@ void BarrierGrid::evaluate_near(const Vec2& q, double* out, Scratch& s) const {
       out[c] = (1 - u) * (1 - v) * b00[c] + u * (1 - v) * b10[c] + u * v * b11[c] + (1 - u) * v * b01[c];
     return;
   }
-  // Bicubic: the natural spline of the stencil's sub-grid, rows first, then the column.
-  const int na = st.a1 - st.a0 + 1, nb = st.b1 - st.b0 + 1;
-  const int ka = st.i - st.a0, kb = st.j - st.b0;
-  double y[kStencil];
+  keys_blend(st, w, s, q, out);
+}
+
+double BarrierGrid::stencil_reach(const Stencil& st) const {
+  // The box of the sites the stencil's nodes share: cells a0-1..a1 x b0-1..b1, or the nodes.
+  const int si0 = cell_sites_ ? std::max(0, st.a0 - 1) : st.a0, si1 = cell_sites_ ? std::min(sites_x_ - 1, st.a1) : st.a1;
+  const int sj0 = cell_sites_ ? std::max(0, st.b0 - 1) : st.b0, sj1 = cell_sites_ ? std::min(sites_y_ - 1, st.b1) : st.b1;
+  const Vec2 lo = site(si0, sj0), hi = site(si1, sj1);
+  return std::hypot(std::max(st.p.x() - lo.x(), hi.x() - st.p.x()), std::max(st.p.y() - lo.y(), hi.y() - st.p.y()));
+}
+
+void BarrierGrid::keys_blend(const Stencil& st, double w, Scratch& s, const Vec2& q, double* out) const {
+  const int C = channels();
+  // Keys' cubic convolution of the stencil's values, rows first (x), then the column (y).
+  const AxisWeights wx = keys_weights(nodes_.nx, st.i, st.u), wy = keys_weights(nodes_.ny, st.j, st.v);
+  const int ax = wx.first - st.a0, by = wy.first - st.b0;  // their first nodes in the stencil
   for (int c = 0; c < C; ++c) {
-    for (int row = 0; row < nb; ++row) {
-      for (int col = 0; col < na; ++col) y[col] = s.values[static_cast<size_t>(row * kStencil + col) * C + c];
-      s.column[static_cast<size_t>(row) * C + c] = natural_spline_at(y, na, ka, st.u);
+    double sum = 0;
+    for (int row = 0; row < wy.count; ++row) {
+      double along_x = 0;
+      for (int col = 0; col < wx.count; ++col)
+        along_x += wx.w[col] * s.values[static_cast<size_t>((by + row) * kStencil + ax + col) * C + c];
+      sum += wy.w[row] * along_x;
     }
-    for (int row = 0; row < nb; ++row) y[row] = s.column[static_cast<size_t>(row) * C + c];
-    out[c] = natural_spline_at(y, nb, kb, st.v);
+    out[c] = sum;
   }
+  if (w == 1) return;
+  // The blend with the plain spline (w in (0, 1)).
+  s.plain_values.resize(static_cast<size_t>(C));
+  double* plain = s.plain_values.data();
+  plain_->evaluate(std::span(&q, 1), std::span(plain, static_cast<size_t>(C)));
+  for (int c = 0; c < C; ++c) out[c] = (1 - w) * plain[c] + w * out[c];
 }
 
 bool BarrierGrid::hidden_node_value(int a, int b, const Stencil& st, Scratch& s, double* out) const {
@@ -301,14 +370,21 @@ bool BarrierGrid::hidden_node_value(int a, int b, const Stencil& st, Scratch& s,
       return true;
     }
   }
-  // (d) the plane through the visible sites of W(q).
-  if (plane_at_node(a, b, std::max(0, st.bi - 2), std::min(sites_x_ - 1, st.bi + 2), std::max(0, st.bj - 2),
-                    std::min(sites_y_ - 1, st.bj + 2), st, s, out))
-    return true;
-  // (e) the nearest visible site.
-  if (s.nearest == -2) s.nearest = nearest_visible_site(st.p);
-  if (s.nearest < 0) return false;
-  const double* v = &site_values_[static_cast<size_t>(s.nearest) * C];
+  // (d) the plane through the visible sites of N3(n), else of N4(n).
+  for (int rings = 3; rings <= 4; ++rings) {
+    const int below = rings, above = cell_sites_ ? rings - 1 : rings;
+    if (plane_at_node(a, b, std::max(0, a - below), std::min(sites_x_ - 1, a + above), std::max(0, b - below),
+                      std::min(sites_y_ - 1, b + above), st, s, out))
+      return true;
+  }
+  // (e) the visible site nearest n.
+  if (s.sees_nothing) return false;
+  const long nearest = nearest_visible_site(a, b, st, s);
+  if (nearest < 0) {
+    s.sees_nothing = true;  // the search tried every site
+    return false;
+  }
+  const double* v = &site_values_[static_cast<size_t>(nearest) * C];
   std::copy(v, v + C, out);
   return true;
 }
@@ -351,21 +427,23 @@ bool BarrierGrid::plane_at_node(int a, int b, int si0, int si1, int sj0, int sj1
   return true;
 }
 
-long BarrierGrid::nearest_visible_site(const Vec2& p) const {
-  // Rings of sites (Chebyshev distance r in index space) around p's nearest site; p lies within
-  // half a spacing of it along each axis, so a site of ring r is at least (r - 1/2) h away: once
-  // (r - 1) h exceeds the best distance found, no farther ring can do better.
+long BarrierGrid::nearest_visible_site(int a, int b, const Stencil& st, Scratch& s) const {
+  // Rings of sites (Chebyshev distance r in index space) around the site nearest node n = (a, b)
+  // (n itself, or the cell a, b clamped onto the grid: the node is one of its corners); n lies
+  // within half a spacing of it along each axis, so a site of ring r is at least (r - 1/2) h
+  // away: once (r - 1) h exceeds the best distance found, no farther ring can do better.
+  // Distances from offsets in half spacings (integers): equidistant sites tie exactly.
   const double dx = nodes_.dx, dy = nodes_.dy, h = std::min(dx, dy);
-  const double half = cell_sites_ ? 0.5 : 0.0;
-  const int bi = std::clamp(static_cast<int>(std::floor((p.x() - nodes_.x0) / dx - half + 0.5)), 0, sites_x_ - 1);
-  const int bj = std::clamp(static_cast<int>(std::floor((p.y() - nodes_.y0) / dy - half + 0.5)), 0, sites_y_ - 1);
+  const int offset = cell_sites_ ? 1 : 0;
+  const int bi = std::min(a, sites_x_ - 1), bj = std::min(b, sites_y_ - 1);
   long best = -1;
   double best_d2 = std::numeric_limits<double>::infinity();
   const auto consider = [&](int si, int sj) {
     const long index = static_cast<long>(sj) * sites_x_ + si;
-    const double d2 = (site(si, sj) - p).squaredNorm();
+    const double u = 0.5 * dx * (2 * si + offset - 2 * a), v = 0.5 * dy * (2 * sj + offset - 2 * b);
+    const double d2 = u * u + v * v;
     if (d2 > best_d2 || (d2 == best_d2 && index > best)) return;
-    if (barriers_.blocks(p, site(si, sj))) return;
+    if (!visible(si, sj, st, s)) return;
     best = index, best_d2 = d2;
   };
   const int rings = std::max(sites_x_, sites_y_);

@@ -8,8 +8,8 @@
 // judged from the clamped point. The sites a node n "shares" are: with cell data the (up to 4)
 // cells having n as a corner, with node data n itself. Its neighbourhood N(n) is the 2 rings
 // of sites around it: cells i-2..i+1 x j-2..j+1 for node (i, j) (4 x 4 cells), or nodes
-// i-2..i+2 x j-2..j+2 (5 x 5 nodes), clipped to the grid. The query's window W(q) is the 5 x 5
-// sites centred on q's own site (the cell containing q, or the node nearest q), clipped.
+// i-2..i+2 x j-2..j+2 (5 x 5 nodes), clipped to the grid; likewise Nr(n) is the r rings: cells
+// i-r..i+r-1 x j-r..j+r-1, or nodes i-r..i+r x j-r..j+r, clipped.
 //
 // The value of node n as seen from q is the first that applies of:
 //   (a) every site n shares is visible: the plain nodal value (the mean of its cells,
@@ -17,35 +17,63 @@
 //   (b) the least-squares plane through the visible sites of N(n), evaluated at n, when they
 //       are at least 3 and not all on one line;
 //   (c) the mean of the visible sites n shares, when there is one (cell data only);
-//   (d) the least-squares plane through the visible sites of W(q), evaluated at n, when they
-//       are at least 3 and not all on one line;
-//   (e) the value of the site nearest q among all sites visible from q (ties: the lowest index
+//   (d) the least-squares plane through the visible sites of N3(n), else of N4(n), evaluated
+//       at n, when they are at least 3 and not all on one line;
+//   (e) the value of the site nearest n among all sites visible from q (ties: the lowest index
 //       j * nx + i); when q sees no site at all, q has no value (NaN in every channel).
+// Each rule depends on q only through which sites q sees (the visible set): nothing else of q
+// enters a nodal value.
 //
 // Bilinear: the plain formula over the 4 corner nodes of q's grid cell, with their values as
-// seen from q. Bicubic: when all nodes of q's stencil (nodes i-1..i+2 x j-1..j+2 around q's cell
-// (i, j), clipped to the grid) get (a), the plain natural bicubic spline of the whole grid;
-// otherwise a local natural cubic spline through the stencil's values as seen from q (zero
-// second derivative at the stencil's ends), along x through each stencil row and then along y
-// through the row results: the natural spline of the sub-grid formed by the stencil.
+// seen from q.
 //
-// Consequences: where no barrier blocks any site of q's stencil the plain method is
-// reproduced exactly (the same arithmetic); a cell cut by a barrier is split, each side
-// extrapolating from its own side; a function linear on the visible part of the neighbourhoods
-// is reproduced (rules (a), (b), (d) and both splines are exact for linear data, given node
-// data or interior nodes of cell data, whose plain mean is exact); and with bilinear a site
-// never seen from q has no influence on q's value. Bicubic's plain path is the global natural
-// spline, whose second derivatives couple every node of the grid (decaying by about 0.27 a
-// node): a query whose stencil sees everything still feels, very weakly, nodes behind a barrier
-// farther away.
+// Bicubic: by the distance d from q to the nearest barrier segment (Barriers::distance_to), in
+// cell diagonals D = sqrt(dx^2 + dy^2), with d1 = kLocalDiagonals D and d2 = kPlainDiagonals D:
+//   - d >= d2: the plain natural bicubic spline of the whole grid (bicubic.h), bit for bit;
+//   - d < d2: S = (1 - w) S_plain + w S_local, with w = 1 for d <= d1 and the smoothstep
+//     w = t^2 (3 - 2 t), t = (d2 - d) / (d2 - d1), between (0 at d2; w is C1 in d).
+// S_local is Keys' cubic convolution (a = -1/2, the Catmull-Rom spline) over the 4 x 4 stencil
+// of nodes i-1..i+2 x j-1..j+2 around q's cell (i, j), with their values as seen from q: along x
+// through each row, then along y. At the grid's border Keys' end condition stands in for the
+// missing node (f(-1) = 3 f(0) - 3 f(1) + f(2), and its mirror image; with only 2 nodes along an
+// axis, linear extrapolation). On a cell edge it depends only on the 4 nodes of that edge's grid
+// line, so neighbouring cells agree there. S_plain is the plain spline at q: where w < 1,
+// d > d1 = 3 D, while every site of the stencil lies within 2.5 D of q (2 D with node data), so
+// q sees them all and the plain nodal values are the values as seen from q.
 //
-// Cost: a query in a cell whose stencil has no barrier segment nearby (flagged per cell when
-// built, conservatively) is the plain method's plus a look-up; the others test the visibility
-// of their stencil's sites (9 or 25 cells, 4 or 16 nodes), and of more sites only when one is
-// hidden, in parallel (core/parallel.h). Rule (e) searches rings of sites outward from q, so a
-// query that sees nothing (enclosed by barriers with no site inside) tests every site of the
-// grid. Thread-safe; every point is computed on its own, so results never depend on the batch
-// or the number of threads.
+// Consequences:
+//   - continuity: a node's value as seen from q depends on q only through the set of sites q
+//     sees; for given nodal values both schemes are continuous across cell edges; w is
+//     continuous in q. So bilinear and bicubic are continuous wherever that set does not
+//     change: everywhere except across barriers and along the sight lines that graze a
+//     barrier's end (where a site comes into or out of view);
+//   - where no barrier is near the plain method is reproduced exactly (the same arithmetic):
+//     bilinear where no site of its stencil is hidden, bicubic beyond d2;
+//   - a cell cut by a barrier is split, each side extrapolating from its own side;
+//   - a function linear on the visible part of the neighbourhoods is reproduced wherever rules
+//     (a), (b) and (d) give the nodal values (exact for linear data, given node data or interior
+//     nodes of cell data, whose plain mean is exact; (c) and (e) are not), since bilinear, Keys'
+//     scheme and the plain spline are exact for linear data. The blend zone d1 < d < d2 with cell
+//     data is exact only as far as the plain spline is: the border nodes (the mean of 2 border
+//     cells) are not exact, and the global spline carries that inward, decaying by about 0.27 a
+//     node;
+//   - a site never seen from q has exactly no influence on q's value with bilinear, and with
+//     bicubic wherever d <= d1 (Keys' scheme is local: the stencil's values as seen from q).
+//     For d1 < d < d2 the plain spline's share (1 - w) still feels, weakly, the nodes behind a
+//     barrier, all beyond the stencil: the global spline's weights decay by a factor of about
+//     0.27 (2 - sqrt 3) per node.
+//
+// Cost: a query in a cell flagged when built (conservatively: bilinear, its stencil may see a
+// barrier; bicubic, some point of it lies within d2 of one) runs on the barrier path; the others
+// cost the plain method's plus a look-up. On it, bicubic first measures the distance to the
+// barriers: beyond d2 the plain spline; beyond d1, or beyond the stencil's farthest site, Keys'
+// scheme of the plain nodal values (all seen: no visibility test) and where w < 1 the plain
+// spline too. Otherwise the visibility of the stencil's sites is tested (9 or 25 cells, 4 or 16
+// nodes), and of more sites only when one is hidden. Barrier-path queries run in parallel
+// (core/parallel.h). Rule (e) searches rings of sites outward from the node, so a query that
+// sees nothing (enclosed by barriers with no site inside) tests every site of the grid (once:
+// it then has no value). Thread-safe; every point is computed on its own, so results never
+// depend on the batch or the number of threads.
 
 #include <memory>
 #include <vector>
@@ -60,6 +88,17 @@ namespace radrecon {
 class BarrierGrid final : public Interpolant {
  public:
   enum class Kind { bilinear, bicubic };
+  /// Bicubic: within this many cell diagonals of a barrier, Keys' local scheme alone (d1 of the
+  /// rule). At least 2.5, the farthest a stencil's site can be from q (cell data, q at a node),
+  /// so that the plain spline, weighed only beyond d1, always sees its whole stencil; half a
+  /// diagonal more keeps that so whatever the round-off of the distance.
+  static constexpr double kLocalDiagonals = 3.0;
+  /// Bicubic: from this many cell diagonals of a barrier on, the plain global spline alone (d2
+  /// of the rule). 1.5 diagonals of blend keep the smoothstep's slope (at most 1.5 / (d2 - d1),
+  /// one per diagonal) gentle: the blend adds w' (S_local - S_plain), the two schemes' difference
+  /// per diagonal, to the gradient.
+  static constexpr double kPlainDiagonals = 4.5;
+
   /// Cell values (the paper's grid data): the plain nodal values are nodal_average(cells).
   /// Needs at least 1 x 1 cells.
   BarrierGrid(const GridCells& cells, Kind kind, Barriers barriers);
@@ -89,10 +128,17 @@ class BarrierGrid final : public Interpolant {
   /// at node (a, b); false when fewer than 3 or all on a line.
   bool plane_at_node(int a, int b, int si0, int si1, int sj0, int sj1, const Stencil& st, Scratch& s,
                      double* out) const;
+  /// Bicubic: the distance from the stencil's query to its farthest site (the sites its nodes
+  /// share).
+  double stencil_reach(const Stencil& st) const;
+  /// Bicubic: Keys' scheme over the stencil's values in the scratch, blended with the plain
+  /// spline at q when w < 1; into out[0, channels).
+  void keys_blend(const Stencil& st, double w, Scratch& s, const Vec2& q, double* out) const;
   /// Whether site (si, sj) is visible from the stencil's query (cached in the scratch).
   bool visible(int si, int sj, const Stencil& st, Scratch& s) const;
-  /// Rule (e): the index of the site nearest p among those visible from p, or -1.
-  long nearest_visible_site(const Vec2& p) const;
+  /// Rule (e): the index of the site nearest node (a, b) among those visible from the stencil's
+  /// query (ties: the lowest index), or -1 when it sees none.
+  long nearest_visible_site(int a, int b, const Stencil& st, Scratch& s) const;
   Vec2 site(int si, int sj) const;
 
   Kind kind_;
@@ -102,7 +148,8 @@ class BarrierGrid final : public Interpolant {
   int sites_x_, sites_y_;
   std::unique_ptr<Interpolant> plain_;  ///< Bilinear or Bicubic of nodes_
   Barriers barriers_;
-  std::vector<unsigned char> near_;    ///< per grid cell (nodes_.nx - 1 by nodes_.ny - 1): may see a barrier
+  double local_distance_ = 0, plain_distance_ = 0;  ///< bicubic's d1 and d2, metres
+  std::vector<unsigned char> near_;    ///< per grid cell (nodes_.nx - 1 by nodes_.ny - 1): may be near a barrier
 };
 
 }  // namespace radrecon

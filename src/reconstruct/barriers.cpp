@@ -168,6 +168,48 @@ bool Barriers::blocks(const Vec2& p, const Vec2& q) const {
   return false;
 }
 
+namespace {
+
+/// The distance from q to the closed segment s: to the point of s nearest q (its projection onto
+/// the segment's line, clamped to the end points).
+double distance_to_segment(const Vec2& q, const BarrierSegment& s) {
+  const Vec2 d = s.b - s.a;
+  const double t = std::clamp((q - s.a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+  return (q - (s.a + t * d)).norm();
+}
+
+}  // namespace
+
+double Barriers::distance_to(const Vec2& q, double max_distance) const {
+  if (!q.allFinite()) return max_distance;
+  double best = max_distance;
+  if (segments_.size() <= kDirectTestSegments) {
+    for (const BarrierSegment& s : segments_) best = std::min(best, distance_to_segment(q, s));
+    return best;
+  }
+  if (!(max_distance > 0)) return max_distance;  // nothing can be nearer (and NaN stays NaN)
+  // The cells that the box [q - max_distance, q + max_distance] overlaps, clipped to the grid: a
+  // segment with a point nearer than max_distance has that point in the box, and in a cell its
+  // own box covers (segments are bucketed by their boxes), so it is among them. Indices are
+  // clamped in double before the conversion (max_distance may be infinite).
+  const double gx1 = origin_.x() + nx_ * cell_m_, gy1 = origin_.y() + ny_ * cell_m_;
+  if (q.x() + max_distance < origin_.x() || q.y() + max_distance < origin_.y() || q.x() - max_distance > gx1 ||
+      q.y() - max_distance > gy1)
+    return max_distance;
+  const auto cell = [&](double v, double o, int n) {
+    return static_cast<int>(std::clamp(std::floor((v - o) / cell_m_), 0.0, static_cast<double>(n - 1)));
+  };
+  const int i0 = cell(q.x() - max_distance, origin_.x(), nx_), i1 = cell(q.x() + max_distance, origin_.x(), nx_);
+  const int j0 = cell(q.y() - max_distance, origin_.y(), ny_), j1 = cell(q.y() + max_distance, origin_.y(), ny_);
+  for (int j = j0; j <= j1; ++j)
+    for (int i = i0; i <= i1; ++i) {
+      const size_t c = static_cast<size_t>(j) * nx_ + i;
+      for (unsigned k = cell_start_[c]; k < cell_start_[c + 1]; ++k)
+        best = std::min(best, distance_to_segment(q, segments_[cell_segments_[k]]));
+    }
+  return best;
+}
+
 size_t nearest_visible(const KdTree2& tree, std::span<const Vec2> points, const Barriers& barriers, const Vec2& q,
                        size_t k, VisibleNeighbours& found) {
   constexpr size_t kFirstRound = 8;

@@ -40,6 +40,12 @@ class Barriers {
   /// segment passes through are tested.
   bool blocks(const Vec2& p, const Vec2& q) const;
 
+  /// The distance from q to the nearest barrier segment (closed) when it is below max_distance,
+  /// else max_distance (also with no barrier, and for a q not finite). Only the segments bucketed in the grid cells that
+  /// the box of half-side max_distance around q overlaps are measured, so a small max_distance
+  /// keeps it cheap; an infinite one measures every segment. Thread-safe, allocation free.
+  double distance_to(const Vec2& q, double max_distance) const;
+
  private:
   explicit Barriers(std::vector<BarrierSegment> segments);
 

@@ -1,11 +1,12 @@
-// Barriers: the exact blocking rule on its degenerate cases, the gridded search against the
-// brute-force definition (every segment tested) on random barriers, and Shepard with barriers
-// against its defining properties (zero influence across, each side as if alone).
+// Barriers: the exact blocking rule on its degenerate cases, the gridded search and distance_to()
+// against the brute-force definitions (every segment tested) on random barriers, and Shepard with
+// barriers against its defining properties (zero influence across, each side as if alone).
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "reconstruct/barriers.h"
@@ -78,6 +79,57 @@ TEST(Barriers, GridSearchAgreesWithBruteForceOnRandomBarriers) {
       }
     EXPECT_GT(blocked, 0u);  // the test sees both outcomes
   }
+}
+
+/// The distance from q to the closed segment [a, b] by cases: to the nearer end point when q's
+/// foot on the line falls outside the segment, else the perpendicular distance (the cross
+/// product over the length). Another formula than the library's clamped projection.
+double segment_distance_by_cases(const Vec2& q, const BarrierSegment& s) {
+  const Vec2 d = s.b - s.a, r = q - s.a;
+  if (r.dot(d) <= 0) return (q - s.a).norm();
+  if ((q - s.b).dot(d) >= 0) return (q - s.b).norm();
+  return std::abs(d.x() * r.y() - d.y() * r.x()) / d.norm();
+}
+
+TEST(Barriers, DistanceToAgreesWithBruteForceOnRandomBarriers) {
+  std::mt19937 rng(2027);
+  std::uniform_real_distribution<double> u(0, 10), step(-1.5, 1.5), around(-3, 13);
+  const double kInf = std::numeric_limits<double>::infinity();
+  const double limits[] = {0.0, 0.05, 0.3, 1.0, 3.0, 40.0, kInf};
+  for (int trial = 0; trial < 5; ++trial) {
+    // A single segment, then 4 polylines (tested one by one), then enough for the grid search.
+    std::vector<Polyline> lines;
+    const int count = trial == 0 ? 1 : (trial == 1 ? 2 : 40 * (trial - 1));
+    for (int k = 0; k < count; ++k) {
+      Polyline line = {Vec2(u(rng), u(rng))};
+      for (int i = 0; i < 2; ++i) line.push_back(line.back() + Vec2(step(rng), step(rng)));
+      lines.push_back(line);
+    }
+    if (trial >= 2) {  // long segments across many grid cells, one along a cell row
+      lines.push_back({{-1, 3}, {11, 4}});
+      lines.push_back({{5, 0}, {5, 10}});
+    }
+    const Barriers barriers = Barriers::from_polylines(lines).value();
+    std::vector<Vec2> points;
+    for (int k = 0; k < 400; ++k) points.emplace_back(around(rng), around(rng));
+    for (const Polyline& line : lines) points.push_back(line[1]);  // on a barrier: distance 0
+    int below = 0, capped = 0;
+    for (const Vec2& q : points) {
+      double brute = kInf;
+      for (const BarrierSegment& s : barriers.segments()) brute = std::min(brute, segment_distance_by_cases(q, s));
+      for (double limit : limits) {
+        const double want = std::min(brute, limit), got = barriers.distance_to(q, limit);
+        // Distances of order 10 from coordinates of order 10: round-off some 1e-15.
+        ASSERT_NEAR(got, want, 1e-12) << "(" << q.transpose() << "), limit " << limit << ", trial " << trial;
+        ASSERT_LE(got, limit);
+        (brute < limit ? below : capped) += 1;
+      }
+    }
+    EXPECT_GT(below, 100);
+    EXPECT_GT(capped, 100);
+  }
+  EXPECT_EQ(Barriers().distance_to({1, 2}, 5.0), 5.0);
+  EXPECT_EQ(Barriers().distance_to({1, 2}, kInf), kInf);
 }
 
 TEST(ShepardWithBarriers, ASampleAcrossABarrierHasExactlyZeroInfluence) {
