@@ -103,6 +103,10 @@ inline constexpr double kGridCoordinateRelative = 1e-9;
 /// when the next visible sample lies beyond the bound rho + max(rho, r) by this relative margin
 /// (the bound's own round-off is some 1e-15).
 inline constexpr double kSibsonCertificateRelative = 1e-9;
+/// A query's visibility tests are skipped when no barrier comes within its farthest neighbour's
+/// distance enlarged by this fraction: far above the distance's round-off (1e-15), so that a
+/// barrier the exact test would find is never skipped.
+inline constexpr double kBarrierReachRelative = 1e-9;
 
 /// Border samples (reconstruct/border_samples.h): a barrier's samples stand this fraction of the
 /// domain's longer side from it (one on each side), and an added sample within this distance of

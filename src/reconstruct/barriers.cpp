@@ -37,7 +37,7 @@ int orientation(const Vec2& a, const Vec2& b, const Vec2& c) {
 
 /// Cells of the barrier grid per segment, on average: a few segments per cell keeps the tests
 /// per cell low without a grid much larger than the segments.
-constexpr double kSegmentsPerCell = 2.0;
+constexpr double kSegmentsPerCell = 0.5;
 /// At most this many cells along an axis.
 constexpr int kMaxGridSide = 1024;
 /// A cell is skipped only when all its corners lie beyond this fraction of |d| x cell size on
@@ -213,7 +213,7 @@ double Barriers::distance_to(const Vec2& q, double max_distance) const {
 size_t nearest_visible(const KdTree2& tree, std::span<const Vec2> points, const Barriers& barriers, const Vec2& q,
                        size_t k, VisibleNeighbours& found) {
   constexpr size_t kFirstRound = 8;
-  const size_t n = points.size();
+  const size_t n = std::min(points.size(), std::max(kMaxVisibleCandidates, 2 * k));
   for (size_t want = std::min(std::max(2 * k, kFirstRound), n);; want = std::min(2 * want, n)) {
     found.candidates.resize(want);
     found.candidates_dist_sq.resize(want);

@@ -71,9 +71,14 @@ struct VisibleNeighbours {
 /// distance, index) order, into found.idx and found.dist_sq; returns how many (fewer than k only
 /// when fewer are visible). Searches the nearest 2k (at least 8), then twice as many, until k of
 /// them are visible or every point was tried; each round tests its candidates from the first,
-/// since equidistant points at the last place may come back in another order.
+/// since equidistant points at the last place may come back in another order. Only the nearest
+/// max(kMaxVisibleCandidates, 2k) points are tried: a query walled into a pocket would otherwise
+/// try every point (and a k-d tree's k-nearest search costs ~k^2).
 size_t nearest_visible(const KdTree2& tree, std::span<const Vec2> points, const Barriers& barriers, const Vec2& q,
                        size_t k, VisibleNeighbours& found);
+
+/// The most points nearest_visible() tries for k <= kMaxVisibleCandidates / 2.
+inline constexpr size_t kMaxVisibleCandidates = 512;
 
 /// Whether the open segment (p, q) meets the closed segment [a, b] (the rule of barriers.h),
 /// by exact orientation tests: the brute-force definition that Barriers::blocks() accelerates.

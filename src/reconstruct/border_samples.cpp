@@ -231,7 +231,7 @@ Result<ScatteredSamples> with_border_samples(const ScatteredSamples& interior, c
   };
   const Vec2 corners[4] = {corner0, {domain.x1, domain.y0}, corner1, {domain.x0, domain.y1}};
   const double side_parts[4] = {mx, my, mx, my};
-  for (int side = 0; side < 4; ++side) {
+  for (int side = 0; side < (settings.on_domain_border ? 4 : 0); ++side) {
     const Vec2& from = corners[side];
     const Vec2& to = corners[(side + 1) % 4];
     const auto m = static_cast<std::int64_t>(side_parts[side]);

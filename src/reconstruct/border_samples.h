@@ -28,7 +28,7 @@
 //     segment toward it (another barrier lies between: at a sharp joint); when it lies within
 //     delta of an interior sample (the interior sample stands there already) or of an earlier
 //     kept candidate (the corner shared by two barriers that meet at a right angle); or when it
-//     sees no interior sample (a region the barriers cut off from every sample).
+//     sees no interior sample among its kMaxVisibleCandidates nearest (a region the barriers cut off).
 //   - Value: the fit over its k = settings.fit_neighbours nearest interior samples visible from
 //     it (nearest_visible(), barriers.h): with v0 the nearest one's value, the weighted
 //     least-squares plane through the differences v_i - v0 with weights 1 / d_i^2 (d_i the
@@ -51,7 +51,10 @@ struct BorderSampleSettings {
   /// Interior samples in each border sample's plane fit (>= 1; below 3 every value is the
   /// nearest visible sample's).
   int fit_neighbours = 6;
+  /// Samples on the domain's border; false: along the barriers only.
+  bool on_domain_border = true;
 };
+
 
 /// The distance delta of the rule above: tol::kBorderOffsetRelative x the domain's longer side.
 double border_offset_m(const Rect& domain);

@@ -8,6 +8,7 @@
 #include "reconstruct/barrier_grid.h"
 #include "reconstruct/bicubic.h"
 #include "reconstruct/bilinear.h"
+#include "reconstruct/border_samples.h"
 #include "reconstruct/constant.h"
 #include "reconstruct/local_multiquadric.h"
 #include "reconstruct/multiquadric.h"
@@ -88,6 +89,10 @@ MethodParams parse_params(Method method, const std::vector<std::string>& setting
       if (k != std::floor(k) || (k != 0 && k < 3) || k > 1e5)
         throw UserError(where, "must be 0 (one global system) or an integer >= 3 (samples per local patch)");
       p.multiquadric_k = static_cast<int>(k);
+    } else if (method == Method::natural_neighbour && name == "barrier-samples") {
+      if (value == "on") p.barrier_samples = true;
+      else if (value == "off") p.barrier_samples = false;
+      else throw UserError(where, "must be 'on' or 'off', got '" + value + "'");
     } else if (method == Method::natural_neighbour && name == "outside") {
       if (value == "nearest") p.outside = OutsideHull::nearest;
       else if (value == "none") p.outside = OutsideHull::none;
@@ -111,7 +116,8 @@ std::string describe_params(Method method, const MethodParams& p) {
       if (p.multiquadric_k) return std::string(buf) + ", local patches of ~" + std::to_string(p.multiquadric_k) + " samples";
       return std::string(buf) + ", global";
     case Method::natural_neighbour:
-      return p.outside == OutsideHull::nearest ? "outside the hull: nearest hull point" : "outside the hull: no value";
+      return std::string(p.outside == OutsideHull::nearest ? "outside the hull: nearest hull point" : "outside the hull: no value") +
+             (p.barrier_samples ? "" : ", no barrier samples");
     default:
       return "";
   }
@@ -182,7 +188,20 @@ InterpolantResult make_scattered_interpolant(Method method, const ScatteredSampl
                        " samples are too many for one global multiquadric system (at most " +
                        std::to_string(kMaxGlobalMultiquadric) + "); use local patches (parameter k, e.g. 32)"};
       return build<Multiquadric>(samples, params.multiquadric_mu, params.multiquadric_r, params.barriers);
-    case Method::natural_neighbour: return build<NaturalNeighbour>(samples, params.outside, params.barriers);
+    case Method::natural_neighbour:
+      if (!params.barriers.empty() && params.barrier_samples) {
+        // Samples along both sides of each barrier, within the samples' bounding box: without
+        // them, a query next to a barrier would take far samples around its ends as natural
+        // neighbours (its Voronoi cell among the samples it sees reaches across the barrier).
+        Vec2 lo = samples.points[0], hi = lo;
+        for (const Vec2& p : samples.points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+        BorderSampleSettings settings;
+        settings.on_domain_border = false;
+        Result<ScatteredSamples> with = with_border_samples(samples, Rect{lo.x(), lo.y(), hi.x(), hi.y()}, params.barriers, settings);
+        if (!with) return Failure{"its barrier samples: " + with.reason()};
+        return build<NaturalNeighbour>(with.value(), params.outside, params.barriers);
+      }
+      return build<NaturalNeighbour>(samples, params.outside, params.barriers);
   }
   RR_CHECK(false, "unknown method");
   return Failure{"unknown method"};

@@ -43,7 +43,10 @@ enum class OutsideHull {
 ///                      k (integer, 0 or >= 3, default 0): 0 solves one global system; k > 0
 ///                      blends local multiquadrics on patches of about k samples (a partition
 ///                      of unity, local_multiquadric.h), for large sample sets.
-///   natural-neighbour: outside (nearest | none, default nearest).
+///   natural-neighbour: outside (nearest | none, default nearest);
+///                      barrier-samples (on | off, default on): with barriers, also samples along
+///                      both sides of each barrier (border_samples.h), so that a query next to a
+///                      barrier has natural neighbours of its own side there.
 /// and, for every method, the barriers (not a NAME=VALUE setting: they come from a file or the
 /// scene).
 struct MethodParams {
@@ -53,6 +56,7 @@ struct MethodParams {
   std::optional<double> multiquadric_r;
   int multiquadric_k = 0;
   OutsideHull outside = OutsideHull::nearest;
+  bool barrier_samples = true;
   /// Lines no sample's influence crosses (barriers.h); none by default. Every method honours
   /// them (see each method's header) except constant on cells, which is the data as it is.
   Barriers barriers;

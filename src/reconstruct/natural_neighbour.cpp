@@ -140,6 +140,12 @@ struct NaturalNeighbour::Impl {
   }
 
   bool all_visible(const Vec2& q, std::span<const std::pair<unsigned, double>> coords) const {
+    // No barrier within reach of the farthest neighbour (with a margin for the distance's
+    // round-off): nothing to test.
+    double reach_sq = 0;
+    for (const auto& [index, w] : coords) reach_sq = std::max(reach_sq, (points[index] - q).squaredNorm());
+    const double reach = std::sqrt(reach_sq) * (1 + tol::kBarrierReachRelative);
+    if (barriers.distance_to(q, 2 * reach) > reach) return true;
     for (const auto& [index, w] : coords)
       if (barriers.blocks(q, points[index])) return false;
     return true;
@@ -169,11 +175,17 @@ struct NaturalNeighbour::Impl {
     const size_t n = points.size();
     const Point p(q.x(), q.y());
     for (size_t k = std::min(kFirstRound, n);; k = std::min({2 * k, n, kMaxVisibleNeighbours})) {
-      // The k nearest visible samples, and the next one's distance (the certificate's).
+      // The k nearest visible samples, and a lower bound on the next one's distance (the
+      // certificate's): its distance when found, infinity when every sample was tried, else the
+      // distance of the farthest candidate tried.
       const size_t found = nearest_visible(*tree, points, barriers, q, std::min(k + 1, n), s.visible);
       const size_t m = std::min(found, k);
-      const bool complete = found <= k;  // every visible sample is in the triangulation
-      const bool last = complete || k >= kMaxVisibleNeighbours;
+      const bool all_tried = n <= std::max(kMaxVisibleCandidates, 2 * (k + 1));  // nearest_visible's limit
+      const double next_visible_m = found > k ? std::sqrt(s.visible.dist_sq[k])
+                                    : all_tried ? std::numeric_limits<double>::infinity()
+                                                : std::sqrt(s.visible.candidates_dist_sq.back());
+      const bool complete = found <= k && all_tried;  // every visible sample is in the triangulation
+      const bool last = found <= k || k >= kMaxVisibleNeighbours;
       if (m == 0) return Kind::nothing;
       s.local_input.clear();
       for (size_t i = 0; i < m; ++i) {
@@ -234,8 +246,7 @@ struct NaturalNeighbour::Impl {
         return Kind::nothing;
       }
       const double rho = std::sqrt(rho_max_sq), bound = rho + std::max(rho, std::sqrt(r_max_sq));
-      const bool certified = std::isfinite(bound) && (complete || std::sqrt(s.visible.dist_sq[m]) >
-                                                                     bound * (1 + tol::kSibsonCertificateRelative));
+      const bool certified = std::isfinite(bound) && (complete || next_visible_m > bound * (1 + tol::kSibsonCertificateRelative));
       if (!certified && !last) continue;
       for (auto& [index, w] : s.coords) w /= result.second;
       return Kind::coordinates;

@@ -16,8 +16,12 @@
 //     rho + max(rho, r), rho the farthest vertex of q's cell, r the largest circumradius of the
 //     triangles q's insertion destroys); else k doubles.
 //   - A query outside the hull of the samples it sees: the outside rule over those samples (the
-//     nearest point of their hull, or NaN); past kMaxVisibleNeighbours visible samples, the hull
-//     of the nearest kMaxVisibleNeighbours. A query that sees no sample: NaN.
+//     nearest point of their hull, or NaN). A query that sees no sample: NaN.
+//   - Limits, for queries walled into pockets or far from what they see: the samples tried are
+//     the nearest kMaxVisibleCandidates (barriers.h), the triangulation holds at most kMaxVisibleNeighbours;
+//     past them the coordinates (or the hull) are those of the visible samples found. With the
+//     factory's barrier samples (methods.h) queries next to a barrier have natural neighbours
+//     right there, and no query of a sampled region comes near these limits.
 // So the interpolant is exact at the samples, continuous away from barriers and from the sight
 // lines that graze a barrier's free end (where a sample comes into view), jumps across barriers,
 // and reproduces linear functions wherever q is inside the hull of what it sees.

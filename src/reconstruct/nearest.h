@@ -16,7 +16,7 @@ class NearestSample final : public Interpolant {
  public:
   explicit NearestSample(ScatteredSamples samples);
   /// With barriers (barriers.h): the nearest sample visible from the query (ties as above); a
-  /// query that sees none gets NaN (no value).
+  /// query that sees none of its kMaxVisibleCandidates nearest gets NaN (no value).
   NearestSample(ScatteredSamples samples, Barriers barriers);
   ~NearestSample() override;
   int channels() const override { return samples_.channels; }

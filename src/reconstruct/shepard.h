@@ -19,7 +19,8 @@ class Shepard final : public Interpolant {
   /// mu > 0; k = 0 uses every sample, k > 0 the k nearest (at most all).
   Shepard(ScatteredSamples samples, double mu, int k);
   /// With barriers (barriers.h): only the samples visible from a query contribute (with k > 0,
-  /// the k nearest visible ones); a query that sees none gets NaN (no value).
+  /// the k nearest visible ones among the nearest max(kMaxVisibleCandidates, 2k)); a query that
+  /// sees none gets NaN (no value).
   Shepard(ScatteredSamples samples, double mu, int k, Barriers barriers);
   ~Shepard() override;
   int channels() const override { return samples_.channels; }

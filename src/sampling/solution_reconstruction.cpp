@@ -79,6 +79,7 @@ InterpolantResult reconstruct_unmasked(const SurfaceSolution& s, Method method, 
     Result<ScatteredSamples> bordered =
         with_border_samples(samples, Rect{0, 0, s.length_u_m, s.length_v_m}, params.barriers);
     if (!bordered) return Failure{"its border samples: " + bordered.reason()};
+    params.barrier_samples = false;  // added with the border's
     return make_scattered_interpolant(method, bordered.value(), params);
   }
   if (grid) return make_grid_interpolant(method, grid_cells(s), params);
