@@ -49,6 +49,7 @@ class LocalMultiquadric final : public Interpolant {
     std::vector<unsigned> samples;
     std::vector<double> alpha;  ///< samples.size() * channels
     double rcond = 1;           ///< reciprocal condition estimate of its system
+    double reach_m = 0;         ///< a bound on the distance from its support to its samples
   };
   /// Refuses oversized or singular patches, warns of poorly conditioned ones.
   void check_patches() const;

@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 
 #include "core/check.h"
+#include "core/tolerances.h"
 #include "reconstruct/kdtree.h"
 #include "core/parallel.h"
 
@@ -101,21 +102,23 @@ void Shepard::evaluate(std::span<const Vec2> points, std::span<double> out) cons
       for (int c = 0; c < C; ++c) o[c] = (w * Array(&values_by_channel_[static_cast<size_t>(c) * n], N)).sum() / total;
       return;
     }
-    // k nearest, nearest first.
+    // k nearest, nearest first; with barriers the k nearest visible, which are the k nearest
+    // when no barrier comes within reach of the k-th (with a margin for round-off).
     size_t found = 0;
-    if (barriers_.empty()) {
-      s.idx.resize(static_cast<size_t>(k_));  // allocates on a thread's first query only
-      s.d2.resize(static_cast<size_t>(k_));
-      found = tree_->nearest(p, k_, s.idx, s.d2);
-    } else {
+    s.idx.resize(static_cast<size_t>(k_));  // allocates on a thread's first query only
+    s.d2.resize(static_cast<size_t>(k_));
+    found = tree_->nearest(p, k_, s.idx, s.d2);
+    const double reach = std::sqrt(s.d2[found - 1]) * (1 + tol::kBarrierReachRelative);
+    const bool plain = barriers_.empty() || barriers_.distance_to(p, 2 * reach) > reach;
+    if (!plain) {
       found = nearest_visible(*tree_, samples_.points, barriers_, p, static_cast<size_t>(k_), s.visible);
       if (found == 0) {  // sees no sample: no value
         for (int c = 0; c < C; ++c) o[c] = std::numeric_limits<double>::quiet_NaN();
         return;
       }
     }
-    const std::vector<unsigned>& idx = barriers_.empty() ? s.idx : s.visible.idx;
-    const std::vector<double>& d2 = barriers_.empty() ? s.d2 : s.visible.dist_sq;
+    const std::vector<unsigned>& idx = plain ? s.idx : s.visible.idx;
+    const std::vector<double>& d2 = plain ? s.d2 : s.visible.dist_sq;
     if (d2[0] == 0) {  // at a sample: its value
       for (int c = 0; c < C; ++c) o[c] = samples_.values[idx[0] * static_cast<size_t>(C) + c];
       return;
