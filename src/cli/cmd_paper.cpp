@@ -23,6 +23,8 @@ void add_paper_command(CLI::App& app) {
   cmd->add_flag("--no-barriers", *no_barriers,
                 "Skip the data sets with the scene's barriers (grid+barriers, quadtree+barriers: Table 3, Fig. 5 "
                 "and 6)");
+  cmd->add_flag("--border-samples", opt->border_samples,
+                "Table 3 also with border samples (grid+barriers+border, quadtree+barriers+border: Fig. 7 and 8)");
   cmd->add_flag("--shadow-barriers", opt->shadow_barriers,
                 "Table 3 with the direct light's D1/D2 lines among the barriers too (an experiment; "
                 "docs/method.md)");

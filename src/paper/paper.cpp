@@ -52,15 +52,19 @@ void run_paper(const PaperOptions& opt, const std::string& out_where) {
   const MethodParams params;  // the defaults of methods.h, stated in the tables
   const SideSampling plain{.barriers = false}, walled{.barriers = true}, bordered{.barriers = true, .border_samples = true};
   PaperRun run{opt, data, at, params, evaluate_data_set(data.grid, all_methods(), at, params, plain, figures, "fig3"),
-               evaluate_data_set(data.quadtree, scattered_methods(), at, params, plain, figures, "fig4")};
+               evaluate_data_set(data.quadtree, scattered_methods(), at, params, plain, figures, "fig4"), {}, {}, {}, {}};
   write_quadtree_figure(data.quadtree, at, figures);
   // Table 3 (Fig. 5-8): the same data and methods with the scene's barriers, then with border
   // samples too.
   if (opt.barriers) {
     run.grid_barriers = evaluate_data_set(data.grid, all_methods(), at, params, walled, figures, "fig5");
     run.quadtree_barriers = evaluate_data_set(data.quadtree, scattered_methods(), at, params, walled, figures, "fig6");
-    run.grid_border = evaluate_data_set(data.grid, all_methods(), at, params, bordered, figures, "fig7");
-    run.quadtree_border = evaluate_data_set(data.quadtree, scattered_methods(), at, params, bordered, figures, "fig8");
+  }
+  if (opt.barriers && opt.border_samples) {
+    // Border samples change the interpolating scattered methods only.
+    const std::vector<Method> interpolating = {Method::shepard, Method::multiquadric, Method::natural_neighbour};
+    run.grid_border = evaluate_data_set(data.grid, interpolating, at, params, bordered, figures, "fig7");
+    run.quadtree_border = evaluate_data_set(data.quadtree, interpolating, at, params, bordered, figures, "fig8");
   }
   const double t_reconstruct = clock.lap();
 
@@ -72,18 +76,20 @@ void run_paper(const PaperOptions& opt, const std::string& out_where) {
   std::vector<CameraHits> cameras;
   for (const Camera& c : scene.cameras) cameras.push_back(trace_camera(scene, c, view));
   std::vector<std::string> notes;
-  auto views = [&](const Solution& sol, Method m, const SideSampling& sampling, const std::string& stem) {
-    for (const Fallback& f : render_paper_views(scene, cameras, sol, m, params, sampling, at.white_w_m2, figures, stem))
+  auto views = [&](const Solution& sol, Method m, const SideSampling& sampling, const std::string& stem,
+                   const std::string& only_camera = "") {
+    for (const Fallback& f :
+         render_paper_views(scene, cameras, sol, m, params, sampling, at.white_w_m2, figures, stem, only_camera))
       notes.push_back(stem + ": " + f.side + " drawn piecewise constant, as " + method_name(m) + " cannot serve it: " + f.reason);
   };
   views(data.reference, Method::constant, plain, "fig2_reference");
   for (Method m : all_methods()) views(data.grid, m, plain, "fig3_" + method_name(m));
   for (Method m : scattered_methods()) views(data.quadtree, m, plain, "fig4_" + method_name(m));
+  // With barriers: the close-up of the wall's foot, where they matter (border samples: the
+  // ground figures only).
   if (opt.barriers) {
-    for (Method m : all_methods()) views(data.grid, m, walled, "fig5_" + method_name(m));
-    for (Method m : scattered_methods()) views(data.quadtree, m, walled, "fig6_" + method_name(m));
-    for (Method m : all_methods()) views(data.grid, m, bordered, "fig7_" + method_name(m));
-    for (Method m : scattered_methods()) views(data.quadtree, m, bordered, "fig8_" + method_name(m));
+    for (Method m : all_methods()) views(data.grid, m, walled, "fig5_" + method_name(m), "closeup");
+    for (Method m : scattered_methods()) views(data.quadtree, m, walled, "fig6_" + method_name(m), "closeup");
   }
   const double t_views = clock.lap();
 

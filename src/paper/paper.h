@@ -22,9 +22,11 @@ struct PaperOptions {
   int view_samples = 2;                     ///< rays per pixel along each axis
   bool progress = true;                     ///< stage messages on stderr
   /// Also the data sets with the scene's barriers (grid+barriers, quadtree+barriers: Table 3,
-  /// Fig. 5 and 6), and with border samples too (grid+barriers+border, quadtree+barriers+border:
-  /// Fig. 7 and 8).
+  /// Fig. 5 and 6).
   bool barriers = true;
+  /// And with border samples too (grid+barriers+border, quadtree+barriers+border: Table 3,
+  /// Fig. 7 and 8).
+  bool border_samples = false;
   /// Solve the data sets with the direct light's D1/D2 lines among the barriers too (an
   /// experiment: SolveSettings::shadow_barriers).
   bool shadow_barriers = false;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <initializer_list>
 #include <sstream>
 
 #include "io/atomic_file.h"
@@ -42,11 +43,13 @@ void table(std::ostringstream& html, const std::string& caption, const std::vect
   html << "</table>\n";
 }
 
-void figure_rows(std::ostringstream& html, const std::vector<ReportRow>& rows) {
+/// Each row's figures: FIGURE_STEM + each of `parts` + ".png".
+void figure_rows(std::ostringstream& html, const std::vector<ReportRow>& rows,
+                 std::initializer_list<const char*> parts = {"_view", "_closeup", "_ground", "_difference"}) {
   html << "<div class=grid>\n";
   for (const ReportRow& r : rows) {
     html << "<div class=label>" << r.method << "</div>";
-    for (const char* part : {"_view", "_closeup", "_ground", "_difference"})
+    for (const char* part : parts)
       html << "<img src=\"figures/" << r.figure_stem << part << ".png\" alt=\"" << r.method << part << "\">";
     html << "\n";
   }
@@ -79,14 +82,16 @@ void write_report(const std::filesystem::path& dir, const ReportContent& c) {
   figure_rows(html, c.table2);
   const bool barriers = !c.grid_barriers.empty();
   if (barriers) {
-    html << "<h2>Fig. 5: grid data with the scene's barriers (the wall feet)</h2>\n";
-    figure_rows(html, c.grid_barriers);
+    html << "<h2>Fig. 5: grid data with the scene's barriers, the wall feet (close-up, ground, difference)</h2>\n";
+    figure_rows(html, c.grid_barriers, {"_closeup", "_ground", "_difference"});
     html << "<h2>Fig. 6: quadtree data with the scene's barriers</h2>\n";
-    figure_rows(html, c.quadtree_barriers);
-    html << "<h2>Fig. 7: grid data with barriers and border samples</h2>\n";
-    figure_rows(html, c.grid_border);
-    html << "<h2>Fig. 8: quadtree data with barriers and border samples</h2>\n";
-    figure_rows(html, c.quadtree_border);
+    figure_rows(html, c.quadtree_barriers, {"_closeup", "_ground", "_difference"});
+    if (!c.grid_border.empty()) {
+      html << "<h2>Fig. 7: grid data with barriers and border samples (ground, difference)</h2>\n";
+      figure_rows(html, c.grid_border, {"_ground", "_difference"});
+      html << "<h2>Fig. 8: quadtree data with barriers and border samples</h2>\n";
+      figure_rows(html, c.quadtree_border, {"_ground", "_difference"});
+    }
   }
   html << "<h2>Errors</h2>\n";
   table(html, "Table 1: reconstruction of grid data", c.table1);
@@ -96,8 +101,10 @@ void write_report(const std::filesystem::path& dir, const ReportContent& c) {
             "foot.</p>\n";
     table(html, "Table 3a: grid data with barriers", c.grid_barriers);
     table(html, "Table 3b: quadtree data with barriers", c.quadtree_barriers);
-    table(html, "Table 3c: grid data with barriers and border samples", c.grid_border);
-    table(html, "Table 3d: quadtree data with barriers and border samples", c.quadtree_border);
+    if (!c.grid_border.empty()) {
+      table(html, "Table 3c: grid data with barriers and border samples", c.grid_border);
+      table(html, "Table 3d: quadtree data with barriers and border samples", c.quadtree_border);
+    }
   }
   html << "<p>The paper's columns are its published tables, for its own scene: compare rankings, not values.</p>\n"
        << "</body></html>\n";

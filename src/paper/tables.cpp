@@ -172,10 +172,13 @@ void write_table3(const std::filesystem::path& dir, const PaperRun& run) {
                   "# Table 3: errors with the scene's barriers\n\n" +
                       barrier_table("Grid data (" + run.data.grid.mesh + ")", run.grid_barriers, run.table1) +
                       barrier_table("Quadtree data (" + run.data.quadtree.mesh + ")", run.quadtree_barriers, run.table2) +
-                      barrier_table("Grid data with border samples", run.grid_border, run.table1) +
-                      barrier_table("Quadtree data with border samples", run.quadtree_border, run.table2) +
-                      "Barriers: " + kBarrierRule + ". Border samples: " + kBorderRule +
-                      ". Same data, methods, settings and norms as Tables 1 and 2.\n");
+                      (run.grid_border.empty()
+                           ? std::string()
+                           : barrier_table("Grid data with border samples", run.grid_border, run.table1) +
+                                 barrier_table("Quadtree data with border samples", run.quadtree_border, run.table2)) +
+                      "Barriers: " + kBarrierRule + "." +
+                      (run.grid_border.empty() ? std::string() : std::string(" Border samples: ") + kBorderRule + ".") +
+                      " Same data, methods, settings and norms as Tables 1 and 2.\n");
 }
 
 ReportContent report_content(const PaperRun& run, int rays_per_pixel) {

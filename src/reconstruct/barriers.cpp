@@ -229,4 +229,48 @@ size_t nearest_visible(const KdTree2& tree, std::span<const Vec2> points, const 
   }
 }
 
+PointVisibility::PointVisibility(std::span<const Vec2> points, const Barriers& barriers)
+    : points_(points), barriers_(&barriers) {
+  const std::vector<BarrierSegment>& segs = barriers.segments();
+  if (segs.empty() || segs.size() > kMaxSidedSegments) return;
+  side_.resize(segs.size() * points.size());
+  for (size_t k = 0; k < segs.size(); ++k)
+    for (size_t i = 0; i < points.size(); ++i)
+      side_[k * points.size() + i] = static_cast<signed char>(orientation(segs[k].a, segs[k].b, points[i]));
+}
+
+void PointVisibility::hidden_from(const Vec2& q, std::vector<char>& hidden) const {
+  const size_t n = points_.size();
+  const std::vector<BarrierSegment>& segs = barriers_->segments();
+  hidden.assign(n, 0);
+  if (side_.empty()) {  // no barrier, or many: the grid
+    for (size_t i = 0; i < n; ++i) hidden[i] = barriers_->blocks(q, points_[i]);
+    return;
+  }
+  // The rule of segment_blocked(), with the points' sides known: a point across the segment's
+  // line from q is hidden when the segment meets line (q, p) between its ends (o1 * o2 <= 0);
+  // when q and p both lie on the line, the collinear case decides.
+  for (size_t k = 0; k < segs.size(); ++k) {
+    const BarrierSegment& s = segs[k];
+    const int oq = orientation(s.a, s.b, q);
+    const signed char* side = &side_[k * n];
+    for (size_t i = 0; i < n; ++i) {
+      if (hidden[i]) continue;
+      const int op = side[i];
+      if (oq * op < 0) {
+        hidden[i] = orientation(q, points_[i], s.a) * orientation(q, points_[i], s.b) <= 0;
+      } else if (oq == 0 && op == 0) {
+        hidden[i] = segment_blocked(q, points_[i], s);
+      }
+    }
+  }
+}
+
+void PointVisibility::visible_from(const Vec2& q, std::vector<unsigned>& out, std::vector<char>& hidden) const {
+  hidden_from(q, hidden);
+  out.clear();
+  for (size_t i = 0; i < hidden.size(); ++i)
+    if (!hidden[i]) out.push_back(static_cast<unsigned>(i));
+}
+
 }  // namespace radrecon

@@ -57,6 +57,28 @@ class Barriers {
   std::vector<unsigned> cell_segments_;
 };
 
+/// Which of a fixed set of points a query sees, for the methods that weigh every sample (global
+/// Shepard and multiquadric): each point's side of every barrier's line is found once, so that a
+/// query tests only the points across a segment's line from it (two orientations each). Exactly
+/// Barriers::blocks() point by point. With many segments (more than kMaxSidedSegments) it asks
+/// blocks(), whose grid then wins.
+class PointVisibility {
+ public:
+  /// Both must outlive this.
+  PointVisibility(std::span<const Vec2> points, const Barriers& barriers);
+  /// hidden[i] = whether q does not see point i (resized to the points).
+  void hidden_from(const Vec2& q, std::vector<char>& hidden) const;
+  /// The indices of the points visible from q, ascending, into out; `hidden` is a buffer.
+  void visible_from(const Vec2& q, std::vector<unsigned>& out, std::vector<char>& hidden) const;
+
+  static constexpr size_t kMaxSidedSegments = 64;
+
+ private:
+  std::span<const Vec2> points_;
+  const Barriers* barriers_;
+  std::vector<signed char> side_;  ///< segment-major: side_[s * n + i], the sign of orient(a_s, b_s, p_i)
+};
+
 class KdTree2;
 
 /// Buffers of nearest_visible(), reused from query to query (per-thread scratch).

@@ -40,26 +40,32 @@ Multiquadric::Multiquadric(const ScatteredSamples& samples, double mu, std::opti
   px_.resize(n);
   py_.resize(n);
   for (size_t i = 0; i < n; ++i) px_[i] = points_[i].x(), py_[i] = points_[i].y();
-  if (!barriers_.empty()) values_ = samples.values;
+  if (!barriers_.empty()) {
+    values_ = samples.values;
+    visibility_ = std::make_unique<PointVisibility>(points_, barriers_);
+  }
 }
 
-bool Multiquadric::evaluate_visible(const Vec2& p, std::vector<unsigned>& visible, double* out) const {
-  visible.clear();
-  for (size_t j = 0; j < points_.size(); ++j)
-    if (!barriers_.blocks(p, points_[j])) visible.push_back(static_cast<unsigned>(j));
+bool Multiquadric::evaluate_visible(const Vec2& p, VisibleScratch& s, double* out) const {
+  std::vector<unsigned>& visible = s.visible;
+  visibility_->visible_from(p, visible, s.hidden);
   if (visible.size() == points_.size()) return false;  // the global fit, as without barriers
   if (visible.empty()) {
     for (int c = 0; c < channels_; ++c) out[c] = std::numeric_limits<double>::quiet_NaN();
     return true;
   }
-  const std::shared_ptr<const MultiquadricFit> fit =
-      fits_.get(0, visible, [&] { return fit_multiquadric(points_, r_sq_, values_, channels_, mu_, visible); });
-  for (int c = 0; c < channels_; ++c) out[c] = 0;
-  for (size_t a = 0; a < fit->subset.size(); ++a) {
-    const unsigned j = fit->subset[a];
-    const double b = multiquadric_basis((p - points_[j]).squaredNorm() + r_sq_[j], mu_);
-    for (int c = 0; c < channels_; ++c) out[c] += b * fit->alpha[a * channels_ + c];
-  }
+  // The last query's fit when it saw the same (coherent queries mostly do), else the cache's.
+  if (!s.last || s.last->subset != visible)
+    s.last = fits_.get(0, visible, [&] { return fit_multiquadric(points_, r_sq_, values_, channels_, mu_, visible); });
+  const MultiquadricFit* fit = s.last.get();
+  // As the plain path: basis values as Eigen arrays, sums in a fixed packet order.
+  using Array = Eigen::Map<const Eigen::ArrayXd>;
+  const Eigen::Index m = static_cast<Eigen::Index>(fit->subset.size());
+  s.b = (p.x() - Array(fit->px.data(), m)).square() + (p.y() - Array(fit->py.data(), m)).square() +
+        Array(fit->r_sq.data(), m);
+  multiquadric_basis_in_place(s.b, mu_);
+  for (int c = 0; c < channels_; ++c)
+    out[c] = (s.b * Array(&fit->alpha_by_channel[static_cast<size_t>(c) * static_cast<size_t>(m)], m)).sum();
   return true;
 }
 
@@ -72,7 +78,7 @@ void Multiquadric::evaluate(std::span<const Vec2> points, std::span<double> out)
   const double* r2 = r_sq_.data();
   struct Scratch {
     Eigen::ArrayXd b;
-    std::vector<unsigned> visible;
+    VisibleScratch visible;
   };
   parallel_for_with_scratch<Scratch>(0, static_cast<std::int64_t>(points.size()), [&](std::int64_t k, Scratch& s) {
     const size_t q = static_cast<size_t>(k);

@@ -13,6 +13,8 @@
 #include <memory>
 #include <optional>
 
+#include <Eigen/Core>
+
 #include "reconstruct/barriers.h"
 #include "reconstruct/interpolant.h"
 #include "reconstruct/multiquadric_basis.h"
@@ -44,9 +46,17 @@ class Multiquadric final : public Interpolant {
   Barriers barriers_;
   std::vector<double> values_;
   MultiquadricFitCache fits_;
+  std::unique_ptr<PointVisibility> visibility_;
+  /// Per-thread buffers of evaluate_visible(), and the fit it used last.
+  struct VisibleScratch {
+    std::vector<unsigned> visible;
+    std::vector<char> hidden;
+    std::shared_ptr<const MultiquadricFit> last;
+    Eigen::ArrayXd b;
+  };
   /// The value at p from the samples visible from it, into out; false (nothing written) when p
-  /// sees every sample. `visible` is a per-thread buffer.
-  bool evaluate_visible(const Vec2& p, std::vector<unsigned>& visible, double* out) const;
+  /// sees every sample.
+  bool evaluate_visible(const Vec2& p, VisibleScratch& s, double* out) const;
 };
 
 }  // namespace radrecon

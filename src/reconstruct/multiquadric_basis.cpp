@@ -52,6 +52,17 @@ MultiquadricFit fit_multiquadric(std::span<const Vec2> points, std::span<const d
   fit.alpha.resize(subset.size() * static_cast<size_t>(channels));
   for (Eigen::Index a = 0; a < m; ++a)
     for (int c = 0; c < channels; ++c) fit.alpha[static_cast<size_t>(a) * channels + c] = alpha(a, c);
+  const size_t count = subset.size();
+  fit.px.resize(count);
+  fit.py.resize(count);
+  fit.r_sq.resize(count);
+  fit.alpha_by_channel.resize(count * static_cast<size_t>(channels));
+  for (size_t a = 0; a < count; ++a) {
+    fit.px[a] = points[subset[a]].x();
+    fit.py[a] = points[subset[a]].y();
+    fit.r_sq[a] = r_sq[subset[a]];
+    for (int c = 0; c < channels; ++c) fit.alpha_by_channel[static_cast<size_t>(c) * count + a] = fit.alpha[a * channels + c];
+  }
   fit.subset = std::move(subset);
   return fit;
 }

@@ -46,6 +46,9 @@ struct MultiquadricFit {
   std::vector<unsigned> subset;  ///< sample indices
   std::vector<double> alpha;     ///< subset.size() * channels, sample-major
   double rcond = 1;              ///< reciprocal condition estimate of the system
+  // The same for evaluation as arrays (SIMD): the subset's coordinates, r^2, and alpha channel by
+  // channel.
+  std::vector<double> px, py, r_sq, alpha_by_channel;
 };
 
 /// Fits the multiquadric through `subset` (values: channels per point, point-major). Throws

@@ -33,6 +33,7 @@ Shepard::Shepard(ScatteredSamples samples, double mu, int k) : samples_(std::mov
 
 Shepard::Shepard(ScatteredSamples samples, double mu, int k, Barriers barriers) : Shepard(std::move(samples), mu, k) {
   barriers_ = std::move(barriers);
+  if (!barriers_.empty()) visibility_ = std::make_unique<PointVisibility>(samples_.points, barriers_);
 }
 
 Shepard::~Shepard() = default;
@@ -56,6 +57,7 @@ struct Shepard::Scratch {
   std::vector<unsigned> idx;
   std::vector<double> d2;
   VisibleNeighbours visible;  ///< with barriers: the k nearest visible samples
+  std::vector<char> hidden;   ///< with barriers, global: which samples a query does not see
 };
 
 void Shepard::evaluate(std::span<const Vec2> points, std::span<double> out) const {
@@ -79,9 +81,9 @@ void Shepard::evaluate(std::span<const Vec2> points, std::span<double> out) cons
       dist_sq = (p.x() - Array(px_.data(), N)).square() + (p.y() - Array(py_.data(), N)).square();
       if (!barriers_.empty()) {
         // A hidden sample is infinitely far: its weight is 0 below.
+        visibility_->hidden_from(p, s.hidden);
         for (Eigen::Index i = 0; i < N; ++i)
-          if (barriers_.blocks(p, samples_.points[static_cast<size_t>(i)]))
-            dist_sq[i] = std::numeric_limits<double>::infinity();
+          if (s.hidden[static_cast<size_t>(i)]) dist_sq[i] = std::numeric_limits<double>::infinity();
       }
       Eigen::Index first = 0;
       const double nearest_sq = dist_sq.minCoeff(&first);

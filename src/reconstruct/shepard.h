@@ -34,6 +34,7 @@ class Shepard final : public Interpolant {
   int k_;
   std::unique_ptr<KdTree2> tree_;
   Barriers barriers_;
+  std::unique_ptr<PointVisibility> visibility_;  ///< with barriers: over samples_.points
   /// Per-thread buffers of evaluate().
   struct Scratch;
 };

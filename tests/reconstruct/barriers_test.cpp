@@ -174,6 +174,35 @@ TEST(ShepardWithBarriers, AQueryThatSeesNoSampleHasNoValue) {
   EXPECT_EQ(v[2], 2.0);  // exact at a sample
 }
 
+TEST(PointVisibility, AgreesWithBlocksPointByPoint) {
+  // Few segments (the sides path) and many (the grid path); lattice points on barrier lines and
+  // through end points exercise the collinear cases.
+  std::mt19937 rng(404);
+  std::uniform_real_distribution<double> u(0, 10);
+  for (const int count : {1, 3, 30, 100}) {
+    std::vector<Polyline> lines = {{{2, 2}, {2, 8}}, {{3, 5}, {7, 5}}};
+    for (int k = 0; k < count; ++k) lines.push_back({Vec2(u(rng), u(rng)), Vec2(u(rng), u(rng))});
+    const Barriers barriers = Barriers::from_polylines(lines).value();
+    std::vector<Vec2> points;
+    for (int k = 0; k < 200; ++k) points.emplace_back(u(rng), u(rng));
+    for (int i = 0; i <= 10; ++i)
+      for (int j = 0; j <= 10; j += 5) points.emplace_back(i, j);
+    const PointVisibility visibility(points, barriers);
+    std::vector<unsigned> visible;
+    std::vector<char> hidden;
+    size_t seen = 0;
+    for (const Vec2& q : points) {
+      visibility.visible_from(q, visible, hidden);
+      std::vector<unsigned> expected;
+      for (size_t i = 0; i < points.size(); ++i)
+        if (!barriers.blocks(q, points[i])) expected.push_back(static_cast<unsigned>(i));
+      ASSERT_EQ(visible, expected) << "query " << q.transpose() << ", " << barriers.segments().size() << " segments";
+      seen += visible.size();
+    }
+    EXPECT_LT(seen, points.size() * points.size());  // some hidden
+  }
+}
+
 TEST(NearestSampleWithBarriers, IsTheNearestVisibleSampleByBruteForce) {
   const ScatteredSamples s = two_sided_samples(1.0, 5.0);
   const Barriers barriers = wall_and_corner();
