@@ -192,9 +192,16 @@ struct NaturalNeighbour::Impl {
         const Vec2& v = points[s.visible.idx[i]];
         s.local_input.emplace_back(Point(v.x(), v.y()), s.visible.idx[i]);
       }
+      // One point at a time, nearest first: a range insertion sorts the points along a curve with
+      // a random shuffle, and co-circular points (a lattice) could then be triangulated
+      // differently from thread to thread.
       Delaunay& dt = s.local;
       dt.clear();
-      dt.insert(s.local_input.begin(), s.local_input.end());
+      Delaunay::Vertex_handle last_vertex;
+      for (const auto& [point, index] : s.local_input) {
+        last_vertex = dt.insert(point, last_vertex == Delaunay::Vertex_handle() ? Delaunay::Face_handle() : last_vertex->face());
+        last_vertex->info() = index;
+      }
       if (dt.dimension() < 2) {  // one point, or all on a line: q is outside their hull
         if (!last) continue;
         std::vector<std::pair<unsigned, unsigned>> edges;
