@@ -15,6 +15,7 @@
 #include "io/paths.h"
 #include "io/raster.h"
 #include "io/samples_csv.h"
+#include "reconstruct/border_samples.h"
 #include "reconstruct/sample_set.h"
 #include "reconstruct/methods.h"
 
@@ -31,6 +32,7 @@ struct InterpolateArgs {
   std::string domain;
   std::string out;
   std::string barriers;
+  bool border_samples = false;
   bool quiet = false;
 };
 
@@ -67,21 +69,25 @@ void run_interpolate(const InterpolateArgs& args) {
     throw UserError("--queries/--raster",
                     use_queries ? "give either --queries or --raster, not both"
                                 : "give the query points: --queries FILE.csv or --raster WxH --domain x0,y0,x1,y1");
-  if (!use_raster && !args.domain.empty()) throw UserError("--domain", "--domain goes with --raster");
+  if (!use_raster && !args.domain.empty() && !args.border_samples)
+    throw UserError("--domain", "--domain goes with --raster (or with --border-samples: the border they go on)");
   if (use_queries && format != FileFormat::csv)
     throw UserError("--out", "PFM and PNG outputs need a raster (--raster WxH --domain ...); "
                              "with --queries write a .csv file");
   Raster raster;
+  if (!args.domain.empty()) raster.domain = parse_domain(args.domain, "--domain");
   if (use_raster) {
     const Size2 size = parse_size(args.raster, "--raster", kMaxRasterSide, kMaxRasterPoints);
     raster.width = size.width;
     raster.height = size.height;
     if (args.domain.empty()) throw UserError("--domain", "--raster needs --domain x0,y0,x1,y1 (the rectangle it covers)");
-    raster.domain = parse_domain(args.domain, "--domain");
   }
   const std::optional<Method> method = parse_method(args.method);
   if (!method) throw UserError("--method", "unknown method '" + args.method + "'; valid methods: " + method_list());
   MethodParams params = parse_params(*method, args.params, "--param");
+  if (args.border_samples && *method != Method::shepard && *method != Method::multiquadric &&
+      *method != Method::natural_neighbour)
+    throw UserError("--border-samples", "applies to shepard, multiquadric and natural-neighbour, not " + args.method);
   // No input is ever overwritten, and an unwritable output is refused before any work.
   std::vector<std::string> inputs = {args.samples};
   if (use_queries) inputs.push_back(args.queries);
@@ -96,7 +102,22 @@ void run_interpolate(const InterpolateArgs& args) {
     params.barriers = std::move(barriers).value();
   }
   std::vector<std::string> value_names;
-  const ScatteredSamples samples = read_samples_csv(args.samples, &value_names);
+  ScatteredSamples samples = read_samples_csv(args.samples, &value_names);
+  if (args.border_samples) {
+    // On --domain (the raster's), else the samples' bounding box.
+    Rect domain = raster.domain;
+    if (args.domain.empty()) {
+      Vec2 lo = samples.points[0], hi = lo;
+      for (const Vec2& p : samples.points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+      domain = Rect{lo.x(), lo.y(), hi.x(), hi.y()};
+    }
+    Result<ScatteredSamples> bordered = with_border_samples(samples, domain, params.barriers);
+    if (!bordered) throw UserError(args.samples, "border samples: " + bordered.reason());
+    const size_t added = bordered.value().points.size() - samples.points.size();
+    samples = std::move(bordered).value();
+    params.barrier_samples = false;  // added with the border's
+    if (!args.quiet) std::fprintf(stderr, "interpolate: %zu border samples added\n", added);
+  }
   if (format == FileFormat::pfm && samples.channels != 1 && samples.channels != 3)
     throw UserError("--out", "PFM needs 1 or 3 value columns (greyscale or colour); " + args.samples + " has " +
                                  std::to_string(samples.channels) + "; write .csv instead");
@@ -176,6 +197,10 @@ void add_interpolate_command(CLI::App& app) {
                   "sample's influence crosses them. A sample counts for a query only if the straight segment "
                   "between them crosses no barrier; a query that sees no sample gets no value (NaN). Every "
                   "method honours them; see docs/method.md");
+  cmd->add_flag("--border-samples", args->border_samples,
+                "shepard, multiquadric, natural-neighbour: add samples on the border of --domain (without it: "
+                "of the samples' bounding box) and on both sides of every barrier, each the value of a plane "
+                "fitted to the nearest samples it sees, so that nothing is extrapolated past the samples' hull");
   cmd->add_flag("--quiet", args->quiet, "No progress messages (warnings are still printed)");
   cmd->footer(
       "Examples:\n"

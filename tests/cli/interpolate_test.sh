@@ -294,6 +294,22 @@ run barrier_overwrite --samples "$S" --method constant --queries "$Q" --barriers
   --out "$TMP/wall_geojson.csv" --quiet
 expect_rc barrier_overwrite 2 && expect_stderr_has barrier_overwrite "refusing to overwrite"
 
+# --- border samples: samples inside [0.1, 0.9]^2 of f = 2 + 3x - y; with --border-samples on the
+# unit square, natural-neighbour reproduces f out to the square's border (the border samples'
+# planes are exact for a linear f); without, points beyond the samples' hull have no value.
+awk 'BEGIN { srand(12); print "x,y,f"; for (k = 0; k < 60; k++) { x = 0.1 + 0.8 * rand(); y = 0.1 + 0.8 * rand(); printf "%.17g,%.17g,%.17g\n", x, y, 2 + 3 * x - y } }' >"$TMP/inner.csv"
+awk 'BEGIN { srand(13); print "x,y"; for (k = 0; k < 40; k++) printf "%.17g,%.17g\n", 0.01 + 0.98 * rand(), (k % 2) * 0.98 + 0.01 }' >"$TMP/edge_queries.csv"
+linear "$TMP/edge_queries.csv" "$TMP/edge_expected.csv"
+run border_nn --samples "$TMP/inner.csv" --method natural-neighbour --param outside=none --border-samples \
+  --domain 0,0,1,1 --queries "$TMP/edge_queries.csv" --out "$TMP/border_nn.csv"
+expect_rc border_nn 0 && check_values border_nn "$TMP/border_nn.csv" "$TMP/edge_expected.csv" 1e-9
+expect_stderr_has border_nn "border samples added"
+run no_border_nn --samples "$TMP/inner.csv" --method natural-neighbour --param outside=none \
+  --queries "$TMP/edge_queries.csv" --out "$TMP/no_border_nn.csv" --quiet
+grep -q nan "$TMP/no_border_nn.csv" || fail "no_border_nn: every point had a value without border samples"
+refuse border_constant "--border-samples" "$TMP/b7.csv" --samples "$S" --method constant --border-samples --queries "$Q"
+refuse domain_without_border "--domain" "$TMP/b8.csv" --samples "$S" --method shepard --domain 0,0,1,1 --queries "$Q"
+
 if [ "$failures" -ne 0 ]; then
   echo "interpolate_test: $failures check(s) failed" >&2
   exit 1
