@@ -176,7 +176,8 @@ void add_interpolate_command(CLI::App& app) {
                   "(d^2 + r^2)^mu; r (> 0, default: per sample, the distance to its nearest other sample "
                   "(Eck)); k (0 = one global system, default; >= 3: local patches of ~k samples blended, for large "
                   "sample sets). natural-neighbour: outside=nearest (default: the value at the nearest point of "
-                  "the convex hull) | none (NaN outside the hull). Others: no parameters");
+                  "the convex hull) | none (NaN outside the hull); barrier-samples=on (default) | off: with "
+                  "--barriers, also samples along both sides of each barrier. Others: no parameters");
   cmd->add_option("--queries", args->queries,
                   "CSV of query points: header starting x,y (further columns ignored); outputs keep its row "
                   "order");

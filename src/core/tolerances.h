@@ -104,8 +104,9 @@ inline constexpr double kGridCoordinateRelative = 1e-9;
 /// (the bound's own round-off is some 1e-15).
 inline constexpr double kSibsonCertificateRelative = 1e-9;
 /// A query's visibility tests are skipped when no barrier comes within its farthest neighbour's
-/// distance enlarged by this fraction: far above the distance's round-off (1e-15), so that a
-/// barrier the exact test would find is never skipped.
+/// distance enlarged by this fraction of that distance plus the coordinates' magnitude
+/// (Barriers::none_within()): far above the distance's round-off (some 1e-15 of those), so that
+/// a barrier the exact test would find is never skipped.
 inline constexpr double kBarrierReachRelative = 1e-9;
 
 /// Border samples (reconstruct/border_samples.h): a barrier's samples stand this fraction of the

@@ -8,6 +8,7 @@
 
 #include "core/check.h"
 #include "core/parse.h"
+#include "core/tolerances.h"
 #include "reconstruct/kdtree.h"
 
 namespace radrecon {
@@ -35,15 +36,21 @@ int orientation(const Vec2& a, const Vec2& b, const Vec2& c) {
   return o == CGAL::LEFT_TURN ? 1 : (o == CGAL::RIGHT_TURN ? -1 : 0);
 }
 
+/// The grid index of coordinate v (origin o, cells of cell_m, n of them), clamped to [0, n) in
+/// double before the conversion: far points (up to 1e100) would overflow an int.
+int grid_index(double v, double o, double cell_m, int n) {
+  return static_cast<int>(std::clamp(std::floor((v - o) / cell_m), 0.0, static_cast<double>(n - 1)));
+}
+
 /// Cells of the barrier grid per segment, on average: a few segments per cell keeps the tests
 /// per cell low without a grid much larger than the segments.
 constexpr double kSegmentsPerCell = 0.5;
 /// At most this many cells along an axis.
 constexpr int kMaxGridSide = 1024;
-/// A cell is skipped only when all its corners lie beyond this fraction of |d| x cell size on
-/// one side of the query's line: far above the round-off of the corner tests, so that no cell
-/// the segment touches is skipped (the exact tests then decide).
-constexpr double kCellSkipRelative = 1e-12;
+/// A cell is skipped only when all its corners lie beyond this fraction of the magnitudes in
+/// their side test on one side of the query's line (blocks()): some 45 ulps, far above the test's
+/// round-off.
+constexpr double kCellSkipRelative = 1e-14;
 
 }  // namespace
 
@@ -103,7 +110,7 @@ Barriers::Barriers(std::vector<BarrierSegment> segments) : segments_(std::move(s
   ny_ = std::clamp(static_cast<int>(std::floor(extent.y() / cell_m_)) + 1, 1, kMaxGridSide + 1);
   // Each segment goes into every cell its bounding box covers (conservative).
   std::vector<std::vector<unsigned>> buckets(static_cast<size_t>(nx_) * ny_);
-  const auto cell = [&](double v, double o, int n) { return std::clamp(static_cast<int>(std::floor((v - o) / cell_m_)), 0, n - 1); };
+  const auto cell = [&](double v, double o, int n) { return grid_index(v, o, cell_m_, n); };
   for (size_t k = 0; k < segments_.size(); ++k) {
     const BarrierSegment& s = segments_[k];
     const int i0 = cell(std::min(s.a.x(), s.b.x()), origin_.x(), nx_), i1 = cell(std::max(s.a.x(), s.b.x()), origin_.x(), nx_);
@@ -129,6 +136,7 @@ inline bool boxes_overlap(const Vec2& p, const Vec2& q, const BarrierSegment& s)
 /// Up to this many segments are tested one by one, without the grid.
 constexpr size_t kDirectTestSegments = 8;
 
+
 }  // namespace
 
 bool Barriers::blocks(const Vec2& p, const Vec2& q) const {
@@ -143,19 +151,21 @@ bool Barriers::blocks(const Vec2& p, const Vec2& q) const {
   const Vec2 lo = p.cwiseMin(q), hi = p.cwiseMax(q);
   const double gx1 = origin_.x() + nx_ * cell_m_, gy1 = origin_.y() + ny_ * cell_m_;
   if (hi.x() < origin_.x() || hi.y() < origin_.y() || lo.x() > gx1 || lo.y() > gy1) return false;
-  const auto cell = [&](double v, double o, int n) { return std::clamp(static_cast<int>(std::floor((v - o) / cell_m_)), 0, n - 1); };
-  const int i0 = cell(lo.x(), origin_.x(), nx_), i1 = cell(hi.x(), origin_.x(), nx_);
-  const int j0 = cell(lo.y(), origin_.y(), ny_), j1 = cell(hi.y(), origin_.y(), ny_);
+  const int i0 = grid_index(lo.x(), origin_.x(), cell_m_, nx_), i1 = grid_index(hi.x(), origin_.x(), cell_m_, nx_);
+  const int j0 = grid_index(lo.y(), origin_.y(), cell_m_, ny_), j1 = grid_index(hi.y(), origin_.y(), cell_m_, ny_);
   const Vec2 d = q - p;
+  const double p_size = p.cwiseAbs().maxCoeff();
   for (int j = j0; j <= j1; ++j)
     for (int i = i0; i <= i1; ++i) {
-      // Skip cells of the box that the segment's line misses (the cell's corners all on one side).
-      const Vec2 c0 = origin_ + Vec2(i * cell_m_, j * cell_m_);
-      const double s00 = d.x() * (c0.y() - p.y()) - d.y() * (c0.x() - p.x());
-      const double s10 = d.x() * (c0.y() - p.y()) - d.y() * (c0.x() + cell_m_ - p.x());
-      const double s01 = d.x() * (c0.y() + cell_m_ - p.y()) - d.y() * (c0.x() - p.x());
-      const double s11 = d.x() * (c0.y() + cell_m_ - p.y()) - d.y() * (c0.x() + cell_m_ - p.x());
-      const double margin = kCellSkipRelative * (std::abs(d.x()) + std::abs(d.y())) * cell_m_;
+      // Skip cells of the box that the segment's line misses (the cell's corners all strictly on
+      // one side). The side of corner c is d x (c - p), d = q - p; with d, c - p and the products
+      // rounded, its error is below a few ulps of (|d| + |p| + |q|) (|c| + |p|) (max norms), so
+      // a margin far above that never skips a cell the segment touches (the exact tests decide).
+      const double x0 = origin_.x() + i * cell_m_, x1 = x0 + cell_m_, y0 = origin_.y() + j * cell_m_, y1 = y0 + cell_m_;
+      const double corner = std::max({std::abs(x0), std::abs(x1), std::abs(y0), std::abs(y1)});
+      const double margin = kCellSkipRelative * (d.cwiseAbs().maxCoeff() + p_size + q.cwiseAbs().maxCoeff()) * (corner + p_size);
+      const auto side = [&](double cx, double cy) { return d.x() * (cy - p.y()) - d.y() * (cx - p.x()); };
+      const double s00 = side(x0, y0), s10 = side(x1, y0), s01 = side(x0, y1), s11 = side(x1, y1);
       if ((s00 > margin && s10 > margin && s01 > margin && s11 > margin) ||
           (s00 < -margin && s10 < -margin && s01 < -margin && s11 < -margin))
         continue;
@@ -196,11 +206,10 @@ double Barriers::distance_to(const Vec2& q, double max_distance) const {
   if (q.x() + max_distance < origin_.x() || q.y() + max_distance < origin_.y() || q.x() - max_distance > gx1 ||
       q.y() - max_distance > gy1)
     return max_distance;
-  const auto cell = [&](double v, double o, int n) {
-    return static_cast<int>(std::clamp(std::floor((v - o) / cell_m_), 0.0, static_cast<double>(n - 1)));
-  };
-  const int i0 = cell(q.x() - max_distance, origin_.x(), nx_), i1 = cell(q.x() + max_distance, origin_.x(), nx_);
-  const int j0 = cell(q.y() - max_distance, origin_.y(), ny_), j1 = cell(q.y() + max_distance, origin_.y(), ny_);
+  const int i0 = grid_index(q.x() - max_distance, origin_.x(), cell_m_, nx_);
+  const int i1 = grid_index(q.x() + max_distance, origin_.x(), cell_m_, nx_);
+  const int j0 = grid_index(q.y() - max_distance, origin_.y(), cell_m_, ny_);
+  const int j1 = grid_index(q.y() + max_distance, origin_.y(), cell_m_, ny_);
   for (int j = j0; j <= j1; ++j)
     for (int i = i0; i <= i1; ++i) {
       const size_t c = static_cast<size_t>(j) * nx_ + i;
@@ -208,6 +217,17 @@ double Barriers::distance_to(const Vec2& q, double max_distance) const {
         best = std::min(best, distance_to_segment(q, segments_[cell_segments_[k]]));
     }
   return best;
+}
+
+bool Barriers::none_within(const Vec2& q, double reach_m) const {
+  if (segments_.empty()) return true;
+  // Margins above the distance's round-off: relative to the reach, and absolute, relative to the
+  // coordinates' magnitude (the distance is computed from differences of coordinates).
+  const Vec2 far_corner = origin_ + Vec2(nx_ * cell_m_, ny_ * cell_m_);
+  const double size = std::max(origin_.cwiseAbs().maxCoeff(), far_corner.cwiseAbs().maxCoeff());
+  const double margin = tol::kBarrierReachRelative * (reach_m + q.cwiseAbs().maxCoeff() + size);
+  const double r = reach_m + margin;
+  return distance_to(q, 2 * r) > r;
 }
 
 size_t nearest_visible(const KdTree2& tree, std::span<const Vec2> points, const Barriers& barriers, const Vec2& q,

@@ -40,6 +40,11 @@ class Barriers {
   /// segment passes through are tested.
   bool blocks(const Vec2& p, const Vec2& q) const;
 
+  /// Whether no barrier comes within reach_m of q (with a margin above the distance's round-off,
+  /// relative and absolute): then no segment from q to a point within reach_m is blocked, and
+  /// the visibility tests of a query whose samples all lie that near can be skipped.
+  bool none_within(const Vec2& q, double reach_m) const;
+
   /// The distance from q to the nearest barrier segment (closed) when it is below max_distance,
   /// else max_distance (also with no barrier, and for a q not finite). Only the segments bucketed in the grid cells that
   /// the box of half-side max_distance around q overlaps are measured, so a small max_distance

@@ -85,9 +85,9 @@ LocalMultiquadric::LocalMultiquadric(const ScatteredSamples& samples, double mu,
     size_t m = 0;
     while (m < found && (s.dist_sq[m] < reach_sq || m < static_cast<size_t>(kk))) ++m;
     patch.samples.assign(s.indices.begin(), s.indices.begin() + static_cast<std::ptrdiff_t>(m));
-    // From any point of its support (within h of its centre) to its farthest sample, with a
-    // margin for round-off: no barrier that near, no sample of the patch hidden.
-    patch.reach_m = (h_ + std::sqrt(s.dist_sq[m - 1])) * (1 + tol::kBarrierReachRelative);
+    // From any point of its support (within h of its centre) to its farthest sample: no barrier
+    // that near, no sample of the patch hidden.
+    patch.reach_m = h_ + std::sqrt(s.dist_sq[m - 1]);
     if (m > kMaxPatchSamples) return;  // refused below, outside the parallel loop
     MultiquadricFit fit = fit_multiquadric(points_, r_sq_, samples.values, channels_, mu_, patch.samples);
     patch.rcond = fit.rcond;
@@ -145,7 +145,7 @@ void LocalMultiquadric::evaluate(std::span<const Vec2> points, std::span<double>
         const std::vector<unsigned>* subset = &patch.samples;
         const std::vector<double>* alpha = &patch.alpha;
         std::shared_ptr<const MultiquadricFit> fit;
-        if (!barriers_.empty() && barriers_.distance_to(x, 2 * patch.reach_m) <= patch.reach_m) {
+        if (!barriers_.none_within(x, patch.reach_m)) {
           visible.clear();
           for (unsigned s : patch.samples)
             if (!barriers_.blocks(x, points_[s])) visible.push_back(s);

@@ -140,12 +140,10 @@ struct NaturalNeighbour::Impl {
   }
 
   bool all_visible(const Vec2& q, std::span<const std::pair<unsigned, double>> coords) const {
-    // No barrier within reach of the farthest neighbour (with a margin for the distance's
-    // round-off): nothing to test.
+    // No barrier within reach of the farthest neighbour: nothing to test.
     double reach_sq = 0;
     for (const auto& [index, w] : coords) reach_sq = std::max(reach_sq, (points[index] - q).squaredNorm());
-    const double reach = std::sqrt(reach_sq) * (1 + tol::kBarrierReachRelative);
-    if (barriers.distance_to(q, 2 * reach) > reach) return true;
+    if (barriers.none_within(q, std::sqrt(reach_sq))) return true;
     for (const auto& [index, w] : coords)
       if (barriers.blocks(q, points[index])) return false;
     return true;

@@ -105,13 +105,12 @@ void Shepard::evaluate(std::span<const Vec2> points, std::span<double> out) cons
       return;
     }
     // k nearest, nearest first; with barriers the k nearest visible, which are the k nearest
-    // when no barrier comes within reach of the k-th (with a margin for round-off).
+    // when no barrier comes within reach of the k-th.
     size_t found = 0;
     s.idx.resize(static_cast<size_t>(k_));  // allocates on a thread's first query only
     s.d2.resize(static_cast<size_t>(k_));
     found = tree_->nearest(p, k_, s.idx, s.d2);
-    const double reach = std::sqrt(s.d2[found - 1]) * (1 + tol::kBarrierReachRelative);
-    const bool plain = barriers_.empty() || barriers_.distance_to(p, 2 * reach) > reach;
+    const bool plain = barriers_.none_within(p, std::sqrt(s.d2[found - 1]));
     if (!plain) {
       found = nearest_visible(*tree_, samples_.points, barriers_, p, static_cast<size_t>(k_), s.visible);
       if (found == 0) {  // sees no sample: no value

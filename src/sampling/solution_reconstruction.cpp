@@ -68,12 +68,22 @@ ScatteredSamples outside_regions(const ScatteredSamples& all, const std::vector<
 InterpolantResult reconstruct_unmasked(const SurfaceSolution& s, Method method, const MethodParams& plain,
                                        const SideSampling& sampling) {
   MethodParams params = plain;
-  if (sampling.barriers && !s.barriers.empty()) {
-    Result<Barriers> barriers = Barriers::from_polylines(s.barriers);
+  // The side's barriers if asked, and always the outlines of its excluded regions: they hide
+  // the cells of a grid under them from every point outside (a grid keeps all its cells).
+  std::vector<Polyline> lines;
+  if (sampling.barriers) lines = s.barriers;
+  for (const Polyline& region : s.excluded) {
+    lines.push_back(region);
+    if (region.front() != region.back()) lines.back().push_back(region.front());
+  }
+  if (!lines.empty()) {
+    Result<Barriers> barriers = Barriers::from_polylines(lines);
     if (!barriers) return Failure{"its barriers: " + barriers.reason()};
     params.barriers = std::move(barriers).value();
   }
   const bool grid = s.grid_nu > 0 && s.grid_nv > 0;
+  if (grid && !s.excluded.empty() && method != Method::constant && !is_grid_method(method))
+    return make_scattered_interpolant(method, outside_regions(grid_cells(s).centres(), s.excluded), params);
   if (sampling.border_samples && method != Method::constant && !is_grid_method(method)) {
     const ScatteredSamples samples = outside_regions(grid ? grid_cells(s).centres() : element_centres(s), s.excluded);
     Result<ScatteredSamples> bordered =

@@ -174,6 +174,38 @@ TEST(ShepardWithBarriers, AQueryThatSeesNoSampleHasNoValue) {
   EXPECT_EQ(v[2], 2.0);  // exact at a sample
 }
 
+TEST(Barriers, FarPointsAndGrazingLinesAgreeWithBruteForce) {
+  // More than a handful of segments, so that the grid is used.
+  std::vector<Polyline> lines;
+  for (int k = 0; k < 10; ++k) lines.push_back({Vec2(0.1 * k, 0), Vec2(0.1 * k + 0.05, 1)});
+  // One barrier starting 1e-13 from a grid cell's corner region.
+  lines.push_back({{0.5 + 1e-13, 0.5 + 1e-13}, {0.6, 0.55}});
+  const Barriers barriers = Barriers::from_polylines(lines).value();
+  const auto brute = [&](const Vec2& p, const Vec2& q) {
+    bool blocked = false;
+    for (const BarrierSegment& s : barriers.segments()) blocked = blocked || segment_blocked(p, q, s);
+    return blocked;
+  };
+  // Points far beyond the grid (cell indices beyond int range before clamping).
+  for (const double x : {1e9, 1e15, 1e100, -1e100})
+    for (const Vec2& q : {Vec2(0.5, 0.5), Vec2(0.02, 0.3)}) {
+      const Vec2 p(x, 0.5);
+      ASSERT_EQ(barriers.blocks(p, q), brute(p, q)) << x;
+      ASSERT_EQ(barriers.blocks(q, p), brute(q, p)) << x;
+    }
+  // Long sight lines grazing the barrier's start, from far away, in both directions.
+  std::mt19937 rng(77);
+  std::uniform_real_distribution<double> angle(0, 6.283185307179586), tiny(-1e-12, 1e-12);
+  for (int k = 0; k < 20000; ++k) {
+    const double a = angle(rng), r = k % 2 ? 1e4 : 1e6;
+    const Vec2 target(0.5 + tiny(rng), 0.5 + tiny(rng));
+    const Vec2 far = target + r * Vec2(std::cos(a), std::sin(a));
+    const Vec2 beyond = target - 0.01 * Vec2(std::cos(a), std::sin(a));
+    ASSERT_EQ(barriers.blocks(far, beyond), brute(far, beyond)) << k;
+    ASSERT_EQ(barriers.blocks(beyond, far), brute(beyond, far)) << k;
+  }
+}
+
 TEST(PointVisibility, AgreesWithBlocksPointByPoint) {
   // Few segments (the sides path) and many (the grid path); lattice points on barrier lines and
   // through end points exercise the collinear cases.

@@ -52,10 +52,12 @@ TEST(SideReconstruction, TheFloorUnderABoxIsNeitherSampleNorQuery) {
     if (c.x() > 1 && c.x() < 2 && c.y() > 1 && c.y() < 2) e.radiosity_w_m2 = Rgb::Constant(1e3);
   }
   const std::vector<Vec2> outside = {{0.9, 1.5}, {2.05, 1.2}, {1.5, 0.8}, {1.5, 2.3}, {0.5, 0.5}, {3, 3}};
+  for (const bool barriers : {true, false})  // render --no-barriers too: the region still holds
   for (Method m : all_methods()) {
-    SCOPED_TRACE(method_name(m));
-    const auto plain = reconstruct_side(floor, m, {}, {});
-    const auto lit = reconstruct_side(bright, m, {}, {});
+    SCOPED_TRACE(method_name(m) + (barriers ? " with barriers" : " without barriers"));
+    const SideSampling sampling{.barriers = barriers};
+    const auto plain = reconstruct_side(floor, m, {}, sampling);
+    const auto lit = reconstruct_side(bright, m, {}, sampling);
     ASSERT_TRUE(plain.ok()) << plain.reason();
     EXPECT_TRUE(std::isnan(at(*plain.value(), {1.5, 1.5})));  // under the box: no value
     if (m == Method::bicubic) continue;  // its global spline couples distant nodes (barrier_grid.h)
