@@ -54,6 +54,14 @@ constexpr double kCellSkipRelative = 1e-14;
 
 }  // namespace
 
+bool all_on_one_line(std::span<const Vec2> points) {
+  size_t second = 1;
+  while (second < points.size() && points[second] == points[0]) ++second;
+  for (size_t i = second + 1; i < points.size(); ++i)
+    if (orientation(points[0], points[second], points[i]) != 0) return false;
+  return true;
+}
+
 bool segment_blocked(const Vec2& p, const Vec2& q, const BarrierSegment& s) {
   const int o1 = orientation(p, q, s.a), o2 = orientation(p, q, s.b);
   if (o1 == 0 && o2 == 0) {

@@ -107,6 +107,9 @@ size_t nearest_visible(const KdTree2& tree, std::span<const Vec2> points, const 
 /// The most points nearest_visible() tries for k <= kMaxVisibleCandidates / 2.
 inline constexpr size_t kMaxVisibleCandidates = 512;
 
+/// Whether all points lie on one line (or coincide), by exact orientation tests.
+bool all_on_one_line(std::span<const Vec2> points);
+
 /// Whether the open segment (p, q) meets the closed segment [a, b] (the rule of barriers.h),
 /// by exact orientation tests: the brute-force definition that Barriers::blocks() accelerates.
 bool segment_blocked(const Vec2& p, const Vec2& q, const BarrierSegment& s);

@@ -188,13 +188,14 @@ InterpolantResult make_scattered_interpolant(Method method, const ScatteredSampl
                        " samples are too many for one global multiquadric system (at most " +
                        std::to_string(kMaxGlobalMultiquadric) + "); use local patches (parameter k, e.g. 32)"};
       return build<Multiquadric>(samples, params.multiquadric_mu, params.multiquadric_r, params.barriers);
-    case Method::natural_neighbour:
-      if (!params.barriers.empty() && params.barrier_samples) {
-        // Samples along both sides of each barrier, within the samples' bounding box: without
-        // them, a query next to a barrier would take far samples around its ends as natural
-        // neighbours (its Voronoi cell among the samples it sees reaches across the barrier).
-        Vec2 lo = samples.points[0], hi = lo;
-        for (const Vec2& p : samples.points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+    case Method::natural_neighbour: {
+      Vec2 lo = samples.points[0], hi = lo;
+      for (const Vec2& p : samples.points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+      // Samples along both sides of each barrier, within the samples' bounding box (unless the
+      // samples lie on one line: the method refuses them then): without them, a query next to a
+      // barrier would take far samples around its ends as natural neighbours (its Voronoi cell
+      // among the samples it sees reaches across the barrier).
+      if (!params.barriers.empty() && params.barrier_samples && !all_on_one_line(samples.points)) {
         BorderSampleSettings settings;
         settings.on_domain_border = false;
         Result<ScatteredSamples> with = with_border_samples(samples, Rect{lo.x(), lo.y(), hi.x(), hi.y()}, params.barriers, settings);
@@ -202,6 +203,7 @@ InterpolantResult make_scattered_interpolant(Method method, const ScatteredSampl
         return build<NaturalNeighbour>(with.value(), params.outside, params.barriers);
       }
       return build<NaturalNeighbour>(samples, params.outside, params.barriers);
+    }
   }
   RR_CHECK(false, "unknown method");
   return Failure{"unknown method"};

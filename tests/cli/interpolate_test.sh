@@ -290,6 +290,7 @@ refuse barrier_zero_length "zero_length.geojson" "$TMP/b4.csv" --samples "$S" --
 refuse barrier_truncated "truncated.geojson" "$TMP/b5.pfm" --samples "$S" --method constant --raster 5x5 --domain 0,0,1,1 --barriers "$TMP/truncated.geojson"
 refuse barrier_missing "absent.geojson" "$TMP/b6.csv" --samples "$S" --method constant --queries "$Q" --barriers "$TMP/absent.geojson"
 cp "$TMP/wall.geojson" "$TMP/wall_geojson.csv"  # a barrier file named as the output
+refuse barrier_collinear "one line" "$TMP/b9.csv" --samples "$TMP/collinear.csv" --method natural-neighbour --queries "$Q" --barriers "$TMP/wall.geojson"
 run barrier_overwrite --samples "$S" --method constant --queries "$Q" --barriers "$TMP/wall_geojson.csv" \
   --out "$TMP/wall_geojson.csv" --quiet
 expect_rc barrier_overwrite 2 && expect_stderr_has barrier_overwrite "refusing to overwrite"
