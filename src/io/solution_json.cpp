@@ -22,6 +22,17 @@ std::string json_string(const std::string& s) { return nlohmann::json(s).dump();
 
 void put_rgb(std::FILE* f, const Rgb& c) { std::fprintf(f, "[%.9g, %.9g, %.9g]", c[0], c[1], c[2]); }
 
+/// Polylines as [[s, t], ...], comma-separated, full precision (the enclosing brackets are the
+/// caller's).
+void put_polylines(std::FILE* f, const std::vector<Polyline>& lines) {
+  for (size_t k = 0; k < lines.size(); ++k) {
+    std::fprintf(f, "%s[", k ? ", " : "");
+    for (size_t i = 0; i < lines[k].size(); ++i)
+      std::fprintf(f, "%s[%.17g, %.17g]", i ? ", " : "", lines[k][i].x(), lines[k][i].y());
+    std::fputc(']', f);
+  }
+}
+
 }  // namespace
 
 void write_solution_json(const std::filesystem::path& path, const Solution& sol) {
@@ -38,19 +49,9 @@ void write_solution_json(const std::filesystem::path& path, const Solution& sol)
                    surf.back_side ? "true" : "false");
       std::fprintf(f, "     \"length_u_m\": %.17g, \"length_v_m\": %.17g, \"grid\": [%d, %d],\n     \"barriers\": [",
                    surf.length_u_m, surf.length_v_m, surf.grid_nu, surf.grid_nv);
-      for (size_t b = 0; b < surf.barriers.size(); ++b) {
-        std::fprintf(f, "%s[", b ? ", " : "");
-        for (size_t i = 0; i < surf.barriers[b].size(); ++i)
-          std::fprintf(f, "%s[%.17g, %.17g]", i ? ", " : "", surf.barriers[b][i].x(), surf.barriers[b][i].y());
-        std::fputc(']', f);
-      }
+      put_polylines(f, surf.barriers);
       std::fprintf(f, "],\n     \"excluded\": [");
-      for (size_t r = 0; r < surf.excluded.size(); ++r) {
-        std::fprintf(f, "%s[", r ? ", " : "");
-        for (size_t i = 0; i < surf.excluded[r].size(); ++i)
-          std::fprintf(f, "%s[%.17g, %.17g]", i ? ", " : "", surf.excluded[r][i].x(), surf.excluded[r][i].y());
-        std::fputc(']', f);
-      }
+      put_polylines(f, surf.excluded);
       std::fprintf(f, "],\n     \"elements\": [");
       for (size_t e = 0; e < surf.elements.size(); ++e) {
         const SolutionElement& el = surf.elements[e];

@@ -9,6 +9,7 @@
 #include "core/parallel.h"
 #include "reconstruct/bicubic.h"
 #include "reconstruct/bilinear.h"
+#include "reconstruct/keys_cubic.h"
 #include "reconstruct/nodal.h"
 
 namespace radrecon {
@@ -32,28 +33,6 @@ constexpr double kSeenMarginDiagonals = 1e-3;
 constexpr double kMarkStep = 0.5;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-/// Keys' cubic convolution (a = -1/2, the Catmull-Rom spline) along one axis of n >= 2 nodes,
-/// unit spacing, at k + t (cell k, t in [0, 1]): the weights of nodes first..first + count - 1.
-/// Inside, the 4 nodes k-1..k+2 with the kernel's weights; at an end, the missing node is Keys'
-/// extrapolation f(-1) = 3 f(0) - 3 f(1) + f(2) (and its mirror image), folded into the
-/// weights of the 3 nodes it uses; with 2 nodes, the linear extrapolations f(-1) = 2 f(0) - f(1)
-/// and f(2) = 2 f(1) - f(0). All exact for quadratics (linear with 2 nodes), and at t = 0 or 1
-/// only node k or k + 1 weighs (every folded-in weight then vanishes).
-struct AxisWeights {
-  int first, count;
-  double w[4];
-};
-
-AxisWeights keys_weights(int n, int k, double t) {
-  const double t2 = t * t, t3 = t2 * t;
-  const double c0 = 0.5 * (-t + 2 * t2 - t3), c1 = 0.5 * (2 - 5 * t2 + 3 * t3), c2 = 0.5 * (t + 4 * t2 - 3 * t3),
-               c3 = 0.5 * (t3 - t2);  // nodes k-1, k, k+1, k+2
-  if (n == 2) return {0, 2, {c1 + 2 * c0 - c3, c2 - c0 + 2 * c3, 0, 0}};
-  if (k == 0) return {0, 3, {c1 + 3 * c0, c2 - 3 * c0, c3 + c0, 0}};
-  if (k == n - 2) return {k - 1, 3, {c0 + c3, c1 - 3 * c3, c2 + 3 * c3, 0}};
-  return {k - 1, 4, {c0, c1, c2, c3}};
-}
 
 }  // namespace
 

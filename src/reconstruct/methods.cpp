@@ -189,13 +189,13 @@ InterpolantResult make_scattered_interpolant(Method method, const ScatteredSampl
                        std::to_string(kMaxGlobalMultiquadric) + "); use local patches (parameter k, e.g. 32)"};
       return build<Multiquadric>(samples, params.multiquadric_mu, params.multiquadric_r, params.barriers);
     case Method::natural_neighbour: {
-      Vec2 lo = samples.points[0], hi = lo;
-      for (const Vec2& p : samples.points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
       // Samples along both sides of each barrier, within the samples' bounding box (unless the
       // samples lie on one line: the method refuses them then): without them, a query next to a
       // barrier would take far samples around its ends as natural neighbours (its Voronoi cell
       // among the samples it sees reaches across the barrier).
       if (!params.barriers.empty() && params.barrier_samples && !all_on_one_line(samples.points)) {
+        Vec2 lo = samples.points[0], hi = lo;
+        for (const Vec2& p : samples.points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
         BorderSampleSettings settings;
         settings.on_domain_border = false;
         Result<ScatteredSamples> with = with_border_samples(samples, Rect{lo.x(), lo.y(), hi.x(), hi.y()}, params.barriers, settings);
