@@ -51,13 +51,13 @@ void run_paper(const PaperOptions& opt, const std::string& out_where) {
   write_png(figures / "fig2_reference_ground.png", radiosity_map(at.reference_w_m2, at.width, at.height, at.white_w_m2), true);
   const MethodParams params;  // the defaults of methods.h, stated in the tables
   const SideSampling plain{.barriers = false}, walled{.barriers = true}, bordered{.barriers = true, .border_samples = true};
-  PaperRun run{opt, data, at, params, evaluate_data_set(data.grid, all_methods(), at, params, plain, figures, "fig3"),
+  PaperRun run{opt, data, at, params, evaluate_data_set(data.grid, paper_methods(), at, params, plain, figures, "fig3"),
                evaluate_data_set(data.quadtree, scattered_methods(), at, params, plain, figures, "fig4"), {}, {}, {}, {}};
   write_quadtree_figure(data.quadtree, at, figures);
   // Table 3 (Fig. 5-8): the same data and methods with the scene's barriers, then with border
   // samples too.
   if (opt.barriers) {
-    run.grid_barriers = evaluate_data_set(data.grid, all_methods(), at, params, walled, figures, "fig5");
+    run.grid_barriers = evaluate_data_set(data.grid, paper_methods(), at, params, walled, figures, "fig5");
     run.quadtree_barriers = evaluate_data_set(data.quadtree, scattered_methods(), at, params, walled, figures, "fig6");
   }
   if (opt.barriers && opt.border_samples) {
@@ -83,12 +83,12 @@ void run_paper(const PaperOptions& opt, const std::string& out_where) {
       notes.push_back(stem + ": " + f.side + " drawn piecewise constant, as " + method_name(m) + " cannot serve it: " + f.reason);
   };
   views(data.reference, Method::constant, plain, "fig2_reference");
-  for (Method m : all_methods()) views(data.grid, m, plain, "fig3_" + method_name(m));
+  for (Method m : paper_methods()) views(data.grid, m, plain, "fig3_" + method_name(m));
   for (Method m : scattered_methods()) views(data.quadtree, m, plain, "fig4_" + method_name(m));
   // With barriers: the close-up of the wall's foot, where they matter (border samples: the
   // ground figures only).
   if (opt.barriers) {
-    for (Method m : all_methods()) views(data.grid, m, walled, "fig5_" + method_name(m), "closeup");
+    for (Method m : paper_methods()) views(data.grid, m, walled, "fig5_" + method_name(m), "closeup");
     for (Method m : scattered_methods()) views(data.quadtree, m, walled, "fig6_" + method_name(m), "closeup");
   }
   const double t_views = clock.lap();

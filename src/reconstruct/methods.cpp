@@ -27,6 +27,13 @@ std::string method_name(Method m) {
     case Method::shepard: return "shepard";
     case Method::multiquadric: return "multiquadric";
     case Method::natural_neighbour: return "natural-neighbour";
+    case Method::linear: return "linear";
+    case Method::clough_tocher: return "clough-tocher";
+    case Method::sibson_c1: return "sibson-c1";
+    case Method::laplace: return "laplace";
+    case Method::thin_plate: return "thin-plate";
+    case Method::gouraud: return "gouraud";
+    case Method::hermite: return "hermite";
   }
   return "?";
 }
@@ -38,20 +45,43 @@ std::optional<Method> parse_method(const std::string& name) {
 }
 
 std::vector<Method> all_methods() {
+  return {Method::constant,   Method::bilinear,      Method::bicubic,   Method::shepard, Method::multiquadric,
+          Method::natural_neighbour, Method::hermite, Method::gouraud, Method::thin_plate, Method::linear,
+          Method::clough_tocher, Method::sibson_c1, Method::laplace};
+}
+
+std::vector<Method> paper_methods() {
   return {Method::constant, Method::bilinear, Method::bicubic, Method::shepard, Method::multiquadric,
           Method::natural_neighbour};
 }
 
 std::vector<Method> scattered_methods() {
-  return {Method::constant, Method::shepard, Method::multiquadric, Method::natural_neighbour};
+  return {Method::constant, Method::shepard, Method::multiquadric, Method::natural_neighbour, Method::gouraud,
+          Method::thin_plate, Method::linear, Method::clough_tocher, Method::sibson_c1, Method::laplace};
 }
 
-bool is_grid_method(Method m) { return m == Method::bilinear || m == Method::bicubic; }
+bool is_grid_method(Method m) { return m == Method::bilinear || m == Method::bicubic || m == Method::hermite; }
+
+bool is_cell_method(Method m) { return m == Method::gouraud; }
+
+bool takes_barriers(Method m) {
+  return m != Method::linear && m != Method::clough_tocher && m != Method::gouraud && m != Method::hermite;
+}
 
 namespace {
 
 /// The global multiquadric solves a dense n x n system: 8000 samples take 0.5 GB and a minute.
 constexpr size_t kMaxGlobalMultiquadric = 8000;
+
+/// Methods built on natural-neighbour coordinates: they take barrier samples.
+bool is_natural_neighbour_method(Method m) {
+  return m == Method::natural_neighbour || m == Method::laplace || m == Method::sibson_c1;
+}
+
+/// Methods defined on the Delaunay triangulation of the samples: they have an outside rule.
+bool is_triangulation_method(Method m) {
+  return is_natural_neighbour_method(m) || m == Method::linear || m == Method::clough_tocher;
+}
 
 double parse_number(const std::string& text, const std::string& where) {
   const std::optional<double> v = parse_finite(text);
@@ -84,16 +114,20 @@ MethodParams parse_params(Method method, const std::vector<std::string>& setting
     } else if (method == Method::multiquadric && name == "r") {
       p.multiquadric_r = parse_number(value, where);
       if (!(*p.multiquadric_r > 0)) throw UserError(where, "must be > 0");
-    } else if (method == Method::multiquadric && name == "k") {
+    } else if ((method == Method::multiquadric || method == Method::thin_plate) && name == "k") {
       const double k = parse_number(value, where);
       if (k != std::floor(k) || (k != 0 && k < 3) || k > 1e5)
         throw UserError(where, "must be 0 (one global system) or an integer >= 3 (samples per local patch)");
-      p.multiquadric_k = static_cast<int>(k);
-    } else if (method == Method::natural_neighbour && name == "barrier-samples") {
+      (method == Method::multiquadric ? p.multiquadric_k : p.thin_plate_k) = static_cast<int>(k);
+    } else if (method == Method::multiquadric && name == "poly") {
+      if (value == "0") p.multiquadric_poly = 0;
+      else if (value == "1") p.multiquadric_poly = 1;
+      else throw UserError(where, "must be 0 (no polynomial) or 1 (a linear polynomial), got '" + value + "'");
+    } else if (is_natural_neighbour_method(method) && name == "barrier-samples") {
       if (value == "on") p.barrier_samples = true;
       else if (value == "off") p.barrier_samples = false;
       else throw UserError(where, "must be 'on' or 'off', got '" + value + "'");
-    } else if (method == Method::natural_neighbour && name == "outside") {
+    } else if (is_triangulation_method(method) && name == "outside") {
       if (value == "nearest") p.outside = OutsideHull::nearest;
       else if (value == "none") p.outside = OutsideHull::none;
       else throw UserError(where, "must be 'nearest' or 'none', got '" + value + "'");
@@ -113,11 +147,18 @@ std::string describe_params(Method method, const MethodParams& p) {
     case Method::multiquadric:
       if (p.multiquadric_r) std::snprintf(buf, sizeof buf, "mu=%g, r=%g m", p.multiquadric_mu, *p.multiquadric_r);
       else std::snprintf(buf, sizeof buf, "mu=%g, r_i=Eck (nearest other sample)", p.multiquadric_mu);
-      if (p.multiquadric_k) return std::string(buf) + ", local patches of ~" + std::to_string(p.multiquadric_k) + " samples";
-      return std::string(buf) + ", global";
+      return std::string(buf) + (p.multiquadric_poly ? ", linear polynomial" : "") +
+             (p.multiquadric_k ? ", local patches of ~" + std::to_string(p.multiquadric_k) + " samples" : ", global");
     case Method::natural_neighbour:
+    case Method::laplace:
+    case Method::sibson_c1:
       return std::string(p.outside == OutsideHull::nearest ? "outside the hull: nearest hull point" : "outside the hull: no value") +
              (p.barrier_samples ? "" : ", no barrier samples");
+    case Method::linear:
+    case Method::clough_tocher:
+      return p.outside == OutsideHull::nearest ? "outside the hull: nearest hull point" : "outside the hull: no value";
+    case Method::thin_plate:
+      return p.thin_plate_k ? "local patches of ~" + std::to_string(p.thin_plate_k) + " samples" : "global";
     default:
       return "";
   }
@@ -139,12 +180,23 @@ BarrierGrid::Kind grid_kind(Method m) {
   return m == Method::bilinear ? BarrierGrid::Kind::bilinear : BarrierGrid::Kind::bicubic;
 }
 
+/// Methods that do not take barriers refuse them, naming those that do.
+std::optional<Failure> refuse_barriers(Method method, const MethodParams& params) {
+  if (params.barriers.empty() || takes_barriers(method)) return std::nullopt;
+  std::string names;
+  for (Method m : all_methods())
+    if (takes_barriers(m)) names += (names.empty() ? "" : ", ") + method_name(m);
+  return Failure{method_name(method) + " does not take barriers (methods that do: " + names + ")"};
+}
+
 }  // namespace
 
 InterpolantResult make_grid_interpolant(Method method, const GridCells& cells, const MethodParams& params) {
+  if (auto refused = refuse_barriers(method, params)) return *refused;
   // Constant is the cells themselves; with barriers, the nearest visible cell centre (the cell
   // that holds the point, unless a barrier hides its centre).
   if (method == Method::constant && params.barriers.empty()) return build<PiecewiseConstant>(to_cells(cells));
+  if (is_cell_method(method)) return make_cell_interpolant(method, to_cells(cells), params);
   if (is_grid_method(method)) {
     if (!params.barriers.empty()) return build<BarrierGrid>(cells, grid_kind(method), params.barriers);
     return make_nodal_interpolant(method, nodal_average(cells), params);
@@ -152,14 +204,22 @@ InterpolantResult make_grid_interpolant(Method method, const GridCells& cells, c
   return make_scattered_interpolant(method, cells.centres(), params);
 }
 
-InterpolantResult make_cell_interpolant(const CellSamples& cells) { return build<PiecewiseConstant>(cells); }
+InterpolantResult make_cell_interpolant(Method method, const CellSamples& cells, const MethodParams& params) {
+  if (auto refused = refuse_barriers(method, params)) return *refused;
+  if (cells.cells.empty()) return Failure{"no cells"};
+  if (method == Method::constant) return build<PiecewiseConstant>(cells);
+  if (method == Method::gouraud) return Failure{"gouraud is not built yet"};
+  return Failure{method_name(method) + " takes points, not cells"};
+}
 
 InterpolantResult make_nodal_interpolant(Method method, const GridNodes& nodes, const MethodParams& params) {
-  if (method == Method::bilinear || method == Method::bicubic) {
+  if (auto refused = refuse_barriers(method, params)) return *refused;
+  if (is_grid_method(method)) {
     if (nodes.nx < 2 || nodes.ny < 2) return Failure{method_name(method) + " needs a grid of at least 2 x 2 samples"};
     if (!params.barriers.empty()) return build<BarrierGrid>(nodes, grid_kind(method), params.barriers);
     if (method == Method::bilinear) return build<Bilinear>(nodes);
-    return build<Bicubic>(nodes);
+    if (method == Method::bicubic) return build<Bicubic>(nodes);
+    return Failure{"hermite is not built yet"};
   }
   ScatteredSamples s;
   s.channels = nodes.channels;
@@ -169,15 +229,37 @@ InterpolantResult make_nodal_interpolant(Method method, const GridNodes& nodes, 
   return make_scattered_interpolant(method, s, params);
 }
 
+namespace {
+
+/// Samples along both sides of each barrier, within the samples' bounding box (unless the samples
+/// lie on one line: the methods refuse them then): without them, a query next to a barrier would
+/// take far samples around its ends as natural neighbours (its Voronoi cell among the samples it
+/// sees reaches across the barrier).
+Result<ScatteredSamples> with_barrier_samples(const ScatteredSamples& samples, const MethodParams& params) {
+  if (params.barriers.empty() || !params.barrier_samples || all_on_one_line(samples.points)) return samples;
+  Vec2 lo = samples.points[0], hi = lo;
+  for (const Vec2& p : samples.points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  BorderSampleSettings settings;
+  settings.on_domain_border = false;
+  Result<ScatteredSamples> with = with_border_samples(samples, Rect{lo.x(), lo.y(), hi.x(), hi.y()}, params.barriers, settings);
+  if (!with) return Failure{"its barrier samples: " + with.reason()};
+  return with;
+}
+
+}  // namespace
+
 InterpolantResult make_scattered_interpolant(Method method, const ScatteredSamples& samples,
                                              const MethodParams& params) {
   RR_CHECK_EQ(samples.values.size(), samples.points.size() * static_cast<size_t>(samples.channels),
               "sample values do not match the points");
   if (samples.points.empty()) return Failure{"no samples"};
+  if (auto refused = refuse_barriers(method, params)) return *refused;
   switch (method) {
     case Method::constant: return build<NearestSample>(samples, params.barriers);
     case Method::bilinear:
-    case Method::bicubic: return Failure{method_name(method) + " needs samples on a regular grid"};
+    case Method::bicubic:
+    case Method::hermite: return Failure{method_name(method) + " needs samples on a regular grid"};
+    case Method::gouraud: return Failure{"gouraud needs cells (a grid's or a quadtree's), not points"};
     case Method::shepard: return build<Shepard>(samples, params.shepard_mu, params.shepard_k, params.barriers);
     case Method::multiquadric:
       if (params.multiquadric_k > 0 && static_cast<size_t>(params.multiquadric_k) < samples.points.size())
@@ -188,21 +270,16 @@ InterpolantResult make_scattered_interpolant(Method method, const ScatteredSampl
                        " samples are too many for one global multiquadric system (at most " +
                        std::to_string(kMaxGlobalMultiquadric) + "); use local patches (parameter k, e.g. 32)"};
       return build<Multiquadric>(samples, params.multiquadric_mu, params.multiquadric_r, params.barriers);
-    case Method::natural_neighbour: {
-      // Samples along both sides of each barrier, within the samples' bounding box (unless the
-      // samples lie on one line: the method refuses them then): without them, a query next to a
-      // barrier would take far samples around its ends as natural neighbours (its Voronoi cell
-      // among the samples it sees reaches across the barrier).
-      if (!params.barriers.empty() && params.barrier_samples && !all_on_one_line(samples.points)) {
-        Vec2 lo = samples.points[0], hi = lo;
-        for (const Vec2& p : samples.points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-        BorderSampleSettings settings;
-        settings.on_domain_border = false;
-        Result<ScatteredSamples> with = with_border_samples(samples, Rect{lo.x(), lo.y(), hi.x(), hi.y()}, params.barriers, settings);
-        if (!with) return Failure{"its barrier samples: " + with.reason()};
-        return build<NaturalNeighbour>(with.value(), params.outside, params.barriers);
-      }
-      return build<NaturalNeighbour>(samples, params.outside, params.barriers);
+    case Method::thin_plate: return Failure{"thin-plate is not built yet"};
+    case Method::linear: return Failure{"linear is not built yet"};
+    case Method::clough_tocher: return Failure{"clough-tocher is not built yet"};
+    case Method::natural_neighbour:
+    case Method::laplace:
+    case Method::sibson_c1: {
+      Result<ScatteredSamples> with = with_barrier_samples(samples, params);
+      if (!with) return Failure{with.reason()};
+      if (method != Method::natural_neighbour) return Failure{method_name(method) + " is not built yet"};
+      return build<NaturalNeighbour>(with.value(), params.outside, params.barriers);
     }
   }
   RR_CHECK(false, "unknown method");

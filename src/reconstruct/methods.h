@@ -14,21 +14,48 @@
 
 namespace radrecon {
 
-enum class Method { constant, bilinear, bicubic, shepard, multiquadric, natural_neighbour };
+/// The paper's six methods, then those it cites without running them (gouraud [CW93],
+/// clough-tocher [SLD92], hermite [BdSF93], thin-plate: an RBF with a linear polynomial) and those
+/// users of scattered-data tools expect (linear, sibson-c1, laplace). docs/method.md has each
+/// one's construction and reference.
+enum class Method {
+  constant,
+  bilinear,
+  bicubic,
+  shepard,
+  multiquadric,
+  natural_neighbour,
+  linear,
+  clough_tocher,
+  sibson_c1,
+  laplace,
+  thin_plate,
+  gouraud,
+  hermite,
+};
 
 /// The command-line name of a method: constant, bilinear, bicubic, shepard, multiquadric,
-/// natural-neighbour.
+/// natural-neighbour, linear, clough-tocher, sibson-c1, laplace, thin-plate, gouraud, hermite.
 std::string method_name(Method m);
 std::optional<Method> parse_method(const std::string& name);
-/// Every method, in the order of the paper's Table 1.
+/// Every method: the paper's Table 1 order, then the new ones.
 std::vector<Method> all_methods();
-/// The methods the paper applies to scattered (quadtree) data, in the order of its Table 2.
+/// The six methods the paper ran (its Table 1).
+std::vector<Method> paper_methods();
+/// The methods that apply to a quadtree's leaves (Table 2): the paper's four (constant, shepard,
+/// multiquadric, natural-neighbour), then gouraud and the new scattered methods.
 std::vector<Method> scattered_methods();
-/// Methods that need their samples on a regular grid (bilinear, bicubic).
+/// Methods that need their samples on a regular grid (bilinear, bicubic, hermite).
 bool is_grid_method(Method m);
+/// Methods that need cells (a grid's or a quadtree's leaves), not points: gouraud.
+bool is_cell_method(Method m);
+/// Methods that honour barriers (MethodParams::barriers). The others (linear, clough-tocher,
+/// gouraud, hermite) refuse them in the factories; a solution's side is then reconstructed
+/// without them (sampling/solution_reconstruction.h says so).
+bool takes_barriers(Method m);
 
-/// What natural-neighbour interpolation returns outside the convex hull of the samples (the
-/// other methods are defined everywhere).
+/// What the triangulation methods (natural-neighbour, linear, clough-tocher, sibson-c1, laplace)
+/// return outside the convex hull of the samples (the other methods are defined everywhere).
 enum class OutsideHull {
   nearest,  ///< the value at the nearest point of the hull (continuous extension)
   none,     ///< no value (NaN)
@@ -43,10 +70,17 @@ enum class OutsideHull {
 ///                      k (integer, 0 or >= 3, default 0): 0 solves one global system; k > 0
 ///                      blends local multiquadrics on patches of about k samples (a partition
 ///                      of unity, local_multiquadric.h), for large sample sets.
-///   natural-neighbour: outside (nearest | none, default nearest);
+///                      poly (0 | 1, default 0): 1 adds a linear polynomial a + b x + c y with
+///                      the side conditions sum alpha_j = sum alpha_j x_j = sum alpha_j y_j = 0
+///                      (then linear functions are reproduced).
+///   thin-plate:        k (as multiquadric's): r^2 log r with a linear polynomial.
+///   natural-neighbour, laplace, sibson-c1:
+///                      outside (nearest | none, default nearest);
 ///                      barrier-samples (on | off, default on): with barriers, also samples along
 ///                      both sides of each barrier (border_samples.h), so that a query next to a
 ///                      barrier has natural neighbours of its own side there.
+///   linear, clough-tocher: outside (nearest | none, default nearest).
+///   gouraud, hermite, constant, bilinear, bicubic: none.
 /// and, for every method, the barriers (not a NAME=VALUE setting: they come from a file or the
 /// scene).
 struct MethodParams {
@@ -55,6 +89,8 @@ struct MethodParams {
   double multiquadric_mu = 0.5;
   std::optional<double> multiquadric_r;
   int multiquadric_k = 0;
+  int multiquadric_poly = 0;
+  int thin_plate_k = 0;
   OutsideHull outside = OutsideHull::nearest;
   bool barrier_samples = true;
   /// Lines no sample's influence crosses (barriers.h); none by default. Every method honours
@@ -79,8 +115,10 @@ using InterpolantResult = Result<std::unique_ptr<Interpolant>>;
 InterpolantResult make_grid_interpolant(Method method, const GridCells& cells,
                                                    const MethodParams& params = {});
 
-/// The cells of a piecewise-constant function (a quadtree's leaves) as they are: constant only.
-InterpolantResult make_cell_interpolant(const CellSamples& cells);
+/// The cells of a piecewise-constant function (a quadtree's leaves): constant uses them as they
+/// are; gouraud balances the quadtree they form and interpolates linearly over its triangles.
+/// (The scattered methods take the cell centres: make_scattered_interpolant.)
+InterpolantResult make_cell_interpolant(Method method, const CellSamples& cells, const MethodParams& params = {});
 
 /// Values at the nodes of a regular grid: bilinear and bicubic interpolate them; the other
 /// methods take the nodes as scattered samples.

@@ -70,21 +70,24 @@ InterpolantResult reconstruct_unmasked(const SurfaceSolution& s, Method method, 
   MethodParams params = plain;
   // The side's barriers if asked, and always the outlines of its excluded regions: they hide
   // the cells of a grid under them from every point outside (a grid keeps all its cells).
+  // (Methods that take no barriers reconstruct across them: reconstruct_side() says so.)
   std::vector<Polyline> lines;
-  if (sampling.barriers) lines = s.barriers;
-  for (const Polyline& region : s.excluded) {
-    lines.push_back(region);
-    if (region.front() != region.back()) lines.back().push_back(region.front());
-  }
+  if (sampling.barriers && takes_barriers(method)) lines = s.barriers;
+  if (takes_barriers(method))
+    for (const Polyline& region : s.excluded) {
+      lines.push_back(region);
+      if (region.front() != region.back()) lines.back().push_back(region.front());
+    }
   if (!lines.empty()) {
     Result<Barriers> barriers = Barriers::from_polylines(lines);
     if (!barriers) return Failure{"its barriers: " + barriers.reason()};
     params.barriers = std::move(barriers).value();
   }
   const bool grid = s.grid_nu > 0 && s.grid_nv > 0;
-  if (grid && !s.excluded.empty() && method != Method::constant && !is_grid_method(method))
+  const bool point_method = method != Method::constant && !is_grid_method(method) && !is_cell_method(method);
+  if (grid && !s.excluded.empty() && point_method)
     return make_scattered_interpolant(method, outside_regions(grid_cells(s).centres(), s.excluded), params);
-  if (sampling.border_samples && method != Method::constant && !is_grid_method(method)) {
+  if (sampling.border_samples && point_method) {
     const ScatteredSamples samples = outside_regions(grid ? grid_cells(s).centres() : element_centres(s), s.excluded);
     Result<ScatteredSamples> bordered =
         with_border_samples(samples, Rect{0, 0, s.length_u_m, s.length_v_m}, params.barriers);
@@ -93,7 +96,8 @@ InterpolantResult reconstruct_unmasked(const SurfaceSolution& s, Method method, 
     return make_scattered_interpolant(method, bordered.value(), params);
   }
   if (grid) return make_grid_interpolant(method, grid_cells(s), params);
-  if (method == Method::constant && params.barriers.empty()) return make_cell_interpolant(element_cells(s));
+  if ((method == Method::constant && params.barriers.empty()) || is_cell_method(method))
+    return make_cell_interpolant(method, element_cells(s), params);
   if (is_grid_method(method))
     return Failure{method_name(method) + " needs grid data; this side is an adaptive subdivision"};
   return make_scattered_interpolant(method, outside_regions(element_centres(s), s.excluded), params);

@@ -17,7 +17,8 @@ namespace radrecon {
 /// How a side's samples feed its reconstruction.
 struct SideSampling {
   /// Honour the side's barriers (the solution's contact lines, scene/contacts.h): no sample's
-  /// influence crosses them.
+  /// influence crosses them. Methods that take no barriers (takes_barriers(), methods.h)
+  /// reconstruct across them, and across the outlines of excluded regions.
   bool barriers = true;
   /// Add border samples (reconstruct/border_samples.h) on the side's border and both sides of its
   /// barriers, for the scattered methods that interpolate (shepard, multiquadric,
