@@ -278,8 +278,10 @@ InterpolantResult make_scattered_interpolant(Method method, const ScatteredSampl
     case Method::sibson_c1: {
       Result<ScatteredSamples> with = with_barrier_samples(samples, params);
       if (!with) return Failure{with.reason()};
-      if (method != Method::natural_neighbour) return Failure{method_name(method) + " is not built yet"};
-      return build<NaturalNeighbour>(with.value(), params.outside, params.barriers);
+      const NeighbourRule rule = method == Method::laplace     ? NeighbourRule::laplace
+                                 : method == Method::sibson_c1 ? NeighbourRule::sibson_c1
+                                                               : NeighbourRule::sibson;
+      return build<NaturalNeighbour>(with.value(), params.outside, params.barriers, rule);
     }
   }
   RR_CHECK(false, "unknown method");

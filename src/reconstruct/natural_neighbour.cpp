@@ -4,40 +4,25 @@
 #include <array>
 #include <limits>
 
-#include <CGAL/Delaunay_triangulation_2.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Triangulation_vertex_base_with_info_2.h>
-#include <CGAL/natural_neighbor_coordinates_2.h>
-
 #include "core/check.h"
 #include "core/parallel.h"
 #include "core/tolerances.h"
 #include "reconstruct/kdtree.h"
+#include "reconstruct/nn_delaunay.h"
+#include "reconstruct/sibson_c1.h"
 
 namespace radrecon {
 
-namespace {
-
-using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Vb = CGAL::Triangulation_vertex_base_with_info_2<unsigned, K>;
-using Tds = CGAL::Triangulation_data_structure_2<Vb>;
-using Delaunay = CGAL::Delaunay_triangulation_2<K, Tds>;
-using Point = K::Point_2;
-
-/// Turns CGAL's (vertex, weight) pairs into (sample index, weight).
-struct VertexIndex {
-  using argument_type = std::pair<Delaunay::Vertex_handle, K::FT>;
-  using result_type = std::pair<unsigned, double>;
-  result_type operator()(const argument_type& p) const { return {p.first->info(), p.second}; }
-};
-
-}  // namespace
+using nn::Delaunay;
+using nn::Point;
 
 struct NaturalNeighbour::Impl {
   Delaunay dt;
   std::vector<double> values;
   int channels = 1;
   OutsideHull outside = OutsideHull::nearest;
+  NeighbourRule rule = NeighbourRule::sibson;
+  std::vector<double> gradients;  ///< sibson-c1: per sample and channel, d/ds and d/dt (sibson_c1.h)
   std::vector<std::pair<unsigned, unsigned>> hull_edges;  ///< sample indices
   std::vector<Vec2> points;
   std::vector<Delaunay::Vertex_handle> vertex_of;  ///< by sample index
@@ -102,13 +87,11 @@ struct NaturalNeighbour::Impl {
       if (face_key(other) < face_key(hint)) hint = other;
     }
     // The boundary of the conflict zone into a reused buffer (CGAL's own entry point builds a
-    // std::list per query), then CGAL's Sibson areas over that hole.
+    // std::list per query), then the coordinates over that hole.
     hole.clear();
     dt.get_boundary_of_conflicts(p, std::back_inserter(hole), hint);
-    const auto result = CGAL::natural_neighbor_coordinates_2(dt, p, std::back_inserter(out), VertexIndex(), hole.begin(),
-                                                             hole.end());
-    if (!result.third || !(result.second > 0)) return false;
-    const double norm = result.second;
+    const double norm = nn::hole_coordinates(dt, p, hole, rule, out);
+    if (!(norm > 0)) return false;
     for (auto& [index, w] : out) w /= norm;
     return true;
   }
@@ -132,8 +115,10 @@ struct NaturalNeighbour::Impl {
     out.emplace_back(best_edge.second, best_t);
   }
 
-  /// Sum of coordinates times values, per channel, into o.
+  /// The interpolant from a point's coordinates, per channel, into o: the sum of coordinates
+  /// times values, or (sibson-c1) Farin's C1 form.
   void combine(std::span<const std::pair<unsigned, double>> coords, double* o) const {
+    if (rule == NeighbourRule::sibson_c1) return nn::farin_c1(coords, points, values, gradients, channels, o);
     for (int c = 0; c < channels; ++c) o[c] = 0;
     for (const auto& [index, w] : coords)
       for (int c = 0; c < channels; ++c) o[c] += w * values[index * static_cast<size_t>(channels) + c];
@@ -244,26 +229,28 @@ struct NaturalNeighbour::Impl {
         rho_max_sq = std::max(rho_max_sq, CGAL::squared_radius(p, a, b));
       }
       s.coords.clear();
-      const auto result = CGAL::natural_neighbor_coordinates_2(dt, p, std::back_inserter(s.coords), VertexIndex(),
-                                                               s.hole.begin(), s.hole.end());
-      if (!result.third || !(result.second > 0)) {
+      const double norm = nn::hole_coordinates(dt, p, s.hole, rule, s.coords);
+      if (!(norm > 0)) {
         if (!last) continue;
         return Kind::nothing;
       }
       const double rho = std::sqrt(rho_max_sq), bound = rho + std::max(rho, std::sqrt(r_max_sq));
       const bool certified = std::isfinite(bound) && (complete || next_visible_m > bound * (1 + tol::kSibsonCertificateRelative));
       if (!certified && !last) continue;
-      for (auto& [index, w] : s.coords) w /= result.second;
+      for (auto& [index, w] : s.coords) w /= norm;
       return Kind::coordinates;
     }
   }
 };
 
-NaturalNeighbour::NaturalNeighbour(const ScatteredSamples& samples, OutsideHull outside, Barriers barriers)
+NaturalNeighbour::NaturalNeighbour(const ScatteredSamples& samples, OutsideHull outside, Barriers barriers,
+                                   NeighbourRule rule)
     : impl_(std::make_unique<Impl>()) {
   impl_->barriers = std::move(barriers);
+  impl_->rule = rule;
+  const std::string name = rule == NeighbourRule::sibson ? "natural-neighbour" : rule == NeighbourRule::laplace ? "laplace" : "sibson-c1";
   const size_t n = samples.points.size();
-  if (n < 3) throw ReconstructionError("natural-neighbour interpolation needs at least 3 samples, got " + std::to_string(n));
+  if (n < 3) throw ReconstructionError(name + " interpolation needs at least 3 samples, got " + std::to_string(n));
   impl_->values = samples.values;
   impl_->channels = samples.channels;
   impl_->outside = outside;
@@ -274,8 +261,8 @@ NaturalNeighbour::NaturalNeighbour(const ScatteredSamples& samples, OutsideHull 
   impl_->dt.insert(input.begin(), input.end());
   if (impl_->dt.number_of_vertices() != n)
     throw ReconstructionError(std::to_string(n - impl_->dt.number_of_vertices()) +
-                                   " duplicate sample point(s); natural-neighbour needs distinct points");
-  if (impl_->dt.dimension() < 2) throw ReconstructionError("all samples lie on one line; natural-neighbour needs a 2-D spread");
+                                   " duplicate sample point(s); " + name + " needs distinct points");
+  if (impl_->dt.dimension() < 2) throw ReconstructionError("all samples lie on one line; " + name + " needs a 2-D spread");
   impl_->vertex_of.resize(n);
   for (auto v = impl_->dt.finite_vertices_begin(); v != impl_->dt.finite_vertices_end(); ++v) impl_->vertex_of[v->info()] = v;
   impl_->tree = std::make_unique<KdTree2>(impl_->points);
@@ -286,6 +273,9 @@ NaturalNeighbour::NaturalNeighbour(const ScatteredSamples& samples, OutsideHull 
     const int i = fc->index(inf);
     impl_->hull_edges.emplace_back(fc->vertex(Delaunay::ccw(i))->info(), fc->vertex(Delaunay::cw(i))->info());
   } while (++fc != done);
+  if (rule == NeighbourRule::sibson_c1)
+    impl_->gradients = nn::fit_gradients(impl_->dt, impl_->vertex_of, impl_->points, impl_->values, impl_->channels,
+                                         impl_->barriers);
 }
 
 NaturalNeighbour::~NaturalNeighbour() = default;

@@ -26,6 +26,17 @@
 // lines that graze a barrier's free end (where a sample comes into view), jumps across barriers,
 // and reproduces linear functions wherever q is inside the hull of what it sees.
 
+//
+// The same machinery serves two more interpolants (NeighbourRule), with the same hull and
+// barrier rules:
+//   - laplace: Laplace's non-Sibsonian coordinates (Belikov & Semenov 1997, Sugihara 1999):
+//     lambda_i proportional to |e_i| / |q - p_i|, e_i the edge of q's Voronoi cell facing p_i.
+//     Exact at the samples, C0, reproduces linear functions inside the hull; cheaper than
+//     Sibson's (lengths, not areas) and not C1 at the samples' circles either.
+//   - sibson-c1: Farin's C1 form over Sibson's coordinates (sibson_c1.h), with gradients fitted
+//     at the samples from their natural neighbours. Exact at the samples, C1 away from them,
+//     reproduces quadratics given exact gradients.
+
 #include <memory>
 #include <vector>
 
@@ -36,10 +47,15 @@
 
 namespace radrecon {
 
+/// Which natural-neighbour interpolant: Sibson's coordinates times the values
+/// (natural-neighbour), Laplace's (laplace), or Farin's C1 form over Sibson's (sibson-c1).
+enum class NeighbourRule { sibson, laplace, sibson_c1 };
+
 class NaturalNeighbour final : public Interpolant {
  public:
   /// Needs 3 samples not all on one line; duplicate points are refused.
-  NaturalNeighbour(const ScatteredSamples& samples, OutsideHull outside, Barriers barriers = {});
+  NaturalNeighbour(const ScatteredSamples& samples, OutsideHull outside, Barriers barriers = {},
+                   NeighbourRule rule = NeighbourRule::sibson);
   ~NaturalNeighbour() override;
   int channels() const override;
   void evaluate(std::span<const Vec2> points, std::span<double> out) const override;
@@ -47,8 +63,9 @@ class NaturalNeighbour final : public Interpolant {
   /// Visible samples a query's local triangulation may hold (with barriers).
   static constexpr size_t kMaxVisibleNeighbours = 512;
 
-  /// Sibson coordinates of q: pairs (sample index, lambda), lambda summing to one; empty outside
-  /// the convex hull (of the samples visible from q, with barriers).
+  /// The coordinates of q (Sibson's, or Laplace's for NeighbourRule::laplace): pairs (sample
+  /// index, lambda), lambda summing to one; empty outside the convex hull (of the samples visible
+  /// from q, with barriers).
   std::vector<std::pair<unsigned, double>> coordinates(const Vec2& q) const;
 
  private:

@@ -8,9 +8,15 @@
 
 #include "core/error.h"
 #include "reconstruct/natural_neighbour.h"
+#include "support/voronoi.h"
 
 namespace radrecon {
 namespace {
+
+using testing::area;
+using testing::clip_closer;
+using testing::Polygon;
+using testing::voronoi_cell;
 
 ScatteredSamples random_samples(int n, std::mt19937& rng, double lo = 0, double hi = 4) {
   std::uniform_real_distribution<double> xy(lo, hi), value(-1, 1);
@@ -26,44 +32,6 @@ double eval1(const Interpolant& f, const Vec2& q) {
   double v;
   f.evaluate(std::span(&q, 1), std::span(&v, 1));
   return v;
-}
-
-// --- brute-force Voronoi geometry, independent of CGAL ---------------------------------------
-
-using Polygon = std::vector<Vec2>;
-
-/// The part of `poly` closer to a than to b (half-plane clip).
-Polygon clip_closer(const Polygon& poly, const Vec2& a, const Vec2& b) {
-  const Vec2 n = b - a;
-  const double c = 0.5 * (b.squaredNorm() - a.squaredNorm());  // n . x <= c on a's side
-  Polygon out;
-  for (size_t i = 0; i < poly.size(); ++i) {
-    const Vec2& p = poly[i];
-    const Vec2& q = poly[(i + 1) % poly.size()];
-    const double dp = n.dot(p) - c, dq = n.dot(q) - c;
-    if (dp <= 0) out.push_back(p);
-    if ((dp < 0 && dq > 0) || (dp > 0 && dq < 0)) out.push_back(p + dp / (dp - dq) * (q - p));
-  }
-  return out;
-}
-
-double area(const Polygon& p) {
-  double a = 0;
-  for (size_t i = 0; i < p.size(); ++i) {
-    const Vec2& u = p[i];
-    const Vec2& v = p[(i + 1) % p.size()];
-    a += u.x() * v.y() - u.y() * v.x();
-  }
-  return 0.5 * std::abs(a);
-}
-
-/// The Voronoi cell of `site` among `others`, inside a large box.
-Polygon voronoi_cell(const Vec2& site, const std::vector<Vec2>& others) {
-  const double L = 1e3;
-  Polygon cell = {Vec2(-L, -L), Vec2(L, -L), Vec2(L, L), Vec2(-L, L)};
-  for (const Vec2& o : others)
-    if (o != site) cell = clip_closer(cell, site, o);
-  return cell;
 }
 
 TEST(NaturalNeighbour, CoordinatesEqualStolenVoronoiAreas) {

@@ -1,0 +1,96 @@
+#include "reconstruct/sibson_c1.h"
+
+#include <CGAL/natural_neighbor_coordinates_2.h>
+
+#include "core/parallel.h"
+#include "core/tolerances.h"
+
+namespace radrecon::nn {
+
+namespace {
+
+struct VertexIndex {
+  using argument_type = std::pair<Delaunay::Vertex_handle, K::FT>;
+  using result_type = std::pair<unsigned, double>;
+  result_type operator()(const argument_type& p) const { return {p.first->info(), p.second}; }
+};
+
+}  // namespace
+
+std::vector<double> fit_gradients(const Delaunay& dt, std::span<const Delaunay::Vertex_handle> vertex_of,
+                                  std::span<const Vec2> points, std::span<const double> values, int channels,
+                                  const Barriers& barriers) {
+  const size_t n = points.size();
+  const size_t C = static_cast<size_t>(channels);
+  std::vector<double> gradients(n * C * 2, 0.0);
+  using Weights = std::vector<std::pair<unsigned, double>>;
+  parallel_for_with_scratch<Weights>(0, static_cast<std::int64_t>(n), [&](std::int64_t k, Weights& weights) {
+    const size_t i = static_cast<size_t>(k);
+    const Delaunay::Vertex_handle v = vertex_of[i];
+    weights.clear();
+    if (dt.is_edge(v, dt.infinite_vertex())) {
+      auto vc = dt.incident_vertices(v), done = vc;
+      do
+        if (!dt.is_infinite(vc)) weights.emplace_back(vc->info(), 1.0);
+      while (++vc != done);
+    } else {
+      CGAL::natural_neighbor_coordinates_2(dt, v, std::back_inserter(weights), VertexIndex());
+    }
+    // The normal equations H g = r of the weighted plane, per channel.
+    double h00 = 0, h01 = 0, h11 = 0;
+    thread_local std::vector<double> r;
+    r.assign(C * 2, 0.0);
+    for (const auto& [j, lambda] : weights) {
+      if (barriers.blocks(points[i], points[j])) continue;
+      const Vec2 d = points[j] - points[i];
+      const double w = lambda / d.squaredNorm();
+      h00 += w * d.x() * d.x(), h01 += w * d.x() * d.y(), h11 += w * d.y() * d.y();
+      for (size_t c = 0; c < C; ++c) {
+        const double df = values[j * C + c] - values[i * C + c];
+        r[2 * c] += w * df * d.x(), r[2 * c + 1] += w * df * d.y();
+      }
+    }
+    const double det = h00 * h11 - h01 * h01;
+    if (!(det > tol::kGradientFitSingularRelative * (h00 + h11) * (h00 + h11))) return;  // gradient 0
+    for (size_t c = 0; c < C; ++c) {
+      gradients[(i * C + c) * 2] = (h11 * r[2 * c] - h01 * r[2 * c + 1]) / det;
+      gradients[(i * C + c) * 2 + 1] = (h00 * r[2 * c + 1] - h01 * r[2 * c]) / det;
+    }
+  });
+  return gradients;
+}
+
+void farin_c1(std::span<const std::pair<unsigned, double>> coords, std::span<const Vec2> points,
+              std::span<const double> values, std::span<const double> gradients, int channels, double* out) {
+  const size_t m = coords.size(), C = static_cast<size_t>(channels);
+  thread_local std::vector<double> b;  // b[i * m + j] = b_iij, i != j
+  b.resize(m * m);
+  for (size_t c = 0; c < C; ++c) {
+    auto f = [&](size_t i) { return values[coords[i].first * C + c]; };
+    for (size_t i = 0; i < m; ++i) {
+      const size_t gi = (coords[i].first * C + c) * 2;
+      const Vec2& pi = points[coords[i].first];
+      for (size_t j = 0; j < m; ++j)
+        if (j != i) {
+          const Vec2 d = points[coords[j].first] - pi;
+          b[i * m + j] = f(i) + (gradients[gi] * d.x() + gradients[gi + 1] * d.y()) / 3;
+        }
+    }
+    double sum = 0;
+    for (size_t i = 0; i < m; ++i) {
+      const double li = coords[i].second;
+      sum += f(i) * li * li * li;
+      for (size_t j = 0; j < m; ++j)
+        if (j != i) sum += 3 * b[i * m + j] * li * li * coords[j].second;
+      for (size_t j = i + 1; j < m; ++j)
+        for (size_t k = j + 1; k < m; ++k) {
+          const double bijk = (b[i * m + j] + b[i * m + k] + b[j * m + i] + b[j * m + k] + b[k * m + i] + b[k * m + j]) / 4 -
+                              (f(i) + f(j) + f(k)) / 6;
+          sum += 6 * bijk * li * coords[j].second * coords[k].second;
+        }
+    }
+    out[c] = sum;
+  }
+}
+
+}  // namespace radrecon::nn

@@ -1,0 +1,218 @@
+// Laplace's coordinates and Sibson's C1 interpolant (natural_neighbour.h, sibson_c1.h), each
+// against an independent answer: a brute-force Voronoi computation of Laplace's edge lengths,
+// CGAL's own Farin C1 interpolation and Sibson gradient fitting, and the polynomials each
+// reproduces.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <random>
+
+#include <CGAL/Interpolation_gradient_fitting_traits_2.h>
+#include <CGAL/interpolation_functions.h>
+#include <CGAL/sibson_gradient_fitting.h>
+
+#include "reconstruct/natural_neighbour.h"
+#include "reconstruct/sibson_c1.h"
+#include "support/voronoi.h"
+
+namespace radrecon {
+namespace {
+
+ScatteredSamples random_samples(int n, std::mt19937& rng) {
+  std::uniform_real_distribution<double> xy(0, 4), value(-1, 1);
+  ScatteredSamples s;
+  for (int i = 0; i < n; ++i) {
+    s.points.emplace_back(xy(rng), xy(rng));
+    s.values.push_back(value(rng));
+  }
+  return s;
+}
+
+double eval1(const Interpolant& f, const Vec2& q) {
+  double v;
+  f.evaluate(std::span(&q, 1), std::span(&v, 1));
+  return v;
+}
+
+TEST(Laplace, CoordinatesAreVoronoiEdgeLengthsOverDistances) {
+  std::mt19937 rng(31);
+  const ScatteredSamples s = random_samples(25, rng);
+  const NaturalNeighbour laplace(s, OutsideHull::none, {}, NeighbourRule::laplace);
+  std::uniform_real_distribution<double> inner(1.2, 2.8);
+  for (int t = 0; t < 30; ++t) {
+    const Vec2 q(inner(rng), inner(rng));
+    // q's Voronoi cell among the samples: each edge lies on the bisector of q and one sample.
+    const testing::Polygon cell = testing::voronoi_cell(q, s.points);
+    std::vector<double> expected(s.points.size(), 0.0);
+    double total = 0;
+    for (size_t k = 0; k < cell.size(); ++k) {
+      const Vec2 a = cell[k], b = cell[(k + 1) % cell.size()], mid = 0.5 * (a + b);
+      size_t facing = 0;
+      double best = INFINITY;
+      for (size_t i = 0; i < s.points.size(); ++i) {
+        const double gap = std::abs((mid - s.points[i]).norm() - (mid - q).norm());
+        if (gap < best) best = gap, facing = i;
+      }
+      const double w = (b - a).norm() / (s.points[facing] - q).norm();
+      expected[facing] += w;
+      total += w;
+    }
+    const auto coords = laplace.coordinates(q);
+    ASSERT_FALSE(coords.empty());
+    std::vector<double> got(s.points.size(), 0.0);
+    for (const auto& [i, w] : coords) got[i] = w;
+    for (size_t i = 0; i < s.points.size(); ++i) EXPECT_NEAR(got[i], expected[i] / total, 1e-10) << "sample " << i;
+  }
+}
+
+TEST(Laplace, ExactAtSamplesAndReproducesLinearFunctions) {
+  std::mt19937 rng(32);
+  ScatteredSamples s = random_samples(150, rng);
+  auto f = [](const Vec2& p) { return 1.5 - 2 * p.x() + 0.75 * p.y(); };
+  for (size_t i = 0; i < s.points.size(); ++i) s.values[i] = f(s.points[i]);
+  const NaturalNeighbour laplace(s, OutsideHull::none, {}, NeighbourRule::laplace);
+  for (size_t i = 0; i < s.points.size(); ++i) EXPECT_NEAR(eval1(laplace, s.points[i]), s.values[i], 1e-12);
+  std::uniform_real_distribution<double> inner(0.8, 3.2);
+  for (int t = 0; t < 300; ++t) {
+    const Vec2 q(inner(rng), inner(rng));
+    EXPECT_NEAR(eval1(laplace, q), f(q), 1e-11);
+    // And the coordinates differ from Sibson's (else the test above would prove nothing new).
+  }
+  const NaturalNeighbour sibson(s, OutsideHull::none);
+  const Vec2 q(2.1, 1.7);
+  const auto a = laplace.coordinates(q), b = sibson.coordinates(q);
+  double differ = 0;
+  for (const auto& [i, w] : a)
+    for (const auto& [j, v] : b)
+      if (i == j) differ = std::max(differ, std::abs(w - v));
+  EXPECT_GT(differ, 1e-3);
+}
+
+// --- Sibson's C1 ---------------------------------------------------------------------------
+
+using K = nn::K;
+using Traits = CGAL::Interpolation_gradient_fitting_traits_2<K>;
+
+/// A quadratic with its exact gradient.
+struct Quadratic {
+  double operator()(const Vec2& p) const {
+    return 0.3 + 0.8 * p.x() - 0.5 * p.y() + 0.4 * p.x() * p.x() - 0.7 * p.x() * p.y() + 0.25 * p.y() * p.y();
+  }
+  Vec2 gradient(const Vec2& p) const {
+    return Vec2(0.8 + 0.8 * p.x() - 0.7 * p.y(), -0.5 - 0.7 * p.x() + 0.5 * p.y());
+  }
+};
+
+TEST(SibsonC1, FarinsFormReproducesQuadraticsGivenExactGradientsAndAgreesWithCgal) {
+  std::mt19937 rng(33);
+  ScatteredSamples s = random_samples(120, rng);
+  const Quadratic f;
+  std::vector<double> gradients;
+  for (size_t i = 0; i < s.points.size(); ++i) {
+    s.values[i] = f(s.points[i]);
+    const Vec2 g = f.gradient(s.points[i]);
+    gradients.insert(gradients.end(), {g.x(), g.y()});
+  }
+  const NaturalNeighbour sibson(s, OutsideHull::none);
+  // CGAL's Farin interpolation over the same coordinates, keyed by point.
+  std::map<K::Point_2, double, K::Less_xy_2> value_of;
+  std::map<K::Point_2, K::Vector_2, K::Less_xy_2> gradient_of;
+  for (size_t i = 0; i < s.points.size(); ++i) {
+    const K::Point_2 p(s.points[i].x(), s.points[i].y());
+    value_of[p] = s.values[i];
+    gradient_of[p] = K::Vector_2(gradients[2 * i], gradients[2 * i + 1]);
+  }
+  std::uniform_real_distribution<double> inner(0.8, 3.2);
+  for (int t = 0; t < 200; ++t) {
+    const Vec2 q(inner(rng), inner(rng));
+    const auto coords = sibson.coordinates(q);
+    ASSERT_FALSE(coords.empty());
+    double ours;
+    nn::farin_c1(coords, s.points, s.values, gradients, 1, &ours);
+    EXPECT_NEAR(ours, f(q), 1e-11);
+    std::vector<std::pair<K::Point_2, double>> keyed;
+    for (const auto& [i, w] : coords) keyed.emplace_back(K::Point_2(s.points[i].x(), s.points[i].y()), w);
+    const auto cgal = CGAL::farin_c1_interpolation(keyed.begin(), keyed.end(), 1.0, K::Point_2(q.x(), q.y()),
+                                                   CGAL::Data_access<decltype(value_of)>(value_of),
+                                                   CGAL::Data_access<decltype(gradient_of)>(gradient_of), Traits());
+    ASSERT_TRUE(cgal.second);
+    EXPECT_NEAR(ours, cgal.first, 1e-12);
+  }
+}
+
+TEST(SibsonC1, FittedGradientsAgreeWithCgalsSibsonFitting) {
+  std::mt19937 rng(34);
+  ScatteredSamples s = random_samples(150, rng);
+  const Quadratic f;
+  for (size_t i = 0; i < s.points.size(); ++i) s.values[i] = f(s.points[i]);
+  nn::Delaunay dt;
+  std::vector<nn::Delaunay::Vertex_handle> vertex_of(s.points.size());
+  std::map<K::Point_2, double, K::Less_xy_2> value_of;
+  for (size_t i = 0; i < s.points.size(); ++i) {
+    const K::Point_2 p(s.points[i].x(), s.points[i].y());
+    vertex_of[i] = dt.insert(p);
+    vertex_of[i]->info() = static_cast<unsigned>(i);
+    value_of[p] = s.values[i];
+  }
+  const std::vector<double> ours = nn::fit_gradients(dt, vertex_of, s.points, s.values, 1, Barriers{});
+  std::map<K::Point_2, K::Vector_2, K::Less_xy_2> cgal;
+  CGAL::sibson_gradient_fitting_nn_2(dt, std::inserter(cgal, cgal.begin()),
+                                     CGAL::Data_access<decltype(value_of)>(value_of), Traits());
+  size_t compared = 0;
+  for (size_t i = 0; i < s.points.size(); ++i) {
+    const auto it = cgal.find(K::Point_2(s.points[i].x(), s.points[i].y()));
+    if (it == cgal.end()) continue;  // CGAL fits no gradient on the hull
+    EXPECT_NEAR(ours[2 * i], it->second.x(), 1e-10) << "sample " << i;
+    EXPECT_NEAR(ours[2 * i + 1], it->second.y(), 1e-10) << "sample " << i;
+    ++compared;
+  }
+  EXPECT_GT(compared, 100u);
+}
+
+TEST(SibsonC1, ReproducesLinearFunctionsAndIsExactAtTheSamples) {
+  // The fitted plane through samples of a linear function is that function, so the gradients
+  // are exact, and Farin's form then reproduces it (a quadratic of degree one).
+  std::mt19937 rng(35);
+  ScatteredSamples s = random_samples(150, rng);
+  auto f = [](const Vec2& p) { return -0.5 + 1.25 * p.x() + 0.3 * p.y(); };
+  for (size_t i = 0; i < s.points.size(); ++i) s.values[i] = f(s.points[i]);
+  const NaturalNeighbour c1(s, OutsideHull::none, {}, NeighbourRule::sibson_c1);
+  for (size_t i = 0; i < s.points.size(); ++i) EXPECT_NEAR(eval1(c1, s.points[i]), s.values[i], 1e-12);
+  std::uniform_real_distribution<double> inner(0.8, 3.2);
+  for (int t = 0; t < 300; ++t) {
+    const Vec2 q(inner(rng), inner(rng));
+    EXPECT_NEAR(eval1(c1, q), f(q), 1e-10);
+  }
+}
+
+TEST(SibsonC1, FirstDerivativesAreContinuousAtTheSamples) {
+  std::mt19937 rng(36);
+  ScatteredSamples s = random_samples(200, rng);
+  const Quadratic f;
+  for (size_t i = 0; i < s.points.size(); ++i) s.values[i] = f(s.points[i]);
+  const NaturalNeighbour c1(s, OutsideHull::none, {}, NeighbourRule::sibson_c1), c0(s, OutsideHull::none);
+  // One-sided differences of step h on either side of a point agree to O(h) for a C1 function;
+  // a kink (Sibson's C0 interpolant at a sample) leaves them apart by O(1). h = 1e-5 m on data of
+  // curvature ~1 gives differences ~1e-5; 1e-3 leaves room for rounding (1e-16 / 1e-5).
+  constexpr double h = 1e-5, kC1 = 1e-3;
+  double worst_c1 = 0, worst_c0 = 0;
+  for (size_t i = 0; i < s.points.size(); ++i) {
+    const Vec2 p = s.points[i];
+    if ((p.array() < 0.8).any() || (p.array() > 3.2).any()) continue;  // inside, away from the hull
+    for (const Vec2 dir : {Vec2(1, 0), Vec2(0, 1)}) {
+      auto jump = [&](const Interpolant& g) {
+        const double right = (eval1(g, p + h * dir) - eval1(g, p)) / h, left = (eval1(g, p) - eval1(g, p - h * dir)) / h;
+        return std::abs(right - left);
+      };
+      worst_c1 = std::max(worst_c1, jump(c1));
+      worst_c0 = std::max(worst_c0, jump(c0));
+    }
+  }
+  EXPECT_LT(worst_c1, kC1);
+  EXPECT_GT(worst_c0, 100 * kC1);  // the test sees kinks where there are some
+}
+
+}  // namespace
+}  // namespace radrecon
