@@ -50,11 +50,11 @@ InterpolantResult build_interpolant(Method method, const ScatteredSamples& sampl
   const std::optional<GridNodes> grid = as_regular_grid(samples);
   if (!grid) {
     const DistinctCoordinates d = count_distinct_coordinates(samples);
-    throw UserError(file, "bilinear/bicubic need samples on a regular grid: every combination of nx equally spaced "
+    throw UserError(file, method_name(method) + " needs samples on a regular grid: every combination of nx equally spaced "
                           "x values and ny equally spaced y values (nx, ny >= 2), each exactly once; found " +
                               std::to_string(samples.points.size()) + " samples, " + std::to_string(d.x) +
                               " distinct x, " + std::to_string(d.y) +
-                              " distinct y; use a scattered method (shepard, multiquadric, natural-neighbour, constant)");
+                              " distinct y; use a scattered method (e.g. natural-neighbour, linear, shepard)");
   }
   return make_nodal_interpolant(method, *grid, params);
 }
@@ -85,9 +85,11 @@ void run_interpolate(const InterpolateArgs& args) {
   const std::optional<Method> method = parse_method(args.method);
   if (!method) throw UserError("--method", "unknown method '" + args.method + "'; valid methods: " + method_list());
   MethodParams params = parse_params(*method, args.params, "--param");
-  if (args.border_samples && *method != Method::shepard && *method != Method::multiquadric &&
-      *method != Method::natural_neighbour)
-    throw UserError("--border-samples", "applies to shepard, multiquadric and natural-neighbour, not " + args.method);
+  if (is_cell_method(*method))
+    throw UserError("--method", args.method + " reconstructs cells (a grid's or a quadtree's leaves: radrecon render "
+                                              "and paper), not points; use e.g. linear or natural-neighbour");
+  if (args.border_samples && (*method == Method::constant || is_grid_method(*method)))
+    throw UserError("--border-samples", "applies to the scattered methods that interpolate, not " + args.method);
   // No input is ever overwritten, and an unwritable output is refused before any work.
   std::vector<std::string> inputs = {args.samples};
   if (use_queries) inputs.push_back(args.queries);
@@ -156,28 +158,34 @@ void add_interpolate_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "interpolate",
       "Interpolate scattered 2-D samples (CSV: x,y,VALUE...) at query points (--queries) or on a raster "
-      "(--raster + --domain) by one of the paper's reconstruction methods; write CSV, PFM or PNG.\n"
+      "(--raster + --domain) by one of radrecon's reconstruction methods; write CSV, PFM or PNG.\n"
       "Samples at exactly the same point are merged into one with the mean of their values (one warning on "
       "stderr). Outside the samples' extent: constant and shepard and multiquadric are defined everywhere; "
-      "bilinear and bicubic clamp the point onto the grid; natural-neighbour follows --param outside. "
+      "bilinear, bicubic and hermite clamp the point onto the grid; the triangulation methods "
+      "(natural-neighbour, laplace, sibson-c1, linear, clough-tocher) follow --param outside. "
       "Exit code 2 for refused input (message names the file:line or option), nothing written then.");
   cmd->add_option("--samples", args->samples,
                   "CSV of samples: header x,y,NAME[,NAME...] then one row per sample; '#' lines and blank lines "
                   "are ignored; values must be finite numbers")
       ->required();
   cmd->add_option("--method", args->method,
-                  "constant (value of the nearest sample); bilinear, bicubic (natural bicubic spline): samples "
-                  "on a regular grid, in any order; shepard (inverse distance weighting); multiquadric (Hardy); "
-                  "natural-neighbour (Sibson)")
+                  "constant (value of the nearest sample); scattered: shepard (inverse distance weighting), "
+                  "multiquadric (Hardy), thin-plate (spline with a linear term), natural-neighbour (Sibson), "
+                  "laplace (non-Sibsonian natural neighbours), sibson-c1 (Farin's C1 form, fitted gradients), "
+                  "linear (Delaunay triangles), clough-tocher (C1 cubic on Delaunay triangles, scipy's "
+                  "gradients); on a regular grid, in any order: bilinear, bicubic (natural bicubic spline), "
+                  "hermite (bicubic Hermite, estimated derivatives). (gouraud takes cells: render and paper.)")
       ->required();
   cmd->add_option("--param", args->params,
                   "NAME=VALUE, repeatable. shepard: mu (> 0, default 4): weights 1/d^mu; k (integer >= 0, "
                   "default 0): the k nearest samples, 0 = all. multiquadric: mu (nonzero, not a positive integer; default 0.5): basis "
                   "(d^2 + r^2)^mu; r (> 0, default: per sample, the distance to its nearest other sample "
                   "(Eck)); k (0 = one global system, default; >= 3: local patches of ~k samples blended, for large "
-                  "sample sets). natural-neighbour: outside=nearest (default: the value at the nearest point of "
-                  "the convex hull) | none (NaN outside the hull); barrier-samples=on (default) | off: with "
-                  "--barriers, also samples along both sides of each barrier. Others: no parameters");
+                  "sample sets); poly (0 default | 1: add a linear polynomial, reproducing linear functions). "
+                  "thin-plate: k (as multiquadric). natural-neighbour, laplace, sibson-c1, linear, clough-tocher: "
+                  "outside=nearest (default: the value at the nearest point of the convex hull) | none (NaN "
+                  "outside the hull). natural-neighbour, laplace, sibson-c1: barrier-samples=on (default) | off: "
+                  "with --barriers, also samples along both sides of each barrier. Others: no parameters");
   cmd->add_option("--queries", args->queries,
                   "CSV of query points: header starting x,y (further columns ignored); outputs keep its row "
                   "order");
@@ -197,9 +205,10 @@ void add_interpolate_command(CLI::App& app) {
                   "geometry, Feature or FeatureCollection; coordinates in the samples' units, CRS ignored): no "
                   "sample's influence crosses them. A sample counts for a query only if the straight segment "
                   "between them crosses no barrier; a query that sees no sample gets no value (NaN). Every "
-                  "method honours them; see docs/method.md");
+                  "method honours them except linear, clough-tocher and hermite, which refuse them; see "
+                  "docs/method.md");
   cmd->add_flag("--border-samples", args->border_samples,
-                "shepard, multiquadric, natural-neighbour: add samples on the border of --domain (without it: "
+                "scattered methods but constant: add samples on the border of --domain (without it: "
                 "of the samples' bounding box) and on both sides of every barrier, each the value of a plane "
                 "fitted to the nearest samples it sees, so that nothing is extrapolated past the samples' hull");
   cmd->add_flag("--quiet", args->quiet, "No progress messages (warnings are still printed)");

@@ -56,7 +56,11 @@ void run_render(const RenderArgs& args) {
     throw UserError("--camera", "the scene has no camera '" + args.camera + "' (cameras: " + (names.empty() ? "none" : names) + ")");
   }
   const auto method = parse_method(args.method);
-  if (!method) throw UserError("--method", "unknown method '" + args.method + "'");
+  if (!method) {
+    std::string names;
+    for (Method m : all_methods()) names += (names.empty() ? "" : ", ") + method_name(m);
+    throw UserError("--method", "unknown method '" + args.method + "'; valid methods: " + names);
+  }
   const MethodParams params = parse_params(*method, args.params, "--param");
   const Solution solution = read_solution_json(args.solution);
   const SideSampling sampling{.barriers = !args.no_barriers, .border_samples = args.border_samples};
@@ -64,6 +68,13 @@ void run_render(const RenderArgs& args) {
   if (!recon.fallbacks().empty() && recon.fallbacks().size() == solution.surfaces.size())
     throw UserError(args.solution, args.method + " cannot reconstruct any side of this solution (" +
                                        recon.fallbacks().front().reason + "); use constant, or a solution it fits");
+  if (!args.no_barriers && !takes_barriers(*method))
+    for (const SurfaceSolution& side : solution.surfaces)
+      if (!side.barriers.empty()) {
+        std::fprintf(stderr, "radrecon: warning: %s takes no barriers: sides with barriers (e.g. %s) are reconstructed "
+                             "across them\n", args.method.c_str(), side.name.c_str());
+        break;
+      }
   for (const Fallback& f : recon.fallbacks())
     std::fprintf(stderr, "radrecon: warning: %s: %s cannot reconstruct side %s (%s); drawn piecewise constant\n",
                  args.solution.c_str(), args.method.c_str(), f.side.c_str(), f.reason.c_str());
@@ -111,7 +122,8 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--scene", args->scene, "Scene JSON file, or 'paper'")->capture_default_str();
   cmd->add_option("--solution", args->solution, "Solution JSON written by 'radrecon solve'")->required();
   cmd->add_option("--method", args->method,
-                  "constant, bilinear, bicubic (grid solutions), shepard, multiquadric, natural-neighbour")
+                  "constant, gouraud (cells); bilinear, bicubic, hermite (grid solutions); shepard, multiquadric, "
+                  "thin-plate, natural-neighbour, laplace, sibson-c1, linear, clough-tocher (see 'interpolate --help')")
       ->capture_default_str();
   cmd->add_option("--param", args->params, "NAME=VALUE method parameter, repeatable (see 'interpolate --help')");
   cmd->add_option("--camera", args->camera, "Name of a camera of the scene (paper: view, closeup)")->required();
@@ -127,7 +139,7 @@ void add_render_command(CLI::App& app) {
                 "Ignore the solution's barriers (by default no sample's influence crosses the lines where surfaces "
                 "meet, e.g. the foot of a wall: the paper's leaking light)");
   cmd->add_flag("--border-samples", args->border_samples,
-                "shepard, multiquadric, natural-neighbour: add samples on each side's border and along both sides "
+                "scattered methods but constant: add samples on each side's border and along both sides "
                 "of its barriers, extrapolated from the nearest samples they see (docs/method.md)");
   cmd->add_flag("--quiet", args->quiet, "No progress messages");
   cmd->callback([args] { run_render(*args); });

@@ -21,8 +21,8 @@ struct SideSampling {
   /// reconstruct across them, and across the outlines of excluded regions.
   bool barriers = true;
   /// Add border samples (reconstruct/border_samples.h) on the side's border and both sides of its
-  /// barriers, for the scattered methods that interpolate (shepard, multiquadric,
-  /// natural-neighbour); constant and the grid methods use the data as it is.
+  /// barriers, for the methods that take points (all but constant, the grid methods and
+  /// gouraud, which use the data as it is).
   bool border_samples = false;
 };
 
