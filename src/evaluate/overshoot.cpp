@@ -1,0 +1,124 @@
+// Overshoot (metrics.h): the range of a query's natural neighbours, or outside the hull of its
+// nearest hull edge and nearest samples.
+
+#include <CGAL/Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+#include <vector>
+
+#include "core/check.h"
+#include "core/parallel.h"
+#include "evaluate/metrics.h"
+#include "reconstruct/interpolant.h"
+#include "reconstruct/kdtree.h"
+#include "reconstruct/natural_neighbour.h"
+
+namespace radrecon {
+
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Vb = CGAL::Triangulation_vertex_base_with_info_2<unsigned, K>;
+using Tds = CGAL::Triangulation_data_structure_2<Vb>;
+using Delaunay = CGAL::Delaunay_triangulation_2<K, Tds>;
+
+/// Samples nearest to a query outside the hull whose range counts beside its hull edge's.
+constexpr int kOutsideNearest = 3;
+
+/// The hull's edges as pairs of sample indices: the finite edges of the Delaunay triangulation's
+/// infinite faces, so consecutive samples along the hull, collinear ones included (exact
+/// predicates decide which are on it).
+std::vector<std::pair<unsigned, unsigned>> hull_edges(const std::vector<Vec2>& points) {
+  std::vector<std::pair<Delaunay::Point, unsigned>> input;
+  input.reserve(points.size());
+  for (unsigned k = 0; k < points.size(); ++k) input.emplace_back(Delaunay::Point(points[k].x(), points[k].y()), k);
+  const Delaunay dt(input.begin(), input.end());
+  std::vector<std::pair<unsigned, unsigned>> edges;
+  Delaunay::Face_circulator fc = dt.incident_faces(dt.infinite_vertex()), done = fc;
+  do {
+    const int i = fc->index(dt.infinite_vertex());
+    edges.emplace_back(fc->vertex(Delaunay::ccw(i))->info(), fc->vertex(Delaunay::cw(i))->info());
+  } while (++fc != done);
+  return edges;
+}
+
+/// The hull edge nearest to q (the first of equally near ones, in the order of `edges`).
+std::pair<unsigned, unsigned> nearest_edge(const Vec2& q, const std::vector<Vec2>& points,
+                                           const std::vector<std::pair<unsigned, unsigned>>& edges) {
+  double best = std::numeric_limits<double>::infinity();
+  std::pair<unsigned, unsigned> best_edge = edges.front();
+  for (const auto& e : edges) {
+    const Vec2 a = points[e.first], ab = points[e.second] - a;
+    const double t = std::clamp((q - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+    const double d = (a + t * ab - q).squaredNorm();
+    if (d < best) best = d, best_edge = e;
+  }
+  return best_edge;
+}
+
+struct Scratch {
+  std::vector<unsigned> neighbours;
+  std::vector<unsigned> indices = std::vector<unsigned>(kOutsideNearest);
+  std::vector<double> dist_sq = std::vector<double>(kOutsideNearest);
+};
+
+}  // namespace
+
+std::optional<double> overshoot(const ScatteredSamples& samples, std::span<const Vec2> points,
+                                std::span<const double> approx) {
+  const int C = samples.channels;
+  RR_CHECK_EQ(samples.values.size(), samples.points.size() * C, "overshoot: samples and values do not match");
+  RR_CHECK_EQ(approx.size(), points.size() * C, "overshoot: points and values do not match");
+  std::optional<NaturalNeighbour> nn;
+  try {
+    nn.emplace(samples, OutsideHull::none);
+  } catch (const ReconstructionError&) {
+    return std::nullopt;  // no natural neighbours: fewer than 3 samples, on one line, repeated
+  }
+  const std::vector<std::pair<unsigned, unsigned>> edges = hull_edges(samples.points);
+  const KdTree2 tree(samples.points);
+  const int nearest = static_cast<int>(std::min<size_t>(kOutsideNearest, samples.points.size()));
+  // Each point's overshoot (largest over its channels) into its own slot; the max is taken after.
+  std::vector<double> per_point(points.size());
+  parallel_for_with_scratch<Scratch>(0, static_cast<std::int64_t>(points.size()), [&](std::int64_t p, Scratch& s) {
+    const Vec2& q = points[p];
+    s.neighbours.clear();
+    for (const auto& [index, lambda] : nn->coordinates(q))
+      if (lambda != 0) s.neighbours.push_back(index);
+    if (s.neighbours.empty()) {  // outside the hull
+      const auto [e0, e1] = nearest_edge(q, samples.points, edges);
+      s.neighbours.push_back(e0);
+      s.neighbours.push_back(e1);
+      const size_t found = tree.nearest(q, nearest, s.indices, s.dist_sq);
+      s.neighbours.insert(s.neighbours.end(), s.indices.begin(), s.indices.begin() + static_cast<std::ptrdiff_t>(found));
+    }
+    double worst = 0;
+    for (int c = 0; c < C; ++c) {
+      double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+      for (const unsigned k : s.neighbours) {
+        lo = std::min(lo, samples.values[static_cast<size_t>(k) * C + c]);
+        hi = std::max(hi, samples.values[static_cast<size_t>(k) * C + c]);
+      }
+      const double v = approx[static_cast<size_t>(p) * C + c];
+      if (std::isnan(v)) {
+        worst = std::numeric_limits<double>::quiet_NaN();
+        break;
+      }
+      worst = std::max({worst, v - hi, lo - v});
+    }
+    per_point[p] = worst;
+  });
+  double result = 0;
+  for (const double v : per_point) {
+    if (std::isnan(v)) return std::numeric_limits<double>::quiet_NaN();
+    result = std::max(result, v);
+  }
+  return result;
+}
+
+}  // namespace radrecon
