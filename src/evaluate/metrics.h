@@ -11,6 +11,7 @@
 
 #include <optional>
 #include <span>
+#include <vector>
 
 #include "core/vec.h"
 #include "evaluate/norms.h"
@@ -57,10 +58,23 @@ double gradient_l2(std::span<const double> a, std::span<const double> reference,
 /// and the 3 samples nearest to q. Per channel:
 ///   overshoot = max over points and channels of max(0, a - max, min - a),
 /// in the values' unit (W/m^2). 0 for a method that stays within its neighbours' range (any
-/// convex combination of them). `approx` holds points.size() * samples.channels values, point-major.
-/// NaN when a value is NaN; nullopt when the samples have no natural neighbours (fewer than 3,
-/// all on one line, or a point repeated: NaturalNeighbour refuses them). Parallel, and the same
-/// for any number of threads (a max).
+/// convex combination of them).
+///
+/// The ranges depend on the samples and points only: neighbour_ranges() finds them once for
+/// every method judged on the same data. Nullopt when the samples have no natural neighbours
+/// (fewer than 3, all on one line, or a point repeated: NaturalNeighbour refuses them). Parallel,
+/// and the same for any number of threads.
+struct NeighbourRanges {
+  int channels = 1;
+  std::vector<double> lo, hi;  ///< points.size() * channels each, point-major
+};
+std::optional<NeighbourRanges> neighbour_ranges(const ScatteredSamples& samples, std::span<const Vec2> points);
+
+/// The overshoot of `approx` (the ranges' points.size() * channels values, point-major); NaN when
+/// a value is NaN.
+double overshoot(const NeighbourRanges& ranges, std::span<const double> approx);
+
+/// Both steps at once.
 std::optional<double> overshoot(const ScatteredSamples& samples, std::span<const Vec2> points,
                                 std::span<const double> approx);
 

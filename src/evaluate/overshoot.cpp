@@ -69,11 +69,9 @@ struct Scratch {
 
 }  // namespace
 
-std::optional<double> overshoot(const ScatteredSamples& samples, std::span<const Vec2> points,
-                                std::span<const double> approx) {
+std::optional<NeighbourRanges> neighbour_ranges(const ScatteredSamples& samples, std::span<const Vec2> points) {
   const int C = samples.channels;
   RR_CHECK_EQ(samples.values.size(), samples.points.size() * C, "overshoot: samples and values do not match");
-  RR_CHECK_EQ(approx.size(), points.size() * C, "overshoot: points and values do not match");
   std::optional<NaturalNeighbour> nn;
   try {
     nn.emplace(samples, OutsideHull::none);
@@ -83,8 +81,10 @@ std::optional<double> overshoot(const ScatteredSamples& samples, std::span<const
   const std::vector<std::pair<unsigned, unsigned>> edges = hull_edges(samples.points);
   const KdTree2 tree(samples.points);
   const int nearest = static_cast<int>(std::min<size_t>(kOutsideNearest, samples.points.size()));
-  // Each point's overshoot (largest over its channels) into its own slot; the max is taken after.
-  std::vector<double> per_point(points.size());
+  NeighbourRanges ranges;
+  ranges.channels = C;
+  ranges.lo.resize(points.size() * C);
+  ranges.hi.resize(points.size() * C);
   parallel_for_with_scratch<Scratch>(0, static_cast<std::int64_t>(points.size()), [&](std::int64_t p, Scratch& s) {
     const Vec2& q = points[p];
     s.neighbours.clear();
@@ -97,28 +97,36 @@ std::optional<double> overshoot(const ScatteredSamples& samples, std::span<const
       const size_t found = tree.nearest(q, nearest, s.indices, s.dist_sq);
       s.neighbours.insert(s.neighbours.end(), s.indices.begin(), s.indices.begin() + static_cast<std::ptrdiff_t>(found));
     }
-    double worst = 0;
     for (int c = 0; c < C; ++c) {
       double lo = std::numeric_limits<double>::infinity(), hi = -lo;
       for (const unsigned k : s.neighbours) {
         lo = std::min(lo, samples.values[static_cast<size_t>(k) * C + c]);
         hi = std::max(hi, samples.values[static_cast<size_t>(k) * C + c]);
       }
-      const double v = approx[static_cast<size_t>(p) * C + c];
-      if (std::isnan(v)) {
-        worst = std::numeric_limits<double>::quiet_NaN();
-        break;
-      }
-      worst = std::max({worst, v - hi, lo - v});
+      ranges.lo[static_cast<size_t>(p) * C + c] = lo;
+      ranges.hi[static_cast<size_t>(p) * C + c] = hi;
     }
-    per_point[p] = worst;
   });
+  return ranges;
+}
+
+double overshoot(const NeighbourRanges& ranges, std::span<const double> approx) {
+  RR_CHECK_EQ(approx.size(), ranges.lo.size(), "overshoot: points and values do not match");
   double result = 0;
-  for (const double v : per_point) {
+  for (size_t k = 0; k < approx.size(); ++k) {
+    const double v = approx[k];
     if (std::isnan(v)) return std::numeric_limits<double>::quiet_NaN();
-    result = std::max(result, v);
+    result = std::max({result, v - ranges.hi[k], ranges.lo[k] - v});
   }
   return result;
+}
+
+std::optional<double> overshoot(const ScatteredSamples& samples, std::span<const Vec2> points,
+                                std::span<const double> approx) {
+  RR_CHECK_EQ(approx.size(), points.size() * samples.channels, "overshoot: points and values do not match");
+  const std::optional<NeighbourRanges> ranges = neighbour_ranges(samples, points);
+  if (!ranges) return std::nullopt;
+  return overshoot(*ranges, approx);
 }
 
 }  // namespace radrecon

@@ -37,6 +37,8 @@ EvaluationGrid evaluation_grid(const Solution& reference) {
   for (int j = 0; j < e.height; ++j)
     for (int i = 0; i < e.width; ++i) e.points.push_back(cells.center(i, j));
   e.reference_w_m2 = cells.values;
+  e.dx_m = cells.dx;
+  e.dy_m = cells.dy;
   e.white_w_m2 = 0;
   for (double v : e.reference_w_m2) e.white_w_m2 = std::max(e.white_w_m2, v);
   return e;

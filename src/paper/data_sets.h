@@ -25,6 +25,7 @@ struct EvaluationGrid {
   int width = 0, height = 0;
   std::vector<Vec2> points;
   std::vector<double> reference_w_m2;
+  double dx_m = 1, dy_m = 1;  ///< the spacing of the points
   double white_w_m2 = 1;  ///< the largest reference value: white in every figure
 };
 EvaluationGrid evaluation_grid(const Solution& reference);

@@ -12,9 +12,11 @@ namespace radrecon {
 
 namespace {
 
-/// The method's norms at the evaluation grid, and its ground figures FIGURE_METHOD_*.png.
+/// The method's figures at the evaluation grid (`ranges`: its data's natural neighbours' ranges
+/// there), and its ground figures FIGURE_METHOD_*.png.
 MethodResult evaluate(const InterpolantResult& built, const std::string& name, const EvaluationGrid& at,
-                      const std::filesystem::path& figures, const std::string& figure) {
+                      const std::optional<NeighbourRanges>& ranges, const std::filesystem::path& figures,
+                      const std::string& figure) {
   // The paper's data sets are fixed: every method builds from them; one that did not is a bug.
   if (!built) throw std::runtime_error("paper: " + name + " cannot reconstruct the " + figure + " data: " + built.reason());
   std::vector<double> values(at.reference_w_m2.size());
@@ -22,7 +24,13 @@ MethodResult evaluate(const InterpolantResult& built, const std::string& name, c
   write_png(figures / (figure + "_" + name + "_ground.png"), radiosity_map(values, at.width, at.height, at.white_w_m2), true);
   write_png(figures / (figure + "_" + name + "_difference.png"),
             difference_map(values, at.reference_w_m2, at.width, at.height, at.white_w_m2), false);
-  return MethodResult{name, error_norms(values, at.reference_w_m2)};
+  MethodResult r{name, {}};
+  r.figures.norms = error_norms(values, at.reference_w_m2);
+  const ImageShape shape{at.width, at.height, 3};
+  r.figures.ssim = ssim(display_values(values, at.white_w_m2), display_values(at.reference_w_m2, at.white_w_m2), shape);
+  r.figures.gradient_l2 = gradient_l2(values, at.reference_w_m2, shape, at.dx_m, at.dy_m);
+  if (ranges) r.figures.overshoot = overshoot(*ranges, values);
+  return r;
 }
 
 }  // namespace
@@ -32,9 +40,12 @@ std::vector<MethodResult> evaluate_data_set(const Solution& data, const std::vec
                                             const SideSampling& sampling, const std::filesystem::path& figures,
                                             const std::string& figure) {
   const SurfaceSolution& ground = require_surface(data, "ground", "solution " + data.mesh);
+  const bool grid = ground.grid_nu > 0 && ground.grid_nv > 0;
+  const std::optional<NeighbourRanges> ranges =
+      neighbour_ranges(grid ? grid_cells(ground).centres() : element_centres(ground), at.points);
   std::vector<MethodResult> table;
   for (Method m : methods)
-    table.push_back(evaluate(reconstruct_side(ground, m, params, sampling), method_name(m), at, figures, figure));
+    table.push_back(evaluate(reconstruct_side(ground, m, params, sampling), method_name(m), at, ranges, figures, figure));
   return table;
 }
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "evaluate/norms.h"
+#include "evaluate/metrics.h"
 #include "paper/data_sets.h"
 #include "reconstruct/methods.h"
 #include "sampling/solution_reconstruction.h"
@@ -15,13 +15,15 @@ namespace radrecon {
 
 struct MethodResult {
   std::string name;  ///< the method's name
-  ErrorNorms norms;
+  Figures figures;   ///< norms, SSIM, gradient_L2, overshoot (evaluate/metrics.h)
 };
 
 /// Every method of `methods` on the ground of `data`, reconstructed as the renderer does
 /// (reconstruct_side(): grid data as cells, nodal values for bilinear and bicubic and cell centres
 /// for the scattered methods; quadtree data as leaves for constant and leaf centres otherwise),
-/// with the ground's barriers if `sampling` says so. Writes
+/// with the ground's barriers if `sampling` says so. Judged by the norms, SSIM of the ground
+/// figures against the reference's, the gradient error at the grid's spacing, and the overshoot
+/// past the range of the data's natural neighbours (its cell or leaf centres). Writes
 /// figures/FIGURE_METHOD_{ground,difference}.png.
 std::vector<MethodResult> evaluate_data_set(const Solution& data, const std::vector<Method>& methods,
                                             const EvaluationGrid& at, const MethodParams& params,

@@ -51,20 +51,31 @@ void run_paper(const PaperOptions& opt, const std::string& out_where) {
   write_png(figures / "fig2_reference_ground.png", radiosity_map(at.reference_w_m2, at.width, at.height, at.white_w_m2), true);
   const MethodParams params;  // the defaults of methods.h, stated in the tables
   const SideSampling plain{.barriers = false}, walled{.barriers = true}, bordered{.barriers = true, .border_samples = true};
-  PaperRun run{opt, data, at, params, evaluate_data_set(data.grid, paper_methods(), at, params, plain, figures, "fig3"),
-               evaluate_data_set(data.quadtree, scattered_methods(), at, params, plain, figures, "fig4"), {}, {}, {}, {}};
+  // Table 1: every method (all apply to grid data); Table 2: those that apply to a quadtree's
+  // leaves; Table 3: those that take barriers; with border samples, those of them that take points.
+  const std::vector<Method> grid_methods = all_methods(), quadtree_methods = scattered_methods();
+  auto taking_barriers = [](const std::vector<Method>& methods, bool points_only) {
+    std::vector<Method> out;
+    for (Method m : methods)
+      if (takes_barriers(m) && !(points_only && (m == Method::constant || is_grid_method(m) || is_cell_method(m))))
+        out.push_back(m);
+    return out;
+  };
+  PaperRun run{opt, data, at, params, evaluate_data_set(data.grid, grid_methods, at, params, plain, figures, "fig3"),
+               evaluate_data_set(data.quadtree, quadtree_methods, at, params, plain, figures, "fig4"), {}, {}, {}, {}};
   write_quadtree_figure(data.quadtree, at, figures);
   // Table 3 (Fig. 5-8): the same data and methods with the scene's barriers, then with border
   // samples too.
   if (opt.barriers) {
-    run.grid_barriers = evaluate_data_set(data.grid, paper_methods(), at, params, walled, figures, "fig5");
-    run.quadtree_barriers = evaluate_data_set(data.quadtree, scattered_methods(), at, params, walled, figures, "fig6");
+    run.grid_barriers = evaluate_data_set(data.grid, taking_barriers(grid_methods, false), at, params, walled, figures, "fig5");
+    run.quadtree_barriers =
+        evaluate_data_set(data.quadtree, taking_barriers(quadtree_methods, false), at, params, walled, figures, "fig6");
   }
   if (opt.barriers && opt.border_samples) {
-    // Border samples change the interpolating scattered methods only.
-    const std::vector<Method> interpolating = {Method::shepard, Method::multiquadric, Method::natural_neighbour};
-    run.grid_border = evaluate_data_set(data.grid, interpolating, at, params, bordered, figures, "fig7");
-    run.quadtree_border = evaluate_data_set(data.quadtree, interpolating, at, params, bordered, figures, "fig8");
+    // Border samples change the methods that take points only.
+    run.grid_border = evaluate_data_set(data.grid, taking_barriers(grid_methods, true), at, params, bordered, figures, "fig7");
+    run.quadtree_border =
+        evaluate_data_set(data.quadtree, taking_barriers(quadtree_methods, true), at, params, bordered, figures, "fig8");
   }
   const double t_reconstruct = clock.lap();
 
@@ -83,13 +94,14 @@ void run_paper(const PaperOptions& opt, const std::string& out_where) {
       notes.push_back(stem + ": " + f.side + " drawn piecewise constant, as " + method_name(m) + " cannot serve it: " + f.reason);
   };
   views(data.reference, Method::constant, plain, "fig2_reference");
-  for (Method m : paper_methods()) views(data.grid, m, plain, "fig3_" + method_name(m));
-  for (Method m : scattered_methods()) views(data.quadtree, m, plain, "fig4_" + method_name(m));
+  for (Method m : grid_methods) views(data.grid, m, plain, "fig3_" + method_name(m));
+  for (Method m : quadtree_methods) views(data.quadtree, m, plain, "fig4_" + method_name(m));
   // With barriers: the close-up of the wall's foot, where they matter (border samples: the
   // ground figures only).
   if (opt.barriers) {
-    for (Method m : paper_methods()) views(data.grid, m, walled, "fig5_" + method_name(m), "closeup");
-    for (Method m : scattered_methods()) views(data.quadtree, m, walled, "fig6_" + method_name(m), "closeup");
+    for (Method m : taking_barriers(grid_methods, false)) views(data.grid, m, walled, "fig5_" + method_name(m), "closeup");
+    for (Method m : taking_barriers(quadtree_methods, false))
+      views(data.quadtree, m, walled, "fig6_" + method_name(m), "closeup");
   }
   const double t_views = clock.lap();
 

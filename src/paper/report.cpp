@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <initializer_list>
+#include <optional>
 #include <sstream>
 
 #include "io/atomic_file.h"
@@ -33,13 +34,19 @@ std::string num(double v) {
   return buf;
 }
 
+std::string num(const std::optional<double>& v) { return v ? num(*v) : "n/a"; }
+
 void table(std::ostringstream& html, const std::string& caption, const std::vector<ReportRow>& rows) {
   html << "<table><caption>" << caption << "</caption>\n<tr><th>method</th><th>L1</th><th>L2 (MSE)</th><th>RMSE</th>"
-       << "<th>Linf</th><th class=paper>paper L1</th><th class=paper>paper L2</th><th class=paper>paper Linf</th></tr>\n";
-  for (const ReportRow& r : rows)
-    html << "<tr><td>" << r.method << "</td><td>" << num(r.norms.l1) << "</td><td>" << num(r.norms.l2) << "</td><td>"
-         << num(r.norms.rmse) << "</td><td>" << num(r.norms.linf) << "</td><td class=paper>" << num(r.paper[0])
+       << "<th>Linf</th><th>SSIM</th><th>gradient L2</th><th>overshoot</th><th class=paper>paper L1</th>"
+       << "<th class=paper>paper L2</th><th class=paper>paper Linf</th></tr>\n";
+  for (const ReportRow& r : rows) {
+    const Figures& f = r.figures;
+    html << "<tr><td>" << r.method << "</td><td>" << num(f.norms.l1) << "</td><td>" << num(f.norms.l2) << "</td><td>"
+         << num(f.norms.rmse) << "</td><td>" << num(f.norms.linf) << "</td><td>" << num(f.ssim) << "</td><td>"
+         << num(f.gradient_l2) << "</td><td>" << num(f.overshoot) << "</td><td class=paper>" << num(r.paper[0])
          << "</td><td class=paper>" << num(r.paper[1]) << "</td><td class=paper>" << num(r.paper[2]) << "</td></tr>\n";
+  }
   html << "</table>\n";
 }
 
@@ -106,7 +113,9 @@ void write_report(const std::filesystem::path& dir, const ReportContent& c) {
       table(html, "Table 3d: quadtree data with barriers and border samples", c.quadtree_border);
     }
   }
-  html << "<p>The paper's columns are its published tables, for its own scene: compare rankings, not values.</p>\n"
+  html << "<p>The paper's columns are its published tables, for its own scene: compare rankings, not values. "
+       << "Methods without paper columns are those the paper cites without running (gouraud, clough-tocher, hermite, "
+       << "thin-plate) and those users of scattered-data tools expect (linear, sibson-c1, laplace).</p>\n"
        << "</body></html>\n";
   write_text_file(dir / "report.html", html.str());
 }

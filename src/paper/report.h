@@ -7,13 +7,13 @@
 #include <array>
 #include <vector>
 
-#include "evaluate/norms.h"
+#include "evaluate/metrics.h"
 
 namespace radrecon {
 
 struct ReportRow {
   std::string method;
-  ErrorNorms norms;
+  Figures figures;         ///< norms, SSIM, gradient_L2, overshoot
   std::string figure_stem;  ///< e.g. "fig3_bilinear": its _view, _closeup, _ground, _difference
   std::array<double, 3> paper;  ///< the paper's L1, L2, Linf; NaN if it has none
 };

@@ -35,6 +35,13 @@ const char* const kBarrierRule =
     "the segment between them crosses no wall foot; constant is the nearest visible sample, bilinear and "
     "bicubic take each node's value from the cells the point sees";
 
+const char* const kMetricsRule =
+    "SSIM: mean structural similarity of the ground figure (sRGB display values) with the reference's (Wang et "
+    "al. 2004, 11 x 11 Gaussian window, sigma 1.5; 1 = identical). Gradient L2: the mean squared difference of "
+    "the finite-difference gradients, (W/m^2/m)^2: it sees Mach bands and ringing. Overshoot: the largest amount "
+    "(W/m^2) by which the reconstruction leaves the range of the data samples around a point (its natural "
+    "neighbours among the cell or leaf centres).";
+
 const char* const kBorderRule =
     "shepard, multiquadric and natural-neighbour also take samples on the ground's border and on both sides of "
     "each wall foot, at the samples' spacing, each the value at its point of the weighted least-squares plane "
@@ -46,6 +53,14 @@ std::string format_3g(double v) {
   return buf;
 }
 
+std::string format_3g(const std::optional<double>& v) { return v ? format_3g(*v) : "n/a"; }
+
+std::string figure_cells(const Figures& f) {
+  return format_3g(f.norms.l1) + " | " + format_3g(f.norms.l2) + " | " + format_3g(f.norms.rmse) + " | " +
+         format_3g(f.norms.linf) + " | " + format_3g(f.ssim) + " | " + format_3g(f.gradient_l2) + " | " +
+         format_3g(f.overshoot);
+}
+
 namespace {
 
 std::string table_markdown(const std::string& title, const std::vector<MethodResult>& rows,
@@ -53,11 +68,10 @@ std::string table_markdown(const std::string& title, const std::vector<MethodRes
                            const std::string& notes) {
   std::ostringstream md;
   md << "# " << title << "\n\n"
-     << "| method | L1 | L2 (MSE) | RMSE | Linf | paper L1 | paper L2 | paper Linf |\n"
-     << "|---|---|---|---|---|---|---|---|\n";
+     << "| method | L1 | L2 (MSE) | RMSE | Linf | SSIM | gradient L2 | overshoot | paper L1 | paper L2 | paper Linf |\n"
+     << "|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const MethodResult& r : rows) {
-    md << "| " << r.name << " | " << format_3g(r.norms.l1) << " | " << format_3g(r.norms.l2) << " | " << format_3g(r.norms.rmse)
-       << " | " << format_3g(r.norms.linf);
+    md << "| " << r.name << " | " << figure_cells(r.figures);
     auto it = paper.find(r.name);
     if (it != paper.end())
       md << " | " << format_3g(it->second[0]) << " | " << format_3g(it->second[1]) << " | " << format_3g(it->second[2]) << " |\n";
@@ -68,9 +82,6 @@ std::string table_markdown(const std::string& title, const std::vector<MethodRes
   return md.str();
 }
 
-nlohmann::json norms_json(const ErrorNorms& n) {
-  return {{"L1", n.l1}, {"L2", n.l2}, {"RMSE", n.rmse}, {"Linf", n.linf}};
-}
 
 nlohmann::json stats_json(const Solution& s) {
   nlohmann::json j = {{"mesh", s.mesh}, {"method", s.stats.method}, {"elements", s.stats.elements},
@@ -102,12 +113,12 @@ void write_tables(const std::filesystem::path& dir, const PaperRun& run) {
   const SurfaceSolution& quad_ground = require_surface(d.quadtree, "ground", "quadtree solution");
   const int W = run.at.width, H = run.at.height;
   nlohmann::json errors;
-  for (const MethodResult& r : run.table1) errors["grid"][r.name] = norms_json(r.norms);
-  for (const MethodResult& r : run.table2) errors["quadtree"][r.name] = norms_json(r.norms);
-  for (const MethodResult& r : run.grid_barriers) errors["grid+barriers"][r.name] = norms_json(r.norms);
-  for (const MethodResult& r : run.quadtree_barriers) errors["quadtree+barriers"][r.name] = norms_json(r.norms);
-  for (const MethodResult& r : run.grid_border) errors["grid+barriers+border"][r.name] = norms_json(r.norms);
-  for (const MethodResult& r : run.quadtree_border) errors["quadtree+barriers+border"][r.name] = norms_json(r.norms);
+  for (const MethodResult& r : run.table1) errors["grid"][r.name] = figures_json(r.figures);
+  for (const MethodResult& r : run.table2) errors["quadtree"][r.name] = figures_json(r.figures);
+  for (const MethodResult& r : run.grid_barriers) errors["grid+barriers"][r.name] = figures_json(r.figures);
+  for (const MethodResult& r : run.quadtree_barriers) errors["quadtree+barriers"][r.name] = figures_json(r.figures);
+  for (const MethodResult& r : run.grid_border) errors["grid+barriers+border"][r.name] = figures_json(r.figures);
+  for (const MethodResult& r : run.quadtree_border) errors["quadtree+barriers+border"][r.name] = figures_json(r.figures);
   errors["settings"] = {
       {"reference", stats_json(d.reference)}, {"grid", stats_json(d.grid)}, {"quadtree", stats_json(d.quadtree)},
       {"ground_leaves", quad_ground.elements.size()}, {"residual", run.options.residual},
@@ -122,7 +133,7 @@ void write_tables(const std::filesystem::path& dir, const PaperRun& run) {
   const std::string common =
       " Norms in W/m^2 over the " + std::to_string(W) + " x " + std::to_string(H) +
       " reference cell centres (all three channels; the scene is grey). L2 is the mean squared error as in the "
-      "paper; RMSE = sqrt(L2). The paper's columns are its published tables (its own scene, whose radiometry "
+      "paper; RMSE = sqrt(L2). " + std::string(kMetricsRule) + " The paper's columns are its published tables (its own scene, whose radiometry "
       "differs), for comparing rankings.";
   const std::string settings_text = method_settings(run.params);
   write_text_file(dir / "table1.md",
@@ -152,14 +163,14 @@ std::string barrier_table(const std::string& title, const std::vector<MethodResu
                           const std::vector<MethodResult>& without) {
   std::ostringstream md;
   md << "## " << title << "\n\n"
-     << "| method | L1 | L2 (MSE) | RMSE | Linf | without barriers: L1 | L2 | Linf |\n"
-     << "|---|---|---|---|---|---|---|---|\n";
+     << "| method | L1 | L2 (MSE) | RMSE | Linf | SSIM | gradient L2 | overshoot | without barriers: L1 | L2 | Linf | SSIM |\n"
+     << "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const MethodResult& r : with) {
-    md << "| " << r.name << " | " << format_3g(r.norms.l1) << " | " << format_3g(r.norms.l2) << " | "
-       << format_3g(r.norms.rmse) << " | " << format_3g(r.norms.linf);
+    md << "| " << r.name << " | " << figure_cells(r.figures);
     for (const MethodResult& p : without)
       if (p.name == r.name)
-        md << " | " << format_3g(p.norms.l1) << " | " << format_3g(p.norms.l2) << " | " << format_3g(p.norms.linf);
+        md << " | " << format_3g(p.figures.norms.l1) << " | " << format_3g(p.figures.norms.l2) << " | "
+           << format_3g(p.figures.norms.linf) << " | " << format_3g(p.figures.ssim);
     md << " |\n";
   }
   return md.str() + "\n";
@@ -191,7 +202,7 @@ ReportContent report_content(const PaperRun& run, int rays_per_pixel) {
     for (const MethodResult& r : results) {
       const auto it = paper.find(r.name);
       const double nan = std::numeric_limits<double>::quiet_NaN();
-      out.push_back({r.name, r.norms, figure + "_" + r.name, it != paper.end() ? it->second : std::array<double, 3>{nan, nan, nan}});
+      out.push_back({r.name, r.figures, figure + "_" + r.name, it != paper.end() ? it->second : std::array<double, 3>{nan, nan, nan}});
     }
     return out;
   };
@@ -214,6 +225,7 @@ ReportContent report_content(const PaperRun& run, int rays_per_pixel) {
       "Methods:" + method_settings(run.params),
       "Norms over the " + std::to_string(run.at.width) + " x " + std::to_string(run.at.height) +
           " reference cell centres, 3 channels; L2 is the mean squared error, RMSE its root.",
+      kMetricsRule,
       "Images: display = clamp(B / " + format_3g(white) + " W/m^2, 0, 1), sRGB; views with " + std::to_string(rays_per_pixel) +
           " rays per pixel; differences 0.5 + 2 (B - B_ref) / " + format_3g(white) + ", linear."};
   return report;

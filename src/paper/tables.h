@@ -4,6 +4,7 @@
 #include <array>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -39,11 +40,16 @@ void write_tables(const std::filesystem::path& dir, const PaperRun& run);
 extern const char* const kBarrierRule;
 /// How border samples are added, in words.
 extern const char* const kBorderRule;
+/// What SSIM, gradient L2 and overshoot measure, in words.
+extern const char* const kMetricsRule;
 
 /// The report's rows and settings (its notes are the caller's).
 ReportContent report_content(const PaperRun& run, int rays_per_pixel);
 
-/// "%.3g" of v.
+/// "%.3g" of v; "n/a" for a figure not defined.
 std::string format_3g(double v);
+std::string format_3g(const std::optional<double>& v);
+/// The cells "L1 | L2 | RMSE | Linf | SSIM | gradient L2 | overshoot" of a Markdown table row.
+std::string figure_cells(const Figures& figures);
 
 }  // namespace radrecon
