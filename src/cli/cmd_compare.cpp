@@ -3,6 +3,7 @@
 // `imgtool diff`).
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -232,12 +233,12 @@ void run_compare(const CompareArgs& args) {
     std::printf("%s\n", j.dump(2).c_str());
   } else {
     std::printf("A: %s\nB: %s (reference)\n%s\n", args.a.c_str(), args.b.c_str(), c.summary.c_str());
-    const nlohmann::json j = figures_json(c.figures);
-    for (const char* key : {"L1", "L2", "RMSE", "Linf", "SSIM", "gradient_L2", "overshoot"}) {
-      const nlohmann::json& v = j[key];
-      std::printf("%-12s %s\n", key, v.is_null() ? (std::string(key) == "overshoot" ? "n/a (no samples)" : "n/a")
-                                                 : format_number(v.get<double>()).c_str());
-    }
+    const Figures& f = c.figures;
+    const std::pair<const char*, std::optional<double>> rows[] = {
+        {"L1", f.norms.l1}, {"L2", f.norms.l2},     {"RMSE", f.norms.rmse},         {"Linf", f.norms.linf},
+        {"SSIM", f.ssim},   {"gradient_L2", f.gradient_l2}, {"overshoot", f.overshoot}};
+    for (const auto& [key, v] : rows)  // NaN (a NaN value in A or B) prints as nan
+      std::printf("%-12s %s\n", key, v ? format_number(*v).c_str() : (std::string(key) == "overshoot" ? "n/a (no samples)" : "n/a"));
     if (!args.diff.empty()) std::printf("difference image: %s (scale %s)\n", args.diff.c_str(), format_number(args.scale).c_str());
   }
   std::fflush(stdout);
