@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   radrecon::cli::add_paper_command(app);
   radrecon::cli::add_interpolate_command(app);
   radrecon::cli::add_render_command(app);
+  radrecon::cli::add_compare_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -31,6 +32,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     app.exit(e);
     return radrecon::kUserErrorExitCode;
+  } catch (const radrecon::cli::ExitStatus& e) {
+    return e.code;
   } catch (const radrecon::UserError& e) {
     std::fprintf(stderr, "radrecon: error: %s\n", e.what());
     return radrecon::kUserErrorExitCode;
