@@ -9,7 +9,9 @@
 #include "reconstruct/bicubic.h"
 #include "reconstruct/bilinear.h"
 #include "reconstruct/border_samples.h"
+#include "reconstruct/clough_tocher.h"
 #include "reconstruct/constant.h"
+#include "reconstruct/delaunay_linear.h"
 #include "reconstruct/local_multiquadric.h"
 #include "reconstruct/multiquadric.h"
 #include "reconstruct/natural_neighbour.h"
@@ -271,8 +273,8 @@ InterpolantResult make_scattered_interpolant(Method method, const ScatteredSampl
                        std::to_string(kMaxGlobalMultiquadric) + "); use local patches (parameter k, e.g. 32)"};
       return build<Multiquadric>(samples, params.multiquadric_mu, params.multiquadric_r, params.barriers);
     case Method::thin_plate: return Failure{"thin-plate is not built yet"};
-    case Method::linear: return Failure{"linear is not built yet"};
-    case Method::clough_tocher: return Failure{"clough-tocher is not built yet"};
+    case Method::linear: return build<DelaunayLinear>(samples, params.outside);
+    case Method::clough_tocher: return build<CloughTocher>(samples, params.outside, std::span<const double>{});
     case Method::natural_neighbour:
     case Method::laplace:
     case Method::sibson_c1: {

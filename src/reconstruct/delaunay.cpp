@@ -1,0 +1,179 @@
+#include "reconstruct/delaunay.h"
+
+#include <algorithm>
+#include <utility>
+
+#include <CGAL/Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+
+#include "reconstruct/interpolant.h"
+#include "reconstruct/kdtree.h"
+
+namespace radrecon {
+
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Vb = CGAL::Triangulation_vertex_base_with_info_2<unsigned, K>;        // sample index
+using Fb = CGAL::Triangulation_face_base_with_info_2<std::int64_t, K>;      // face index, -1 if infinite
+using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
+using Delaunay = CGAL::Delaunay_triangulation_2<K, Tds>;
+using Point = K::Point_2;
+
+}  // namespace
+
+struct DelaunayMesh::Impl {
+  Delaunay dt;
+  std::vector<Delaunay::Face_handle> handles;             ///< by face index
+  std::vector<std::pair<std::int64_t, int>> vertex_face;  ///< by sample: a face and its corner there
+  /// A hull edge: its samples a < b, the face inside it and that face's corner opposite it.
+  struct HullEdge {
+    unsigned a, b;
+    std::int64_t face;
+    int corner;
+  };
+  std::vector<HullEdge> hull;
+  std::unique_ptr<KdTree2> tree;
+};
+
+DelaunayMesh::DelaunayMesh(std::span<const Vec2> points, const std::string& method)
+    : impl_(std::make_unique<Impl>()), points_(points.begin(), points.end()) {
+  const size_t n = points_.size();
+  if (n < 3) throw ReconstructionError(method + " interpolation needs at least 3 samples, got " + std::to_string(n));
+  Impl& m = *impl_;
+  std::vector<std::pair<Point, unsigned>> input;
+  input.reserve(n);
+  for (size_t i = 0; i < n; ++i) input.emplace_back(Point(points_[i].x(), points_[i].y()), static_cast<unsigned>(i));
+  // CGAL sorts the points along a Hilbert curve after a shuffle by a default-seeded generator:
+  // the same input gives the same triangulation, co-circular points included.
+  m.dt.insert(input.begin(), input.end());
+  if (m.dt.number_of_vertices() != n)
+    throw ReconstructionError(std::to_string(n - m.dt.number_of_vertices()) + " duplicate sample point(s); " + method +
+                              " needs distinct points");
+  if (m.dt.dimension() < 2) throw ReconstructionError("all samples lie on one line; " + method + " needs a 2-D spread");
+
+  for (auto f = m.dt.all_faces_begin(); f != m.dt.all_faces_end(); ++f) f->info() = -1;
+  for (auto f = m.dt.finite_faces_begin(); f != m.dt.finite_faces_end(); ++f) {
+    f->info() = static_cast<std::int64_t>(m.handles.size());
+    m.handles.push_back(f);
+  }
+  const size_t nf = m.handles.size();
+  vertices_.resize(nf);
+  neighbours_.resize(nf);
+  affine_.resize(nf);
+  m.vertex_face.assign(n, {-1, 0});
+  for (size_t f = 0; f < nf; ++f) {
+    const Delaunay::Face_handle h = m.handles[f];
+    for (int k = 0; k < 3; ++k) {
+      vertices_[f][k] = h->vertex(k)->info();
+      neighbours_[f][k] = h->neighbor(k)->info();
+      auto& vf = m.vertex_face[vertices_[f][k]];
+      if (vf.first < 0) vf = {static_cast<std::int64_t>(f), k};
+    }
+    const Vec2 &p0 = points_[vertices_[f][0]], &p1 = points_[vertices_[f][1]], &p2 = points_[vertices_[f][2]];
+    const double a = p1.x() - p0.x(), b = p2.x() - p0.x(), c = p1.y() - p0.y(), d = p2.y() - p0.y();
+    const double det = a * d - b * c;  // > 0: a Delaunay face is counter-clockwise and not flat
+    affine_[f] = {p0.x(), p0.y(), d / det, -b / det, -c / det, a / det};
+    for (int k = 0; k < 3; ++k) {
+      if (neighbours_[f][k] >= 0) continue;
+      unsigned a_ = vertices_[f][(k + 1) % 3], b_ = vertices_[f][(k + 2) % 3];
+      if (b_ < a_) std::swap(a_, b_);
+      m.hull.push_back({a_, b_, static_cast<std::int64_t>(f), k});
+    }
+  }
+  m.tree = std::make_unique<KdTree2>(points_);
+}
+
+DelaunayMesh::~DelaunayMesh() = default;
+
+std::array<double, 3> DelaunayMesh::barycentric(size_t f, const Vec2& p) const {
+  const Affine& t = affine_[f];
+  const double dx = p.x() - t.x0, dy = p.y() - t.y0;
+  const double b1 = t.m00 * dx + t.m01 * dy, b2 = t.m10 * dx + t.m11 * dy;
+  return {1 - b1 - b2, b1, b2};
+}
+
+std::int64_t DelaunayMesh::face_near(const Vec2& q) const {
+  unsigned nearest[1];
+  double d2[1];
+  impl_->tree->nearest(q, 1, nearest, d2);
+  return impl_->vertex_face[nearest[0]].first;
+}
+
+namespace {
+
+/// The coordinates of q projected onto the edge opposite corner k of a face with corners
+/// `vertices`: 0 at corner k, linear along the edge from its end of smaller sample index, so
+/// that both faces of the edge give the same pair.
+void on_edge(std::span<const Vec2> points, const std::array<unsigned, 3>& vertices, int k, const Vec2& q,
+             std::array<double, 3>& b) {
+  int ca = (k + 1) % 3, cb = (k + 2) % 3;
+  if (vertices[cb] < vertices[ca]) std::swap(ca, cb);
+  const Vec2 &pa = points[vertices[ca]], &pb = points[vertices[cb]];
+  const Vec2 ab = pb - pa;
+  const double t = std::clamp((q - pa).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+  b[k] = 0;
+  b[ca] = 1 - t;
+  b[cb] = t;
+}
+
+}  // namespace
+
+bool DelaunayMesh::locate(const Vec2& q, OutsideHull outside, std::int64_t& hint, Location& out) const {
+  if (!q.allFinite()) return false;
+  const Impl& m = *impl_;
+  const Point p(q.x(), q.y());
+  Delaunay::Locate_type lt;
+  int li;
+  const Delaunay::Face_handle f =
+      m.dt.locate(p, lt, li, hint >= 0 ? m.handles[static_cast<size_t>(hint)] : Delaunay::Face_handle());
+  switch (lt) {
+    case Delaunay::VERTEX: {
+      const auto [face, corner] = m.vertex_face[f->vertex(li)->info()];
+      out.face = face;
+      out.b = {0, 0, 0};
+      out.b[static_cast<size_t>(corner)] = 1;
+      hint = face;
+      return true;
+    }
+    case Delaunay::EDGE: {
+      // On an edge: the face of smaller index among its (one or two) finite faces.
+      const Delaunay::Face_handle g = f->neighbor(li);
+      std::int64_t face = f->info();
+      int corner = li;
+      if (face < 0 || (g->info() >= 0 && g->info() < face)) face = g->info(), corner = m.dt.mirror_index(f, li);
+      out.face = face;
+      on_edge(points_, vertices_[static_cast<size_t>(face)], corner, q, out.b);
+      hint = face;
+      return true;
+    }
+    case Delaunay::FACE:
+      out.face = f->info();
+      out.b = barycentric(static_cast<size_t>(out.face), q);
+      hint = out.face;
+      return true;
+    case Delaunay::OUTSIDE_CONVEX_HULL: {
+      if (outside == OutsideHull::none) return false;
+      double best = std::numeric_limits<double>::infinity();
+      const Impl::HullEdge* nearest = nullptr;
+      for (const Impl::HullEdge& e : m.hull) {
+        const Vec2 &a = points_[e.a], &b = points_[e.b];
+        const Vec2 ab = b - a;
+        const double t = std::clamp((q - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+        const double d = (a + t * ab - q).squaredNorm();
+        if (d < best || (nearest && d == best && std::pair(e.a, e.b) < std::pair(nearest->a, nearest->b))) best = d, nearest = &e;
+      }
+      if (!nearest) return false;  // q so far away that every distance overflowed
+      out.face = nearest->face;
+      on_edge(points_, vertices_[static_cast<size_t>(out.face)], nearest->corner, q, out.b);
+      hint = out.face;
+      return true;
+    }
+    case Delaunay::OUTSIDE_AFFINE_HULL: return false;  // not for a 2-D triangulation
+  }
+  return false;
+}
+
+}  // namespace radrecon
