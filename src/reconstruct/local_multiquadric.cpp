@@ -123,8 +123,14 @@ void LocalMultiquadric::check_patches() const {
 void LocalMultiquadric::evaluate(std::span<const Vec2> points, std::span<double> out) const {
   const int C = channels_;
   RR_CHECK(out.size() == points.size() * static_cast<size_t>(C), "output size does not match the query points");
-  parallel_for_with_scratch<std::vector<unsigned>>(0, static_cast<std::int64_t>(points.size()),
-                                                   [&](std::int64_t k, std::vector<unsigned>& visible) {
+  struct Scratch {
+    std::vector<unsigned> visible;
+    std::vector<double> flat;  ///< the blend of the patches whose visible samples span no plane
+  };
+  parallel_for_with_scratch<Scratch>(0, static_cast<std::int64_t>(points.size()), [&](std::int64_t k, Scratch& scratch) {
+    std::vector<unsigned>& visible = scratch.visible;
+    std::vector<double>& flat = scratch.flat;
+    flat.assign(static_cast<size_t>(C), 0.0);
     const size_t q = static_cast<size_t>(k);
     double* o = &out[q * C];
     for (int c = 0; c < C; ++c) o[c] = 0;
@@ -138,7 +144,7 @@ void LocalMultiquadric::evaluate(std::span<const Vec2> points, std::span<double>
     const Vec2 x = p.cwiseMax(origin_).cwiseMin(box_max_);
     const Vec2 e = kernel_.poly ? p : x;
     const int ci = static_cast<int>(std::floor((x.x() - origin_.x()) / h_)), cj = static_cast<int>(std::floor((x.y() - origin_.y()) / h_));
-    double total = 0;
+    double total = 0, flat_total = 0;
     for (int j = std::max(0, cj - 1); j <= std::min(ny_ - 1, cj + 2); ++j)
       for (int i = std::max(0, ci - 1); i <= std::min(nx_ - 1, ci + 2); ++i) {
         const size_t index = static_cast<size_t>(j) * nx_ + i;
@@ -159,17 +165,25 @@ void LocalMultiquadric::evaluate(std::span<const Vec2> points, std::span<double>
             fit = visible_fit.get();
           }
         }
-        total += w;
+        // With a polynomial, a patch whose visible samples span no plane (its polynomial lacks a
+        // term) gives way to those that span one, and counts only where none does.
+        const bool lacks = fit->terms > 0 && fit->terms < 3;
+        double* acc = lacks ? flat.data() : o;
+        (lacks ? flat_total : total) += w;
         for (size_t a = 0; a < fit->subset.size(); ++a) {
           const unsigned s = fit->subset[a];
           double v = (e - points_[s]).squaredNorm() + r_sq_[s];
           if (fit->kernel_scale != 1) v *= fit->kernel_scale;
           const double b = rbf_basis(v, kernel_) * w;
-          for (int c = 0; c < C; ++c) o[c] += b * fit->alpha[a * C + c];
+          for (int c = 0; c < C; ++c) acc[c] += b * fit->alpha[a * C + c];
         }
         if (fit->terms > 0)
-          for (int c = 0; c < C; ++c) o[c] += w * fit->polynomial(e, c);
+          for (int c = 0; c < C; ++c) acc[c] += w * fit->polynomial(e, c);
       }
+    if (total == 0 && flat_total > 0) {
+      total = flat_total;
+      for (int c = 0; c < C; ++c) o[c] = flat[static_cast<size_t>(c)];
+    }
     for (int c = 0; c < C; ++c) o[c] = total > 0 ? o[c] / total : std::numeric_limits<double>::quiet_NaN();
   });
 }

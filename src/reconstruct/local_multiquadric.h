@@ -8,7 +8,9 @@
 // chosen so that about k samples lie within 1.5 h on average. The patches are blended with
 // Wendland's C2 weights (1 - d/h)^4 (4 d/h + 1), positive everywhere in the box (the discs cover
 // it). Exact at the samples. With a polynomial each patch reproduces linear functions, and so
-// does their blend (the weights sum to one).
+// does their blend (the weights sum to one); a patch whose samples (or, with barriers, those the
+// query sees) span no plane, so that its polynomial lacks a term (multiquadric_basis.h), gives
+// way: it has weight only where no patch with a full polynomial has any.
 //
 // Outside the box the weights (and, with barriers, the samples a patch sees) are those of the
 // nearest point x of the box. Without a polynomial the value is that at x (the multiquadric
