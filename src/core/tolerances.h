@@ -134,4 +134,12 @@ inline constexpr double kFitCollinearRelative = 1e-8;
 /// like the square of the spread's aspect ratio).
 inline constexpr double kGradientFitSingularRelative = 1e-12;
 
+/// RBFs with a linear polynomial (reconstruct/multiquadric_basis.h): a subset of samples whose
+/// spread across its principal axis is below this fraction of its spread along it counts as
+/// lying on one line, and its polynomial drops the term across (linear along the line, constant
+/// across). The term across is then determined only by offsets this thin: it would extrapolate
+/// the values' noise by the inverse of the ratio, and sit at the round-off of the coordinates
+/// (1e-16 of them) for samples on an exact line. 1e-8 keeps every subset with a real width.
+inline constexpr double kRbfFlatSubsetRelative = 1e-8;
+
 }  // namespace radrecon::tol

@@ -36,16 +36,19 @@ struct NearestScratch {
 
 }  // namespace
 
-LocalMultiquadric::LocalMultiquadric(const ScatteredSamples& samples, double mu, std::optional<double> r_m, int k,
-                                     Barriers barriers)
-    : points_(samples.points), channels_(samples.channels), mu_(mu), barriers_(std::move(barriers)) {
+LocalMultiquadric::LocalMultiquadric(const ScatteredSamples& samples, const RbfKernel& kernel,
+                                     std::optional<double> r_m, int k, Barriers barriers)
+    : points_(samples.points), channels_(samples.channels), kernel_(kernel), barriers_(std::move(barriers)) {
   if (!barriers_.empty()) values_ = samples.values;
-  RR_CHECK(mu != 0 && k >= kMinPatchSamples, "local multiquadric parameters out of range");
+  RR_CHECK((kernel.is_thin_plate() || kernel.mu != 0) && k >= kMinPatchSamples,
+           "local multiquadric parameters out of range");
+  RR_CHECK(!kernel.is_thin_plate() || !r_m, "the thin-plate spline has no radius");
   const size_t n = points_.size();
-  if (n < 2) throw ReconstructionError("the local multiquadric needs at least 2 samples");
+  if (n < 2) throw ReconstructionError("the local " + kernel.name() + " needs at least 2 samples");
   const KdTree2 tree(points_);
   r_sq_ = eck_radii_sq(points_, tree);  // also refuses duplicate points, whatever r
   if (r_m) r_sq_.assign(n, *r_m * *r_m);
+  if (kernel.is_thin_plate()) r_sq_.assign(n, 0.0);
   Vec2 lo = points_[0], hi = points_[0];
   for (const Vec2& p : points_) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
   // Samples on a line (or nearly) have a box of no width: give it a sliver of width and area so
@@ -89,9 +92,7 @@ LocalMultiquadric::LocalMultiquadric(const ScatteredSamples& samples, double mu,
     // that near, no sample of the patch hidden.
     patch.reach_m = h_ + std::sqrt(s.dist_sq[m - 1]);
     if (m > kMaxPatchSamples) return;  // refused below, outside the parallel loop
-    MultiquadricFit fit = fit_multiquadric(points_, r_sq_, samples.values, channels_, mu_, patch.samples);
-    patch.rcond = fit.rcond;
-    patch.alpha = std::move(fit.alpha);
+    patch.fit = fit_rbf(points_, r_sq_, samples.values, channels_, kernel_, patch.samples);
   });
   check_patches();
 }
@@ -100,29 +101,36 @@ LocalMultiquadric::~LocalMultiquadric() = default;
 
 double LocalMultiquadric::reciprocal_condition() const {
   double worst = 1;
-  for (const Patch& p : patches_) worst = std::min(worst, p.rcond);
+  for (const Patch& p : patches_) worst = std::min(worst, p.fit.rcond);
   return worst;
 }
 
 void LocalMultiquadric::check_patches() const {
   for (const Patch& p : patches_) {
     if (p.samples.size() > kMaxPatchSamples)
-      throw ReconstructionError("a local multiquadric patch at (" + std::to_string(p.center.x()) + ", " +
+      throw ReconstructionError("a local " + kernel_.name() + " patch at (" + std::to_string(p.center.x()) + ", " +
                                      std::to_string(p.center.y()) + ") holds " + std::to_string(p.samples.size()) +
                                      " samples (at most " + std::to_string(kMaxPatchSamples) +
                                      "): the samples are too clustered for patches of the requested size; use a smaller k");
   }
   const double worst = reciprocal_condition();
-  if (!(worst > 0) || !std::isfinite(worst)) throw ReconstructionError("a local multiquadric system is singular");
+  if (!(worst > 0) || !std::isfinite(worst)) throw ReconstructionError("a local " + kernel_.name() + " system is singular");
   if (worst < tol::kPoorConditioning)
-    std::fprintf(stderr, "radrecon: warning: a local multiquadric system is poorly conditioned (reciprocal condition %.2e)\n", worst);
+    std::fprintf(stderr, "radrecon: warning: a local %s system is poorly conditioned (reciprocal condition %.2e)\n",
+                 kernel_.name().c_str(), worst);
 }
 
 void LocalMultiquadric::evaluate(std::span<const Vec2> points, std::span<double> out) const {
   const int C = channels_;
   RR_CHECK(out.size() == points.size() * static_cast<size_t>(C), "output size does not match the query points");
-  parallel_for_with_scratch<std::vector<unsigned>>(0, static_cast<std::int64_t>(points.size()),
-                                                   [&](std::int64_t k, std::vector<unsigned>& visible) {
+  struct Scratch {
+    std::vector<unsigned> visible;
+    std::vector<double> flat;  ///< the blend of the patches whose visible samples span no plane
+  };
+  parallel_for_with_scratch<Scratch>(0, static_cast<std::int64_t>(points.size()), [&](std::int64_t k, Scratch& scratch) {
+    std::vector<unsigned>& visible = scratch.visible;
+    std::vector<double>& flat = scratch.flat;
+    flat.assign(static_cast<size_t>(C), 0.0);
     const size_t q = static_cast<size_t>(k);
     double* o = &out[q * C];
     for (int c = 0; c < C; ++c) o[c] = 0;
@@ -131,10 +139,12 @@ void LocalMultiquadric::evaluate(std::span<const Vec2> points, std::span<double>
       for (int c = 0; c < C; ++c) o[c] = std::numeric_limits<double>::quiet_NaN();
       return;
     }
-    // Outside the samples' box, the nearest point of the box.
+    // Outside the samples' box, the weights of the nearest point x of the box; the patches'
+    // RBFs at x without a polynomial, at p with one (the header says why).
     const Vec2 x = p.cwiseMax(origin_).cwiseMin(box_max_);
+    const Vec2 e = kernel_.poly ? p : x;
     const int ci = static_cast<int>(std::floor((x.x() - origin_.x()) / h_)), cj = static_cast<int>(std::floor((x.y() - origin_.y()) / h_));
-    double total = 0;
+    double total = 0, flat_total = 0;
     for (int j = std::max(0, cj - 1); j <= std::min(ny_ - 1, cj + 2); ++j)
       for (int i = std::max(0, ci - 1); i <= std::min(nx_ - 1, ci + 2); ++i) {
         const size_t index = static_cast<size_t>(j) * nx_ + i;
@@ -142,28 +152,38 @@ void LocalMultiquadric::evaluate(std::span<const Vec2> points, std::span<double>
         const double w = wendland((x - patch.center).norm() / h_);
         if (w == 0) continue;
         // The patch's fit, or with barriers the fit through its samples x sees.
-        const std::vector<unsigned>* subset = &patch.samples;
-        const std::vector<double>* alpha = &patch.alpha;
-        std::shared_ptr<const MultiquadricFit> fit;
+        const RbfFit* fit = &patch.fit;
+        std::shared_ptr<const RbfFit> visible_fit;
         if (!barriers_.none_within(x, patch.reach_m)) {
           visible.clear();
           for (unsigned s : patch.samples)
             if (!barriers_.blocks(x, points_[s])) visible.push_back(s);
           if (visible.empty()) continue;  // the patch sees nothing of x: no weight
           if (visible.size() < patch.samples.size()) {
-            fit = fits_.get(static_cast<unsigned>(index), visible,
-                            [&] { return fit_multiquadric(points_, r_sq_, values_, channels_, mu_, visible); });
-            subset = &fit->subset;
-            alpha = &fit->alpha;
+            visible_fit = fits_.get(static_cast<unsigned>(index), visible,
+                                    [&] { return fit_rbf(points_, r_sq_, values_, channels_, kernel_, visible); });
+            fit = visible_fit.get();
           }
         }
-        total += w;
-        for (size_t a = 0; a < subset->size(); ++a) {
-          const unsigned s = (*subset)[a];
-          const double b = multiquadric_basis((x - points_[s]).squaredNorm() + r_sq_[s], mu_) * w;
-          for (int c = 0; c < C; ++c) o[c] += b * (*alpha)[a * C + c];
+        // With a polynomial, a patch whose visible samples span no plane (its polynomial lacks a
+        // term) gives way to those that span one, and counts only where none does.
+        const bool lacks = fit->terms > 0 && fit->terms < 3;
+        double* acc = lacks ? flat.data() : o;
+        (lacks ? flat_total : total) += w;
+        for (size_t a = 0; a < fit->subset.size(); ++a) {
+          const unsigned s = fit->subset[a];
+          double v = (e - points_[s]).squaredNorm() + r_sq_[s];
+          if (fit->kernel_scale != 1) v *= fit->kernel_scale;
+          const double b = rbf_basis(v, kernel_) * w;
+          for (int c = 0; c < C; ++c) acc[c] += b * fit->alpha[a * C + c];
         }
+        if (fit->terms > 0)
+          for (int c = 0; c < C; ++c) acc[c] += w * fit->polynomial(e, c);
       }
+    if (total == 0 && flat_total > 0) {
+      total = flat_total;
+      for (int c = 0; c < C; ++c) o[c] = flat[static_cast<size_t>(c)];
+    }
     for (int c = 0; c < C; ++c) o[c] = total > 0 ? o[c] / total : std::numeric_limits<double>::quiet_NaN();
   });
 }

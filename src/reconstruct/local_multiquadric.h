@@ -1,16 +1,26 @@
 #pragma once
-// A partition of unity of local multiquadrics, for large sample sets where the global system
-// (n x n) cannot be solved. Patches are discs of radius h centred on a square grid of spacing h
-// over the samples' bounding box. Each patch interpolates every sample within 1.5 h of its
-// centre (at least kMinPatchSamples, topped up with the nearest others), so it never
-// extrapolates inside its disc, by a multiquadric with the global radii r_j; h is chosen so
-// that about k samples lie within 1.5 h on average. The patches are blended with Wendland's C2
-// weights (1 - d/h)^4 (4 d/h + 1), positive everywhere in the box (the discs cover it). Exact at
-// the samples; outside the box, the value at the nearest point of the box.
+// A partition of unity of local RBF interpolants (multiquadric_basis.h: the multiquadric, with or
+// without a linear polynomial, or the thin-plate spline), for large sample sets where the global
+// system (n x n) cannot be solved. Patches are discs of radius h centred on a square grid of
+// spacing h over the samples' bounding box. Each patch interpolates every sample within 1.5 h of
+// its centre (at least kMinPatchSamples, topped up with the nearest others), so it never
+// extrapolates inside its disc, by an RBF with the global radii r_j and its own polynomial; h is
+// chosen so that about k samples lie within 1.5 h on average. The patches are blended with
+// Wendland's C2 weights (1 - d/h)^4 (4 d/h + 1), positive everywhere in the box (the discs cover
+// it). Exact at the samples. With a polynomial each patch reproduces linear functions, and so
+// does their blend (the weights sum to one); a patch whose samples (or, with barriers, those the
+// query sees) span no plane, so that its polynomial lacks a term (multiquadric_basis.h), gives
+// way: it has weight only where no patch with a full polynomial has any.
 //
-// With barriers (barriers.h): each patch contributes the multiquadric through those of its
-// samples the query sees (solved once per patch and subset, multiquadric_basis.h), and a patch
-// that sees none of them no weight; a query no patch serves gets NaN.
+// Outside the box the weights (and, with barriers, the samples a patch sees) are those of the
+// nearest point x of the box. Without a polynomial the value is that at x (the multiquadric
+// alone would drift away as d^(2 mu)); with one, the blended patches are evaluated at the query
+// itself, which extends them linearly (plus, for the thin-plate spline, a term growing like
+// log d), so that linear functions are reproduced everywhere.
+//
+// With barriers (barriers.h): each patch contributes the RBF through those of its samples the
+// query sees (solved once per patch and subset, multiquadric_basis.h), and a patch that sees
+// none of them no weight; a query no patch serves gets NaN.
 
 #include <memory>
 #include <optional>
@@ -25,11 +35,17 @@ namespace radrecon {
 
 class KdTree2;
 
+/// The local RBF interpolant of any RbfKernel (named after the paper's method).
 class LocalMultiquadric final : public Interpolant {
  public:
-  /// mu != 0; k >= kMinPatchSamples; r > 0 if given, else Eck's rule. Needs 2 distinct samples.
-  LocalMultiquadric(const ScatteredSamples& samples, double mu, std::optional<double> r_m, int k,
+  /// k >= kMinPatchSamples. The multiquadric: kernel.mu != 0; r > 0 if given, else Eck's rule.
+  /// The thin-plate spline: no r. Needs 2 distinct samples.
+  LocalMultiquadric(const ScatteredSamples& samples, const RbfKernel& kernel, std::optional<double> r_m, int k,
                     Barriers barriers = {});
+  /// Hardy's multiquadric without a polynomial, as in the paper.
+  LocalMultiquadric(const ScatteredSamples& samples, double mu, std::optional<double> r_m, int k,
+                    Barriers barriers = {})
+      : LocalMultiquadric(samples, RbfKernel::multiquadric(mu), r_m, k, std::move(barriers)) {}
   ~LocalMultiquadric() override;
   int channels() const override { return channels_; }
   void evaluate(std::span<const Vec2> points, std::span<double> out) const override;
@@ -47,23 +63,22 @@ class LocalMultiquadric final : public Interpolant {
   struct Patch {
     Vec2 center;
     std::vector<unsigned> samples;
-    std::vector<double> alpha;  ///< samples.size() * channels
-    double rcond = 1;           ///< reciprocal condition estimate of its system
-    double reach_m = 0;         ///< a bound on the distance from its support to its samples
+    RbfFit fit;           ///< through its samples
+    double reach_m = 0;   ///< a bound on the distance from its support to its samples
   };
   /// Refuses oversized or singular patches, warns of poorly conditioned ones.
   void check_patches() const;
   std::vector<Vec2> points_;
   std::vector<double> r_sq_;
   int channels_;
-  double mu_;
+  RbfKernel kernel_;
   double h_ = 1;
   Vec2 origin_, box_max_;  ///< the samples' bounding box
   int nx_ = 1, ny_ = 1;
   std::vector<Patch> patches_;  ///< row by row over the grid
   Barriers barriers_;
   std::vector<double> values_;  ///< with barriers: the samples' values, for the subsets' fits
-  MultiquadricFitCache fits_;   ///< keyed by patch index
+  RbfFitCache fits_;           ///< keyed by patch index
 };
 
 }  // namespace radrecon

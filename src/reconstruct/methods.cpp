@@ -264,15 +264,20 @@ InterpolantResult make_scattered_interpolant(Method method, const ScatteredSampl
     case Method::gouraud: return Failure{"gouraud needs cells (a grid's or a quadtree's), not points"};
     case Method::shepard: return build<Shepard>(samples, params.shepard_mu, params.shepard_k, params.barriers);
     case Method::multiquadric:
-      if (params.multiquadric_k > 0 && static_cast<size_t>(params.multiquadric_k) < samples.points.size())
-        return build<LocalMultiquadric>(samples, params.multiquadric_mu, params.multiquadric_r, params.multiquadric_k,
-                                        params.barriers);
+    case Method::thin_plate: {
+      const bool thin = method == Method::thin_plate;
+      const RbfKernel kernel = thin ? RbfKernel::thin_plate()
+                                    : RbfKernel::multiquadric(params.multiquadric_mu, params.multiquadric_poly);
+      const std::optional<double> r = thin ? std::nullopt : params.multiquadric_r;
+      const int k = thin ? params.thin_plate_k : params.multiquadric_k;
+      if (k > 0 && static_cast<size_t>(k) < samples.points.size())
+        return build<LocalMultiquadric>(samples, kernel, r, k, params.barriers);
       if (samples.points.size() > kMaxGlobalMultiquadric)
-        return Failure{std::to_string(samples.points.size()) +
-                       " samples are too many for one global multiquadric system (at most " +
-                       std::to_string(kMaxGlobalMultiquadric) + "); use local patches (parameter k, e.g. 32)"};
-      return build<Multiquadric>(samples, params.multiquadric_mu, params.multiquadric_r, params.barriers);
-    case Method::thin_plate: return Failure{"thin-plate is not built yet"};
+        return Failure{std::to_string(samples.points.size()) + " samples are too many for one global " + kernel.name() +
+                       " system (at most " + std::to_string(kMaxGlobalMultiquadric) +
+                       "); use local patches (parameter k, e.g. 32)"};
+      return build<Multiquadric>(samples, kernel, r, params.barriers);
+    }
     case Method::linear: return build<DelaunayLinear>(samples, params.outside);
     case Method::clough_tocher: return build<CloughTocher>(samples, params.outside, std::span<const double>{});
     case Method::natural_neighbour:

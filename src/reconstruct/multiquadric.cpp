@@ -5,41 +5,40 @@
 #include <limits>
 
 #include <Eigen/Core>
-#include <Eigen/LU>
 
 #include "core/check.h"
+#include "core/parallel.h"
 #include "core/tolerances.h"
 #include "reconstruct/kdtree.h"
 #include "reconstruct/multiquadric_basis.h"
-#include "core/parallel.h"
 
 namespace radrecon {
 
-Multiquadric::Multiquadric(const ScatteredSamples& samples, double mu, std::optional<double> r_m, Barriers barriers)
-    : points_(samples.points), channels_(samples.channels), mu_(mu), barriers_(std::move(barriers)) {
-  RR_CHECK(mu != 0, "multiquadric mu must be nonzero");
+Multiquadric::Multiquadric(const ScatteredSamples& samples, const RbfKernel& kernel, std::optional<double> r_m,
+                           Barriers barriers)
+    : points_(samples.points), channels_(samples.channels), kernel_(kernel), barriers_(std::move(barriers)) {
+  RR_CHECK(kernel.is_thin_plate() || kernel.mu != 0, "multiquadric mu must be nonzero");
+  RR_CHECK(!kernel.is_thin_plate() || !r_m, "the thin-plate spline has no radius");
   const size_t n = points_.size();
-  if (n == 0) throw ReconstructionError("multiquadric needs at least one sample");
-  if (!r_m && n < 2) throw ReconstructionError("multiquadric with Eck's r needs at least 2 samples (or a fixed radius r)");
-  if (r_m) {
+  const std::string name = kernel_.name();
+  if (n == 0) throw ReconstructionError(name + " needs at least one sample");
+  if (kernel_.is_thin_plate()) {
+    if (n >= 2) eck_radii_sq(points_, KdTree2(points_));  // refuses duplicate samples by name
+    r_sq_.assign(n, 0.0);
+  } else if (r_m) {
     r_sq_.assign(n, *r_m * *r_m);
   } else {
+    if (n < 2) throw ReconstructionError("multiquadric with Eck's r needs at least 2 samples (or a fixed radius r)");
     const KdTree2 tree(points_);
     r_sq_ = eck_radii_sq(points_, tree);
   }
   std::vector<unsigned> all(n);
   for (size_t i = 0; i < n; ++i) all[i] = static_cast<unsigned>(i);
-  const MultiquadricFit fit = fit_multiquadric(points_, r_sq_, samples.values, channels_, mu_, std::move(all));
-  rcond_ = fit.rcond;
+  fit_ = fit_rbf(points_, r_sq_, samples.values, channels_, kernel_, std::move(all));
+  rcond_ = fit_.rcond;
   if (rcond_ < tol::kPoorConditioning)
-    std::fprintf(stderr, "radrecon: warning: multiquadric system is poorly conditioned (reciprocal condition %.2e); "
-                         "results may be inaccurate\n", rcond_);
-  alpha_by_channel_.resize(n * static_cast<size_t>(channels_));
-  for (size_t i = 0; i < n; ++i)
-    for (int c = 0; c < channels_; ++c) alpha_by_channel_[static_cast<size_t>(c) * n + i] = fit.alpha[i * channels_ + c];
-  px_.resize(n);
-  py_.resize(n);
-  for (size_t i = 0; i < n; ++i) px_[i] = points_[i].x(), py_[i] = points_[i].y();
+    std::fprintf(stderr, "radrecon: warning: %s system is poorly conditioned (reciprocal condition %.2e); "
+                         "results may be inaccurate\n", name.c_str(), rcond_);
   if (!barriers_.empty()) {
     values_ = samples.values;
     visibility_ = std::make_unique<PointVisibility>(points_, barriers_);
@@ -56,26 +55,14 @@ bool Multiquadric::evaluate_visible(const Vec2& p, VisibleScratch& s, double* ou
   }
   // The last query's fit when it saw the same (coherent queries mostly do), else the cache's.
   if (!s.last || s.last->subset != visible)
-    s.last = fits_.get(0, visible, [&] { return fit_multiquadric(points_, r_sq_, values_, channels_, mu_, visible); });
-  const MultiquadricFit* fit = s.last.get();
-  // As the plain path: basis values as Eigen arrays, sums in a fixed packet order.
-  using Array = Eigen::Map<const Eigen::ArrayXd>;
-  const Eigen::Index m = static_cast<Eigen::Index>(fit->subset.size());
-  s.b = (p.x() - Array(fit->px.data(), m)).square() + (p.y() - Array(fit->py.data(), m)).square() +
-        Array(fit->r_sq.data(), m);
-  multiquadric_basis_in_place(s.b, mu_);
-  for (int c = 0; c < channels_; ++c)
-    out[c] = (s.b * Array(&fit->alpha_by_channel[static_cast<size_t>(c) * static_cast<size_t>(m)], m)).sum();
+    s.last = fits_.get(0, visible, [&] { return fit_rbf(points_, r_sq_, values_, channels_, kernel_, visible); });
+  evaluate_rbf_fit(*s.last, kernel_, channels_, p, s.b, out);
   return true;
 }
 
 void Multiquadric::evaluate(std::span<const Vec2> points, std::span<double> out) const {
   const int C = channels_;
   RR_CHECK(out.size() == points.size() * static_cast<size_t>(C), "output size does not match the query points");
-  const size_t n = points_.size();
-  const double* px = px_.data();
-  const double* py = py_.data();
-  const double* r2 = r_sq_.data();
   struct Scratch {
     Eigen::ArrayXd b;
     VisibleScratch visible;
@@ -88,15 +75,7 @@ void Multiquadric::evaluate(std::span<const Vec2> points, std::span<double> out)
       return;
     }
     if (!barriers_.empty() && evaluate_visible(p, s.visible, &out[q * C])) return;
-    Eigen::ArrayXd& b = s.b;
-    // Basis values for all samples at once, as Eigen arrays: SIMD square roots and sums in a
-    // fixed (packet) order, so results do not depend on threads.
-    using Array = Eigen::Map<const Eigen::ArrayXd>;
-    const Eigen::Index N = static_cast<Eigen::Index>(n);
-    b = (p.x() - Array(px, N)).square() + (p.y() - Array(py, N)).square() + Array(r2, N);
-    multiquadric_basis_in_place(b, mu_);
-    for (int c = 0; c < C; ++c)
-      out[q * C + c] = (b * Array(&alpha_by_channel_[static_cast<size_t>(c) * n], N)).sum();
+    evaluate_rbf_fit(fit_, kernel_, C, p, s.b, &out[q * C]);
   });
 }
 

@@ -1,14 +1,22 @@
 #pragma once
-// Hardy's multiquadrics (the paper's sec. 2.2.2): B(q) = sum_j alpha_j (d(q, p_j)^2 + r_j^2)^mu,
-// with alpha from the interpolation conditions B(p_i) = B_i, solved densely by LU with partial
-// pivoting (Eigen). r_j is a constant r, or by Eck's rule the distance from p_j to its nearest
-// other sample. A poorly conditioned system (reciprocal condition estimate below
-// kPoorConditioning) is reported on stderr.
+// Global radial basis function interpolants (multiquadric_basis.h has the basis and the system):
+// - Hardy's multiquadrics (the paper's sec. 2.2.2): B(q) = sum_j alpha_j (d(q, p_j)^2 + r_j^2)^mu,
+//   with alpha from the interpolation conditions B(p_i) = B_i; r_j is a constant r, or by Eck's
+//   rule the distance from p_j to its nearest other sample. Optionally (RbfKernel::poly = 1)
+//   plus a linear polynomial with the side conditions, which the paper did not use.
+// - the thin-plate spline: d^2 log d, always with the linear polynomial (Duchon's minimiser of
+//   the bending energy among the interpolants); no shape parameter, independent of the unit of
+//   length.
+// Solved densely by LU with partial pivoting (Eigen). A poorly conditioned system (reciprocal
+// condition estimate below kPoorConditioning) is reported on stderr. Defined everywhere: outside
+// the samples' hull the multiquadric grows like d^(2 mu) (without a polynomial) and the
+// thin-plate spline is its linear polynomial plus a term growing like log d.
 //
-// With barriers (barriers.h): a query's value is the multiquadric through the samples it sees
-// (the same radii r_j), each such subset's system solved once and shared by every query that
-// sees it. Exact at the samples, continuous except across barriers and the sight lines grazing a
-// barrier's free end; a query that sees no sample gets NaN.
+// With barriers (barriers.h): a query's value is the RBF through the samples it sees (the same
+// radii r_j; its own polynomial), each such subset's system solved once and shared by every
+// query that sees it. Exact at the samples, continuous except across barriers and the sight
+// lines grazing a barrier's free end; a query that sees no sample gets NaN. With a polynomial,
+// linear functions are reproduced everywhere, barriers or not.
 
 #include <memory>
 #include <optional>
@@ -22,36 +30,43 @@
 
 namespace radrecon {
 
+/// The global RBF interpolant of any RbfKernel (named after the paper's method).
 class Multiquadric final : public Interpolant {
  public:
-  /// mu != 0; r > 0 if given. Needs 2 distinct samples without r, 1 with it.
-  Multiquadric(const ScatteredSamples& samples, double mu, std::optional<double> r_m, Barriers barriers = {});
+  /// The multiquadric: kernel.mu != 0; r > 0 if given. Needs 2 distinct samples without r, 1
+  /// with it. The thin-plate spline: no r; needs 1 sample, distinct ones.
+  Multiquadric(const ScatteredSamples& samples, const RbfKernel& kernel, std::optional<double> r_m,
+               Barriers barriers = {});
+  /// Hardy's multiquadric without a polynomial, as in the paper.
+  Multiquadric(const ScatteredSamples& samples, double mu, std::optional<double> r_m, Barriers barriers = {})
+      : Multiquadric(samples, RbfKernel::multiquadric(mu), r_m, std::move(barriers)) {}
   int channels() const override { return channels_; }
   void evaluate(std::span<const Vec2> points, std::span<double> out) const override;
 
   /// The reciprocal condition number estimate of the interpolation matrix (LU's rcond()).
   double reciprocal_condition() const { return rcond_; }
-  /// r_j^2 per sample, m^2.
+  /// r_j^2 per sample, m^2 (zeros for the thin-plate spline).
   const std::vector<double>& r_sq() const { return r_sq_; }
+  /// The fit through all samples.
+  const RbfFit& fit() const { return fit_; }
 
  private:
   std::vector<Vec2> points_;
-  std::vector<double> px_, py_;             ///< the points as a structure of arrays
   std::vector<double> r_sq_;
-  std::vector<double> alpha_by_channel_;  ///< channels * points.size(), channel by channel
   int channels_;
-  double mu_;
+  RbfKernel kernel_;
+  RbfFit fit_;  ///< through all samples
   double rcond_ = 1;
   // With barriers: the samples' values, and the fits through the subsets queries see.
   Barriers barriers_;
   std::vector<double> values_;
-  MultiquadricFitCache fits_;
+  RbfFitCache fits_;
   std::unique_ptr<PointVisibility> visibility_;
   /// Per-thread buffers of evaluate_visible(), and the fit it used last.
   struct VisibleScratch {
     std::vector<unsigned> visible;
     std::vector<char> hidden;
-    std::shared_ptr<const MultiquadricFit> last;
+    std::shared_ptr<const RbfFit> last;
     Eigen::ArrayXd b;
   };
   /// The value at p from the samples visible from it, into out; false (nothing written) when p

@@ -1,11 +1,14 @@
 #include "reconstruct/multiquadric_basis.h"
 
+#include <algorithm>
 #include <string>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 
 #include "core/check.h"
 #include "core/parse.h"
+#include "core/tolerances.h"
 #include "reconstruct/interpolant.h"
 #include "reconstruct/kdtree.h"
 
@@ -27,32 +30,88 @@ std::vector<double> eck_radii_sq(std::span<const Vec2> points, const KdTree2& tr
   return r_sq;
 }
 
-MultiquadricFit fit_multiquadric(std::span<const Vec2> points, std::span<const double> r_sq,
-                                 std::span<const double> values, int channels, double mu,
-                                 std::vector<unsigned> subset) {
-  const Eigen::Index m = static_cast<Eigen::Index>(subset.size());
-  Eigen::MatrixXd A(m, m), B(m, channels);
+namespace {
+
+/// The polynomial's frame for `subset`: centroid, principal axes scaled by the spreads along
+/// them, and how many terms the subset determines (header: tol::kRbfFlatSubsetRelative).
+void polynomial_frame(std::span<const Vec2> points, const std::vector<unsigned>& subset, RbfFit& fit) {
+  Vec2 centre = Vec2::Zero();
+  for (unsigned s : subset) centre += points[s];
+  centre /= static_cast<double>(subset.size());
+  Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
+  double size = 0;
+  for (unsigned s : subset) {
+    const Vec2 d = points[s] - centre;
+    cov += d * d.transpose();
+    size = std::max(size, d.norm());
+  }
+  fit.centre = centre;
+  fit.terms = 1;
+  if (!(size > 0)) return;  // one sample (or copies of it): the constant only
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(cov);
+  const Vec2 along = eigen.eigenvectors().col(1), across = eigen.eigenvectors().col(0);
+  double spread_along = 0, spread_across = 0;
+  for (unsigned s : subset) {
+    const Vec2 d = points[s] - centre;
+    spread_along = std::max(spread_along, std::abs(along.dot(d)));
+    spread_across = std::max(spread_across, std::abs(across.dot(d)));
+  }
+  fit.terms = 2;
+  fit.axis1 = along / spread_along;
+  if (spread_across > tol::kRbfFlatSubsetRelative * spread_along) {
+    fit.terms = 3;
+    fit.axis2 = across / spread_across;
+  }
+}
+
+}  // namespace
+
+RbfFit fit_rbf(std::span<const Vec2> points, std::span<const double> r_sq, std::span<const double> values,
+               int channels, const RbfKernel& kernel, std::vector<unsigned> subset) {
+  RR_CHECK(!subset.empty(), "an RBF fit needs samples");
+  RbfFit fit;
+  if (kernel.poly) polynomial_frame(points, subset, fit);
+  if (kernel.is_thin_plate()) {
+    double size_sq = 0;
+    for (unsigned s : subset) size_sq = std::max(size_sq, (points[s] - fit.centre).squaredNorm());
+    if (size_sq > 0) fit.kernel_scale = 1 / size_sq;
+  }
+  const Eigen::Index m = static_cast<Eigen::Index>(subset.size()), t = fit.terms;
+  // The values' mean per channel, taken out of the system into c_0 (with a polynomial).
+  std::vector<double> mean(static_cast<size_t>(channels), 0.0);
+  if (t > 0) {
+    for (unsigned s : subset)
+      for (int c = 0; c < channels; ++c) mean[static_cast<size_t>(c)] += values[s * static_cast<size_t>(channels) + c];
+    for (double& v : mean) v /= static_cast<double>(m);
+  }
+  Eigen::MatrixXd A(m + t, m + t), B(m + t, channels);
   for (Eigen::Index a = 0; a < m; ++a) {
     const unsigned sa = subset[static_cast<size_t>(a)];
     for (Eigen::Index b = 0; b < m; ++b) {
       const unsigned sb = subset[static_cast<size_t>(b)];
-      A(a, b) = multiquadric_basis((points[sa] - points[sb]).squaredNorm() + r_sq[sb], mu);
+      double v = (points[sa] - points[sb]).squaredNorm() + r_sq[sb];
+      if (fit.kernel_scale != 1) v *= fit.kernel_scale;
+      A(a, b) = rbf_basis(v, kernel);
     }
-    for (int c = 0; c < channels; ++c) B(a, c) = values[sa * static_cast<size_t>(channels) + c];
+    for (int c = 0; c < channels; ++c) B(a, c) = values[sa * static_cast<size_t>(channels) + c] - mean[static_cast<size_t>(c)];
+    if (t > 0) {
+      const Vec2 d = points[sa] - fit.centre;
+      const double u[3] = {1, fit.axis1.dot(d), fit.axis2.dot(d)};
+      for (Eigen::Index k = 0; k < t; ++k) A(a, m + k) = A(m + k, a) = u[k];
+    }
   }
+  A.bottomRightCorner(t, t).setZero();
+  B.bottomRows(t).setZero();
   const Eigen::PartialPivLU<Eigen::MatrixXd> lu(A);
-  MultiquadricFit fit;
   fit.rcond = lu.rcond();
   if (!(fit.rcond > 0) || !std::isfinite(fit.rcond))
-    throw ReconstructionError("the multiquadric system is singular (duplicate samples?)");
-  const Eigen::MatrixXd alpha = lu.solve(B);
-  if (!alpha.allFinite())
-    throw ReconstructionError("the multiquadric coefficients overflow: the sample values are too large for the "
-                              "system (scale them down)");
-  fit.alpha.resize(subset.size() * static_cast<size_t>(channels));
-  for (Eigen::Index a = 0; a < m; ++a)
-    for (int c = 0; c < channels; ++c) fit.alpha[static_cast<size_t>(a) * channels + c] = alpha(a, c);
+    throw ReconstructionError("the " + kernel.name() + " system is singular (duplicate samples?)");
+  const Eigen::MatrixXd x = lu.solve(B);
+  if (!x.allFinite())
+    throw ReconstructionError("the " + kernel.name() + " coefficients overflow: the sample values are too large "
+                              "for the system (scale them down)");
   const size_t count = subset.size();
+  fit.alpha.resize(count * static_cast<size_t>(channels));
   fit.px.resize(count);
   fit.py.resize(count);
   fit.r_sq.resize(count);
@@ -61,10 +120,32 @@ MultiquadricFit fit_multiquadric(std::span<const Vec2> points, std::span<const d
     fit.px[a] = points[subset[a]].x();
     fit.py[a] = points[subset[a]].y();
     fit.r_sq[a] = r_sq[subset[a]];
-    for (int c = 0; c < channels; ++c) fit.alpha_by_channel[static_cast<size_t>(c) * count + a] = fit.alpha[a * channels + c];
+    for (int c = 0; c < channels; ++c) {
+      const double alpha = x(static_cast<Eigen::Index>(a), c);
+      fit.alpha[a * channels + c] = alpha;
+      fit.alpha_by_channel[static_cast<size_t>(c) * count + a] = alpha;
+    }
   }
+  fit.poly.resize(static_cast<size_t>(t) * channels);
+  for (int c = 0; c < channels; ++c)
+    for (Eigen::Index k = 0; k < t; ++k)
+      fit.poly[static_cast<size_t>(c * t + k)] = x(m + k, c) + (k == 0 ? mean[static_cast<size_t>(c)] : 0.0);
   fit.subset = std::move(subset);
   return fit;
+}
+
+void evaluate_rbf_fit(const RbfFit& fit, const RbfKernel& kernel, int channels, const Vec2& p, Eigen::ArrayXd& b,
+                      double* out) {
+  using Array = Eigen::Map<const Eigen::ArrayXd>;
+  const Eigen::Index m = static_cast<Eigen::Index>(fit.subset.size());
+  b = (p.x() - Array(fit.px.data(), m)).square() + (p.y() - Array(fit.py.data(), m)).square() +
+      Array(fit.r_sq.data(), m);
+  if (fit.kernel_scale != 1) b *= fit.kernel_scale;
+  rbf_basis_in_place(b, kernel);
+  for (int c = 0; c < channels; ++c) {
+    out[c] = (b * Array(&fit.alpha_by_channel[static_cast<size_t>(c) * static_cast<size_t>(m)], m)).sum();
+    if (fit.terms > 0) out[c] += fit.polynomial(p, c);
+  }
 }
 
 }  // namespace radrecon

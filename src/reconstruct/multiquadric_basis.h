@@ -1,6 +1,27 @@
 #pragma once
-// The one home of Hardy's multiquadric basis and Eck's radii, shared by the global multiquadric
-// (multiquadric.h) and its partition of unity of local patches (local_multiquadric.h).
+// The one home of the radial basis functions (Hardy's multiquadric and the thin-plate spline),
+// their optional linear polynomial, Eck's radii and the dense fit through a subset of samples,
+// shared by the global interpolant (multiquadric.h) and its partition of unity of local patches
+// (local_multiquadric.h).
+//
+// A fit through samples p_j (j in a subset) is
+//   B(q) = sum_j alpha_j phi(s (d(q, p_j)^2 + r_j^2)) + sum_t c_t u_t(q),
+// phi(v) = v^mu (the multiquadric, s = 1) or phi(v) = v log(v) / 2 = d^2 log d (the thin-plate
+// spline, r_j = 0, phi(0) = 0, s = 1 / size^2: distances in units of the subset's size). With a
+// polynomial, u_0 = 1 and u_1, u_2 are the coordinates along the subset's principal axes about
+// its centroid, each divided by the subset's spread along it, so that the polynomial block has
+// entries of order 1 whatever the units; the interpolation system is the augmented
+//   [A P; P^T 0] [alpha; c] = [f; 0]
+// (the side conditions sum_j alpha_j u_t(p_j) = 0), exact at the samples and reproducing linear
+// functions. The polynomial holds only the terms the subset determines: a subset on one line
+// (spread across below tol::kRbfFlatSubsetRelative of its spread along) drops u_2 (linear along
+// the line, constant across), a single sample keeps u_0 only. The values are centred (their mean
+// goes to c_0), so that constant data give alpha = 0 and the constant to the bit.
+//
+// Scale: the thin-plate interpolant does not depend on the unit of length. phi(s d^2) =
+// s d^2 log d + (s log s / 2) d^2, and under the side conditions sum_j alpha_j |q - p_j|^2 is a
+// constant (its quadratic and linear parts in q vanish), absorbed by c_0: the kernel's scale only
+// multiplies alpha. The multiquadric's scale is its radii r_j.
 
 #include <cmath>
 #include <map>
@@ -8,6 +29,7 @@
 #include <mutex>
 #include <shared_mutex>
 #include <span>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -18,6 +40,20 @@ namespace radrecon {
 
 class KdTree2;
 
+/// The basis and polynomial of an RBF interpolant.
+struct RbfKernel {
+  enum class Kind { multiquadric, thin_plate };
+  Kind kind = Kind::multiquadric;
+  double mu = 0.5;  ///< the multiquadric's exponent: nonzero, not a positive integer
+  int poly = 0;     ///< 0: no polynomial; 1: a linear polynomial with the side conditions
+
+  static RbfKernel multiquadric(double mu, int poly = 0) { return {Kind::multiquadric, mu, poly}; }
+  static RbfKernel thin_plate() { return {Kind::thin_plate, 0, 1}; }
+  bool is_thin_plate() const { return kind == Kind::thin_plate; }
+  /// "multiquadric" or "thin-plate", for messages.
+  std::string name() const { return is_thin_plate() ? "thin-plate" : "multiquadric"; }
+};
+
 /// (d^2 + r^2)^mu from dist_sq_plus_r_sq = d^2 + r^2 (m^2), with mu = 1/2 (Hardy's choice and the
 /// default) and -1/2 without pow().
 inline double multiquadric_basis(double dist_sq_plus_r_sq, double mu) {
@@ -26,13 +62,21 @@ inline double multiquadric_basis(double dist_sq_plus_r_sq, double mu) {
   return std::pow(dist_sq_plus_r_sq, mu);
 }
 
-/// The same basis over an array of d^2 + r^2, in place, with Eigen's packet functions (SIMD):
-/// sqrt for mu = 1/2, rsqrt for -1/2, pow otherwise. Its last bits may differ from the scalar
-/// form's (rsqrt is not 1 / sqrt in every lane); each evaluator uses one form throughout.
-inline void multiquadric_basis_in_place(Eigen::ArrayXd& dist_sq_plus_r_sq, double mu) {
-  if (mu == 0.5) dist_sq_plus_r_sq = dist_sq_plus_r_sq.sqrt();
-  else if (mu == -0.5) dist_sq_plus_r_sq = dist_sq_plus_r_sq.rsqrt();
-  else dist_sq_plus_r_sq = dist_sq_plus_r_sq.pow(mu);
+/// phi(v) of the kernel for v = s (d^2 + r^2) (dimensionless for the thin-plate spline).
+inline double rbf_basis(double v, const RbfKernel& kernel) {
+  if (kernel.is_thin_plate()) return v > 0 ? 0.5 * v * std::log(v) : 0.0;
+  return multiquadric_basis(v, kernel.mu);
+}
+
+/// The same basis over an array of v, in place, with Eigen's packet functions (SIMD): sqrt for
+/// mu = 1/2, rsqrt for -1/2, pow otherwise, log for the thin-plate spline. Its last bits may
+/// differ from the scalar form's (rsqrt is not 1 / sqrt in every lane); each evaluator uses one
+/// form throughout.
+inline void rbf_basis_in_place(Eigen::ArrayXd& v, const RbfKernel& kernel) {
+  if (kernel.is_thin_plate()) v = (v > 0).select(0.5 * v * v.log(), 0.0);
+  else if (kernel.mu == 0.5) v = v.sqrt();
+  else if (kernel.mu == -0.5) v = v.rsqrt();
+  else v = v.pow(kernel.mu);
 }
 
 /// Eck's radii, squared (m^2): r_i^2 = squared distance from points[i] to its nearest other
@@ -40,46 +84,69 @@ inline void multiquadric_basis_in_place(Eigen::ArrayXd& dist_sq_plus_r_sq, doubl
 /// ReconstructionError naming the point when two coincide.
 std::vector<double> eck_radii_sq(std::span<const Vec2> points, const KdTree2& tree);
 
-/// The multiquadric through the samples `subset` of `points`: coefficients alpha_j for
-/// sum_j alpha_j (d(q, p_j)^2 + r_j^2)^mu, by dense LU with partial pivoting (Eigen).
-struct MultiquadricFit {
+/// The RBF through the samples `subset` of `points` (the header's B), solved by dense LU with
+/// partial pivoting (Eigen; the augmented matrix is symmetric indefinite).
+struct RbfFit {
   std::vector<unsigned> subset;  ///< sample indices
   std::vector<double> alpha;     ///< subset.size() * channels, sample-major
   double rcond = 1;              ///< reciprocal condition estimate of the system
   // The same for evaluation as arrays (SIMD): the subset's coordinates, r^2, and alpha channel by
   // channel.
   std::vector<double> px, py, r_sq, alpha_by_channel;
+  double kernel_scale = 1;  ///< s: d^2 + r^2 is multiplied by it before phi
+  // The polynomial: `terms` of u_0 = 1, u_1 = axis1 . (q - centre), u_2 = axis2 . (q - centre).
+  int terms = 0;                 ///< 0 (none), 1, 2 or 3
+  Vec2 centre = Vec2::Zero();
+  Vec2 axis1 = Vec2::Zero(), axis2 = Vec2::Zero();
+  std::vector<double> poly;  ///< terms * channels, channel by channel: c_t of channel c at [c * terms + t]
+
+  /// The polynomial of channel c at q (0 without one).
+  double polynomial(const Vec2& q, int c) const {
+    if (terms == 0) return 0;
+    const double* k = &poly[static_cast<size_t>(c) * static_cast<size_t>(terms)];
+    double v = k[0];
+    const Vec2 d = q - centre;
+    if (terms > 1) v += k[1] * axis1.dot(d);
+    if (terms > 2) v += k[2] * axis2.dot(d);
+    return v;
+  }
 };
 
-/// Fits the multiquadric through `subset` (values: channels per point, point-major). Throws
-/// ReconstructionError when the system is singular or its coefficients overflow.
-MultiquadricFit fit_multiquadric(std::span<const Vec2> points, std::span<const double> r_sq,
-                                 std::span<const double> values, int channels, double mu,
-                                 std::vector<unsigned> subset);
+/// Fits the RBF through `subset` (values: channels per point, point-major; r_sq per point, zeros
+/// for the thin-plate spline). Throws ReconstructionError when the system is singular or its
+/// coefficients overflow.
+RbfFit fit_rbf(std::span<const Vec2> points, std::span<const double> r_sq, std::span<const double> values,
+               int channels, const RbfKernel& kernel, std::vector<unsigned> subset);
+
+/// The fit's value at p into out[0, channels): the basis over its samples as Eigen arrays (SIMD,
+/// sums in a fixed packet order, so results do not depend on threads), plus the polynomial.
+/// `b` is scratch.
+void evaluate_rbf_fit(const RbfFit& fit, const RbfKernel& kernel, int channels, const Vec2& p, Eigen::ArrayXd& b,
+                      double* out);
 
 /// Fits over subsets of the samples, each solved once and shared: with barriers, a query's
-/// multiquadric is the one through the samples it sees, and neighbouring queries see the same.
+/// RBF is the one through the samples it sees, and neighbouring queries see the same.
 /// Thread-safe; a fit depends on its subset alone, so results do not depend on which thread
 /// solved it first.
-class MultiquadricFitCache {
+class RbfFitCache {
  public:
   /// The fit through `subset` (sorted sample indices) under `key` (e.g. a patch), solved with
   /// `solve` the first time.
   template <typename Solve>
-  std::shared_ptr<const MultiquadricFit> get(unsigned key, const std::vector<unsigned>& subset, Solve&& solve) const {
+  std::shared_ptr<const RbfFit> get(unsigned key, const std::vector<unsigned>& subset, Solve&& solve) const {
     {
       std::shared_lock lock(mutex_);
       const auto it = fits_.find({key, subset});
       if (it != fits_.end()) return it->second;
     }
-    auto fit = std::make_shared<const MultiquadricFit>(solve());
+    auto fit = std::make_shared<const RbfFit>(solve());
     std::unique_lock lock(mutex_);
     return fits_.try_emplace({key, subset}, std::move(fit)).first->second;
   }
 
  private:
   mutable std::shared_mutex mutex_;
-  mutable std::map<std::pair<unsigned, std::vector<unsigned>>, std::shared_ptr<const MultiquadricFit>> fits_;
+  mutable std::map<std::pair<unsigned, std::vector<unsigned>>, std::shared_ptr<const RbfFit>> fits_;
 };
 
 }  // namespace radrecon

@@ -98,6 +98,20 @@ std::vector<Case> cases() {
         c.params.multiquadric_mu = -0.5;
         c.name = "multiquadric mu=-0.5 k=24";
         out.push_back(c);
+        c.params = {};
+        c.params.multiquadric_poly = 1;  // a linear polynomial: constants are reproduced
+        c.constant_relative = kRoundingRelative;
+        c.name = "multiquadric poly=1";
+        out.push_back(c);
+        c.params.multiquadric_k = 24;
+        c.name = "multiquadric poly=1 k=24";
+        out.push_back(c);
+        break;
+      case Method::thin_plate:
+        out.push_back(c);  // always with the linear polynomial: constants are reproduced
+        c.params.thin_plate_k = 24;
+        c.name = "thin-plate k=24";
+        out.push_back(c);
         break;
       case Method::natural_neighbour:
         out.push_back(c);                 // outside = nearest, the default
