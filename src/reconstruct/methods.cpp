@@ -10,6 +10,7 @@
 #include "reconstruct/bilinear.h"
 #include "reconstruct/border_samples.h"
 #include "reconstruct/constant.h"
+#include "reconstruct/hermite.h"
 #include "reconstruct/local_multiquadric.h"
 #include "reconstruct/multiquadric.h"
 #include "reconstruct/natural_neighbour.h"
@@ -219,7 +220,7 @@ InterpolantResult make_nodal_interpolant(Method method, const GridNodes& nodes, 
     if (!params.barriers.empty()) return build<BarrierGrid>(nodes, grid_kind(method), params.barriers);
     if (method == Method::bilinear) return build<Bilinear>(nodes);
     if (method == Method::bicubic) return build<Bicubic>(nodes);
-    return Failure{"hermite is not built yet"};
+    return build<Hermite>(nodes);
   }
   ScatteredSamples s;
   s.channels = nodes.channels;
