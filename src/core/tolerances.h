@@ -128,4 +128,10 @@ inline constexpr double kBorderSpacingRelative = 1e-9;
 /// extrapolate any noise in the values without bound.
 inline constexpr double kFitCollinearRelative = 1e-8;
 
+/// Gouraud (reconstruct/gouraud.h): cell corners within this fraction of the cells' extent
+/// count as one point, and a balanced leaf's midpoints snap onto known corners within it. Far
+/// above the round-off of corners computed as u * length (1e-16 relative), far below any cell
+/// (a quadtree 33 levels deep still has leaves 1.2e-10 of its side).
+inline constexpr double kCellSnapRelative = 1e-10;
+
 }  // namespace radrecon::tol

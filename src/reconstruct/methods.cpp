@@ -10,6 +10,7 @@
 #include "reconstruct/bilinear.h"
 #include "reconstruct/border_samples.h"
 #include "reconstruct/constant.h"
+#include "reconstruct/gouraud.h"
 #include "reconstruct/hermite.h"
 #include "reconstruct/local_multiquadric.h"
 #include "reconstruct/multiquadric.h"
@@ -209,7 +210,7 @@ InterpolantResult make_cell_interpolant(Method method, const CellSamples& cells,
   if (auto refused = refuse_barriers(method, params)) return *refused;
   if (cells.cells.empty()) return Failure{"no cells"};
   if (method == Method::constant) return build<PiecewiseConstant>(cells);
-  if (method == Method::gouraud) return Failure{"gouraud is not built yet"};
+  if (method == Method::gouraud) return build<Gouraud>(cells);
   return Failure{method_name(method) + " takes points, not cells"};
 }
 
