@@ -142,4 +142,10 @@ inline constexpr double kGradientFitSingularRelative = 1e-12;
 /// (1e-16 of them) for samples on an exact line. 1e-8 keeps every subset with a real width.
 inline constexpr double kRbfFlatSubsetRelative = 1e-8;
 
+/// Gouraud (reconstruct/gouraud.h): cell corners within this fraction of the cells' extent
+/// count as one point, and a balanced leaf's midpoints snap onto known corners within it. Far
+/// above the round-off of corners computed as u * length (1e-16 relative), far below any cell
+/// (a quadtree 33 levels deep still has leaves 1.2e-10 of its side).
+inline constexpr double kCellSnapRelative = 1e-10;
+
 }  // namespace radrecon::tol

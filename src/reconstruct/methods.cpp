@@ -12,6 +12,8 @@
 #include "reconstruct/clough_tocher.h"
 #include "reconstruct/constant.h"
 #include "reconstruct/delaunay_linear.h"
+#include "reconstruct/gouraud.h"
+#include "reconstruct/hermite.h"
 #include "reconstruct/local_multiquadric.h"
 #include "reconstruct/multiquadric.h"
 #include "reconstruct/natural_neighbour.h"
@@ -210,7 +212,7 @@ InterpolantResult make_cell_interpolant(Method method, const CellSamples& cells,
   if (auto refused = refuse_barriers(method, params)) return *refused;
   if (cells.cells.empty()) return Failure{"no cells"};
   if (method == Method::constant) return build<PiecewiseConstant>(cells);
-  if (method == Method::gouraud) return Failure{"gouraud is not built yet"};
+  if (method == Method::gouraud) return build<Gouraud>(cells);
   return Failure{method_name(method) + " takes points, not cells"};
 }
 
@@ -221,7 +223,7 @@ InterpolantResult make_nodal_interpolant(Method method, const GridNodes& nodes, 
     if (!params.barriers.empty()) return build<BarrierGrid>(nodes, grid_kind(method), params.barriers);
     if (method == Method::bilinear) return build<Bilinear>(nodes);
     if (method == Method::bicubic) return build<Bicubic>(nodes);
-    return Failure{"hermite is not built yet"};
+    return build<Hermite>(nodes);
   }
   ScatteredSamples s;
   s.channels = nodes.channels;
