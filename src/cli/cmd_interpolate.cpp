@@ -205,7 +205,7 @@ void add_interpolate_command(CLI::App& app) {
                   "geometry, Feature or FeatureCollection; coordinates in the samples' units, CRS ignored): no "
                   "sample's influence crosses them. A sample counts for a query only if the straight segment "
                   "between them crosses no barrier; a query that sees no sample gets no value (NaN). Every "
-                  "method honours them except linear, clough-tocher and hermite, which refuse them; see "
+                  "method honours them except linear and clough-tocher, which refuse them; see "
                   "docs/method.md");
   cmd->add_flag("--border-samples", args->border_samples,
                 "scattered methods but constant: add samples on the border of --domain (without it: "

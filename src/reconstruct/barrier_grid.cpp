@@ -8,6 +8,7 @@
 #include "core/check.h"
 #include "core/parallel.h"
 #include "reconstruct/bicubic.h"
+#include "reconstruct/hermite.h"
 #include "reconstruct/bilinear.h"
 #include "reconstruct/keys_cubic.h"
 #include "reconstruct/nodal.h"
@@ -75,7 +76,8 @@ BarrierGrid::BarrierGrid(GridNodes plain_nodes, std::vector<double> site_values,
   RR_CHECK(site_values_.size() == static_cast<size_t>(sites_x_) * sites_y_ * nodes_.channels,
            "grid values do not match the grid");
   if (kind_ == Kind::bilinear) plain_ = std::make_unique<Bilinear>(nodes_);
-  else plain_ = std::make_unique<Bicubic>(nodes_);
+  else if (kind_ == Kind::bicubic) plain_ = std::make_unique<Bicubic>(nodes_);
+  else plain_ = std::make_unique<Hermite>(nodes_);
   const double diagonal = std::hypot(nodes_.dx, nodes_.dy);
   local_distance_ = kLocalDiagonals * diagonal;
   plain_distance_ = kPlainDiagonals * diagonal;
@@ -220,7 +222,7 @@ void BarrierGrid::evaluate_near(const Vec2& q, double* out, Scratch& s) const {
   // Bicubic: the distance to the nearest barrier sets the blend (barrier_grid.h).
   double w = 1;  // the local scheme's weight
   bool all_seen = false;
-  if (kind_ == Kind::bicubic) {
+  if (kind_ != Kind::bilinear) {
     const double d = barriers_.distance_to(st.p, plain_distance_);
     if (d >= plain_distance_) {  // the plain spline alone, the same arithmetic
       plain_->evaluate(std::span(&q, 1), std::span(out, static_cast<size_t>(C)));

@@ -84,10 +84,13 @@
 
 namespace radrecon {
 
-/// Bilinear or bicubic interpolation of grid data with barriers (the rule above).
+/// Bilinear, bicubic or hermite interpolation of grid data with barriers (the rule above).
+/// Hermite is bicubic's rule with the plain hermite interpolant (hermite.h) in place of the
+/// natural spline: as hermite is Keys' scheme itself, the blend then changes nothing where every
+/// site is seen, and every value depends on the 4 x 4 nodes around its cell only.
 class BarrierGrid final : public Interpolant {
  public:
-  enum class Kind { bilinear, bicubic };
+  enum class Kind { bilinear, bicubic, hermite };
   /// Bicubic: within this many cell diagonals of a barrier, Keys' local scheme alone (d1 of the
   /// rule). At least 2.5, the farthest a stencil's site can be from q (cell data, q at a node),
   /// so that the plain spline, weighed only beyond d1, always sees its whole stencil; half a

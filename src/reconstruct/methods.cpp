@@ -69,7 +69,7 @@ bool is_grid_method(Method m) { return m == Method::bilinear || m == Method::bic
 bool is_cell_method(Method m) { return m == Method::gouraud; }
 
 bool takes_barriers(Method m) {
-  return m != Method::linear && m != Method::clough_tocher && m != Method::gouraud && m != Method::hermite;
+  return m != Method::linear && m != Method::clough_tocher && m != Method::gouraud;
 }
 
 namespace {
@@ -181,7 +181,9 @@ InterpolantResult build(Args&&... args) {
 }
 
 BarrierGrid::Kind grid_kind(Method m) {
-  return m == Method::bilinear ? BarrierGrid::Kind::bilinear : BarrierGrid::Kind::bicubic;
+  return m == Method::bilinear  ? BarrierGrid::Kind::bilinear
+         : m == Method::bicubic ? BarrierGrid::Kind::bicubic
+                                : BarrierGrid::Kind::hermite;
 }
 
 /// Methods that do not take barriers refuse them, naming those that do.

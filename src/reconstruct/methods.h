@@ -50,7 +50,7 @@ bool is_grid_method(Method m);
 /// Methods that need cells (a grid's or a quadtree's leaves), not points: gouraud.
 bool is_cell_method(Method m);
 /// Methods that honour barriers (MethodParams::barriers). The others (linear, clough-tocher,
-/// gouraud, hermite) refuse them in the factories; a solution's side is then reconstructed
+/// gouraud) refuse them in the factories; a solution's side is then reconstructed
 /// without them (sampling/solution_reconstruction.h says so).
 bool takes_barriers(Method m);
 

@@ -95,6 +95,14 @@ InterpolantResult reconstruct_unmasked(const SurfaceSolution& s, Method method, 
     params.barrier_samples = false;  // added with the border's
     return make_scattered_interpolant(method, bordered.value(), params);
   }
+  if (is_cell_method(method) && !s.excluded.empty()) {
+    // The cells under excluded regions are holes (NaN): no value there, no influence outside.
+    CellSamples cells = grid ? to_cells(grid_cells(s)) : element_cells(s);
+    for (size_t k = 0; k < cells.cells.size(); ++k)
+      if (excluded(s.excluded, cells.cells[k].center()))
+        for (int c = 0; c < cells.channels; ++c) cells.values[k * cells.channels + c] = std::numeric_limits<double>::quiet_NaN();
+    return make_cell_interpolant(method, cells, params);
+  }
   if (grid) return make_grid_interpolant(method, grid_cells(s), params);
   if ((method == Method::constant && params.barriers.empty()) || is_cell_method(method))
     return make_cell_interpolant(method, element_cells(s), params);
