@@ -178,8 +178,13 @@ Gouraud::Gouraud(const CellSamples& input) : channels_(input.channels) {
         !(r.x1 > r.x0 && r.y1 > r.y0))
       throw ReconstructionError("a cell has no extent or a non-finite corner: [" + number(r.x0) + ", " + number(r.x1) +
                                 "] x [" + number(r.y0) + ", " + number(r.y1) + "]");
-  for (double v : input.values)
-    if (!std::isfinite(v)) throw ReconstructionError("gouraud needs finite cell values");
+  // A cell with a NaN value is a hole (no data: a region the caller excludes); infinities are
+  // refused.
+  std::vector<char> hole(input.cells.size(), 0);
+  for (size_t k = 0; k < input.values.size(); ++k) {
+    if (std::isinf(input.values[k])) throw ReconstructionError("gouraud needs finite cell values (or NaN for a hole)");
+    if (std::isnan(input.values[k])) hole[k / static_cast<size_t>(C)] = 1;
+  }
 
   // Snap the corners: equal up to round-off means equal, so that edges match exactly.
   Rect box = input.cells[0];
@@ -239,7 +244,8 @@ Gouraud::Gouraud(const CellSamples& input) : channels_(input.channels) {
     }
   }
   for (size_t k = 0; k < leaves.size(); ++k)
-    if (alive[k]) leaves_.push_back(leaves[k]), leaf_cells_.push_back(leaf_cell[k]);
+    if (alive[k])
+      leaves_.push_back(leaves[k]), leaf_cells_.push_back(leaf_cell[k]), leaf_holes_.push_back(hole[static_cast<size_t>(leaf_cell[k])]);
 
   // 2. Vertices: every leaf corner, valued by the mean of the input cells that contain it.
   index_.bounds = bounds_;
@@ -256,12 +262,12 @@ Gouraud::Gouraud(const CellSamples& input) : channels_(input.channels) {
     int count = 0;
     for (int i = index_.first[static_cast<size_t>(b)]; i < index_.first[static_cast<size_t>(b) + 1]; ++i) {
       const int cell = index_.items[static_cast<size_t>(i)];
-      if (!contains(cells[static_cast<size_t>(cell)], vertices_[v])) continue;
+      if (hole[static_cast<size_t>(cell)] || !contains(cells[static_cast<size_t>(cell)], vertices_[v])) continue;
       ++count;
       for (int c = 0; c < C; ++c) vertex_values_[v * C + c] += input.values[static_cast<size_t>(cell) * C + c];
     }
-    RR_CHECK_GT(count, 0, "a leaf corner lies in no cell");
-    for (int c = 0; c < C; ++c) vertex_values_[v * C + c] /= count;
+    for (int c = 0; c < C; ++c)  // a corner of holes only: NaN (used by no triangle that is evaluated)
+      vertex_values_[v * C + c] = count ? vertex_values_[v * C + c] / count : std::numeric_limits<double>::quiet_NaN();
   }
   auto id = [&](double x, double y) {
     const auto& [ys, first] = ids.at(x);
@@ -303,9 +309,14 @@ Gouraud::Gouraud(const CellSamples& input) : channels_(input.channels) {
 
 int Gouraud::locate(const Vec2& p) const {
   const size_t b = static_cast<size_t>(index_.bucket(p));
-  for (int i = index_.first[b]; i < index_.first[b + 1]; ++i)
-    if (contains(leaves_[static_cast<size_t>(index_.items[static_cast<size_t>(i)])], p)) return index_.items[static_cast<size_t>(i)];
-  return -1;
+  int in_hole = -1;  // a point on a hole's outline takes the leaf outside it
+  for (int i = index_.first[b]; i < index_.first[b + 1]; ++i) {
+    const int leaf = index_.items[static_cast<size_t>(i)];
+    if (!contains(leaves_[static_cast<size_t>(leaf)], p)) continue;
+    if (!leaf_holes_[static_cast<size_t>(leaf)]) return leaf;
+    if (in_hole < 0) in_hole = leaf;
+  }
+  return in_hole;
 }
 
 void Gouraud::evaluate(std::span<const Vec2> points, std::span<double> out) const {
@@ -321,6 +332,10 @@ void Gouraud::evaluate(std::span<const Vec2> points, std::span<double> out) cons
     const Vec2 p(std::clamp(q.x(), bounds_.x0, bounds_.x1), std::clamp(q.y(), bounds_.y0, bounds_.y1));
     const int leaf = locate(p);
     RR_CHECK_GE(leaf, 0, "a point of the domain is in no leaf");
+    if (leaf_holes_[static_cast<size_t>(leaf)]) {
+      for (int c = 0; c < C; ++c) o[c] = std::numeric_limits<double>::quiet_NaN();
+      return;
+    }
     // The leaf's triangle that contains p: the one whose smallest barycentric coordinate is
     // largest (>= 0 up to round-off; on a shared edge either triangle gives the same value).
     double best = -std::numeric_limits<double>::infinity(), weights[3] = {0, 0, 0};

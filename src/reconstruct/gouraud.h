@@ -12,8 +12,8 @@
 //     its diagonal from (x0, y0) to (x1, y1); a leaf with hanging nodes is a fan of triangles
 //     from its centre over all its boundary vertices (corners and hanging nodes, in order), so
 //     that both sides of every edge are linear between the same vertices.
-//  3. Vertex values: the plain mean of the values of the input cells whose closed rectangle
-//     contains the vertex, as [CW93] (1 to 4 cells; a balanced leaf's pieces count as the one
+//  3. Vertex values: the plain mean of the values of the input cells (holes aside, see below)
+//     whose closed rectangle contains the vertex, as [CW93] (1 to 4 cells; a balanced leaf's pieces count as the one
 //     cell they came from, so balancing changes no value). Not area-weighted: a quadtree is fine
 //     where the function changes, and area weights would let a large leaf, an average over a far
 //     wider region, outweigh the small leaves at their own corners. A fan's centre takes the
@@ -29,8 +29,14 @@
 //
 // The cells need not be dyadic: corners within tol::kCellSnapRelative of the domain's extent
 // count as one point. They must tile a rectangle (ReconstructionError naming a point of a gap
-// or an overlap otherwise), have finite values, and be balanceable without splitting a leaf
-// into pieces narrower than the narrowest cell (always true of a quadtree's leaves).
+// or an overlap otherwise), have finite values or NaN, and be balanceable without splitting a
+// leaf into pieces narrower than half the narrowest cell (always true of a quadtree's leaves).
+//
+// Holes: a cell with a NaN value (in any channel) has no data, e.g. a region the caller
+// excludes (the floor under a box). It takes part in the tiling and the balance but in no
+// vertex mean; a point that only holes contain (inside one, or on its part of the domain's
+// border, after clamping) gets NaN, a point on a hole's outline the value of the cells outside.
+// So the values outside a hole do not depend on what lies under it.
 
 #include <array>
 #include <vector>
@@ -72,6 +78,7 @@ class Gouraud final : public Interpolant {
   Rect bounds_{};
   std::vector<Rect> leaves_;
   std::vector<int> leaf_cells_;
+  std::vector<char> leaf_holes_;     ///< the leaf's cell has a NaN value
   std::vector<int> leaf_triangles_;  ///< leaf k owns triangles [leaf_triangles_[k], [k + 1])
   std::vector<Vec2> vertices_;
   std::vector<double> vertex_values_;

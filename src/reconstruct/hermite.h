@@ -14,8 +14,11 @@
 // Hermite patch reproduces every polynomial of degree <= 3 in each variable given exact
 // derivatives, so every quadratic a + bx + cy + dx^2 + exy + fy^2 is reproduced exactly on a grid
 // of at least 3 x 3 nodes; with 2 nodes along x, those linear in x (a + bx + cy + exy + fy^2).
-// Compare Keys' cubic convolution (keys_cubic.h, the Catmull-Rom spline along each axis): the
-// same central differences inside, other borders.
+// The same interpolant as the tensor product of Keys' cubic convolution (keys_cubic.h: a = -1/2,
+// the Catmull-Rom spline, whose slopes are these central differences; Keys' end rule
+// f(-1) = 3 f(0) - 3 f(1) + f(2) gives the one-sided slope above, and with 2 nodes the linear
+// extrapolation gives f(1) - f(0)): hermite_test.cpp checks the two against each other. Unlike
+// bicubic's natural spline it is local: a value depends on the 4 x 4 nodes around its cell.
 //
 // Outside the grid the point is clamped onto it (constant extension of the border values, as
 // bilinear and bicubic do). A non-finite query gives NaN.

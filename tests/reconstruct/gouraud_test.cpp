@@ -111,15 +111,17 @@ std::array<int, 4> NeighboursPerEdge(const std::vector<Rect>& leaves, const Rect
   return n;
 }
 
-/// Brute force: the mean value of the cells whose closed rectangle contains p.
+/// Brute force: the mean value of the cells whose closed rectangle contains p, holes (NaN
+/// values) aside; NaN when there are none.
 double CellMean(const CellSamples& s, const Vec2& p, int c) {
   double sum = 0;
   int count = 0;
   for (size_t k = 0; k < s.cells.size(); ++k) {
     const Rect& r = s.cells[k];
-    if (p.x() >= r.x0 && p.x() <= r.x1 && p.y() >= r.y0 && p.y() <= r.y1) sum += s.values[k * s.channels + c], ++count;
+    if (p.x() >= r.x0 && p.x() <= r.x1 && p.y() >= r.y0 && p.y() <= r.y1 && !std::isnan(s.values[k * s.channels + c]))
+      sum += s.values[k * s.channels + c], ++count;
   }
-  return sum / count;
+  return count ? sum / count : std::numeric_limits<double>::quiet_NaN();
 }
 
 TEST(Gouraud, BalancesTheQuadtree) {
@@ -311,6 +313,42 @@ TEST(Gouraud, SnapsCornersEqualUpToRoundOff) {
   for (int k = 0; k < 1000; ++k) pts.emplace_back(x(rng), y(rng));
   const std::vector<double> va = Eval(a, pts), vb = Eval(b, pts);
   for (size_t k = 0; k < pts.size(); ++k) EXPECT_NEAR(va[k], vb[k], 1e-9) << Where(pts[k]);
+}
+
+TEST(Gouraud, HolesHaveNoValueAndNoInfluence) {
+  // The cells of [1, 2] x [0, 0.5] (a node of the quadtree) have NaN values: a hole. Inside it
+  // (and on its part of the domain's border) no value; every vertex elsewhere, its outline
+  // included, is the mean of the cells around it that are not holes (brute force), so nothing
+  // under the hole reaches the values outside.
+  CellSamples s = WithValues(Unbalanced(), 1, kSeed + 8);
+  const Rect hole{1, 0, 2, 0.5};
+  size_t holes = 0;
+  for (size_t k = 0; k < s.cells.size(); ++k) {
+    const Vec2 c = s.cells[k].center();
+    if (c.x() > hole.x0 && c.x() < hole.x1 && c.y() > hole.y0 && c.y() < hole.y1)
+      s.values[k] = std::numeric_limits<double>::quiet_NaN(), ++holes;
+  }
+  ASSERT_GT(holes, 0u);
+  const Gouraud g(s);
+  auto strictly_inside = [&](const Vec2& p) { return p.x() > hole.x0 && p.x() < hole.x1 && p.y() > hole.y0 && p.y() < hole.y1; };
+  std::vector<Vec2> corners(g.vertices().begin(), g.vertices().begin() + static_cast<std::ptrdiff_t>(g.corner_count()));
+  const std::vector<double> at = Eval(g, corners);
+  for (size_t v = 0; v < corners.size(); ++v) {
+    const double want = CellMean(s, corners[v], 0);  // NaN on the hole's part of the domain border
+    if (strictly_inside(corners[v])) continue;
+    if (std::isnan(want)) EXPECT_TRUE(std::isnan(at[v])) << Where(corners[v]);
+    else EXPECT_NEAR(at[v], want, kRelative) << Where(corners[v]);
+  }
+  std::mt19937 rng(kSeed);
+  std::uniform_real_distribution<double> x(-0.5, 2.5), y(-0.5, 1.5);
+  std::vector<Vec2> pts;
+  for (int k = 0; k < 2000; ++k) pts.emplace_back(x(rng), y(rng));
+  const std::vector<double> out = Eval(g, pts);
+  for (size_t k = 0; k < pts.size(); ++k) {
+    // No value exactly where no cell but holes holds the (clamped) point.
+    const Vec2 clamped(std::clamp(pts[k].x(), 0.0, 2.0), std::clamp(pts[k].y(), 0.0, 1.0));
+    EXPECT_EQ(std::isnan(out[k]), std::isnan(CellMean(s, clamped, 0))) << Where(pts[k]);
+  }
 }
 
 TEST(Gouraud, OneAndTwoThreadsAgreeBitForBit) {
