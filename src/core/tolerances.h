@@ -128,4 +128,11 @@ inline constexpr double kBorderSpacingRelative = 1e-9;
 /// extrapolate any noise in the values without bound.
 inline constexpr double kFitCollinearRelative = 1e-8;
 
+/// Clough-Tocher's gradients (Nielson's equations) are solved by preconditioned conjugate
+/// gradients until the preconditioned residual falls below this fraction of the right-hand
+/// side's: with the system's condition (at most 3 after preconditioning) the gradients are then
+/// within some 1e-13 relative of the exact solution, far below scipy's default tol = 1e-6 and
+/// just above the rounding floor of the sums (some 1e-15).
+inline constexpr double kNielsonResidualRelative = 1e-13;
+
 }  // namespace radrecon::tol
