@@ -58,7 +58,7 @@ timeit "gdal_grid invdist power=4, 2 threads (GeoTIFF)" "$RUNS" gdal_grid --conf
   -txe 0 1 -tye 0 1 -outsize 400 400 -l w1 "$work/w1.vrt" "$work/g.tif"
 cat > "$work/rbf.py" <<'PY'
 import sys, numpy as np
-from scipy.interpolate import RBFInterpolator, griddata
+from scipy.interpolate import CloughTocher2DInterpolator, RBFInterpolator, griddata
 d = np.loadtxt(sys.argv[1], delimiter=",", skiprows=1)
 n = int(sys.argv[2]); kind = sys.argv[3]
 stride = int(sys.argv[5]) if len(sys.argv) > 5 else 1  # every stride-th row and column of the raster
@@ -73,12 +73,18 @@ elif kind == "tps":
     r = RBFInterpolator(d[:, :2], d[:, 2], kernel="thin_plate_spline")(q)  # degree 1, as radrecon's
 elif kind == "tps32":
     r = RBFInterpolator(d[:, :2], d[:, 2], kernel="thin_plate_spline", neighbors=32)(q)
+elif kind == "ct":
+    r = CloughTocher2DInterpolator(d[:, :2], d[:, 2])(q)  # all the raster's points in one call
 else:
     r = griddata(d[:, :2], d[:, 2], q, method="linear")
 np.save(sys.argv[4], r)
 PY
 timeit "scipy RBFInterpolator multiquadric" "$RUNS" /usr/bin/python3 "$work/rbf.py" "$work/w1.csv" 400 rbf "$work/r.npy"
 timeit "scipy RBFInterpolator thin_plate_spline" "$RUNS" /usr/bin/python3 "$work/rbf.py" "$work/w1.csv" 400 tps "$work/r.npy"
+timeit "radrecon linear (PFM)" "$RUNS" rr w1 --method linear --raster 400x400 --domain 0,0,1,1 --out "$work/o.pfm"
+timeit "scipy griddata linear" "$RUNS" /usr/bin/python3 "$work/rbf.py" "$work/w1.csv" 400 linear "$work/r.npy"
+timeit "radrecon clough-tocher (PFM)" "$RUNS" rr w1 --method clough-tocher --raster 400x400 --domain 0,0,1,1 --out "$work/o.pfm"
+timeit "scipy CloughTocher2DInterpolator" "$RUNS" /usr/bin/python3 "$work/rbf.py" "$work/w1.csv" 400 ct "$work/r.npy"
 
 echo "== W3: 100,000 points -> 2000 x 2000"
 timeit "radrecon natural-neighbour (PFM)" "$RUNS" rr w3 --method natural-neighbour --raster 2000x2000 --domain 0,0,1,1 --out "$work/o.pfm"
@@ -89,7 +95,10 @@ timeit "radrecon thin-plate k=32, local patches (PFM)" "$RUNS" rr w3 --method th
 # of the raster (1/25 of the queries); multiply by 25 for the whole raster.
 timeit "scipy RBFInterpolator thin_plate_spline neighbors=32, 1/25 of W3's queries" 1 \
   /usr/bin/python3 "$work/rbf.py" "$work/w3.csv" 2000 tps32 "$work/r.npy" 5
+timeit "radrecon linear (PFM)" "$RUNS" rr w3 --method linear --raster 2000x2000 --domain 0,0,1,1 --out "$work/o.pfm"
 timeit "scipy griddata linear" "$RUNS" /usr/bin/python3 "$work/rbf.py" "$work/w3.csv" 2000 linear "$work/r.npy"
+timeit "radrecon clough-tocher (PFM)" "$RUNS" rr w3 --method clough-tocher --raster 2000x2000 --domain 0,0,1,1 --out "$work/o.pfm"
+timeit "scipy CloughTocher2DInterpolator" "$RUNS" /usr/bin/python3 "$work/rbf.py" "$work/w3.csv" 2000 ct "$work/r.npy"
 timeit "gdal_grid invdistnn power=4 max_points=32 radius=0.05, 2 threads" 1 gdal_grid --config GDAL_NUM_THREADS 2 -q \
   -a invdistnn:power=4:max_points=32:radius=0.05 -txe 0 1 -tye 0 1 -outsize 2000 2000 -l w3 "$work/w3.vrt" "$work/g.tif"
 echo "(scipy RBFInterpolator(neighbors=32) on W3 takes ~160 s on this machine (design brief); not rerun.)"

@@ -148,4 +148,11 @@ inline constexpr double kRbfFlatSubsetRelative = 1e-8;
 /// (a quadtree 33 levels deep still has leaves 1.2e-10 of its side).
 inline constexpr double kCellSnapRelative = 1e-10;
 
+/// Clough-Tocher's gradients (Nielson's equations) are solved by preconditioned conjugate
+/// gradients until the preconditioned residual falls below this fraction of the right-hand
+/// side's: with the system's condition (at most 3 after preconditioning) the gradients are then
+/// within some 1e-13 relative of the exact solution, far below scipy's default tol = 1e-6 and
+/// just above the rounding floor of the sums (some 1e-15).
+inline constexpr double kNielsonResidualRelative = 1e-13;
+
 }  // namespace radrecon::tol

@@ -2,10 +2,11 @@
 // The Delaunay triangulation of scattered samples as the piecewise methods (linear,
 // clough-tocher) use it: faces with their samples and neighbours, point location with
 // barycentric coordinates, and the outside-the-hull rule, all deterministic. The triangulation is
-// CGAL's (exact predicates), built by inserting the samples in a Hilbert-curve order computed
-// without randomness, so co-circular samples (a lattice) are triangulated the same way in every
-// run and by every thread count; a query's location depends on the query alone, never on where a
-// walk started (see locate()).
+// CGAL's (exact predicates), built by CGAL's range insertion, whose spatial sort shuffles with a
+// fixed-seed generator: co-circular samples (a lattice) are triangulated the same way in every
+// run and for every thread count (the diagonal of a co-circular quadrilateral is CGAL's choice
+// for the samples in their given order). A query's location depends on the query alone, never
+// on where a walk started (see locate()). Outside queries cost a pass over the hull's edges.
 
 #include <array>
 #include <cstdint>

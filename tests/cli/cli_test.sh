@@ -183,8 +183,12 @@ import json, sys
 doc = json.load(open(sys.argv[1]))
 for table, method in [("grid", "constant"), ("grid", "bilinear"), ("grid", "bicubic"), ("grid", "shepard"),
                       ("grid", "multiquadric"), ("grid", "natural-neighbour"), ("quadtree", "constant"),
-                      ("quadtree", "shepard"), ("quadtree", "multiquadric"), ("quadtree", "natural-neighbour")]:
-    assert set(doc[table][method]) == {"L1", "L2", "RMSE", "Linf"}, (table, method)
+                      ("quadtree", "shepard"), ("quadtree", "multiquadric"), ("quadtree", "natural-neighbour"),
+                      ("grid", "hermite"), ("grid", "linear"), ("grid", "clough-tocher"), ("grid", "thin-plate"),
+                      ("grid", "sibson-c1"), ("grid", "laplace"), ("quadtree", "gouraud"), ("quadtree", "linear"),
+                      ("grid+barriers", "thin-plate"), ("quadtree+barriers", "sibson-c1")]:
+    assert set(doc[table][method]) == {"L1", "L2", "RMSE", "Linf", "SSIM", "gradient_L2", "overshoot"}, (table, method)
+    assert 0 < doc[table][method]["SSIM"] <= 1, (table, method)
 assert doc["settings"]["ground_leaves"] == 286
 EOF
 
