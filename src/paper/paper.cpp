@@ -93,14 +93,22 @@ void run_paper(const PaperOptions& opt, const std::string& out_where) {
          render_paper_views(scene, cameras, sol, m, params, sampling, at.white_w_m2, figures, stem, only_camera))
       notes.push_back(stem + ": " + f.side + " drawn piecewise constant, as " + method_name(m) + " cannot serve it: " + f.reason);
   };
+  // Views for the paper's own methods (its Fig. 2-4); the others have their ground figures.
+  auto of_paper = [](const std::vector<Method>& methods) {
+    std::vector<Method> out;
+    for (Method m : methods)
+      if (is_paper_method(m)) out.push_back(m);
+    return out;
+  };
   views(data.reference, Method::constant, plain, "fig2_reference");
-  for (Method m : grid_methods) views(data.grid, m, plain, "fig3_" + method_name(m));
-  for (Method m : quadtree_methods) views(data.quadtree, m, plain, "fig4_" + method_name(m));
+  for (Method m : of_paper(grid_methods)) views(data.grid, m, plain, "fig3_" + method_name(m));
+  for (Method m : of_paper(quadtree_methods)) views(data.quadtree, m, plain, "fig4_" + method_name(m));
   // With barriers: the close-up of the wall's foot, where they matter (border samples: the
   // ground figures only).
   if (opt.barriers) {
-    for (Method m : taking_barriers(grid_methods, false)) views(data.grid, m, walled, "fig5_" + method_name(m), "closeup");
-    for (Method m : taking_barriers(quadtree_methods, false))
+    for (Method m : of_paper(taking_barriers(grid_methods, false)))
+      views(data.grid, m, walled, "fig5_" + method_name(m), "closeup");
+    for (Method m : of_paper(taking_barriers(quadtree_methods, false)))
       views(data.quadtree, m, walled, "fig6_" + method_name(m), "closeup");
   }
   const double t_views = clock.lap();

@@ -56,8 +56,15 @@ void figure_rows(std::ostringstream& html, const std::vector<ReportRow>& rows,
   html << "<div class=grid>\n";
   for (const ReportRow& r : rows) {
     html << "<div class=label>" << r.method << "</div>";
-    for (const char* part : parts)
+    for (const char* part : parts) {
+      const std::string name = part;
+      if (!r.views && (name == "_view" || name == "_closeup")) {
+        html << "<span class=noview>" << (name == "_view" ? "ground figures only (views: the paper's methods)" : "")
+             << "</span>";
+        continue;
+      }
       html << "<img src=\"figures/" << r.figure_stem << part << ".png\" alt=\"" << r.method << part << "\">";
+    }
     html << "\n";
   }
   html << "</div>\n";
@@ -69,7 +76,8 @@ void write_report(const std::filesystem::path& dir, const ReportContent& c) {
   std::ostringstream html;
   html << "<!DOCTYPE html>\n<html lang=en><head><meta charset=utf-8><title>radrecon: the paper experiment</title>\n"
        << "<style>body{font-family:sans-serif;max-width:1200px;margin:2em auto;line-height:1.4}"
-       << "img{width:24%;margin:0.25%;image-rendering:auto}.grid{display:block}.label{font-weight:bold;margin-top:0.8em}"
+       << "img{width:24%;margin:0.25%;image-rendering:auto}"
+       << ".noview{display:inline-block;width:24%;margin:0.25%;vertical-align:middle;color:#777;font-size:90%}.grid{display:block}.label{font-weight:bold;margin-top:0.8em}"
        << "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #bbb;padding:0.2em 0.6em;text-align:right}"
        << "td:first-child{text-align:left}.paper{color:#777}caption{font-weight:bold;text-align:left}</style></head><body>\n"
        << "<h1>Reconstructing radiosity by scattered data interpolation</h1>\n"

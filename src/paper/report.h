@@ -16,6 +16,7 @@ struct ReportRow {
   Figures figures;         ///< norms, SSIM, gradient_L2, overshoot
   std::string figure_stem;  ///< e.g. "fig3_bilinear": its _view, _closeup, _ground, _difference
   std::array<double, 3> paper;  ///< the paper's L1, L2, Linf; NaN if it has none
+  bool views = true;            ///< the _view and _closeup images exist (the paper's methods)
 };
 
 struct ReportContent {

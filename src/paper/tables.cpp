@@ -202,7 +202,9 @@ ReportContent report_content(const PaperRun& run, int rays_per_pixel) {
     for (const MethodResult& r : results) {
       const auto it = paper.find(r.name);
       const double nan = std::numeric_limits<double>::quiet_NaN();
-      out.push_back({r.name, r.figures, figure + "_" + r.name, it != paper.end() ? it->second : std::array<double, 3>{nan, nan, nan}});
+      const std::optional<Method> m = parse_method(r.name);
+      out.push_back({r.name, r.figures, figure + "_" + r.name,
+                     it != paper.end() ? it->second : std::array<double, 3>{nan, nan, nan}, m && is_paper_method(*m)});
     }
     return out;
   };

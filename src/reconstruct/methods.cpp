@@ -1,5 +1,6 @@
 #include "reconstruct/methods.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/check.h"
@@ -57,6 +58,11 @@ std::vector<Method> all_methods() {
 std::vector<Method> paper_methods() {
   return {Method::constant, Method::bilinear, Method::bicubic, Method::shepard, Method::multiquadric,
           Method::natural_neighbour};
+}
+
+bool is_paper_method(Method m) {
+  const std::vector<Method> paper = paper_methods();
+  return std::find(paper.begin(), paper.end(), m) != paper.end();
 }
 
 std::vector<Method> scattered_methods() {

@@ -42,6 +42,7 @@ std::optional<Method> parse_method(const std::string& name);
 std::vector<Method> all_methods();
 /// The six methods the paper ran (its Table 1).
 std::vector<Method> paper_methods();
+bool is_paper_method(Method m);
 /// The methods that apply to a quadtree's leaves (Table 2): the paper's four (constant, shepard,
 /// multiquadric, natural-neighbour), then gouraud and the new scattered methods.
 std::vector<Method> scattered_methods();
