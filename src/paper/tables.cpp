@@ -32,8 +32,9 @@ const PublishedTable& published_table2() {
 
 const char* const kBarrierRule =
     "the ground's contact lines with the walls (the solution's barriers): a sample counts for a point only if "
-    "the segment between them crosses no wall foot; constant is the nearest visible sample, bilinear and "
-    "bicubic take each node's value from the cells the point sees";
+    "the segment between them crosses no wall foot; constant is the nearest visible sample, bilinear, "
+    "bicubic and hermite take each node's value from the cells the point sees; linear, clough-tocher and gouraud take "
+    "no barriers and are left out";
 
 const char* const kMetricsRule =
     "SSIM: mean structural similarity of the ground figure (sRGB display values) with the reference's (Wang et "
@@ -98,7 +99,8 @@ nlohmann::json stats_json(const Solution& s) {
 /// " shepard: mu=4, k=all. multiquadric: ... natural-neighbour: ...".
 std::string method_settings(const MethodParams& params) {
   std::string text;
-  for (Method m : {Method::shepard, Method::multiquadric, Method::natural_neighbour})
+  for (Method m : {Method::shepard, Method::multiquadric, Method::thin_plate, Method::natural_neighbour, Method::laplace,
+                   Method::sibson_c1, Method::linear, Method::clough_tocher})
     text.append(" ").append(method_name(m)).append(": ").append(describe_params(m, params)).append(".");
   return text;
 }
@@ -127,6 +129,12 @@ void write_tables(const std::filesystem::path& dir, const PaperRun& run) {
       {"shepard", describe_params(Method::shepard, run.params)},
       {"multiquadric", describe_params(Method::multiquadric, run.params)},
       {"natural-neighbour", describe_params(Method::natural_neighbour, run.params)},
+      {"thin-plate", describe_params(Method::thin_plate, run.params)},
+      {"laplace", describe_params(Method::laplace, run.params)},
+      {"sibson-c1", describe_params(Method::sibson_c1, run.params)},
+      {"linear", describe_params(Method::linear, run.params)},
+      {"clough-tocher", describe_params(Method::clough_tocher, run.params)},
+      {"metrics", kMetricsRule},
       {"barriers", kBarrierRule}, {"border_samples", kBorderRule}};
   write_text_file(dir / "errors.json", errors.dump(2) + "\n");
 
@@ -140,9 +148,10 @@ void write_tables(const std::filesystem::path& dir, const PaperRun& run) {
                   table_markdown("Table 1: errors for the reconstruction of grid data", run.table1, published_table1(),
                                  "Grid data: " + d.grid.mesh + " (" + std::to_string(grid_ground.grid_nu) + " x " +
                                      std::to_string(grid_ground.grid_nv) + " elements on the ground). Reference: " +
-                                     d.reference.mesh + ". Bilinear and bicubic (natural splines) interpolate nodal "
-                                     "values, each the mean of the cells sharing the node (border nodes: of the "
-                                     "border cells only); the scattered methods use the cell centres." +
+                                     d.reference.mesh + ". Bilinear, bicubic (natural splines) and hermite interpolate "
+                                     "nodal values, each the mean of the cells sharing the node (border nodes: of the "
+                                     "border cells only); gouraud averages the cells at each corner and interpolates "
+                                     "linearly over two triangles per cell; the scattered methods use the cell centres." +
                                      settings_text + common));
   char eps[64];
   std::snprintf(eps, sizeof eps, "%.4g", d.quadtree.stats.epsilon_w);
@@ -151,8 +160,9 @@ void write_tables(const std::filesystem::path& dir, const PaperRun& run) {
                                  "Quadtree data: hierarchical radiosity, " + std::to_string(quad_ground.elements.size()) +
                                      " leaves on the ground (epsilon " + eps + " W, " +
                                      std::to_string(d.quadtree.stats.links) + " links). Reference: " + d.reference.mesh +
-                                     ". Constant: the value of the leaf containing the point; the scattered "
-                                     "methods use the leaf centres." + settings_text + common));
+                                     ". Constant: the value of the leaf containing the point; gouraud: the balanced "
+                                     "quadtree triangulated without T-vertices, the leaves averaged at each vertex; the "
+                                     "scattered methods use the leaf centres." + settings_text + common));
   if (!run.grid_barriers.empty() || !run.quadtree_barriers.empty()) write_table3(dir, run);
 }
 
