@@ -5,6 +5,7 @@
 # Installs python3-scipy and gdal-bin if missing (bench only; the tests do not need them) and
 # uses Debian's /usr/bin/python3, where they live.
 # Prints the median wall time of RUNS runs per tool and method. Long peers run once (see below).
+# ONLY=REGEX times only the lines whose label matches (e.g. ONLY='linear|Clough').
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD=${BUILD:-build}
@@ -37,8 +38,10 @@ VRT
 done
 
 median() { sort -g | awk '{a[NR]=$1} END {print (NR%2) ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2}'; }
+ONLY=${ONLY:-}  # a regular expression: time only the lines whose label matches it
 timeit() {  # LABEL RUNS COMMAND...
   local label=$1 runs=$2; shift 2
+  if [ -n "$ONLY" ] && ! [[ "$label" =~ $ONLY ]]; then return; fi
   : > "$work/t"
   for _ in $(seq "$runs"); do
     local s e
@@ -95,6 +98,8 @@ timeit "radrecon thin-plate k=32, local patches (PFM)" "$RUNS" rr w3 --method th
 # of the raster (1/25 of the queries); multiply by 25 for the whole raster.
 timeit "scipy RBFInterpolator thin_plate_spline neighbors=32, 1/25 of W3's queries" 1 \
   /usr/bin/python3 "$work/rbf.py" "$work/w3.csv" 2000 tps32 "$work/r.npy" 5
+timeit "radrecon sibson-c1 (PFM)" "$RUNS" rr w3 --method sibson-c1 --raster 2000x2000 --domain 0,0,1,1 --out "$work/o.pfm"
+timeit "radrecon laplace (PFM)" "$RUNS" rr w3 --method laplace --raster 2000x2000 --domain 0,0,1,1 --out "$work/o.pfm"
 timeit "radrecon linear (PFM)" "$RUNS" rr w3 --method linear --raster 2000x2000 --domain 0,0,1,1 --out "$work/o.pfm"
 timeit "scipy griddata linear" "$RUNS" /usr/bin/python3 "$work/rbf.py" "$work/w3.csv" 2000 linear "$work/r.npy"
 timeit "radrecon clough-tocher (PFM)" "$RUNS" rr w3 --method clough-tocher --raster 2000x2000 --domain 0,0,1,1 --out "$work/o.pfm"

@@ -15,6 +15,7 @@
 
 #include "core/vec.h"
 #include "evaluate/norms.h"
+#include "reconstruct/barriers.h"
 #include "reconstruct/samples.h"
 
 namespace radrecon {
@@ -30,7 +31,8 @@ struct ImageShape {
 inline constexpr int kSsimWindow = 11;
 inline constexpr double kSsimSigma = 1.5;
 
-/// The mean structural similarity of `a` and `reference` (Wang et al. 2004, as their ssim.m):
+/// The mean structural similarity of `a` and `reference` (Wang et al. 2004, as their
+/// ssim_index.m: no downsampling first, unlike their later ssim.m):
 /// display values in [0, 1] (dynamic range L = 1, C1 = (0.01 L)^2, C2 = (0.03 L)^2), local means,
 /// variances and covariance under the 11 x 11 Gaussian window (sigma 1.5, weights summing to 1),
 ///   SSIM(x) = (2 mu_a mu_r + C1)(2 sigma_ar + C2) / ((mu_a^2 + mu_r^2 + C1)(sigma_a^2 + sigma_r^2 + C2)),
@@ -51,11 +53,13 @@ double gradient_l2(std::span<const double> a, std::span<const double> reference,
                    double dy);
 
 /// Overshoot: the largest amount by which a reconstruction leaves the range of the data samples
-/// around each query point. For a point q inside the samples' convex hull the range is [min, max]
-/// of the values of q's natural neighbours (every sample with a nonzero Sibson coordinate,
-/// NaturalNeighbour::coordinates()); outside the hull (or on it), of the two samples of the hull
-/// edge nearest to q (hull edges join consecutive samples along the hull, collinear ones included)
-/// and the 3 samples nearest to q. Per channel:
+/// around each query point. For a point q inside the samples' convex hull or on it the range is
+/// [min, max] of the values of q's natural neighbours (every sample with a nonzero Sibson
+/// coordinate, NaturalNeighbour::coordinates(): on a hull edge its two ends); outside the hull, of
+/// the two samples of the hull edge nearest to q (hull edges join consecutive samples along the
+/// hull, collinear ones included) and the 3 samples nearest to q. With barriers, the natural
+/// neighbours are those over the samples q sees (natural_neighbour.h); outside the hull of what q
+/// sees, the hull edge and nearest samples are still taken over all samples. Per channel:
 ///   overshoot = max over points and channels of max(0, a - max, min - a),
 /// in the values' unit (W/m^2). 0 for a method that stays within its neighbours' range (any
 /// convex combination of them).
@@ -68,7 +72,8 @@ struct NeighbourRanges {
   int channels = 1;
   std::vector<double> lo, hi;  ///< points.size() * channels each, point-major
 };
-std::optional<NeighbourRanges> neighbour_ranges(const ScatteredSamples& samples, std::span<const Vec2> points);
+std::optional<NeighbourRanges> neighbour_ranges(const ScatteredSamples& samples, std::span<const Vec2> points,
+                                                const Barriers& barriers = {});
 
 /// The overshoot of `approx` (the ranges' points.size() * channels values, point-major); NaN when
 /// a value is NaN.

@@ -69,12 +69,13 @@ struct Scratch {
 
 }  // namespace
 
-std::optional<NeighbourRanges> neighbour_ranges(const ScatteredSamples& samples, std::span<const Vec2> points) {
+std::optional<NeighbourRanges> neighbour_ranges(const ScatteredSamples& samples, std::span<const Vec2> points,
+                                                const Barriers& barriers) {
   const int C = samples.channels;
   RR_CHECK_EQ(samples.values.size(), samples.points.size() * C, "overshoot: samples and values do not match");
   std::optional<NaturalNeighbour> nn;
   try {
-    nn.emplace(samples, OutsideHull::none);
+    nn.emplace(samples, OutsideHull::none, barriers);
   } catch (const ReconstructionError&) {
     return std::nullopt;  // no natural neighbours: fewer than 3 samples, on one line, repeated
   }

@@ -41,8 +41,11 @@ std::vector<MethodResult> evaluate_data_set(const Solution& data, const std::vec
                                             const std::string& figure) {
   const SurfaceSolution& ground = require_surface(data, "ground", "solution " + data.mesh);
   const bool grid = ground.grid_nu > 0 && ground.grid_nv > 0;
+  // The ranges over the samples each point sees when the methods honour the barriers.
+  Barriers barriers;
+  if (sampling.barriers) barriers = Barriers::from_polylines(ground.barriers).value();
   const std::optional<NeighbourRanges> ranges =
-      neighbour_ranges(grid ? grid_cells(ground).centres() : element_centres(ground), at.points);
+      neighbour_ranges(grid ? grid_cells(ground).centres() : element_centres(ground), at.points, barriers);
   std::vector<MethodResult> table;
   for (Method m : methods)
     table.push_back(evaluate(reconstruct_side(ground, m, params, sampling), method_name(m), at, ranges, figures, figure));

@@ -41,12 +41,13 @@ const char* const kMetricsRule =
     "al. 2004, 11 x 11 Gaussian window, sigma 1.5; 1 = identical). Gradient L2: the mean squared difference of "
     "the finite-difference gradients, (W/m^2/m)^2: it sees Mach bands and ringing. Overshoot: the largest amount "
     "(W/m^2) by which the reconstruction leaves the range of the data samples around a point (its natural "
-    "neighbours among the cell or leaf centres).";
+    "neighbours among the cell or leaf centres; with barriers, among those it sees).";
 
 const char* const kBorderRule =
-    "shepard, multiquadric and natural-neighbour also take samples on the ground's border and on both sides of "
-    "each wall foot, at the samples' spacing, each the value at its point of the weighted least-squares plane "
-    "through the 6 nearest samples it sees (constant and the grid methods use the data as it is)";
+    "the methods that take points and barriers (shepard, multiquadric, thin-plate, natural-neighbour, laplace, "
+    "sibson-c1) also take samples on the ground's border and on both sides of each wall foot, at the samples' "
+    "spacing, each the value at its point of the weighted least-squares plane through the 6 nearest samples it "
+    "sees (constant and the grid methods use the data as it is, and are left out of Tables 3c and 3d)";
 
 std::string format_3g(double v) {
   char buf[32];

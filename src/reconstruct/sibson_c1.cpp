@@ -36,13 +36,18 @@ std::vector<double> fit_gradients(const Delaunay& dt, std::span<const Delaunay::
     } else {
       CGAL::natural_neighbor_coordinates_2(dt, v, std::back_inserter(weights), VertexIndex());
     }
-    // The normal equations H g = r of the weighted plane, per channel.
+    // The normal equations H g = r of the weighted plane, per channel, in offsets divided by the
+    // farthest neighbour's distance (so that H stays of order one at any scale of coordinates:
+    // its determinant grows like the fourth power of the offsets), the gradient divided back.
+    double scale = 0;
+    for (const auto& [j, lambda] : weights) scale = std::max(scale, (points[j] - points[i]).norm());
+    if (!(scale > 0)) return;
     double h00 = 0, h01 = 0, h11 = 0;
     thread_local std::vector<double> r;
     r.assign(C * 2, 0.0);
     for (const auto& [j, lambda] : weights) {
       if (barriers.blocks(points[i], points[j])) continue;
-      const Vec2 d = points[j] - points[i];
+      const Vec2 d = (points[j] - points[i]) / scale;
       const double w = lambda / d.squaredNorm();
       h00 += w * d.x() * d.x(), h01 += w * d.x() * d.y(), h11 += w * d.y() * d.y();
       for (size_t c = 0; c < C; ++c) {
@@ -53,8 +58,8 @@ std::vector<double> fit_gradients(const Delaunay& dt, std::span<const Delaunay::
     const double det = h00 * h11 - h01 * h01;
     if (!(det > tol::kGradientFitSingularRelative * (h00 + h11) * (h00 + h11))) return;  // gradient 0
     for (size_t c = 0; c < C; ++c) {
-      gradients[(i * C + c) * 2] = (h11 * r[2 * c] - h01 * r[2 * c + 1]) / det;
-      gradients[(i * C + c) * 2 + 1] = (h00 * r[2 * c + 1] - h01 * r[2 * c]) / det;
+      gradients[(i * C + c) * 2] = (h11 * r[2 * c] - h01 * r[2 * c + 1]) / det / scale;
+      gradients[(i * C + c) * 2 + 1] = (h00 * r[2 * c + 1] - h01 * r[2 * c]) / det / scale;
     }
   });
   return gradients;

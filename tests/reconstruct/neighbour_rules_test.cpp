@@ -187,6 +187,23 @@ TEST(SibsonC1, ReproducesLinearFunctionsAndIsExactAtTheSamples) {
   }
 }
 
+TEST(SibsonC1, ReproducesLinearFunctionsAtAnyScaleOfCoordinates) {
+  // The gradient fit works in offsets scaled to the neighbourhood, so its normal matrix (which
+  // grows like the fourth power of the offsets) neither overflows nor underflows. Sibson's areas
+  // and circumcentres themselves, products of four coordinates, bound the usable range to about
+  // 1e+-75 (a known limit of every triangulation method here).
+  for (const double scale : {1e-60, 1e-30, 1.0, 1e30, 1e60}) {
+    std::mt19937 rng(37);
+    ScatteredSamples s = random_samples(40, rng);
+    auto f = [&](const Vec2& p) { return 1 + 2 * p.x() / scale - 3 * p.y() / scale; };
+    for (Vec2& p : s.points) p *= scale;
+    for (size_t i = 0; i < s.points.size(); ++i) s.values[i] = f(s.points[i]);
+    const NaturalNeighbour c1(s, OutsideHull::none, {}, NeighbourRule::sibson_c1);
+    const Vec2 q = Vec2(2.1, 1.9) * scale;
+    EXPECT_NEAR(eval1(c1, q), f(q), 1e-12) << "coordinates scaled by " << scale;
+  }
+}
+
 TEST(SibsonC1, FirstDerivativesAreContinuousAtTheSamples) {
   std::mt19937 rng(36);
   ScatteredSamples s = random_samples(200, rng);
