@@ -229,6 +229,25 @@ TEST(SibsonC1, FirstDerivativesAreContinuousAtTheSamples) {
   }
   EXPECT_LT(worst_c1, kC1);
   EXPECT_GT(worst_c0, 100 * kC1);  // the test sees kinks where there are some
+  // And across the Delaunay edges and circumcircles in between (where Sibson's coordinates are
+  // C1 already): on random points of the edges from each sample to its natural neighbours.
+  double worst_edges = 0;
+  int tested = 0;
+  std::uniform_real_distribution<double> t(0.05, 0.95);
+  for (size_t i = 0; i < s.points.size(); i += 7) {
+    const Vec2 p = s.points[i];
+    if ((p.array() < 0.8).any() || (p.array() > 3.2).any()) continue;
+    for (const auto& [j, w] : c0.coordinates(p + Vec2(1e-3, 2e-3))) {
+      if (j == i) continue;
+      const Vec2 e = s.points[j] - p, on = p + t(rng) * e, across = Vec2(-e.y(), e.x()).normalized();
+      const double right = (eval1(c1, on + h * across) - eval1(c1, on)) / h;
+      const double left = (eval1(c1, on) - eval1(c1, on - h * across)) / h;
+      worst_edges = std::max(worst_edges, std::abs(right - left));
+      ++tested;
+    }
+  }
+  EXPECT_GT(tested, 50);
+  EXPECT_LT(worst_edges, kC1);
 }
 
 }  // namespace
