@@ -8,13 +8,6 @@ namespace radrecon::nn {
 
 namespace {
 
-/// Turns CGAL's (vertex, weight) pairs into (sample index, weight).
-struct VertexIndex {
-  using argument_type = std::pair<Delaunay::Vertex_handle, K::FT>;
-  using result_type = std::pair<unsigned, double>;
-  result_type operator()(const argument_type& p) const { return {p.first->info(), p.second}; }
-};
-
 /// The circumcentre of the triangle (p, a, b), relative to p (metres).
 Vec2 circumcentre_from(const Vec2& p, const Vec2& a, const Vec2& b) {
   const Vec2 u = a - p, v = b - p;

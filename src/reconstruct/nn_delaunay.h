@@ -21,6 +21,14 @@ using Tds = CGAL::Triangulation_data_structure_2<Vb>;
 using Delaunay = CGAL::Delaunay_triangulation_2<K, Tds>;
 using Point = K::Point_2;
 
+/// Turns CGAL's (vertex, weight) pairs into (sample index, weight): the output functor of CGAL's
+/// coordinate functions.
+struct VertexIndex {
+  using argument_type = std::pair<Delaunay::Vertex_handle, K::FT>;
+  using result_type = std::pair<unsigned, double>;
+  result_type operator()(const argument_type& p) const { return {p.first->info(), p.second}; }
+};
+
 /// The natural-neighbour coordinates of p, a point strictly inside the triangulation's hull and on
 /// no vertex, over the boundary `hole` of its conflict zone (as get_boundary_of_conflicts() gives
 /// it, counterclockwise), into `out` as (sample index, weight) pairs, unnormalised. Returns the

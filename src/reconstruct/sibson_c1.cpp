@@ -7,16 +7,6 @@
 
 namespace radrecon::nn {
 
-namespace {
-
-struct VertexIndex {
-  using argument_type = std::pair<Delaunay::Vertex_handle, K::FT>;
-  using result_type = std::pair<unsigned, double>;
-  result_type operator()(const argument_type& p) const { return {p.first->info(), p.second}; }
-};
-
-}  // namespace
-
 std::vector<double> fit_gradients(const Delaunay& dt, std::span<const Delaunay::Vertex_handle> vertex_of,
                                   std::span<const Vec2> points, std::span<const double> values, int channels,
                                   const Barriers& barriers) {

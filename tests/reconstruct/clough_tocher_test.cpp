@@ -13,31 +13,19 @@
 #include "reconstruct/clough_tocher.h"
 #include "reconstruct/delaunay_linear.h"
 #include "reconstruct/methods.h"
+#include "support/scattered.h"
 
 namespace radrecon {
 namespace {
 
-ScatteredSamples random_samples(int n, std::mt19937& rng, double lo = 0, double hi = 4) {
-  std::uniform_real_distribution<double> xy(lo, hi), value(-1, 1);
-  ScatteredSamples s;
-  for (int i = 0; i < n; ++i) {
-    s.points.emplace_back(xy(rng), xy(rng));
-    s.values.push_back(value(rng));
-  }
-  return s;
-}
+using testing::eval1;
+using testing::random_samples;
 
 /// Random samples plus the corners of the square [0, 4]^2, so that the hull is the square.
 ScatteredSamples covering_samples(int n, std::mt19937& rng) {
   ScatteredSamples s = random_samples(n, rng);
   for (const Vec2& c : {Vec2(0, 0), Vec2(4, 0), Vec2(4, 4), Vec2(0, 4)}) s.points.push_back(c), s.values.push_back(0);
   return s;
-}
-
-double eval1(const Interpolant& f, const Vec2& q) {
-  double v;
-  f.evaluate(std::span(&q, 1), std::span(&v, 1));
-  return v;
 }
 
 /// Reproducing a polynomial costs rounding only: the control net from the values and gradients

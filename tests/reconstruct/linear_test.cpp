@@ -11,29 +11,17 @@
 
 #include "reconstruct/delaunay_linear.h"
 #include "reconstruct/methods.h"
+#include "support/scattered.h"
 
 namespace radrecon {
 namespace {
 
+using testing::eval1;
+using testing::random_samples;
+
 /// Interpolating a linear function costs a few roundings of values O(1-10): barycentric
 /// coordinates from a 2 x 2 inverse, then a three-term sum.
 constexpr double kLinearRounding = 1e-12;
-
-ScatteredSamples random_samples(int n, std::mt19937& rng, double lo = 0, double hi = 4) {
-  std::uniform_real_distribution<double> xy(lo, hi), value(-1, 1);
-  ScatteredSamples s;
-  for (int i = 0; i < n; ++i) {
-    s.points.emplace_back(xy(rng), xy(rng));
-    s.values.push_back(value(rng));
-  }
-  return s;
-}
-
-double eval1(const Interpolant& f, const Vec2& q) {
-  double v;
-  f.evaluate(std::span(&q, 1), std::span(&v, 1));
-  return v;
-}
 
 double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 

@@ -9,30 +9,18 @@
 #include "core/error.h"
 #include "reconstruct/natural_neighbour.h"
 #include "support/voronoi.h"
+#include "support/scattered.h"
 
 namespace radrecon {
 namespace {
+
+using testing::eval1;
+using testing::random_samples;
 
 using testing::area;
 using testing::clip_closer;
 using testing::Polygon;
 using testing::voronoi_cell;
-
-ScatteredSamples random_samples(int n, std::mt19937& rng, double lo = 0, double hi = 4) {
-  std::uniform_real_distribution<double> xy(lo, hi), value(-1, 1);
-  ScatteredSamples s;
-  for (int i = 0; i < n; ++i) {
-    s.points.emplace_back(xy(rng), xy(rng));
-    s.values.push_back(value(rng));
-  }
-  return s;
-}
-
-double eval1(const Interpolant& f, const Vec2& q) {
-  double v;
-  f.evaluate(std::span(&q, 1), std::span(&v, 1));
-  return v;
-}
 
 TEST(NaturalNeighbour, CoordinatesEqualStolenVoronoiAreas) {
   std::mt19937 rng(21);

@@ -16,25 +16,13 @@
 #include "reconstruct/natural_neighbour.h"
 #include "reconstruct/sibson_c1.h"
 #include "support/voronoi.h"
+#include "support/scattered.h"
 
 namespace radrecon {
 namespace {
 
-ScatteredSamples random_samples(int n, std::mt19937& rng) {
-  std::uniform_real_distribution<double> xy(0, 4), value(-1, 1);
-  ScatteredSamples s;
-  for (int i = 0; i < n; ++i) {
-    s.points.emplace_back(xy(rng), xy(rng));
-    s.values.push_back(value(rng));
-  }
-  return s;
-}
-
-double eval1(const Interpolant& f, const Vec2& q) {
-  double v;
-  f.evaluate(std::span(&q, 1), std::span(&v, 1));
-  return v;
-}
+using testing::eval1;
+using testing::random_samples;
 
 TEST(Laplace, CoordinatesAreVoronoiEdgeLengthsOverDistances) {
   std::mt19937 rng(31);
