@@ -7,47 +7,12 @@ set -u
 RADRECON=${1:?usage: cli_test.sh /path/to/radrecon}
 TMP=$(mktemp -d "${TMPDIR:-/tmp}/radrecon_cli_test.XXXXXX")
 trap 'rm -rf "$TMP"' EXIT
+RADRECON_COMMAND=()
+# shellcheck source=harness.sh
+source "$(dirname "$0")/harness.sh"
 
-failures=0
-fail() {
-  echo "FAIL: $*" >&2
-  failures=$((failures + 1))
-}
 
-# run NAME ARGS...: runs radrecon, capturing stdout, stderr and the exit code in $TMP/NAME.*
-run() {
-  local name=$1
-  shift
-  "$RADRECON" "$@" >"$TMP/$name.stdout" 2>"$TMP/$name.stderr"
-  echo $? >"$TMP/$name.rc"
-}
-rc() { cat "$TMP/$1.rc"; }
 
-expect_rc() {  # NAME CODE
-  local got
-  got=$(rc "$1")
-  if [ "$got" != "$2" ]; then
-    fail "$1: exit code $got, expected $2; stderr: $(head -c 500 "$TMP/$1.stderr")"
-  fi
-}
-expect_nonzero() {  # NAME
-  if [ "$(rc "$1")" = 0 ]; then fail "$1: exit code 0, expected non-zero"; fi
-}
-expect_stderr_has() {  # NAME TEXT
-  if ! grep -qF -- "$2" "$TMP/$1.stderr"; then
-    fail "$1: stderr does not mention '$2'; stderr: $(head -c 500 "$TMP/$1.stderr")"
-  fi
-}
-expect_stderr_nonempty() {  # NAME
-  if [ ! -s "$TMP/$1.stderr" ]; then fail "$1: no message on stderr"; fi
-}
-expect_no_output() {  # NAME PATH: neither the file nor a temporary sibling of it exists
-  local base
-  base=$(basename "$2")
-  if compgen -G "$(dirname "$2")/$base*" >/dev/null; then
-    fail "$1: output left behind: $(ls "$(dirname "$2")/$base"*)"
-  fi
-}
 
 # --- help ---------------------------------------------------------------------------------
 run help --help
@@ -236,8 +201,4 @@ run unwritable solve --scene paper --mesh grid:2 --out /proc/nonexistent/x.json 
 expect_rc unwritable 2
 expect_stderr_has unwritable "/proc/nonexistent"
 
-if [ "$failures" -ne 0 ]; then
-  echo "cli_test: $failures failure(s)" >&2
-  exit 1
-fi
-echo "cli_test: all checks passed"
+finish cli_test

@@ -8,33 +8,15 @@ set -u
 
 RADRECON=${1:?usage: compare_test.sh /path/to/radrecon}
 RADRECON=$(cd "$(dirname "$RADRECON")" && pwd)/$(basename "$RADRECON")  # the test runs in its own folder
+HERE=$(cd "$(dirname "$0")" && pwd)
 command -v python3 >/dev/null || { echo "SKIP: no python3"; exit 77; }
 TMP=$(mktemp -d "${TMPDIR:-/tmp}/radrecon_compare_test.XXXXXX")
 trap 'rm -rf "$TMP"' EXIT
 cd "$TMP" || exit 1
+RADRECON_COMMAND=(compare)
+# shellcheck source=harness.sh
+source "$HERE/harness.sh"
 
-failures=0
-fail() {
-  echo "FAIL: $*" >&2
-  failures=$((failures + 1))
-}
-# run NAME ARGS...: runs `radrecon compare ARGS`, keeping stdout, stderr and exit code in NAME.*
-run() {
-  local name=$1
-  shift
-  "$RADRECON" compare "$@" >"$name.stdout" 2>"$name.stderr"
-  echo $? >"$name.rc"
-}
-expect_rc() {  # NAME CODE
-  local got
-  got=$(cat "$1.rc")
-  if [ "$got" != "$2" ]; then
-    fail "$1: exit code $got, expected $2; stderr: $(head -c 500 "$1.stderr")"
-  fi
-}
-expect_stderr_has() {  # NAME TEXT
-  grep -qF -- "$2" "$1.stderr" || fail "$1: stderr does not mention '$2'; stderr: $(head -c 500 "$1.stderr")"
-}
 # check_json NAME PYTHON-EXPRESSION: the expression, over j = the JSON on NAME.stdout, is true.
 check_json() {
   python3 -c "import json, math, sys; j = json.load(open('$1.stdout')); sys.exit(0 if ($2) else 1)" 2>"$1.pyerr" ||
@@ -208,8 +190,4 @@ for word in --diff --threshold --json SSIM gradient_L2 overshoot "mid-grey"; do
   grep -qF -- "$word" help.stdout || fail "help: does not mention $word"
 done
 
-if [ "$failures" -gt 0 ]; then
-  echo "$failures failure(s)" >&2
-  exit 1
-fi
-echo "compare: all checks passed"
+finish compare_test

@@ -8,36 +8,11 @@ set -u
 RADRECON=${1:?usage: interpolate_test.sh /path/to/radrecon}
 TMP=$(mktemp -d "${TMPDIR:-/tmp}/radrecon_interpolate_test.XXXXXX")
 trap 'rm -rf "$TMP"' EXIT
+RADRECON_COMMAND=(interpolate)
+# shellcheck source=harness.sh
+source "$(dirname "$0")/harness.sh"
 
-failures=0
-fail() {
-  echo "FAIL: $*" >&2
-  failures=$((failures + 1))
-}
 
-# run NAME ARGS...: runs `radrecon interpolate ARGS`, keeping stdout, stderr and exit code in $TMP/NAME.*
-run() {
-  local name=$1
-  shift
-  "$RADRECON" interpolate "$@" >"$TMP/$name.stdout" 2>"$TMP/$name.stderr"
-  echo $? >"$TMP/$name.rc"
-}
-expect_rc() {  # NAME CODE
-  local got
-  got=$(cat "$TMP/$1.rc")
-  if [ "$got" != "$2" ]; then
-    fail "$1: exit code $got, expected $2; stderr: $(head -c 500 "$TMP/$1.stderr")"
-    return 1
-  fi
-}
-expect_stderr_has() {  # NAME TEXT
-  if ! grep -qF -- "$2" "$TMP/$1.stderr"; then
-    fail "$1: stderr does not mention '$2'; stderr: $(head -c 500 "$TMP/$1.stderr")"
-  fi
-}
-expect_no_output() {  # NAME PATH: neither the file nor a temporary sibling of it exists
-  if compgen -G "$2*" >/dev/null; then fail "$1: output left behind: $(ls "$2"*)"; fi
-}
 
 # check_values NAME OUT.csv EXPECTED.csv TOL: same rows, same x,y, values within TOL (no NaN).
 check_values() {
@@ -311,8 +286,4 @@ grep -q nan "$TMP/no_border_nn.csv" || fail "no_border_nn: every point had a val
 refuse border_constant "--border-samples" "$TMP/b7.csv" --samples "$S" --method constant --border-samples --queries "$Q"
 refuse domain_without_border "--domain" "$TMP/b8.csv" --samples "$S" --method shepard --domain 0,0,1,1 --queries "$Q"
 
-if [ "$failures" -ne 0 ]; then
-  echo "interpolate_test: $failures check(s) failed" >&2
-  exit 1
-fi
-echo "interpolate_test: all checks passed"
+finish interpolate_test
