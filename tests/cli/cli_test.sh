@@ -177,6 +177,28 @@ expect_rc render_sol 2
 expect_stderr_has render_sol "badsol.json"
 expect_no_output render_sol "$TMP/bad.png"
 
+# The white point: by default the 99th percentile of the lit surfaces in sight, said on stderr.
+run render_white render --scene paper --solution "$TMP/solution.json" --camera view --size 32x24 --out "$TMP/white.png"
+expect_rc render_white 0
+expect_stderr_has render_white "99th percentile"
+run render_white_set render --scene paper --solution "$TMP/solution.json" --camera view --size 32x24 --white 3 --out "$TMP/white3.png"
+expect_rc render_white_set 0
+expect_stderr_has render_white_set "white 3 W/m^2 (--white)"
+# Too many rays, or more memory than there is: refused before any work, with advice.
+run render_rays render --scene paper --solution "$TMP/solution.json" --camera view --size 8192x8192 --samples 16 --out "$TMP/huge.png"
+expect_rc render_rays 2
+expect_stderr_has render_rays "--samples 1"
+expect_no_output render_rays "$TMP/huge.png"
+if ! grep -q __asan_init "$RADRECON"; then  # ASan needs address space beyond any ulimit -v
+  (ulimit -v 1000000 && exec "$RADRECON" render --scene paper --solution "$TMP/solution.json" --camera view \
+    --size 8000x8000 --samples 1 --out "$TMP/huge.pfm") >"$TMP/render_mem.stdout" 2>"$TMP/render_mem.stderr"
+  echo $? >"$TMP/render_mem.rc"
+  expect_rc render_mem 2
+  expect_stderr_has render_mem "of memory"
+  expect_stderr_has render_mem "smaller --size"
+  expect_no_output render_mem "$TMP/huge.pfm"
+fi
+
 # --- barriers: the solution lists the wall feet on the ground; render honours them unless told not
 # to, and the pictures differ (light no longer leaks under the walls).
 grep -q '"barriers": \[\[\[2.6' "$TMP/solution.json" || fail "solve: the ground's barriers are missing from the solution"
