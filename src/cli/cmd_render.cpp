@@ -44,7 +44,8 @@ constexpr int kMaxImageSide = 8192;
 /// At most this many pixels: the linear image takes 24 bytes a pixel (1.6 GB at this size).
 constexpr long long kMaxImagePixels = static_cast<long long>(kMaxImageSide) * kMaxImageSide;
 /// At most this many rays (pixels x rays per pixel): 8192 x 8192 at 8 x 8, or 4000 x 4000 at 16 x
-/// 16; on the paper's scene about RAYS_TIME on two cores (docs/benchmarks.md).
+/// 16; on the paper's scene some 4 million rays a second on two cores, so about 18 minutes
+/// (docs/benchmarks.md).
 constexpr long long kMaxRenderRays = 1LL << 32;
 
 /// Bytes this process may still allocate: the physical memory, or less under a limit on its
