@@ -13,10 +13,11 @@ std::optional<double> percentile_white(const Rendering& rendering, double percen
   const Image& img = rendering.image;
   RR_CHECK_EQ(rendering.reflecting.size(), static_cast<size_t>(img.width()) * img.height(), "mask size");
   std::vector<double> brightest;  // reserved exactly: 8 bytes a reflecting pixel, no more
-  brightest.reserve(static_cast<size_t>(std::count_if(rendering.reflecting.begin(), rendering.reflecting.end(), [](std::uint8_t r) { return r != 0; })));
+  const auto& mask = rendering.reflecting;
+  brightest.reserve(static_cast<size_t>(std::count_if(mask.begin(), mask.end(), [](std::uint8_t r) { return r != 0; })));
   for (int y = 0; y < img.height(); ++y)
     for (int x = 0; x < img.width(); ++x)
-      if (rendering.reflecting[static_cast<size_t>(y) * img.width() + x]) brightest.push_back(img.at(x, y).maxCoeff());
+      if (mask[static_cast<size_t>(y) * img.width() + x]) brightest.push_back(img.at(x, y).maxCoeff());
   if (brightest.empty()) return std::nullopt;
   // Nearest rank: the k-th smallest of n, k = ceil(p n / 100), 1 <= k <= n (p n is exact for a
   // whole p, so that k is the exact rank whenever p n / 100 is whole).
