@@ -184,6 +184,28 @@ expect_stderr_has render_white "99th percentile"
 run render_white_set render --scene paper --solution "$TMP/solution.json" --camera view --size 32x24 --white 3 --out "$TMP/white3.png"
 expect_rc render_white_set 0
 expect_stderr_has render_white_set "white 3 W/m^2 (--white)"
+# A light in the ceiling's plane, solved and rendered from below: drawn (the emitter wins the tie).
+cat >"$TMP/coplanar.json" <<'EOF'
+{"name": "coplanar", "surfaces": [
+ {"name": "ceiling", "corners": [[0,0,2.5], [0,4,2.5], [4,4,2.5], [4,0,2.5]], "reflectance": 0.5},
+ {"name": "light", "corners": [[1.5,1.5,2.5], [1.5,2.5,2.5], [2.5,2.5,2.5], [2.5,1.5,2.5]], "reflectance": 0, "emission": 40},
+ {"name": "floor", "corners": [[0,0,0], [4,0,0], [4,4,0], [0,4,0]], "reflectance": 0.5}],
+ "cameras": [{"name": "up", "eye": [2,2,0.5], "target": [2,2,2.5], "up": [0,1,0], "fov_deg": 60}]}
+EOF
+run coplanar_solve solve --scene "$TMP/coplanar.json" --mesh grid:8 --out "$TMP/coplanar_s.json" --quiet
+expect_rc coplanar_solve 0
+run coplanar_render render --scene "$TMP/coplanar.json" --solution "$TMP/coplanar_s.json" --camera up --size 60x60 \
+  --out "$TMP/coplanar.pfm" --quiet
+expect_rc coplanar_render 0
+# The light spans 2 x 12.99 of the 60 pixels across: 24 x 24 pixels wholly inside it, 26 x 26 touched.
+python3 - "$TMP/coplanar.pfm" <<'PY' || fail "render: the light in the ceiling's plane is not drawn"
+import struct, sys
+magic, size, scale, body = open(sys.argv[1], "rb").read().split(b"\n", 3)
+w, h = map(int, size.split())
+red = [struct.unpack_from("<f", body, 12 * k)[0] for k in range(w * h)]
+bright = sum(1 for v in red if v > 20)
+assert red[30 * w + 30] == 40.0 and 24 * 24 <= bright <= 26 * 26, (red[30 * w + 30], bright)
+PY
 # Too many rays, or more memory than there is: refused before any work, with advice.
 run render_rays render --scene paper --solution "$TMP/solution.json" --camera view --size 8192x8192 --samples 16 --out "$TMP/huge.png"
 expect_rc render_rays 2
