@@ -1,11 +1,18 @@
+#include <sys/resource.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <new>
 #include <string>
 
 #include "cli/commands.h"
 #include "core/error.h"
 #include "sampling/solution_reconstruction.h"
+#include "render/exposure.h"
 #include "render/renderer.h"
 #include "core/parse.h"
 #include "io/image_io.h"
@@ -34,14 +41,105 @@ struct RenderArgs {
 
 /// Largest width or height of a rendered image, pixels.
 constexpr int kMaxImageSide = 8192;
-/// At most this many pixels: the linear and the display image take 24 bytes a pixel each.
+/// At most this many pixels: the linear image takes 24 bytes a pixel (1.6 GB at this size).
 constexpr long long kMaxImagePixels = static_cast<long long>(kMaxImageSide) * kMaxImageSide;
+/// At most this many rays (pixels x rays per pixel): 8192 x 8192 at 8 x 8, or 4000 x 4000 at 16 x
+/// 16; on the paper's scene some 4 million rays a second on two cores, so about 18 minutes
+/// (docs/benchmarks.md).
+constexpr long long kMaxRenderRays = 1LL << 32;
+
+/// Bytes this process may still allocate: the physical memory, or less under a limit on its
+/// address space (ulimit -v) less what it maps already.
+size_t memory_available_bytes() {
+  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+  double available = pages > 0 && page > 0 ? static_cast<double>(pages) * page : 1e300;
+  rlimit limit{};
+  if (getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY) {
+    double mapped = 0;  // pages mapped now: the first field of /proc/self/statm
+    if (std::ifstream statm("/proc/self/statm"); statm >> mapped) mapped *= page;
+    available = std::min(available, static_cast<double>(limit.rlim_cur) - mapped);
+  }
+  return static_cast<size_t>(std::clamp(available, 0.0, 1e18));
+}
+
+std::string megabytes(double bytes) { return std::to_string(static_cast<long long>(std::ceil(bytes / 1e6))) + " MB"; }
+
+/// Refuses a render whose rays or memory are beyond what can be done, with advice, before any
+/// work. `output_bytes_per_pixel`: what writing the format holds beside the linear image.
+void check_render_size(const RenderOptions& options, double output_bytes_per_pixel) {
+  const long long pixels = static_cast<long long>(options.width) * options.height;
+  const long long per_pixel = static_cast<long long>(options.samples_per_axis) * options.samples_per_axis;
+  const std::string asked = std::to_string(options.width) + "x" + std::to_string(options.height) + " pixels at " +
+                            std::to_string(per_pixel) + (per_pixel == 1 ? " ray" : " rays") + " each";
+  if (pixels * per_pixel > kMaxRenderRays)
+    throw UserError("--size", asked + " is " + std::to_string(pixels * per_pixel) + " rays; at most " +
+                                  std::to_string(kMaxRenderRays) +
+                                  " pixels x rays are rendered: use fewer --samples (--samples 1 casts one ray a "
+                                  "pixel) or a smaller --size");
+  const double needed = static_cast<double>(render_memory_bytes(options)) + output_bytes_per_pixel * pixels;
+  const size_t available = memory_available_bytes();
+  if (needed > static_cast<double>(available))
+    throw UserError("--size", asked + " needs about " + megabytes(needed) + " of memory, and " +
+                                  megabytes(static_cast<double>(available)) +
+                                  " are available: use a smaller --size (memory grows with the pixels, not with "
+                                  "--samples)");
+}
+
+std::string white_text(double white) {
+  char text[64];
+  std::snprintf(text, sizeof text, "white %.4g W/m^2", white);
+  return text;
+}
+
+/// Renders and writes the picture (the white point of a PNG as the options say).
+void render_and_write(const RenderArgs& args, const Scene& scene, const Camera& camera, const Solution& solution,
+                      const SolutionReconstruction& recon, const RenderOptions& options, FileFormat format,
+                      const RenderProgress& progress) {
+  Rendering rendering = render(scene, camera, [&](SideRef side) { return recon.side(side); }, options, progress);
+  Image& img = rendering.image;
+  std::string white_note;
+  if (format == FileFormat::pfm) {
+    write_pfm(args.out, img);
+  } else if (format == FileFormat::exr) {
+    write_exr(args.out, img);
+  } else {
+    double white = args.white;
+    if (white > 0) {
+      white_note = white_text(white) + " (--white)";
+    } else if (const auto p = percentile_white(rendering, kDefaultWhitePercentile)) {
+      white = *p;
+      white_note = white_text(white) + " (the " + format_number(kDefaultWhitePercentile) + "th percentile of the lit surfaces seen)";
+    } else {  // no reflecting surface in sight: the largest radiosity of one in the solution
+      for (const SurfaceSolution& s : solution.surfaces) {
+        const auto idx = scene.find_surface(s.scene_surface);
+        if (idx && (scene.surfaces[*idx].emission_w_m2 > 0).any()) continue;
+        for (const SolutionElement& e : s.elements) white = std::max(white, e.radiosity_w_m2.maxCoeff());
+      }
+      if (white <= 0) white = 1;
+      white_note = white_text(white) + " (no lit surface in sight: the largest of the solution's)";
+    }
+    rendering.reflecting = {};
+    // Tone-mapped in place: the display image takes no second 24 bytes a pixel.
+    for (int y = 0; y < img.height(); ++y)
+      for (int x = 0; x < img.width(); ++x)
+        for (int c = 0; c < 3; ++c) img.at(x, y)[c] = tone_map(img.at(x, y)[c], white);
+    write_png(args.out, img, true);
+  }
+  if (!args.quiet && !white_note.empty()) std::fprintf(stderr, "render: %s\n", white_note.c_str());
+}
 
 void run_render(const RenderArgs& args) {
   const FileFormat format = file_format(args.out, {FileFormat::png, FileFormat::pfm, FileFormat::exr}, "--out");
   const auto [width, height] = parse_size(args.size, "--size", kMaxImageSide, kMaxImagePixels);
   if (args.white > 0 && format != FileFormat::png)
     throw UserError("--white", "applies to .png outputs only (.pfm and .exr hold linear radiosity)");
+  RenderOptions options;
+  options.width = width;
+  options.height = height;
+  options.samples_per_axis = args.samples;
+  // Beside the linear image: PNG its bytes (3) and the default white's values (8); PFM its 32-bit
+  // copy as doubles (24); EXR its half floats (8) and the library's buffers.
+  check_render_size(options, format == FileFormat::png ? 11 : format == FileFormat::pfm ? 24 : 12);
   std::vector<std::string> inputs = {args.solution};
   if (args.scene != "paper") inputs.push_back(args.scene);
   refuse_overwriting_inputs(args.out, "--out", inputs);
@@ -78,10 +176,6 @@ void run_render(const RenderArgs& args) {
   for (const Fallback& f : recon.fallbacks())
     std::fprintf(stderr, "radrecon: warning: %s: %s cannot reconstruct side %s (%s); drawn piecewise constant\n",
                  args.solution.c_str(), args.method.c_str(), f.side.c_str(), f.reason.c_str());
-  RenderOptions options;
-  options.width = width;
-  options.height = height;
-  options.samples_per_axis = args.samples;
   const auto start = std::chrono::steady_clock::now();
   auto last_report = start;
   const RenderProgress progress = [&](double done) {
@@ -89,26 +183,21 @@ void run_render(const RenderArgs& args) {
     if (args.quiet || done >= 1 || now - last_report < std::chrono::seconds(2)) return;
     last_report = now;
     const double elapsed = std::chrono::duration<double>(now - start).count();
-    std::fprintf(stderr, "render: %.0f%% of the rows, %.0f s left\n", 100 * done, elapsed * (1 - done) / done);
+    std::fprintf(stderr, "render: %.0f%% of the pixels, %.0f s elapsed, about %.0f s left\n", 100 * done, elapsed,
+                 elapsed * (1 - done) / done);
   };
-  const Image img = render(scene, *camera, [&](SideRef side) { return recon.side(side); }, options, progress);
-  if (format == FileFormat::pfm) {
-    write_pfm(args.out, img);
-  } else if (format == FileFormat::exr) {
-    write_exr(args.out, img);
-  } else {
-    double white = args.white;
-    if (white <= 0) {  // default: the largest radiosity of a reflecting surface in the solution
-      for (const SurfaceSolution& s : solution.surfaces) {
-        const auto idx = scene.find_surface(s.scene_surface);
-        if (idx && (scene.surfaces[*idx].emission_w_m2 > 0).any()) continue;
-        for (const SolutionElement& e : s.elements) white = std::max(white, e.radiosity_w_m2.maxCoeff());
-      }
-      if (white <= 0) white = 1;
-    }
-    write_png(args.out, tone_mapped(img, white), true);
+  try {
+    render_and_write(args, scene, *camera, solution, recon, options, format, progress);
+  } catch (const std::bad_alloc&) {
+    throw UserError("--size", "out of memory for " + std::to_string(width) + "x" + std::to_string(height) + " pixels at " +
+                                  std::to_string(args.samples * args.samples) +
+                                  (args.samples == 1 ? " ray" : " rays") + " each (nothing was written): use a smaller --size, or fewer --samples");
   }
-  if (!args.quiet) std::fprintf(stderr, "render: wrote %s (%dx%d, %d rays per pixel)\n", args.out.c_str(), width, height, args.samples * args.samples);
+  if (!args.quiet) {
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::fprintf(stderr, "render: wrote %s (%dx%d, %d rays per pixel) in %.1f s\n", args.out.c_str(), width, height,
+                 args.samples * args.samples, seconds);
+  }
 }
 
 }  // namespace
@@ -127,12 +216,17 @@ void add_render_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--param", args->params, "NAME=VALUE method parameter, repeatable (see 'interpolate --help')");
   cmd->add_option("--camera", args->camera, "Name of a camera of the scene (paper: view, closeup)")->required();
-  cmd->add_option("--size", args->size, "Image size WxH in pixels (each at most " + std::to_string(kMaxImageSide) + ")")->capture_default_str();
+  cmd->add_option("--size", args->size,
+                  "Image size WxH in pixels (each at most " + std::to_string(kMaxImageSide) + "; width x height x rays per pixel at most " +
+                      std::to_string(kMaxRenderRays) + "; memory: about 25 bytes a pixel, whatever --samples)")
+      ->capture_default_str();
   cmd->add_option("--samples", args->samples, "Stratified rays per pixel along each axis (N x N rays)")
       ->check(CLI::Range(1, 16))
       ->capture_default_str();
   cmd->add_option("--white", args->white,
-                  "PNG: the radiosity (W/m^2) shown as white; default: the largest radiosity of a non-emitting surface")
+                  "PNG: the radiosity (W/m^2) shown as white; default: the 99th percentile of the brightest channel "
+                  "of the pixels that see only lit, non-emitting surfaces (lights, background and sides drawn black "
+                  "do not count; 1% of those pixels may clip)")
       ->check(CLI::Range(0.0, 1e12));
   cmd->add_option("--out", args->out, "Image to write: .png (tone-mapped), .pfm or .exr (linear radiosity, W/m^2)")->required();
   cmd->add_flag("--no-barriers", args->no_barriers,
@@ -141,7 +235,7 @@ void add_render_command(CLI::App& app) {
   cmd->add_flag("--border-samples", args->border_samples,
                 "scattered methods but constant: add samples on each side's border and along both sides "
                 "of its barriers, extrapolated from the nearest samples they see (docs/method.md)");
-  cmd->add_flag("--quiet", args->quiet, "No progress messages");
+  cmd->add_flag("--quiet", args->quiet, "No progress messages (by default a line on stderr at most every 2 s)");
   cmd->callback([args] { run_render(*args); });
 }
 

@@ -155,4 +155,13 @@ inline constexpr double kCellSnapRelative = 1e-10;
 /// just above the rounding floor of the sums (some 1e-15).
 inline constexpr double kNielsonResidualRelative = 1e-13;
 
+/// The renderer's ray casting (render/renderer.h): an emitting side hit within this fraction of
+/// the coordinates' magnitude there (|o| + t for the ray o + t d) of the nearest hit wins the
+/// tie, so that a light in the plane of a ceiling is seen. The two planes' computed distances
+/// differ by the round-off of their corners: some 1e-16 of the coordinates for the same plane
+/// written twice, 1e-7 for corners from single-precision model files, more at grazing angles.
+/// 1e-6 covers both and is far below any intended offset (a micrometre in a scene a metre
+/// across); a light that little behind a surface is drawn in front of it.
+inline constexpr double kEmitterTieRelative = 1e-6;
+
 }  // namespace radrecon::tol

@@ -7,23 +7,43 @@
 
 #include "core/check.h"
 #include "core/parallel.h"
+#include "core/tolerances.h"
 
 namespace radrecon {
 
+namespace {
+
+bool emits(const Surface& s, bool back_side) { return (side_emission(s, back_side) > 0).any(); }
+
+}  // namespace
+
 std::optional<SurfaceHit> intersect_scene(const Scene& scene, const Vec3& o, const Vec3& d) {
   std::optional<SurfaceHit> best;
+  bool best_emits = false;
   double t_best = std::numeric_limits<double>::infinity();
+  const double o_norm = o.norm();
   for (size_t k = 0; k < scene.surfaces.size(); ++k) {
     const Surface& s = scene.surfaces[k];
     const Vec3 n = s.normal();
     const double denom = n.dot(d);
     if (denom == 0) continue;
     const double t = n.dot(s.corners[0] - o) / denom;
-    if (!(t > 0 && t < t_best)) continue;
+    if (!(t > 0)) continue;
+    const bool back_side = denom > 0;
+    // Within the tie distance (relative to the magnitude of the coordinates there, |o| + t, whose
+    // round-off it covers) the emitting side wins; otherwise, or between equals, the nearer.
+    const bool tie = best && std::abs(t - t_best) <= tol::kEmitterTieRelative * (o_norm + t_best);
+    bool wins = t < t_best;
+    if (tie) {
+      const bool e = emits(s, back_side);
+      if (e != best_emits) wins = e;
+    }
+    if (!wins) continue;
     const auto uv = s.parameters(o + t * d);
     if (!uv) continue;
     t_best = t;
-    best = SurfaceHit{k, denom > 0, uv->x(), uv->y(), t};
+    best = SurfaceHit{k, back_side, uv->x(), uv->y(), t};
+    best_emits = emits(s, back_side);
   }
   return best;
 }
@@ -38,64 +58,88 @@ std::pair<Vec3, Vec3> camera_ray(const Camera& c, int width, int height, double 
   return {c.eye, (forward + sx * right + sy * up).normalized()};
 }
 
-CameraHits trace_camera(const Scene& scene, const Camera& camera, const RenderOptions& options) {
-  return trace_camera(scene, camera, options, 0, options.height);
+int tile_side(const RenderOptions& options) {
+  RR_CHECK(options.tile_size >= 0 && options.samples_per_axis > 0, "render options out of range");
+  if (options.tile_size > 0) return options.tile_size;
+  const size_t rays_per_pixel = static_cast<size_t>(options.samples_per_axis) * options.samples_per_axis;
+  const auto side = static_cast<int>(std::sqrt(static_cast<double>(kRenderTileRays / rays_per_pixel)));
+  return std::max(side, 1);
 }
 
-CameraHits trace_camera(const Scene& scene, const Camera& camera, const RenderOptions& options, int row_begin,
-                        int row_end) {
+size_t render_memory_bytes(const RenderOptions& options) {
+  const size_t pixels = static_cast<size_t>(options.width) * static_cast<size_t>(options.height);
+  const auto tile = static_cast<size_t>(tile_side(options));
+  const size_t tile_rays = std::min(tile * tile, pixels) * options.samples_per_axis * options.samples_per_axis;
+  return pixels * (sizeof(Rgb) + 1) + tile_rays * 120;
+}
+
+CameraHits trace_camera(const Scene& scene, const Camera& camera, const RenderOptions& options) {
+  return trace_camera(scene, camera, options, PixelRect{0, 0, options.width, options.height});
+}
+
+CameraHits trace_camera(const Scene& scene, const Camera& camera, const RenderOptions& options, const PixelRect& rect) {
   RR_CHECK(options.width > 0 && options.height > 0 && options.samples_per_axis > 0, "render options out of range");
-  RR_CHECK(0 <= row_begin && row_begin < row_end && row_end <= options.height, "camera rows out of range");
+  RR_CHECK(0 <= rect.x_begin && rect.x_begin < rect.x_end && rect.x_end <= options.width, "camera columns out of range");
+  RR_CHECK(0 <= rect.y_begin && rect.y_begin < rect.y_end && rect.y_end <= options.height, "camera rows out of range");
   const int W = options.width, H = options.height, S = options.samples_per_axis;
-  const size_t rays = static_cast<size_t>(W) * (row_end - row_begin) * S * S;
+  const size_t rect_w = static_cast<size_t>(rect.x_end - rect.x_begin);
+  const size_t per_pixel = static_cast<size_t>(S) * S;
+  const size_t rays = rect.pixels() * per_pixel;
   CameraHits out;
   out.options = options;
-  out.row_begin = row_begin;
-  out.row_end = row_end;
+  out.pixels = rect;
   out.hits.resize(rays);
   auto& hits = out.hits;
-  const size_t first_pixel = static_cast<size_t>(row_begin) * W;
   // The hit of every ray (stratified, at the strata centres: deterministic).
   parallel_for(0, static_cast<std::int64_t>(rays), [&](std::int64_t r) {
     const size_t k = static_cast<size_t>(r);
-    const size_t pixel = first_pixel + k / (S * S), sub = k % (S * S);
-    const double x = static_cast<double>(pixel % W) + (static_cast<double>(sub % S) + 0.5) / S;
-    const double y = static_cast<double>(pixel / W) + (static_cast<double>(sub / S) + 0.5) / S;
+    const size_t pixel = k / per_pixel, sub = k % per_pixel;
+    const double x = static_cast<double>(rect.x_begin + pixel % rect_w) + (static_cast<double>(sub % S) + 0.5) / S;
+    const double y = static_cast<double>(rect.y_begin + pixel / rect_w) + (static_cast<double>(sub / S) + 0.5) / S;
     const auto [o, d] = camera_ray(camera, W, H, x, y);
     hits[k] = intersect_scene(scene, o, d);
   });
   return out;
 }
 
-Image render(const Scene& scene, const Camera& camera, const SideReconstruction& reconstruction,
-             const RenderOptions& options, const RenderProgress& progress) {
-  // Bands of rows, so that memory holds the image and one band's rays, whatever the size.
-  const size_t rays_per_row = static_cast<size_t>(options.width) * options.samples_per_axis * options.samples_per_axis;
-  const int band_rows = static_cast<int>(std::clamp<size_t>(kRenderBandRays / rays_per_row, 1, options.height));
-  Image img(options.width, options.height);
-  for (int row = 0; row < options.height; row += band_rows) {
-    const int end = std::min(options.height, row + band_rows);
-    shade(scene, trace_camera(scene, camera, options, row, end), reconstruction, img);
-    if (progress) progress(static_cast<double>(end) / options.height);
-  }
-  return img;
+Rendering render(const Scene& scene, const Camera& camera, const SideReconstruction& reconstruction,
+                 const RenderOptions& options, const RenderProgress& progress) {
+  const int tile = tile_side(options);
+  Rendering out{Image(options.width, options.height),
+                std::vector<std::uint8_t>(static_cast<size_t>(options.width) * options.height, 0)};
+  const double pixels = static_cast<double>(options.width) * options.height;
+  size_t done = 0;
+  for (int y = 0; y < options.height; y += tile)
+    for (int x = 0; x < options.width; x += tile) {
+      const PixelRect rect{x, y, std::min(options.width, x + tile), std::min(options.height, y + tile)};
+      shade(scene, trace_camera(scene, camera, options, rect), reconstruction, out);
+      done += rect.pixels();
+      if (progress) progress(static_cast<double>(done) / pixels);
+    }
+  return out;
 }
 
 Image shade(const Scene& scene, const CameraHits& traced, const SideReconstruction& reconstruction) {
-  RR_CHECK(traced.row_begin == 0 && traced.row_end == traced.options.height, "shade() of a band needs an image");
-  Image img(traced.options.width, traced.options.height);
-  shade(scene, traced, reconstruction, img);
-  return img;
+  const RenderOptions& options = traced.options;
+  RR_CHECK(traced.pixels.pixels() == static_cast<size_t>(options.width) * options.height,
+           "shade() of a part of the image needs a Rendering to write into");
+  Rendering out{Image(options.width, options.height),
+                std::vector<std::uint8_t>(static_cast<size_t>(options.width) * options.height, 0)};
+  shade(scene, traced, reconstruction, out);
+  return std::move(out.image);
 }
 
-void shade(const Scene& scene, const CameraHits& traced, const SideReconstruction& reconstruction, Image& img) {
+void shade(const Scene& scene, const CameraHits& traced, const SideReconstruction& reconstruction, Rendering& out) {
   const RenderOptions& options = traced.options;
   const int W = options.width, S = options.samples_per_axis;
+  Image& img = out.image;
   RR_CHECK(img.width() == W && img.height() == options.height, "image size does not match the camera's");
+  RR_CHECK_EQ(out.reflecting.size(), static_cast<size_t>(W) * options.height, "mask size does not match the camera's");
   const size_t rays = traced.hits.size();
   const auto& hits = traced.hits;
-  // Radiosity per ray, one batch per surface side.
+  // Radiosity per ray, one batch per surface side; and whether the ray met a reflecting side.
   std::vector<double> radiosity(rays * 3, 0.0);
+  std::vector<std::uint8_t> reflecting(rays, 0);
   for (size_t k = 0; k < rays; ++k)
     if (!hits[k])
       for (int c = 0; c < 3; ++c) radiosity[k * 3 + c] = options.background_w_m2[c];
@@ -116,20 +160,29 @@ void shade(const Scene& scene, const CameraHits& traced, const SideReconstructio
     for (size_t k : which) at.emplace_back(hits[k]->u * s.length_u_m(), hits[k]->v * s.length_v_m());
     std::vector<double> values(which.size() * 3);
     f->evaluate(at, values);
-    for (size_t j = 0; j < which.size(); ++j)
+    const bool reflects = !(side_emission(s, side.back_side) > 0).any();
+    for (size_t j = 0; j < which.size(); ++j) {
       for (int c = 0; c < 3; ++c) {
         const double v = values[j * 3 + c];
         radiosity[which[j] * 3 + c] = std::isfinite(v) ? v : 0.0;
       }
+      reflecting[which[j]] = reflects;
+    }
   }
   // Box filter over each pixel's rays.
-  for (int y = traced.row_begin; y < traced.row_end; ++y)
-    for (int x = 0; x < W; ++x) {
+  const PixelRect& rect = traced.pixels;
+  const size_t per_pixel = static_cast<size_t>(S) * S;
+  size_t first = 0;  // the pixel's first ray
+  for (int y = rect.y_begin; y < rect.y_end; ++y)
+    for (int x = rect.x_begin; x < rect.x_end; ++x, first += per_pixel) {
       Rgb sum = Rgb::Zero();
-      const size_t first = (static_cast<size_t>(y - traced.row_begin) * W + x) * S * S;
-      for (int k = 0; k < S * S; ++k)
-        for (int c = 0; c < 3; ++c) sum[c] += radiosity[(first + static_cast<size_t>(k)) * 3 + c];
+      bool all_reflecting = true;
+      for (size_t k = first; k < first + per_pixel; ++k) {
+        for (int c = 0; c < 3; ++c) sum[c] += radiosity[k * 3 + c];
+        all_reflecting = all_reflecting && reflecting[k];
+      }
       img.at(x, y) = sum / (S * S);
+      out.reflecting[static_cast<size_t>(y) * W + x] = all_reflecting;
     }
 }
 

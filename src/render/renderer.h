@@ -2,8 +2,11 @@
 // A ray-casting renderer for radiosity solutions: for each pixel, several stratified rays from a
 // pinhole camera find the visible surface side and its (u,v); the side's reconstruction gives
 // the radiosity there (W/m^2), averaged over the pixel's rays. Radiosity is evaluated in one
-// batch per surface side, not per ray.
+// batch per surface side, not per ray. render() works tile by tile, so that memory holds the
+// image and one tile's rays whatever the size and the rays per pixel; every pixel is the same,
+// bit for bit, whatever the tiles and the number of threads.
 
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <vector>
@@ -23,13 +26,37 @@ struct SurfaceHit {
   double t;     ///< ray parameter, metres along a unit direction
 };
 
-/// The nearest surface hit by the ray o + t d (d of unit length), t > 0, if any.
+/// The nearest surface hit by the ray o + t d (d of unit length), t > 0, if any. An emitting side
+/// wins a tie: a light in the plane of a ceiling (hit at the same t, within
+/// tol::kEmitterTieRelative (|o| + t)) is seen, not the ceiling. Other ties go to the nearer
+/// hit, then to the surface listed first.
 std::optional<SurfaceHit> intersect_scene(const Scene& scene, const Vec3& o, const Vec3& d);
 
 struct RenderOptions {
   int width = 640, height = 480;
   int samples_per_axis = 3;  ///< stratified rays per pixel: samples_per_axis^2, >= 1
+  /// render(): tiles of tile_size x tile_size pixels (those at the right and bottom edges
+  /// smaller); 0: the largest square tile of at most kRenderTileRays rays.
+  int tile_size = 0;
   Rgb background_w_m2 = Rgb::Zero();
+};
+
+/// Rays traced and shaded at a time by render() with automatic tiles: a tile holds about 120
+/// bytes a ray (the hit 48, its radiosity 24, the batch's point, value and index 48), 8 MB,
+/// whatever the image size and rays per pixel (64 x 64 pixels at 16 rays, 16 x 16 at 256).
+inline constexpr size_t kRenderTileRays = size_t{1} << 16;
+
+/// The side of render()'s square tiles, pixels: options.tile_size, or the automatic one.
+int tile_side(const RenderOptions& options);
+
+/// Bytes render() holds for an image of these options: the linear image (24 a pixel), the mask
+/// of reflecting pixels (1 a pixel) and one tile's rays; callers add what they write with.
+size_t render_memory_bytes(const RenderOptions& options);
+
+/// The pixels [x_begin, x_end) x [y_begin, y_end) of an image, x right, y down.
+struct PixelRect {
+  int x_begin = 0, y_begin = 0, x_end = 0, y_end = 0;
+  size_t pixels() const { return static_cast<size_t>(x_end - x_begin) * static_cast<size_t>(y_end - y_begin); }
 };
 
 /// The reconstruction of one surface side: radiosity in W/m^2 (3 channels) at points given in
@@ -37,34 +64,37 @@ struct RenderOptions {
 /// solution does not have (drawn black).
 using SideReconstruction = std::function<const Interpolant*(SideRef side)>;
 
-/// The primary rays of a camera (all its rows, or a band of rows) and what they hit: computed
-/// once, shaded for any solution and method (the views of a figure share them).
+/// The primary rays of a camera (all its pixels, or a rectangle of them) and what they hit:
+/// computed once, shaded for any solution and method (the views of a figure share them).
 struct CameraHits {
   RenderOptions options;
-  int row_begin = 0, row_end = 0;               ///< the image rows [row_begin, row_end) traced
-  std::vector<std::optional<SurfaceHit>> hits;  ///< per ray: pixel-major, samples_per_axis^2 each
+  PixelRect pixels;                             ///< the pixels traced
+  std::vector<std::optional<SurfaceHit>> hits;  ///< per ray: pixels row by row, samples_per_axis^2 each
 };
 CameraHits trace_camera(const Scene& scene, const Camera& camera, const RenderOptions& options);
-CameraHits trace_camera(const Scene& scene, const Camera& camera, const RenderOptions& options, int row_begin,
-                        int row_end);
+CameraHits trace_camera(const Scene& scene, const Camera& camera, const RenderOptions& options, const PixelRect& pixels);
 
-/// Linear radiosity (W/m^2 per channel) of every pixel of `hits` (all rows): the mean over its
-/// rays.
+/// A rendered picture: the linear radiosity, and which pixels see only reflecting surfaces (the
+/// pixels a default white point is taken from: exposure.h).
+struct Rendering {
+  Image image;  ///< linear radiosity, W/m^2 per channel
+  /// Per pixel, row by row: 1 when every ray of the pixel met a side that does not emit and has a
+  /// reconstruction (not the background, a light, or a side drawn black), else 0.
+  std::vector<std::uint8_t> reflecting;
+};
+
+/// Linear radiosity (W/m^2 per channel) of every pixel of `hits` (all of the image): the mean
+/// over its rays.
 Image shade(const Scene& scene, const CameraHits& hits, const SideReconstruction& reconstruction);
-/// The same for the rows that `hits` covers, written into `image` (of the camera's size).
-void shade(const Scene& scene, const CameraHits& hits, const SideReconstruction& reconstruction, Image& image);
+/// The same for the pixels that `hits` covers, written into `out` (of the camera's size).
+void shade(const Scene& scene, const CameraHits& hits, const SideReconstruction& reconstruction, Rendering& out);
 
-/// Rays traced and shaded at a time by render(): memory stays at the image plus about 120 bytes
-/// a ray of one band (the hit 48, its radiosity 24, the batch's point, value and index 48; ~125
-/// MB), whatever the image size and rays per pixel.
-inline constexpr size_t kRenderBandRays = size_t{1} << 20;
-
-/// Called after each band with the fraction of rows done, in (0, 1].
+/// Called after each tile with the fraction of the pixels done, in (0, 1].
 using RenderProgress = std::function<void(double fraction_done)>;
 
-/// trace_camera() then shade(), band by band of rows.
-Image render(const Scene& scene, const Camera& camera, const SideReconstruction& reconstruction,
-             const RenderOptions& options, const RenderProgress& progress = {});
+/// trace_camera() then shade(), tile by tile (row by row of tiles).
+Rendering render(const Scene& scene, const Camera& camera, const SideReconstruction& reconstruction,
+                 const RenderOptions& options, const RenderProgress& progress = {});
 
 /// A primary ray through the image position (x, y) in pixels (x right, y down; pixel centres at
 /// half-integers): origin and unit direction.

@@ -177,6 +177,50 @@ expect_rc render_sol 2
 expect_stderr_has render_sol "badsol.json"
 expect_no_output render_sol "$TMP/bad.png"
 
+# The white point: by default the 99th percentile of the lit surfaces in sight, said on stderr.
+run render_white render --scene paper --solution "$TMP/solution.json" --camera view --size 32x24 --out "$TMP/white.png"
+expect_rc render_white 0
+expect_stderr_has render_white "99th percentile"
+run render_white_set render --scene paper --solution "$TMP/solution.json" --camera view --size 32x24 --white 3 --out "$TMP/white3.png"
+expect_rc render_white_set 0
+expect_stderr_has render_white_set "white 3 W/m^2 (--white)"
+# A light in the ceiling's plane, solved and rendered from below: drawn (the emitter wins the tie).
+cat >"$TMP/coplanar.json" <<'EOF'
+{"name": "coplanar", "surfaces": [
+ {"name": "ceiling", "corners": [[0,0,2.5], [0,4,2.5], [4,4,2.5], [4,0,2.5]], "reflectance": 0.5},
+ {"name": "light", "corners": [[1.5,1.5,2.5], [1.5,2.5,2.5], [2.5,2.5,2.5], [2.5,1.5,2.5]], "reflectance": 0, "emission": 40},
+ {"name": "floor", "corners": [[0,0,0], [4,0,0], [4,4,0], [0,4,0]], "reflectance": 0.5}],
+ "cameras": [{"name": "up", "eye": [2,2,0.5], "target": [2,2,2.5], "up": [0,1,0], "fov_deg": 60}]}
+EOF
+run coplanar_solve solve --scene "$TMP/coplanar.json" --mesh grid:8 --out "$TMP/coplanar_s.json" --quiet
+expect_rc coplanar_solve 0
+run coplanar_render render --scene "$TMP/coplanar.json" --solution "$TMP/coplanar_s.json" --camera up --size 60x60 \
+  --out "$TMP/coplanar.pfm" --quiet
+expect_rc coplanar_render 0
+# The light spans 2 x 12.99 of the 60 pixels across: 24 x 24 pixels wholly inside it, 26 x 26 touched.
+python3 - "$TMP/coplanar.pfm" <<'PY' || fail "render: the light in the ceiling's plane is not drawn"
+import struct, sys
+magic, size, scale, body = open(sys.argv[1], "rb").read().split(b"\n", 3)
+w, h = map(int, size.split())
+red = [struct.unpack_from("<f", body, 12 * k)[0] for k in range(w * h)]
+bright = sum(1 for v in red if v > 20)
+assert red[30 * w + 30] == 40.0 and 24 * 24 <= bright <= 26 * 26, (red[30 * w + 30], bright)
+PY
+# Too many rays, or more memory than there is: refused before any work, with advice.
+run render_rays render --scene paper --solution "$TMP/solution.json" --camera view --size 8192x8192 --samples 16 --out "$TMP/huge.png"
+expect_rc render_rays 2
+expect_stderr_has render_rays "--samples 1"
+expect_no_output render_rays "$TMP/huge.png"
+if ! grep -q __asan_init "$RADRECON"; then  # ASan needs address space beyond any ulimit -v
+  (ulimit -v 1000000 && exec "$RADRECON" render --scene paper --solution "$TMP/solution.json" --camera view \
+    --size 8000x8000 --samples 1 --out "$TMP/huge.pfm") >"$TMP/render_mem.stdout" 2>"$TMP/render_mem.stderr"
+  echo $? >"$TMP/render_mem.rc"
+  expect_rc render_mem 2
+  expect_stderr_has render_mem "of memory"
+  expect_stderr_has render_mem "smaller --size"
+  expect_no_output render_mem "$TMP/huge.pfm"
+fi
+
 # --- barriers: the solution lists the wall feet on the ground; render honours them unless told not
 # to, and the pictures differ (light no longer leaks under the walls).
 grep -q '"barriers": \[\[\[2.6' "$TMP/solution.json" || fail "solve: the ground's barriers are missing from the solution"

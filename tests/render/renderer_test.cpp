@@ -3,7 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
+#include <numbers>
 #include <random>
 
 #include <OpenEXR/ImfRgbaFile.h>
@@ -13,6 +15,8 @@
 #include "reconstruct/methods.h"
 #include "render/ground_map.h"
 #include "io/image_io.h"
+#include "core/parse.h"
+#include "io/scene_json.h"
 #include "render/renderer.h"
 
 #include "support/scenes.h"
@@ -71,7 +75,7 @@ TEST(Renderer, ConstantRadiosityRendersToThePredictedPixelValue) {
   RenderOptions options;
   options.width = 32;
   options.height = 24;
-  const Image img = render(scene, cam, [&](SideRef side) { return side.back_side ? nullptr : &f; }, options);
+  const Image img = render(scene, cam, [&](SideRef side) { return side.back_side ? nullptr : &f; }, options).image;
   for (int y = 0; y < img.height(); ++y)
     for (int x = 0; x < img.width(); ++x) {
       EXPECT_NEAR(img.at(x, y)[0], B, 1e-15);  // the mean of 9 equal rays
@@ -94,7 +98,7 @@ TEST(Renderer, BackOfAOneSidedSurfaceWithoutSolutionIsBlack) {
   cells.cells = {Rect{0, 0, 10, 10}};
   cells.values = {1, 1, 1};
   const PiecewiseConstant f(cells);
-  const Image img = render(scene, below, [&](SideRef side) { return side.back_side ? nullptr : &f; }, options);
+  const Image img = render(scene, below, [&](SideRef side) { return side.back_side ? nullptr : &f; }, options).image;
   EXPECT_EQ(img.at(4, 4)[0], 0.0);
 }
 
@@ -121,32 +125,77 @@ TEST(ImageFiles, ExrHoldsTheLinearValuesAsHalfFloats) {
   std::filesystem::remove(path);
 }
 
-TEST(Renderer, BandsOfRowsGiveTheSameImageAsOneTrace) {
-  // 1500 x 9 rays a row: kRenderBandRays (2^20) gives bands of 77 rows, so 200 rows take 3 bands.
-  Scene scene;
-  scene.surfaces.push_back(quad("floor", {0, 0, 0}, {4, 0, 0}, {4, 4, 0}, {0, 4, 0}));
-  scene.surfaces.push_back(quad("wall", {2, 0, 0}, {2, 4, 0}, {2, 4, 1}, {2, 0, 1}));
-  const Camera cam{"oblique", Vec3(5, -3, 3), Vec3(2, 2, 0), Vec3(0, 0, 1), 50.0};
-  RenderOptions options;
-  options.width = 1500;
-  options.height = 200;
-  ASSERT_LT(kRenderBandRays / (static_cast<size_t>(options.width) * 9), static_cast<size_t>(options.height) / 2);
-  ScatteredSamples samples;
-  samples.channels = 3;
-  for (double x : {0.0, 1.3, 4.0})
-    for (double y : {0.0, 2.2, 4.0}) {
-      samples.points.emplace_back(x, y);
-      for (int c = 0; c < 3; ++c) samples.values.push_back(x + 2 * y + c);
+/// A room's ceiling (z = 2.5, facing down, 4 m square) with a 1 m light in its plane, listed
+/// before or after it, `offset` metres below it (negative: above, behind the ceiling).
+Scene ceiling_with_light(bool light_first, double offset = 0) {
+  const std::string z = format_number(2.5 - offset);
+  const std::string ceiling = R"({"name": "ceiling", "corners": [[0,0,2.5], [0,4,2.5], [4,4,2.5], [4,0,2.5]], "reflectance": 0.5})";
+  const std::string light = R"({"name": "light", "corners": [[1.5,1.5,)" + z + "], [1.5,2.5," + z + "], [2.5,2.5," + z +
+                            "], [2.5,1.5," + z + R"(]], "reflectance": 0, "emission": 40})";
+  const std::string floor = R"({"name": "floor", "corners": [[0,0,0], [4,0,0], [4,4,0], [0,4,0]], "reflectance": 0.5})";
+  const std::string text = R"({"name": "coplanar", "surfaces": [)" + (light_first ? light + ", " + ceiling : ceiling + ", " + light) +
+                           ", " + floor + R"(], "cameras": [{"name": "up", "eye": [2,2,0.5], "target": [2,2,2.5], "up": [0,1,0], "fov_deg": 60}]})";
+  return parse_scene_json(text, "coplanar.json");
+}
+
+TEST(EmitterTie, ALightInTheCeilingsPlaneIsHitWhicheverIsListedFirst) {
+  for (bool light_first : {true, false}) {
+    const Scene scene = ceiling_with_light(light_first);
+    const size_t light = light_first ? 0 : 1, ceiling = 1 - light;
+    for (const Vec3& target : {Vec3(2, 2, 2.5), Vec3(1.6, 2.4, 2.5), Vec3(2.49, 1.51, 2.5)}) {
+      const Vec3 o(2.3, 1.9, 0.5);
+      const auto hit = intersect_scene(scene, o, (target - o).normalized());
+      ASSERT_TRUE(hit.has_value());
+      EXPECT_EQ(hit->surface, light) << light_first;
+      EXPECT_FALSE(hit->back_side);
     }
-  const auto f = make_scattered_interpolant(Method::shepard, samples).value();
-  const SideReconstruction recon = [&](SideRef) { return f.get(); };
-  int calls = 0;
-  const Image banded = render(scene, cam, recon, options, [&](double) { ++calls; });
-  const Image whole = shade(scene, trace_camera(scene, cam, options), recon);
-  EXPECT_EQ(calls, 3);
-  for (int y = 0; y < options.height; ++y)
-    for (int x = 0; x < options.width; ++x)
-      for (int c = 0; c < 3; ++c) ASSERT_EQ(banded.at(x, y)[c], whole.at(x, y)[c]) << x << "," << y;
+    const Vec3 o(2, 2, 0.5), beside(3.2, 2, 2.5);  // beside the light: the ceiling
+    EXPECT_EQ(intersect_scene(scene, o, (beside - o).normalized())->surface, ceiling);
+    // Seen from above (through the back of both, neither emits): the first listed, as before.
+    const Vec3 above(2, 2, 4);
+    EXPECT_EQ(intersect_scene(scene, above, Vec3(0, 0, -1))->surface, 0u);
+  }
+  // A millimetre behind the ceiling the light is hidden; a millimetre in front, it is seen.
+  for (bool light_first : {true, false}) {
+    const size_t light = light_first ? 0 : 1;
+    const Vec3 o(2, 2, 0.5);
+    EXPECT_NE(intersect_scene(ceiling_with_light(light_first, -1e-3), o, Vec3(0, 0, 1))->surface, light);
+    EXPECT_EQ(intersect_scene(ceiling_with_light(light_first, 1e-3), o, Vec3(0, 0, 1))->surface, light);
+  }
+}
+
+TEST(EmitterTie, ALightInTheCeilingsPlaneRendersBright) {
+  // Looking straight up from 2 m below the ceiling (60 degrees): the ceiling spans 2 tan 30 deg =
+  // 1.1547 m either side of the centre, the light 0.5 m. Pixels whose rays all land within the
+  // light show its 40 W/m^2, those all beside it the ceiling's 0.3 W/m^2.
+  const PiecewiseConstant ceiling(CellSamples{{Rect{0, 0, 4, 4}}, {0.3, 0.3, 0.3}, 3});
+  const PiecewiseConstant light(CellSamples{{Rect{0, 0, 1, 1}}, {40, 40, 40}, 3});
+  RenderOptions options;
+  options.width = 60;
+  options.height = 60;
+  const double half = 2 * std::tan(std::numbers::pi / 6);
+  for (bool light_first : {true, false}) {
+    const Scene scene = ceiling_with_light(light_first);
+    const Image img = render(scene, scene.cameras[0], [&](SideRef side) -> const Interpolant* {
+      if (side.back_side) return nullptr;
+      const std::string& name = scene.surfaces[side.surface].name;
+      return name == "light" ? &light : name == "ceiling" ? &ceiling : nullptr;
+    }, options).image;
+    int bright = 0;
+    for (int y = 0; y < options.height; ++y)
+      for (int x = 0; x < options.width; ++x) {
+        // The farthest a ray of the pixel lands from the centre along each axis, and the nearest.
+        auto far = [&](int k) { return std::max(std::abs(2.0 * k / 60 - 1), std::abs(2.0 * (k + 1) / 60 - 1)) * half; };
+        auto near = [&](int k) { return std::min(std::abs(2.0 * k / 60 - 1), std::abs(2.0 * (k + 1) / 60 - 1)) * half; };
+        if (far(x) < 0.5 && far(y) < 0.5) {
+          EXPECT_EQ(img.at(x, y)[0], 40.0) << x << "," << y;
+          ++bright;
+        } else if (near(x) > 0.5 || near(y) > 0.5) {
+          EXPECT_NEAR(img.at(x, y)[0], 0.3, 1e-15) << x << "," << y;
+        }
+      }
+    EXPECT_EQ(bright, 24 * 24);  // pixels 18..41 along each axis: (0.5 / 1.1547) * 30 = 12.99 either side
+  }
 }
 
 }  // namespace
