@@ -3,7 +3,9 @@
 // the shadow each occluder casts on the polygon, seen from the point, is the polygon clipped by
 // five half-spaces (beyond the occluder's plane, and inside the four planes through the point
 // and the occluder's edges). The visible part is the polygon minus the union of the shadows,
-// kept as a list of convex fragments, and its form factor is exact up to round-off.
+// kept as a list of convex fragments, and its form factor is exact up to round-off. Near the
+// shooter, where a point stands poorly for a receiving element, the same form factor averaged
+// over the element (area_visible_form_factor()).
 
 #include <vector>
 
@@ -49,5 +51,26 @@ std::vector<const Occluder*> occluders_in_box(const std::vector<Occluder>& occlu
 double visible_form_factor(const Vec3& p, const Vec3& n, const ConvexPolygon& shooter,
                            const Vec3& shooter_normal,
                            const std::vector<const Occluder*>& occluders);
+
+/// F(R -> S) = (1 / A_R) * integral over R of F(x -> S) dA_x: the form factor from the planar
+/// quad R (corners in order around it; its points are the bilinear patch through them, so any
+/// element of a grid or quadtree; unit normal `receiver_normal`) to the part of the convex
+/// polygon `shooter` it sees past the `occluders` (as visible_form_factor(): not R's surface nor
+/// S's). Dimensionless, in [0, 1].
+///
+/// Adaptive cubature: 2 x 2 Gauss-Legendre points on a square of R's (s, t) parameters, weighted
+/// by the patch's Jacobian; a square is split into its quarters while the quarters' sum differs
+/// from the square's own estimate by more than `tolerance` (an absolute error of the returned
+/// form factor, per square), down to kMaxAreaFormFactorDepth levels. Exact for a receiver far
+/// from the shooter up to the cubature's 4th-order error; near a shared edge (a wall standing on
+/// the floor) or corner, where F(x -> S) is continuous but not smooth, the splitting follows the
+/// corners. Deterministic: the same points in the same order for the same arguments.
+double area_visible_form_factor(const std::array<Vec3, 4>& receiver, const Vec3& receiver_normal,
+                                const ConvexPolygon& shooter, const Vec3& shooter_normal,
+                                const std::vector<const Occluder*>& occluders, double tolerance);
+
+/// Deepest level of area_visible_form_factor()'s splitting (a square of 4^-10 of the receiver):
+/// a guard; the tolerance ends the splitting first.
+inline constexpr int kMaxAreaFormFactorDepth = 10;
 
 }  // namespace radrecon

@@ -8,6 +8,7 @@
 #include "solver/hierarchical.h"
 #include "support/closed_forms.h"
 #include "support/scenes.h"
+#include "solver/closed_room.h"
 
 namespace radrecon {
 namespace {
@@ -69,6 +70,26 @@ TEST(Hierarchical, ClosedBoxRadiosityPowerIsEmittedOverOneMinusReflectance) {
   EXPECT_NEAR(power, expected, 0.01 * expected);
   EXPECT_GT(sol.stats.elements, 6u) << "the box should have been refined";
   EXPECT_TRUE(sol.stats.converged);
+}
+
+// Issue 11 item 5 for hierarchical radiosity: a closed room keeps its energy to 1e-3 (links are
+// area-to-area already), checked against the closed form of the mean radiosity.
+TEST(Hierarchical, ClosedRoomKeepsItsEnergy) {
+  const double E = 40, phi = E * testing_support::kClosedRoomLight_m2, area = testing_support::kClosedRoomArea_m2;
+  for (const double rho : {0.5, 0.95}) {
+    HierarchicalOptions options;
+    options.epsilon_w = 1e-3;
+    const Solution sol = solve_hierarchical(testing_support::closed_room(rho, E), options, "quadtree-eps:1e-3");
+    double radiosity_power = 0;
+    for (const SurfaceSolution& s : sol.surfaces)
+      for (const SolutionElement& e : s.elements) radiosity_power += e.area_m2 * e.radiosity_w_m2[0];
+    // Measured: absorbed / emitted - 1 = 1.3e-4 (rho 0.5) and 1.0e-4 (0.95); sum A B against
+    // the closed form Phi / (1 - rho) (mean radiosity Phi / ((1 - rho) A)): 6.5e-5 and 9.8e-5.
+    EXPECT_TRUE(sol.stats.converged);
+    EXPECT_NEAR(sol.stats.absorbed_w[0], phi, 1e-3 * phi) << "rho = " << rho;
+    const double mean_radiosity = phi / ((1 - rho) * area);
+    EXPECT_NEAR(radiosity_power / area, mean_radiosity, 1e-3 * mean_radiosity) << "rho = " << rho;
+  }
 }
 
 TEST(Hierarchical, GatheringStoppedByItsIterationLimitIsReportedNotConverged) {

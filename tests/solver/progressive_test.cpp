@@ -7,6 +7,7 @@
 #include "mesh/grid_mesh.h"
 #include "support/closed_forms.h"
 #include "support/scenes.h"
+#include "solver/closed_room.h"
 #include "solver/progressive.h"
 
 namespace radrecon {
@@ -18,6 +19,8 @@ using testing_support::quad;
 constexpr double kDirectRelative = 1e-3;
 /// Energy bookkeeping is exact up to round-off in sums of ~10^3..10^5 terms.
 constexpr double kBalanceRelative = 1e-9;
+/// The issue's bound for a closed room: the power absorbed equals the power emitted to 1e-3.
+constexpr double kClosedRoomRelative = 1e-3;
 
 
 /// Closed-form F from a floor point to the light [x0,x1] x [y0,y1] at height h.
@@ -105,6 +108,43 @@ TEST(Progressive, ClosedBoxRadiosityPowerIsEmittedOverOneMinusReflectance) {
   EXPECT_LT(std::abs(sol.stats.escaped_w[0]), 0.01 * phi);
   EXPECT_TRUE(sol.stats.converged);
   EXPECT_LT(sol.stats.residual, 1e-7);
+}
+
+// Issue 11 item 5, NOT YET MET (disabled): progressive refinement gains 0.2% of the shot power
+// per bounce here (escaped = -0.039 W of 20 at rho 0.5, -0.49 W at 0.95, with the near field
+// integrated by area_visible_form_factor(); more at point collocation). Enable when it passes.
+TEST(Progressive, DISABLED_ClosedRoomKeepsItsEnergyAndMatchesTheClosedFormMeanIrradiance) {
+  // In a closed room of uniform reflectance every watt emitted is absorbed: (1 - rho) sum A H =
+  // Phi, so the mean irradiance is E = Phi / ((1 - rho) A) = Phi / A + rho Phi / ((1 - rho) A),
+  // and the mean radiosity is B = Phi / ((1 - rho) A) (B = E_emitted + rho H, summed over A).
+  const double E = 40, phi = E * testing_support::kClosedRoomLight_m2, area = testing_support::kClosedRoomArea_m2;
+  for (const double rho : {0.5, 0.95}) {
+    const Scene room = testing_support::closed_room(rho, E);
+    for (const Surface& s : room.surfaces) ASSERT_GT(s.normal().dot(Vec3(1.5, 1.25, 1) - s.corners[0]), 0) << s.name;
+    const Solution sol = solve(room, 12, 1e-5);
+    ASSERT_TRUE(sol.stats.converged);
+    const SolveStats& st = sol.stats;
+    EXPECT_EQ(st.emitted_w[0], phi);
+    // The issue's bound: absorbed = emitted to 1e-3 (the unshot 1e-5 still to be absorbed).
+    EXPECT_NEAR(st.absorbed_w[0], phi, kClosedRoomRelative * phi) << "rho = " << rho;
+    EXPECT_LT(std::abs(st.escaped_w[0]), kClosedRoomRelative * phi) << "rho = " << rho;
+    // Mean irradiance from the solution's radiosities alone, H = (B - E) / rho.
+    double irradiance_power = 0, radiosity_power = 0, total_area = 0;
+    for (const SurfaceSolution& s : sol.surfaces) {
+      const double emission = s.scene_surface == "light" ? E : 0.0;
+      for (const SolutionElement& e : s.elements) {
+        irradiance_power += e.area_m2 * (e.radiosity_w_m2[0] - emission) / rho;
+        radiosity_power += e.area_m2 * e.radiosity_w_m2[0];
+        total_area += e.area_m2;
+      }
+    }
+    const double mean_irradiance = phi / ((1 - rho) * area);
+    EXPECT_NEAR(mean_irradiance, phi / area + rho * phi / ((1 - rho) * area), 1e-12 * mean_irradiance);
+    EXPECT_NEAR(irradiance_power / area, mean_irradiance, kClosedRoomRelative * mean_irradiance) << "rho = " << rho;
+    EXPECT_NEAR(total_area, area, 1e-12 * area);
+    const double mean_radiosity = phi / ((1 - rho) * area);
+    EXPECT_NEAR(radiosity_power / area, mean_radiosity, kClosedRoomRelative * mean_radiosity) << "rho = " << rho;
+  }
 }
 
 TEST(Progressive, ShotLimitIsReportedNotConverged) {

@@ -155,5 +155,85 @@ TEST(VisibleFormFactor, ManyVertexFragmentsAreCutAndStayAdditive) {
   EXPECT_LT(whole, 0.9 * unoccluded);
 }
 
+/// Howell's C-11: F between directly opposed parallel rectangles a x b (metres) at distance c.
+double parallel_rectangles(double a, double b, double c) {
+  const double X = a / c, Y = b / c, sx = std::sqrt(1 + X * X), sy = std::sqrt(1 + Y * Y);
+  return 2 / (std::numbers::pi * X * Y) *
+         (std::log(sx * sy / std::sqrt(1 + X * X + Y * Y)) + X * sy * std::atan(X / sy) + Y * sx * std::atan(Y / sx) -
+          X * std::atan(X) - Y * std::atan(Y));
+}
+
+/// Howell's C-14: F from a rectangle of width w to a perpendicular one of height h sharing its
+/// edge of length l (metres).
+double perpendicular_rectangles(double w, double h, double l) {
+  const double W = w / l, H = h / l, W2 = W * W, H2 = H * H, S = std::sqrt(W2 + H2);
+  const double log_term = std::log((1 + W2) * (1 + H2) / (1 + W2 + H2)) +
+                          W2 * std::log(W2 * (1 + W2 + H2) / ((1 + W2) * (W2 + H2))) +
+                          H2 * std::log(H2 * (1 + H2 + W2) / ((1 + H2) * (H2 + W2)));
+  return (W * std::atan(1 / W) + H * std::atan(1 / H) - S * std::atan(1 / S) + 0.25 * log_term) /
+         (std::numbers::pi * W);
+}
+
+/// The cubature's tolerance in these tests, and the bound on its result: the errors of the
+/// accepted squares add up, some tens of them near a shared edge's corners.
+constexpr double kAreaTolerance = 1e-7;
+constexpr double kAreaAbsolute = 1e-5;
+
+TEST(AreaVisibleFormFactor, ParallelRectanglesMatchHowell) {
+  const std::vector<const Occluder*> none;
+  for (const auto& [a, b, c] : {std::array<double, 3>{1, 1, 1}, {2, 0.5, 0.3}, {0.1, 0.1, 0.05}, {0.5, 3, 2}}) {
+    // Receiver [0,a] x [0,b] at z = 0 facing up; shooter above it at z = c facing down.
+    ConvexPolygon top;
+    for (const Vec3& v : {Vec3(0, 0, c), Vec3(0, b, c), Vec3(a, b, c), Vec3(a, 0, c)}) top.push(v);
+    const double f = area_visible_form_factor({Vec3(0, 0, 0), Vec3(a, 0, 0), Vec3(a, b, 0), Vec3(0, b, 0)},
+                                              Vec3::UnitZ(), top, -Vec3::UnitZ(), none, kAreaTolerance);
+    EXPECT_NEAR(f, parallel_rectangles(a, b, c), kAreaAbsolute) << a << " x " << b << " at " << c;
+  }
+  EXPECT_NEAR(parallel_rectangles(1, 1, 1), 0.19982, 1e-5);  // the published value
+}
+
+TEST(AreaVisibleFormFactor, PerpendicularRectanglesSharingAnEdgeMatchHowell) {
+  // Where collocation fails: the receiver touches the shooter along their common edge.
+  const std::vector<const Occluder*> none;
+  for (const auto& [w, h, l] : {std::array<double, 3>{1, 1, 1}, {0.1, 1, 1}, {0.25, 0.25, 0.25}, {2, 0.5, 1.5}}) {
+    // Receiver: the floor x in [0, w], y in [0, l] facing up; shooter: the wall x = 0, z in [0, h].
+    ConvexPolygon wall;
+    for (const Vec3& v : {Vec3(0, 0, 0), Vec3(0, 0, h), Vec3(0, l, h), Vec3(0, l, 0)}) wall.push(v);
+    const double f = area_visible_form_factor({Vec3(0, 0, 0), Vec3(w, 0, 0), Vec3(w, l, 0), Vec3(0, l, 0)},
+                                              Vec3::UnitZ(), wall, Vec3::UnitX(), none, kAreaTolerance);
+    const double expected = perpendicular_rectangles(w, h, l);
+    EXPECT_NEAR(f, expected, kAreaAbsolute) << w << " x " << l << " beside " << h;
+    // The centre's point form factor, which the cubature replaces, is far off here.
+    if (w == h) {
+      EXPECT_GT(std::abs(lambert_form_factor(Vec3(w / 2, l / 2, 0), Vec3::UnitZ(), wall) - expected), 0.005);
+    }
+  }
+  EXPECT_NEAR(perpendicular_rectangles(1, 1, 1), 0.20004, 1e-5);  // the published value
+}
+
+TEST(AreaVisibleFormFactor, MatchesBruteForceBehindAnOccluder) {
+  // A floor element beside a wall with a blind between them (F jumps where the blind's plane
+  // crosses the element): the cubature against a fine midpoint rule of the point form factors,
+  // which the tests above check against the independent ray caster.
+  Scene scene;
+  scene.surfaces.push_back(make_quad("floor", {0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}));
+  scene.surfaces.push_back(make_quad("wall", {0, 0, 0}, {0, 1, 0}, {0, 1, 1}, {0, 0, 1}));
+  scene.surfaces.push_back(make_quad("blind", {0.2, 0.3, 0.1}, {0.2, 0.3, 0.6}, {0.2, 0.8, 0.6}, {0.2, 0.8, 0.1}));
+  const std::vector<Occluder> occ = make_occluders(scene);
+  const std::vector<const Occluder*> blind = {&occ[2]};
+  ConvexPolygon wall;
+  for (const Vec3& c : scene.surfaces[1].corners) wall.push(c);
+  const std::array<Vec3, 4> element = {Vec3(0, 0.25, 0), Vec3(0.5, 0.25, 0), Vec3(0.5, 0.75, 0), Vec3(0, 0.75, 0)};
+  const double f = area_visible_form_factor(element, Vec3::UnitZ(), wall, Vec3::UnitX(), blind, kAreaTolerance);
+  constexpr int kN = 40;  // 40 x 40 receiver points; the point form factor is checked above
+  double sum = 0;
+  for (int i = 0; i < kN; ++i)
+    for (int j = 0; j < kN; ++j) {
+      const double x = 0.5 * (i + 0.5) / kN, y = 0.25 + 0.5 * (j + 0.5) / kN;
+      sum += exact(scene, 1, Vec3(x, y, 0), Vec3::UnitZ(), 0);
+    }
+  EXPECT_NEAR(f, sum / (kN * kN), 2e-3 * f);
+}
+
 }  // namespace
 }  // namespace radrecon

@@ -1,0 +1,39 @@
+#pragma once
+// A closed room whose light is part of its ceiling, for the energy tests of both solvers.
+
+#include "support/scenes.h"
+
+namespace radrecon::testing_support {
+
+/// The room's total surface area and its light's, m^2.
+inline constexpr double kClosedRoomArea_m2 = 2 * 3 * 2.5 + 2 * 3 * 2 + 2 * 2.5 * 2;
+inline constexpr double kClosedRoomLight_m2 = 0.5;
+
+/// A closed room 3 x 2.5 x 2 m, every surface of reflectance rho facing inwards; the ceiling is
+/// tiled by a light of 1 x 0.5 m (exitance E, reflectance rho too) and four quads around it.
+inline Scene closed_room(double rho, double E) {
+  Scene room;
+  room.name = "room";
+  const double X = 3, Y = 2.5, Z = 2;
+  auto add = [&](const std::string& name, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, double e = 0) {
+    room.surfaces.push_back(quad(name, a, b, c, d, rho, e));
+  };
+  add("floor", {0, 0, 0}, {X, 0, 0}, {X, Y, 0}, {0, Y, 0});
+  add("x0", {0, 0, 0}, {0, Y, 0}, {0, Y, Z}, {0, 0, Z});
+  add("x1", {X, 0, 0}, {X, 0, Z}, {X, Y, Z}, {X, Y, 0});
+  add("y0", {0, 0, 0}, {0, 0, Z}, {X, 0, Z}, {X, 0, 0});
+  add("y1", {0, Y, 0}, {X, Y, 0}, {X, Y, Z}, {0, Y, Z});
+  // Ceiling tiles facing down (corners clockwise seen from above): the light x in [1, 2],
+  // y in [1, 1.5], and the four quads around it.
+  auto tile = [&](const std::string& name, double x0, double y0, double x1, double y1, double e = 0) {
+    add(name, {x0, y0, Z}, {x0, y1, Z}, {x1, y1, Z}, {x1, y0, Z}, e);
+  };
+  tile("ceiling_south", 0, 0, X, 1);
+  tile("ceiling_north", 0, 1.5, X, Y);
+  tile("ceiling_west", 0, 1, 1, 1.5);
+  tile("ceiling_east", 2, 1, X, 1.5);
+  tile("light", 1, 1, 2, 1.5, E);
+  return room;
+}
+
+}  // namespace radrecon::testing_support
