@@ -1,10 +1,6 @@
 // Overshoot (metrics.h): the range of a query's natural neighbours, or outside the hull of its
 // nearest hull edge and nearest samples.
 
-#include <CGAL/Delaunay_triangulation_2.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Triangulation_vertex_base_with_info_2.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -22,30 +18,8 @@ namespace radrecon {
 
 namespace {
 
-using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Vb = CGAL::Triangulation_vertex_base_with_info_2<unsigned, K>;
-using Tds = CGAL::Triangulation_data_structure_2<Vb>;
-using Delaunay = CGAL::Delaunay_triangulation_2<K, Tds>;
-
 /// Samples nearest to a query outside the hull whose range counts beside its hull edge's.
 constexpr int kOutsideNearest = 3;
-
-/// The hull's edges as pairs of sample indices: the finite edges of the Delaunay triangulation's
-/// infinite faces, so consecutive samples along the hull, collinear ones included (exact
-/// predicates decide which are on it).
-std::vector<std::pair<unsigned, unsigned>> hull_edges(const std::vector<Vec2>& points) {
-  std::vector<std::pair<Delaunay::Point, unsigned>> input;
-  input.reserve(points.size());
-  for (unsigned k = 0; k < points.size(); ++k) input.emplace_back(Delaunay::Point(points[k].x(), points[k].y()), k);
-  const Delaunay dt(input.begin(), input.end());
-  std::vector<std::pair<unsigned, unsigned>> edges;
-  Delaunay::Face_circulator fc = dt.incident_faces(dt.infinite_vertex()), done = fc;
-  do {
-    const int i = fc->index(dt.infinite_vertex());
-    edges.emplace_back(fc->vertex(Delaunay::ccw(i))->info(), fc->vertex(Delaunay::cw(i))->info());
-  } while (++fc != done);
-  return edges;
-}
 
 /// The hull edge nearest to q (the first of equally near ones, in the order of `edges`).
 std::pair<unsigned, unsigned> nearest_edge(const Vec2& q, const std::vector<Vec2>& points,
@@ -79,7 +53,7 @@ std::optional<NeighbourRanges> neighbour_ranges(const ScatteredSamples& samples,
   } catch (const ReconstructionError&) {
     return std::nullopt;  // no natural neighbours: fewer than 3 samples, on one line, repeated
   }
-  const std::vector<std::pair<unsigned, unsigned>> edges = hull_edges(samples.points);
+  const std::vector<std::pair<unsigned, unsigned>>& edges = nn->hull_edges();
   const KdTree2 tree(samples.points);
   const int nearest = static_cast<int>(std::min<size_t>(kOutsideNearest, samples.points.size()));
   NeighbourRanges ranges;

@@ -282,6 +282,8 @@ NaturalNeighbour::~NaturalNeighbour() = default;
 
 int NaturalNeighbour::channels() const { return impl_->channels; }
 
+const std::vector<std::pair<unsigned, unsigned>>& NaturalNeighbour::hull_edges() const { return impl_->hull_edges; }
+
 std::vector<std::pair<unsigned, double>> NaturalNeighbour::coordinates(const Vec2& q) const {
   Impl::Scratch scratch;
   Delaunay::Face_handle hint;

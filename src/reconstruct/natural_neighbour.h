@@ -68,6 +68,11 @@ class NaturalNeighbour final : public Interpolant {
   /// from q, with barriers).
   std::vector<std::pair<unsigned, double>> coordinates(const Vec2& q) const;
 
+  /// The edges of the samples' convex hull as pairs of sample indices (consecutive samples along
+  /// the hull, collinear ones included: the finite edges of the Delaunay triangulation's
+  /// infinite faces), without regard to barriers.
+  const std::vector<std::pair<unsigned, unsigned>>& hull_edges() const;
+
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
