@@ -66,8 +66,8 @@ TEST(Laplace, ExactAtSamplesAndReproducesLinearFunctions) {
   for (int t = 0; t < 300; ++t) {
     const Vec2 q(inner(rng), inner(rng));
     EXPECT_NEAR(eval1(laplace, q), f(q), 1e-11);
-    // And the coordinates differ from Sibson's (else the test above would prove nothing new).
   }
+  // And the coordinates differ from Sibson's (else the test above would prove nothing new).
   const NaturalNeighbour sibson(s, OutsideHull::none);
   const Vec2 q(2.1, 1.7);
   const auto a = laplace.coordinates(q), b = sibson.coordinates(q);
