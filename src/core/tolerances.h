@@ -164,4 +164,8 @@ inline constexpr double kNielsonResidualRelative = 1e-13;
 /// across); a light that little behind a surface is drawn in front of it.
 inline constexpr double kEmitterTieRelative = 1e-6;
 
+/// A quad corner within this fraction of the quad's longest edge of the next corner repeats it:
+/// the quad is read as the triangle of the other three (scene/scene.h regularise_surfaces()).
+inline constexpr double kRepeatedCornerRelative = 1e-9;
+
 }  // namespace radrecon::tol

@@ -1,5 +1,7 @@
 #include "io/scene_json.h"
 
+#include <cstdio>
+
 #include "io/json_reader.h"
 
 namespace radrecon {
@@ -14,9 +16,10 @@ Surface read_surface(const JsonReader& r, const json& j, const std::string& path
   Surface s;
   s.name = r.string(r.member(j, "name", path), path + ".name");
   const json& corners = r.member(j, "corners", path);
-  if (!corners.is_array() || corners.size() != 4)
-    r.fail(path + ".corners", "must be an array of 4 points [x, y, z]");
-  for (size_t i = 0; i < 4; ++i) s.corners[i] = r.vec3(corners[i], JsonReader::at(path + ".corners", i));
+  if (!corners.is_array() || (corners.size() != 3 && corners.size() != 4))
+    r.fail(path + ".corners", "must be an array of 3 or 4 points [x, y, z] (a triangle or a quad)");
+  for (size_t i = 0; i < corners.size(); ++i) s.corners[i] = r.vec3(corners[i], JsonReader::at(path + ".corners", i));
+  if (corners.size() == 3) s.set_triangle(s.corners[0], s.corners[1], s.corners[2]);
   s.reflectance = r.colour(r.member(j, "reflectance", path), path + ".reflectance");
   if (j.contains("emission")) s.emission_w_m2 = r.colour(j["emission"], path + ".emission");
   if (j.contains("two_sided")) s.two_sided = r.boolean(j["two_sided"], path + ".two_sided");
@@ -65,6 +68,8 @@ Scene parse_scene_json(const std::string& text, const std::string& source) {
     for (size_t i = 0; i < cameras.size(); ++i)
       scene.cameras.push_back(read_camera(r, cameras[i], JsonReader::at("cameras", i)));
   }
+  for (const std::string& warning : regularise_surfaces(scene, source))
+    std::fprintf(stderr, "radrecon: warning: %s\n", warning.c_str());
   validate_scene(scene, source);
   return scene;
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <set>
 
@@ -10,13 +11,20 @@
 
 namespace radrecon {
 
+void Surface::set_triangle(const Vec3& c0, const Vec3& c1, const Vec3& c2) {
+  corners = {c0, c1, c2, c2};
+  corner_count = 3;
+}
+
 Vec3 Surface::point(double u, double v) const {
+  if (is_triangle()) return corners[0] + u * (corners[1] - corners[0]) + v * (corners[2] - corners[0]);
   return (1 - u) * (1 - v) * corners[0] + u * (1 - v) * corners[1] + u * v * corners[2] +
          (1 - u) * v * corners[3];
 }
 
 Vec3 Surface::normal() const {
-  // Newell's normal is exact for planar polygons and robust for nearly degenerate ones.
+  // The diagonals' cross product is Newell's normal of a planar quad, robust for nearly
+  // degenerate ones; for a triangle (corners[3] == corners[2]) it is (c1 - c0) x (c2 - c0).
   Vec3 n = (corners[2] - corners[0]).cross(corners[3] - corners[1]);
   return n.normalized();
 }
@@ -26,25 +34,54 @@ double Surface::area_m2() const {
 }
 
 double Surface::length_u_m() const {
+  if (is_triangle()) return (corners[1] - corners[0]).norm();
   return 0.5 * ((corners[1] - corners[0]).norm() + (corners[2] - corners[3]).norm());
 }
 
 double Surface::length_v_m() const {
+  if (is_triangle()) return 2 * area_m2() / (corners[1] - corners[0]).norm();
   return 0.5 * ((corners[3] - corners[0]).norm() + (corners[2] - corners[1]).norm());
+}
+
+double Surface::shear_m() const {
+  if (!is_triangle()) return 0;
+  const Vec3 e = corners[1] - corners[0];
+  return (corners[2] - corners[0]).dot(e) / e.norm();
+}
+
+bool Surface::in_domain(double u, double v) const {
+  const double kEdge = tol::kQuadEdgeParameter;
+  if (!(u >= -kEdge && v >= -kEdge)) return false;
+  return is_triangle() ? u + v <= 1 + kEdge : u <= 1 + kEdge && v <= 1 + kEdge;
 }
 
 std::optional<Vec2> Surface::parameters(const Vec3& p) const {
   const Surface& s = *this;
-  // Solve p = (1-u)(1-v) c0 + u(1-v) c1 + u v c2 + (1-u) v c3 in the quad's plane, projected to
-  // the two axes where the quad is largest: a quadratic in v (linear for a parallelogram).
+  // Solve p = point(u, v) in the surface's plane, projected to the two axes where the surface is
+  // largest: linear for a triangle, a quadratic in v for a quad (linear for a parallelogram).
   const Vec3 n = s.normal();
   int drop = 0;
   n.cwiseAbs().maxCoeff(&drop);
   const int a = (drop + 1) % 3, b = (drop + 2) % 3;
   auto xy = [&](const Vec3& q) { return Vec2(q[a], q[b]); };
-  const Vec2 c0 = xy(s.corners[0]), c1 = xy(s.corners[1]), c2 = xy(s.corners[2]), c3 = xy(s.corners[3]);
-  const Vec2 q = xy(p) - c0, e = c1 - c0, f = c3 - c0, g = c0 - c1 + c2 - c3;
   auto cross = [](const Vec2& x, const Vec2& y) { return x.x() * y.y() - x.y() * y.x(); };
+  const Vec2 c0 = xy(s.corners[0]), c1 = xy(s.corners[1]), c2 = xy(s.corners[2]), c3 = xy(s.corners[3]);
+  const Vec2 q = xy(p) - c0, e = c1 - c0;
+  if (is_triangle()) {
+    const Vec2 f = c2 - c0;
+    const double det = cross(e, f);
+    double u = cross(q, f) / det, v = cross(e, q) / det;
+    if (!in_domain(u, v)) return std::nullopt;
+    u = std::max(u, 0.0);
+    v = std::max(v, 0.0);
+    if (u + v > 1) {
+      const double sum = u + v;
+      u /= sum;
+      v /= sum;
+    }
+    return Vec2(u, v);
+  }
+  const Vec2 f = c3 - c0, g = c0 - c1 + c2 - c3;
   const double k2 = cross(g, f), k1 = cross(e, f) + cross(q, g), k0 = cross(q, e);
   double v;
   const double scale = std::abs(cross(e, f));
@@ -59,8 +96,7 @@ std::optional<Vec2> Surface::parameters(const Vec3& p) const {
   }
   const Vec2 denom = e + v * g;
   const double u = std::abs(denom.x()) > std::abs(denom.y()) ? (q.x() - v * f.x()) / denom.x() : (q.y() - v * f.y()) / denom.y();
-  const double kEdge = tol::kQuadEdgeParameter;  // points on the border belong to the quad
-  if (!(u >= -kEdge && u <= 1 + kEdge && v >= -kEdge && v <= 1 + kEdge)) return std::nullopt;
+  if (!in_domain(u, v)) return std::nullopt;  // points on the border belong to the quad
   return Vec2(std::clamp(u, 0.0, 1.0), std::clamp(v, 0.0, 1.0));
 }
 
@@ -76,32 +112,36 @@ bool finite(const Vec3& p) { return p.allFinite(); }
 
 void validate_surface(const Surface& s, const std::string& where) {
   if (s.name.empty()) throw UserError(where + ".name", "must not be empty");
-  for (int i = 0; i < 4; ++i)
+  const int n_corners = s.corner_count;
+  if (n_corners != 3 && n_corners != 4) throw UserError(where + ".corners", "must have 3 or 4 corners");
+  if (n_corners == 3 && s.corners[3] != s.corners[2]) throw UserError(where + ".corners", "triangle's corners[3] must repeat corners[2] (Surface::set_triangle)");
+  for (int i = 0; i < n_corners; ++i)
     if (!finite(s.corners[i]) || s.corners[i].cwiseAbs().maxCoeff() > tol::kMaxCoordinate_m)
       throw UserError(where + ".corners[" + std::to_string(i) + "]",
                       "must be finite numbers of magnitude at most " + std::to_string(tol::kMaxCoordinate_m) + " m");
   double longest_sq = 0;
-  for (int i = 0; i < 4; ++i)
-    longest_sq = std::max(longest_sq, (s.corners[(i + 1) % 4] - s.corners[i]).squaredNorm());
+  for (int i = 0; i < n_corners; ++i)
+    longest_sq = std::max(longest_sq, (s.corners[(i + 1) % n_corners] - s.corners[i]).squaredNorm());
   double longest = std::sqrt(longest_sq);
+  const std::string kind = n_corners == 3 ? "triangle" : "quad";
   if (longest == 0 || s.area_m2() <= tol::kDegenerateAreaRelative * longest_sq)
-    throw UserError(where + ".corners", "degenerate quad (zero area)");
+    throw UserError(where + ".corners", "degenerate " + kind + " (zero area: its corners are collinear or coincide)");
   Vec3 n = s.normal();
   Vec3 centroid = 0.25 * (s.corners[0] + s.corners[1] + s.corners[2] + s.corners[3]);
-  for (int i = 0; i < 4; ++i) {
+  for (int i = 0; i < n_corners; ++i) {
     double off_plane = std::abs((s.corners[i] - centroid).dot(n));
     if (off_plane > tol::kPlanarityRelative * longest)
       throw UserError(where + ".corners",
                       "quad is not planar (corner " + std::to_string(i) + " is " +
                           std::to_string(off_plane) + " m off the plane)");
   }
-  for (int i = 0; i < 4; ++i) {
-    Vec3 e0 = s.corners[(i + 1) % 4] - s.corners[i];
-    Vec3 e1 = s.corners[(i + 2) % 4] - s.corners[(i + 1) % 4];
+  for (int i = 0; i < n_corners; ++i) {
+    Vec3 e0 = s.corners[(i + 1) % n_corners] - s.corners[i];
+    Vec3 e1 = s.corners[(i + 2) % n_corners] - s.corners[(i + 1) % n_corners];
     if (e0.cross(e1).dot(n) <= tol::kDegenerateAreaRelative * longest_sq)
       throw UserError(where + ".corners",
-                      "quad is not convex or its corners are not in order (at corner " +
-                          std::to_string((i + 1) % 4) + ")");
+                      kind + " is not convex or its corners are not in order (at corner " +
+                          std::to_string((i + 1) % n_corners) + ")");
   }
   for (int c = 0; c < 3; ++c) {
     double r = s.reflectance[c];
@@ -154,6 +194,98 @@ void validate_scene(const Scene& scene, const std::string& source) {
   for (const Surface& s : scene.surfaces)
     emits = emits || (s.area_m2() * s.emission_w_m2 >= std::numeric_limits<double>::min()).any();
   if (!emits) throw UserError(source + ": surfaces", "no surface emits light (every emitted power is 0 or underflows)");
+}
+
+namespace {
+
+/// The largest distance of a quad's corners from the plane through their centroid with the
+/// diagonals' normal, metres.
+double off_plane_m(const Surface& s) {
+  const Vec3 n = s.normal();
+  const Vec3 centroid = 0.25 * (s.corners[0] + s.corners[1] + s.corners[2] + s.corners[3]);
+  double off = 0;
+  for (const Vec3& c : s.corners) off = std::max(off, std::abs((c - centroid).dot(n)));
+  return off;
+}
+
+std::string metres(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g m", x);
+  return buf;
+}
+
+}  // namespace
+
+std::vector<std::string> regularise_surfaces(Scene& scene, const std::string& source) {
+  std::vector<std::string> warnings;
+  std::vector<Surface> out;
+  out.reserve(scene.surfaces.size());
+  for (size_t index = 0; index < scene.surfaces.size(); ++index) {
+    Surface& s = scene.surfaces[index];
+    const std::string where = source + ": surfaces[" + std::to_string(index) + "] '" + s.name + "'";
+    if (s.is_triangle() || !s.corners[0].allFinite() || !s.corners[1].allFinite() || !s.corners[2].allFinite() ||
+        !s.corners[3].allFinite()) {
+      out.push_back(s);
+      continue;
+    }
+    double longest = 0;
+    for (int i = 0; i < 4; ++i) longest = std::max(longest, (s.corners[(i + 1) % 4] - s.corners[i]).norm());
+    // A repeated corner: the triangle of the other three.
+    int repeated = -1;
+    for (int i = 0; i < 4 && repeated < 0; ++i)
+      if ((s.corners[(i + 1) % 4] - s.corners[i]).norm() <= tol::kRepeatedCornerRelative * longest) repeated = i;
+    if (repeated >= 0 && longest > 0) {
+      std::array<Vec3, 3> keep;
+      for (int k = 0; k < 3; ++k) keep[k] = s.corners[(repeated + 1 + k) % 4];
+      s.set_triangle(keep[0], keep[1], keep[2]);
+      warnings.push_back(where + ": a quad with a repeated corner (" + std::to_string(repeated) +
+                         "), read as a triangle");
+      out.push_back(s);
+      continue;
+    }
+    const Vec3 n = s.normal();
+    if (!n.allFinite() || longest == 0) {
+      out.push_back(s);  // degenerate: validate_scene() refuses it with the reason
+      continue;
+    }
+    int reflex = -1, reflex_count = 0;
+    for (int i = 0; i < 4; ++i) {
+      const Vec3 e0 = s.corners[(i + 1) % 4] - s.corners[i], e1 = s.corners[(i + 2) % 4] - s.corners[(i + 1) % 4];
+      if (e0.cross(e1).dot(n) <= 0) {
+        reflex = (i + 1) % 4;
+        ++reflex_count;
+      }
+    }
+    const double off = off_plane_m(s);
+    const bool warped = off > tol::kPlanarityRelative * longest;
+    if (!warped && reflex_count == 0) {
+      out.push_back(s);
+      continue;
+    }
+    if (reflex_count > 1) {
+      out.push_back(s);  // corners out of order (a bow tie): validate_scene() refuses it
+      continue;
+    }
+    // Split along the diagonal through the reflex corner, else along the shorter diagonal.
+    int d = 0;  // the diagonal from corner d to corner d + 2
+    if (reflex >= 0)
+      d = reflex % 2;
+    else if ((s.corners[3] - s.corners[1]).norm() < (s.corners[2] - s.corners[0]).norm())
+      d = 1;
+    const auto c = [&](int k) { return s.corners[(d + k) % 4]; };
+    Surface a = s, b = s;
+    a.name = s.name + ".a";
+    b.name = s.name + ".b";
+    a.set_triangle(c(0), c(1), c(2));
+    b.set_triangle(c(0), c(2), c(3));
+    warnings.push_back(where + (warped ? ": a quad " + metres(off) + " off its plane" : std::string(": a quad that is not convex")) +
+                       ", split into the triangles '" + a.name + "' and '" + b.name + "' along the diagonal of corners " +
+                       std::to_string(d) + "-" + std::to_string(d + 2));
+    out.push_back(a);
+    out.push_back(b);
+  }
+  scene.surfaces = std::move(out);
+  return warnings;
 }
 
 }  // namespace radrecon

@@ -1,9 +1,11 @@
 #pragma once
-// The scene model: planar convex quads with diffuse reflectance and emission, and cameras.
+// The scene model: planar convex triangles and quads with diffuse reflectance and emission, and
+// cameras.
 // All lengths in metres; emission is exitance in W/m^2.
 
 #include <array>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -11,13 +13,18 @@
 
 namespace radrecon {
 
-/// A planar convex quad. Corners are counter-clockwise seen from the front. The surface
-/// parameters are u in [0,1] from corner 0 to corner 1 and v in [0,1] from corner 0 to corner 3;
-/// a point is the bilinear blend of the corners (iso-parametric lines of a planar quad are
-/// straight, so a (u,v) rectangle maps to a planar quad).
+/// A planar convex polygon of 3 or 4 corners, counter-clockwise seen from the front.
+///
+/// Its surface parameters (u, v) cover a quad's unit square, u from corner 0 to corner 1 and v
+/// from corner 0 to corner 3, a point being the bilinear blend of the corners (iso-parametric
+/// lines of a planar quad are straight, so a (u,v) rectangle maps to a planar quad); and a
+/// triangle's unit right triangle {u, v >= 0, u + v <= 1}, a point being the affine blend
+/// c0 + u (c1 - c0) + v (c2 - c0). A triangle keeps corners[3] == corners[2], so that code
+/// reading four corners (bounding boxes, the diagonal-based area and normal) stays right.
 struct Surface {
   std::string name;
   std::array<Vec3, 4> corners;
+  int corner_count = 4;             ///< 3 (triangle) or 4 (quad)
   Rgb reflectance = Rgb::Zero();    ///< diffuse reflectance per channel, in [0,1)
   Rgb emission_w_m2 = Rgb::Zero();  ///< emitted exitance per channel, W/m^2, >= 0
   bool two_sided = false;           ///< reflects (never emits) on its back too
@@ -25,19 +32,31 @@ struct Surface {
   /// edge gets proportionally fewer). Unset: the global mesh density applies.
   std::optional<int> max_divisions;
 
-  /// The point at parameters (u, v): the bilinear blend of the corners.
+  bool is_triangle() const { return corner_count == 3; }
+  /// The corners in use, in order.
+  std::span<const Vec3> polygon() const { return {corners.data(), static_cast<size_t>(corner_count)}; }
+  /// Sets a triangle's corners (and corners[3] = c2, corner_count = 3).
+  void set_triangle(const Vec3& c0, const Vec3& c1, const Vec3& c2);
+
+  /// The point at parameters (u, v): the bilinear (quad) or affine (triangle) blend of the corners.
   Vec3 point(double u, double v) const;
-  /// The parameters (u, v) of a point on the quad's plane (the inverse of point()); nullopt if
-  /// the point lies outside the quad (points on its border, up to tol::kQuadEdgeParameter, are
-  /// inside and clamped to [0,1]).
+  /// The parameters (u, v) of a point on the surface's plane (the inverse of point()); nullopt if
+  /// the point lies outside the surface (points on its border, up to tol::kQuadEdgeParameter, are
+  /// inside and clamped into the parameter domain).
   std::optional<Vec2> parameters(const Vec3& p) const;
+  /// Whether (u, v) lies in the parameter domain (up to tol::kQuadEdgeParameter).
+  bool in_domain(double u, double v) const;
   /// Unit normal of the front side.
   Vec3 normal() const;
   double area_m2() const;
-  /// Mean length of the two u edges (corner 0->1 and 3->2), metres.
+  /// Quad: mean length of the two u edges (corner 0->1 and 3->2); triangle: edge 0->1. Metres.
   double length_u_m() const;
-  /// Mean length of the two v edges (corner 0->3 and 1->2), metres.
+  /// Quad: mean length of the two v edges (corner 0->3 and 1->2); triangle: its height over
+  /// edge 0->1. Metres.
   double length_v_m() const;
+  /// Triangle: the component of edge 0->2 along edge 0->1, metres; quad: 0. With the two lengths
+  /// it maps (u,v) to the metric coordinates (s, t) (SurfaceSolution::st()).
+  double shear_m() const;
 };
 
 /// A pinhole camera; fov_deg is the vertical field of view in degrees, in (0, 180).
@@ -56,7 +75,7 @@ struct Scene {
   std::optional<size_t> find_surface(const std::string& name) const;
 };
 
-/// Checks the geometric and radiometric invariants (planar, convex, non-degenerate quads;
+/// Checks the geometric and radiometric invariants (planar, convex, non-degenerate polygons;
 /// reflectance in [0,1); finite non-negative emission; unique names; sane cameras).
 /// Throws UserError naming `source` and the offending field.
 void validate_scene(const Scene& scene, const std::string& source);
@@ -64,5 +83,13 @@ void validate_scene(const Scene& scene, const std::string& source);
 /// The built-in scene of the paper experiment (design brief): a 4 m x 4 m ground, a 1 m x 1 m
 /// light of 40 W/m^2 at 2.5 m, and two perpendicular two-sided walls meeting at (2.6, 2.6).
 Scene paper_scene();
+
+/// Makes a modeller's polygons fit the surface model, in place, and returns a warning per change:
+/// a quad with a repeated corner becomes the triangle of the other three; a quad off its plane by
+/// more than tol::kPlanarityRelative of its longest edge, or planar but not convex, is split into
+/// two triangles "NAME.a" and "NAME.b": along the diagonal through the reflex corner if it has
+/// one, else along its shorter diagonal (corners 0-2 on a tie). Polygons it cannot fix (corners out of order, zero area) are left for
+/// validate_scene() to refuse. `source` names the scene in the warnings.
+std::vector<std::string> regularise_surfaces(Scene& scene, const std::string& source);
 
 }  // namespace radrecon

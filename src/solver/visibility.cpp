@@ -13,7 +13,9 @@ std::vector<Occluder> make_occluders(const Scene& scene) {
     const Surface& s = scene.surfaces[k];
     Occluder o;
     o.corners = s.corners;
-    o.centroid = 0.25 * (s.corners[0] + s.corners[1] + s.corners[2] + s.corners[3]);
+    o.corner_count = s.corner_count;
+    o.centroid = Vec3::Zero();
+    for (const Vec3& c : s.polygon()) o.centroid += c / s.corner_count;
     Vec3 n = s.normal();
     o.plane = HalfSpace{n, n.dot(o.centroid)};
     o.bbox_min = o.bbox_max = s.corners[0];
@@ -77,8 +79,9 @@ bool shadow_volume(const Vec3& p, const Occluder& o, const ConvexPolygon& polygo
   for (int i = 0; i < polygon.n && !any_beyond; ++i) any_beyond = beyond.eval(polygon.v[i]) > 0;
   if (!any_beyond) return false;
   volume[0] = beyond;
-  for (int i = 0; i < 4; ++i) {
-    Vec3 m = (o.corners[i] - p).cross(o.corners[(i + 1) % 4] - p);
+  const int n = o.corner_count;
+  for (int i = 0; i < n; ++i) {
+    Vec3 m = (o.corners[i] - p).cross(o.corners[(i + 1) % n] - p);
     if (m.dot(o.centroid - p) < 0) m = -m;
     HalfSpace h{m, m.dot(p)};
     bool any_inside = false;
@@ -86,6 +89,7 @@ bool shadow_volume(const Vec3& p, const Occluder& o, const ConvexPolygon& polygo
     if (!any_inside) return false;  // the polygon lies wholly outside this side of the cone
     volume[i + 1] = h;
   }
+  if (n == 3) volume[4] = volume[3];  // a triangle's cone has three sides: clip by one twice
   return true;
 }
 

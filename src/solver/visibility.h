@@ -16,7 +16,8 @@ namespace radrecon {
 
 /// A scene surface seen as a potential blocker of light.
 struct Occluder {
-  std::array<Vec3, 4> corners;
+  std::array<Vec3, 4> corners;  ///< as Surface::corners (a triangle repeats corner 2)
+  int corner_count = 4;
   Vec3 centroid;
   HalfSpace plane;  ///< the surface's plane, normal of unit length
   Vec3 bbox_min, bbox_max;

@@ -198,10 +198,25 @@ TEST(SceneJson, RefusesAStringWhereANumberBelongs) {
   EXPECT_TRUE(RefusedMentioning(doc2.dump(), {kSource, "surfaces[1].emission"}));
 }
 
-TEST(SceneJson, RefusesANonPlanarQuad) {
+TEST(SceneJson, SplitsANonPlanarQuadIntoTwoTriangles) {
   json doc = ValidScene();
   doc["surfaces"][0]["corners"][3] = json::array({0, 1, 0.5});  // lifted 0.5 m off the plane
-  EXPECT_TRUE(RefusedMentioning(doc.dump(), {kSource, "surfaces[0].corners", "planar"}));
+  const Scene scene = parse_scene_json(doc.dump(), kSource);
+  ASSERT_EQ(scene.surfaces.size(), ValidScene()["surfaces"].size() + 1);
+  EXPECT_TRUE(scene.surfaces[0].is_triangle());
+  EXPECT_TRUE(scene.surfaces[1].is_triangle());
+}
+
+TEST(SceneJson, ReadsATriangle) {
+  json doc = ValidScene();
+  doc["surfaces"][0]["corners"] = json::parse("[[0,0,0],[1,0,0],[0,1,0]]");
+  const Scene scene = parse_scene_json(doc.dump(), kSource);
+  EXPECT_TRUE(scene.surfaces[0].is_triangle());
+  EXPECT_NEAR(scene.surfaces[0].area_m2(), 0.5, 1e-15);
+  doc["surfaces"][0]["corners"] = json::parse("[[0,0,0],[1,0,0]]");
+  EXPECT_TRUE(RefusedMentioning(doc.dump(), {kSource, "surfaces[0].corners", "3 or 4 points"}));
+  doc["surfaces"][0]["corners"] = json::parse("[[0,0,0],[1,0,0],[2,0,0]]");  // collinear
+  EXPECT_TRUE(RefusedMentioning(doc.dump(), {kSource, "surfaces[0].corners", "degenerate triangle"}));
 }
 
 TEST(SceneJson, RefusesADegenerateQuad) {
@@ -214,11 +229,11 @@ TEST(SceneJson, RefusesADegenerateQuad) {
   EXPECT_TRUE(RefusedMentioning(doc.dump(), {kSource, "surfaces[0].corners"}));
 }
 
-TEST(SceneJson, RefusesANonConvexOrMisorderedQuad) {
+TEST(SceneJson, SplitsANonConvexQuadAndRefusesAMisorderedOne) {
   json doc = ValidScene();
-  // A dart: corner 2 at (1, 1) is reflex (the turn there is clockwise seen from +z).
+  // A dart: corner 2 at (1, 1) is reflex (the turn there is clockwise seen from +z): two triangles.
   doc["surfaces"][0]["corners"] = json::parse("[[0,0,0],[4,0,0],[1,1,0],[0,4,0]]");
-  EXPECT_TRUE(RefusedMentioning(doc.dump(), {kSource, "surfaces[0].corners", "convex"}));
+  EXPECT_EQ(parse_scene_json(doc.dump(), kSource).surfaces.size(), ValidScene()["surfaces"].size() + 1);
   // Self-intersecting order with non-zero diagonal cross product (corners 2 and 3 swapped-ish).
   doc["surfaces"][0]["corners"] = json::parse("[[0,0,0],[3,0,0],[0,2,0],[1,3,0]]");
   EXPECT_TRUE(RefusedMentioning(doc.dump(), {kSource, "surfaces[0].corners"}));

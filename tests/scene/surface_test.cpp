@@ -1,8 +1,11 @@
-// A surface's (u, v) <-> point mapping, both ways.
+// A surface's (u, v) <-> point mapping, both ways; triangles; the regularisation of a modeller's
+// quads (repeated corners, warped or concave quads become triangles).
 
 #include <gtest/gtest.h>
 
 #include <random>
+
+#include "core/error.h"
 
 #include "scene/scene.h"
 
@@ -31,6 +34,103 @@ TEST(QuadParameters, InvertsTheBilinearMapOfAGeneralConvexQuad) {
   }
   EXPECT_FALSE(s.parameters(s.point(1.2, 0.5)).has_value());
   EXPECT_FALSE(s.parameters(s.point(0.5, -0.1)).has_value());
+}
+
+Surface triangle(const std::string& name, const Vec3& c0, const Vec3& c1, const Vec3& c2) {
+  Surface s;
+  s.name = name;
+  s.set_triangle(c0, c1, c2);
+  return s;
+}
+
+TEST(TriangleParameters, InvertTheAffineMapAndGiveTheMetricFrame) {
+  const Vec3 c0(0.3, -0.2, 1.0), c1(2.1, 0.4, 0.9), c2(0.5, 1.7, 0.2);
+  const Surface s = triangle("t", c0, c1, c2);
+  // Closed forms: area = |e1 x e2| / 2; length_u = |e1|; height = 2 area / |e1|; shear = e2.e1/|e1|.
+  const Vec3 e1 = c1 - c0, e2 = c2 - c0;
+  EXPECT_NEAR(s.area_m2(), 0.5 * e1.cross(e2).norm(), 1e-14);
+  EXPECT_NEAR(s.normal().dot(e1.cross(e2).normalized()), 1.0, 1e-14);
+  EXPECT_NEAR(s.length_u_m(), e1.norm(), 1e-14);
+  EXPECT_NEAR(s.length_v_m() * s.length_u_m(), e1.cross(e2).norm(), 1e-13);
+  EXPECT_NEAR(s.shear_m(), e2.dot(e1) / e1.norm(), 1e-14);
+  // (s, t) = (u Lu + v shear, v Lv) is an isometry of the plane: distances agree with 3-D ones.
+  auto st = [&](double u, double v) { return Vec2(u * s.length_u_m() + v * s.shear_m(), v * s.length_v_m()); };
+  EXPECT_NEAR((st(0, 1) - st(1, 0)).norm(), (c2 - c1).norm(), 1e-13);
+  std::mt19937 rng(32);
+  std::uniform_real_distribution<double> U(0, 1);
+  for (int k = 0; k < 1000; ++k) {
+    double u = U(rng), v = U(rng);
+    if (u + v > 1) u = 1 - u, v = 1 - v;
+    const auto uv = s.parameters(s.point(u, v));
+    ASSERT_TRUE(uv.has_value());
+    EXPECT_NEAR(uv->x(), u, 1e-10);
+    EXPECT_NEAR(uv->y(), v, 1e-10);
+  }
+  EXPECT_LT((s.point(1, 0) - c1).norm(), 1e-15);
+  EXPECT_LT((s.point(0, 1) - c2).norm(), 1e-15);
+  EXPECT_FALSE(s.parameters(s.point(0.6, 0.5)).has_value());  // beyond the hypotenuse
+  EXPECT_FALSE(s.parameters(s.point(-0.1, 0.5)).has_value());
+  EXPECT_TRUE(s.parameters(s.point(0.5, 0.5)).has_value());   // on it
+}
+
+Scene scene_of(std::vector<Surface> surfaces) {
+  Scene scene;
+  scene.name = "t";
+  scene.surfaces = std::move(surfaces);
+  scene.surfaces[0].emission_w_m2 = Rgb::Constant(1);
+  return scene;
+}
+
+TEST(RegulariseSurfaces, ReadsAQuadWithARepeatedCornerAsATriangle) {
+  Scene scene = scene_of({quad("q", Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0))});
+  const auto warnings = regularise_surfaces(scene, "s.json");
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("repeated corner"), std::string::npos);
+  ASSERT_EQ(scene.surfaces.size(), 1u);
+  EXPECT_TRUE(scene.surfaces[0].is_triangle());
+  EXPECT_NEAR(scene.surfaces[0].area_m2(), 0.5, 1e-15);
+  EXPECT_NO_THROW(validate_scene(scene, "s.json"));
+}
+
+TEST(RegulariseSurfaces, SplitsAWarpedQuadAlongItsShorterDiagonalKeepingItsCorners) {
+  // The published Cornell box's red wall: 0.8 mm off its plane over 0.55 m (Cornell University
+  // Program of Computer Graphics, "Cornell Box Data"), in metres.
+  const Vec3 c0(0.5528, 0, 0), c1(0.5496, 0, 0.5592), c2(0.556, 0.5488, 0.5592), c3(0.556, 0.5488, 0);
+  Scene scene = scene_of({quad("red", c0, c1, c2, c3)});
+  EXPECT_THROW(validate_scene(scene, "s.json"), UserError);  // as it stands: not planar
+  const auto warnings = regularise_surfaces(scene, "s.json");
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("off its plane"), std::string::npos);
+  ASSERT_EQ(scene.surfaces.size(), 2u);
+  EXPECT_EQ(scene.surfaces[0].name, "red.a");
+  EXPECT_EQ(scene.surfaces[1].name, "red.b");
+  const double diagonal02 = (c2 - c0).norm(), diagonal13 = (c3 - c1).norm();
+  const bool split13 = diagonal13 < diagonal02;
+  // Both triangles together cover the quad's corners, and share the shorter diagonal.
+  const Vec3 shared_a = split13 ? c1 : c0, shared_b = split13 ? c3 : c2;
+  for (const Surface& t : scene.surfaces) {
+    EXPECT_TRUE(t.is_triangle());
+    EXPECT_EQ(t.corners[0], shared_a);
+    EXPECT_TRUE(t.corners[1] == shared_b || t.corners[2] == shared_b);
+  }
+  EXPECT_NO_THROW(validate_scene(scene, "s.json"));
+}
+
+TEST(RegulariseSurfaces, SplitsAConcaveQuadThroughItsReflexCorner) {
+  // An arrowhead: corner 2 is reflex, so only the diagonal 0-2 cuts it into two triangles.
+  Scene scene = scene_of({quad("q", Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(0.5, 0.5, 0), Vec3(0, 2, 0))});
+  ASSERT_EQ(regularise_surfaces(scene, "s.json").size(), 1u);
+  ASSERT_EQ(scene.surfaces.size(), 2u);
+  double area = 0;
+  for (const Surface& t : scene.surfaces) area += t.area_m2();
+  EXPECT_NEAR(area, 1.0, 1e-12);  // the shoelace formula's area of the arrowhead
+  EXPECT_NO_THROW(validate_scene(scene, "s.json"));
+}
+
+TEST(RegulariseSurfaces, LeavesABowTieForValidationToRefuse) {
+  Scene scene = scene_of({quad("q", Vec3(0, 0, 0), Vec3(1, 1, 0), Vec3(1, 0, 0), Vec3(0, 1, 0))});
+  EXPECT_TRUE(regularise_surfaces(scene, "s.json").empty());
+  EXPECT_THROW(validate_scene(scene, "s.json"), UserError);
 }
 
 }  // namespace
