@@ -1,6 +1,7 @@
 #include "solver/progressive.h"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <limits>
 #include <span>
@@ -24,10 +25,23 @@ struct Block {
   Vec3 center;
   double diagonal_m = 0;          ///< the largest distance between two corners
   Rgb unshot_w_m2 = Rgb::Zero();  ///< area-weighted mean unshot radiosity of the block
+  Rgb lowest_w_m2 = Rgb::Zero(), highest_w_m2 = Rgb::Zero();  ///< its elements' extremes
+  /// The first moment of the unshot radiosity about the block's centroid, per channel (column),
+  /// divided by the block's area: sum_k A_k (c_k - c) (B_k - B_mean) / A, W/m^2 times metres.
+  Eigen::Matrix3d dipole = Eigen::Matrix3d::Zero();
   bool uniform = true;            ///< every element has the same unshot radiosity
+  /// The block shoots as one (far_field_radiosity()) to receivers farther than this from its
+  /// centre, squared (m^2): see far_distance_sq().
+  double far_m2 = 0;
   int first_child = -1;           ///< children are consecutive; -1 for a single element
   int child_count = 0;
 };
+
+/// The squared distance (m^2) beyond which a block may shoot as one, with its mean and first-order
+/// corrected radiosity (far_field_radiosity()): tol::kFarFieldDiagonals of its diagonals.
+double far_distance_sq(const Block& b) {
+  return tol::kFarFieldDiagonals * tol::kFarFieldDiagonals * b.diagonal_m * b.diagonal_m;
+}
 
 class ShooterTree {
  public:
@@ -89,6 +103,14 @@ class ShooterTree {
     }
     b.unshot_w_m2 = weighted / area;
     b.center = center / area;
+    b.lowest_w_m2 = lo;
+    b.highest_w_m2 = hi;
+    b.dipole.setZero();
+    for (const size_t k : elements)
+      b.dipole += side_.elements[k].area_m2 * (side_.elements[k].center - b.center) *
+                  (unshot_[k] - b.unshot_w_m2).matrix().transpose();
+    b.dipole /= area;
+    b.far_m2 = far_distance_sq(b);
     b.uniform = ((hi - lo) <= tol::kUniformRelative * hi.abs().max(std::numeric_limits<double>::min())).all();
   }
 
@@ -150,21 +172,98 @@ class ShooterTree {
   std::vector<Block> blocks_;
 };
 
-/// Irradiance (W/m^2 per channel) at receiver point p (unit normal n) from the shooter's unshot
-/// radiosity: the block as a whole when far or uniform, else the sum over its children.
-Rgb gather(const ShooterTree& tree, const Block& b, const Vec3& p, const Vec3& n,
-           const Vec3& shooter_normal, const std::vector<const Occluder*>& occluders) {
-  if (b.first_child < 0 || b.uniform ||
-      (p - b.center).squaredNorm() > tol::kFarFieldDiagonals * tol::kFarFieldDiagonals * b.diagonal_m * b.diagonal_m) {
-    if ((b.unshot_w_m2 == 0).all()) return Rgb::Zero();
+/// The radiosity a far block shoots with to the receiver point p (unit normal n): its mean plus the
+/// first-order correction for the variation of both the radiosity and the form factor's kernel
+/// across the block. With F_k = (A_k / A) F (1 + g . (c_k - c)), g the gradient over the
+/// source point y of ln k(x, y), k = cos_y cos_x / (pi r^2) the point-to-point kernel, the sum
+/// over the block's elements sum_k F_k B_k = F (B_mean + g . dipole): the mean alone errs to
+/// first order in (block size / distance) wherever the radiosity varies (a wall lit at its top
+/// and dark at its foot), and that error does not cancel over the receivers: it gains or loses
+/// power. Clamped to the block's range of unshot radiosity.
+Rgb far_field_radiosity(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal) {
+  const Vec3 d = p - b.center;  // from the source point y = c to the receiver x = p
+  const double r2 = d.squaredNorm(), cos_y = shooter_normal.dot(d), cos_x = -n.dot(d);
+  if (!(cos_y > tol::kKernelCosine * std::sqrt(r2) && cos_x > tol::kKernelCosine * std::sqrt(r2))) return b.unshot_w_m2;
+  const Vec3 g = -shooter_normal / cos_y - n / cos_x + 4.0 * d / r2;
+  const Rgb corrected = b.unshot_w_m2 + (g.transpose() * b.dipole).transpose().array();
+  return corrected.max(b.lowest_w_m2).min(b.highest_w_m2);
+}
+
+/// A receiving element as gather() sees it: its centre, and the points of a Gauss rule over it
+/// for the blocks it is near to.
+struct Receiver {
+  Vec3 center, normal;
+  double size_m = 0;  ///< the longer diagonal, metres
+  std::array<Vec3, 4> gauss;
+  int gauss_count = 0;
+};
+
+/// The Gauss rule's points over the element, equal weights: exact for cubics in (u, v) on a box
+/// (2 x 2 points), for quadratics on a triangle (3 points at barycentric (2/3, 1/6, 1/6) and its
+/// permutations); the surface's Jacobian taken as constant over the element (exact for
+/// parallelograms and triangles).
+Receiver make_receiver(const Surface& surface, const MeshElement& e, const Vec3& normal) {
+  Receiver r;
+  r.center = e.center;
+  r.normal = normal;
+  r.size_m = std::max((e.corners[2] - e.corners[0]).norm(), (e.corners[3] - e.corners[1]).norm());
+  if (e.is_triangle()) {
+    const auto v = e.vertices();
+    for (int k = 0; k < 3; ++k) {
+      const Vec2 uv = (4.0 * v[k] + v[(k + 1) % 3] + v[(k + 2) % 3]) / 6.0;
+      r.gauss[r.gauss_count++] = surface.point(uv.x(), uv.y());
+    }
+    return r;
+  }
+  const double g = 0.5 / std::sqrt(3.0);  // Gauss-Legendre nodes at the centre +- half-width / sqrt(3)
+  const double um = 0.5 * (e.u0 + e.u1), vm = 0.5 * (e.v0 + e.v1);
+  const double du = (e.u1 - e.u0) * g, dv = (e.v1 - e.v0) * g;
+  for (const double sv : {-1.0, 1.0})
+    for (const double su : {-1.0, 1.0}) r.gauss[r.gauss_count++] = surface.point(um + su * du, vm + sv * dv);
+  return r;
+}
+
+/// What a receiving element gathers from one shot, W/m^2 per channel.
+struct Gathered {
+  Rgb at_center = Rgb::Zero();  ///< the irradiance at its centre: its radiosity's
+  Rgb mean = Rgb::Zero();       ///< its mean irradiance: the power it absorbs and reflects
+  Gathered& operator+=(const Gathered& o) {
+    at_center += o.at_center;
+    mean += o.mean;
+    return *this;
+  }
+};
+
+/// Irradiance on the receiving element from the shooter's unshot radiosity: the block as a whole
+/// when far or uniform, else the sum over its children. The element's radiosity is its value at
+/// its centre (what reconstructions sample); its power is its mean, the midpoint rule's (the
+/// centre's value, relative error of order (size / distance)^2) unless the element is large
+/// against its distance to the block (tol::kMidpointReceiverRatio): then by the Gauss rule, so
+/// that no power is gained or lost by point collocation next to the shooter.
+Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, const Vec3& shooter_normal,
+                const std::vector<const Occluder*>& occluders) {
+  Gathered out;
+  if (b.first_child < 0 || b.uniform || (r.center - b.center).squaredNorm() > b.far_m2) {
+    if ((b.highest_w_m2 == 0).all()) return out;
     ConvexPolygon poly;
     for (int k = 0; k < b.corner_count; ++k) poly.push(b.corners[k]);
-    return visible_form_factor(p, n, poly, shooter_normal, occluders) * b.unshot_w_m2;
+    const auto at = [&](const Vec3& p) -> Rgb {
+      const double f = visible_form_factor(p, r.normal, poly, shooter_normal, occluders);
+      if (f == 0 || b.uniform) return f * b.unshot_w_m2;
+      return f * far_field_radiosity(b, p, r.normal, shooter_normal);
+    };
+    out.at_center = at(r.center);
+    const double gap_m = (r.center - b.center).norm() - 0.5 * b.diagonal_m;
+    if (r.size_m <= tol::kMidpointReceiverRatio * gap_m) {
+      out.mean = out.at_center;
+    } else {
+      for (int k = 0; k < r.gauss_count; ++k) out.mean += at(r.gauss[k]);
+      out.mean /= r.gauss_count;
+    }
+    return out;
   }
-  Rgb sum = Rgb::Zero();
-  for (int c = 0; c < b.child_count; ++c)
-    sum += gather(tree, tree.block(b.first_child + c), p, n, shooter_normal, occluders);
-  return sum;
+  for (int c = 0; c < b.child_count; ++c) out += gather(tree, tree.block(b.first_child + c), r, shooter_normal, occluders);
+  return out;
 }
 
 struct Patch {
@@ -173,6 +272,8 @@ struct Patch {
   Rgb unshot_w = Rgb::Zero();  ///< unshot power per channel, W
 };
 
+/// Per element of a side, W/m^2: radiosity at the element's centre; unshot radiosity and
+/// irradiance as the element's means (Gathered), which carry the power.
 struct SideState {
   std::vector<Rgb> radiosity, unshot, irradiance;
 };
@@ -223,7 +324,7 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
   RR_CHECK(emitted_sum > 0, "the scene emits no light");
   size_t shots = 0;
   auto last_report = start;
-  std::vector<Rgb> gain;
+  std::vector<Gathered> gain;
   double residual = 1.0;
   bool converged = false;  // the residual, not the shot limit, ended the loop
 
@@ -281,19 +382,18 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
       const std::vector<const Occluder*> blockers =
           occluders_in_box(occluders, lo, hi, receiver.scene_surface, shooter_side.scene_surface);
 
-      gain.assign(receiver.elements.size(), Rgb::Zero());
+      gain.assign(receiver.elements.size(), Gathered{});
       parallel_for(0, static_cast<std::int64_t>(receiver.elements.size()), [&](std::int64_t e) {
-        gain[static_cast<size_t>(e)] =
-            gather(tree, tree.root(), receiver.elements[static_cast<size_t>(e)].center, receiver.normal,
-                   shooter_normal, blockers);
+        const Receiver element = make_receiver(receiver_surface, receiver.elements[static_cast<size_t>(e)], receiver.normal);
+        gain[static_cast<size_t>(e)] = gather(tree, tree.root(), element, shooter_normal, blockers);
       });
       SideState& st = state[r];
       for (size_t e = 0; e < receiver.elements.size(); ++e) {
-        const Rgb& h = gain[e];
-        st.irradiance[e] += h;
-        st.radiosity[e] += receiver.reflectance * h;
-        st.unshot[e] += receiver.reflectance * h;
-        delivered += receiver.elements[e].area_m2 * h;
+        const Gathered& h = gain[e];
+        st.irradiance[e] += h.mean;
+        st.radiosity[e] += receiver.reflectance * h.at_center;
+        st.unshot[e] += receiver.reflectance * h.mean;
+        delivered += receiver.elements[e].area_m2 * h.mean;
       }
       update_patch_power(r);
     }
