@@ -41,6 +41,12 @@ fi
 run blocks "${SMALL[@]}" --camera blocks --out blocks
 expect_rc blocks 0 && { [ -s blocks/cornell_blocks_constant.png ] || fail "blocks: no picture"; }
 
+# --- --scene cornell in solve and render: the published camera's picture ---------------------------
+"$RADRECON" solve --scene cornell --mesh grid:8 --out solved.json --quiet 2>solve.stderr || fail "solve --scene cornell: $(head -c 300 solve.stderr)"
+"$RADRECON" render --scene cornell --solution solved.json --camera published --size 32x32 --samples 1 --out published.png \
+  --quiet 2>render.stderr || fail "render --scene cornell: $(head -c 300 render.stderr)"
+[ -s published.png ] || fail "render --scene cornell: no picture"
+
 # --- a scene file of quads only -------------------------------------------------------------------
 cat >quads.json <<'JSON'
 {"name": "room", "surfaces": [
