@@ -101,6 +101,14 @@ void validate_scene(const Scene& scene, const std::string& source);
 /// light of 40 W/m^2 at 2.5 m, and two perpendicular two-sided walls meeting at (2.6, 2.6).
 Scene paper_scene();
 
+/// The built-in Cornell box (docs/cornell.md): the published geometry of "Cornell Box Data"
+/// (Cornell University Program of Computer Graphics) in metres, its short and tall blocks, the
+/// ceiling light in the ceiling's plane, the commonly used RGB reflectances and light of
+/// Bitterli's scene, and the published camera ("published") with two more ("blocks", "corner").
+/// The red wall, warped as published, is split into "red_wall.a" and "red_wall.b" by
+/// regularise_surfaces(), silently.
+Scene cornell_scene();
+
 /// Makes a modeller's polygons fit the surface model, in place, and returns a warning per change:
 /// a quad with a repeated corner becomes the triangle of the other three; a quad off its plane by
 /// more than tol::kPlanarityRelative of its longest edge, or planar but not convex, is split into
