@@ -168,4 +168,11 @@ inline constexpr double kEmitterTieRelative = 1e-6;
 /// the quad is read as the triangle of the other three (scene/scene.h regularise_surfaces()).
 inline constexpr double kRepeatedCornerRelative = 1e-9;
 
+/// Shaft culling (solver/bvh.h): a BVH node or occluder counts as outside the shaft between a
+/// receiver and a shooter only when it lies more than this beyond one of the shaft's planes.
+/// Far above kPlaneDistance_m, within which the clipping of visibility.cpp treats a point as on
+/// a plane (so a polygon touching the shaft to that tolerance still casts its shadow), and far
+/// below any gap a scene means (a micrometre): the cull stays conservative and loses nothing.
+inline constexpr double kShaftSlack_m = 1e-6;
+
 }  // namespace radrecon::tol

@@ -7,6 +7,7 @@
 #include "core/check.h"
 #include "core/parallel.h"
 #include "core/tolerances.h"
+#include "solver/bvh.h"
 #include "solver/visibility.h"
 
 namespace radrecon {
@@ -115,6 +116,7 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
   RR_CHECK(options.residual > 0 && options.residual < 1, "residual must be in (0, 1)");
   const auto start = std::chrono::steady_clock::now();
   const std::vector<Occluder> occluders = make_occluders(scene);
+  const OccluderBvh bvh(occluders);
 
   std::vector<SideState> state(mesh.surfaces.size());
   std::vector<Patch> patches;
@@ -195,14 +197,19 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
       if (receiver.scene_surface == shooter_side.scene_surface) continue;
       const Surface& receiver_surface = scene.surfaces[receiver.scene_surface];
       if (!quads_face(receiver_surface.corners, receiver.normal, sc, shooter_normal)) continue;
-      const std::vector<const Occluder*> blockers = occluders_between(
-          occluders, sc, receiver_surface.corners, receiver.scene_surface, shooter_side.scene_surface);
+      // Occluders in the shaft between the two surfaces; then, per receiver point, in the shaft
+      // between the point and the shooting patch (solver/bvh.h: the same shadows, fewer tests).
+      const std::vector<const Occluder*> blockers =
+          bvh.between(sc, receiver_surface.corners, receiver.scene_surface, shooter_side.scene_surface);
 
       gain.assign(receiver.elements.size(), Rgb::Zero());
       parallel_for(0, static_cast<std::int64_t>(receiver.elements.size()), [&](std::int64_t e) {
-        gain[static_cast<size_t>(e)] =
-            gather(tree, tree.root(), receiver.elements[static_cast<size_t>(e)].center, receiver.normal,
-                   shooter_normal, blockers);
+        const Vec3& p = receiver.elements[static_cast<size_t>(e)].center;
+        thread_local std::vector<const Occluder*> near;
+        near.clear();
+        if (!blockers.empty())
+          bvh.collect(Shaft({&p, 1}, sc), receiver.scene_surface, shooter_side.scene_surface, near);
+        gain[static_cast<size_t>(e)] = gather(tree, tree.root(), p, receiver.normal, shooter_normal, near);
       });
       SideState& st = state[r];
       for (size_t e = 0; e < receiver.elements.size(); ++e) {
