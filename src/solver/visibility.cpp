@@ -109,6 +109,18 @@ constexpr int kMaxSubtractVertices = ConvexPolygon::kCapacity - 6;
 /// intersection of the half-spaces to `out`.
 void subtract(const ConvexPolygon& q, const std::array<HalfSpace, 5>& volume,
               std::vector<ConvexPolygon>& out) {
+  // A fragment wholly outside one of the half-spaces (to clip()'s tolerance) misses the shadow:
+  // keep it whole rather than cut it along the planes before that one (fewer, larger fragments;
+  // the same visible polygon).
+  for (const HalfSpace& h : volume) {
+    const double on_plane = tol::kPlaneDistance_m * h.normal.norm();
+    bool outside = true;
+    for (int i = 0; i < q.n && outside; ++i) outside = h.eval(q.v[i]) <= on_plane;
+    if (outside) {
+      out.push_back(q);
+      return;
+    }
+  }
   ConvexPolygon rest = q;
   for (const HalfSpace& h : volume) {
     ConvexPolygon outside = clip(rest, h.complement());
