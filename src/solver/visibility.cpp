@@ -1,5 +1,6 @@
 #include "solver/visibility.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/tolerances.h"
@@ -167,6 +168,8 @@ double visible_form_factor(const Vec3& p, const Vec3& n, const ConvexPolygon& sh
     if (!shadow_volume(p, *occluders[k], front, volume)) continue;
     ConvexPolygon shadow = clip_all(front, volume);
     if (shadow.empty()) continue;
+    // Every clip left the polygon whole: the occluder hides all of it.
+    if (shadow.n == front.n && std::equal(front.v.begin(), front.v.begin() + front.n, shadow.v.begin())) return 0.0;
     if (first == nullptr) {
       first = occluders[k];
       first_shadow = shadow;
