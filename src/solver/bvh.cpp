@@ -27,10 +27,27 @@ Shaft::Shaft(std::span<const Vec3> a, std::span<const Vec3> b) {
     add_plane(Vec3::Unit(axis));
     add_plane(-Vec3::Unit(axis));
   }
+  const double extent = std::max((hi_ - lo_).maxCoeff(), 1e-300);
+  if (a.size() == 1 && point_count_ >= 4 && point_count_ <= 5) {
+    // A point and a convex polygon (in order): the pyramid's sides and the polygon's plane,
+    // each turned away from the pyramid's centroid.
+    Vec3 mid = Vec3::Zero();
+    for (int k = 0; k < point_count_; ++k) mid += points_[k] / point_count_;
+    const int m = point_count_ - 1;
+    auto face = [&](const Vec3& x, const Vec3& y, const Vec3& z) {
+      Vec3 n = (y - x).cross(z - x);
+      const double norm = n.norm();
+      if (!(norm > 1e-12 * extent * extent)) return;
+      n /= norm;
+      add_plane(n.dot(mid - x) > 0 ? Vec3(-n) : n);
+    };
+    for (int k = 0; k < m; ++k) face(points_[0], points_[1 + k], points_[1 + (k + 1) % m]);
+    face(points_[1], points_[2], points_[3]);
+    return;
+  }
   // The hull's faces: the planes through three of the points with all the others on one side.
   // (Any direction would do, since add_plane() puts the offset at the farthest point; these are
   // the ones that cut the box's corners off.)
-  const double extent = std::max((hi_ - lo_).maxCoeff(), 1e-300);
   const double on_side = 1e-9 * extent;
   for (int i = 0; i < point_count_; ++i)
     for (int j = i + 1; j < point_count_; ++j)
