@@ -183,9 +183,16 @@ double visible_form_factor(const Vec3& p, const Vec3& n, const ConvexPolygon& sh
     return std::max(0.0, unoccluded - lambert_form_factor(p, n, first_shadow));
 
   // General case: subtract every shadow volume from the fragments of the visible polygon.
+  // Nearest occluders first: their shadows are the largest seen from p, so the fragments shrink
+  // (or vanish, ending the loop) early and later shadows cut fewer of them.
+  thread_local std::vector<std::pair<double, const Occluder*>> by_distance;
+  by_distance.clear();
+  for (const Occluder* o : occluders) by_distance.emplace_back((o->centroid - p).squaredNorm(), o);
+  std::sort(by_distance.begin(), by_distance.end(),
+            [](const auto& x, const auto& y) { return x.first < y.first; });
   thread_local std::vector<ConvexPolygon> fragments, next;
   fragments.assign(1, front);
-  for (const Occluder* o : occluders) {
+  for (const auto& [distance_m2, o] : by_distance) {
     if (!shadow_volume(p, *o, front, volume)) continue;
     next.clear();
     for (const ConvexPolygon& q : fragments) {
