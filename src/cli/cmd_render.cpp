@@ -141,7 +141,7 @@ void run_render(const RenderArgs& args) {
   // copy as doubles (24); EXR its half floats (8) and the library's buffers.
   check_render_size(options, format == FileFormat::png ? 11 : format == FileFormat::pfm ? 24 : 12);
   std::vector<std::string> inputs = {args.solution};
-  if (args.scene != "paper") inputs.push_back(args.scene);
+  if (args.scene != "paper" && args.scene != "cornell") inputs.push_back(args.scene);
   refuse_overwriting_inputs(args.out, "--out", inputs);
   check_output_file(args.out, "--out");
   const Scene scene = load_scene(args.scene);
@@ -208,14 +208,14 @@ void add_render_command(CLI::App& app) {
       "render",
       "Render a solution seen through one of the scene's cameras, every surface reconstructed by one method. "
       "PNG: tone-mapped, display = clamp(B / white, 0, 1) with the sRGB curve; PFM, EXR: linear radiosity, W/m^2.");
-  cmd->add_option("--scene", args->scene, "Scene JSON file, or 'paper'")->capture_default_str();
+  cmd->add_option("--scene", args->scene, "Scene JSON file, or a built-in scene: 'paper' or 'cornell' (docs/cornell.md)")->capture_default_str();
   cmd->add_option("--solution", args->solution, "Solution JSON written by 'radrecon solve'")->required();
   cmd->add_option("--method", args->method,
                   "constant, gouraud (cells); bilinear, bicubic, hermite (grid solutions); shepard, multiquadric, "
                   "thin-plate, natural-neighbour, laplace, sibson-c1, linear, clough-tocher (see 'interpolate --help')")
       ->capture_default_str();
   cmd->add_option("--param", args->params, "NAME=VALUE method parameter, repeatable (see 'interpolate --help')");
-  cmd->add_option("--camera", args->camera, "Name of a camera of the scene (paper: view, closeup)")->required();
+  cmd->add_option("--camera", args->camera, "Name of a camera of the scene (paper: view, closeup; cornell: published, blocks, corner)")->required();
   cmd->add_option("--size", args->size,
                   "Image size WxH in pixels (each at most " + std::to_string(kMaxImageSide) + "; width x height x rays per pixel at most " +
                       std::to_string(kMaxRenderRays) + "; memory: about 25 bytes a pixel, whatever --samples)")

@@ -29,7 +29,7 @@ void run_solve(const SolveArgs& args, const CLI::App& cmd) {
   if (!grid && (cmd.count("--residual") || cmd.count("--patches")))
     throw UserError(cmd.count("--residual") ? "--residual" : "--patches", "applies to grid:N meshes only");
   if (!leaves && cmd.count("--leaves-on")) throw UserError("--leaves-on", "applies to quadtree:LEAVES meshes only");
-  if (args.scene != "paper") refuse_overwriting_inputs(args.out, "--out", {args.scene});
+  if (args.scene != "paper" && args.scene != "cornell") refuse_overwriting_inputs(args.out, "--out", {args.scene});
   check_output_file(args.out, "--out");
   const Scene scene = load_scene(args.scene);
   SolveSettings settings;
@@ -54,7 +54,7 @@ void add_solve_command(CLI::App& app) {
       "radiosity on quadtrees (quadtree:LEAVES, quadtree-eps:E), and write the solution as JSON (per surface "
       "side: elements with their (u,v) rectangle, centre, area and radiosity in W/m^2). Missing output folders "
       "are created.");
-  cmd->add_option("--scene", args->scene, "Scene JSON file, or 'paper' for the built-in scene")
+  cmd->add_option("--scene", args->scene, "Scene JSON file, or a built-in scene: 'paper' (the paper experiment) or 'cornell' (the Cornell box, docs/cornell.md)")
       ->capture_default_str();
   cmd->add_option("--mesh", args->mesh,
                   "grid:N: progressive refinement, N elements along the longest surface edge of the scene, the "

@@ -76,6 +76,7 @@ Scene parse_scene_json(const std::string& text, const std::string& source) {
 
 Scene load_scene(const std::string& file_or_builtin) {
   if (file_or_builtin == "paper") return paper_scene();
+  if (file_or_builtin == "cornell") return cornell_scene();
   return parse_scene_json(read_text_file(file_or_builtin, "scene file"), file_or_builtin);
 }
 

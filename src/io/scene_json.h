@@ -15,7 +15,7 @@ namespace radrecon {
 /// made triangles by regularise_surfaces(), with a warning on stderr.
 Scene parse_scene_json(const std::string& text, const std::string& source);
 
-/// Reads and validates a scene: a built-in scene's name ("paper") gives it, anything else is
+/// Reads and validates a scene: a built-in scene's name ("paper", "cornell") gives it, anything else is
 /// read as a JSON scene file.
 Scene load_scene(const std::string& file_or_builtin);
 

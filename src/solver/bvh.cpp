@@ -8,7 +8,8 @@
 
 namespace radrecon {
 
-Shaft::Shaft(std::span<const Vec3> a, std::span<const Vec3> b) {
+Shaft::Shaft(std::span<const Vec3> a, std::span<const Vec3> b, double margin_m)
+    : margin_m_(tol::kShaftSlack_m + std::max(margin_m, 0.0)) {
   RR_CHECK(!a.empty() && !b.empty() && a.size() + b.size() <= static_cast<size_t>(kMaxPoints),
            "shaft: 1 to 16 points in all, at least one on each side");
   for (auto set : {a, b})
@@ -74,13 +75,13 @@ void Shaft::add_plane(const Vec3& unit_normal) {
   double offset = unit_normal.dot(points_[0]);
   for (int q = 1; q < point_count_; ++q) offset = std::max(offset, unit_normal.dot(points_[q]));
   normal_[plane_count_] = unit_normal;
-  offset_[plane_count_] = offset + tol::kShaftSlack_m;
+  offset_[plane_count_] = offset + margin_m_;
   ++plane_count_;
 }
 
 bool Shaft::may_meet_box(const Vec3& lo, const Vec3& hi) const {
   // The box's bounding-box test first (the first six planes), then its nearest corner to each face.
-  if ((lo.array() > hi_.array() + tol::kShaftSlack_m).any() || (hi.array() < lo_.array() - tol::kShaftSlack_m).any())
+  if ((lo.array() > hi_.array() + margin_m_).any() || (hi.array() < lo_.array() - margin_m_).any())
     return false;
   for (int k = 6; k < plane_count_; ++k) {
     const Vec3& m = normal_[k];
@@ -103,8 +104,8 @@ bool Shaft::may_meet(const Occluder& o) const {
   bool all_front = true, all_back = true;
   for (int q = 0; q < point_count_; ++q) {
     const double d = o.plane.eval(points_[q]);
-    all_front = all_front && d > tol::kShaftSlack_m;
-    all_back = all_back && d < -tol::kShaftSlack_m;
+    all_front = all_front && d > margin_m_;
+    all_back = all_back && d < -margin_m_;
   }
   return !(all_front || all_back);
 }

@@ -34,8 +34,10 @@ class Shaft {
   static constexpr int kMaxPlanes = 6 + 64;
 
   /// The hull of the points of `a` and `b` (e.g. a receiver point and a shooter polygon's
-  /// corners, or the corners of two quads).
-  Shaft(std::span<const Vec3> a, std::span<const Vec3> b);
+  /// corners, or the corners of two quads), widened by `margin_m` metres on every side: with
+  /// `a` one point c, a margin of r holds every segment from a point within r of c to the hull
+  /// of `b` (such a segment stays within r of the one from c).
+  Shaft(std::span<const Vec3> a, std::span<const Vec3> b, double margin_m = 0);
 
   /// False when the axis-aligned box [lo, hi] lies wholly outside the shaft (by more than
   /// tol::kShaftSlack_m): nothing inside it can meet the shaft.
@@ -55,6 +57,7 @@ class Shaft {
   std::array<Vec3, kMaxPlanes> normal_;
   std::array<double, kMaxPlanes> offset_;
   int plane_count_ = 0;
+  double margin_m_ = 0;  ///< kShaftSlack_m plus the caller's margin
   Vec3 lo_, hi_;
 };
 

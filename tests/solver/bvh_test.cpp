@@ -163,6 +163,41 @@ TEST(OccluderBvh, EveryCulledOccluderMissesEverySegmentToTheShooter) {
   EXPECT_GT(kept_hit, 100) << "the kept occluders do block segments: the test exercises shadows";
 }
 
+TEST(OccluderBvh, WidenedPointShaftHoldsTheSegmentsFromNearbyPoints) {
+  // The progressive solver gathers at an element's centre and Gauss points through one shaft from
+  // the centre widened by their reach: points within the margin see the same shadows.
+  std::mt19937 rng(1994);
+  const Scene scene = random_scene(rng, 300);
+  const std::vector<Occluder> occ = make_occluders(scene);
+  const OccluderBvh bvh(occ);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  const double reach_m = 0.1;
+  int segments = 0;
+  for (const Case& c : random_cases(rng, scene, 300)) {
+    const Surface& s = scene.surfaces[c.shooter];
+    std::vector<const Occluder*> near;
+    bvh.collect(Shaft({&c.p, 1}, s.polygon(), reach_m), c.receiver, c.shooter, near);
+    const std::vector<const Occluder*> all = all_but(occ, c.receiver, c.shooter);
+    for (int k = 0; k < 4; ++k) {
+      Vec3 d(unit(rng), unit(rng), unit(rng));
+      const Vec3 g = c.p + reach_m * d.normalized() * std::abs(unit(rng));  // within the reach
+      if (s.normal().dot(g - s.corners[0]) <= 1e-3) continue;
+      ASSERT_NEAR(visible_form_factor(g, c.n, polygon_of(s), s.normal(), near),
+                  visible_form_factor(g, c.n, polygon_of(s), s.normal(), all), 1e-12);
+      for (const Occluder& o : occ) {
+        if (o.scene_surface == c.receiver || o.scene_surface == c.shooter) continue;
+        if (std::find(near.begin(), near.end(), &o) != near.end()) continue;
+        for (int q = 0; q < 10; ++q) {
+          const Vec3 y = random_point(rng, s);
+          ++segments;
+          ASSERT_FALSE(intersect_quad(scene.surfaces[o.scene_surface], g, y - g, -1e-9, 1 + 1e-9).has_value());
+        }
+      }
+    }
+  }
+  EXPECT_GT(segments, 300 * 4 * 200 * 10 / 2);
+}
+
 TEST(OccluderBvh, EmptyAndSingleOccluderScenes) {
   const std::vector<Occluder> none;
   const OccluderBvh empty(none);

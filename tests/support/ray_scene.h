@@ -1,5 +1,5 @@
 #pragma once
-// An independent ray caster over a scene's quads, for tests that check the solver against brute
+// An independent ray caster over a scene's polygons (quads and triangles), for tests that check the solver against brute
 // force: it shares no code with the solver's exact-clipping visibility.
 
 #include <cmath>
@@ -17,7 +17,8 @@ struct Hit {
   Vec3 point;
 };
 
-/// Intersection of the ray o + t d (t in (t_min, t_max)) with a convex planar quad.
+/// Intersection of the ray o + t d (t in (t_min, t_max)) with a convex planar polygon (a quad or a
+/// triangle: the corners of Surface::polygon()).
 inline std::optional<double> intersect_quad(const Surface& s, const Vec3& o, const Vec3& d, double t_min,
                                             double t_max) {
   const Vec3 n = s.normal();
@@ -26,9 +27,10 @@ inline std::optional<double> intersect_quad(const Surface& s, const Vec3& o, con
   const double t = n.dot(s.corners[0] - o) / denom;
   if (!(t > t_min && t < t_max)) return std::nullopt;
   const Vec3 x = o + t * d;
-  for (int i = 0; i < 4; ++i) {
-    const Vec3 e = s.corners[(i + 1) % 4] - s.corners[i];
-    if (e.cross(x - s.corners[i]).dot(n) < 0) return std::nullopt;
+  const auto p = s.polygon();
+  for (size_t i = 0; i < p.size(); ++i) {
+    const Vec3 e = p[(i + 1) % p.size()] - p[i];
+    if (e.cross(x - p[i]).dot(n) < 0) return std::nullopt;
   }
   return t;
 }

@@ -1,0 +1,196 @@
+// radrecon cornell: the Cornell box solved, and seen through one camera with every
+// reconstruction method, on one HTML page (docs/cornell.md).
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cli/commands.h"
+#include "core/error.h"
+#include "core/parse.h"
+#include "io/atomic_file.h"
+#include "io/image_io.h"
+#include "io/paths.h"
+#include "io/scene_json.h"
+#include "io/solution_json.h"
+#include "render/exposure.h"
+#include "render/renderer.h"
+#include "sampling/solution_reconstruction.h"
+#include "solver/solve.h"
+
+namespace radrecon::cli {
+
+namespace {
+
+struct CornellArgs {
+  std::string scene = "cornell";
+  std::string mesh = "grid:24";
+  /// Nearest samples of the local patches of multiquadric and thin-plate (0: one global system
+  /// per side, minutes on grid:32 sides of 1000 samples).
+  int rbf_k = 32;
+  std::string camera;  ///< empty: the scene's first camera
+  int width = 320, height = 320;
+  int samples = 2;
+  double residual = kDefaultResidual;
+  std::string out = "out/cornell";
+  bool quiet = false;
+};
+
+/// One method's picture on the page.
+struct Panel {
+  std::string method, file, note;
+  std::string params;  ///< the parameters in effect (describe_params)
+  double seconds = 0;
+};
+
+std::string escaped(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '&') out += "&amp;";
+    else if (c == '<') out += "&lt;";
+    else if (c == '>') out += "&gt;";
+    else if (c == '"') out += "&quot;";
+    else out += c;
+  }
+  return out;
+}
+
+std::string page(const Scene& scene, const Camera& camera, const std::string& mesh, size_t elements,
+                 double white, int samples, const std::vector<Panel>& panels) {
+  std::ostringstream html;
+  html << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>radrecon: " << escaped(scene.name)
+       << " with every reconstruction method</title>\n<style>body{font-family:sans-serif;max-width:75em;margin:auto}"
+          "figure{display:inline-block;margin:0.5em;vertical-align:top}figcaption{font-size:90%}.note{color:#a40}</style></head><body>\n";
+  html << "<h1>" << escaped(scene.name) << ": every reconstruction method</h1>\n<p>Solved by " << escaped(mesh) << " ("
+       << elements << " elements); camera <code>" << escaped(camera.name) << "</code>, " << samples * samples
+       << " rays per pixel; one white point for every picture: " << format_number(white)
+       << " W/m<sup>2</sup> (the " << format_number(kDefaultWhitePercentile)
+       << "th percentile of the lit surfaces seen, piecewise constant). Written by <code>radrecon cornell</code>; "
+          "the scene: docs/cornell.md.</p>\n";
+  for (const Panel& p : panels) {
+    html << "<figure><img src=\"" << escaped(p.file) << "\" alt=\"" << escaped(p.method) << "\"><figcaption><b>"
+         << escaped(p.method) << "</b>" << (p.params.empty() ? "" : " " + escaped(p.params)) << " ("
+         << format_number(p.seconds) << " s)";
+    if (!p.note.empty()) html << "<br><span class=\"note\">" << escaped(p.note) << "</span>";
+    html << "</figcaption></figure>\n";
+  }
+  html << "</body></html>\n";
+  return html.str();
+}
+
+void run_cornell(const CornellArgs& args) {
+  using clock = std::chrono::steady_clock;
+  const auto start = clock::now();
+  const auto seconds_since = [](clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); };
+  if (args.scene != "paper" && args.scene != "cornell") refuse_overwriting_inputs(args.out, "--out", {args.scene});
+  check_output_folder(args.out, "--out");
+  const Scene scene = load_scene(args.scene);
+  const Camera* camera = scene.cameras.empty() ? nullptr : &scene.cameras.front();
+  if (!args.camera.empty()) {
+    camera = nullptr;
+    for (const Camera& c : scene.cameras)
+      if (c.name == args.camera) camera = &c;
+  }
+  if (!camera) {
+    std::string names;
+    for (const Camera& c : scene.cameras) names += (names.empty() ? "" : ", ") + c.name;
+    throw UserError(args.camera.empty() ? args.scene : "--camera",
+                    (args.camera.empty() ? std::string("the scene has no camera") : "the scene has no camera '" + args.camera + "'") +
+                        " (cameras: " + (names.empty() ? "none" : names) + ")");
+  }
+
+  SolveSettings settings;
+  settings.residual = args.residual;
+  settings.progress_label = args.quiet ? "" : "cornell";
+  const Solution solution = solve_scene(scene, args.mesh, settings, "--mesh");
+  const std::filesystem::path dir(args.out);
+  write_solution_json(dir / "solution.json", solution);
+  size_t elements = 0;
+  for (const SurfaceSolution& s : solution.surfaces) elements += s.elements.size();
+  if (!args.quiet) std::fprintf(stderr, "cornell: solved %s (%zu elements) in %.1f s\n", args.mesh.c_str(), elements, seconds_since(start));
+
+  RenderOptions view;
+  view.width = args.width;
+  view.height = args.height;
+  view.samples_per_axis = args.samples;
+  const CameraHits hits = trace_camera(scene, *camera, view);
+  const SideSampling sampling{};  // with the solution's barriers (the blocks' feet), as render does
+
+  // One white point for all: the default of `render` on the piecewise constant picture.
+  double white = 0;
+  {
+    const SolutionReconstruction recon(scene, solution, Method::constant, MethodParams{}, "solution", sampling);
+    Rendering r{Image(view.width, view.height), std::vector<std::uint8_t>(static_cast<size_t>(view.width) * view.height, 0)};
+    shade(scene, hits, [&](SideRef side) { return recon.side(side); }, r);
+    white = percentile_white(r, kDefaultWhitePercentile).value_or(1.0);
+  }
+
+  std::vector<Panel> panels;
+  for (Method m : all_methods()) {
+    const auto t = clock::now();
+    Panel panel{method_name(m), scene.name + "_" + camera->name + "_" + method_name(m) + ".png", "", "", 0};
+    MethodParams params;
+    params.multiquadric_k = args.rbf_k;
+    params.thin_plate_k = args.rbf_k;
+    panel.params = describe_params(m, params);
+    try {
+      const SolutionReconstruction recon(scene, solution, m, params, "solution", sampling);
+      const Image linear = shade(scene, hits, [&](SideRef side) { return recon.side(side); });
+      write_png(dir / panel.file, tone_mapped(linear, white), true);
+      std::string sides;
+      for (const Fallback& f : recon.fallbacks()) sides += (sides.empty() ? "" : ", ") + f.side;
+      if (!sides.empty())
+        panel.note = "drawn piecewise constant on " + sides + " (" + recon.fallbacks().front().reason + ")";
+    } catch (const UserError& e) {
+      panel.note = std::string("not drawn: ") + e.what();
+      panel.file.clear();
+    }
+    panel.seconds = seconds_since(t);
+    if (!args.quiet)
+      std::fprintf(stderr, "cornell: %s in %.1f s%s%s\n", panel.method.c_str(), panel.seconds,
+                   panel.note.empty() ? "" : "; ", panel.note.c_str());
+    panels.push_back(panel);
+  }
+  write_text_file(dir / "index.html", page(scene, *camera, args.mesh, elements, white, args.samples, panels));
+  if (!args.quiet)
+    std::fprintf(stderr, "cornell: wrote %s in %.1f s\n", (dir / "index.html").string().c_str(), seconds_since(start));
+}
+
+}  // namespace
+
+void add_cornell_command(CLI::App& app) {
+  auto args = std::make_shared<CornellArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "cornell",
+      "Solve the Cornell box (or another scene) by progressive refinement and render one camera with every "
+      "reconstruction method, one white point for all, to OUT/index.html with the pictures OUT/SCENE_CAMERA_METHOD.png "
+      "and the solution OUT/solution.json. The grid methods draw the red wall's triangles piecewise constant. "
+      "The scene: docs/cornell.md.");
+  cmd->add_option("--scene", args->scene, "Scene JSON file, or a built-in scene: 'cornell' or 'paper'")->capture_default_str();
+  cmd->add_option("--mesh", args->mesh, "grid:N (progressive refinement; see 'solve --help')")->capture_default_str();
+  cmd->add_option("--camera", args->camera, "Camera of the scene (default: its first; cornell: published, blocks, corner)");
+  cmd->add_option("--width", args->width, "Picture width, pixels")->check(CLI::Range(8, 4096))->capture_default_str();
+  cmd->add_option("--height", args->height, "Picture height, pixels")->check(CLI::Range(8, 4096))->capture_default_str();
+  cmd->add_option("--samples", args->samples, "Stratified rays per pixel along each axis (N x N rays)")
+      ->check(CLI::Range(1, 8))
+      ->capture_default_str();
+  cmd->add_option("--residual", args->residual, "Stop when the unshot power falls below this fraction of the emitted power")
+      ->check(CLI::Range(kMinResidual, kMaxResidual))
+      ->capture_default_str();
+  cmd->add_option("--rbf-k", args->rbf_k,
+                  "multiquadric and thin-plate: local patches of this many nearest samples (their k=); 0: one "
+                  "global system per side (slow on fine meshes)")
+      ->check(CLI::Range(0, 100000))
+      ->capture_default_str();
+  cmd->add_option("--out", args->out, "Output folder (created if missing)")->capture_default_str();
+  cmd->add_flag("--quiet", args->quiet, "No progress messages");
+  cmd->callback([args] {
+    if (args->mesh.rfind("grid:", 0) != 0) throw UserError("--mesh", "must be grid:N (progressive refinement)");
+    run_cornell(*args);
+  });
+}
+
+}  // namespace radrecon::cli

@@ -1,0 +1,71 @@
+#!/usr/bin/env bash
+# `radrecon cornell` as a user meets it: the built-in Cornell box (small mesh and pictures, for
+# speed) gives an HTML page with one picture per reconstruction method, the methods' pictures
+# differ, a quads-only scene file works too, and bad options exit with 2 and leave no page.
+# Usage: cornell_test.sh /path/to/radrecon
+set -u
+
+RADRECON=${1:?usage: cornell_test.sh /path/to/radrecon}
+RADRECON=$(cd "$(dirname "$RADRECON")" && pwd)/$(basename "$RADRECON")
+HERE=$(cd "$(dirname "$0")" && pwd)
+TMP=$(mktemp -d "${TMPDIR:-/tmp}/radrecon_cornell_test.XXXXXX")
+trap 'rm -rf "$TMP"' EXIT
+cd "$TMP" || exit 1
+RADRECON_COMMAND=(cornell)
+# shellcheck source=harness.sh
+source "$HERE/harness.sh"
+
+SMALL=(--mesh grid:8 --width 40 --height 40 --samples 1 --quiet)
+
+# --- the built-in box: a page, a solution and a picture per method ------------------------------
+run box "${SMALL[@]}" --out box
+if expect_rc box 0; then
+  [ -s box/index.html ] || fail "box: no index.html"
+  [ -s box/solution.json ] || fail "box: no solution.json"
+  # Every method that `render --help` lists has its picture, named on the page.
+  methods=$("$RADRECON" render --help | tr ' ,;()' '\n\n\n\n\n' | grep -xE 'constant|gouraud|bilinear|bicubic|hermite|shepard|multiquadric|thin-plate|natural-neighbour|laplace|sibson-c1|linear|clough-tocher' | sort -u)
+  [ "$(echo "$methods" | wc -l)" -ge 13 ] || fail "box: render --help lists only: $methods"
+  for m in $methods; do
+    [ -s "box/cornell_published_$m.png" ] || fail "box: no picture for $m"
+    grep -qF "<b>$m</b>" box/index.html || fail "box: index.html does not name $m"
+  done
+  # Reconstructions differ: piecewise constant against a smooth method.
+  if cmp -s box/cornell_published_constant.png box/cornell_published_shepard.png; then
+    fail "box: constant and shepard pictures are identical"
+  fi
+  # The grid methods fall back on the red wall's triangles, and the page says so.
+  grep -qF "red_wall" box/index.html || fail "box: index.html names no fallback on the red wall"
+fi
+
+# --- another camera of the box ------------------------------------------------------------------
+run blocks "${SMALL[@]}" --camera blocks --out blocks
+expect_rc blocks 0 && { [ -s blocks/cornell_blocks_constant.png ] || fail "blocks: no picture"; }
+
+# --- --scene cornell in solve and render: the published camera's picture ---------------------------
+"$RADRECON" solve --scene cornell --mesh grid:8 --out solved.json --quiet 2>solve.stderr || fail "solve --scene cornell: $(head -c 300 solve.stderr)"
+"$RADRECON" render --scene cornell --solution solved.json --camera published --size 32x32 --samples 1 --out published.png \
+  --quiet 2>render.stderr || fail "render --scene cornell: $(head -c 300 render.stderr)"
+[ -s published.png ] || fail "render --scene cornell: no picture"
+
+# --- a scene file of quads only -------------------------------------------------------------------
+cat >quads.json <<'JSON'
+{"name": "room", "surfaces": [
+  {"name": "floor", "corners": [[0,0,0],[1,0,0],[1,1,0],[0,1,0]], "reflectance": 0.5},
+  {"name": "wall", "corners": [[0,1,0],[1,1,0],[1,1,1],[0,1,1]], "reflectance": [0.6, 0.2, 0.2]},
+  {"name": "light", "corners": [[0.3,0.3,1],[0.3,0.7,1],[0.7,0.7,1],[0.7,0.3,1]], "reflectance": 0, "emission": 10}],
+ "cameras": [{"name": "front", "eye": [0.5,-1.2,0.6], "target": [0.5,0.5,0.3], "up": [0,0,1], "fov_deg": 50}]}
+JSON
+run quads "${SMALL[@]}" --scene quads.json --out quads
+expect_rc quads 0 && { [ -s quads/room_front_bilinear.png ] && [ -s quads/index.html ] || fail "quads: pictures or page missing"; }
+
+# --- bad input: exit 2, a message naming the option, no page ---------------------------------------
+run bad_mesh "${SMALL[@]}" --mesh quadtree:10 --out bad1
+expect_rc bad_mesh 2 && expect_stderr_has bad_mesh "--mesh"
+expect_no_output bad_mesh bad1/index.html
+run bad_camera "${SMALL[@]}" --camera nowhere --out bad2
+expect_rc bad_camera 2 && expect_stderr_has bad_camera "nowhere"
+expect_no_output bad_camera bad2/index.html
+run bad_scene "${SMALL[@]}" --scene missing.json --out bad3
+expect_rc bad_scene 2 && expect_stderr_has bad_scene "missing.json"
+
+finish cornell_test
