@@ -180,4 +180,11 @@ inline constexpr double kMidpointReceiverRatio = 1.0 / 16;
 /// below this cosine, the block shoots with its mean radiosity alone.
 inline constexpr double kKernelCosine = 1e-3;
 
+/// Shaft culling (solver/bvh.h): a BVH node or occluder counts as outside the shaft between a
+/// receiver and a shooter only when it lies more than this beyond one of the shaft's planes.
+/// Far above kPlaneDistance_m, within which the clipping of visibility.cpp treats a point as on
+/// a plane (so a polygon touching the shaft to that tolerance still casts its shadow), and far
+/// below any gap a scene means (a micrometre): the cull stays conservative and loses nothing.
+inline constexpr double kShaftSlack_m = 1e-6;
+
 }  // namespace radrecon::tol

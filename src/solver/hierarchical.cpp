@@ -15,6 +15,7 @@
 #include "mesh/quadtree.h"
 #include "scene/side.h"
 #include "solver/form_factor.h"
+#include "solver/bvh.h"
 #include "solver/visibility.h"
 
 namespace radrecon {
@@ -71,6 +72,7 @@ class Hierarchy {
   Hierarchy(const Scene& scene, const HierarchicalOptions& options) : scene_(scene), options_(options) {
     min_size_m_ = min_element_size_m(scene, options);
     occluders_ = make_occluders(scene);
+    bvh_ = OccluderBvh(occluders_);
     for (size_t k = 0; k < scene.surfaces.size(); ++k) {
       add_tree(k, false);
       if (scene.surfaces[k].two_sided) add_tree(k, true);
@@ -92,7 +94,7 @@ class Hierarchy {
         if (R.scene_surface == S.scene_surface || !quads_face(R.node(0).corners, R.normal, S.node(0).corners, S.normal))
           continue;
         pair_occluders_[r * trees_.size() + s] =
-            occluders_between(occluders_, R.node(0).corners, S.node(0).corners, R.scene_surface, S.scene_surface);
+            bvh_.between(R.node(0).corners, S.node(0).corners, R.scene_surface, S.scene_surface);
         links_.push_back(make_link(static_cast<int>(r), 0, static_cast<int>(s), 0));
       }
   }
@@ -175,7 +177,13 @@ class Hierarchy {
     const Surface& surface = scene_.surfaces[R.scene_surface];
     ConvexPolygon source;
     for (int k = 0; k < s.vertex_count(); ++k) source.push(s.corners[k]);
-    const auto& occ = occluders(rt, st);
+    // The occluders in the shaft between the two nodes (solver/bvh.h), among the pair's.
+    thread_local std::vector<const Occluder*> occ;
+    occ.clear();
+    if (!occluders(rt, st).empty())
+      bvh_.collect(Shaft(std::span<const Vec3>(r.corners.data(), static_cast<size_t>(r.vertex_count())),
+                         std::span<const Vec3>(s.corners.data(), static_cast<size_t>(s.vertex_count()))),
+                   R.scene_surface, S.scene_surface, occ);
     Link link{rt, rn, st, sn, 0.0, 0.0};
     double lo = std::numeric_limits<double>::infinity(), hi = 0;
     r.for_each_midpoint(n, [&](const Vec2& uv) {
@@ -372,6 +380,7 @@ class Hierarchy {
   HierarchicalOptions options_;
   double min_size_m_ = 0;
   std::vector<Occluder> occluders_;
+  OccluderBvh bvh_;  ///< over occluders_
   std::vector<Tree> trees_;
   std::vector<std::vector<const Occluder*>> pair_occluders_;
   std::vector<Link> links_;

@@ -9,6 +9,7 @@
 #include "core/check.h"
 #include "core/parallel.h"
 #include "core/tolerances.h"
+#include "solver/bvh.h"
 #include "solver/visibility.h"
 
 namespace radrecon {
@@ -285,6 +286,7 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
   RR_CHECK(options.residual > 0 && options.residual < 1, "residual must be in (0, 1)");
   const auto start = std::chrono::steady_clock::now();
   const std::vector<Occluder> occluders = make_occluders(scene);
+  const OccluderBvh bvh(occluders);
 
   std::vector<SideState> state(mesh.surfaces.size());
   std::vector<Patch> patches;
@@ -363,29 +365,32 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
 
     const Block& root = tree.root();
     const Vec3 shooter_normal = shooter_side.normal;
-    Vec3 shooter_lo = root.corners[0], shooter_hi = shooter_lo;
-    for (int k = 1; k < root.corner_count; ++k) {
-      shooter_lo = shooter_lo.cwiseMin(root.corners[k]);
-      shooter_hi = shooter_hi.cwiseMax(root.corners[k]);
-    }
     Rgb delivered = Rgb::Zero();
     for (size_t r = 0; r < mesh.surfaces.size(); ++r) {
       const MeshSurface& receiver = mesh.surfaces[r];
       if (receiver.scene_surface == shooter_side.scene_surface) continue;
       const Surface& receiver_surface = scene.surfaces[receiver.scene_surface];
       if (!quads_face(receiver_surface.corners, receiver.normal, shooter_surface.corners, shooter_normal)) continue;
-      Vec3 lo = shooter_lo, hi = shooter_hi;
-      for (const Vec3& c : receiver_surface.corners) {
-        lo = lo.cwiseMin(c);
-        hi = hi.cwiseMax(c);
-      }
+      // Occluders in the shaft between the two surfaces; then, per receiver element, in the shaft
+      // between the element and the shooting patch (solver/bvh.h: the same shadows, fewer tests).
+      const std::span<const Vec3> shooter_outline(root.corners.data(), static_cast<size_t>(root.corner_count));
       const std::vector<const Occluder*> blockers =
-          occluders_in_box(occluders, lo, hi, receiver.scene_surface, shooter_side.scene_surface);
+          bvh.between(shooter_outline, receiver_surface.polygon(), receiver.scene_surface, shooter_side.scene_surface);
 
       gain.assign(receiver.elements.size(), Gathered{});
       parallel_for(0, static_cast<std::int64_t>(receiver.elements.size()), [&](std::int64_t e) {
         const Receiver element = make_receiver(receiver_surface, receiver.elements[static_cast<size_t>(e)], receiver.normal);
-        gain[static_cast<size_t>(e)] = gather(tree, tree.root(), element, shooter_normal, blockers);
+        // gather() looks from the centre and the Gauss points: the shaft from the centre, widened
+        // by their farthest distance from it, holds every segment it follows.
+        thread_local std::vector<const Occluder*> near;
+        near.clear();
+        if (!blockers.empty()) {
+          double reach_m = 0;
+          for (int k = 0; k < element.gauss_count; ++k) reach_m = std::max(reach_m, (element.gauss[k] - element.center).norm());
+          bvh.collect(Shaft({&element.center, 1}, shooter_outline, reach_m), receiver.scene_surface,
+                      shooter_side.scene_surface, near);
+        }
+        gain[static_cast<size_t>(e)] = gather(tree, tree.root(), element, shooter_normal, near);
       });
       SideState& st = state[r];
       for (size_t e = 0; e < receiver.elements.size(); ++e) {

@@ -1,0 +1,181 @@
+#include "solver/bvh.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/check.h"
+#include "core/tolerances.h"
+
+namespace radrecon {
+
+Shaft::Shaft(std::span<const Vec3> a, std::span<const Vec3> b, double margin_m)
+    : margin_m_(tol::kShaftSlack_m + std::max(margin_m, 0.0)) {
+  RR_CHECK(!a.empty() && !b.empty() && a.size() + b.size() <= static_cast<size_t>(kMaxPoints),
+           "shaft: 1 to 16 points in all, at least one on each side");
+  for (auto set : {a, b})
+    for (const Vec3& p : set) {
+      // A triangle given as a quad repeats its last corner: keep each point once.
+      bool seen = false;
+      for (int k = 0; k < point_count_ && !seen; ++k) seen = points_[k] == p;
+      if (!seen) points_[point_count_++] = p;
+    }
+  lo_ = hi_ = points_[0];
+  for (int k = 1; k < point_count_; ++k) {
+    lo_ = lo_.cwiseMin(points_[k]);
+    hi_ = hi_.cwiseMax(points_[k]);
+  }
+  for (int axis = 0; axis < 3; ++axis) {
+    add_plane(Vec3::Unit(axis));
+    add_plane(-Vec3::Unit(axis));
+  }
+  const double extent = std::max((hi_ - lo_).maxCoeff(), 1e-300);
+  if (a.size() == 1 && point_count_ >= 4 && point_count_ <= 5) {
+    // A point and a convex polygon (in order): the pyramid's sides and the polygon's plane,
+    // each turned away from the pyramid's centroid.
+    Vec3 mid = Vec3::Zero();
+    for (int k = 0; k < point_count_; ++k) mid += points_[k] / point_count_;
+    const int m = point_count_ - 1;
+    auto face = [&](const Vec3& x, const Vec3& y, const Vec3& z) {
+      Vec3 n = (y - x).cross(z - x);
+      const double norm = n.norm();
+      if (!(norm > 1e-12 * extent * extent)) return;
+      n /= norm;
+      add_plane(n.dot(mid - x) > 0 ? Vec3(-n) : n);
+    };
+    for (int k = 0; k < m; ++k) face(points_[0], points_[1 + k], points_[1 + (k + 1) % m]);
+    face(points_[1], points_[2], points_[3]);
+    return;
+  }
+  // The hull's faces: the planes through three of the points with all the others on one side.
+  // (Any direction would do, since add_plane() puts the offset at the farthest point; these are
+  // the ones that cut the box's corners off.)
+  const double on_side = 1e-9 * extent;
+  for (int i = 0; i < point_count_; ++i)
+    for (int j = i + 1; j < point_count_; ++j)
+      for (int k = j + 1; k < point_count_; ++k) {
+        Vec3 m = (points_[j] - points_[i]).cross(points_[k] - points_[i]);
+        const double norm = m.norm();
+        if (!(norm > 1e-12 * extent * extent)) continue;  // (nearly) collinear
+        m /= norm;
+        double lo = 0, hi = 0;
+        for (int q = 0; q < point_count_; ++q) {
+          const double d = m.dot(points_[q] - points_[i]);
+          lo = std::min(lo, d);
+          hi = std::max(hi, d);
+        }
+        if (hi <= on_side) add_plane(m);
+        if (lo >= -on_side) add_plane(-m);
+      }
+}
+
+void Shaft::add_plane(const Vec3& unit_normal) {
+  for (int k = 0; k < plane_count_; ++k)
+    if (normal_[k].dot(unit_normal) > 1 - 1e-12) return;  // that face already
+  if (plane_count_ == kMaxPlanes) return;  // fewer planes: a weaker but still valid cull
+  double offset = unit_normal.dot(points_[0]);
+  for (int q = 1; q < point_count_; ++q) offset = std::max(offset, unit_normal.dot(points_[q]));
+  normal_[plane_count_] = unit_normal;
+  offset_[plane_count_] = offset + margin_m_;
+  ++plane_count_;
+}
+
+bool Shaft::may_meet_box(const Vec3& lo, const Vec3& hi) const {
+  // The box's bounding-box test first (the first six planes), then its nearest corner to each face.
+  if ((lo.array() > hi_.array() + margin_m_).any() || (hi.array() < lo_.array() - margin_m_).any())
+    return false;
+  for (int k = 6; k < plane_count_; ++k) {
+    const Vec3& m = normal_[k];
+    const double nearest = (m.x() > 0 ? m.x() * lo.x() : m.x() * hi.x()) +
+                           (m.y() > 0 ? m.y() * lo.y() : m.y() * hi.y()) +
+                           (m.z() > 0 ? m.z() * lo.z() : m.z() * hi.z());
+    if (nearest > offset_[k]) return false;
+  }
+  return true;
+}
+
+bool Shaft::may_meet(const Occluder& o) const {
+  if (!may_meet_box(o.bbox_min, o.bbox_max)) return false;
+  for (int k = 6; k < plane_count_; ++k) {
+    bool all_outside = true;
+    for (int c = 0; c < o.corner_count && all_outside; ++c) all_outside = normal_[k].dot(o.corners[c]) > offset_[k];
+    if (all_outside) return false;
+  }
+  // The occluder's own plane separates it from the shaft.
+  bool all_front = true, all_back = true;
+  for (int q = 0; q < point_count_; ++q) {
+    const double d = o.plane.eval(points_[q]);
+    all_front = all_front && d > margin_m_;
+    all_back = all_back && d < -margin_m_;
+  }
+  return !(all_front || all_back);
+}
+
+OccluderBvh::OccluderBvh(const std::vector<Occluder>& occluders) {
+  order_.reserve(occluders.size());
+  for (const Occluder& o : occluders) order_.push_back(&o);
+  if (order_.empty()) return;
+  nodes_.reserve(2 * order_.size() / kLeafSize + 2);
+  nodes_.emplace_back();
+  build_node(0, 0, static_cast<int>(order_.size()));
+}
+
+void OccluderBvh::build_node(size_t index, int begin, int end) {
+  Vec3 lo = order_[begin]->bbox_min, hi = order_[begin]->bbox_max;
+  Vec3 clo = order_[begin]->centroid, chi = clo;
+  for (int k = begin + 1; k < end; ++k) {
+    lo = lo.cwiseMin(order_[k]->bbox_min);
+    hi = hi.cwiseMax(order_[k]->bbox_max);
+    clo = clo.cwiseMin(order_[k]->centroid);
+    chi = chi.cwiseMax(order_[k]->centroid);
+  }
+  nodes_[index].lo = lo;
+  nodes_[index].hi = hi;
+  if (end - begin <= kLeafSize) {
+    nodes_[index].first = begin;
+    nodes_[index].count = end - begin;
+    return;
+  }
+  int axis = 0;
+  (chi - clo).maxCoeff(&axis);
+  const int mid = begin + (end - begin) / 2;
+  std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
+                   [axis](const Occluder* x, const Occluder* y) { return x->centroid[axis] < y->centroid[axis]; });
+  const size_t left = nodes_.size();
+  nodes_.emplace_back();
+  nodes_.emplace_back();
+  nodes_[index].first = static_cast<int>(left);
+  nodes_[index].count = 0;
+  build_node(left, begin, mid);
+  build_node(left + 1, mid, end);
+}
+
+void OccluderBvh::collect(const Shaft& shaft, size_t skip_a, size_t skip_b,
+                          std::vector<const Occluder*>& out) const {
+  if (nodes_.empty()) return;
+  std::array<int, 64> stack;  // depth <= log2(occluders) + 1 for a median split
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Node& node = nodes_[static_cast<size_t>(stack[--top])];
+    if (!shaft.may_meet_box(node.lo, node.hi)) continue;
+    if (node.count > 0) {
+      for (int k = node.first; k < node.first + node.count; ++k) {
+        const Occluder* o = order_[static_cast<size_t>(k)];
+        if (o->scene_surface == skip_a || o->scene_surface == skip_b) continue;
+        if (shaft.may_meet(*o)) out.push_back(o);
+      }
+    } else {
+      stack[top++] = node.first + 1;
+      stack[top++] = node.first;
+    }
+  }
+}
+
+std::vector<const Occluder*> OccluderBvh::between(std::span<const Vec3> a, std::span<const Vec3> b,
+                                                  size_t surface_a, size_t surface_b) const {
+  std::vector<const Occluder*> out;
+  collect(Shaft(a, b), surface_a, surface_b, out);
+  return out;
+}
+
+}  // namespace radrecon

@@ -1,0 +1,228 @@
+// Shaft culling through the occluder BVH (solver/bvh.h) against the all-occluders scan: the same
+// visible form factors, and every occluder it drops provably off every segment it could block
+// (checked with the independent ray caster of tests/support).
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+
+#include "solver/bvh.h"
+#include "solver/form_factor.h"
+#include "solver/visibility.h"
+#include "support/ray_scene.h"
+
+namespace radrecon {
+namespace {
+
+using testing_support::intersect_quad;
+
+/// A scene of `count` random polygons in a 6 m cube, a third of them triangles: rectangles and
+/// triangles of 0.2 to 1.5 m, randomly oriented, crossing each other freely.
+Scene random_scene(std::mt19937& rng, int count) {
+  std::uniform_real_distribution<double> pos(0, 6), size(0.2, 1.5), angle(0, 2 * std::numbers::pi), unit(-1, 1);
+  Scene scene;
+  for (int k = 0; k < count; ++k) {
+    const Vec3 c(pos(rng), pos(rng), pos(rng));
+    Vec3 axis(unit(rng), unit(rng), unit(rng));
+    if (axis.norm() < 1e-3) axis = Vec3::UnitZ();
+    const Eigen::Matrix3d rot = Eigen::AngleAxisd(angle(rng), axis.normalized()).toRotationMatrix();
+    const Vec3 u = rot * Vec3(size(rng) / 2, 0, 0), v = rot * Vec3(0, size(rng) / 2, 0);
+    Surface s;
+    s.name = "s" + std::to_string(k);
+    if (k % 3 == 2) s.set_triangle(c - u - v, c + u - v, c + v);
+    else s.corners = {c - u - v, c + u - v, c + u + v, c - u + v};
+    scene.surfaces.push_back(s);
+  }
+  return scene;
+}
+
+/// A random point of the surface (barycentric on a triangle, bilinear on a quad), off its border.
+Vec3 random_point(std::mt19937& rng, const Surface& s) {
+  std::uniform_real_distribution<double> t(0.02, 0.98);
+  double a = t(rng), b = t(rng);
+  if (s.is_triangle()) {
+    if (a + b > 1) a = 1 - a, b = 1 - b;
+    return s.corners[0] + a * (s.corners[1] - s.corners[0]) + b * (s.corners[2] - s.corners[0]);
+  }
+  return s.point(a, b);
+}
+
+ConvexPolygon polygon_of(const Surface& s) {
+  ConvexPolygon poly;
+  for (const Vec3& c : s.polygon()) poly.push(c);
+  return poly;
+}
+
+std::vector<const Occluder*> all_but(const std::vector<Occluder>& occ, size_t a, size_t b) {
+  std::vector<const Occluder*> out;
+  for (const Occluder& o : occ)
+    if (o.scene_surface != a && o.scene_surface != b) out.push_back(&o);
+  return out;
+}
+
+struct Case {
+  size_t receiver, shooter;
+  Vec3 p, n;
+};
+
+/// Random (receiver point, shooter) cases with the point in front of the shooter and the
+/// receiver's normal turned towards it (so most form factors are positive).
+std::vector<Case> random_cases(std::mt19937& rng, const Scene& scene, int count) {
+  std::uniform_int_distribution<size_t> pick(0, scene.surfaces.size() - 1);
+  std::vector<Case> out;
+  while (static_cast<int>(out.size()) < count) {
+    Case c{pick(rng), pick(rng), Vec3::Zero(), Vec3::Zero()};
+    if (c.receiver == c.shooter) continue;
+    const Surface& s = scene.surfaces[c.shooter];
+    c.p = random_point(rng, scene.surfaces[c.receiver]);
+    if (s.normal().dot(c.p - s.corners[0]) <= 1e-3) continue;
+    c.n = scene.surfaces[c.receiver].normal();
+    if (c.n.dot(s.corners[0] + s.corners[2] - 2 * c.p) < 0) c.n = -c.n;
+    out.push_back(c);
+  }
+  return out;
+}
+
+TEST(OccluderBvh, PointShaftGivesTheSameFormFactorAsAllOccluders) {
+  std::mt19937 rng(1991);
+  const Scene scene = random_scene(rng, 300);
+  const std::vector<Occluder> occ = make_occluders(scene);
+  const OccluderBvh bvh(occ);
+  int occluded = 0, culled = 0;
+  for (const Case& c : random_cases(rng, scene, 1500)) {
+    const Surface& s = scene.surfaces[c.shooter];
+    const ConvexPolygon shooter = polygon_of(s);
+    std::vector<const Occluder*> near;
+    bvh.collect(Shaft({&c.p, 1}, s.polygon()), c.receiver, c.shooter, near);
+    const std::vector<const Occluder*> all = all_but(occ, c.receiver, c.shooter);
+    const double f_all = visible_form_factor(c.p, c.n, shooter, s.normal(), all);
+    const double f_bvh = visible_form_factor(c.p, c.n, shooter, s.normal(), near);
+    ASSERT_NEAR(f_bvh, f_all, 1e-12) << "receiver " << c.receiver << ", shooter " << c.shooter;
+    if (f_all < 0.99 * lambert_form_factor(c.p, c.n, clip_to_horizon(c.p, c.n, shooter))) ++occluded;
+    culled += static_cast<int>(all.size() - near.size());
+  }
+  EXPECT_GE(occluded, 150) << "the random cases should often be partly hidden";
+  EXPECT_GT(culled, 1500 * 250) << "the shaft should drop most of the 298 occluders";
+}
+
+TEST(OccluderBvh, PolygonShaftGivesTheSameFormFactorsAndIsWithinTheBoxScan) {
+  std::mt19937 rng(1992);
+  const Scene scene = random_scene(rng, 200);
+  const std::vector<Occluder> occ = make_occluders(scene);
+  const OccluderBvh bvh(occ);
+  for (const Case& c : random_cases(rng, scene, 300)) {
+    const Surface& r = scene.surfaces[c.receiver];
+    const Surface& s = scene.surfaces[c.shooter];
+    const std::vector<const Occluder*> pair = bvh.between(r.polygon(), s.polygon(), c.receiver, c.shooter);
+    const std::vector<const Occluder*> boxed = occluders_between(occ, r.corners, s.corners, c.receiver, c.shooter);
+    for (const Occluder* o : pair)
+      ASSERT_NE(std::find(boxed.begin(), boxed.end(), o), boxed.end()) << "beyond the common box";
+    const ConvexPolygon shooter = polygon_of(s);
+    for (int k = 0; k < 3; ++k) {  // points all over the receiver share the pair's shaft
+      const Vec3 p = random_point(rng, r);
+      if (s.normal().dot(p - s.corners[0]) <= 1e-3) continue;
+      ASSERT_NEAR(visible_form_factor(p, c.n, shooter, s.normal(), pair),
+                  visible_form_factor(p, c.n, shooter, s.normal(), all_but(occ, c.receiver, c.shooter)), 1e-12);
+    }
+  }
+}
+
+TEST(OccluderBvh, EveryCulledOccluderMissesEverySegmentToTheShooter) {
+  std::mt19937 rng(1993);
+  const Scene scene = random_scene(rng, 300);
+  const std::vector<Occluder> occ = make_occluders(scene);
+  const OccluderBvh bvh(occ);
+  std::uniform_real_distribution<double> t(0, 1);
+  int segments = 0, kept_hit = 0;
+  for (const Case& c : random_cases(rng, scene, 200)) {
+    const Surface& s = scene.surfaces[c.shooter];
+    std::vector<const Occluder*> near;
+    bvh.collect(Shaft({&c.p, 1}, s.polygon()), c.receiver, c.shooter, near);
+    // Points of the shooter: its corners, its centre and random points.
+    std::vector<Vec3> targets(s.polygon().begin(), s.polygon().end());
+    targets.push_back(s.is_triangle() ? (s.corners[0] + s.corners[1] + s.corners[2]) / 3 : s.point(0.5, 0.5));
+    for (int k = 0; k < 40; ++k) targets.push_back(random_point(rng, s));
+    for (const Occluder& o : occ) {
+      if (o.scene_surface == c.receiver || o.scene_surface == c.shooter) continue;
+      const bool kept = std::find(near.begin(), near.end(), &o) != near.end();
+      for (const Vec3& y : targets) {
+        // The closed segment p..y, with a margin: a culled occluder must not even touch it.
+        const bool hit = intersect_quad(scene.surfaces[o.scene_surface], c.p, y - c.p, -1e-9, 1 + 1e-9).has_value();
+        if (!kept) {
+          ++segments;
+          ASSERT_FALSE(hit) << "culled occluder " << o.scene_surface << " blocks a segment from receiver "
+                            << c.receiver << " to shooter " << c.shooter;
+        } else if (hit) {
+          ++kept_hit;
+        }
+      }
+    }
+  }
+  EXPECT_GT(segments, 200 * 250 * 40) << "most occluders are culled, and all their segments were checked";
+  EXPECT_GT(kept_hit, 100) << "the kept occluders do block segments: the test exercises shadows";
+}
+
+TEST(OccluderBvh, WidenedPointShaftHoldsTheSegmentsFromNearbyPoints) {
+  // The progressive solver gathers at an element's centre and Gauss points through one shaft from
+  // the centre widened by their reach: points within the margin see the same shadows.
+  std::mt19937 rng(1994);
+  const Scene scene = random_scene(rng, 300);
+  const std::vector<Occluder> occ = make_occluders(scene);
+  const OccluderBvh bvh(occ);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  const double reach_m = 0.1;
+  int segments = 0;
+  for (const Case& c : random_cases(rng, scene, 300)) {
+    const Surface& s = scene.surfaces[c.shooter];
+    std::vector<const Occluder*> near;
+    bvh.collect(Shaft({&c.p, 1}, s.polygon(), reach_m), c.receiver, c.shooter, near);
+    const std::vector<const Occluder*> all = all_but(occ, c.receiver, c.shooter);
+    for (int k = 0; k < 4; ++k) {
+      Vec3 d(unit(rng), unit(rng), unit(rng));
+      const Vec3 g = c.p + reach_m * d.normalized() * std::abs(unit(rng));  // within the reach
+      if (s.normal().dot(g - s.corners[0]) <= 1e-3) continue;
+      ASSERT_NEAR(visible_form_factor(g, c.n, polygon_of(s), s.normal(), near),
+                  visible_form_factor(g, c.n, polygon_of(s), s.normal(), all), 1e-12);
+      for (const Occluder& o : occ) {
+        if (o.scene_surface == c.receiver || o.scene_surface == c.shooter) continue;
+        if (std::find(near.begin(), near.end(), &o) != near.end()) continue;
+        for (int q = 0; q < 10; ++q) {
+          const Vec3 y = random_point(rng, s);
+          ++segments;
+          ASSERT_FALSE(intersect_quad(scene.surfaces[o.scene_surface], g, y - g, -1e-9, 1 + 1e-9).has_value());
+        }
+      }
+    }
+  }
+  EXPECT_GT(segments, 300 * 4 * 200 * 10 / 2);
+}
+
+TEST(OccluderBvh, EmptyAndSingleOccluderScenes) {
+  const std::vector<Occluder> none;
+  const OccluderBvh empty(none);
+  const Vec3 p(0, 0, 0);
+  const std::array<Vec3, 4> quad = {Vec3(0, 0, 1), Vec3(1, 0, 1), Vec3(1, 1, 1), Vec3(0, 1, 1)};
+  std::vector<const Occluder*> out;
+  empty.collect(Shaft({&p, 1}, quad), 0, 0, out);
+  EXPECT_TRUE(out.empty());
+
+  Scene scene;
+  Surface blocker;
+  blocker.name = "blocker";
+  blocker.corners = {Vec3(0.4, 0.4, 0.5), Vec3(0.6, 0.4, 0.5), Vec3(0.6, 0.6, 0.5), Vec3(0.4, 0.6, 0.5)};
+  scene.surfaces.push_back(blocker);
+  const std::vector<Occluder> one = make_occluders(scene);
+  const OccluderBvh bvh(one);
+  const Vec3 under(0.5, 0.5, 0), aside(3, 0.5, 0);
+  bvh.collect(Shaft({&under, 1}, quad), 7, 8, out);
+  EXPECT_EQ(out.size(), 1u) << "the blocker stands in the shaft from the point below it";
+  out.clear();
+  bvh.collect(Shaft({&aside, 1}, quad), 7, 8, out);
+  EXPECT_TRUE(out.empty()) << "the shaft from (3, 0.5, 0) to the quad passes beside the blocker";
+  bvh.collect(Shaft({&under, 1}, quad), 0, 8, out);
+  EXPECT_TRUE(out.empty()) << "the receiver's and shooter's own surfaces are skipped";
+}
+
+}  // namespace
+}  // namespace radrecon
