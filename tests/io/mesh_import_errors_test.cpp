@@ -62,10 +62,26 @@ TEST(MeshImportErrors, ObjIndicesOutOfRangeAndNonFiniteCoordinates) {
   EXPECT_TRUE(Refused(dir, "nofaces.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 2 2 2\n", {}));
 }
 
-TEST(MeshImportErrors, ObjNegativeEmissionIsRefused) {
+TEST(MeshImportErrors, ObjNegativeEmissionOrNonFiniteColourIsRefused) {
   TempDir dir("mesh_bad");
   write_file(dir / "neg.mtl", "newmtl m\nKd 0.5 0.5 0.5\nKe -1 0 0\n");
   EXPECT_TRUE(Refused(dir, "neg.obj", std::string("mtllib neg.mtl\n") + kTriangle + "usemtl m\nf 1 2 3\n", {"'m' Ke", ">= 0"}));
+  write_file(dir / "nan.mtl", "newmtl m\nKd nan 0.5 0.5\n");
+  EXPECT_TRUE(Refused(dir, "nankd.obj", std::string("mtllib nan.mtl\n") + kTriangle + "usemtl m\nf 1 2 3\n", {"'m' Kd", "not finite"}));
+}
+
+TEST(MeshImportErrors, PlacementBeyondTheSceneOrNotFinite) {
+  TempDir dir("mesh_bad");
+  write_file(dir / "tri.obj", std::string(kTriangle) + "f 1 2 3\n");
+  MeshPlacement far;
+  far.scale = 1e7;  // corner (1, 1, 0) lands 1e7 m out
+  std::string message = testing_support::user_error_message([&] { import_mesh((dir / "tri.obj").string(), far); });
+  EXPECT_NE(message.find("tri.obj"), std::string::npos) << message;
+  EXPECT_NE(message.find("outside"), std::string::npos) << message;
+  MeshPlacement nan;
+  nan.translate_m = Vec3(0, std::nan(""), 0);
+  message = testing_support::user_error_message([&] { import_mesh((dir / "tri.obj").string(), nan); });
+  EXPECT_NE(message.find("finite"), std::string::npos) << message;
 }
 
 TEST(MeshImportErrors, GltfMissingBufferBadAccessorSchemaAndTruncation) {

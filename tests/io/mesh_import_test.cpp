@@ -178,6 +178,52 @@ TEST(MeshImport, PlyVertexColoursAreAveragedPerFace) {
   expect_near(s.corners[2], Vec3(1, 1, 0));
 }
 
+TEST(MeshImport, MirroringNodeKeepsTheFrontInFront) {
+  TempDir dir("mesh_gltf");
+  std::string buffer;
+  nlohmann::json g = testing_support::quad_gltf(buffer);
+  g["nodes"][1]["scale"] = {-1, 1, 1};  // x -> -x: the quad's corners turn clockwise
+  write_file(dir / "mirror.gltf", testing_support::gltf_text(g, buffer));
+  const MeshImport m = import_mesh((dir / "mirror.gltf").string());
+  ASSERT_EQ(m.surfaces.size(), 2u);
+  const Surface& mirrored = named(m.surfaces, "quad#2:0");
+  expect_near(mirrored.normal(), Vec3(0, 0, 1));
+  EXPECT_NEAR(mirrored.area_m2(), 1.0, kFloat);
+  for (const Vec3& c : mirrored.corners) {
+    EXPECT_LE(c.x(), kFloat);
+    EXPECT_NEAR(c.z(), 2.0, kFloat);
+  }
+}
+
+/// A binary PLY of the unit square as one quad, in either byte order.
+std::string binary_square_ply(bool big_endian) {
+  std::string out = std::string("ply\nformat binary_") + (big_endian ? "big" : "little") +
+                    "_endian 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+                    "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  const auto put = [&](auto value) {
+    std::string raw;
+    testing_support::append_le(raw, value);
+    if (big_endian) std::reverse(raw.begin(), raw.end());
+    out += raw;
+  };
+  for (float f : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 1.f, 1.f, 0.f, 0.f, 1.f, 0.f}) put(f);
+  out += char(4);
+  for (int32_t i : {0, 1, 2, 3}) put(i);
+  return out;
+}
+
+TEST(MeshImport, BinaryPlyInEitherByteOrder) {
+  TempDir dir("mesh_ply");
+  for (bool big : {false, true}) {
+    write_file(dir / "bin.ply", binary_square_ply(big));
+    const MeshImport m = import_mesh((dir / "bin.ply").string());
+    ASSERT_EQ(m.surfaces.size(), 1u);
+    EXPECT_EQ(m.surfaces[0].corner_count, 4);
+    expect_near(m.surfaces[0].corners[2], Vec3(1, 1, 0));
+    expect_near(m.surfaces[0].reflectance, Rgb::Constant(0.5));  // no colours: the default
+  }
+}
+
 TEST(MeshImport, PlacementScalesRotatesAndTranslates) {
   TempDir dir("mesh_place");
   write_file(dir / "square.ply", testing_support::coloured_square_ply());
