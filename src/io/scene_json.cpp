@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "io/json_reader.h"
 #include "io/mesh_import.h"
+#include "scene/default_camera.h"
 
 namespace radrecon {
 
@@ -137,6 +138,7 @@ Scene parse_scene_json(const std::string& text, const std::string& source) {
   for (const std::string& warning : regularise_surfaces(scene, source)) mesh_warnings.push_back(warning);
   print_warnings(mesh_warnings, 20);
   validate_scene(scene, source);
+  if (doc.contains("meshes") && scene.cameras.empty()) scene.cameras.push_back(default_camera(scene));
   return scene;
 }
 
@@ -154,6 +156,7 @@ Scene load_mesh_scene(const std::string& path) {
   for (const std::string& warning : regularise_surfaces(scene, path)) model.warnings.push_back(warning);
   print_warnings(model.warnings, 20);
   validate_scene(scene, path);
+  scene.cameras.push_back(default_camera(scene));
   return scene;
 }
 

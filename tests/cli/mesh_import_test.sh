@@ -85,6 +85,10 @@ cat >"$TMP/lit.json" <<'EOF2'
 EOF2
 run lit solve --scene "$TMP/lit.json" --mesh grid:2 --out "$TMP/lit_out.json" --quiet
 expect_rc lit 0
+# A scene of meshes without cameras gets the camera "default" (scene/default_camera.h).
+run lit_render render --scene "$TMP/lit.json" --solution "$TMP/lit_out.json" --method constant --camera default \
+  --size 16x12 --out "$TMP/lit.png" --quiet
+expect_rc lit_render 0
 
 # --- a malformed model: refused, naming it ----------------------------------------------------
 printf 'v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 9\n' >"$TMP/broken.obj"

@@ -268,6 +268,8 @@ TEST(MeshImport, SceneJsonOfMeshesOnly) {
   write_obj(dir);
   const Scene scene = parse_scene_json(R"({"meshes": [{"file": "room.obj"}]})", (dir / "scene.json").string());
   EXPECT_EQ(scene.surfaces.size(), 4u);
+  ASSERT_EQ(scene.cameras.size(), 1u);  // none in the scene: default_camera()
+  EXPECT_EQ(scene.cameras[0].name, "default");
 }
 
 TEST(MeshImport, LoadSceneTakesAModelWithAnEmitterAndRefusesOneWithout) {
@@ -276,6 +278,8 @@ TEST(MeshImport, LoadSceneTakesAModelWithAnEmitterAndRefusesOneWithout) {
   const Scene scene = load_scene((dir / "room.obj").string());
   EXPECT_EQ(scene.name, "room");
   EXPECT_EQ(scene.surfaces.size(), 4u);
+  ASSERT_EQ(scene.cameras.size(), 1u);
+  EXPECT_EQ(scene.cameras[0].name, "default");
   write_file(dir / "square.ply", testing_support::coloured_square_ply());
   const std::string message = testing_support::user_error_message([&] { load_scene((dir / "square.ply").string()); });
   EXPECT_NE(message.find("square.ply"), std::string::npos) << message;
