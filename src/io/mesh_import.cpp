@@ -9,7 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <map>
+#include <set>
 #include <numbers>
 
 #include "core/error.h"
@@ -132,6 +132,26 @@ bool degenerate(std::span<const Vec3> c) {
   return longest_sq == 0 || !(s.area_m2() > tol::kDegenerateAreaRelative * longest_sq);
 }
 
+/// A name fit for the scene and its JSON files: '/' (reserved for sides), control characters and
+/// bytes that are not valid UTF-8 replaced by '_'.
+std::string clean_name(const std::string& raw) {
+  std::string out;
+  for (size_t i = 0; i < raw.size();) {
+    const unsigned char c = static_cast<unsigned char>(raw[i]);
+    size_t length = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xE ? 3 : (c >> 3) == 0x1E ? 4 : 0;
+    bool valid = length > 0 && i + length <= raw.size();
+    for (size_t k = 1; valid && k < length; ++k) valid = (static_cast<unsigned char>(raw[i + k]) >> 6) == 0x2;
+    if (!valid) {
+      out += '_';
+      ++i;
+      continue;
+    }
+    out += (length == 1 && (c < 0x20 || c == 0x7F || c == '/')) ? std::string("_") : raw.substr(i, length);
+    i += length;
+  }
+  return out;
+}
+
 class Builder {
  public:
   Builder(const aiScene& scene, Format format, std::string path, const std::vector<GltfMaterialFactors>& gltf,
@@ -159,10 +179,9 @@ class Builder {
 
  private:
   void mesh(const aiMesh& mesh, const aiMatrix4x4& m) {
-    std::string base = mesh.mName.length > 0 ? std::string(mesh.mName.C_Str()) : stem_;
-    std::replace(base.begin(), base.end(), '/', '_');
-    const int instance = ++instances_[base];
-    if (instance > 1) base += "#" + std::to_string(instance);
+    std::string base = clean_name(mesh.mName.length > 0 ? std::string(mesh.mName.C_Str()) : stem_);
+    const std::string first = base;
+    for (int instance = 2; !bases_.insert(base).second; ++instance) base = first + "#" + std::to_string(instance);
     Eigen::Matrix3d node_linear;
     for (int r = 0; r < 3; ++r)
       for (int c = 0; c < 3; ++c) node_linear(r, c) = m[r][c];
@@ -255,7 +274,7 @@ class Builder {
   MeshImport& out_;
   std::vector<Material> materials_;
   Eigen::Matrix3d placement_linear_;
-  std::map<std::string, int> instances_;
+  std::set<std::string> bases_;  ///< the mesh names given so far
 };
 
 }  // namespace

@@ -38,8 +38,8 @@ struct MeshImport {
   size_t triangle_pairs_merged = 0;   ///< pairs of triangles made quads
 };
 
-/// Reads a model file into surfaces named "MESH:FACE" (MESH: the mesh's name with '/' made '_',
-/// or the file's stem if it has none; "#2", "#3"... on later instances of the same name; FACE:
+/// Reads a model file into surfaces named "MESH:FACE" (MESH: the mesh's name, or the file's stem
+/// if it has none, with '/', control characters and bytes not valid UTF-8 made '_'; "#2", "#3"... on later instances of the same name; FACE:
 /// the face's index in its mesh, ".tK" for the K-th triangle of a larger polygon). Materials: OBJ
 /// Kd, glTF baseColorFactor, else PLY vertex colours averaged over the face, else 0.5 grey;
 /// clamped into [0, 0.999] with a warning. Emission (W/m^2, as stored): OBJ Ke, glTF

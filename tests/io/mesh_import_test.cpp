@@ -119,6 +119,33 @@ TEST(MeshImport, ObjFacesBeforeAnyMaterialAreHalfGreyAndDegenerateFacesAreCounte
             1);
 }
 
+TEST(MeshImport, NamesLoseSlashesControlCharactersAndInvalidUtf8AndStayUnique) {
+  TempDir dir("mesh_obj");
+  write_file(dir / "names.obj",
+             "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+             "o a/b\x01\xff\xc3\xa9\nf 1 2 3\n"      // '/', a control byte, a stray byte, then a valid 'é'
+             "o x\nf 1 3 4\no x\nf 1 2 4\n");  // assimp joins the two objects 'x' into one mesh
+  MeshPlacement keep_triangles;
+  keep_triangles.merge_triangles = false;
+  const MeshImport m = import_mesh((dir / "names.obj").string(), keep_triangles);
+  std::vector<std::string> names;
+  for (const Surface& s : m.surfaces) names.push_back(s.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"a_b__\xc3\xa9:0", "x:0", "x:1"}));
+
+  // glTF: mesh "quad" placed twice ("quad", "quad#2"), then a mesh that is called "quad#2".
+  std::string buffer;
+  nlohmann::json g = testing_support::quad_gltf(buffer);
+  nlohmann::json other = g["meshes"][0];
+  other["name"] = "quad#2";
+  g["meshes"].push_back(other);
+  g["nodes"].push_back({{"mesh", 1}, {"translation", {0, 0, 4}}});
+  g["scenes"][0]["nodes"].push_back(2);
+  write_file(dir / "names.gltf", testing_support::gltf_text(g, buffer));
+  names.clear();
+  for (const Surface& s : import_mesh((dir / "names.gltf").string()).surfaces) names.push_back(s.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"quad:0", "quad#2:0", "quad#2#2:0"}));
+}
+
 void check_glow_quads(const MeshImport& m) {
   // Two instances of the two-triangle quad, each merged into one quad.
   EXPECT_EQ(m.faces_read, 4u);
