@@ -14,7 +14,7 @@
 
 #include "core/error.h"
 #include "core/tolerances.h"
-#include "io/gltf_materials.h"
+#include "io/gltf_extras.h"
 #include "io/mesh_polygons.h"
 #include "io/ply_header.h"
 
@@ -294,8 +294,8 @@ MeshImport import_mesh(const std::string& path, const MeshPlacement& placement) 
   std::optional<size_t> ply_faces;
   if (*format == Format::kPly) ply_faces = check_ply_size(path);
   // glTF: its JSON first, for messages with a line or field, and for what assimp 5.2 drops.
-  std::vector<GltfMaterialFactors> gltf;
-  if (*format == Format::kGltf) gltf = read_gltf_material_factors(path);
+  GltfExtras gltf;
+  if (*format == Format::kGltf) gltf = read_gltf_extras(path);
 
   MeshImport out;
   Assimp::Importer importer;
@@ -313,13 +313,15 @@ MeshImport import_mesh(const std::string& path, const MeshPlacement& placement) 
   if (scene == nullptr) throw UserError(path, std::string("cannot be read: ") + importer.GetErrorString());
   if (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) throw UserError(path, "incomplete model (no geometry was read)");
   if (scene->mRootNode == nullptr) throw UserError(path, "model has no node tree");
-  if (ply_faces) {
-    size_t read = 0;
-    for (unsigned i = 0; i < scene->mNumMeshes; ++i) read += scene->mMeshes[i]->mNumFaces;
-    if (read < *ply_faces)
-      throw UserError(path, "truncated: its header declares " + std::to_string(*ply_faces) + " faces, " + std::to_string(read) + " were read");
-  }
-  Builder builder(*scene, *format, path, gltf, placement, out);
+  size_t read = 0;
+  for (unsigned i = 0; i < scene->mNumMeshes; ++i) read += scene->mMeshes[i] ? scene->mMeshes[i]->mNumFaces : 0;
+  if (ply_faces && read < *ply_faces)
+    throw UserError(path, "truncated: its header declares " + std::to_string(*ply_faces) + " faces, " + std::to_string(read) + " were read");
+  // assimp 5.2 drops a glTF face with a vertex index out of range, without a word.
+  if (*format == Format::kGltf && read < gltf.faces)
+    throw UserError(path, "vertex indices out of range: its primitives declare " + std::to_string(gltf.faces) + " faces, " +
+                              std::to_string(gltf.faces - read) + " of them with an index past their vertices");
+  Builder builder(*scene, *format, path, gltf.materials, placement, out);
   builder.node(scene->mRootNode, aiMatrix4x4(), 0);
   if (out.degenerate_skipped > 0)
     out.warnings.push_back(path + ": " + std::to_string(out.degenerate_skipped) +

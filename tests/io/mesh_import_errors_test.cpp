@@ -102,6 +102,12 @@ TEST(MeshImportErrors, GltfMissingBufferBadAccessorSchemaAndTruncation) {
   bad_index["meshes"][0]["primitives"][0]["indices"] = 7;  // no accessor 7
   EXPECT_TRUE(Refused(dir, "index.gltf", bad_index.dump(), {"accessors"}));
 
+  // An index past the vertices inside the buffer: assimp 5.2 drops the face without a word.
+  std::string wild = buffer;
+  const uint16_t nine = 9;
+  std::memcpy(wild.data() + 48 + 10, &nine, 2);  // the second triangle's third index
+  EXPECT_TRUE(Refused(dir, "wild.gltf", testing_support::gltf_text(g, wild), {"out of range", "1 of them"}));
+
   nlohmann::json no_asset = nlohmann::json::parse(good);
   no_asset.erase("asset");  // required by the schema
   EXPECT_TRUE(Refused(dir, "schema.gltf", no_asset.dump(), {"asset", "missing"}));

@@ -179,6 +179,33 @@ TEST(MeshImport, BinaryGltfReadsTheSame) {
   check_glow_quads(import_mesh((dir / "glow.glb").string()));
 }
 
+TEST(MeshImport, GltfStripsFansAndRepeatedIndicesAreFacesToo) {
+  // The same four vertices as a strip (0 1 3 2: two triangles), a fan (0 1 2 3: two triangles)
+  // and a list with a repeated index (0 1 2, 0 0 2: one degenerate triangle, skipped).
+  TempDir dir("mesh_gltf");
+  std::string buffer;
+  nlohmann::json g = testing_support::quad_gltf(buffer);
+  buffer.resize(48);
+  for (uint16_t i : {0, 1, 3, 2, 0, 1, 2, 3, 0, 1, 2, 0, 0, 2}) testing_support::append_le(buffer, i);
+  g["buffers"][0]["byteLength"] = buffer.size();
+  g["bufferViews"][1]["byteLength"] = 28;
+  g["accessors"][1]["count"] = 4;
+  g["accessors"].push_back({{"bufferView", 1}, {"byteOffset", 8}, {"componentType", 5123}, {"count", 4}, {"type", "SCALAR"}});
+  g["accessors"].push_back({{"bufferView", 1}, {"byteOffset", 16}, {"componentType", 5123}, {"count", 6}, {"type", "SCALAR"}});
+  nlohmann::json& primitives = g["meshes"][0]["primitives"];
+  primitives[0]["mode"] = 5;
+  primitives.push_back({{"attributes", {{"POSITION", 0}}}, {"indices", 2}, {"material", 1}, {"mode", 6}});
+  primitives.push_back({{"attributes", {{"POSITION", 0}}}, {"indices", 3}, {"material", 1}});
+  g["scenes"][0]["nodes"] = {0};
+  write_file(dir / "modes.gltf", testing_support::gltf_text(g, buffer));
+  const MeshImport m = import_mesh((dir / "modes.gltf").string());
+  EXPECT_EQ(m.faces_read, 6u);
+  EXPECT_EQ(m.degenerate_skipped, 1u);
+  double area = 0;
+  for (const Surface& s : m.surfaces) area += s.area_m2();
+  EXPECT_NEAR(area, 2.5, kFloat);  // strip 1 + fan 1 + the list's one triangle 0.5
+}
+
 TEST(MeshImport, GltfPrimitiveWithoutMaterialIsHalfGrey) {
   TempDir dir("mesh_gltf");
   std::string buffer;

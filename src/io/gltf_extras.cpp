@@ -1,4 +1,4 @@
-#include "io/gltf_materials.h"
+#include "io/gltf_extras.h"
 
 #include <cmath>
 #include <cstdint>
@@ -40,9 +40,36 @@ Rgb factor(const JsonReader& r, const json& j, const std::string& path, size_t n
   return out;
 }
 
+/// The faces a primitive declares, as assimp 5.2 makes them of its mode (0 points, 1 lines,
+/// 2 line loop, 3 line strip, 4 triangles (default), 5 triangle strip, 6 triangle fan); 0 where
+/// the JSON is not as the schema says (assimp refuses that itself).
+size_t primitive_faces(const json& doc, const json& primitive) {
+  if (!primitive.is_object()) return 0;
+  const json* accessor_index = nullptr;
+  if (primitive.contains("indices")) accessor_index = &primitive["indices"];
+  else if (primitive.contains("attributes") && primitive["attributes"].is_object() && primitive["attributes"].contains("POSITION"))
+    accessor_index = &primitive["attributes"]["POSITION"];
+  if (!accessor_index || !accessor_index->is_number_unsigned() || !doc.contains("accessors") || !doc["accessors"].is_array()) return 0;
+  const size_t a = accessor_index->get<size_t>();
+  if (a >= doc["accessors"].size() || !doc["accessors"][a].is_object() || !doc["accessors"][a].contains("count") ||
+      !doc["accessors"][a]["count"].is_number_unsigned())
+    return 0;
+  const size_t count = doc["accessors"][a]["count"].get<size_t>();
+  const long long mode = primitive.contains("mode") && primitive["mode"].is_number_integer() ? primitive["mode"].get<long long>() : 4;
+  switch (mode) {
+    case 0: return count;
+    case 1: return count / 2;
+    case 2: return count;
+    case 3: return count >= 2 ? count - 1 : 0;
+    case 4: return count / 3;
+    case 5: case 6: return count >= 3 ? count - 2 : 0;
+    default: return 0;
+  }
+}
+
 }  // namespace
 
-std::vector<GltfMaterialFactors> read_gltf_material_factors(const std::string& path) {
+GltfExtras read_gltf_extras(const std::string& path) {
   std::string text = read_text_file(path, "mesh file");
   const bool binary = path.size() >= 4 && (path.compare(path.size() - 4, 4, ".glb") == 0 || path.compare(path.size() - 4, 4, ".GLB") == 0);
   if (binary) text = glb_json_chunk(text, path);
@@ -52,8 +79,13 @@ std::vector<GltfMaterialFactors> read_gltf_material_factors(const std::string& p
   const json& asset = r.member(doc, "asset", "");
   const std::string version = r.string(r.member(asset, "version", "asset"), "asset.version");
   if (version.rfind("2.", 0) != 0) r.fail("asset.version", "must be \"2.0\" (glTF 2.0), got \"" + version + "\"");
-  std::vector<GltfMaterialFactors> out;
-  if (!doc.contains("materials")) return out;
+  GltfExtras extras;
+  if (doc.contains("meshes") && doc["meshes"].is_array())
+    for (const json& mesh : doc["meshes"])
+      if (mesh.is_object() && mesh.contains("primitives") && mesh["primitives"].is_array())
+        for (const json& primitive : mesh["primitives"]) extras.faces += primitive_faces(doc, primitive);
+  std::vector<GltfMaterialFactors>& out = extras.materials;
+  if (!doc.contains("materials")) return extras;
   const json& materials = doc["materials"];
   if (!materials.is_array()) r.fail("materials", "must be an array");
   for (size_t i = 0; i < materials.size(); ++i) {
@@ -77,7 +109,7 @@ std::vector<GltfMaterialFactors> read_gltf_material_factors(const std::string& p
     }
     out.push_back(f);
   }
-  return out;
+  return extras;
 }
 
 }  // namespace radrecon
