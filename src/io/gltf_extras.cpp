@@ -3,8 +3,10 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 
 #include "core/error.h"
+#include "io/gltf_indices.h"
 #include "io/json_reader.h"
 
 namespace radrecon {
@@ -19,14 +21,22 @@ uint32_t little_endian_u32(const std::string& bytes, size_t at) {
   return v;
 }
 
-/// The JSON text of a .glb: its first chunk, which the format requires to be of type JSON.
-std::string glb_json_chunk(const std::string& bytes, const std::string& path) {
+/// The JSON text of a .glb (its first chunk, which the format requires to be of type JSON) and
+/// its BIN chunk ("" if none).
+std::pair<std::string, std::string> glb_chunks(const std::string& bytes, const std::string& path) {
   if (bytes.size() < 20 || bytes.compare(0, 4, "glTF") != 0)
     throw UserError(path, "not a binary glTF file (no 'glTF' header)");
   const uint32_t length = little_endian_u32(bytes, 12), type = little_endian_u32(bytes, 16);
   if (type != 0x4E4F534Au) throw UserError(path, "binary glTF's first chunk is not JSON");
   if (length > bytes.size() - 20) throw UserError(path, "binary glTF is truncated (its JSON chunk runs past the end)");
-  return bytes.substr(20, length);
+  std::string bin;
+  const size_t next = 20 + static_cast<size_t>(length);
+  if (bytes.size() >= next + 8 && little_endian_u32(bytes, next + 4) == 0x004E4942u) {
+    const uint32_t bin_length = little_endian_u32(bytes, next);
+    if (bin_length > bytes.size() - next - 8) throw UserError(path, "binary glTF is truncated (its BIN chunk runs past the end)");
+    bin = bytes.substr(next + 8, bin_length);
+  }
+  return {bytes.substr(20, length), bin};
 }
 
 Rgb factor(const JsonReader& r, const json& j, const std::string& path, size_t needed, Rgb fallback) {
@@ -72,13 +82,15 @@ size_t primitive_faces(const json& doc, const json& primitive) {
 GltfExtras read_gltf_extras(const std::string& path) {
   std::string text = read_text_file(path, "mesh file");
   const bool binary = path.size() >= 4 && (path.compare(path.size() - 4, 4, ".glb") == 0 || path.compare(path.size() - 4, 4, ".GLB") == 0);
-  if (binary) text = glb_json_chunk(text, path);
+  std::string bin;
+  if (binary) std::tie(text, bin) = glb_chunks(text, path);
   const JsonReader r(path);
   const json doc = r.parse(text, "glTF file");
   if (!doc.is_object()) r.fail("(top level)", "must be a JSON object");
   const json& asset = r.member(doc, "asset", "");
   const std::string version = r.string(r.member(asset, "version", "asset"), "asset.version");
   if (version.rfind("2.", 0) != 0) r.fail("asset.version", "must be \"2.0\" (glTF 2.0), got \"" + version + "\"");
+  check_gltf_indices(doc, bin, std::filesystem::path(path).parent_path().string(), path);
   GltfExtras extras;
   if (doc.contains("meshes") && doc["meshes"].is_array())
     for (const json& mesh : doc["meshes"])
