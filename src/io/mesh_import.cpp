@@ -92,30 +92,30 @@ std::vector<Material> read_materials(const aiScene& scene, Format format, const 
       if (!base) base = colour_key(m, AI_MATKEY_COLOR_DIFFUSE);
       const Rgb emissive = colour_key(m, AI_MATKEY_COLOR_EMISSIVE).value_or(Rgb::Zero());
       // assimp 5.2 drops KHR_materials_emissive_strength and renumbers the materials: find this
-      // one among the file's by name and factors, for its strength.
-      std::optional<double> strength;
-      bool found = false;
-      for (const GltfMaterialFactors& f : gltf) {
-        if (f.name != name || !base || !near(*base, f.base_colour) || !near(emissive, f.emissive)) continue;
-        if (found && *strength != f.emissive_strength)
-          throw UserError(path, "glTF materials named '" + name + "' with the same factors have different emissive strengths: give them distinct names");
-        found = true;
-        strength = f.emissive_strength;
-      }
-      if (!found) continue;  // assimp's default material (a primitive without one): 0.5 grey
-      mat.reflectance = reflectance_from(*base, path, what + " baseColorFactor", warnings);
-      mat.emission_w_m2 = emission_from(emissive * *strength, path, what + " emissiveFactor x emissiveStrength");
+      // one in the file by name (and by factors among materials of the same name), for its
+      // strength. Unnamed and not in the file: assimp's default material, for a primitive
+      // without one.
+      std::vector<const GltfMaterialFactors*> same;
+      for (const GltfMaterialFactors& f : gltf)
+        if (f.name == name) same.push_back(&f);
+      const auto strengths_differ = [&] {
+        for (const GltfMaterialFactors* f : same)
+          if (f->emissive_strength != same.front()->emissive_strength) return true;
+        return false;
+      };
+      if (name.empty() || strengths_differ())
+        std::erase_if(same, [&](const GltfMaterialFactors* f) { return !base || !near(*base, f->base_colour) || !near(emissive, f->emissive); });
+      if (same.empty() && name.empty()) continue;  // the default: 0.5 grey
+      if (strengths_differ())
+        throw UserError(path, "glTF materials named '" + name + "' with the same factors have different emissive strengths: give them distinct names");
+      const double strength = same.empty() ? 1.0 : same.front()->emissive_strength;
+      if (base) mat.reflectance = reflectance_from(*base, path, what + " baseColorFactor", warnings);
+      mat.emission_w_m2 = emission_from(emissive * strength, path, what + " emissiveFactor x emissiveStrength");
     }
     // PLY: no material; vertex colours per face (below), else the default.
   }
   return out;
 }
-
-/// The placement of the file's (node-transformed) points in the scene.
-struct Placement {
-  Eigen::Matrix3d linear;
-  Vec3 translate;
-};
 
 void check_finite_vertex(const aiVector3D& v, const std::string& path, const std::string& mesh, unsigned index) {
   if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))

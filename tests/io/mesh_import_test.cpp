@@ -206,18 +206,25 @@ TEST(MeshImport, GltfStripsFansAndRepeatedIndicesAreFacesToo) {
   EXPECT_NEAR(area, 2.5, kFloat);  // strip 1 + fan 1 + the list's one triangle 0.5
 }
 
-TEST(MeshImport, GltfPrimitiveWithoutMaterialIsHalfGrey) {
+TEST(MeshImport, GltfPrimitiveWithoutMaterialIsHalfGreyBesideAnUnnamedMaterial) {
+  // assimp names both the unnamed "glow" and its default material '': they are told apart by
+  // their factors.
   TempDir dir("mesh_gltf");
   std::string buffer;
   nlohmann::json g = testing_support::quad_gltf(buffer);
-  g["meshes"][0]["primitives"][0].erase("material");
+  g["materials"][1].erase("name");
+  nlohmann::json plain = g["meshes"][0];
+  plain["name"] = "plain";
+  plain["primitives"][0].erase("material");
+  g["meshes"].push_back(plain);
+  g["nodes"][1]["mesh"] = 1;
   write_file(dir / "plain.gltf", testing_support::gltf_text(g, buffer));
   const MeshImport m = import_mesh((dir / "plain.gltf").string());
   ASSERT_EQ(m.surfaces.size(), 2u);
-  for (const Surface& s : m.surfaces) {
-    expect_near(s.reflectance, Rgb::Constant(0.5));
-    expect_near(s.emission_w_m2, Rgb::Zero());
-  }
+  expect_near(named(m.surfaces, "quad:0").reflectance, Rgb(0.4, 0.5, 0.6));
+  expect_near(named(m.surfaces, "quad:0").emission_w_m2, Rgb(8, 4, 2));
+  expect_near(named(m.surfaces, "plain:0").reflectance, Rgb::Constant(0.5));
+  expect_near(named(m.surfaces, "plain:0").emission_w_m2, Rgb::Zero());
 }
 
 TEST(MeshImport, PlyVertexColoursAreAveragedPerFace) {
