@@ -177,6 +177,13 @@ class Builder {
     for (unsigned c = 0; c < n->mNumChildren; ++c) node(n->mChildren[c], m, depth + 1);
   }
 
+  /// One warning for the faces whose mean vertex colour was clamped (a white PLY has them all).
+  void finish() {
+    if (colours_clamped_ > 0)
+      out_.warnings.push_back(path_ + ": the mean vertex colour of " + std::to_string(colours_clamped_) +
+                              " face(s) clamped into [0, 0.999] (a reflectance must lie in [0, 1))");
+  }
+
  private:
   void mesh(const aiMesh& mesh, const aiMatrix4x4& m) {
     std::string base = clean_name(mesh.mName.length > 0 ? std::string(mesh.mName.C_Str()) : stem_);
@@ -227,8 +234,12 @@ class Builder {
       if (mirrored) std::reverse(corners.begin(), corners.end());
       Surface s;
       s.reflectance = material.reflectance;
-      if (vertex_colours)
-        s.reflectance = reflectance_from(colour_sum / face.mNumIndices, path_, "mesh '" + base + "' face " + std::to_string(f) + " vertex colour", out_.warnings);
+      if (vertex_colours) {
+        const Rgb mean = colour_sum / face.mNumIndices;
+        if (!mean.allFinite()) throw UserError(path_, "mesh '" + base + "' face " + std::to_string(f) + ": vertex colours not finite");
+        s.reflectance = mean.max(0.0).min(kMaxReflectance);
+        colours_clamped_ += (s.reflectance != mean).any();
+      }
       s.emission_w_m2 = material.emission_w_m2;
       if (placement_.reflectance) s.reflectance = *placement_.reflectance;
       if (placement_.emission_w_m2) s.emission_w_m2 = *placement_.emission_w_m2;
@@ -275,6 +286,7 @@ class Builder {
   std::vector<Material> materials_;
   Eigen::Matrix3d placement_linear_;
   std::set<std::string> bases_;  ///< the mesh names given so far
+  size_t colours_clamped_ = 0;
 };
 
 }  // namespace
@@ -323,6 +335,7 @@ MeshImport import_mesh(const std::string& path, const MeshPlacement& placement) 
                               std::to_string(gltf.faces - read) + " of them with an index past their vertices");
   Builder builder(*scene, *format, path, gltf.materials, placement, out);
   builder.node(scene->mRootNode, aiMatrix4x4(), 0);
+  builder.finish();
   if (out.degenerate_skipped > 0)
     out.warnings.push_back(path + ": " + std::to_string(out.degenerate_skipped) +
                            " face(s) of fewer than 3 corners or of zero area skipped");

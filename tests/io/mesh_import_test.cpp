@@ -237,6 +237,21 @@ TEST(MeshImport, PlyVertexColoursAreAveragedPerFace) {
   EXPECT_EQ(s.corner_count, 4);
   expect_near(s.reflectance, Rgb(0.2, 0.1, 0.05));
   expect_near(s.corners[2], Vec3(1, 1, 0));
+  EXPECT_TRUE(m.warnings.empty());
+}
+
+TEST(MeshImport, WhiteVertexColoursAreClampedWithOneWarning) {
+  TempDir dir("mesh_ply");
+  std::string ply = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+                    "property uchar red\nproperty uchar green\nproperty uchar blue\nelement face 2\n"
+                    "property list uchar int vertex_indices\nend_header\n"
+                    "0 0 0 255 255 255\n1 0 0 255 255 255\n1 1 0 255 255 255\n0 1 0 255 255 255\n3 0 1 2\n3 0 2 3\n";
+  write_file(dir / "white.ply", ply);
+  const MeshImport m = import_mesh((dir / "white.ply").string());
+  ASSERT_EQ(m.surfaces.size(), 1u);  // the two triangles merged
+  expect_near(m.surfaces[0].reflectance, Rgb::Constant(0.999));
+  ASSERT_EQ(m.warnings.size(), 1u);
+  EXPECT_NE(m.warnings[0].find("2 face(s) clamped"), std::string::npos) << m.warnings[0];
 }
 
 TEST(MeshImport, MirroringNodeKeepsTheFrontInFront) {
