@@ -9,6 +9,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <set>
 #include <numbers>
 
@@ -73,7 +75,8 @@ std::optional<Rgb> colour_key(const aiMaterial* m, const char* key, unsigned typ
 bool near(const Rgb& a, const Rgb& b) { return ((a - b).abs() <= 1e-6 * (1.0 + a.abs().max(b.abs()))).all(); }
 
 std::vector<Material> read_materials(const aiScene& scene, Format format, const std::string& path,
-                                     const std::vector<GltfMaterialFactors>& gltf, std::vector<std::string>& warnings) {
+                                     const std::vector<GltfMaterialFactors>& gltf, const std::set<std::string>& obj_defined,
+                                     std::vector<std::string>& warnings) {
   std::vector<Material> out(scene.mNumMaterials);
   for (unsigned i = 0; i < scene.mNumMaterials; ++i) {
     const aiMaterial* m = scene.mMaterials[i];
@@ -84,7 +87,7 @@ std::vector<Material> read_materials(const aiScene& scene, Format format, const 
     const std::string what = "material '" + name + "'";
     Material& mat = out[i];
     if (format == Format::kObj) {
-      if (name == AI_DEFAULT_MATERIAL_NAME) continue;  // faces before any usemtl: the default
+      if (!obj_defined.count(name)) continue;  // faces before any usemtl, or of an undefined one: the default
       if (auto kd = colour_key(m, AI_MATKEY_COLOR_DIFFUSE)) mat.reflectance = reflectance_from(*kd, path, what + " Kd", warnings);
       if (auto ke = colour_key(m, AI_MATKEY_COLOR_EMISSIVE)) mat.emission_w_m2 = emission_from(*ke, path, what + " Ke");
     } else if (format == Format::kGltf) {
@@ -152,13 +155,57 @@ std::string clean_name(const std::string& raw) {
   return out;
 }
 
+/// The materials an OBJ's MTL files (`mtllib`) define (`newmtl`), and a warning for each MTL
+/// file not beside it. assimp reads on without it, giving a material named by `usemtl` but
+/// defined nowhere Kd 0.6: radrecon gives such faces the default instead.
+struct ObjMaterials {
+  std::set<std::string> defined;
+  std::vector<std::string> warnings;
+};
+
+/// The words after `keyword` on each line of the file that starts with it.
+std::vector<std::string> keyword_arguments(const std::filesystem::path& file, const std::string& keyword) {
+  std::vector<std::string> out;
+  std::ifstream in(file, std::ios::binary);
+  std::string line;
+  while (std::getline(in, line)) {
+    const size_t start = line.find_first_not_of(" \t");
+    if (start == std::string::npos || line.compare(start, keyword.size(), keyword) != 0) continue;
+    const size_t after = start + keyword.size();
+    if (after >= line.size() || !std::isspace(static_cast<unsigned char>(line[after]))) continue;
+    std::string rest = line.substr(after);
+    while (!rest.empty() && std::isspace(static_cast<unsigned char>(rest.back()))) rest.pop_back();
+    rest.erase(0, rest.find_first_not_of(" \t"));
+    out.push_back(rest);
+  }
+  return out;
+}
+
+ObjMaterials obj_materials(const std::string& path) {
+  ObjMaterials out;
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  for (const std::string& files : keyword_arguments(path, "mtllib")) {
+    std::istringstream words(files);
+    std::string file;
+    while (words >> file) {
+      std::error_code ec;
+      if (!std::filesystem::is_regular_file(folder / file, ec)) {
+        out.warnings.push_back(path + ": mtllib '" + file + "' not found beside it: faces of its materials are 0.5 grey, without emission");
+        continue;
+      }
+      for (const std::string& name : keyword_arguments(folder / file, "newmtl")) out.defined.insert(name);
+    }
+  }
+  return out;
+}
+
 class Builder {
  public:
   Builder(const aiScene& scene, Format format, std::string path, const std::vector<GltfMaterialFactors>& gltf,
-          const MeshPlacement& placement, MeshImport& out)
+          const std::set<std::string>& obj_defined, const MeshPlacement& placement, MeshImport& out)
       : scene_(scene), format_(format), path_(std::move(path)), placement_(placement), out_(out) {
     stem_ = std::filesystem::path(path_).stem().string();
-    materials_ = read_materials(scene, format, path_, gltf, out.warnings);
+    materials_ = read_materials(scene, format, path_, gltf, obj_defined, out.warnings);
     const double a = placement.rotate_x_deg * std::numbers::pi / 180.0;
     Eigen::Matrix3d rx;
     rx << 1, 0, 0, 0, std::cos(a), -std::sin(a), 0, std::sin(a), std::cos(a);
@@ -310,6 +357,11 @@ MeshImport import_mesh(const std::string& path, const MeshPlacement& placement) 
   if (*format == Format::kGltf) gltf = read_gltf_extras(path);
 
   MeshImport out;
+  ObjMaterials obj;
+  if (*format == Format::kObj) {
+    obj = obj_materials(path);
+    out.warnings = obj.warnings;
+  }
   Assimp::Importer importer;
   const aiScene* scene = nullptr;
   try {
@@ -333,7 +385,7 @@ MeshImport import_mesh(const std::string& path, const MeshPlacement& placement) 
   if (*format == Format::kGltf && read < gltf.faces)
     throw UserError(path, "vertex indices out of range: its primitives declare " + std::to_string(gltf.faces) + " faces, " +
                               std::to_string(gltf.faces - read) + " of them with an index past their vertices");
-  Builder builder(*scene, *format, path, gltf.materials, placement, out);
+  Builder builder(*scene, *format, path, gltf.materials, obj.defined, placement, out);
   builder.node(scene->mRootNode, aiMatrix4x4(), 0);
   builder.finish();
   if (out.degenerate_skipped > 0)

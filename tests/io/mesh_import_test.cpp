@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <numeric>
 #include <string>
 
@@ -103,6 +104,19 @@ TEST(MeshImport, ObjPentagonIsCutIntoTrianglesOfItsAreaAndKdAboveOneIsClamped) {
     return w.find("'hot' Kd") != std::string::npos && w.find("clamped") != std::string::npos;
   });
   EXPECT_TRUE(warned);
+}
+
+TEST(MeshImport, ObjWithoutItsMtlIsHalfGreyWithAWarning) {
+  TempDir dir("mesh_obj");
+  write_obj(dir);
+  std::filesystem::remove(dir / "room.mtl");
+  const MeshImport m = import_mesh((dir / "room.obj").string());
+  for (const Surface& s : m.surfaces) {
+    expect_near(s.reflectance, Rgb::Constant(0.5));
+    expect_near(s.emission_w_m2, Rgb::Zero());
+  }
+  ASSERT_FALSE(m.warnings.empty());
+  EXPECT_NE(m.warnings[0].find("mtllib 'room.mtl' not found"), std::string::npos) << m.warnings[0];
 }
 
 TEST(MeshImport, ObjFacesBeforeAnyMaterialAreHalfGreyAndDegenerateFacesAreCountedOnce) {
