@@ -100,6 +100,11 @@ void check_gltf_indices(const json& doc, const std::string& bin, const std::stri
       const json* indices = element(doc, "accessors", count_of(primitive, "indices"));
       if (positions == nullptr || indices == nullptr || !indices->is_object() || indices->contains("sparse")) continue;
       const std::optional<size_t> vertices = count_of(*positions, "count"), count = count_of(*indices, "count");
+      // A line loop of one index: assimp 5.2 reads a second one past its end (an assertion ends
+      // the program; found by fuzzing).
+      if (count && *count < 2 && primitive.contains("mode") && primitive["mode"] == 2)
+        throw UserError(path, "meshes[" + std::to_string(m) + "].primitives[" + std::to_string(p) +
+                                  "]: a line loop (mode 2) of " + std::to_string(*count) + " index (fewer than 2)");
       const json* view = element(doc, "bufferViews", count_of(*indices, "bufferView"));
       const std::optional<size_t> type = count_of(*indices, "componentType");
       if (!vertices || !count || view == nullptr || !type) continue;

@@ -13,7 +13,8 @@ namespace radrecon {
 /// POSITION accessor. `bin` is a .glb's BIN chunk (buffer 0 without a uri), `folder` the one the
 /// file's relative buffer URIs are in. Buffers it cannot resolve (a missing file), accessors that
 /// do not fit their buffer and sparse accessors are left to assimp, which refuses them.
-/// UserError "PATH: meshes[i].primitives[j]: vertex index K out of range (N vertices)".
+/// UserError "PATH: meshes[i].primitives[j]: vertex index K out of range (N vertices)"; also for
+/// a line loop of fewer than 2 indices, which assimp 5.2 reads past.
 void check_gltf_indices(const nlohmann::json& doc, const std::string& bin, const std::string& folder, const std::string& path);
 
 }  // namespace radrecon

@@ -113,6 +113,10 @@ TEST(MeshImportErrors, GltfMissingBufferBadAccessorSchemaAndTruncation) {
   loop["meshes"][0]["primitives"][0]["mode"] = 2;
   loop["accessors"][0]["count"] = 1;
   EXPECT_TRUE(Refused(dir, "loop.gltf", testing_support::gltf_text(loop, buffer), {"vertex index 1 out of range (1 vertices)"}));
+  nlohmann::json short_loop = g;  // assimp 5.2 failed an assertion on this one (found by fuzzing)
+  short_loop["meshes"][0]["primitives"][0]["mode"] = 2;
+  short_loop["accessors"][1]["count"] = 1;
+  EXPECT_TRUE(Refused(dir, "short_loop.gltf", testing_support::gltf_text(short_loop, buffer), {"line loop", "fewer than 2"}));
 
   nlohmann::json no_asset = nlohmann::json::parse(good);
   no_asset.erase("asset");  // required by the schema
