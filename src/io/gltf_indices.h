@@ -9,7 +9,9 @@
 
 namespace radrecon {
 
-/// Checks that every index of every primitive's indices accessor is below the count of its
+/// Checks that every accessor fits its buffer view and every view its buffer (UserError naming
+/// the accessor: assimp 5.2 refuses them too but leaks memory doing so), and that every index of
+/// every primitive's indices accessor is below the count of its
 /// POSITION accessor. `bin` is a .glb's BIN chunk (buffer 0 without a uri), `folder` the one the
 /// file's relative buffer URIs are in. Buffers it cannot resolve (a missing file), accessors that
 /// do not fit their buffer and sparse accessors are left to assimp, which refuses them.

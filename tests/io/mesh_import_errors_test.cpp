@@ -54,8 +54,12 @@ TEST(MeshImportErrors, UnknownExtensionEmptyAndMissingFiles) {
 
 TEST(MeshImportErrors, ObjIndicesOutOfRangeAndNonFiniteCoordinates) {
   TempDir dir("mesh_bad");
-  EXPECT_TRUE(Refused(dir, "index.obj", std::string(kTriangle) + "f 1 2 7\n", {"out of range"}));
-  EXPECT_TRUE(Refused(dir, "negative.obj", std::string(kTriangle) + "f 1 2 -9\n", {"out of range"}));
+  EXPECT_TRUE(Refused(dir, "index.obj", std::string(kTriangle) + "f 1 2 7\n", {"index.obj:4", "vertex index 7 out of range (3 vertices)"}));
+  EXPECT_TRUE(Refused(dir, "negative.obj", std::string(kTriangle) + "f 1 2 -9\n", {"negative.obj:4", "vertex index -9 out of range"}));
+  EXPECT_TRUE(Refused(dir, "zero.obj", std::string(kTriangle) + "f 0/1/1 2/1/1 3/1/1\n", {"zero.obj:4", "vertex index 0"}));
+  // Relative indices count back from the vertices before the face: -1 -2 -3 is the triangle.
+  write_file(dir / "relative.obj", std::string(kTriangle) + "f -3 -2 -1\n");
+  EXPECT_EQ(import_mesh((dir / "relative.obj").string()).surfaces.size(), 1u);
   EXPECT_TRUE(Refused(dir, "nan.obj", "v 0 0 0\nv nan 0 0\nv 1 1 0\nf 1 2 3\n", {"not finite"}));
   EXPECT_TRUE(Refused(dir, "inf.obj", "v 0 0 0\nv 1 0 0\nv 1 inf 0\nf 1 2 3\n", {"not finite"}));
   EXPECT_TRUE(Refused(dir, "junk.obj", "hello\n", {"cannot be read"}));
@@ -96,7 +100,13 @@ TEST(MeshImportErrors, GltfMissingBufferBadAccessorSchemaAndTruncation) {
 
   nlohmann::json too_long = nlohmann::json::parse(good);
   too_long["accessors"][1]["count"] = 600;  // past the end of its buffer view
-  EXPECT_TRUE(Refused(dir, "accessor.gltf", too_long.dump(), {"out of range"}));
+  EXPECT_TRUE(Refused(dir, "accessor.gltf", too_long.dump(), {"accessors[1]", "600 elements of 2 bytes do not fit"}));
+  nlohmann::json wrong_type = nlohmann::json::parse(good);
+  wrong_type["accessors"][1]["type"] = "MAT4";  // 6 x 32 bytes in a view of 12 (assimp leaked on it)
+  EXPECT_TRUE(Refused(dir, "type.gltf", wrong_type.dump(), {"accessors[1]", "do not fit"}));
+  nlohmann::json bad_component = nlohmann::json::parse(good);
+  bad_component["accessors"][0]["componentType"] = 9999;
+  EXPECT_TRUE(Refused(dir, "component.gltf", bad_component.dump(), {"accessors[0]", "componentType"}));
 
   nlohmann::json bad_index = nlohmann::json::parse(good);
   bad_index["meshes"][0]["primitives"][0]["indices"] = 7;  // no accessor 7
