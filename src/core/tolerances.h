@@ -28,7 +28,7 @@ inline constexpr double kParallelSine = 1e-6;
 /// point exceeds this multiple of its diagonal; closer, it is split into its elements. At 2
 /// diagonals the point-collocated form factor of a block differs from the sum over its parts
 /// by well under 1% for smoothly varying radiosity.
-inline constexpr double kFarFieldDiagonals = 2.0;
+inline constexpr double kFarFieldDiagonals = 2.5;
 
 /// Two values of unshot radiosity (W/m^2) within this relative difference count as equal, so a
 /// block of uniform unshot radiosity (an emitter's first shot) is never split: by additivity of
@@ -167,6 +167,18 @@ inline constexpr double kEmitterTieRelative = 1e-6;
 /// A quad corner within this fraction of the quad's longest edge of the next corner repeats it:
 /// the quad is read as the triangle of the other three (scene/scene.h regularise_surfaces()).
 inline constexpr double kRepeatedCornerRelative = 1e-9;
+
+/// Progressive refinement gathers a receiving element's irradiance at its centre (the midpoint
+/// rule, relative error of order (size / distance)^2) while its size is below this fraction of
+/// its distance to the shooting block's bounding sphere, and as the element's mean by a Gauss
+/// rule (solver/progressive.cpp element_mean()) when it is nearer: point collocation near a
+/// shooter gains or loses power with every bounce (0.4% of the shot in a closed room at grid:12).
+inline constexpr double kMidpointReceiverRatio = 1.0 / 16;
+
+/// The far-field correction of progressive refinement (solver/progressive.cpp
+/// far_field_radiosity()) divides by the cosines at both ends of the kernel: at grazing angles,
+/// below this cosine, the block shoots with its mean radiosity alone.
+inline constexpr double kKernelCosine = 1e-3;
 
 /// Mesh import (io/mesh_polygons.h): two triangles are merged into one quad only if the quad is
 /// convex with a margin, each corner's turn (the cross product of its edges along the normal) at

@@ -47,17 +47,21 @@ void write_solution_json(const std::filesystem::path& path, const Solution& sol)
       std::fprintf(f, "%s\n    {\"name\": %s, \"scene_surface\": %s, \"back_side\": %s,\n", s ? "," : "",
                    json_string(surf.name).c_str(), json_string(surf.scene_surface).c_str(),
                    surf.back_side ? "true" : "false");
-      std::fprintf(f, "     \"length_u_m\": %.17g, \"length_v_m\": %.17g, \"grid\": [%d, %d],\n     \"barriers\": [",
-                   surf.length_u_m, surf.length_v_m, surf.grid_nu, surf.grid_nv);
+      std::fprintf(f, "     \"length_u_m\": %.17g, \"length_v_m\": %.17g, \"grid\": [%d, %d],\n", surf.length_u_m,
+                   surf.length_v_m, surf.grid_nu, surf.grid_nv);
+      if (surf.triangle) std::fprintf(f, "     \"triangle\": true, \"shear_m\": %.17g,\n", surf.shear_m);
+      std::fprintf(f, "     \"barriers\": [");
       put_polylines(f, surf.barriers);
       std::fprintf(f, "],\n     \"excluded\": [");
       put_polylines(f, surf.excluded);
       std::fprintf(f, "],\n     \"elements\": [");
       for (size_t e = 0; e < surf.elements.size(); ++e) {
         const SolutionElement& el = surf.elements[e];
-        std::fprintf(f, "%s\n      {\"u0\": %.17g, \"v0\": %.17g, \"u1\": %.17g, \"v1\": %.17g, \"center\": [%.9g, %.9g, %.9g], \"area\": %.9g, \"radiosity\": ",
-                     e ? "," : "", el.u0, el.v0, el.u1, el.v1, el.center.x(), el.center.y(), el.center.z(),
-                     el.area_m2);
+        std::fprintf(f, "%s\n      {\"u0\": %.17g, \"v0\": %.17g, \"u1\": %.17g, \"v1\": %.17g, ", e ? "," : "", el.u0,
+                     el.v0, el.u1, el.v1);
+        if (el.is_triangle()) std::fprintf(f, "\"shape\": \"%s\", ", cell_shape_name(el.shape));
+        std::fprintf(f, "\"center\": [%.9g, %.9g, %.9g], \"area\": %.9g, \"radiosity\": ", el.center.x(), el.center.y(),
+                     el.center.z(), el.area_m2);
         put_rgb(f, el.radiosity_w_m2);
         std::fputc('}', f);
       }
@@ -136,6 +140,12 @@ Solution read_solution_json(const std::filesystem::path& path) {
     if (js.contains("back_side")) out.back_side = r.boolean(js["back_side"], sp + ".back_side");
     out.length_u_m = positive_or_fail(r, r.number(r.member(js, "length_u_m", sp), sp + ".length_u_m"), sp + ".length_u_m");
     out.length_v_m = positive_or_fail(r, r.number(r.member(js, "length_v_m", sp), sp + ".length_v_m"), sp + ".length_v_m");
+    // Both optional: a quad's side has neither.
+    if (js.contains("triangle")) out.triangle = r.boolean(js["triangle"], sp + ".triangle");
+    if (js.contains("shear_m")) {
+      out.shear_m = r.number(js["shear_m"], sp + ".shear_m");
+      if (!std::isfinite(out.shear_m) || !out.triangle) r.fail(sp + ".shear_m", "must be a finite number, on a triangle's side only");
+    }
     const json& elements = r.member(js, "elements", sp);
     if (!elements.is_array() || elements.empty()) r.fail(sp + ".elements", "must be a non-empty array");
     if (js.contains("grid")) {
@@ -147,6 +157,7 @@ Solution read_solution_json(const std::filesystem::path& path) {
       if (!adaptive && (nu < 1 || nv < 1 || nu > 1'000'000 || nv > 1'000'000 ||
                         static_cast<unsigned long long>(nu) * static_cast<unsigned long long>(nv) != elements.size()))
         r.fail(sp + ".grid", "must be [0, 0] or [nu, nv] with nu * nv = the number of elements");
+      if (out.triangle && !adaptive) r.fail(sp + ".grid", "must be [0, 0] on a triangle's side (its elements are no grid of boxes)");
       out.grid_nu = static_cast<int>(nu);
       out.grid_nv = static_cast<int>(nv);
     }
@@ -165,6 +176,17 @@ Solution read_solution_json(const std::filesystem::path& path) {
       el.v1 = num("v1");
       if (!(0 <= el.u0 && el.u0 < el.u1 && el.u1 <= 1 && 0 <= el.v0 && el.v0 < el.v1 && el.v1 <= 1))
         r.fail(ep, "its (u,v) rectangle must satisfy 0 <= u0 < u1 <= 1 and 0 <= v0 < v1 <= 1");
+      if (je.contains("shape")) {
+        const std::optional<CellShape> shape = parse_cell_shape(r.string(je["shape"], ep + ".shape"));
+        if (!shape) r.fail(ep + ".shape", "must be \"box\", \"lower\" or \"upper\"");
+        el.shape = *shape;
+      }
+      if (el.is_triangle() != out.triangle)
+        r.fail(ep + ".shape", out.triangle ? "must be \"lower\" or \"upper\" on a triangle's side" : "must be \"box\" on a quad's side");
+      // A triangle's cells lie in its domain u + v <= 1: the vertex farthest along u + v.
+      const double far = el.shape == CellShape::upper ? el.u1 + el.v1 : std::max(el.u1 + el.v0, el.u0 + el.v1);
+      if (out.triangle && far > 1 + tol::kSolutionGridParameter)
+        r.fail(ep, "its (u,v) cell reaches beyond the triangle's parameter domain u + v <= 1");
       if (out.grid_nu > 0) {  // a regular grid stores element (i, j) at index j * nu + i
         const size_t i = e % static_cast<size_t>(out.grid_nu), j = e / static_cast<size_t>(out.grid_nu);
         const double u0 = double(i) / out.grid_nu, v0 = double(j) / out.grid_nv;

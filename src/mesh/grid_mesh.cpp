@@ -19,22 +19,35 @@ std::optional<size_t> Mesh::find(const std::string& name) const {
   return std::nullopt;
 }
 
-MeshElement make_element(const Surface& surface, bool back_side, double u0, double v0, double u1,
-                         double v1) {
+MeshElement make_element(const Surface& surface, bool back_side, const ParamCell& cell) {
   MeshElement e;
-  e.u0 = u0;
-  e.v0 = v0;
-  e.u1 = u1;
-  e.v1 = v1;
-  Vec3 p00 = surface.point(u0, v0), p10 = surface.point(u1, v0);
-  Vec3 p11 = surface.point(u1, v1), p01 = surface.point(u0, v1);
-  if (back_side)
-    e.corners = {p00, p01, p11, p10};
-  else
-    e.corners = {p00, p10, p11, p01};
-  e.center = surface.point(0.5 * (u0 + u1), 0.5 * (v0 + v1));
-  e.area_m2 = 0.5 * (p11 - p00).cross(p01 - p10).norm();
+  static_cast<ParamCell&>(e) = cell;
+  const auto uv = cell.vertices();
+  std::array<Vec3, 4> p;
+  for (int k = 0; k < 4; ++k) p[k] = surface.point(uv[k].x(), uv[k].y());
+  const int n = cell.vertex_count();
+  if (back_side) {
+    e.corners[0] = p[0];
+    for (int k = 1; k < n; ++k) e.corners[k] = p[n - k];
+    if (n == 3) e.corners[3] = e.corners[2];
+  } else {
+    e.corners = p;
+  }
+  const Vec2 c = cell.centroid();
+  e.center = surface.point(c.x(), c.y());
+  e.area_m2 = 0.5 * (p[2] - p[0]).cross(p[3] - p[1]).norm();
   return e;
+}
+
+void grid_cell_parts(const ParamCell& domain, int nu, int nv, int i, int j, std::vector<ParamCell>& out) {
+  const double u0 = double(i) / nu, v0 = double(j) / nv, u1 = double(i + 1) / nu, v1 = double(j + 1) / nv;
+  if (!domain.is_triangle()) {
+    out.push_back({u0, v0, u1, v1, CellShape::box});
+    return;
+  }
+  RR_CHECK(nu == nv, "a triangle's grid has as many cells along u as along v");
+  if (i + j <= nu - 1) out.push_back({u0, v0, u1, v1, CellShape::lower});
+  if (i + j <= nu - 2) out.push_back({u0, v0, u1, v1, CellShape::upper});
 }
 
 namespace {
@@ -47,14 +60,21 @@ MeshSurface mesh_side(const Surface& s, size_t index, bool back, int nu, int nv,
   m.normal = side_normal(s, back);
   m.reflectance = s.reflectance;
   m.emission_w_m2 = side_emission(s, back);
+  m.domain = s.domain();
   m.nu = nu;
   m.nv = nv;
   m.patch_size = patch_size;
   m.elements.reserve(static_cast<size_t>(nu) * nv);
+  m.cell_first.reserve(static_cast<size_t>(nu) * nv + 1);
+  std::vector<ParamCell> parts;
   for (int j = 0; j < nv; ++j)
-    for (int i = 0; i < nu; ++i)
-      m.elements.push_back(make_element(s, back, double(i) / nu, double(j) / nv, double(i + 1) / nu,
-                                        double(j + 1) / nv));
+    for (int i = 0; i < nu; ++i) {
+      m.cell_first.push_back(static_cast<std::uint32_t>(m.elements.size()));
+      parts.clear();
+      grid_cell_parts(s.domain(), nu, nv, i, j, parts);
+      for (const ParamCell& cell : parts) m.elements.push_back(make_element(s, back, cell));
+    }
+  m.cell_first.push_back(static_cast<std::uint32_t>(m.elements.size()));
   return m;
 }
 
@@ -68,10 +88,15 @@ std::pair<int, int> grid_divisions(const Scene& scene, const Surface& s, const G
   // In double first: a tiny element on a long edge must not overflow an int.
   auto count = [&](double length) { return std::clamp(std::round(length / element_m), 1.0, 1e9); };
   double nu = count(s.length_u_m()), nv = count(s.length_v_m());
+  if (s.is_triangle()) {
+    // The regular subdivision: as many cells along both legs, set by the longest edge.
+    nu = nv = count(std::max({(s.corners[1] - s.corners[0]).norm(), (s.corners[2] - s.corners[1]).norm(),
+                              (s.corners[0] - s.corners[2]).norm()}));
+  }
   if (s.max_divisions && std::max(nu, nv) > *s.max_divisions) {
     const double scale = double(*s.max_divisions) / std::max(nu, nv);
     nu = std::max(1.0, std::round(nu * scale));
-    nv = std::max(1.0, std::round(nv * scale));
+    nv = s.is_triangle() ? nu : std::max(1.0, std::round(nv * scale));
   }
   return {static_cast<int>(nu), static_cast<int>(nv)};
 }

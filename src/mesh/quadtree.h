@@ -1,8 +1,9 @@
 #pragma once
 // A quadtree over one side of a scene surface: the adaptive subdivision of hierarchical
 // radiosity (solver/hierarchical.h keeps the links and radiosities beside it, indexed by node).
-// Node 0 is the whole side; a split gives a node four children, the quarters of its (u,v)
-// rectangle, stored consecutively.
+// Node 0 is the whole side; a split gives a node four children, the quarters of its parameter
+// cell (ParamCell::quarters(): a box's four quarters, or a triangle's 4-way midpoint split),
+// stored consecutively.
 
 #include <array>
 #include <vector>
@@ -12,15 +13,14 @@
 
 namespace radrecon {
 
-/// One node: the image of the (u,v) rectangle [u0,u1] x [v0,v1] of its surface side.
-struct QuadNode {
-  double u0, v0, u1, v1;
-  std::array<Vec3, 4> corners;  ///< counter-clockwise seen from the front of the side
+/// One node: the image of a cell of its surface side's parameter domain.
+struct QuadNode : ParamCell {
+  /// Counter-clockwise seen from the front of the side; a triangle repeats its last corner.
+  std::array<Vec3, 4> corners;
   Vec3 center;                  ///< the surface point at the (u,v) centre
   double area_m2 = 0;
-  double size_m = 0;            ///< the longer of its two edges, metres
-  /// The first of four consecutive children, in the order (u low, v low), (u high, v low),
-  /// (u low, v high), (u high, v high); -1 for a leaf.
+  double size_m = 0;            ///< its longest edge, metres (a quad's: the longer parametric one)
+  /// The first of four consecutive children, in the order of ParamCell::quarters(); -1 for a leaf.
   int first_child = -1;
   bool is_leaf() const { return first_child < 0; }
 };
@@ -34,19 +34,19 @@ class Quadtree {
   int node_count() const { return static_cast<int>(nodes_.size()); }
   int leaf_count() const { return leaves_; }
 
-  /// Splits a leaf into its four quarters and returns the index of the first child; a node
+  /// Splits a leaf into its four quarters (ParamCell::quarters()) and returns the index of the first child; a node
   /// that has children already keeps them (their first index is returned).
   int split(int index);
 
   /// The leaves below `root` (the whole tree by default), depth first, children in order.
   std::vector<int> leaves(int root = 0) const;
 
-  /// The leaf containing (u, v) in [0,1]^2 (clamped into it). Leaves are half-open,
-  /// [u0, u1) x [v0, v1), closed on the side's far border, so every point has exactly one.
+  /// The leaf containing (u, v) (clamped into the parameter domain). Leaves are half-open
+  /// (ParamCell::quarter_of()), so every point has exactly one.
   int locate(double u, double v) const;
 
  private:
-  QuadNode make_node(double u0, double v0, double u1, double v1) const;
+  QuadNode make_node(const ParamCell& cell) const;
 
   const Surface* surface_;
   bool back_side_;

@@ -6,12 +6,14 @@
 #include <string>
 
 #include "core/check.h"
+#include "core/tolerances.h"
 
 namespace radrecon {
 
 PiecewiseConstant::PiecewiseConstant(CellSamples samples) : samples_(std::move(samples)) {
   if (samples_.cells.empty()) throw ReconstructionError("piecewise constant needs at least one cell");
   RR_CHECK(samples_.values.size() == samples_.cells.size() * samples_.channels, "values do not match cells");
+  RR_CHECK(samples_.triangles.empty() || samples_.triangles.size() == samples_.cells.size(), "triangles do not match cells");
   bounds_ = samples_.cells[0];
   double min_w = std::numeric_limits<double>::infinity(), min_h = min_w;
   for (const Rect& r : samples_.cells) {
@@ -50,6 +52,7 @@ long PiecewiseConstant::locate(const Vec2& q) const {
   const double bw = (bounds_.x1 - bounds_.x0) / buckets_x_, bh = (bounds_.y1 - bounds_.y0) / buckets_y_;
   int i = std::clamp(static_cast<int>((x - bounds_.x0) / bw), 0, buckets_x_ - 1);
   int j = std::clamp(static_cast<int>((y - bounds_.y0) / bh), 0, buckets_y_ - 1);
+  if (!samples_.triangles.empty()) return locate_triangle(q, buckets_[static_cast<size_t>(j) * buckets_x_ + i]);
   for (unsigned k : buckets_[static_cast<size_t>(j) * buckets_x_ + i]) {
     const Rect& r = samples_.cells[k];
     bool in_x = (x >= r.x0 && x < r.x1) || (x == r.x1 && r.x1 == bounds_.x1);
@@ -57,6 +60,26 @@ long PiecewiseConstant::locate(const Vec2& q) const {
     if (in_x && in_y) return static_cast<long>(k);
   }
   return -1;
+}
+
+long PiecewiseConstant::locate_triangle(const Vec2& q, const std::vector<unsigned>& bucket) const {
+  // The triangle whose smallest barycentric coordinate at q is largest: the one containing q, or
+  // for a point on a shared edge either neighbour, and for a point outside by rounding only
+  // (within tol::kQuadEdgeParameter of the side's size, in barycentric terms) the nearest.
+  long best = -1;
+  double best_min = -std::numeric_limits<double>::infinity();
+  for (unsigned k : bucket) {
+    const auto& t = samples_.triangles[k];
+    const auto cross = [](const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); };
+    const double area2 = cross(t[1] - t[0], t[2] - t[0]);
+    const double b0 = cross(t[1] - q, t[2] - q) / area2, b1 = cross(t[2] - q, t[0] - q) / area2;
+    const double lowest = std::min({b0, b1, 1 - b0 - b1});
+    if (lowest > best_min) {
+      best_min = lowest;
+      best = static_cast<long>(k);
+    }
+  }
+  return best_min >= -tol::kQuadEdgeParameter ? best : -1;
 }
 
 void PiecewiseConstant::evaluate(std::span<const Vec2> points, std::span<double> out) const {

@@ -21,6 +21,7 @@ class PiecewiseConstant final : public Interpolant {
 
   /// Index of the cell containing `p` (after clamping), or -1.
   long locate(const Vec2& p) const;
+  long locate_triangle(const Vec2& p, const std::vector<unsigned>& bucket) const;
 
  private:
   CellSamples samples_;

@@ -220,7 +220,10 @@ InterpolantResult make_cell_interpolant(Method method, const CellSamples& cells,
   if (auto refused = refuse_barriers(method, params)) return *refused;
   if (cells.cells.empty()) return Failure{"no cells"};
   if (method == Method::constant) return build<PiecewiseConstant>(cells);
-  if (method == Method::gouraud) return build<Gouraud>(cells);
+  if (method == Method::gouraud) {
+    if (!cells.triangles.empty()) return Failure{"gouraud needs rectangular cells; these are triangles"};
+    return build<Gouraud>(cells);
+  }
   return Failure{method_name(method) + " takes points, not cells"};
 }
 

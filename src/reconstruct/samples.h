@@ -1,7 +1,8 @@
 #pragma once
-// The data a reconstruction starts from, on a 2-D domain in metres (a surface's (s, t) =
-// (u * length_u, v * length_v)). Values are stored point-major: `channels` values per point.
+// The data a reconstruction starts from, on a 2-D domain in metres (a surface's (s, t), see
+// SurfaceFrame in scene/scene.h). Values are stored point-major: `channels` values per point.
 
+#include <array>
 #include <vector>
 
 #include "core/vec.h"
@@ -19,6 +20,9 @@ struct CellSamples {
   std::vector<Rect> cells;
   std::vector<double> values;  ///< cells.size() * channels
   int channels = 1;
+  /// Empty, or one per cell: the cell is this triangle (counter-clockwise), `cells` holding its
+  /// bounding box (the elements of a triangle's side).
+  std::vector<std::array<Vec2, 3>> triangles;
 };
 
 /// Scattered samples: arbitrary points, values per point.

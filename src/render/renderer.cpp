@@ -157,7 +157,8 @@ void shade(const Scene& scene, const CameraHits& traced, const SideReconstructio
     const Surface& s = scene.surfaces[side.surface];
     std::vector<Vec2> at;
     at.reserve(which.size());
-    for (size_t k : which) at.emplace_back(hits[k]->u * s.length_u_m(), hits[k]->v * s.length_v_m());
+    const SurfaceFrame frame = s.frame();
+    for (size_t k : which) at.push_back(frame.st(Vec2(hits[k]->u, hits[k]->v)));
     std::vector<double> values(which.size() * 3);
     f->evaluate(at, values);
     const bool reflects = !(side_emission(s, side.back_side) > 0).any();

@@ -87,7 +87,7 @@ InterpolantResult reconstruct_unmasked(const SurfaceSolution& s, Method method, 
   const bool point_method = method != Method::constant && !is_grid_method(method) && !is_cell_method(method);
   if (grid && !s.excluded.empty() && point_method)
     return make_scattered_interpolant(method, outside_regions(grid_cells(s).centres(), s.excluded), params);
-  if (sampling.border_samples && point_method) {
+  if (sampling.border_samples && point_method && !s.triangle) {  // border samples frame a quad's sides
     const ScatteredSamples samples = outside_regions(grid ? grid_cells(s).centres() : element_centres(s), s.excluded);
     Result<ScatteredSamples> bordered =
         with_border_samples(samples, Rect{0, 0, s.length_u_m, s.length_v_m}, params.barriers);
@@ -107,7 +107,8 @@ InterpolantResult reconstruct_unmasked(const SurfaceSolution& s, Method method, 
   if ((method == Method::constant && params.barriers.empty()) || is_cell_method(method))
     return make_cell_interpolant(method, element_cells(s), params);
   if (is_grid_method(method))
-    return Failure{method_name(method) + " needs grid data; this side is an adaptive subdivision"};
+    return Failure{method_name(method) + " needs grid data; this side is " +
+                   (s.triangle ? "a triangle (its elements are no grid of boxes)" : "an adaptive subdivision")};
   return make_scattered_interpolant(method, outside_regions(element_centres(s), s.excluded), params);
 }
 
@@ -137,9 +138,14 @@ SolutionReconstruction::SolutionReconstruction(const Scene& scene, const Solutio
                                   format_number(side.length_v_m) + " m in the solution but " +
                                   format_number(surface.length_u_m()) + " m x " + format_number(surface.length_v_m()) +
                                   " m in the scene: the solution belongs to another scene");
+    if (side.triangle != surface.is_triangle())
+      throw UserError(source, "surface '" + side.name + "' is a " + (side.triangle ? "triangle" : "quad") +
+                                  " in the solution but a " + (surface.is_triangle() ? "triangle" : "quad") +
+                                  " in the scene: the solution belongs to another scene");
     SurfaceSolution s = side;
     s.length_u_m = surface.length_u_m();
     s.length_v_m = surface.length_v_m();
+    s.shear_m = surface.shear_m();
     InterpolantResult built = reconstruct_side(s, method, params, sampling);
     if (!built) {
       fallbacks_.push_back({side.name, built.reason()});

@@ -1,6 +1,6 @@
 #pragma once
 // A solved scene reconstructed: one interpolant per surface side of a solution, by one method,
-// in the side's metric coordinates (s, t) = (u * length_u_m, v * length_v_m). The renderer and
+// in the side's metric coordinates (s, t) (SurfaceFrame, scene/scene.h). The renderer and
 // the exporters read radiosity from it.
 
 #include <memory>
@@ -21,7 +21,7 @@ struct SideSampling {
   /// reconstruct across them, and across the outlines of excluded regions.
   bool barriers = true;
   /// Add border samples (reconstruct/border_samples.h) on the side's border and both sides of its
-  /// barriers, for the methods that take points (all but constant, the grid methods and
+  /// barriers (on a quad's sides; a triangle's have none), for the methods that take points (all but constant, the grid methods and
   /// gouraud, which use the data as it is).
   bool border_samples = false;
 };

@@ -1,5 +1,7 @@
 #include "sampling/surface_samples.h"
 
+#include <algorithm>
+
 #include "core/check.h"
 #include "core/error.h"
 
@@ -25,8 +27,17 @@ GridCells grid_cells(const SurfaceSolution& s) {
 CellSamples element_cells(const SurfaceSolution& s) {
   CellSamples out;
   out.channels = 3;
+  const SurfaceFrame frame = s.frame();
   for (const SolutionElement& e : s.elements) {
-    out.cells.push_back({e.u0 * s.length_u_m, e.v0 * s.length_v_m, e.u1 * s.length_u_m, e.v1 * s.length_v_m});
+    if (s.triangle) {
+      const auto uv = e.vertices();
+      const std::array<Vec2, 3> t = {frame.st(uv[0]), frame.st(uv[1]), frame.st(uv[2])};
+      out.triangles.push_back(t);
+      out.cells.push_back({std::min({t[0].x(), t[1].x(), t[2].x()}), std::min({t[0].y(), t[1].y(), t[2].y()}),
+                           std::max({t[0].x(), t[1].x(), t[2].x()}), std::max({t[0].y(), t[1].y(), t[2].y()})});
+    } else {
+      out.cells.push_back({e.u0 * s.length_u_m, e.v0 * s.length_v_m, e.u1 * s.length_u_m, e.v1 * s.length_v_m});
+    }
     for (int c = 0; c < 3; ++c) out.values.push_back(e.radiosity_w_m2[c]);
   }
   return out;
@@ -36,7 +47,7 @@ ScatteredSamples element_centres(const SurfaceSolution& s) {
   ScatteredSamples out;
   out.channels = 3;
   for (const SolutionElement& e : s.elements) {
-    out.points.emplace_back(0.5 * (e.u0 + e.u1) * s.length_u_m, 0.5 * (e.v0 + e.v1) * s.length_v_m);
+    out.points.push_back(s.centroid_st(e));
     for (int c = 0; c < 3; ++c) out.values.push_back(e.radiosity_w_m2[c]);
   }
   return out;

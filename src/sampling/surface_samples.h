@@ -1,6 +1,6 @@
 #pragma once
 // From a solved surface to the samples a reconstruction starts from, in the surface's metric
-// coordinates (s, t) = (u * length_u_m, v * length_v_m), metres.
+// coordinates (s, t) (SurfaceFrame, scene/scene.h), metres.
 
 #include "reconstruct/samples.h"
 #include "solver/solution.h"
@@ -11,10 +11,11 @@ namespace radrecon {
 /// as grid cells.
 GridCells grid_cells(const SurfaceSolution& surface);
 
-/// The elements of any surface (grid or quadtree) as cells of a piecewise-constant function.
+/// The elements of any surface (grid or quadtree) as cells of a piecewise-constant function (a
+/// triangle's as triangles, CellSamples::triangles).
 CellSamples element_cells(const SurfaceSolution& surface);
 
-/// The centres of the elements with their radiosity, as scattered samples.
+/// The centroids of the elements with their radiosity, as scattered samples.
 ScatteredSamples element_centres(const SurfaceSolution& surface);
 
 /// The surface with this name in the solution; UserError naming `source` if there is none.

@@ -148,17 +148,18 @@ SideContacts side_contacts(const Scene& scene, SideRef side) {
   const Surface& s = scene.surfaces[side.surface];
   const Vec3 n = side_normal(s, side.back_side);
   const double offset = n.dot(s.corners[0]);
-  const double lu = s.length_u_m(), lv = s.length_v_m();
+  const SurfaceFrame frame = s.frame();
   const double border = tol::kOnBorderParameter;
-  const double join_m = tol::kContactJoinRelative * std::max(lu, lv);
+  const double join_m = tol::kContactJoinRelative * std::max(frame.length_u_m, frame.length_v_m);
   const auto on_border = [&](double x, double y) {
     return (std::abs(x) <= border && std::abs(y) <= border) || (std::abs(x - 1) <= border && std::abs(y - 1) <= border);
   };
   SideContacts out;
-  // A segment from parameters ua to ub, unless along the quad's border, zero-length or a repeat.
+  // A segment from parameters ua to ub, unless along the surface's border, zero-length or a repeat.
   const auto add_line = [&](const Vec2& ua, const Vec2& ub) {
-    if (on_border(ua.x(), ub.x()) || on_border(ua.y(), ub.y())) return;  // along an edge of the quad
-    Vec2 pa(ua.x() * lu, ua.y() * lv), pb(ub.x() * lu, ub.y() * lv);
+    if (on_border(ua.x(), ub.x()) || on_border(ua.y(), ub.y())) return;  // along an edge u or v = 0 or 1
+    if (s.is_triangle() && std::abs(ua.sum() - 1) <= border && std::abs(ub.sum() - 1) <= border) return;  // hypotenuse
+    Vec2 pa = frame.st(ua), pb = frame.st(ub);
     if (pa == pb) return;
     if (lexicographically_less(pb, pa)) std::swap(pa, pb);
     for (const Segment2& l : out.lines)
@@ -174,13 +175,13 @@ SideContacts side_contacts(const Scene& scene, SideRef side) {
       std::vector<Vec3> clipped = clip_polygon_to_quad(s, std::vector<Vec3>(t.corners.begin(), t.corners.end()));
       Polyline st;  // the clipped outline in the side's metres
       for (const Vec3& p : clipped)
-        if (const std::optional<Vec2> q = s.parameters(p)) st.emplace_back(q->x() * lu, q->y() * lv);
+        if (const std::optional<Vec2> q = s.parameters(p)) st.push_back(frame.st(*q));
       std::optional<Polyline> region = as_region(std::move(st), join_m);
       if (!region) continue;  // no overlap, or only along an edge
       for (size_t i = 0; i < region->size(); ++i) {
         const Vec2& a = (*region)[i];
         const Vec2& b = (*region)[(i + 1) % region->size()];
-        add_line(Vec2(a.x() / lu, a.y() / lv), Vec2(b.x() / lu, b.y() / lv));
+        add_line(frame.uv(a), frame.uv(b));
       }
       out.covered.push_back(std::move(*region));
       continue;

@@ -10,8 +10,22 @@
 #include <vector>
 
 #include "core/vec.h"
+#include "scene/param_cell.h"
 
 namespace radrecon {
+
+/// The map from a surface's parameters (u, v) to its metric coordinates (s, t), metres:
+/// s = u length_u_m + v shear_m, t = v length_v_m. For a triangle it is an isometry (corner 0 at
+/// the origin, edge 0->1 along s); for a quad (u length_u, v length_v), exact for a rectangle.
+/// Reconstructions, barriers and excluded regions of a side live in (s, t).
+struct SurfaceFrame {
+  double length_u_m = 1, length_v_m = 1, shear_m = 0;
+  Vec2 st(const Vec2& uv) const { return {uv.x() * length_u_m + uv.y() * shear_m, uv.y() * length_v_m}; }
+  Vec2 uv(const Vec2& st) const {
+    const double v = st.y() / length_v_m;
+    return {(st.x() - v * shear_m) / length_u_m, v};
+  }
+};
 
 /// A planar convex polygon of 3 or 4 corners, counter-clockwise seen from the front.
 ///
@@ -57,6 +71,9 @@ struct Surface {
   /// Triangle: the component of edge 0->2 along edge 0->1, metres; quad: 0. With the two lengths
   /// it maps (u,v) to the metric coordinates (s, t) (SurfaceSolution::st()).
   double shear_m() const;
+  SurfaceFrame frame() const { return {length_u_m(), length_v_m(), shear_m()}; }
+  /// The parameter domain: the unit box of a quad, the lower half of it for a triangle.
+  ParamCell domain() const { return parameter_domain(corner_count); }
 };
 
 /// A pinhole camera; fov_deg is the vertical field of view in degrees, in (0, 180).

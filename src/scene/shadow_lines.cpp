@@ -16,31 +16,35 @@ struct Plane {
   double height(const Vec3& p) const { return n.dot(p - o); }
 };
 
-/// The (s, t) metres of a point of the side's plane, by the affine frame of corners 0, 1 and 3
-/// (exact for parallelograms, and for any planar quad the contact lines use the same frame within
-/// tol::kQuadEdgeParameter when the point is on the quad).
-Vec2 plane_st(const Surface& s, const Vec3& p) {
+/// The (u, v) parameters of a point of the side's plane, by the affine frame of corners 0, 1 and 3
+/// (exact for parallelograms and triangles, whose corner 3 repeats corner 2, and for any planar
+/// quad the contact lines use the same frame within tol::kQuadEdgeParameter when the point is on
+/// the quad).
+Vec2 plane_uv(const Surface& s, const Vec3& p) {
   const Vec3 e1 = s.corners[1] - s.corners[0], e2 = s.corners[3] - s.corners[0];
   const double a = e1.dot(e1), b = e1.dot(e2), c = e2.dot(e2);
   const Vec3 d = p - s.corners[0];
   const double r1 = e1.dot(d), r2 = e2.dot(d), det = a * c - b * b;
   const double u = (c * r1 - b * r2) / det, v = (a * r2 - b * r1) / det;
-  return {u * s.length_u_m(), v * s.length_v_m()};
+  return {u, v};
 }
 
-/// Clips [a, b] to the rectangle [0, lu] x [0, lv] (Liang-Barsky); false if nothing is left.
-bool clip_to_rect(Vec2& a, Vec2& b, double lu, double lv) {
+/// Clips the (u,v) segment [a, b] to the parameter domain (Liang-Barsky): the unit box, or for a
+/// triangle u, v >= 0 and u + v <= 1; false if nothing is left.
+bool clip_to_domain(Vec2& a, Vec2& b, bool triangle) {
   double t0 = 0, t1 = 1;
   const Vec2 d = b - a;
-  const double p[4] = {-d.x(), d.x(), -d.y(), d.y()};
-  const double q[4] = {a.x(), lu - a.x(), a.y(), lv - a.y()};
-  for (int i = 0; i < 4; ++i) {
-    if (p[i] == 0) {
-      if (q[i] < 0) return false;
+  const double p[4] = {-d.x(), -d.y(), d.x(), d.y()};
+  const double q[4] = {a.x(), a.y(), 1 - a.x(), 1 - a.y()};
+  const double p_triangle[3] = {-d.x(), -d.y(), d.sum()}, q_triangle[3] = {a.x(), a.y(), 1 - a.sum()};
+  for (int i = 0; i < (triangle ? 3 : 4); ++i) {
+    const double pi = triangle ? p_triangle[i] : p[i], qi = triangle ? q_triangle[i] : q[i];
+    if (pi == 0) {
+      if (qi < 0) return false;
       continue;
     }
-    const double t = q[i] / p[i];
-    if (p[i] < 0) t0 = std::max(t0, t);
+    const double t = qi / pi;
+    if (pi < 0) t0 = std::max(t0, t);
     else t1 = std::min(t1, t);
   }
   if (!(t0 < t1)) return false;
@@ -63,15 +67,16 @@ std::optional<Vec3> project(const Plane& plane, const Vec3& from, const Vec3& th
 std::vector<Segment2> shadow_lines(const Scene& scene, SideRef side) {
   const Surface& s = scene.surfaces[side.surface];
   const Plane plane{side_normal(s, side.back_side), s.corners[0]};
-  const double lu = s.length_u_m(), lv = s.length_v_m();
+  const SurfaceFrame frame = s.frame();
+  const double lu = frame.length_u_m, lv = frame.length_v_m;
   const double touch_m = tol::kContactRelative * std::max(lu, lv);
   std::vector<Segment2> out;
   const auto add = [&](const Vec3& a3, const Vec3& b3) {
-    Vec2 a = plane_st(s, a3), b = plane_st(s, b3);
-    if (!clip_to_rect(a, b, lu, lv)) return;
-    const Vec2 hi(lu, lv);  // the clip's round-off may leave an end 1 ulp outside
-    a = a.cwiseMax(Vec2::Zero()).cwiseMin(hi);
-    b = b.cwiseMax(Vec2::Zero()).cwiseMin(hi);
+    Vec2 a = plane_uv(s, a3), b = plane_uv(s, b3);
+    if (!clip_to_domain(a, b, s.is_triangle())) return;
+    // The clip's round-off may leave an end 1 ulp outside.
+    a = frame.st(a.cwiseMax(Vec2::Zero()).cwiseMin(Vec2::Ones()));
+    b = frame.st(b.cwiseMax(Vec2::Zero()).cwiseMin(Vec2::Ones()));
     if ((b - a).norm() <= touch_m) return;
     if (std::tie(b.x(), b.y()) < std::tie(a.x(), a.y())) std::swap(a, b);
     for (const Segment2& o : out)

@@ -135,6 +135,8 @@ class Hierarchy {
       out.back_side = t.back_side;
       out.length_u_m = surface.length_u_m();
       out.length_v_m = surface.length_v_m();
+      out.shear_m = surface.shear_m();
+      out.triangle = surface.is_triangle();
       collect_leaves(t, out);
       st.emitted_w += t.node(0).area_m2 * t.emission_w_m2;
       st.elements += out.elements.size();
@@ -172,18 +174,17 @@ class Hierarchy {
     const QuadNode& s = S.node(sn);
     const Surface& surface = scene_.surfaces[R.scene_surface];
     ConvexPolygon source;
-    for (const Vec3& c : s.corners) source.push(c);
+    for (int k = 0; k < s.vertex_count(); ++k) source.push(s.corners[k]);
     const auto& occ = occluders(rt, st);
     Link link{rt, rn, st, sn, 0.0, 0.0};
     double lo = std::numeric_limits<double>::infinity(), hi = 0;
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        const Vec3 p = surface.point(r.u0 + (i + 0.5) / n * (r.u1 - r.u0), r.v0 + (j + 0.5) / n * (r.v1 - r.v0));
-        const double f = visible_form_factor(p, R.normal, source, S.normal, occ);
-        link.f += f;
-        lo = std::min(lo, f);
-        hi = std::max(hi, f);
-      }
+    r.for_each_midpoint(n, [&](const Vec2& uv) {
+      const Vec3 p = surface.point(uv.x(), uv.y());
+      const double f = visible_form_factor(p, R.normal, source, S.normal, occ);
+      link.f += f;
+      lo = std::min(lo, f);
+      hi = std::max(hi, f);
+    });
     link.f /= n * n;
     link.f_spread = hi - lo;
     return link;
@@ -353,7 +354,7 @@ class Hierarchy {
   void collect_leaves(const Tree& t, SurfaceSolution& out) const {
     for (const int k : t.quad.leaves()) {
       const QuadNode& n = t.node(k);
-      out.elements.push_back({n.u0, n.v0, n.u1, n.v1, n.center, n.area_m2, t.at(k).radiosity});
+      out.elements.push_back({n, n.center, n.area_m2, t.at(k).radiosity});
     }
   }
 

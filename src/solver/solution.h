@@ -1,17 +1,19 @@
 #pragma once
-// The solver's output: per mesh surface, its elements with their (u,v) rectangles and radiosity.
+// The solver's output: per mesh surface, its elements with their (u,v) cells and radiosity.
 
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "core/vec.h"
+#include "scene/param_cell.h"
+#include "scene/scene.h"
 
 namespace radrecon {
 
-struct SolutionElement {
-  double u0, v0, u1, v1;  ///< the element's (u,v) rectangle on its surface, each in [0,1]
-  Vec3 center;            ///< world-space point at the (u,v) centre, metres
+/// An element: a cell of its surface's parameter domain (a box, or a half-box on a triangle).
+struct SolutionElement : ParamCell {
+  Vec3 center;            ///< world-space point at the cell's (u,v) centroid, metres
   double area_m2;
   Rgb radiosity_w_m2;
 };
@@ -23,7 +25,10 @@ struct SurfaceSolution {
   /// Grid dimensions when the elements form a regular nu x nv grid stored row by row
   /// (element (i,j) at j * nu + i); 0 x 0 for an adaptive subdivision.
   int grid_nu = 0, grid_nv = 0;
-  double length_u_m = 0, length_v_m = 0;  ///< surface edge lengths, to map (u,v) to metres
+  /// The surface's frame (scene/scene.h SurfaceFrame): (s, t) = (u length_u + v shear, v length_v).
+  double length_u_m = 0, length_v_m = 0, shear_m = 0;
+  /// Whether the surface is a triangle (its elements are half-boxes; no grid).
+  bool triangle = false;
   std::vector<SolutionElement> elements;
   /// The side's discontinuity lines from the scene's geometry (scene/contacts.h), in its (s, t)
   /// metres: where other surfaces stand on it. Barriers of its reconstruction.
@@ -32,6 +37,10 @@ struct SurfaceSolution {
   /// closed polygons in its (s, t) metres, counter-clockwise, the first vertex not repeated at the
   /// end; under a surface lying flat on it, or enclosed by surfaces standing on it.
   std::vector<Polyline> excluded;
+
+  SurfaceFrame frame() const { return {length_u_m, length_v_m, shear_m}; }
+  /// An element's centroid in (s, t) metres.
+  Vec2 centroid_st(const SolutionElement& e) const { return frame().st(e.centroid()); }
 };
 
 /// Solver statistics. Powers are per colour channel, in W.

@@ -41,8 +41,8 @@ Solution two_element_grid() {
   s.grid_nv = 1;
   s.length_u_m = 2;
   s.length_v_m = 1;
-  s.elements.push_back({0, 0, 0.5, 1, Vec3(0.5, 0.5, 0), 1.0, Rgb(0.1, 1.0 / 3, 2e-300)});
-  s.elements.push_back({0.5, 0, 1, 1, Vec3(1.5, 0.5, 0), 1.0, Rgb(7, 8, 9)});
+  s.elements.push_back({{0, 0, 0.5, 1}, Vec3(0.5, 0.5, 0), 1.0, Rgb(0.1, 1.0 / 3, 2e-300)});
+  s.elements.push_back({{0.5, 0, 1, 1}, Vec3(1.5, 0.5, 0), 1.0, Rgb(7, 8, 9)});
   sol.surfaces.push_back(s);
   sol.stats.method = "progressive";
   sol.stats.converged = false;
@@ -131,6 +131,38 @@ TEST_F(SolutionFiles, MalformedFilesAreRefusedWithTheFieldOrLine) {
   // A number too large for a double: the line, and the number.
   EXPECT_NE(refusal("{\"surfaces\": [],\n \"x\": 1e999}").find("s.json:2: not a valid solution: number overflow parsing '1e999'"),
             std::string::npos);
+}
+
+TEST_F(SolutionFiles, ATrianglesSideReadsBackWithItsShapesAndShear) {
+  Solution sol = two_element_grid();
+  SurfaceSolution& s = sol.surfaces[0];
+  s.grid_nu = s.grid_nv = 0;
+  s.triangle = true;
+  s.shear_m = 0.25;
+  s.elements[0] = {{0, 0, 1, 1, CellShape::lower}, Vec3(0.3, 0.3, 0), 0.5, Rgb(1, 2, 3)};
+  s.elements.resize(1);
+  const fs::path path = dir_ / "triangle.json";
+  write_solution_json(path, sol);
+  const Solution back = read_solution_json(path);
+  const SurfaceSolution& b = back.surfaces[0];
+  EXPECT_TRUE(b.triangle);
+  EXPECT_EQ(b.shear_m, 0.25);
+  EXPECT_EQ(b.elements[0].shape, CellShape::lower);
+  // Shapes must fit the side: an upper half of the whole box lies beyond the hypotenuse; a box
+  // on a triangle's side, a half on a quad's, and a grid on a triangle's are refused.
+  auto side = [](const std::string& extra, const std::string& shape, const std::string& grid) {
+    return R"({"surfaces": [{"name": "a", "length_u_m": 1, "length_v_m": 1, "grid": )" + grid + extra +
+           R"(, "elements": [{"u0": 0, "v0": 0, "u1": 1, "v1": 1, )" + shape +
+           R"("center": [0,0,0], "area": 1, "radiosity": [1,1,1]}]}]})";
+  };
+  const std::string triangle = R"(, "triangle": true, "shear_m": 0.5)";
+  EXPECT_EQ(refusal(side(triangle, R"("shape": "lower", )", "[0, 0]")), "");
+  EXPECT_NE(refusal(side(triangle, R"("shape": "upper", )", "[0, 0]")).find("beyond the triangle's parameter domain"), std::string::npos);
+  EXPECT_NE(refusal(side(triangle, "", "[0, 0]")).find("must be \"lower\" or \"upper\""), std::string::npos);
+  EXPECT_NE(refusal(side("", R"("shape": "lower", )", "[0, 0]")).find("must be \"box\""), std::string::npos);
+  EXPECT_NE(refusal(side(triangle, R"("shape": "lower", )", "[1, 1]")).find("must be [0, 0] on a triangle's side"), std::string::npos);
+  EXPECT_NE(refusal(side(triangle, R"("shape": "lozenge", )", "[0, 0]")).find("elements[0].shape"), std::string::npos);
+  EXPECT_NE(refusal(side(R"(, "shear_m": 0.5)", "", "[0, 0]")).find("shear_m"), std::string::npos);
 }
 
 }  // namespace

@@ -65,5 +65,38 @@ TEST(SideReconstruction, TheFloorUnderABoxIsNeitherSampleNorQuery) {
   }
 }
 
+TEST(SideReconstruction, ATrianglesSideReconstructsInItsMetricFrame) {
+  // A light over a floor of two triangles; a triangle's (s, t) is an isometry of its plane: the
+  // distance between two element centroids in (s, t) is their distance in space.
+  Scene scene;
+  scene.name = "triangles";
+  scene.surfaces.push_back(quad("floor", {0, 0, 0}, {4, 0, 0}, {4, 4, 0}, {0, 4, 0}, 0.5));
+  scene.surfaces.push_back(quad("light", {1, 1, 3}, {1, 3, 3}, {3, 3, 3}, {3, 1, 3}, 0, 10));
+  scene = testing_support::as_triangles(scene);
+  const Solution solution = solve_scene(scene, "grid:8", SolveSettings{}, "test");
+  const SurfaceSolution& side = require_surface(solution, "floor.b", "test");  // (0,0), (4,4), (0,4)
+  ASSERT_TRUE(side.triangle);
+  const ScatteredSamples centres = element_centres(side);
+  ASSERT_EQ(centres.points.size(), 64u);
+  for (size_t a = 0; a < side.elements.size(); a += 7)
+    for (size_t b = a + 1; b < side.elements.size(); b += 5)
+      EXPECT_NEAR((centres.points[a] - centres.points[b]).norm(), (side.elements[a].center - side.elements[b].center).norm(), 1e-12);
+  // Piecewise constant: each element's value at its centroid and near its corners, inside.
+  const InterpolantResult constant = reconstruct_side(side, Method::constant, {}, SideSampling{});
+  ASSERT_TRUE(constant);
+  for (const SolutionElement& e : side.elements) {
+    const auto uv = e.vertices();
+    for (int k = 0; k < 3; ++k) {
+      const Vec2 near_corner = side.frame().st(0.9 * uv[static_cast<size_t>(k)] + 0.1 * e.centroid());
+      EXPECT_EQ(at(*constant.value(), near_corner), e.radiosity_w_m2[0]);
+    }
+  }
+  // Linear interpolation reproduces the centroids' values there (exact at the samples).
+  const InterpolantResult linear = reconstruct_side(side, Method::linear, {}, SideSampling{});
+  ASSERT_TRUE(linear);
+  for (size_t k = 0; k < side.elements.size(); ++k)
+    EXPECT_NEAR(at(*linear.value(), centres.points[k]), side.elements[k].radiosity_w_m2[0], 1e-12);
+}
+
 }  // namespace
 }  // namespace radrecon

@@ -31,4 +31,21 @@ inline Scene closed_box(double rho, double E) {
   return box;
 }
 
+/// The scene with every quad cut into the triangles (c0, c1, c2) and (c0, c2, c3), named
+/// "NAME.a" and "NAME.b": the same geometry, as a modeller exporting triangles would write it.
+inline Scene as_triangles(const Scene& scene) {
+  Scene out = scene;
+  out.surfaces.clear();
+  for (const Surface& s : scene.surfaces) {
+    Surface a = s, b = s;
+    a.name = s.name + ".a";
+    b.name = s.name + ".b";
+    a.set_triangle(s.corners[0], s.corners[1], s.corners[2]);
+    b.set_triangle(s.corners[0], s.corners[2], s.corners[3]);
+    out.surfaces.push_back(a);
+    out.surfaces.push_back(b);
+  }
+  return out;
+}
+
 }  // namespace radrecon::testing_support

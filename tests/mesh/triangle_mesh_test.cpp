@@ -1,0 +1,136 @@
+// Triangles in the mesh: parameter cells (half-boxes), their 4-way split, the regular subdivision
+// of a triangle and the quadtree over one, against closed forms (areas, centroids, counts) and
+// defining properties (the parts tile the parent; every point has exactly one leaf).
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "mesh/grid_mesh.h"
+#include "mesh/quadtree.h"
+#include "scene/param_cell.h"
+
+namespace radrecon {
+namespace {
+
+/// Whether (u, v) lies in the closed cell, by its vertices' half-planes (independent of
+/// ParamCell::quarter_of()).
+bool contains(const ParamCell& c, const Vec2& p, double slack = 1e-12) {
+  const auto v = c.vertices();
+  const int n = c.vertex_count();
+  for (int k = 0; k < n; ++k) {
+    const Vec2 e = v[(k + 1) % n] - v[k], d = p - v[k];
+    if (e.x() * d.y() - e.y() * d.x() < -slack) return false;
+  }
+  return true;
+}
+
+Surface triangle() {
+  Surface s;
+  s.name = "t";
+  s.set_triangle(Vec3(0.2, 0.1, 0.0), Vec3(2.2, 0.4, 0.3), Vec3(0.7, 1.9, -0.2));
+  return s;
+}
+
+TEST(ParamCell, QuartersTileEachShapeAndQuarterOfAgreesWithContainment) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> U(0, 1);
+  for (const CellShape shape : {CellShape::box, CellShape::lower, CellShape::upper}) {
+    const ParamCell cell{0.25, 0.5, 0.75, 0.625, shape};
+    double area = 0;
+    for (const ParamCell& q : cell.quarters()) {
+      area += q.area();
+      // Each quarter lies in the cell: its vertices do.
+      for (int k = 0; k < q.vertex_count(); ++k) EXPECT_TRUE(contains(cell, q.vertices()[k]));
+    }
+    EXPECT_NEAR(area, cell.area(), 1e-15);
+    for (int k = 0; k < 2000; ++k) {
+      const Vec2 p(cell.u0 + U(rng) * (cell.u1 - cell.u0), cell.v0 + U(rng) * (cell.v1 - cell.v0));
+      if (!contains(cell, p, 0)) continue;
+      const int q = cell.quarter_of(p.x(), p.y());
+      EXPECT_TRUE(contains(cell.quarters()[static_cast<size_t>(q)], p)) << cell_shape_name(shape) << " " << p.transpose();
+    }
+  }
+}
+
+TEST(ParamCell, MidpointsAreNSquaredPointsAveragingToTheCentroid) {
+  for (const CellShape shape : {CellShape::box, CellShape::lower, CellShape::upper}) {
+    const ParamCell cell{0.1, 0.2, 0.5, 0.4, shape};
+    for (const int n : {1, 2, 5}) {
+      int count = 0;
+      Vec2 sum = Vec2::Zero();
+      cell.for_each_midpoint(n, [&](const Vec2& p) {
+        ++count;
+        sum += p;
+        EXPECT_TRUE(contains(cell, p, 0));
+      });
+      EXPECT_EQ(count, n * n);
+      // Equal-area parts: the mean of their centroids is the cell's centroid.
+      EXPECT_NEAR((sum / count - cell.centroid()).norm(), 0, 1e-15);
+    }
+  }
+}
+
+TEST(TriangleGridMesh, IsTheRegularSubdivisionIntoNSquaredEqualTriangles) {
+  Scene scene;
+  scene.surfaces = {triangle()};
+  const Surface& s = scene.surfaces[0];
+  const Mesh mesh = make_grid_mesh(scene, {7, 1});
+  ASSERT_EQ(mesh.surfaces.size(), 1u);
+  const MeshSurface& m = mesh.surfaces[0];
+  ASSERT_EQ(m.nu, 7);  // the longest edge, 2.5 m, in 7 divisions
+  ASSERT_EQ(m.elements.size(), 49u);
+  EXPECT_EQ(grid_element_count(scene, {7, 1}), 49u);
+  Vec3 moment = Vec3::Zero();
+  for (const MeshElement& e : m.elements) {
+    EXPECT_NEAR(e.area_m2, s.area_m2() / 49, 1e-14);
+    EXPECT_EQ(e.corner_count(), 3);
+    moment += e.area_m2 * e.center;
+    // Front side: counter-clockwise about the surface's normal.
+    EXPECT_GT((e.corners[1] - e.corners[0]).cross(e.corners[2] - e.corners[0]).dot(s.normal()), 0);
+  }
+  const Vec3 centroid = (s.corners[0] + s.corners[1] + s.corners[2]) / 3;
+  EXPECT_NEAR((moment / s.area_m2() - centroid).norm(), 0, 1e-14);
+  // Cells beyond the hypotenuse hold nothing; on it, only a lower half.
+  EXPECT_EQ(m.cell_elements(6, 0).second - m.cell_elements(6, 0).first, 1u);
+  EXPECT_EQ(m.cell_elements(6, 1).second - m.cell_elements(6, 1).first, 0u);
+  EXPECT_EQ(m.cell_elements(2, 3).second - m.cell_elements(2, 3).first, 2u);
+}
+
+TEST(TriangleQuadtree, SplitsIntoFourCongruentTrianglesAndLocatesEveryPoint) {
+  const Surface s = triangle();
+  Quadtree tree(s, false);
+  const int first = tree.split(0);
+  for (int c = 0; c < 4; ++c) EXPECT_NEAR(tree.node(first + c).area_m2, s.area_m2() / 4, 1e-14);
+  tree.split(first + 3);  // the middle, an upper half
+  tree.split(first + 1);
+  EXPECT_EQ(tree.leaf_count(), 10);
+  double area = 0;
+  for (const int k : tree.leaves()) area += tree.node(k).area_m2;
+  EXPECT_NEAR(area, s.area_m2(), 1e-14);
+  std::mt19937 rng(6);
+  std::uniform_real_distribution<double> U(0, 1);
+  for (int k = 0; k < 2000; ++k) {
+    double u = U(rng), v = U(rng);
+    if (u + v > 1) u = 1 - u, v = 1 - v;
+    const QuadNode& leaf = tree.node(tree.locate(u, v));
+    EXPECT_TRUE(leaf.is_leaf());
+    EXPECT_TRUE(contains(leaf, Vec2(u, v)));
+  }
+  // The longest edge of a quarter is half the triangle's.
+  EXPECT_NEAR(tree.node(first).size_m, 0.5 * (s.corners[2] - s.corners[1]).norm(), 1e-14);
+}
+
+TEST(TriangleGridMesh, BackSideElementsTurnTheOtherWay) {
+  Scene scene;
+  scene.surfaces = {triangle()};
+  scene.surfaces[0].two_sided = true;
+  const Mesh mesh = make_grid_mesh(scene, {3, 1});
+  ASSERT_EQ(mesh.surfaces.size(), 2u);
+  const MeshSurface& back = mesh.surfaces[1];
+  for (const MeshElement& e : back.elements)
+    EXPECT_GT((e.corners[1] - e.corners[0]).cross(e.corners[2] - e.corners[0]).dot(back.normal), 0);
+}
+
+}  // namespace
+}  // namespace radrecon
