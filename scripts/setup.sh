@@ -8,6 +8,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libeigen3-dev libcgal-dev libgmp-dev libmpfr-dev libnanoflann-dev
   nlohmann-json3-dev libcli11-dev libpng-dev libopenexr-dev time
+  libassimp-dev  # mesh import: OBJ/MTL, glTF 2.0, PLY (src/io/mesh_import.h)
   python3-scipy  # the agreement tests against scipy (reconstruct.scipy_*)
 )
 

@@ -187,4 +187,12 @@ inline constexpr double kKernelCosine = 1e-3;
 /// below any gap a scene means (a micrometre): the cull stays conservative and loses nothing.
 inline constexpr double kShaftSlack_m = 1e-6;
 
+/// Mesh import (io/mesh_polygons.h): two triangles are merged into one quad only if the quad is
+/// convex with a margin, each corner's turn (the cross product of its edges along the normal) at
+/// least this fraction of the quad's longest edge squared (about this many radians short of a
+/// straight angle). validate_scene() refuses corners at kDegenerateAreaRelative; this margin,
+/// 1000 times wider, keeps a merged quad clear of that refusal under the round-off of
+/// single-precision model files (1e-7), so two triangles meeting on a straight line stay two.
+inline constexpr double kQuadMergeTurnRelative = 1e-6;
+
 }  // namespace radrecon::tol

@@ -1,8 +1,13 @@
 #include "io/scene_json.h"
 
 #include <cstdio>
+#include <filesystem>
+#include <set>
 
+#include "core/error.h"
 #include "io/json_reader.h"
+#include "io/mesh_import.h"
+#include "scene/default_camera.h"
 
 namespace radrecon {
 
@@ -49,34 +54,116 @@ Camera read_camera(const JsonReader& r, const json& j, const std::string& path) 
   return c;
 }
 
+/// One entry of "meshes": the model file's surfaces, placed and overridden as the entry says.
+/// `base_dir`: the folder the file's path is relative to (the scene file's).
+MeshImport read_mesh_entry(const JsonReader& r, const json& j, const std::string& path, const std::filesystem::path& base_dir) {
+  if (!j.is_object()) r.fail(path, "must be an object");
+  r.no_unknown_keys(j, {"file", "scale", "translate", "rotate_x_deg", "reflectance", "emission", "two_sided", "merge_triangles", "mesh"}, path);
+  const std::string file = r.string(r.member(j, "file", path), path + ".file");
+  if (file.empty()) r.fail(path + ".file", "must not be empty");
+  MeshPlacement placement;
+  if (j.contains("scale")) {
+    placement.scale = r.number(j["scale"], path + ".scale");
+    if (!(placement.scale > 0)) r.fail(path + ".scale", "must be a number > 0");
+  }
+  if (j.contains("translate")) placement.translate_m = r.vec3(j["translate"], path + ".translate");
+  if (j.contains("rotate_x_deg")) placement.rotate_x_deg = r.number(j["rotate_x_deg"], path + ".rotate_x_deg");
+  if (j.contains("reflectance")) placement.reflectance = r.colour(j["reflectance"], path + ".reflectance");
+  if (j.contains("emission")) placement.emission_w_m2 = r.colour(j["emission"], path + ".emission");
+  if (j.contains("two_sided")) placement.two_sided = r.boolean(j["two_sided"], path + ".two_sided");
+  if (j.contains("merge_triangles")) placement.merge_triangles = r.boolean(j["merge_triangles"], path + ".merge_triangles");
+  if (j.contains("mesh")) {
+    const json& m = j["mesh"];
+    if (!m.is_object()) r.fail(path + ".mesh", "must be an object");
+    r.no_unknown_keys(m, {"max_divisions"}, path + ".mesh");
+    if (m.contains("max_divisions")) {
+      const json& d = m["max_divisions"];
+      if (!d.is_number_integer() || d.get<long long>() < 1 || d.get<long long>() > 100000)
+        r.fail(path + ".mesh.max_divisions", "must be an integer in [1, 100000]");
+      placement.max_divisions = d.get<int>();
+    }
+  }
+  const std::filesystem::path file_path = std::filesystem::path(file).is_absolute() ? std::filesystem::path(file) : base_dir / file;
+  try {
+    return import_mesh(file_path.string(), placement);
+  } catch (const UserError& e) {
+    throw UserError(r.source() + ": " + path + ".file", e.what());
+  }
+}
+
+/// Appends a model's surfaces to the scene, a name already taken getting "@K" (K: the index of
+/// the "meshes" entry) so that the same file can be placed twice.
+void add_mesh_surfaces(Scene& scene, std::vector<Surface> surfaces, size_t entry) {
+  std::set<std::string> taken;
+  for (const Surface& s : scene.surfaces) taken.insert(s.name);
+  for (Surface& s : surfaces) {
+    if (taken.count(s.name)) s.name += "@" + std::to_string(entry);
+    taken.insert(s.name);
+    scene.surfaces.push_back(std::move(s));
+  }
+}
+
 }  // namespace
 
 Scene parse_scene_json(const std::string& text, const std::string& source) {
   const JsonReader r(source);
   const json doc = r.parse(text, "scene");
   if (!doc.is_object()) r.fail("(top level)", "must be a JSON object");
-  r.no_unknown_keys(doc, {"name", "surfaces", "cameras"}, "");
+  r.no_unknown_keys(doc, {"name", "surfaces", "meshes", "cameras"}, "");
   Scene scene;
   scene.name = doc.contains("name") ? r.string(doc["name"], "name") : std::string("unnamed");
-  const json& surfaces = r.member(doc, "surfaces", "");
-  if (!surfaces.is_array()) r.fail("surfaces", "must be an array");
-  for (size_t i = 0; i < surfaces.size(); ++i)
-    scene.surfaces.push_back(read_surface(r, surfaces[i], JsonReader::at("surfaces", i)));
+  if (!doc.contains("meshes") || doc.contains("surfaces")) {
+    const json& surfaces = r.member(doc, "surfaces", "");
+    if (!surfaces.is_array()) r.fail("surfaces", "must be an array");
+    for (size_t i = 0; i < surfaces.size(); ++i)
+      scene.surfaces.push_back(read_surface(r, surfaces[i], JsonReader::at("surfaces", i)));
+  }
+  std::vector<std::string> mesh_warnings;
+  if (doc.contains("meshes")) {
+    const json& meshes = doc["meshes"];
+    if (!meshes.is_array()) r.fail("meshes", "must be an array");
+    const std::filesystem::path base_dir = std::filesystem::path(source).parent_path();
+    for (size_t i = 0; i < meshes.size(); ++i) {
+      MeshImport model = read_mesh_entry(r, meshes[i], JsonReader::at("meshes", i), base_dir);
+      mesh_warnings.insert(mesh_warnings.end(), model.warnings.begin(), model.warnings.end());
+      add_mesh_surfaces(scene, std::move(model.surfaces), i);
+    }
+  }
   if (doc.contains("cameras")) {
     const json& cameras = doc["cameras"];
     if (!cameras.is_array()) r.fail("cameras", "must be an array");
     for (size_t i = 0; i < cameras.size(); ++i)
       scene.cameras.push_back(read_camera(r, cameras[i], JsonReader::at("cameras", i)));
   }
-  for (const std::string& warning : regularise_surfaces(scene, source))
-    std::fprintf(stderr, "radrecon: warning: %s\n", warning.c_str());
+  for (const std::string& warning : regularise_surfaces(scene, source)) mesh_warnings.push_back(warning);
+  print_warnings(mesh_warnings, 20);
   validate_scene(scene, source);
+  if (doc.contains("meshes") && scene.cameras.empty()) scene.cameras.push_back(default_camera(scene));
+  return scene;
+}
+
+Scene load_mesh_scene(const std::string& path) {
+  MeshImport model = import_mesh(path);
+  Scene scene;
+  scene.name = std::filesystem::path(path).stem().string();
+  scene.surfaces = std::move(model.surfaces);
+  bool emits = false;
+  for (const Surface& s : scene.surfaces) emits = emits || (s.emission_w_m2 > 0).any();
+  if (!emits)
+    throw UserError(path, "the model has no emitting face (no OBJ Ke, no glTF emissiveFactor): write a scene JSON "
+                          "with \"meshes\": [{\"file\": \"" + std::filesystem::path(path).filename().string() +
+                          "\"}] and a light in \"surfaces\" (docs/formats.md, Meshes)");
+  for (const std::string& warning : regularise_surfaces(scene, path)) model.warnings.push_back(warning);
+  print_warnings(model.warnings, 20);
+  validate_scene(scene, path);
+  scene.cameras.push_back(default_camera(scene));
   return scene;
 }
 
 Scene load_scene(const std::string& file_or_builtin) {
   if (file_or_builtin == "paper") return paper_scene();
   if (file_or_builtin == "cornell") return cornell_scene();
+  if (is_mesh_file(file_or_builtin)) return load_mesh_scene(file_or_builtin);
   return parse_scene_json(read_text_file(file_or_builtin, "scene file"), file_or_builtin);
 }
 

@@ -1,0 +1,22 @@
+#pragma once
+// The vertex indices of a glTF 2.0 file, checked before assimp reads it: assimp 5.2 drops a
+// triangle with an index past its vertices without a word, and reads past the end of its
+// vertices (a crash) for a line loop. (Used by io/gltf_extras.h.)
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace radrecon {
+
+/// Checks that every accessor fits its buffer view and every view its buffer (UserError naming
+/// the accessor: assimp 5.2 refuses them too but leaks memory doing so), and that every index of
+/// every primitive's indices accessor is below the count of its
+/// POSITION accessor. `bin` is a .glb's BIN chunk (buffer 0 without a uri), `folder` the one the
+/// file's relative buffer URIs are in. Buffers it cannot resolve (a missing file), accessors that
+/// do not fit their buffer and sparse accessors are left to assimp, which refuses them.
+/// UserError "PATH: meshes[i].primitives[j]: vertex index K out of range (N vertices)"; also for
+/// a line loop of fewer than 2 indices, which assimp 5.2 reads past.
+void check_gltf_indices(const nlohmann::json& doc, const std::string& bin, const std::string& folder, const std::string& path);
+
+}  // namespace radrecon

@@ -1,0 +1,150 @@
+#include "io/mesh_polygons.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <optional>
+
+#include "core/tolerances.h"
+
+namespace radrecon {
+
+namespace {
+
+/// The polygon's normal by Newell's method (its length is twice the area, m^2).
+Vec3 newell_normal(std::span<const Vec3> c) {
+  Vec3 n = Vec3::Zero();
+  for (size_t i = 0; i < c.size(); ++i) n += c[i].cross(c[(i + 1) % c.size()]);
+  return n;
+}
+
+/// Whether p lies inside or on the triangle (a, b, c) of the 2-D plane (counter-clockwise).
+bool in_triangle(const Vec2& p, const Vec2& a, const Vec2& b, const Vec2& c) {
+  const auto side = [](const Vec2& o, const Vec2& e, const Vec2& q) {
+    return (e - o).x() * (q - o).y() - (e - o).y() * (q - o).x();
+  };
+  return side(a, b, p) >= 0 && side(b, c, p) >= 0 && side(c, a, p) >= 0;
+}
+
+}  // namespace
+
+std::vector<std::array<int, 3>> triangulate_polygon(std::span<const Vec3> corners) {
+  const int n = static_cast<int>(corners.size());
+  std::vector<std::array<int, 3>> out;
+  if (n < 3) return out;
+  const Vec3 normal = newell_normal(corners);
+  if (!normal.allFinite() || normal.norm() == 0) return out;
+  const Vec3 w = normal.normalized();
+  const Vec3 u = (std::abs(w.x()) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0)).cross(w).normalized();
+  const Vec3 v = w.cross(u);
+  std::vector<Vec2> p(n);
+  for (int i = 0; i < n; ++i) p[i] = Vec2(corners[i].dot(u), corners[i].dot(v));
+  std::vector<int> left(n);
+  for (int i = 0; i < n; ++i) left[i] = i;
+  const auto cross = [&](int a, int b, int c) {
+    return (p[b] - p[a]).x() * (p[c] - p[a]).y() - (p[b] - p[a]).y() * (p[c] - p[a]).x();
+  };
+  while (left.size() > 3) {
+    const int m = static_cast<int>(left.size());
+    bool cut = false;
+    for (int k = 0; k < m && !cut; ++k) {
+      const int a = left[(k + m - 1) % m], b = left[k], c = left[(k + 1) % m];
+      if (cross(a, b, c) <= 0) continue;  // reflex or straight corner: not an ear
+      bool empty = true;
+      for (int q : left)
+        if (q != a && q != b && q != c && in_triangle(p[q], p[a], p[b], p[c])) empty = false;
+      if (!empty) continue;
+      out.push_back({a, b, c});
+      left.erase(left.begin() + k);
+      cut = true;
+    }
+    if (!cut) return {};
+  }
+  if (cross(left[0], left[1], left[2]) <= 0) return {};
+  out.push_back({left[0], left[1], left[2]});
+  return out;
+}
+
+namespace {
+
+using Key = std::array<double, 3>;
+Key key(const Vec3& p) { return {p.x(), p.y(), p.z()}; }
+
+bool same_material(const Surface& a, const Surface& b) {
+  return (a.reflectance == b.reflectance).all() && (a.emission_w_m2 == b.emission_w_m2).all() && a.two_sided == b.two_sided &&
+         a.max_divisions == b.max_divisions;
+}
+
+/// The quad (a, d, b, c) of triangle t = (a, b, c) rotated so that its edge `edge` comes first
+/// (a -> b) and d is the partner's corner off that edge; nullopt unless planar and convex.
+std::optional<Surface> merged_quad(const Surface& t, int edge, const Vec3& d) {
+  const Vec3 a = t.corners[edge], b = t.corners[(edge + 1) % 3], c = t.corners[(edge + 2) % 3];
+  Surface q = t;
+  q.corner_count = 4;
+  q.corners = {a, d, b, c};
+  double longest_sq = 0;
+  for (int i = 0; i < 4; ++i) longest_sq = std::max(longest_sq, (q.corners[(i + 1) % 4] - q.corners[i]).squaredNorm());
+  const Vec3 n = q.normal();
+  if (!n.allFinite() || longest_sq == 0) return std::nullopt;
+  const Vec3 centroid = 0.25 * (a + b + c + d);
+  for (const Vec3& corner : q.corners)
+    if (std::abs((corner - centroid).dot(n)) > 0.5 * tol::kPlanarityRelative * std::sqrt(longest_sq)) return std::nullopt;
+  for (int i = 0; i < 4; ++i) {
+    const Vec3 e0 = q.corners[(i + 1) % 4] - q.corners[i], e1 = q.corners[(i + 2) % 4] - q.corners[(i + 1) % 4];
+    if (e0.cross(e1).dot(n) <= tol::kQuadMergeTurnRelative * longest_sq) return std::nullopt;
+  }
+  return q;
+}
+
+}  // namespace
+
+size_t merge_coplanar_triangle_pairs(std::vector<Surface>& surfaces) {
+  // Directed edge (from, to) -> the triangles walking it, and the edge's index in each.
+  std::map<std::pair<Key, Key>, std::vector<std::pair<size_t, int>>> edges;
+  for (size_t i = 0; i < surfaces.size(); ++i) {
+    if (!surfaces[i].is_triangle()) continue;
+    for (int e = 0; e < 3; ++e)
+      edges[{key(surfaces[i].corners[e]), key(surfaces[i].corners[(e + 1) % 3])}].push_back({i, e});
+  }
+  std::vector<bool> gone(surfaces.size(), false), merged(surfaces.size(), false);
+  size_t pairs = 0;
+  for (size_t i = 0; i < surfaces.size(); ++i) {
+    const Surface& t = surfaces[i];
+    if (!t.is_triangle() || merged[i]) continue;
+    std::optional<Surface> best;
+    size_t best_j = 0;
+    double best_length = -1;
+    for (int e = 0; e < 3; ++e) {
+      const Vec3& a = t.corners[e];
+      const Vec3& b = t.corners[(e + 1) % 3];
+      const auto it = edges.find({key(b), key(a)});
+      if (it == edges.end()) continue;
+      const double length = (b - a).norm();
+      for (const auto& [j, f] : it->second) {
+        if (j == i || merged[j] || !same_material(t, surfaces[j])) continue;
+        if (length < best_length || (length == best_length && j > best_j)) continue;
+        const Vec3 d = surfaces[j].corners[(f + 2) % 3];
+        if (std::optional<Surface> q = merged_quad(t, e, d)) {
+          best = std::move(q);
+          best_j = j;
+          best_length = length;
+        }
+      }
+    }
+    if (!best) continue;
+    surfaces[i] = std::move(*best);
+    merged[i] = merged[best_j] = true;
+    gone[best_j] = true;
+    ++pairs;
+  }
+  size_t kept = 0;
+  for (size_t i = 0; i < surfaces.size(); ++i)
+    if (!gone[i]) {
+      if (kept != i) surfaces[kept] = std::move(surfaces[i]);
+      ++kept;
+    }
+  surfaces.resize(kept);
+  return pairs;
+}
+
+}  // namespace radrecon

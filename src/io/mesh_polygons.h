@@ -1,0 +1,30 @@
+#pragma once
+// Polygon work of mesh import (io/mesh_import.h): cutting a modeller's n-gon into triangles, and
+// merging coplanar triangle pairs back into the convex quads they came from.
+
+#include <array>
+#include <span>
+#include <vector>
+
+#include "core/vec.h"
+#include "scene/scene.h"
+
+namespace radrecon {
+
+/// Triangles (index triples into `corners`, counter-clockwise like the polygon) covering a simple
+/// planar polygon of 3 or more corners, by ear clipping in the plane of its Newell normal; convex
+/// or not. Empty if the polygon has no area or no ear can be cut (self-intersecting).
+std::vector<std::array<int, 3>> triangulate_polygon(std::span<const Vec3> corners);
+
+/// Merges pairs of triangles of `surfaces` into quads, in place; returns the number of pairs
+/// merged. Two triangles merge when they share an edge (the same two corners, exactly, walked in
+/// opposite directions), have the same reflectance, emission, two_sided and mesh setting, and
+/// their union is a quad that is planar (every corner within tol::kPlanarityRelative / 2 of the
+/// longest edge off its plane, as validate_scene() measures it) and convex with the margin
+/// tol::kQuadMergeTurnRelative. Greedy and deterministic: triangles are taken in order, each
+/// with the still-unmerged partner across its longest shared edge (the lowest index on a tie);
+/// the quad takes the first triangle's name and place, and starts at the first triangle's corner
+/// before the shared edge. Quads and unmerged triangles are kept as they are, in order.
+size_t merge_coplanar_triangle_pairs(std::vector<Surface>& surfaces);
+
+}  // namespace radrecon

@@ -1,0 +1,188 @@
+// Mesh import (io/mesh_import.h) refusing what it cannot read whole: every malformed, truncated
+// or inconsistent model file is a UserError naming the file and what is wrong, never a crash.
+
+#include <gtest/gtest.h>
+
+#include <initializer_list>
+#include <string>
+
+#include "io/mesh_import.h"
+#include "io/scene_json.h"
+#include "support/model_files.h"
+#include "support/temp_dir.h"
+
+namespace radrecon {
+namespace {
+
+using testing_support::TempDir;
+using testing_support::write_file;
+
+/// Passes when importing dir/name, written with `content`, throws UserError whose message names
+/// the file and contains every one of `needles`.
+testing::AssertionResult Refused(const TempDir& dir, const std::string& name, const std::string& content,
+                                 std::initializer_list<std::string> needles) {
+  const std::string path = (dir / name).string();
+  write_file(path, content);
+  try {
+    import_mesh(path);
+  } catch (const UserError& e) {
+    const std::string message = e.what();
+    if (message.find(name) == std::string::npos) return testing::AssertionFailure() << "\"" << message << "\" does not name the file";
+    for (const std::string& needle : needles)
+      if (message.find(needle) == std::string::npos)
+        return testing::AssertionFailure() << "\"" << message << "\" does not mention \"" << needle << "\"";
+    return testing::AssertionSuccess() << message;
+  } catch (const std::exception& e) {
+    return testing::AssertionFailure() << "threw a non-UserError exception: " << e.what();
+  } catch (...) {
+    return testing::AssertionFailure() << "threw something not an exception";
+  }
+  return testing::AssertionFailure() << "accepted";
+}
+
+const char* const kTriangle = "v 0 0 0\nv 1 0 0\nv 1 1 0\n";
+
+TEST(MeshImportErrors, UnknownExtensionEmptyAndMissingFiles) {
+  TempDir dir("mesh_bad");
+  EXPECT_TRUE(Refused(dir, "model.stl", "solid x\nendsolid x\n", {"unknown mesh format", ".obj"}));
+  EXPECT_TRUE(Refused(dir, "empty.obj", "", {"empty"}));
+  EXPECT_TRUE(Refused(dir, "empty.gltf", "", {"empty"}));
+  const std::string message = testing_support::user_error_message([&] { import_mesh((dir / "absent.ply").string()); });
+  EXPECT_NE(message.find("absent.ply"), std::string::npos) << message;
+  EXPECT_NE(message.find("cannot open"), std::string::npos) << message;
+}
+
+TEST(MeshImportErrors, ObjIndicesOutOfRangeAndNonFiniteCoordinates) {
+  TempDir dir("mesh_bad");
+  EXPECT_TRUE(Refused(dir, "index.obj", std::string(kTriangle) + "f 1 2 7\n", {"index.obj:4", "vertex index 7 out of range (3 vertices)"}));
+  EXPECT_TRUE(Refused(dir, "negative.obj", std::string(kTriangle) + "f 1 2 -9\n", {"negative.obj:4", "vertex index -9 out of range"}));
+  EXPECT_TRUE(Refused(dir, "zero.obj", std::string(kTriangle) + "f 0/1/1 2/1/1 3/1/1\n", {"zero.obj:4", "vertex index 0"}));
+  // Relative indices count back from the vertices before the face: -1 -2 -3 is the triangle.
+  write_file(dir / "relative.obj", std::string(kTriangle) + "f -3 -2 -1\n");
+  EXPECT_EQ(import_mesh((dir / "relative.obj").string()).surfaces.size(), 1u);
+  EXPECT_TRUE(Refused(dir, "nan.obj", "v 0 0 0\nv nan 0 0\nv 1 1 0\nf 1 2 3\n", {"not finite"}));
+  EXPECT_TRUE(Refused(dir, "inf.obj", "v 0 0 0\nv 1 0 0\nv 1 inf 0\nf 1 2 3\n", {"not finite"}));
+  EXPECT_TRUE(Refused(dir, "junk.obj", "hello\n", {"cannot be read"}));
+  EXPECT_TRUE(Refused(dir, "nofaces.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 2 2 2\n", {}));
+}
+
+TEST(MeshImportErrors, ObjNegativeEmissionOrNonFiniteColourIsRefused) {
+  TempDir dir("mesh_bad");
+  write_file(dir / "neg.mtl", "newmtl m\nKd 0.5 0.5 0.5\nKe -1 0 0\n");
+  EXPECT_TRUE(Refused(dir, "neg.obj", std::string("mtllib neg.mtl\n") + kTriangle + "usemtl m\nf 1 2 3\n", {"'m' Ke", ">= 0"}));
+  write_file(dir / "nan.mtl", "newmtl m\nKd nan 0.5 0.5\n");
+  EXPECT_TRUE(Refused(dir, "nankd.obj", std::string("mtllib nan.mtl\n") + kTriangle + "usemtl m\nf 1 2 3\n", {"'m' Kd", "not finite"}));
+}
+
+TEST(MeshImportErrors, PlacementBeyondTheSceneOrNotFinite) {
+  TempDir dir("mesh_bad");
+  write_file(dir / "tri.obj", std::string(kTriangle) + "f 1 2 3\n");
+  MeshPlacement far;
+  far.scale = 1e7;  // corner (1, 1, 0) lands 1e7 m out
+  std::string message = testing_support::user_error_message([&] { import_mesh((dir / "tri.obj").string(), far); });
+  EXPECT_NE(message.find("tri.obj"), std::string::npos) << message;
+  EXPECT_NE(message.find("outside"), std::string::npos) << message;
+  MeshPlacement nan;
+  nan.translate_m = Vec3(0, std::nan(""), 0);
+  message = testing_support::user_error_message([&] { import_mesh((dir / "tri.obj").string(), nan); });
+  EXPECT_NE(message.find("finite"), std::string::npos) << message;
+}
+
+TEST(MeshImportErrors, GltfMissingBufferBadAccessorSchemaAndTruncation) {
+  TempDir dir("mesh_bad");
+  std::string buffer;
+  const nlohmann::json g = testing_support::quad_gltf(buffer);
+  const std::string good = testing_support::gltf_text(g, buffer);
+
+  nlohmann::json missing = g;
+  missing["buffers"][0]["uri"] = "absent.bin";
+  EXPECT_TRUE(Refused(dir, "missing.gltf", missing.dump(), {"absent.bin"}));
+
+  nlohmann::json too_long = nlohmann::json::parse(good);
+  too_long["accessors"][1]["count"] = 600;  // past the end of its buffer view
+  EXPECT_TRUE(Refused(dir, "accessor.gltf", too_long.dump(), {"accessors[1]", "600 elements of 2 bytes do not fit"}));
+  nlohmann::json wrong_type = nlohmann::json::parse(good);
+  wrong_type["accessors"][1]["type"] = "MAT4";  // 6 x 32 bytes in a view of 12 (assimp leaked on it)
+  EXPECT_TRUE(Refused(dir, "type.gltf", wrong_type.dump(), {"accessors[1]", "do not fit"}));
+  nlohmann::json bad_component = nlohmann::json::parse(good);
+  bad_component["accessors"][0]["componentType"] = 9999;
+  EXPECT_TRUE(Refused(dir, "component.gltf", bad_component.dump(), {"accessors[0]", "componentType"}));
+
+  nlohmann::json bad_index = nlohmann::json::parse(good);
+  bad_index["meshes"][0]["primitives"][0]["indices"] = 7;  // no accessor 7
+  EXPECT_TRUE(Refused(dir, "index.gltf", bad_index.dump(), {"accessors"}));
+
+  // An index past the vertices inside the buffer: assimp 5.2 drops the face without a word.
+  std::string wild = buffer;
+  const uint16_t nine = 9;
+  std::memcpy(wild.data() + 48 + 10, &nine, 2);  // the second triangle's third index
+  EXPECT_TRUE(Refused(dir, "wild.gltf", testing_support::gltf_text(g, wild), {"meshes[0].primitives[0]", "vertex index 9 out of range (4 vertices)"}));
+  EXPECT_TRUE(Refused(dir, "wild.glb", testing_support::glb_bytes(g, wild), {"vertex index 9 out of range"}));
+  // A line loop of such indices made assimp 5.2 read past the vertices (a crash, found by fuzzing).
+  nlohmann::json loop = g;
+  loop["meshes"][0]["primitives"][0]["mode"] = 2;
+  loop["accessors"][0]["count"] = 1;
+  EXPECT_TRUE(Refused(dir, "loop.gltf", testing_support::gltf_text(loop, buffer), {"vertex index 1 out of range (1 vertices)"}));
+  nlohmann::json short_loop = g;  // assimp 5.2 failed an assertion on this one (found by fuzzing)
+  short_loop["meshes"][0]["primitives"][0]["mode"] = 2;
+  short_loop["accessors"][1]["count"] = 1;
+  EXPECT_TRUE(Refused(dir, "short_loop.gltf", testing_support::gltf_text(short_loop, buffer), {"line loop", "fewer than 2"}));
+
+  nlohmann::json no_asset = nlohmann::json::parse(good);
+  no_asset.erase("asset");  // required by the schema
+  EXPECT_TRUE(Refused(dir, "schema.gltf", no_asset.dump(), {"asset", "missing"}));
+  nlohmann::json version1 = nlohmann::json::parse(good);
+  version1["asset"]["version"] = "1.0";
+  EXPECT_TRUE(Refused(dir, "version.gltf", version1.dump(), {"asset.version", "2.0"}));
+
+  EXPECT_TRUE(Refused(dir, "truncated.gltf", good.substr(0, good.size() / 2), {"not valid JSON"}));
+  const std::string glb = testing_support::glb_bytes(g, buffer);
+  EXPECT_TRUE(Refused(dir, "truncated.glb", glb.substr(0, glb.size() - 20), {"truncated", "BIN chunk"}));
+  EXPECT_TRUE(Refused(dir, "cut.glb", glb.substr(0, 40), {"truncated"}));
+
+  nlohmann::json negative = nlohmann::json::parse(good);
+  negative["materials"][1]["extensions"]["KHR_materials_emissive_strength"]["emissiveStrength"] = -2;
+  EXPECT_TRUE(Refused(dir, "strength.gltf", negative.dump(), {"materials[1]", "emissiveStrength", ">= 0"}));
+
+  nlohmann::json nan_buffer = nlohmann::json::parse(good);
+  std::string nan_bytes = buffer;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  std::memcpy(nan_bytes.data() + 4, &nan, 4);  // vertex 0's y
+  EXPECT_TRUE(Refused(dir, "nan.gltf", testing_support::gltf_text(g, nan_bytes), {"not finite"}));
+}
+
+TEST(MeshImportErrors, PlyTruncatedOrWithIndicesOutOfRange) {
+  TempDir dir("mesh_bad");
+  const std::string ply = testing_support::coloured_square_ply();
+  EXPECT_TRUE(Refused(dir, "short.ply", ply.substr(0, ply.find("1 1 0 0 0 51")), {"truncated", "vertex 2"}));
+  EXPECT_TRUE(Refused(dir, "noface.ply", ply.substr(0, ply.size() - 4), {"truncated", "face 0"}));
+  std::string bad_index = ply;
+  bad_index.replace(bad_index.find("4 0 1 2 3"), 9, "4 0 1 2 9");
+  EXPECT_TRUE(Refused(dir, "index.ply", bad_index, {"out of range"}));
+  EXPECT_TRUE(Refused(dir, "header.ply", "ply\nformat ascii 1.0\nelement vertex 3\n", {"end_header"}));
+  std::string binary = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                       "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  for (float f : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 1.f, 1.f, 0.f}) testing_support::append_le(binary, f);
+  binary += char(3);
+  for (int32_t i : {0, 1}) testing_support::append_le(binary, i);  // the third index is missing
+  EXPECT_TRUE(Refused(dir, "binary.ply", binary, {"truncated", "face 0"}));
+}
+
+TEST(MeshImportErrors, SceneJsonNamesTheEntryAndTheModelFile) {
+  TempDir dir("mesh_bad");
+  write_file(dir / "broken.obj", std::string(kTriangle) + "f 1 2 7\n");
+  const std::string scene = (dir / "scene.json").string();
+  const std::string message = testing_support::user_error_message(
+      [&] { parse_scene_json(R"({"meshes": [{"file": "broken.obj"}]})", scene); });
+  EXPECT_NE(message.find("scene.json: meshes[0].file"), std::string::npos) << message;
+  EXPECT_NE(message.find("broken.obj"), std::string::npos) << message;
+  const std::string scale = testing_support::user_error_message(
+      [&] { parse_scene_json(R"({"meshes": [{"file": "broken.obj", "scale": -1}]})", scene); });
+  EXPECT_NE(scale.find("meshes[0].scale"), std::string::npos) << scale;
+  const std::string unknown = testing_support::user_error_message(
+      [&] { parse_scene_json(R"({"meshes": [{"file": "broken.obj", "rotate": 1}]})", scene); });
+  EXPECT_NE(unknown.find("meshes[0]"), std::string::npos) << unknown;
+}
+
+}  // namespace
+}  // namespace radrecon

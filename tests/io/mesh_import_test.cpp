@@ -1,0 +1,381 @@
+// Mesh import (io/mesh_import.h) of model files the test writes itself: OBJ with MTL, glTF 2.0
+// (.gltf with a data URI, .glb), PLY with vertex colours; faces, materials, emission, placement,
+// the "meshes" of a scene JSON and `--scene model.obj` (load_scene). Expected values are the
+// numbers written into the files, combined by hand.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <numeric>
+#include <string>
+
+#include "io/mesh_import.h"
+#include "io/scene_json.h"
+#include "support/model_files.h"
+#include "support/temp_dir.h"
+
+namespace radrecon {
+namespace {
+
+using testing_support::TempDir;
+using testing_support::write_file;
+
+// The files hold decimal numbers of a few digits; single-precision storage (assimp keeps
+// positions and colours as float) rounds them to some 6e-8 relative.
+constexpr double kFloat = 1e-6;
+
+const Surface& named(const std::vector<Surface>& surfaces, const std::string& name) {
+  const auto it = std::find_if(surfaces.begin(), surfaces.end(), [&](const Surface& s) { return s.name == name; });
+  if (it == surfaces.end()) {
+    std::string names;
+    for (const Surface& s : surfaces) names += " " + s.name;
+    ADD_FAILURE() << "no surface '" << name << "' among" << names;
+    static const Surface none;
+    return none;
+  }
+  return *it;
+}
+
+void expect_near(const Vec3& got, const Vec3& want) {
+  EXPECT_LT((got - want).norm(), kFloat) << got.transpose() << " vs " << want.transpose();
+}
+void expect_near(const Rgb& got, const Rgb& want) {
+  EXPECT_LT((got - want).abs().maxCoeff(), kFloat) << got.transpose() << " vs " << want.transpose();
+}
+
+double total_area(const std::vector<Surface>& surfaces) {
+  return std::accumulate(surfaces.begin(), surfaces.end(), 0.0, [](double a, const Surface& s) { return a + s.area_m2(); });
+}
+
+/// A 2 x 1 m floor quad (white, Kd 0.7 0.6 0.5), a lamp quad facing down (Kd 0.2, Ke 10 20 30),
+/// and a convex pentagon "roof" of Kd 1.2 0.5 0.5 (clamped) whose area is 2.5 m^2 by the
+/// shoelace formula: (0,0) (2,0) (2,1) (1,1.5) (0,1) in z = 2.
+void write_obj(const TempDir& dir) {
+  write_file(dir / "room.mtl",
+             "newmtl white\nKd 0.7 0.6 0.5\n"
+             "newmtl lamp\nKd 0.2 0.2 0.2\nKe 10 20 30\n"
+             "newmtl hot\nKd 1.2 0.5 0.5\n");
+  write_file(dir / "room.obj",
+             "mtllib room.mtl\n"
+             "v 0 0 0\nv 2 0 0\nv 2 1 0\nv 0 1 0\n"
+             "v 0.5 0.25 1\nv 0.5 0.75 1\nv 1.5 0.75 1\nv 1.5 0.25 1\n"
+             "v 0 0 2\nv 2 0 2\nv 2 1 2\nv 1 1.5 2\nv 0 1 2\n"
+             "o floor\nusemtl white\nf 1 2 3 4\n"
+             "o lamp\nusemtl lamp\nf 5 6 7 8\n"
+             "o roof\nusemtl hot\nf 9 10 11 12 13\n");
+}
+
+TEST(MeshImport, ObjQuadsKeepTheirCornersMaterialsAndEmission) {
+  TempDir dir("mesh_obj");
+  write_obj(dir);
+  const MeshImport m = import_mesh((dir / "room.obj").string());
+  EXPECT_EQ(m.faces_read, 3u);
+  EXPECT_EQ(m.polygons_triangulated, 1u);
+  const Surface& floor = named(m.surfaces, "floor:0");
+  ASSERT_EQ(floor.corner_count, 4);
+  const Vec3 want[4] = {{0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {0, 1, 0}};
+  for (int i = 0; i < 4; ++i) expect_near(floor.corners[i], want[i]);
+  expect_near(floor.reflectance, Rgb(0.7, 0.6, 0.5));
+  expect_near(floor.emission_w_m2, Rgb::Zero());
+  const Surface& lamp = named(m.surfaces, "lamp:0");
+  expect_near(lamp.emission_w_m2, Rgb(10, 20, 30));
+  expect_near(lamp.reflectance, Rgb::Constant(0.2));
+  expect_near(lamp.normal(), Vec3(0, 0, -1));
+  EXPECT_FALSE(lamp.two_sided);
+}
+
+TEST(MeshImport, ObjPentagonIsCutIntoTrianglesOfItsAreaAndKdAboveOneIsClamped) {
+  TempDir dir("mesh_obj");
+  write_obj(dir);
+  const MeshImport m = import_mesh((dir / "room.obj").string());
+  std::vector<Surface> roof;
+  for (const Surface& s : m.surfaces)
+    if (s.name.rfind("roof:0.t", 0) == 0) roof.push_back(s);
+  // Three fan triangles, two of which make a convex quad again: 2 surfaces.
+  ASSERT_EQ(roof.size(), 2u);
+  EXPECT_NEAR(total_area(roof), 2.5, kFloat);
+  for (const Surface& s : roof) {
+    expect_near(s.normal(), Vec3(0, 0, 1));
+    expect_near(s.reflectance, Rgb(0.999, 0.5, 0.5));
+  }
+  EXPECT_EQ(m.surfaces.size(), 4u);
+  const bool warned = std::any_of(m.warnings.begin(), m.warnings.end(), [](const std::string& w) {
+    return w.find("'hot' Kd") != std::string::npos && w.find("clamped") != std::string::npos;
+  });
+  EXPECT_TRUE(warned);
+}
+
+TEST(MeshImport, ObjWithoutItsMtlIsHalfGreyWithAWarning) {
+  TempDir dir("mesh_obj");
+  write_obj(dir);
+  std::filesystem::remove(dir / "room.mtl");
+  const MeshImport m = import_mesh((dir / "room.obj").string());
+  for (const Surface& s : m.surfaces) {
+    expect_near(s.reflectance, Rgb::Constant(0.5));
+    expect_near(s.emission_w_m2, Rgb::Zero());
+  }
+  ASSERT_FALSE(m.warnings.empty());
+  EXPECT_NE(m.warnings[0].find("mtllib 'room.mtl' not found"), std::string::npos) << m.warnings[0];
+}
+
+TEST(MeshImport, ObjFacesBeforeAnyMaterialAreHalfGreyAndDegenerateFacesAreCountedOnce) {
+  TempDir dir("mesh_obj");
+  write_file(dir / "plain.obj",
+             "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 2 2 0\nv 3 3 0\n"
+             "f 1 2 3\nf 1 4 5\nf 1 3 4\n");  // the last two: collinear corners
+  const MeshImport m = import_mesh((dir / "plain.obj").string());
+  ASSERT_EQ(m.surfaces.size(), 1u);
+  expect_near(m.surfaces[0].reflectance, Rgb::Constant(0.5));
+  EXPECT_EQ(m.degenerate_skipped, 2u);
+  EXPECT_EQ(std::count_if(m.warnings.begin(), m.warnings.end(),
+                          [](const std::string& w) { return w.find("2 face(s)") != std::string::npos; }),
+            1);
+}
+
+TEST(MeshImport, NamesLoseSlashesControlCharactersAndInvalidUtf8AndStayUnique) {
+  TempDir dir("mesh_obj");
+  write_file(dir / "names.obj",
+             "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+             "o a/b\x01\xff\xc3\xa9\nf 1 2 3\n"      // '/', a control byte, a stray byte, then a valid 'é'
+             "o x\nf 1 3 4\no x\nf 1 2 4\n");  // assimp joins the two objects 'x' into one mesh
+  MeshPlacement keep_triangles;
+  keep_triangles.merge_triangles = false;
+  const MeshImport m = import_mesh((dir / "names.obj").string(), keep_triangles);
+  std::vector<std::string> names;
+  for (const Surface& s : m.surfaces) names.push_back(s.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"a_b__\xc3\xa9:0", "x:0", "x:1"}));
+
+  // glTF: mesh "quad" placed twice ("quad", "quad#2"), then a mesh that is called "quad#2".
+  std::string buffer;
+  nlohmann::json g = testing_support::quad_gltf(buffer);
+  nlohmann::json other = g["meshes"][0];
+  other["name"] = "quad#2";
+  g["meshes"].push_back(other);
+  g["nodes"].push_back({{"mesh", 1}, {"translation", {0, 0, 4}}});
+  g["scenes"][0]["nodes"].push_back(2);
+  write_file(dir / "names.gltf", testing_support::gltf_text(g, buffer));
+  names.clear();
+  for (const Surface& s : import_mesh((dir / "names.gltf").string()).surfaces) names.push_back(s.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"quad:0", "quad#2:0", "quad#2#2:0"}));
+}
+
+void check_glow_quads(const MeshImport& m) {
+  // Two instances of the two-triangle quad, each merged into one quad.
+  EXPECT_EQ(m.faces_read, 4u);
+  EXPECT_EQ(m.triangle_pairs_merged, 2u);
+  ASSERT_EQ(m.surfaces.size(), 2u);
+  for (const Surface& s : m.surfaces) {
+    EXPECT_EQ(s.corner_count, 4);
+    expect_near(s.reflectance, Rgb(0.4, 0.5, 0.6));
+    expect_near(s.emission_w_m2, Rgb(8, 4, 2));  // emissiveFactor x emissiveStrength 8
+    EXPECT_NEAR(s.area_m2(), 1.0, kFloat);
+    expect_near(s.normal(), Vec3(0, 0, 1));
+  }
+  const Surface& lifted = named(m.surfaces, "quad#2:0");
+  for (const Vec3& c : lifted.corners) EXPECT_NEAR(c.z(), 2.0, kFloat);  // node n1's translation
+  for (const Vec3& c : named(m.surfaces, "quad:0").corners) EXPECT_NEAR(c.z(), 0.0, kFloat);
+}
+
+TEST(MeshImport, GltfBaseColourEmissiveStrengthAndNodeTransforms) {
+  TempDir dir("mesh_gltf");
+  std::string buffer;
+  const nlohmann::json g = testing_support::quad_gltf(buffer);
+  write_file(dir / "glow.gltf", testing_support::gltf_text(g, buffer));
+  check_glow_quads(import_mesh((dir / "glow.gltf").string()));
+}
+
+TEST(MeshImport, BinaryGltfReadsTheSame) {
+  TempDir dir("mesh_glb");
+  std::string buffer;
+  const nlohmann::json g = testing_support::quad_gltf(buffer);
+  write_file(dir / "glow.glb", testing_support::glb_bytes(g, buffer));
+  check_glow_quads(import_mesh((dir / "glow.glb").string()));
+}
+
+TEST(MeshImport, GltfStripsFansAndRepeatedIndicesAreFacesToo) {
+  // The same four vertices as a strip (0 1 3 2: two triangles), a fan (0 1 2 3: two triangles)
+  // and a list with a repeated index (0 1 2, 0 0 2: one degenerate triangle, skipped).
+  TempDir dir("mesh_gltf");
+  std::string buffer;
+  nlohmann::json g = testing_support::quad_gltf(buffer);
+  buffer.resize(48);
+  for (uint16_t i : {0, 1, 3, 2, 0, 1, 2, 3, 0, 1, 2, 0, 0, 2}) testing_support::append_le(buffer, i);
+  g["buffers"][0]["byteLength"] = buffer.size();
+  g["bufferViews"][1]["byteLength"] = 28;
+  g["accessors"][1]["count"] = 4;
+  g["accessors"].push_back({{"bufferView", 1}, {"byteOffset", 8}, {"componentType", 5123}, {"count", 4}, {"type", "SCALAR"}});
+  g["accessors"].push_back({{"bufferView", 1}, {"byteOffset", 16}, {"componentType", 5123}, {"count", 6}, {"type", "SCALAR"}});
+  nlohmann::json& primitives = g["meshes"][0]["primitives"];
+  primitives[0]["mode"] = 5;
+  primitives.push_back({{"attributes", {{"POSITION", 0}}}, {"indices", 2}, {"material", 1}, {"mode", 6}});
+  primitives.push_back({{"attributes", {{"POSITION", 0}}}, {"indices", 3}, {"material", 1}});
+  g["scenes"][0]["nodes"] = {0};
+  write_file(dir / "modes.gltf", testing_support::gltf_text(g, buffer));
+  const MeshImport m = import_mesh((dir / "modes.gltf").string());
+  EXPECT_EQ(m.faces_read, 6u);
+  EXPECT_EQ(m.degenerate_skipped, 1u);
+  double area = 0;
+  for (const Surface& s : m.surfaces) area += s.area_m2();
+  EXPECT_NEAR(area, 2.5, kFloat);  // strip 1 + fan 1 + the list's one triangle 0.5
+}
+
+TEST(MeshImport, GltfPrimitiveWithoutMaterialIsHalfGreyBesideAnUnnamedMaterial) {
+  // assimp names both the unnamed "glow" and its default material '': they are told apart by
+  // their factors.
+  TempDir dir("mesh_gltf");
+  std::string buffer;
+  nlohmann::json g = testing_support::quad_gltf(buffer);
+  g["materials"][1].erase("name");
+  nlohmann::json plain = g["meshes"][0];
+  plain["name"] = "plain";
+  plain["primitives"][0].erase("material");
+  g["meshes"].push_back(plain);
+  g["nodes"][1]["mesh"] = 1;
+  write_file(dir / "plain.gltf", testing_support::gltf_text(g, buffer));
+  const MeshImport m = import_mesh((dir / "plain.gltf").string());
+  ASSERT_EQ(m.surfaces.size(), 2u);
+  expect_near(named(m.surfaces, "quad:0").reflectance, Rgb(0.4, 0.5, 0.6));
+  expect_near(named(m.surfaces, "quad:0").emission_w_m2, Rgb(8, 4, 2));
+  expect_near(named(m.surfaces, "plain:0").reflectance, Rgb::Constant(0.5));
+  expect_near(named(m.surfaces, "plain:0").emission_w_m2, Rgb::Zero());
+}
+
+TEST(MeshImport, PlyVertexColoursAreAveragedPerFace) {
+  TempDir dir("mesh_ply");
+  write_file(dir / "square.ply", testing_support::coloured_square_ply());
+  const MeshImport m = import_mesh((dir / "square.ply").string());
+  ASSERT_EQ(m.surfaces.size(), 1u);
+  const Surface& s = m.surfaces[0];
+  EXPECT_EQ(s.name, "square:0");  // a PLY mesh has no name: the file's stem
+  EXPECT_EQ(s.corner_count, 4);
+  expect_near(s.reflectance, Rgb(0.2, 0.1, 0.05));
+  expect_near(s.corners[2], Vec3(1, 1, 0));
+  EXPECT_TRUE(m.warnings.empty());
+}
+
+TEST(MeshImport, WhiteVertexColoursAreClampedWithOneWarning) {
+  TempDir dir("mesh_ply");
+  std::string ply = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+                    "property uchar red\nproperty uchar green\nproperty uchar blue\nelement face 2\n"
+                    "property list uchar int vertex_indices\nend_header\n"
+                    "0 0 0 255 255 255\n1 0 0 255 255 255\n1 1 0 255 255 255\n0 1 0 255 255 255\n3 0 1 2\n3 0 2 3\n";
+  write_file(dir / "white.ply", ply);
+  const MeshImport m = import_mesh((dir / "white.ply").string());
+  ASSERT_EQ(m.surfaces.size(), 1u);  // the two triangles merged
+  expect_near(m.surfaces[0].reflectance, Rgb::Constant(0.999));
+  ASSERT_EQ(m.warnings.size(), 1u);
+  EXPECT_NE(m.warnings[0].find("2 face(s) clamped"), std::string::npos) << m.warnings[0];
+}
+
+TEST(MeshImport, MirroringNodeKeepsTheFrontInFront) {
+  TempDir dir("mesh_gltf");
+  std::string buffer;
+  nlohmann::json g = testing_support::quad_gltf(buffer);
+  g["nodes"][1]["scale"] = {-1, 1, 1};  // x -> -x: the quad's corners turn clockwise
+  write_file(dir / "mirror.gltf", testing_support::gltf_text(g, buffer));
+  const MeshImport m = import_mesh((dir / "mirror.gltf").string());
+  ASSERT_EQ(m.surfaces.size(), 2u);
+  const Surface& mirrored = named(m.surfaces, "quad#2:0");
+  expect_near(mirrored.normal(), Vec3(0, 0, 1));
+  EXPECT_NEAR(mirrored.area_m2(), 1.0, kFloat);
+  for (const Vec3& c : mirrored.corners) {
+    EXPECT_LE(c.x(), kFloat);
+    EXPECT_NEAR(c.z(), 2.0, kFloat);
+  }
+}
+
+/// A binary PLY of the unit square as one quad, in either byte order.
+std::string binary_square_ply(bool big_endian) {
+  std::string out = std::string("ply\nformat binary_") + (big_endian ? "big" : "little") +
+                    "_endian 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+                    "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  const auto put = [&](auto value) {
+    std::string raw;
+    testing_support::append_le(raw, value);
+    if (big_endian) std::reverse(raw.begin(), raw.end());
+    out += raw;
+  };
+  for (float f : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 1.f, 1.f, 0.f, 0.f, 1.f, 0.f}) put(f);
+  out += char(4);
+  for (int32_t i : {0, 1, 2, 3}) put(i);
+  return out;
+}
+
+TEST(MeshImport, BinaryPlyInEitherByteOrder) {
+  TempDir dir("mesh_ply");
+  for (bool big : {false, true}) {
+    write_file(dir / "bin.ply", binary_square_ply(big));
+    const MeshImport m = import_mesh((dir / "bin.ply").string());
+    ASSERT_EQ(m.surfaces.size(), 1u);
+    EXPECT_EQ(m.surfaces[0].corner_count, 4);
+    expect_near(m.surfaces[0].corners[2], Vec3(1, 1, 0));
+    expect_near(m.surfaces[0].reflectance, Rgb::Constant(0.5));  // no colours: the default
+  }
+}
+
+TEST(MeshImport, PlacementScalesRotatesAndTranslates) {
+  TempDir dir("mesh_place");
+  write_file(dir / "square.ply", testing_support::coloured_square_ply());
+  MeshPlacement p;
+  p.scale = 2;
+  p.rotate_x_deg = 90;  // (x, y, z) -> (x, -z, y)
+  p.translate_m = Vec3(1, 2, 3);
+  p.reflectance = Rgb(0.3, 0.3, 0.3);
+  p.two_sided = true;
+  const MeshImport m = import_mesh((dir / "square.ply").string(), p);
+  ASSERT_EQ(m.surfaces.size(), 1u);
+  const Surface& s = m.surfaces[0];
+  // (1, 1, 0) -> scaled (2, 2, 0) -> rotated (2, 0, 2) -> moved (3, 2, 5).
+  expect_near(s.corners[2], Vec3(3, 2, 5));
+  expect_near(s.corners[0], Vec3(1, 2, 3));
+  expect_near(s.normal(), Vec3(0, -1, 0));  // +z turned about +x by 90 degrees
+  EXPECT_NEAR(s.area_m2(), 4.0, kFloat);
+  expect_near(s.reflectance, Rgb::Constant(0.3));
+  EXPECT_TRUE(s.two_sided);
+}
+
+TEST(MeshImport, SceneJsonMeshesBesideHandWrittenSurfaces) {
+  TempDir dir("mesh_json");
+  write_file(dir / "square.ply", testing_support::coloured_square_ply());
+  const std::string text = R"({"name": "with meshes",
+    "surfaces": [{"name": "light", "corners": [[0,0,3],[0,1,3],[1,1,3],[1,0,3]], "reflectance": 0, "emission": 5}],
+    "meshes": [{"file": "square.ply", "scale": 3, "translate": [10, 0, 0]},
+               {"file": "square.ply", "emission": [1, 2, 3]}]})";
+  const Scene scene = parse_scene_json(text, (dir / "scene.json").string());
+  ASSERT_EQ(scene.surfaces.size(), 3u);
+  const Surface& big = named(scene.surfaces, "square:0");
+  expect_near(big.corners[2], Vec3(13, 3, 0));
+  EXPECT_NEAR(big.area_m2(), 9.0, kFloat);
+  const Surface& second = named(scene.surfaces, "square:0@1");  // the same file again
+  expect_near(second.corners[2], Vec3(1, 1, 0));
+  expect_near(second.emission_w_m2, Rgb(1, 2, 3));
+  expect_near(second.reflectance, Rgb(0.2, 0.1, 0.05));
+}
+
+TEST(MeshImport, SceneJsonOfMeshesOnly) {
+  TempDir dir("mesh_json");
+  write_obj(dir);
+  const Scene scene = parse_scene_json(R"({"meshes": [{"file": "room.obj"}]})", (dir / "scene.json").string());
+  EXPECT_EQ(scene.surfaces.size(), 4u);
+  ASSERT_EQ(scene.cameras.size(), 1u);  // none in the scene: default_camera()
+  EXPECT_EQ(scene.cameras[0].name, "default");
+}
+
+TEST(MeshImport, LoadSceneTakesAModelWithAnEmitterAndRefusesOneWithout) {
+  TempDir dir("mesh_load");
+  write_obj(dir);
+  const Scene scene = load_scene((dir / "room.obj").string());
+  EXPECT_EQ(scene.name, "room");
+  EXPECT_EQ(scene.surfaces.size(), 4u);
+  ASSERT_EQ(scene.cameras.size(), 1u);
+  EXPECT_EQ(scene.cameras[0].name, "default");
+  write_file(dir / "square.ply", testing_support::coloured_square_ply());
+  const std::string message = testing_support::user_error_message([&] { load_scene((dir / "square.ply").string()); });
+  EXPECT_NE(message.find("square.ply"), std::string::npos) << message;
+  EXPECT_NE(message.find("no emitting face"), std::string::npos) << message;
+  EXPECT_NE(message.find("\"meshes\""), std::string::npos) << message;
+}
+
+}  // namespace
+}  // namespace radrecon
