@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <set>
 
 #include "core/error.h"
@@ -14,6 +15,17 @@ namespace radrecon {
 namespace {
 
 using json = nlohmann::json;
+
+/// A surface's or a mesh file's "mesh" settings: {"max_divisions": int in [1, 100000]}.
+std::optional<int> read_mesh_settings(const JsonReader& r, const json& m, const std::string& path) {
+  if (!m.is_object()) r.fail(path, "must be an object");
+  r.no_unknown_keys(m, {"max_divisions"}, path);
+  if (!m.contains("max_divisions")) return std::nullopt;
+  const json& d = m["max_divisions"];
+  if (!d.is_number_integer() || d.get<long long>() < 1 || d.get<long long>() > 100000)
+    r.fail(path + ".max_divisions", "must be an integer in [1, 100000]");
+  return d.get<int>();
+}
 
 Surface read_surface(const JsonReader& r, const json& j, const std::string& path) {
   if (!j.is_object()) r.fail(path, "must be an object");
@@ -28,17 +40,7 @@ Surface read_surface(const JsonReader& r, const json& j, const std::string& path
   s.reflectance = r.colour(r.member(j, "reflectance", path), path + ".reflectance");
   if (j.contains("emission")) s.emission_w_m2 = r.colour(j["emission"], path + ".emission");
   if (j.contains("two_sided")) s.two_sided = r.boolean(j["two_sided"], path + ".two_sided");
-  if (j.contains("mesh")) {
-    const json& m = j["mesh"];
-    if (!m.is_object()) r.fail(path + ".mesh", "must be an object");
-    r.no_unknown_keys(m, {"max_divisions"}, path + ".mesh");
-    if (m.contains("max_divisions")) {
-      const json& d = m["max_divisions"];
-      if (!d.is_number_integer() || d.get<long long>() < 1 || d.get<long long>() > 100000)
-        r.fail(path + ".mesh.max_divisions", "must be an integer in [1, 100000]");
-      s.max_divisions = d.get<int>();
-    }
-  }
+  if (j.contains("mesh")) s.max_divisions = read_mesh_settings(r, j["mesh"], path + ".mesh");
   return s;
 }
 
@@ -72,17 +74,7 @@ MeshImport read_mesh_entry(const JsonReader& r, const json& j, const std::string
   if (j.contains("emission")) placement.emission_w_m2 = r.colour(j["emission"], path + ".emission");
   if (j.contains("two_sided")) placement.two_sided = r.boolean(j["two_sided"], path + ".two_sided");
   if (j.contains("merge_triangles")) placement.merge_triangles = r.boolean(j["merge_triangles"], path + ".merge_triangles");
-  if (j.contains("mesh")) {
-    const json& m = j["mesh"];
-    if (!m.is_object()) r.fail(path + ".mesh", "must be an object");
-    r.no_unknown_keys(m, {"max_divisions"}, path + ".mesh");
-    if (m.contains("max_divisions")) {
-      const json& d = m["max_divisions"];
-      if (!d.is_number_integer() || d.get<long long>() < 1 || d.get<long long>() > 100000)
-        r.fail(path + ".mesh.max_divisions", "must be an integer in [1, 100000]");
-      placement.max_divisions = d.get<int>();
-    }
-  }
+  if (j.contains("mesh")) placement.max_divisions = read_mesh_settings(r, j["mesh"], path + ".mesh");
   const std::filesystem::path file_path = std::filesystem::path(file).is_absolute() ? std::filesystem::path(file) : base_dir / file;
   try {
     return import_mesh(file_path.string(), placement);

@@ -31,17 +31,16 @@ struct Block {
   /// divided by the block's area: sum_k A_k (c_k - c) (B_k - B_mean) / A, W/m^2 times metres.
   Eigen::Matrix3d dipole = Eigen::Matrix3d::Zero();
   bool uniform = true;            ///< every element has the same unshot radiosity
-  /// The block shoots as one (far_field_radiosity()) to receivers farther than this from its
-  /// centre, squared (m^2): see far_distance_sq().
-  double far_m2 = 0;
   int first_child = -1;           ///< children are consecutive; -1 for a single element
   int child_count = 0;
 };
 
-/// The squared distance (m^2) beyond which a block may shoot as one, with its mean and first-order
-/// corrected radiosity (far_field_radiosity()): tol::kFarFieldDiagonals of its diagonals.
-double far_distance_sq(const Block& b) {
-  return tol::kFarFieldDiagonals * tol::kFarFieldDiagonals * b.diagonal_m * b.diagonal_m;
+/// The largest distance between two of the block's corners, metres.
+double widest(const Block& b) {
+  double d = 0;
+  for (int a = 0; a < b.corner_count; ++a)
+    for (int c = a + 1; c < b.corner_count; ++c) d = std::max(d, (b.corners[a] - b.corners[c]).norm());
+  return d;
 }
 
 class ShooterTree {
@@ -85,9 +84,7 @@ class ShooterTree {
       const Vec2& q = uv[side_.back_side && k > 0 ? n - k : k];
       b.corners[k] = surface_.point(q.x(), q.y());
     }
-    b.diagonal_m = 0;
-    for (int a = 0; a < n; ++a)
-      for (int c = a + 1; c < n; ++c) b.diagonal_m = std::max(b.diagonal_m, (b.corners[a] - b.corners[c]).norm());
+    b.diagonal_m = widest(b);
   }
 
   void set_radiosity(Block& b, std::span<const size_t> elements) const {
@@ -111,7 +108,6 @@ class ShooterTree {
       b.dipole += side_.elements[k].area_m2 * (side_.elements[k].center - b.center) *
                   (unshot_[k] - b.unshot_w_m2).matrix().transpose();
     b.dipole /= area;
-    b.far_m2 = far_distance_sq(b);
     b.uniform = ((hi - lo) <= tol::kUniformRelative * hi.abs().max(std::numeric_limits<double>::min())).all();
   }
 
@@ -158,10 +154,7 @@ class ShooterTree {
       const MeshElement& e = side_.elements[k];
       child.corner_count = e.corner_count();
       std::copy_n(e.corners.begin(), child.corner_count, child.corners.begin());
-      child.diagonal_m = 0;
-      for (int a = 0; a < child.corner_count; ++a)
-        for (int c = a + 1; c < child.corner_count; ++c)
-          child.diagonal_m = std::max(child.diagonal_m, (child.corners[a] - child.corners[c]).norm());
+      child.diagonal_m = widest(child);
       set_radiosity(child, std::span<const size_t>(&k, 1));
       blocks_.push_back(child);
     }
@@ -244,7 +237,8 @@ struct Gathered {
 Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, const Vec3& shooter_normal,
                 const std::vector<const Occluder*>& occluders) {
   Gathered out;
-  if (b.first_child < 0 || b.uniform || (r.center - b.center).squaredNorm() > b.far_m2) {
+  const double far_m = tol::kFarFieldDiagonals * b.diagonal_m;  // shoots as one beyond this
+  if (b.first_child < 0 || b.uniform || (r.center - b.center).squaredNorm() > far_m * far_m) {
     if ((b.highest_w_m2 == 0).all()) return out;
     ConvexPolygon poly;
     for (int k = 0; k < b.corner_count; ++k) poly.push(b.corners[k]);
