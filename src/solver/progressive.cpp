@@ -21,7 +21,7 @@ namespace {
 struct Block {
   /// The block's outline, counter-clockwise seen from the front of the side: a box of cells, cut
   /// by a triangle's hypotenuse (5 corners at most).
-  std::array<Vec3, 5> corners;
+  std::array<Vec3, 5> corners{Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
   int corner_count = 0;
   Vec3 center;
   double diagonal_m = 0;          ///< the largest distance between two corners

@@ -1,6 +1,7 @@
 #pragma once
 // A closed room whose light is part of its ceiling, for the energy tests of both solvers.
 
+#include "solver/solution.h"
 #include "support/scenes.h"
 
 namespace radrecon::testing_support {
@@ -34,6 +35,15 @@ inline Scene closed_room(double rho, double E) {
   tile("ceiling_east", 2, 1, X, 1.5);
   tile("light", 1, 1, 2, 1.5, E);
   return room;
+}
+
+/// sum A B over every element of the solution, channel 0, W: the radiosity power the closed forms
+/// predict (Phi / (1 - rho) in a closed room or box).
+inline double radiosity_power_w(const Solution& sol) {
+  double power = 0;
+  for (const SurfaceSolution& s : sol.surfaces)
+    for (const SolutionElement& e : s.elements) power += e.area_m2 * e.radiosity_w_m2[0];
+  return power;
 }
 
 }  // namespace radrecon::testing_support

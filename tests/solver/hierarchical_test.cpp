@@ -63,9 +63,7 @@ TEST(Hierarchical, ClosedBoxRadiosityPowerIsEmittedOverOneMinusReflectance) {
   HierarchicalOptions options;
   options.epsilon_w = 1e-3;
   const Solution sol = solve_hierarchical(box, options, "quadtree-eps:1e-3");
-  double power = 0;
-  for (const SurfaceSolution& s : sol.surfaces)
-    for (const SolutionElement& e : s.elements) power += e.area_m2 * e.radiosity_w_m2[0];
+  const double power = testing_support::radiosity_power_w(sol);
   const double expected = E * 1.0 / (1 - rho);
   EXPECT_NEAR(power, expected, 0.01 * expected);
   EXPECT_GT(sol.stats.elements, 6u) << "the box should have been refined";
@@ -80,9 +78,7 @@ TEST(Hierarchical, ClosedRoomKeepsItsEnergy) {
     HierarchicalOptions options;
     options.epsilon_w = 1e-3;
     const Solution sol = solve_hierarchical(testing_support::closed_room(rho, E), options, "quadtree-eps:1e-3");
-    double radiosity_power = 0;
-    for (const SurfaceSolution& s : sol.surfaces)
-      for (const SolutionElement& e : s.elements) radiosity_power += e.area_m2 * e.radiosity_w_m2[0];
+    const double radiosity_power = testing_support::radiosity_power_w(sol);
     // Measured: absorbed / emitted - 1 = 1.3e-4 (rho 0.5) and 1.0e-4 (0.95); sum A B against
     // the closed form Phi / (1 - rho) (mean radiosity Phi / ((1 - rho) A)): 6.5e-5 and 9.8e-5.
     EXPECT_TRUE(sol.stats.converged);

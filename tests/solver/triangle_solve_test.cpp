@@ -96,9 +96,7 @@ TEST(TriangleHierarchical, AClosedRoomOfTrianglesKeepsItsEnergy) {
     HierarchicalOptions options;
     options.epsilon_w = 1e-3;
     const Solution sol = solve_hierarchical(as_triangles(testing_support::closed_room(rho, E)), options, "quadtree-eps:1e-3");
-    double radiosity_power = 0;
-    for (const SurfaceSolution& s : sol.surfaces)
-      for (const SolutionElement& e : s.elements) radiosity_power += e.area_m2 * e.radiosity_w_m2[0];
+    const double radiosity_power = testing_support::radiosity_power_w(sol);
     EXPECT_TRUE(sol.stats.converged);
     EXPECT_NEAR(sol.stats.absorbed_w[0], phi, 1e-3 * phi) << "rho = " << rho;
     const double mean_radiosity = phi / ((1 - rho) * area);
@@ -112,9 +110,7 @@ TEST(TriangleProgressive, AClosedBoxOfTrianglesHoldsEmittedOverOneMinusReflectan
   ProgressiveOptions po;
   po.residual = 1e-7;
   const Solution sol = solve_progressive(box, make_grid_mesh(box, {12, 2}), po, "grid:12");
-  double power = 0;
-  for (const SurfaceSolution& s : sol.surfaces)
-    for (const SolutionElement& e : s.elements) power += e.area_m2 * e.radiosity_w_m2[0];
+  const double power = testing_support::radiosity_power_w(sol);
   EXPECT_NEAR(power, E / (1 - rho), 0.01 * E / (1 - rho));
   EXPECT_LT(std::abs(sol.stats.escaped_w[0]), 0.01 * E);
   EXPECT_TRUE(sol.stats.converged);
