@@ -335,7 +335,7 @@ TEST(InterpolantContract, NanQueryGivesNan) {
   });
 }
 
-TEST(InterpolantContract, ChannelsAreIndependent) {
+TEST(InterpolantContract, SlowChannelsAreIndependent) {
   // Bit for bit: each channel's arithmetic does not depend on the others (the multiquadrics' LU
   // solves all channels as right-hand sides of one system, column by column).
   for_each_case([](const Case& c, const DataSet& d) {
@@ -353,7 +353,7 @@ TEST(InterpolantContract, ChannelsAreIndependent) {
   });
 }
 
-TEST(InterpolantContract, BatchEqualsOnePointAtATime) {
+TEST(InterpolantContract, SlowBatchEqualsOnePointAtATime) {
   // Bit for bit: lattice data put many queries on Delaunay edges and co-circular points, where
   // natural-neighbour's walk could end in either face (it starts from the canonical one).
   for_each_case([](const Case& c, const DataSet& d) {
@@ -371,7 +371,7 @@ TEST(InterpolantContract, BatchEqualsOnePointAtATime) {
   });
 }
 
-TEST(InterpolantContract, OneAndTwoThreadsGiveIdenticalResults) {
+TEST(InterpolantContract, SlowOneAndTwoThreadsGiveIdenticalResults) {
   const int threads = omp_get_max_threads();
   for_each_case([&](const Case& c, const DataSet& d) {
     const std::vector<Vec2> q = queries(d);

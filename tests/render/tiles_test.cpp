@@ -154,7 +154,7 @@ TEST(Tiles, AutomaticTilesHoldAtMostTheirRaysWhateverTheRaysPerPixel) {
   EXPECT_EQ(tile_side(options), 64);
 }
 
-TEST(Tiles, PeakMemoryDoesNotGrowWithRaysPerPixel) {
+TEST(Tiles, SlowPeakMemoryDoesNotGrowWithRaysPerPixel) {
   // Measured by the counting operator new above, not by the renderer's own estimate.
   const TestScene t;
   RenderOptions options;

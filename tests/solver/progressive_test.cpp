@@ -117,7 +117,7 @@ TEST(Progressive, ClosedBoxRadiosityPowerIsEmittedOverOneMinusReflectance) {
 // Issue 11 item 5: before the Gauss rule near the shooter and the corrected far field
 // (solver/progressive.cpp gather()), progressive refinement gained 0.2% of the shot power per
 // bounce here (absorbed 20.04 W of 20 at rho 0.5).
-TEST(Progressive, ClosedRoomKeepsItsEnergyAndMatchesTheClosedFormMeanIrradiance) {
+TEST(Progressive, SlowClosedRoomKeepsItsEnergyAndMatchesTheClosedFormMeanIrradiance) {
   // In a closed room of uniform reflectance every watt emitted is absorbed: (1 - rho) sum A H =
   // Phi, so the mean irradiance is E = Phi / ((1 - rho) A) = Phi / A + rho Phi / ((1 - rho) A),
   // and the mean radiosity is B = Phi / ((1 - rho) A) (B = E_emitted + rho H, summed over A).

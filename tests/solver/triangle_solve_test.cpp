@@ -104,7 +104,7 @@ TEST(TriangleHierarchical, AClosedRoomOfTrianglesKeepsItsEnergy) {
   }
 }
 
-TEST(TriangleProgressive, AClosedBoxOfTrianglesHoldsEmittedOverOneMinusReflectance) {
+TEST(TriangleProgressive, SlowClosedBoxOfTrianglesHoldsEmittedOverOneMinusReflectance) {
   const double rho = 0.6, E = 10.0;
   const Scene box = as_triangles(testing_support::closed_box(rho, E));
   ProgressiveOptions po;
