@@ -56,6 +56,16 @@ void parallel_for(std::int64_t begin, std::int64_t end, Body&& body) {
   error.rethrow();
 }
 
+/// parallel_for for iterations that each cost far more than waking the team (a link's form
+/// factor by cubature, a block of receivers): handed out one at a time, in parallel from two on.
+template <typename Body>
+void parallel_for_coarse(std::int64_t begin, std::int64_t end, Body&& body) {
+  LoopException error;
+#pragma omp parallel for schedule(dynamic, 1) if (end - begin >= 2)
+  for (std::int64_t i = begin; i < end; ++i) error.run([&] { body(i); });
+  error.rethrow();
+}
+
 /// parallel_for with one Scratch object per thread, default-constructed when the thread joins
 /// the loop and passed to every iteration that thread runs: body(i, scratch). Buffers in it grow
 /// once per thread and call, never per iteration, and nothing outlives the call (no

@@ -7,10 +7,10 @@
 namespace radrecon {
 
 Quadtree::Quadtree(const Surface& surface, bool back_side) : surface_(&surface), back_side_(back_side) {
-  nodes_.push_back(make_node(surface.domain()));
+  nodes_.push_back(node_for(surface.domain()));
 }
 
-QuadNode Quadtree::make_node(const ParamCell& cell) const {
+QuadNode Quadtree::node_for(const ParamCell& cell) const {
   const MeshElement e = make_element(*surface_, back_side_, cell);
   QuadNode n;
   static_cast<ParamCell&>(n) = cell;
@@ -30,7 +30,7 @@ int Quadtree::split(int index) {
   if (!nodes_[static_cast<size_t>(index)].is_leaf()) return nodes_[static_cast<size_t>(index)].first_child;
   const std::array<ParamCell, 4> quarters = nodes_[static_cast<size_t>(index)].quarters();
   const int first = node_count();
-  for (const ParamCell& q : quarters) nodes_.push_back(make_node(q));
+  for (const ParamCell& q : quarters) nodes_.push_back(node_for(q));
   nodes_[static_cast<size_t>(index)].first_child = first;
   leaves_ += 3;
   return first;

@@ -45,8 +45,11 @@ class Quadtree {
   /// (ParamCell::quarter_of()), so every point has exactly one.
   int locate(double u, double v) const;
 
+  /// The node a split would make for `cell` (a cell of this side's parameter domain), without
+  /// storing it: its corners, centre, area and size as split() computes them.
+  QuadNode node_for(const ParamCell& cell) const;
+
  private:
-  QuadNode make_node(const ParamCell& cell) const;
 
   const Surface* surface_;
   bool back_side_;

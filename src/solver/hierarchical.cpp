@@ -11,6 +11,7 @@
 
 #include "core/check.h"
 #include "core/error.h"
+#include "core/parallel.h"
 #include "core/tolerances.h"
 #include "mesh/quadtree.h"
 #include "scene/side.h"
@@ -56,20 +57,14 @@ struct Link {
   double f_spread;  ///< max - min of the point form factors over the receiver's samples
 };
 
-/// Midpoint samples per receiver edge for a link's area-to-area form factor, and the finer rule
-/// used where the point form factor jumps across the receiver (its spread exceeds this
-/// fraction of its maximum).
-constexpr int kLinkQuadrature = 4;
-constexpr int kLinkQuadratureFine = 16;
-constexpr double kDiscontinuousSpread = 0.5;
-
 /// Thrown when a hierarchy would exceed HierarchicalOptions::max_links.
 struct TooManyLinks {};
 
 
 class Hierarchy {
  public:
-  Hierarchy(const Scene& scene, const HierarchicalOptions& options) : scene_(scene), options_(options) {
+  Hierarchy(const Scene& scene, const HierarchicalOptions& options, LinkFormFactorCache* cache)
+      : scene_(scene), options_(options), cache_(cache != nullptr ? cache : &own_cache_) {
     min_size_m_ = min_element_size_m(scene, options);
     occluders_ = make_occluders(scene);
     bvh_ = OccluderBvh(occluders_);
@@ -87,6 +82,7 @@ class Hierarchy {
       RR_CHECK(found, "leaf cap names no surface side");
     }
     pair_occluders_.resize(trees_.size() * trees_.size());
+    std::vector<Request> roots;
     for (size_t r = 0; r < trees_.size(); ++r)
       for (size_t s = 0; s < trees_.size(); ++s) {
         const Tree& R = trees_[r];
@@ -95,8 +91,10 @@ class Hierarchy {
           continue;
         pair_occluders_[r * trees_.size() + s] =
             bvh_.between(R.node(0).corners, S.node(0).corners, R.scene_surface, S.scene_surface);
-        links_.push_back(make_link(static_cast<int>(r), 0, static_cast<int>(s), 0));
+        roots.push_back({static_cast<int>(r), R.node(0), static_cast<int>(s), S.node(0)});
       }
+    measure_into_cache(roots);
+    for (const Request& q : roots) links_.push_back(make_link(q.receiver_tree, 0, q.source_tree, 0));
   }
 
   void solve() {
@@ -156,46 +154,48 @@ class Hierarchy {
     return pair_occluders_[static_cast<size_t>(r) * trees_.size() + static_cast<size_t>(s)];
   }
 
-  /// A link's form factor is the area-to-area form factor F(receiver -> source): the mean over
-  /// kLinkQuadrature^2 midpoint samples of the receiver of the exact visible point-to-quad form
-  /// factor. Its spread over the samples measures how much the transport varies across the
-  /// receiver, shadow boundaries included.
-  Link make_link(int rt, int rn, int st, int sn) const {
-    Link link = sample_link(rt, rn, st, sn, kLinkQuadrature);
-    // A discontinuity (a shadow boundary, or the foot of a wall standing on the receiver) makes
-    // the coarse rule's error of order 1 / kLinkQuadrature of the jump: sample finely there.
-    if (link.f_spread > kDiscontinuousSpread * (link.f + link.f_spread))
-      link = sample_link(rt, rn, st, sn, kLinkQuadratureFine);
-    return link;
+  /// A link's end: node `node` of tree `tree`.
+  LinkEnd end(int tree, const QuadNode& node) const {
+    const Tree& t = trees_[static_cast<size_t>(tree)];
+    return {&scene_.surfaces[t.scene_surface], t.scene_surface, t.normal, node};
   }
 
-  Link sample_link(int rt, int rn, int st, int sn, int n) const {
-    const Tree& R = trees_[static_cast<size_t>(rt)];
-    const Tree& S = trees_[static_cast<size_t>(st)];
-    const QuadNode& r = R.node(rn);
-    const QuadNode& s = S.node(sn);
-    const Surface& surface = scene_.surfaces[R.scene_surface];
-    ConvexPolygon source;
-    for (int k = 0; k < s.vertex_count(); ++k) source.push(s.corners[k]);
-    // The occluders in the shaft between the two nodes (solver/bvh.h), among the pair's.
-    thread_local std::vector<const Occluder*> occ;
-    occ.clear();
-    if (!occluders(rt, st).empty())
-      bvh_.collect(Shaft(std::span<const Vec3>(r.corners.data(), static_cast<size_t>(r.vertex_count())),
-                         std::span<const Vec3>(s.corners.data(), static_cast<size_t>(s.vertex_count()))),
-                   R.scene_surface, S.scene_surface, occ);
-    Link link{rt, rn, st, sn, 0.0, 0.0};
-    double lo = std::numeric_limits<double>::infinity(), hi = 0;
-    r.for_each_midpoint(n, [&](const Vec2& uv) {
-      const Vec3 p = surface.point(uv.x(), uv.y());
-      const double f = visible_form_factor(p, R.normal, source, S.normal, occ);
-      link.f += f;
-      lo = std::min(lo, f);
-      hi = std::max(hi, f);
+  /// A link with its form factor (link_form_factor.h), from the cache when known.
+  Link make_link(int rt, int rn, int st, int sn) const {
+    const QuadNode& r = trees_[static_cast<size_t>(rt)].node(rn);
+    const QuadNode& s = trees_[static_cast<size_t>(st)].node(sn);
+    const LinkFormFactorCache::End cr{rt, r}, cs{st, s};
+    const LinkFormFactorCache::Value* known = cache_->find(cr, cs);
+    if (known == nullptr) {
+      cache_->insert(cr, cs, measure_link(end(rt, r), end(st, s), bvh_, !occluders(rt, st).empty()));
+      known = cache_->find(cr, cs);
+    }
+    return {rt, rn, st, sn, known->f, known->f_spread};
+  }
+
+  /// A link to measure: its ends' trees and nodes (which need not be stored yet).
+  struct Request {
+    int receiver_tree;
+    QuadNode receiver;
+    int source_tree;
+    QuadNode source;
+  };
+
+  /// Measures the requests not in the cache, in parallel, and adds them to it in their order
+  /// (so that the cache, and every solve that reads it, does not depend on the threads).
+  void measure_into_cache(const std::vector<Request>& requests) const {
+    std::vector<const Request*> missing;
+    for (const Request& q : requests)
+      if (cache_->find({q.receiver_tree, q.receiver}, {q.source_tree, q.source}) == nullptr) missing.push_back(&q);
+    std::vector<LinkFormFactor> measured(missing.size());
+    parallel_for_coarse(0, static_cast<std::int64_t>(missing.size()), [&](std::int64_t k) {
+      const Request& q = *missing[static_cast<size_t>(k)];
+      measured[static_cast<size_t>(k)] = measure_link(end(q.receiver_tree, q.receiver), end(q.source_tree, q.source), bvh_,
+                                                      !occluders(q.receiver_tree, q.source_tree).empty());
     });
-    link.f /= n * n;
-    link.f_spread = hi - lo;
-    return link;
+    for (size_t k = 0; k < missing.size(); ++k)
+      cache_->insert({missing[k]->receiver_tree, missing[k]->receiver}, {missing[k]->source_tree, missing[k]->source},
+                     measured[k]);
   }
 
   /// The refinement oracle: the power error (W, channel mean) of the link, from the variation
@@ -205,20 +205,35 @@ class Hierarchy {
     double receiver_w, source_w;
     double total() const { return std::max(receiver_w, source_w); }
   };
+  Estimate estimate(int receiver_tree, const QuadNode& receiver, double source_radiosity_w_m2, double source_spread_w_m2,
+                    double f, double f_spread) const {
+    const double scale = trees_[static_cast<size_t>(receiver_tree)].reflectance.mean() * receiver.area_m2;
+    return {scale * source_radiosity_w_m2 * f_spread, scale * source_spread_w_m2 * f};
+  }
   Estimate error_estimate(const Link& l) const {
-    const Tree& R = trees_[static_cast<size_t>(l.receiver_tree)];
-    const QuadNode& r = R.node(l.receiver_node);
     const NodeState& s = trees_[static_cast<size_t>(l.source_tree)].at(l.source_node);
-    const double scale = R.reflectance.mean() * r.area_m2;
-    return {scale * s.radiosity.mean() * l.f_spread, scale * s.spread_w_m2 * l.f};
+    return estimate(l.receiver_tree, trees_[static_cast<size_t>(l.receiver_tree)].node(l.receiver_node),
+                    s.radiosity.mean(), s.spread_w_m2, l.f, l.f_spread);
   }
 
-  bool splittable(int tree, int node) const {
+  bool splittable(int tree, const QuadNode& n) const {
     const Tree& t = trees_[static_cast<size_t>(tree)];
-    const QuadNode& n = t.node(node);
     if (!n.is_leaf()) return true;
     if (n.size_m < 2 * min_size_m_) return false;
     return t.leaf_cap == 0 || t.quad.leaf_count() + 3 <= t.leaf_cap;
+  }
+
+  /// What the refinement does with a link of estimate `e`: keep it, or split its receiver or its
+  /// source (the end responsible for the larger error that can be split).
+  enum class Refine { keep, receiver, source };
+  Refine decide(const Estimate& e, int receiver_tree, const QuadNode& receiver, int source_tree,
+                const QuadNode& source) const {
+    const bool can_r = splittable(receiver_tree, receiver);
+    // A black source radiates its uniform emission only: splitting it changes nothing.
+    const bool black_source = (trees_[static_cast<size_t>(source_tree)].reflectance == 0).all();
+    const bool can_s = !black_source && splittable(source_tree, source);
+    if (e.total() <= options_.epsilon_w || (!can_r && !can_s)) return Refine::keep;
+    return can_r && (!can_s || e.receiver_w >= e.source_w) ? Refine::receiver : Refine::source;
   }
 
   /// Splits a leaf; its children start with its radiosity until the next solve.
@@ -228,6 +243,61 @@ class Hierarchy {
     t.quad.split(node);
     const Rgb radiosity = t.at(node).radiosity;
     for (int c = 0; c < 4; ++c) t.state.push_back({radiosity});
+  }
+
+  /// Warms the cache with the links the next refinement pass will make, measured in parallel
+  /// wave by wave: the children of every link that decide() refines, then those of the children
+  /// it refines, and so on, with the sources' radiosities as split() leaves them. What the pass
+  /// then does is unchanged: only a leaf cap, which the waves do not count down, makes it ask
+  /// for a link not prefetched (measured then) or leave one unused.
+  void prefetch_pass() {
+    struct End {
+      int tree, index;  ///< index -1: a node the pass would create
+      QuadNode node;
+      double radiosity_w_m2, spread_w_m2;  ///< the node's state as the pass sees it (channel mean)
+    };
+    struct Pending {
+      End r, s;
+      LinkFormFactor f;
+    };
+    const auto stored = [&](int tree, int index) {
+      const Tree& t = trees_[static_cast<size_t>(tree)];
+      return End{tree, index, t.node(index), t.at(index).radiosity.mean(), t.at(index).spread_w_m2};
+    };
+    // The four children of an end: stored ones for a node split already, else the quarters,
+    // which start with the parent's radiosity and no spread.
+    const auto children = [&](const End& e) {
+      std::array<End, 4> out;
+      const std::array<ParamCell, 4> quarters = e.node.quarters();
+      for (int c = 0; c < 4; ++c)
+        out[static_cast<size_t>(c)] =
+            e.index >= 0 && !e.node.is_leaf()
+                ? stored(e.tree, e.node.first_child + c)
+                : End{e.tree, -1, trees_[static_cast<size_t>(e.tree)].quad.node_for(quarters[static_cast<size_t>(c)]),
+                      e.radiosity_w_m2, 0.0};
+      return out;
+    };
+    std::vector<Pending> wave;
+    for (const Link& l : links_)
+      wave.push_back({stored(l.receiver_tree, l.receiver_node), stored(l.source_tree, l.source_node), {l.f, l.f_spread}});
+    size_t made = 0;
+    while (!wave.empty() && made <= options_.max_links) {
+      std::vector<Pending> next;
+      for (const Pending& p : wave) {
+        const Estimate e = estimate(p.r.tree, p.r.node, p.s.radiosity_w_m2, p.s.spread_w_m2, p.f.f, p.f.f_spread);
+        const Refine refine = decide(e, p.r.tree, p.r.node, p.s.tree, p.s.node);
+        if (refine == Refine::keep) continue;
+        for (const End& c : children(refine == Refine::receiver ? p.r : p.s))
+          next.push_back(refine == Refine::receiver ? Pending{c, p.s, {}} : Pending{p.r, c, {}});
+      }
+      std::vector<Request> requests;
+      requests.reserve(next.size());
+      for (const Pending& p : next) requests.push_back({p.r.tree, p.r.node, p.s.tree, p.s.node});
+      measure_into_cache(requests);
+      for (Pending& p : next) p.f = *cache_->find({p.r.tree, p.r.node}, {p.s.tree, p.s.node});
+      made += next.size();
+      wave.swap(next);
+    }
   }
 
   /// One refinement pass, best first: the link with the largest error estimate is refined one
@@ -242,6 +312,7 @@ class Hierarchy {
       Link link;
       bool operator<(const Entry& o) const { return error < o.error || (error == o.error && sequence > o.sequence); }
     };
+    prefetch_pass();
     std::priority_queue<Entry> queue;
     size_t sequence = 0;
     for (const Link& l : links_) queue.push({error_estimate(l).total(), sequence++, l});
@@ -252,17 +323,14 @@ class Hierarchy {
       const Entry top = queue.top();
       queue.pop();
       const Link& l = top.link;
-      const Estimate e = error_estimate(l);
-      const bool can_r = splittable(l.receiver_tree, l.receiver_node);
-      // A black source radiates its uniform emission only: splitting it changes nothing.
-      const bool black_source = (trees_[static_cast<size_t>(l.source_tree)].reflectance == 0).all();
-      const bool can_s = !black_source && splittable(l.source_tree, l.source_node);
-      if (e.total() <= options_.epsilon_w || (!can_r && !can_s)) {
+      const Refine refine = decide(error_estimate(l), l.receiver_tree, trees_[static_cast<size_t>(l.receiver_tree)].node(l.receiver_node),
+                                   l.source_tree, trees_[static_cast<size_t>(l.source_tree)].node(l.source_node));
+      if (refine == Refine::keep) {
         kept.push_back(l);
         continue;
       }
       changed = true;
-      const bool split_receiver = can_r && (!can_s || e.receiver_w >= e.source_w);
+      const bool split_receiver = refine == Refine::receiver;
       const int tree = split_receiver ? l.receiver_tree : l.source_tree;
       const int node = split_receiver ? l.receiver_node : l.source_node;
       split(tree, node);
@@ -289,18 +357,29 @@ class Hierarchy {
   /// an ancestor's average irradiance (e.g. light from the front of a wall that the leaf is
   /// behind).
   void push_links_to_leaves() {
+    std::vector<Request> requests;
+    size_t count = 0;
+    for (const Link& l : links_) {
+      const Tree& R = trees_[static_cast<size_t>(l.receiver_tree)];
+      if (R.node(l.receiver_node).is_leaf()) {
+        ++count;
+        continue;
+      }
+      for (const int k : R.quad.leaves(l.receiver_node))
+        requests.push_back({l.receiver_tree, R.node(k), l.source_tree, trees_[static_cast<size_t>(l.source_tree)].node(l.source_node)});
+      if (count + requests.size() > options_.max_links) throw TooManyLinks{};
+    }
+    measure_into_cache(requests);
     std::vector<Link> leaf_links;
-    leaf_links.reserve(links_.size());
+    leaf_links.reserve(count + requests.size());
     for (const Link& l : links_) {
       const Tree& R = trees_[static_cast<size_t>(l.receiver_tree)];
       if (R.node(l.receiver_node).is_leaf()) {
         leaf_links.push_back(l);
         continue;
       }
-      for (const int k : R.quad.leaves(l.receiver_node)) {
+      for (const int k : R.quad.leaves(l.receiver_node))
         leaf_links.push_back(make_link(l.receiver_tree, k, l.source_tree, l.source_node));
-        if (leaf_links.size() > options_.max_links) throw TooManyLinks{};
-      }
     }
     std::sort(leaf_links.begin(), leaf_links.end(), [](const Link& a, const Link& b) {
       return std::tie(a.receiver_tree, a.receiver_node, a.source_tree, a.source_node) <
@@ -378,6 +457,8 @@ class Hierarchy {
 
   const Scene& scene_;
   HierarchicalOptions options_;
+  LinkFormFactorCache own_cache_;
+  LinkFormFactorCache* cache_;  ///< the caller's, or own_cache_
   double min_size_m_ = 0;
   std::vector<Occluder> occluders_;
   OccluderBvh bvh_;  ///< over occluders_
@@ -393,9 +474,9 @@ class Hierarchy {
 }  // namespace
 
 std::optional<Solution> try_solve_hierarchical(const Scene& scene, const HierarchicalOptions& options,
-                                               const std::string& mesh_spec) {
+                                               const std::string& mesh_spec, LinkFormFactorCache* cache) {
   RR_CHECK(options.epsilon_w > 0 && options.tolerance > 0, "hierarchical options out of range");
-  Hierarchy h(scene, options);
+  Hierarchy h(scene, options, cache);
   try {
     h.solve();
   } catch (const TooManyLinks&) {
@@ -404,8 +485,9 @@ std::optional<Solution> try_solve_hierarchical(const Scene& scene, const Hierarc
   return h.solution(mesh_spec);
 }
 
-Solution solve_hierarchical(const Scene& scene, const HierarchicalOptions& options, const std::string& mesh_spec) {
-  std::optional<Solution> sol = try_solve_hierarchical(scene, options, mesh_spec);
+Solution solve_hierarchical(const Scene& scene, const HierarchicalOptions& options, const std::string& mesh_spec,
+                            LinkFormFactorCache* cache) {
+  std::optional<Solution> sol = try_solve_hierarchical(scene, options, mesh_spec, cache);
   if (!sol) {
     char eps[32];
     std::snprintf(eps, sizeof eps, "%g", options.epsilon_w);

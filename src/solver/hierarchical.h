@@ -17,6 +17,7 @@
 #include <string>
 
 #include "scene/scene.h"
+#include "solver/link_form_factor.h"
 #include "solver/solution.h"
 
 namespace radrecon {
@@ -47,12 +48,14 @@ struct HierarchicalOptions {
 };
 
 /// Solves the scene by hierarchical radiosity; the elements of the solution are the leaves.
-/// nullopt when the refinement would need more than options.max_links links.
+/// nullopt when the refinement would need more than options.max_links links. `cache`, if given,
+/// must have been used only with this scene.
 std::optional<Solution> try_solve_hierarchical(const Scene& scene, const HierarchicalOptions& options,
-                                               const std::string& mesh_spec);
+                                               const std::string& mesh_spec, LinkFormFactorCache* cache = nullptr);
 
 /// try_solve_hierarchical(), with too many links refused (UserError naming `mesh_spec`).
-Solution solve_hierarchical(const Scene& scene, const HierarchicalOptions& options, const std::string& mesh_spec);
+Solution solve_hierarchical(const Scene& scene, const HierarchicalOptions& options, const std::string& mesh_spec,
+                            LinkFormFactorCache* cache = nullptr);
 
 /// The smallest element of `options` (metres): its min_size_m, or by default
 /// tol::kMinElementFraction of the scene's longest edge.

@@ -28,10 +28,11 @@ Solution solve_hierarchical_leaves(const Scene& scene, const std::string& side, 
   options.leaf_cap.reset();
   options.leaf_gather = false;  // the final gather does not change the count
   constexpr int kTooFine = std::numeric_limits<int>::max();
+  LinkFormFactorCache cache;  // the solves below share most of their links
   // Leaves of `side` at epsilon `eps` (W); kTooFine when the links would not fit.
   auto count = [&](double eps) {
     options.epsilon_w = eps;
-    const std::optional<Solution> sol = try_solve_hierarchical(scene, options, spec);
+    const std::optional<Solution> sol = try_solve_hierarchical(scene, options, spec, &cache);
     return sol ? static_cast<int>(leaf_count(*sol, side)) : kTooFine;
   };
   const auto start = std::chrono::steady_clock::now();
@@ -48,16 +49,26 @@ Solution solve_hierarchical_leaves(const Scene& scene, const std::string& side, 
       throw UserError(field, std::to_string(leaves) + " leaves on '" + side + "' cannot be reached above the minimum element size (" +
                                  std::to_string(min_size) + " m allows at most " + std::to_string(static_cast<long long>(most)) + ")");
   }
-  // Bracket count(lo) >= leaves > count(hi), stepping by kStep, then bisect on log epsilon until
-  // the bracket is kBracket wide or lo gives exactly `leaves`.
-  constexpr double kStep = 10, kBracket = 1.001, kStart = 1e-3, kLargest = 1e12;
-  constexpr int kMaxSteps = 12, kMaxBisections = 60;
+  // Bracket count(lo) >= leaves > count(hi), stepping down by kStep at most, then bisect on log
+  // epsilon until the bracket is kBracket wide or lo gives exactly `leaves`. An epsilon far too
+  // small costs far more than the rest of the search (the links grow as the square of the
+  // leaves), so a step goes no lower than kUndershoot times where the last two counts,
+  // extrapolated as a power of epsilon, reach `leaves`.
+  constexpr double kStep = 10, kBracket = 1.001, kStart = 1e-3, kLargest = 1e12, kUndershoot = 0.7;
+  constexpr int kMaxSteps = 24, kMaxBisections = 60;
   double hi = 1.0, lo = kStart;
-  while (count(hi) >= leaves && hi < kLargest) hi *= kStep;
+  int c_hi = count(hi);
+  while (c_hi >= leaves && hi < kLargest) c_hi = count(hi *= kStep);
   int c_lo = count(lo), previous = -1;
   for (int k = 0; c_lo < leaves && c_lo > previous && k < kMaxSteps; ++k) {
+    double next = lo / kStep;
+    if (c_hi > 0 && c_lo > c_hi && hi > lo) {
+      const double exponent = std::log(double(c_lo) / c_hi) / std::log(hi / lo);  // count ~ epsilon^-exponent
+      next = std::max(next, kUndershoot * lo * std::pow(double(c_lo) / leaves, 1 / exponent));
+    }
     hi = lo;
-    lo /= kStep;
+    c_hi = c_lo;
+    lo = next;
     previous = c_lo;
     c_lo = count(lo);
   }
@@ -81,7 +92,7 @@ Solution solve_hierarchical_leaves(const Scene& scene, const std::string& side, 
   options.epsilon_w = lo;
   options.leaf_cap = std::make_pair(side, leaves);
   options.progress_label = label;
-  Solution sol = solve_hierarchical(scene, options, spec);
+  Solution sol = solve_hierarchical(scene, options, spec, &cache);
   const size_t made = leaf_count(sol, side);
   if (made != static_cast<size_t>(leaves))
     throw UserError(field, "refinement gives " + std::to_string(made) + " leaves on '" + side + "', not exactly " +

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <omp.h>
+
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.h"
@@ -142,6 +145,33 @@ TEST(Hierarchical, RefinementIsDeterministic) {
       EXPECT_EQ(a.surfaces[s].elements[e].u0, b.surfaces[s].elements[e].u0);
       EXPECT_EQ(a.surfaces[s].elements[e].radiosity_w_m2[0], b.surfaces[s].elements[e].radiosity_w_m2[0]);
     }
+  }
+}
+
+// Links are measured in parallel and may come from a cache filled by another solve of the same
+// scene (quadtree:LEAVES's search): neither may change a bit of the result.
+TEST(Hierarchical, SameForAnyThreadCountAndWithACacheOfAnotherSolve) {
+  HierarchicalOptions options;
+  options.epsilon_w = 0.005;
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const Solution alone = solve_hierarchical(paper_scene(), options, "alone");
+  omp_set_num_threads(std::max(2, threads));
+  LinkFormFactorCache cache;
+  HierarchicalOptions finer = options;
+  finer.epsilon_w = 0.002;
+  solve_hierarchical(paper_scene(), finer, "finer", &cache);
+  const size_t cached = cache.size();
+  const Solution shared = solve_hierarchical(paper_scene(), options, "shared", &cache);
+  omp_set_num_threads(threads);
+  EXPECT_GT(cached, shared.stats.links) << "the cache was filled by the finer solve";
+  ASSERT_EQ(alone.surfaces.size(), shared.surfaces.size());
+  EXPECT_EQ(alone.stats.links, shared.stats.links);
+  for (size_t s = 0; s < alone.surfaces.size(); ++s) {
+    ASSERT_EQ(alone.surfaces[s].elements.size(), shared.surfaces[s].elements.size());
+    for (size_t e = 0; e < alone.surfaces[s].elements.size(); ++e)
+      for (int c = 0; c < 3; ++c)
+        ASSERT_EQ(alone.surfaces[s].elements[e].radiosity_w_m2[c], shared.surfaces[s].elements[e].radiosity_w_m2[c]);
   }
 }
 
