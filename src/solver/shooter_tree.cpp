@@ -1,0 +1,188 @@
+#include "solver/shooter_tree.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/tolerances.h"
+
+namespace radrecon {
+
+namespace {
+
+/// The largest distance between two of the block's corners, metres.
+double widest(const Block& b) {
+  double d = 0;
+  for (int a = 0; a < b.corner_count; ++a)
+    for (int c = a + 1; c < b.corner_count; ++c) d = std::max(d, (b.corners[a] - b.corners[c]).norm());
+  return d;
+}
+
+}  // namespace
+
+/// The outline of the (u,v) box [u0,u1] x [v0,v1] inside the side's parameter domain.
+void ShooterTree::set_outline(Block& b, double u0, double v0, double u1, double v1) const {
+  std::array<Vec2, 5> uv;
+  int n = 0;
+  if (!side_.domain.is_triangle() || u1 + v1 <= 1) {
+    uv = {Vec2(u0, v0), Vec2(u1, v0), Vec2(u1, v1), Vec2(u0, v1), Vec2()};
+    n = 4;
+  } else {
+    // The box clipped by u + v <= 1 (one Sutherland-Hodgman pass); the box's lower-left corner
+    // is inside, as the block holds elements.
+    const std::array<Vec2, 4> box = {Vec2(u0, v0), Vec2(u1, v0), Vec2(u1, v1), Vec2(u0, v1)};
+    for (int k = 0; k < 4; ++k) {
+      const Vec2 &a = box[k], &c = box[(k + 1) % 4];
+      const double da = 1 - a.sum(), dc = 1 - c.sum();
+      if (da >= 0) uv[n++] = a;
+      if ((da > 0 && dc < 0) || (da < 0 && dc > 0)) uv[n++] = a + da / (da - dc) * (c - a);
+    }
+  }
+  set_corners(b, uv.data(), n);
+}
+
+void ShooterTree::set_corners(Block& b, const Vec2* uv, int n) const {
+  b.corner_count = n;
+  for (int k = 0; k < n; ++k) {
+    const Vec2& q = uv[side_.back_side && k > 0 ? n - k : k];
+    b.corners[k] = surface_.point(q.x(), q.y());
+  }
+  b.diagonal_m = widest(b);
+}
+
+void ShooterTree::set_radiosity(Block& b, std::span<const size_t> elements) const {
+  Rgb weighted = Rgb::Zero(), lo = unshot_[elements[0]], hi = lo;
+  double area = 0;
+  Vec3 center = Vec3::Zero();
+  for (const size_t k : elements) {
+    const double a = side_.elements[k].area_m2;
+    weighted += a * unshot_[k];
+    center += a * side_.elements[k].center;
+    area += a;
+    lo = lo.min(unshot_[k]);
+    hi = hi.max(unshot_[k]);
+  }
+  b.unshot_w_m2 = weighted / area;
+  b.center = center / area;
+  b.lowest_w_m2 = lo;
+  b.highest_w_m2 = hi;
+  b.dipole.setZero();
+  for (const size_t k : elements)
+    b.dipole += side_.elements[k].area_m2 * (side_.elements[k].center - b.center) *
+                (unshot_[k] - b.unshot_w_m2).matrix().transpose();
+  b.dipole /= area;
+  b.uniform = ((hi - lo) <= tol::kUniformRelative * hi.abs().max(std::numeric_limits<double>::min())).all();
+}
+
+void ShooterTree::build(size_t index, int i0, int j0, int i1, int j1) {
+  const int nu = side_.nu, nv = side_.nv;
+  std::vector<size_t> elements;
+  for (int j = j0; j < j1; ++j)
+    for (int i = i0; i < i1; ++i) {
+      const auto [first, last] = side_.cell_elements(i, j);
+      for (size_t k = first; k < last; ++k) elements.push_back(k);
+    }
+  Block& b = blocks_[index];
+  set_outline(b, double(i0) / nu, double(j0) / nv, double(i1) / nu, double(j1) / nv);
+  set_radiosity(b, elements);
+  if (i1 - i0 == 1 && j1 - j0 == 1) {
+    if (elements.size() > 1) add_element_children(index, elements);
+    return;
+  }
+  const int mi = (i1 - i0) > 1 ? (i0 + i1) / 2 : i1;
+  const int mj = (j1 - j0) > 1 ? (j0 + j1) / 2 : j1;
+  std::array<std::array<int, 4>, 4> quads = {{{i0, j0, mi, mj}, {mi, j0, i1, mj}, {i0, mj, mi, j1}, {mi, mj, i1, j1}}};
+  // A part of the box beyond a triangle's hypotenuse (no elements) is no child.
+  const auto holds_elements = [&](const std::array<int, 4>& q) {
+    return q[2] > q[0] && q[3] > q[1] && (!side_.domain.is_triangle() || q[0] + q[1] <= nu - 1);
+  };
+  int first = static_cast<int>(blocks_.size());
+  int count = 0;
+  for (const auto& q : quads) count += holds_elements(q) ? 1 : 0;
+  blocks_[index].first_child = first;
+  blocks_[index].child_count = count;
+  blocks_.resize(blocks_.size() + static_cast<size_t>(count));
+  int c = 0;
+  for (const auto& q : quads)
+    if (holds_elements(q)) build(static_cast<size_t>(first + c++), q[0], q[1], q[2], q[3]);
+}
+
+/// A cell of two elements: one child block per element.
+void ShooterTree::add_element_children(size_t index, const std::vector<size_t>& elements) {
+  const int first = static_cast<int>(blocks_.size());
+  blocks_[index].first_child = first;
+  blocks_[index].child_count = static_cast<int>(elements.size());
+  for (const size_t k : elements) {
+    Block child;
+    const MeshElement& e = side_.elements[k];
+    child.corner_count = e.corner_count();
+    std::copy_n(e.corners.begin(), child.corner_count, child.corners.begin());
+    child.diagonal_m = widest(child);
+    set_radiosity(child, std::span<const size_t>(&k, 1));
+    blocks_.push_back(child);
+  }
+}
+
+Rgb far_field_radiosity(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal) {
+  const Vec3 d = p - b.center;  // from the source point y = c to the receiver x = p
+  const double r2 = d.squaredNorm(), cos_y = shooter_normal.dot(d), cos_x = -n.dot(d);
+  if (!(cos_y > tol::kKernelCosine * std::sqrt(r2) && cos_x > tol::kKernelCosine * std::sqrt(r2))) return b.unshot_w_m2;
+  const Vec3 g = -shooter_normal / cos_y - n / cos_x + 4.0 * d / r2;
+  const Rgb corrected = b.unshot_w_m2 + (g.transpose() * b.dipole).transpose().array();
+  return corrected.max(b.lowest_w_m2).min(b.highest_w_m2);
+}
+
+GaussPoints gauss_points(const ParamCell& e) {
+  GaussPoints out;
+  if (e.is_triangle()) {
+    const auto v = e.vertices();
+    for (int k = 0; k < 3; ++k) out.uv[out.count++] = (4.0 * v[k] + v[(k + 1) % 3] + v[(k + 2) % 3]) / 6.0;
+    return out;
+  }
+  const double g = 0.5 / std::sqrt(3.0);  // Gauss-Legendre nodes at the centre +- half-width / sqrt(3)
+  const double um = 0.5 * (e.u0 + e.u1), vm = 0.5 * (e.v0 + e.v1);
+  const double du = (e.u1 - e.u0) * g, dv = (e.v1 - e.v0) * g;
+  for (const double sv : {-1.0, 1.0})
+    for (const double su : {-1.0, 1.0}) out.uv[out.count++] = Vec2(um + su * du, vm + sv * dv);
+  return out;
+}
+
+Receiver make_receiver(const Surface& surface, const MeshElement& e, const Vec3& normal) {
+  Receiver r;
+  r.center = e.center;
+  r.normal = normal;
+  r.size_m = std::max((e.corners[2] - e.corners[0]).norm(), (e.corners[3] - e.corners[1]).norm());
+  const GaussPoints g = gauss_points(e);
+  for (int k = 0; k < g.count; ++k) r.gauss[k] = surface.point(g.uv[k].x(), g.uv[k].y());
+  r.gauss_count = g.count;
+  return r;
+}
+
+Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, const Vec3& shooter_normal,
+                const std::vector<const Occluder*>& occluders) {
+  Gathered out;
+  const double far_m = tol::kFarFieldDiagonals * b.diagonal_m;  // shoots as one beyond this
+  if (b.first_child < 0 || b.uniform || (r.center - b.center).squaredNorm() > far_m * far_m) {
+    if ((b.highest_w_m2 == 0).all()) return out;
+    ConvexPolygon poly;
+    for (int k = 0; k < b.corner_count; ++k) poly.push(b.corners[k]);
+    const auto at = [&](const Vec3& p) -> Rgb {
+      const double f = visible_form_factor(p, r.normal, poly, shooter_normal, occluders);
+      if (f == 0 || b.uniform) return f * b.unshot_w_m2;
+      return f * far_field_radiosity(b, p, r.normal, shooter_normal);
+    };
+    out.at_center = at(r.center);
+    const double gap_m = (r.center - b.center).norm() - 0.5 * b.diagonal_m;
+    if (r.size_m <= tol::kMidpointReceiverRatio * gap_m) {
+      out.mean = out.at_center;
+    } else {
+      for (int k = 0; k < r.gauss_count; ++k) out.mean += at(r.gauss[k]);
+      out.mean /= r.gauss_count;
+    }
+    return out;
+  }
+  for (int c = 0; c < b.child_count; ++c) out += gather(tree, tree.block(b.first_child + c), r, shooter_normal, occluders);
+  return out;
+}
+
+}  // namespace radrecon

@@ -1,0 +1,116 @@
+#pragma once
+// The shooting side of progressive refinement (solver/progressive.h): a patch of elements as a
+// hierarchy of blocks that shoot as one when far from a receiver, and what a receiving point or
+// element gathers from it in one shot.
+
+#include <array>
+#include <span>
+#include <vector>
+
+#include "mesh/grid_mesh.h"
+#include "solver/visibility.h"
+
+namespace radrecon {
+
+/// A node of the shooting hierarchy over one patch: the elements of the cells [i0,i1) x [j0,j1),
+/// or a single element of a cell that holds two (a triangle's lower and upper halves).
+struct Block {
+  /// The block's outline, counter-clockwise seen from the front of the side: a box of cells, cut
+  /// by a triangle's hypotenuse (5 corners at most).
+  std::array<Vec3, 5> corners{Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
+  int corner_count = 0;
+  Vec3 center;
+  double diagonal_m = 0;          ///< the largest distance between two corners
+  Rgb unshot_w_m2 = Rgb::Zero();  ///< area-weighted mean unshot radiosity of the block
+  Rgb lowest_w_m2 = Rgb::Zero(), highest_w_m2 = Rgb::Zero();  ///< its elements' extremes
+  /// The first moment of the unshot radiosity about the block's centroid, per channel (column),
+  /// divided by the block's area: sum_k A_k (c_k - c) (B_k - B_mean) / A, W/m^2 times metres.
+  Eigen::Matrix3d dipole = Eigen::Matrix3d::Zero();
+  bool uniform = true;            ///< every element has the same unshot radiosity
+  int first_child = -1;           ///< children are consecutive; -1 for a single element
+  int child_count = 0;
+};
+
+/// The blocks over the cells [i0,i1) x [j0,j1) of a side (a shooting patch), from the whole
+/// patch down to single elements, with their unshot radiosity when built.
+class ShooterTree {
+ public:
+  ShooterTree(const Surface& surface, const MeshSurface& side, const std::vector<Rgb>& unshot,
+              int i0, int j0, int i1, int j1)
+      : surface_(surface), side_(side), unshot_(unshot) {
+    blocks_.reserve(static_cast<size_t>(3 * (i1 - i0) * (j1 - j0)));
+    blocks_.emplace_back();
+    build(0, i0, j0, i1, j1);
+  }
+
+  const Block& root() const { return blocks_[0]; }
+  const Block& block(int k) const { return blocks_[static_cast<size_t>(k)]; }
+
+ private:
+  /// The outline of the (u,v) box [u0,u1] x [v0,v1] inside the side's parameter domain.
+  void set_outline(Block& b, double u0, double v0, double u1, double v1) const;
+  void set_corners(Block& b, const Vec2* uv, int n) const;
+  void set_radiosity(Block& b, std::span<const size_t> elements) const;
+  void build(size_t index, int i0, int j0, int i1, int j1);
+  /// A cell of two elements: one child block per element.
+  void add_element_children(size_t index, const std::vector<size_t>& elements);
+
+  const Surface& surface_;
+  const MeshSurface& side_;
+  const std::vector<Rgb>& unshot_;
+  std::vector<Block> blocks_;
+};
+
+/// The radiosity a far block shoots with to the receiver point p (unit normal n): its mean plus the
+/// first-order correction for the variation of both the radiosity and the form factor's kernel
+/// across the block. With F_k = (A_k / A) F (1 + g . (c_k - c)), g the gradient over the
+/// source point y of ln k(x, y), k = cos_y cos_x / (pi r^2) the point-to-point kernel, the sum
+/// over the block's elements sum_k F_k B_k = F (B_mean + g . dipole): the mean alone errs to
+/// first order in (block size / distance) wherever the radiosity varies (a wall lit at its top
+/// and dark at its foot), and that error does not cancel over the receivers: it gains or loses
+/// power. Clamped to the block's range of unshot radiosity.
+Rgb far_field_radiosity(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal);
+
+/// A receiving element as gather() sees it: its centre, and the points of a Gauss rule over it
+/// for the blocks it is near to.
+struct Receiver {
+  Vec3 center, normal;
+  double size_m = 0;  ///< the longer diagonal, metres
+  std::array<Vec3, 4> gauss;
+  int gauss_count = 0;
+};
+
+/// The Gauss rule's points over a cell, in (u, v), equal weights: exact for cubics on a box
+/// (2 x 2 points), for quadratics on a triangle (3 points at barycentric (2/3, 1/6, 1/6) and its
+/// permutations); the surface's Jacobian taken as constant over the cell (exact for
+/// parallelograms and triangles).
+struct GaussPoints {
+  std::array<Vec2, 4> uv;
+  int count = 0;
+};
+GaussPoints gauss_points(const ParamCell& cell);
+
+/// The element as a receiver: its centre and its Gauss points on the surface.
+Receiver make_receiver(const Surface& surface, const MeshElement& e, const Vec3& normal);
+
+/// What a receiving element gathers from one shot, W/m^2 per channel.
+struct Gathered {
+  Rgb at_center = Rgb::Zero();  ///< the irradiance at its centre: its radiosity's
+  Rgb mean = Rgb::Zero();       ///< its mean irradiance: the power it absorbs and reflects
+  Gathered& operator+=(const Gathered& o) {
+    at_center += o.at_center;
+    mean += o.mean;
+    return *this;
+  }
+};
+
+/// Irradiance on the receiving element from the shooter's unshot radiosity: the block as a whole
+/// when far or uniform, else the sum over its children. The element's radiosity is its value at
+/// its centre (what reconstructions sample); its power is its mean, the midpoint rule's (the
+/// centre's value, relative error of order (size / distance)^2) unless the element is large
+/// against its distance to the block (tol::kMidpointReceiverRatio): then by the Gauss rule, so
+/// that no power is gained or lost by point collocation next to the shooter.
+Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, const Vec3& shooter_normal,
+                const std::vector<const Occluder*>& occluders);
+
+}  // namespace radrecon
