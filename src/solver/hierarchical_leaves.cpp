@@ -54,7 +54,7 @@ Solution solve_hierarchical_leaves(const Scene& scene, const std::string& side, 
   // small costs far more than the rest of the search (the links grow as the square of the
   // leaves), so a step goes no lower than kUndershoot times where the last two counts,
   // extrapolated as a power of epsilon, reach `leaves`.
-  constexpr double kStep = 10, kBracket = 1.001, kStart = 1e-3, kLargest = 1e12, kUndershoot = 0.7;
+  constexpr double kStep = 10, kBracket = 1.001, kStart = 1e-3, kLargest = 1e12, kUndershoot = 0.9;
   constexpr int kMaxSteps = 24, kMaxBisections = 60;
   double hi = 1.0, lo = kStart;
   int c_hi = count(hi);
