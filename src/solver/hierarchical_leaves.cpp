@@ -30,12 +30,20 @@ Solution solve_hierarchical_leaves(const Scene& scene, const std::string& side, 
   constexpr int kTooFine = std::numeric_limits<int>::max();
   LinkFormFactorCache cache;  // the solves below share most of their links
   // Leaves of `side` at epsilon `eps` (W); kTooFine when the links would not fit.
+  const auto start = std::chrono::steady_clock::now();
+  auto last_report = start;
   auto count = [&](double eps) {
     options.epsilon_w = eps;
     const std::optional<Solution> sol = try_solve_hierarchical(scene, options, spec, &cache);
-    return sol ? static_cast<int>(leaf_count(*sol, side)) : kTooFine;
+    const int n = sol ? static_cast<int>(leaf_count(*sol, side)) : kTooFine;
+    const auto now = std::chrono::steady_clock::now();
+    if (!label.empty() && now - last_report > std::chrono::seconds(2)) {
+      std::fprintf(stderr, "%s: searching epsilon for %d leaves on %s: %.4g W gives %s\n", label.c_str(), leaves,
+                   side.c_str(), eps, sol ? std::to_string(n).c_str() : "too many links");
+      last_report = now;
+    }
+    return n;
   };
-  const auto start = std::chrono::steady_clock::now();
   // The most leaves the side can have: split down to the minimum element size everywhere.
   {
     const double min_size = min_element_size_m(scene, options);
