@@ -4,7 +4,7 @@ ASAN_DIR  ?= build-asan
 JOBS      ?= $(shell nproc)
 OUT       ?= out/paper
 
-.PHONY: setup build run test test-asan bench clean
+.PHONY: setup build run test test-asan bench report-check clean
 
 setup:
 	@bash scripts/setup.sh
@@ -27,6 +27,10 @@ test-asan: setup
 	cmake -S . -B $(ASAN_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRADRECON_SANITIZE=ON -DRADRECON_BENCHMARKS=OFF
 	cmake --build $(ASAN_DIR) -j $(JOBS)
 	cd $(ASAN_DIR) && ctest --output-on-failure -j $(JOBS) -LE slow
+
+# The paper report in headless Chromium, with screenshots in out/report-check/ (docs/report.md).
+report-check: build
+	bash tests/paper/report_check.sh $(BUILD_DIR)/radrecon out/report-check
 
 bench: build
 	bash bench/run_benchmarks.sh

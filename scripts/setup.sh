@@ -10,6 +10,7 @@ packages=(
   nlohmann-json3-dev libcli11-dev libpng-dev libopenexr-dev time
   libassimp-dev  # mesh import: OBJ/MTL, glTF 2.0, PLY (src/io/mesh_import.h)
   python3-scipy  # the agreement tests against scipy (reconstruct.scipy_*)
+  chromium       # the report checked in a real browser (tests/paper/report_check.sh)
 )
 
 missing=()

@@ -2,30 +2,17 @@
 
 #include <cmath>
 #include <cstdio>
-#include <initializer_list>
+#include <functional>
 #include <optional>
 #include <sstream>
 
 #include "io/atomic_file.h"
+#include "paper/rankings.h"
+#include "paper/report_figures.h"
 
 namespace radrecon {
 
 namespace {
-
-/// `text` with the characters that HTML gives a meaning (&, <, >, ") escaped.
-std::string html_escaped(const std::string& text) {
-  std::string out;
-  for (char ch : text) {
-    switch (ch) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += ch;
-    }
-  }
-  return out;
-}
 
 std::string num(double v) {
   if (std::isnan(v)) return "";
@@ -34,83 +21,139 @@ std::string num(double v) {
   return buf;
 }
 
-std::string num(const std::optional<double>& v) { return v ? num(*v) : "n/a"; }
+
+double value_or_nan(const std::optional<double>& v) { return v ? *v : std::nan(""); }
+
+constexpr const char* kStyle =
+    "body{font-family:sans-serif;width:min(96vw,1500px);margin:1.5em auto;line-height:1.4}"
+    "h2{margin-top:1.6em}.units{color:#444;font-size:90%;margin:0.2em 0 0.6em}"
+    ".fig{display:grid;gap:6px 8px;align-items:start}.fig>*{min-width:0}"
+    ".fig img,.fig svg.scale{width:100%;height:auto;display:block}svg.scale text{font-size:9px;fill:#222}"
+    ".head{font-weight:bold;font-size:90%;border-bottom:1px solid #bbb;align-self:end}"
+    ".cap{font-size:90%}.norms{color:#444;font-size:90%}.noview{color:#777;font-size:85%;align-self:center}"
+    "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #bbb;padding:0.2em 0.6em;text-align:right}"
+    "td:first-child{text-align:left}.paper{color:#666}caption{font-weight:bold;text-align:left}"
+    "td.best{font-weight:bold;background:#e3f1e3}.ranking{max-width:70em}"
+    ".cmp-controls{margin:0.5em 0}.cmp-controls label{margin-right:1em}#cmp-stage{max-width:1200px}"
+    "#cmp-stage.cmp-side{display:grid;grid-template-columns:1fr 1fr;gap:8px}"
+    "#cmp-stage.cmp-slider,#cmp-stage.cmp-flip{position:relative;max-width:800px}"
+    ".cmp-pane{margin:0}.cmp-pane img{width:100%;height:auto;display:block}"
+    ".cmp-slider .cmp-pane+.cmp-pane,.cmp-flip .cmp-pane+.cmp-pane{position:absolute;top:0;left:0;width:100%}"
+    ".cmp-slider figcaption,.cmp-flip figcaption{display:none}#selftest:empty{display:none}";
+
+/// One numeric column of a table: its heading, its value in a row, and which end is best.
+struct Column {
+  const char* heading;
+  std::function<double(const ReportRow&)> value;
+  bool larger_is_better = false;
+  bool paper = false;
+};
 
 void table(std::ostringstream& html, const std::string& caption, const std::vector<ReportRow>& rows) {
-  html << "<table><caption>" << caption << "</caption>\n<tr><th>method</th><th>L1</th><th>L2 (MSE)</th><th>RMSE</th>"
-       << "<th>Linf</th><th>SSIM</th><th>gradient L2</th><th>overshoot</th><th class=paper>paper L1</th>"
-       << "<th class=paper>paper L2</th><th class=paper>paper Linf</th></tr>\n";
-  for (const ReportRow& r : rows) {
-    const Figures& f = r.figures;
-    html << "<tr><td>" << r.method << "</td><td>" << num(f.norms.l1) << "</td><td>" << num(f.norms.l2) << "</td><td>"
-         << num(f.norms.rmse) << "</td><td>" << num(f.norms.linf) << "</td><td>" << num(f.ssim) << "</td><td>"
-         << num(f.gradient_l2) << "</td><td>" << num(f.overshoot) << "</td><td class=paper>" << num(r.paper[0])
-         << "</td><td class=paper>" << num(r.paper[1]) << "</td><td class=paper>" << num(r.paper[2]) << "</td></tr>\n";
+  const std::vector<Column> columns = {
+      {"L1", [](const ReportRow& r) { return r.figures.norms.l1; }},
+      {"L2 (MSE)", [](const ReportRow& r) { return r.figures.norms.l2; }},
+      {"RMSE", [](const ReportRow& r) { return r.figures.norms.rmse; }},
+      {"Linf", [](const ReportRow& r) { return r.figures.norms.linf; }},
+      {"SSIM", [](const ReportRow& r) { return value_or_nan(r.figures.ssim); }, true},
+      {"gradient L2", [](const ReportRow& r) { return value_or_nan(r.figures.gradient_l2); }},
+      {"overshoot", [](const ReportRow& r) { return value_or_nan(r.figures.overshoot); }},
+      {"paper L1", [](const ReportRow& r) { return r.paper[0]; }, false, true},
+      {"paper L2", [](const ReportRow& r) { return r.paper[1]; }, false, true},
+      {"paper Linf", [](const ReportRow& r) { return r.paper[2]; }, false, true}};
+  std::vector<RankedMethod> ranked;
+  for (const ReportRow& r : rows)
+    ranked.push_back({r.method, {r.figures.norms.l1, r.figures.norms.l2, r.figures.norms.linf}, r.paper});
+  std::vector<RankingComparison> ranks;
+  for (int norm = 0; norm < 3; ++norm) ranks.push_back(compare_rankings(ranked, norm));
+  const bool has_paper = !ranks[0].methods.empty();
+
+  std::vector<int> best;
+  for (const Column& c : columns) {
+    std::vector<double> values;
+    for (const ReportRow& r : rows) values.push_back(c.value(r));
+    best.push_back(best_index(values, c.larger_is_better));
+  }
+  html << "<table><caption>" << caption << "</caption>\n<tr><th>method</th>";
+  for (const Column& c : columns) html << "<th" << (c.paper ? " class=paper" : "") << ">" << c.heading << "</th>";
+  if (has_paper)
+    for (const char* norm : kRankedNorms) html << "<th>rank " << norm << "<br>ours / paper</th>";
+  html << "</tr>\n";
+  for (size_t i = 0; i < rows.size(); ++i) {
+    html << "<tr><td>" << html_escaped(rows[i].method) << "</td>";
+    for (size_t c = 0; c < columns.size(); ++c) {
+      const std::vector<std::string> classes = {columns[c].paper ? "paper" : "", best[c] == static_cast<int>(i) ? "best" : ""};
+      const std::string cls = classes[0] + (classes[0].empty() || classes[1].empty() ? "" : " ") + classes[1];
+      html << "<td" << (cls.empty() ? "" : " class=\"" + cls + "\"") << ">" << num(columns[c].value(rows[i])) << "</td>";
+    }
+    if (has_paper)
+      for (const RankingComparison& k : ranks) {
+        std::string cell = "&ndash;";
+        for (size_t m = 0; m < k.methods.size(); ++m)
+          if (k.methods[m] == rows[i].method) cell = std::to_string(k.ours[m]) + " / " + std::to_string(k.paper[m]);
+        html << "<td>" << cell << "</td>";
+      }
+    html << "</tr>\n";
   }
   html << "</table>\n";
+  if (has_paper) html << "<p class=ranking>" << html_escaped(ranking_paragraph(caption.substr(0, caption.find(':')), ranked)) << "</p>\n";
 }
 
-/// Each row's figures: FIGURE_STEM + each of `parts` + ".png".
-void figure_rows(std::ostringstream& html, const std::vector<ReportRow>& rows,
-                 std::initializer_list<const char*> parts = {"_view", "_closeup", "_ground", "_difference"}) {
-  html << "<div class=grid>\n";
-  for (const ReportRow& r : rows) {
-    html << "<div class=label>" << r.method << "</div>";
-    for (const char* part : parts) {
-      const std::string name = part;
-      if (!r.views && (name == "_view" || name == "_closeup")) {
-        html << "<span class=noview>" << (name == "_view" ? "ground figures only (views: the paper's methods)" : "")
-             << "</span>";
-        continue;
-      }
-      html << "<img src=\"figures/" << r.figure_stem << part << ".png\" alt=\"" << r.method << part << "\">";
-    }
-    html << "\n";
-  }
-  html << "</div>\n";
+std::string units_line(const ReportContent& c) {
+  const std::string w = num(c.white_w_m2), q = num(c.white_w_m2 / 4);
+  return "<p class=units>Radiosity in W/m<sup>2</sup>. Views and radiosity maps: display = clamp(B / " + w +
+         ", 0, 1), sRGB-encoded (black 0, white " + w + " W/m<sup>2</sup>; views with " + std::to_string(c.rays_per_pixel) +
+         " rays per pixel). Differences: 0.5 + 2 (B &minus; B<sub>ref</sub>) / " + w + ", linear: mid-grey 0, black &minus;" + q +
+         ", white +" + q + " W/m<sup>2</sup>. The ground maps show the 4 m x 4 m ground from above.</p>\n";
 }
 
 }  // namespace
 
 void write_report(const std::filesystem::path& dir, const ReportContent& c) {
+  const ReportRow reference{"reference", {}, "fig2_reference", {NAN, NAN, NAN}, true};
+  const std::vector<ReportRow> reference_rows = {reference};
+  const std::vector<std::string> all = {"_view", "_closeup", "_ground", "_difference"};
+  std::vector<FigureSection> sections = {
+      {"Fig. 2: the reference solution", "the 400 x 400 solution", &reference_rows, {"_view", "_closeup", "_ground"}, false},
+      {"Fig. 3: grid data", "grid data", &c.table1, all},
+      {"Fig. 4: quadtree data", "quadtree data", &c.table2, all}};
+  const bool barriers = !c.grid_barriers.empty();
+  if (barriers) {
+    sections.push_back({"Fig. 5: grid data with the scene's barriers, the wall feet", "grid data, barriers", &c.grid_barriers,
+                        {"_closeup", "_ground", "_difference"}});
+    sections.push_back({"Fig. 6: quadtree data with the scene's barriers", "quadtree data, barriers", &c.quadtree_barriers,
+                        {"_closeup", "_ground", "_difference"}});
+  }
+  if (barriers && !c.grid_border.empty()) {
+    sections.push_back({"Fig. 7: grid data with barriers and border samples", "grid data, barriers, border samples",
+                        &c.grid_border, {"_ground", "_difference"}});
+    sections.push_back({"Fig. 8: quadtree data with barriers and border samples", "quadtree data, barriers, border samples",
+                        &c.quadtree_border, {"_ground", "_difference"}});
+  }
+
   std::ostringstream html;
   html << "<!DOCTYPE html>\n<html lang=en><head><meta charset=utf-8><title>radrecon: the paper experiment</title>\n"
-       << "<style>body{font-family:sans-serif;max-width:1200px;margin:2em auto;line-height:1.4}"
-       << "img{width:24%;margin:0.25%;image-rendering:auto}"
-       << ".noview{display:inline-block;width:24%;margin:0.25%;vertical-align:middle;color:#777;font-size:90%}.grid{display:block}.label{font-weight:bold;margin-top:0.8em}"
-       << "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #bbb;padding:0.2em 0.6em;text-align:right}"
-       << "td:first-child{text-align:left}.paper{color:#777}caption{font-weight:bold;text-align:left}</style></head><body>\n"
+       << "<meta name=viewport content=\"width=device-width, initial-scale=1\"><style>" << kStyle << "</style></head><body>\n"
+       << colour_scale_definitions()
        << "<h1>Reconstructing radiosity by scattered data interpolation</h1>\n"
        << "<p>After Hinkenjann and Pietrek. The scene: a 4 m x 4 m ground (reflectance 0.5) under a 1 m x 1 m light "
        << "(40 W/m<sup>2</sup>) at 2.5 m, with two perpendicular two-sided walls 1 m high (reflectance 0.5) meeting at "
-       << "(2.6, 2.6) m, whose shadows fall beyond them. Radiosity in W/m<sup>2</sup>.</p>\n<h2>Settings</h2>\n<ul>\n";
+       << "(2.6, 2.6) m, whose shadows fall beyond them. Radiosity in W/m<sup>2</sup>. Contents: "
+       << "<a href=\"#settings\">settings</a>, the figures, <a href=\"#compare\">compare any two pictures</a>, "
+       << "<a href=\"#errors\">tables</a>.</p>\n<h2 id=settings>Settings</h2>\n<ul>\n";
   for (const std::string& s : c.settings) html << "<li>" << s << "</li>\n";
   for (const std::string& s : c.notes) html << "<li>" << html_escaped(s) << "</li>\n";
-  html << "</ul>\n<h2>Fig. 1: the quadtree of the ground and its sample points</h2>\n"
-       << "<img style=\"width:40%\" src=\"figures/fig1_quadtree.png\" alt=quadtree>\n"
-       << "<h2>Fig. 2: reference solution (view, close-up, radiosity over the ground)</h2>\n"
-       << "<img src=\"figures/fig2_reference_view.png\" alt=view><img src=\"figures/fig2_reference_closeup.png\" alt=closeup>"
-       << "<img src=\"figures/fig2_reference_ground.png\" alt=ground>\n"
-       << "<h2>Fig. 3: grid data (view, close-up, ground, difference x 2 against the reference, mid-grey = 0)</h2>\n";
-  figure_rows(html, c.table1);
-  html << "<h2>Fig. 4: quadtree data</h2>\n";
-  figure_rows(html, c.table2);
-  const bool barriers = !c.grid_barriers.empty();
-  if (barriers) {
-    html << "<h2>Fig. 5: grid data with the scene's barriers, the wall feet (close-up, ground, difference)</h2>\n";
-    figure_rows(html, c.grid_barriers, {"_closeup", "_ground", "_difference"});
-    html << "<h2>Fig. 6: quadtree data with the scene's barriers</h2>\n";
-    figure_rows(html, c.quadtree_barriers, {"_closeup", "_ground", "_difference"});
-    if (!c.grid_border.empty()) {
-      html << "<h2>Fig. 7: grid data with barriers and border samples (ground, difference)</h2>\n";
-      figure_rows(html, c.grid_border, {"_ground", "_difference"});
-      html << "<h2>Fig. 8: quadtree data with barriers and border samples</h2>\n";
-      figure_rows(html, c.quadtree_border, {"_ground", "_difference"});
-    }
-  }
-  html << "<h2>Errors</h2>\n";
+  html << "</ul>\n<section class=figure><h2>Fig. 1: the quadtree of the ground and its sample points</h2>\n"
+       << "<img style=\"width:min(40em,90%)\" src=\"figures/fig1_quadtree.png\" alt=\"quadtree of the ground\"></section>\n";
+  const std::string units = units_line(c);
+  for (const FigureSection& s : sections) write_figure(html, s, c.white_w_m2, units);
+  write_comparison_view(html, sections);
+  html << "<h2 id=errors>Errors</h2>\n<p>Norms over the reference's cell centres; the best entry of each column is "
+       << "marked. The paper's columns are its published tables, for its own scene; the ranks compare the order of the "
+       << "methods it ran, 1 = smallest error.</p>\n";
   table(html, "Table 1: reconstruction of grid data", c.table1);
   table(html, "Table 2: reconstruction of quadtree data", c.table2);
+  html << "<p class=ranking>" << html_escaped(kRankingReasons) << "</p>\n";
   if (barriers) {
     html << "<p>Table 3: the same data and methods with the scene's barriers; no sample's influence crosses a wall's "
             "foot.</p>\n";
@@ -121,9 +164,8 @@ void write_report(const std::filesystem::path& dir, const ReportContent& c) {
       table(html, "Table 3d: quadtree data with barriers and border samples", c.quadtree_border);
     }
   }
-  html << "<p>The paper's columns are its published tables, for its own scene: compare rankings, not values. "
-       << "Methods without paper columns are those the paper cites without running (gouraud, clough-tocher, hermite, "
-       << "thin-plate) and those users of scattered-data tools expect (linear, sibson-c1, laplace).</p>\n"
+  html << "<p>Methods without paper columns are those the paper cites without running (gouraud, clough-tocher, "
+       << "hermite, thin-plate) and those users of scattered-data tools expect (linear, sibson-c1, laplace).</p>\n"
        << "</body></html>\n";
   write_text_file(dir / "report.html", html.str());
 }

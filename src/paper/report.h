@@ -25,10 +25,13 @@ struct ReportContent {
   std::vector<ReportRow> grid_border, quadtree_border;      ///< with border samples too
   std::vector<std::string> settings;  ///< one line each, shown as a list
   std::vector<std::string> notes;     ///< e.g. fallbacks of the renderer
+  double white_w_m2 = 1;              ///< the radiosity every picture shows as white
+  int rays_per_pixel = 1;             ///< of the views
 };
 
-/// Writes DIR/report.html: the scene, the data sets and settings, Fig. 1-4 and Tables 1 and 2,
-/// with images referenced relative to DIR (figures/...), no network access needed.
+/// Writes DIR/report.html: the scene, the data sets and settings, the figures (labelled, with
+/// colour scales), a view comparing any two pictures, and the tables with the paper's rankings
+/// beside ours; images referenced relative to DIR (figures/...), no network access needed.
 void write_report(const std::filesystem::path& dir, const ReportContent& content);
 
 }  // namespace radrecon

@@ -220,6 +220,8 @@ ReportContent report_content(const PaperRun& run, int rays_per_pixel) {
     return out;
   };
   ReportContent report;
+  report.white_w_m2 = white;
+  report.rays_per_pixel = rays_per_pixel;
   report.table1 = rows(run.table1, published_table1(), "fig3");
   report.table2 = rows(run.table2, published_table2(), "fig4");
   const PublishedTable none;

@@ -1,0 +1,116 @@
+// The report's structure: every figure labelled, a colour scale beside every radiosity map and a
+// signed one beside every difference image (their end values computed here from the white point),
+// every image listed in the comparison view, the best entry of a column marked.
+
+#include "paper/report.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
+
+namespace radrecon {
+namespace {
+
+ReportRow row(const std::string& method, double l1, double l2, double linf, std::array<double, 3> paper, bool views) {
+  ReportRow r;
+  r.method = method;
+  r.figures.norms.l1 = l1;
+  r.figures.norms.l2 = l2;
+  r.figures.norms.rmse = std::sqrt(l2);
+  r.figures.norms.linf = linf;
+  r.figures.ssim = 1 - l1;
+  r.figure_stem = "figX_" + method;
+  r.paper = paper;
+  r.views = views;
+  return r;
+}
+
+std::string written_report(const ReportContent& content) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "radrecon_report_test";
+  std::filesystem::create_directories(dir);
+  write_report(dir, content);
+  std::ifstream in(dir / "report.html");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::filesystem::remove_all(dir);
+  return text.str();
+}
+
+size_t count(const std::string& text, const std::string& what) {
+  size_t n = 0;
+  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+ReportContent content() {
+  const double nan = std::nan("");
+  ReportContent c;
+  c.white_w_m2 = 2.0;
+  c.rays_per_pixel = 4;
+  c.table1 = {row("constant", 0.03, 0.002, 0.5, {0.01, 0.001, 0.3}, true),
+              row("bilinear", 0.02, 0.003, 0.4, {0.02, 0.002, 0.2}, true),
+              row("linear", 0.01, 0.004, 0.6, {nan, nan, nan}, false)};
+  c.table2 = {row("shepard", 0.05, 0.005, 0.7, {0.07, 0.009, 0.3}, true)};
+  return c;
+}
+
+TEST(Report, EveryFigureHasHeadingsCaptionsAndScales) {
+  const std::string html = written_report(content());
+  // Fig. 2 (reference) and Fig. 3, 4 with their column headings.
+  for (const char* id : {"id=fig2", "id=fig3", "id=fig4"}) EXPECT_NE(html.find(id), std::string::npos) << id;
+  EXPECT_EQ(count(html, "<div class=head>view</div>"), 3u);
+  EXPECT_EQ(count(html, "<div class=head>close-up</div>"), 3u);
+  EXPECT_EQ(count(html, ">radiosity over the ground, W/m<sup>2</sup></div>"), 3u);
+  EXPECT_EQ(count(html, ">difference to the reference, W/m<sup>2</sup></div>"), 2u);
+  // A caption per row with its method, data set and norms.
+  EXPECT_NE(html.find("<b>bilinear</b><br>grid data<br><span class=norms>L1 0.02 &middot; MSE 0.003 &middot; Linf 0.4"),
+            std::string::npos);
+  EXPECT_NE(html.find("<b>shepard</b><br>quadtree data<br>"), std::string::npos);
+  // Each ground map is followed by a radiosity scale 0 .. white, each difference image by a
+  // signed one -white/4 .. +white/4 (white = 2 W/m^2: 0.5).
+  const std::regex ground(R"re(_ground\.png"[^>]*><svg class=scale[^>]*aria-label="radiosity scale, W/m\^2: black 0, white 2")re");
+  const std::regex difference(
+      R"re(_difference\.png"[^>]*><svg class=scale[^>]*aria-label="difference scale, W/m\^2: mid-grey 0, black -0.5, white \+0.5")re");
+  EXPECT_EQ(std::distance(std::sregex_iterator(html.begin(), html.end(), ground), std::sregex_iterator()), 5);  // 1 + 3 + 1
+  EXPECT_EQ(std::distance(std::sregex_iterator(html.begin(), html.end(), difference), std::sregex_iterator()), 4);
+  const std::regex with_alt(R"re(<img [^>]*alt="[^"]+")re");
+  EXPECT_EQ(std::distance(std::sregex_iterator(html.begin(), html.end(), with_alt), std::sregex_iterator()),
+            static_cast<long>(count(html, "<img "))) << "every image says what it shows";
+  EXPECT_NE(html.find("no view: the views show the paper's own methods"), std::string::npos) << "linear has no views";
+}
+
+TEST(Report, TheComparisonViewListsEveryPictureOfTheFigures) {
+  const std::string html = written_report(content());
+  std::set<std::string> figures, listed;
+  const std::regex img(R"re(<img src="(figures/[^"]+\.png)")re"), entry(R"re("src":"(figures/[^"]+\.png)")re");
+  for (auto it = std::sregex_iterator(html.begin(), html.end(), img); it != std::sregex_iterator(); ++it)
+    figures.insert((*it)[1]);
+  for (auto it = std::sregex_iterator(html.begin(), html.end(), entry); it != std::sregex_iterator(); ++it)
+    listed.insert((*it)[1]);
+  figures.erase("figures/fig1_quadtree.png");  // the quadtree figure is no picture of the radiosity
+  EXPECT_EQ(figures, listed);
+  EXPECT_EQ(figures.size(), 3u + 2 * 4 + 2 + 4);  // reference 3; constant, bilinear 4 each; linear 2; shepard 4
+  EXPECT_EQ(html.find("http"), std::string::npos) << "nothing refers to the network";
+}
+
+TEST(Report, TablesMarkTheBestEntryAndGiveBothRankings) {
+  const std::string html = written_report(content());
+  // Table 1's smallest L1 is linear's 0.01, its smallest MSE constant's 0.002, the paper's
+  // smallest L1 constant's 0.01.
+  EXPECT_NE(html.find("<tr><td>linear</td><td class=\"best\">0.01</td>"), std::string::npos);
+  EXPECT_NE(html.find("<tr><td>constant</td><td>0.03</td><td class=\"best\">0.002</td>"), std::string::npos);
+  EXPECT_NE(html.find("<td class=\"paper best\">0.01</td>"), std::string::npos);
+  // Ranks among the paper's methods: L1 ours constant 2 / paper 1, bilinear 1 / 2.
+  EXPECT_NE(html.find("<td>2 / 1</td>"), std::string::npos);
+  EXPECT_NE(html.find("<td>1 / 2</td>"), std::string::npos);
+  EXPECT_NE(html.find("L1: the paper ranks constant best, we rank bilinear best"), std::string::npos);
+  EXPECT_NE(html.find("the scenes differ"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace radrecon
