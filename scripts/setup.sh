@@ -11,6 +11,7 @@ packages=(
   libassimp-dev  # mesh import: OBJ/MTL, glTF 2.0, PLY (src/io/mesh_import.h)
   python3-scipy  # the agreement tests against scipy (reconstruct.scipy_*)
   chromium       # the report checked in a real browser (tests/paper/report_check.sh)
+  libgdal-dev gdal-bin python3-gdal  # interpolate to GeoTIFF and other GDAL rasters; its test reads them back
 )
 
 missing=()

@@ -1,6 +1,9 @@
 // radrecon interpolate: scattered 2-D samples in, values at query points or on a raster out.
 
+#include <cctype>
 #include <chrono>
+#include <cmath>
+#include <filesystem>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -10,6 +13,7 @@
 #include "cli/commands.h"
 #include "core/error.h"
 #include "core/parse.h"
+#include "io/gdal_raster.h"
 #include "io/geojson.h"
 #include "io/image_io.h"
 #include "io/paths.h"
@@ -32,6 +36,9 @@ struct InterpolateArgs {
   std::string domain;
   std::string out;
   std::string barriers;
+  std::string x_column, y_column, value_columns;
+  std::string gdal_format, gdal_type = "float32", crs;
+  double nodata = kDefaultNoData;
   bool border_samples = false;
   bool quiet = false;
 };
@@ -63,7 +70,22 @@ void run_interpolate(const InterpolateArgs& args) {
   const auto start = std::chrono::steady_clock::now();
 
   // The command line first: cheap checks before any file is read.
-  const FileFormat format = file_format(args.out, {FileFormat::csv, FileFormat::pfm, FileFormat::png}, "--out");
+  // .csv, .pfm and .png are radrecon's own; any other extension (or --format) goes to GDAL.
+  std::string ext = std::filesystem::path(args.out).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const bool gdal = !args.gdal_format.empty() || !(ext == ".csv" || ext == ".pfm" || ext == ".png");
+  const FileFormat format =
+      gdal ? FileFormat::pfm : file_format(args.out, {FileFormat::csv, FileFormat::pfm, FileFormat::png}, "--out");
+  GdalRasterOptions gdal_options{args.gdal_format, args.gdal_type == "float64", args.crs, args.nodata};
+  if (gdal) {
+    gdal_raster_driver(args.out, args.gdal_format, "--out");
+    check_gdal_crs(args.crs);
+    if (args.gdal_type != "float32" && args.gdal_type != "float64")
+      throw UserError("--type", "'" + args.gdal_type + "' is no band type; float32 or float64");
+    if (!std::isfinite(args.nodata)) throw UserError("--nodata", "must be a finite number");
+  } else if (!args.crs.empty() || args.gdal_type != "float32" || args.nodata != kDefaultNoData) {
+    throw UserError("--crs/--type/--nodata", "apply to GDAL rasters (e.g. --out map.tif), not to " + ext + " files");
+  }
   const bool use_queries = !args.queries.empty(), use_raster = !args.raster.empty();
   if (use_queries == use_raster)
     throw UserError("--queries/--raster",
@@ -71,8 +93,8 @@ void run_interpolate(const InterpolateArgs& args) {
                                 : "give the query points: --queries FILE.csv or --raster WxH --domain x0,y0,x1,y1");
   if (!use_raster && !args.domain.empty() && !args.border_samples)
     throw UserError("--domain", "--domain goes with --raster (or with --border-samples: the border they go on)");
-  if (use_queries && format != FileFormat::csv)
-    throw UserError("--out", "PFM and PNG outputs need a raster (--raster WxH --domain ...); "
+  if (use_queries && (gdal || format != FileFormat::csv))
+    throw UserError("--out", "PFM, PNG and GDAL outputs need a raster (--raster WxH --domain ...); "
                              "with --queries write a .csv file");
   Raster raster;
   if (!args.domain.empty()) raster.domain = parse_domain(args.domain, "--domain");
@@ -103,8 +125,16 @@ void run_interpolate(const InterpolateArgs& args) {
     if (!barriers) throw UserError(args.barriers, barriers.reason());
     params.barriers = std::move(barriers).value();
   }
+  CsvColumns columns{args.x_column, args.y_column, {}};
+  for (size_t at = 0; !args.value_columns.empty();) {
+    const size_t comma = args.value_columns.find(',', at);
+    columns.values.push_back(args.value_columns.substr(at, comma == std::string::npos ? std::string::npos : comma - at));
+    if (columns.values.back().empty()) throw UserError("--value", "an empty column name in '" + args.value_columns + "'");
+    if (comma == std::string::npos) break;
+    at = comma + 1;
+  }
   std::vector<std::string> value_names;
-  ScatteredSamples samples = read_samples_csv(args.samples, &value_names);
+  ScatteredSamples samples = read_samples_csv(args.samples, &value_names, columns);
   if (args.border_samples) {
     // On --domain (the raster's), else the samples' bounding box.
     Rect domain = raster.domain;
@@ -120,12 +150,13 @@ void run_interpolate(const InterpolateArgs& args) {
     params.barrier_samples = false;  // added with the border's
     if (!args.quiet) std::fprintf(stderr, "interpolate: %zu border samples added\n", added);
   }
-  if (format == FileFormat::pfm && samples.channels != 1 && samples.channels != 3)
+  if (!gdal && format == FileFormat::pfm && samples.channels != 1 && samples.channels != 3)
     throw UserError("--out", "PFM needs 1 or 3 value columns (greyscale or colour); " + args.samples + " has " +
                                  std::to_string(samples.channels) + "; write .csv instead");
   const InterpolantResult interpolant = build_interpolant(*method, samples, params, args.samples);
   if (!interpolant) throw UserError(args.samples, interpolant.reason());
-  const std::vector<Vec2> points = use_queries ? read_queries_csv(args.queries) : raster_points(raster);
+  const std::vector<Vec2> points =
+      use_queries ? read_queries_csv(args.queries, {args.x_column, args.y_column, {}}) : raster_points(raster);
 
   const std::string description = describe_params(*method, params);
   if (!args.quiet)
@@ -139,7 +170,9 @@ void run_interpolate(const InterpolateArgs& args) {
   std::vector<double> values(points.size() * static_cast<size_t>(interpolant.value()->channels()));
   interpolant.value()->evaluate(points, values);
 
-  switch (format) {
+  if (gdal) {
+    write_raster_gdal(args.out, raster, values, samples.channels, gdal_options);
+  } else switch (format) {
     case FileFormat::csv: write_values_csv(args.out, points, values, value_names); break;
     case FileFormat::pfm: write_raster_pfm(args.out, raster, values, samples.channels); break;
     case FileFormat::png: write_raster_png(args.out, raster, values, samples.channels); break;
@@ -186,6 +219,12 @@ void add_interpolate_command(CLI::App& app) {
                   "outside=nearest (default: the value at the nearest point of the convex hull) | none (NaN "
                   "outside the hull). natural-neighbour, laplace, sibson-c1: barrier-samples=on (default) | off: "
                   "with --barriers, also samples along both sides of each barrier. Others: no parameters");
+  cmd->add_option("--x", args->x_column,
+                  "Name of the x column of --samples and --queries (case-insensitive; default: the column named x, "
+                  "else the first)");
+  cmd->add_option("--y", args->y_column, "Name of the y column (default: the column named y, else the second)");
+  cmd->add_option("--value", args->value_columns,
+                  "COL[,COL...]: the value columns of --samples, in this order (default: every column but x and y)");
   cmd->add_option("--queries", args->queries,
                   "CSV of query points: header starting x,y (further columns ignored); outputs keep its row "
                   "order");
@@ -198,8 +237,20 @@ void add_interpolate_command(CLI::App& app) {
                   ".pfm (raster only; 1 or 3 value columns; 32-bit floats, first stored row = y0 row), .png "
                   "(raster only; for viewing: [min,max] of the finite values mapped linearly to black..white, "
                   "sRGB-encoded, RGB when there are exactly 3 value columns, else the first column in grey; "
-                  "NaN black)")
+                  "NaN black); any other extension through GDAL (raster only): .tif GeoTIFF etc., one band per "
+                  "value column, north-up (the first stored row is the y1 row), the geotransform of --domain, "
+                  "--crs, --nodata where no value")
       ->required();
+  cmd->add_option("--format", args->gdal_format,
+                  "GDAL driver to write --out with (e.g. GTiff, AAIGrid, netCDF; `gdalinfo --formats`); default: by "
+                  "the extension: .tif GeoTIFF, and any extension a GDAL raster driver claims");
+  cmd->add_option("--type", args->gdal_type, "GDAL rasters: band type, float32 (default) or float64");
+  cmd->add_option("--crs", args->crs,
+                  "GDAL rasters: the samples' coordinate reference system, written into the file (EPSG:2193, WKT or "
+                  "PROJ); default: none");
+  cmd->add_option("--nodata", args->nodata,
+                  "GDAL rasters: the value written where a method gives none (NaN), declared as the bands' no-data "
+                  "value (default -9999)");
   cmd->add_option("--barriers", args->barriers,
                   "GeoJSON file of barrier lines (LineString, MultiLineString, Polygon/MultiPolygon rings; a "
                   "geometry, Feature or FeatureCollection; coordinates in the samples' units, CRS ignored): no "

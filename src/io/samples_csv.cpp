@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <optional>
 
 #include "core/check.h"
 #include "core/error.h"
@@ -32,7 +33,15 @@ std::string lower(std::string_view s) {
   return out;
 }
 
-/// A CSV table read line by line: the header, then each data row through a callback.
+/// Field `f` without one pair of surrounding double quotes (R's and spreadsheets' headers).
+std::string_view unquoted(std::string_view f) {
+  if (f.size() >= 2 && f.front() == '"' && f.back() == '"') return trim_blanks(f.substr(1, f.size() - 2));
+  return f;
+}
+
+/// A table read line by line: the header, then each data row through a callback. Fields are
+/// separated by commas when the header line has one, else by runs of spaces or tabs (XYZ files
+/// of nnbathy and GMT); a header whose fields are all numbers is no header but the first row.
 class CsvTable {
  public:
   /// Reads the whole file and its header; `min_columns` names the columns the header must have.
@@ -46,21 +55,50 @@ class CsvTable {
     while (in.read(chunk.data(), static_cast<std::streamsize>(chunk.size())) || in.gcount() > 0)
       text_.append(chunk.data(), static_cast<size_t>(in.gcount()));
     if (in.bad()) throw UserError(path, "cannot read");
+    if (text_.compare(0, 3, "\xEF\xBB\xBF") == 0) pos_ = 3;  // a UTF-8 byte order mark
 
     std::string_view line;
+    const size_t header_pos = pos_;
     if (!next_line(line))
       throw UserError(where(), std::string("no header line; expected ") + expected_header);
+    comma_ = line.find(',') != std::string_view::npos;
     std::vector<std::string_view> fields;
-    split_fields(line, fields);
-    for (std::string_view f : fields) header_.emplace_back(f);
-    if (header_.size() < 2 || lower(header_[0]) != "x" || lower(header_[1]) != "y")
-      throw UserError(where(), std::string("the header (the first line that is not a comment) must start with x,y; ") +
-                                   "got " + in_quotes(line) + "; expected " + expected_header);
+    split(line, fields);
+    bool numbers = true;
+    for (std::string_view f : fields) {
+      double v = 0;
+      numbers = numbers && parse_double(f, v) == NumberStatus::ok;
+    }
+    if (numbers && fields.size() >= min_columns) {
+      // No header: x, y, then z (one value) or value1, value2, ...; the line is the first row.
+      for (size_t c = 0; c < fields.size(); ++c)
+        header_.push_back(c == 0 ? "x" : c == 1 ? "y" : fields.size() == 3 ? "z" : "value" + std::to_string(c - 1));
+      pos_ = header_pos;
+      line_number_ = 0;
+    } else {
+      for (std::string_view f : fields) header_.emplace_back(f);
+    }
     if (header_.size() < min_columns)
-      throw UserError(where(), "the header has " + std::to_string(header_.size()) + " columns; expected " +
-                                   expected_header);
+      throw UserError(where(), "the header " + in_quotes(line) + " has " + std::to_string(header_.size()) +
+                                   " column" + (header_.size() == 1 ? "" : "s") + "; expected " + expected_header);
     for (size_t c = 0; c < header_.size(); ++c)
       if (header_[c].empty()) throw UserError(where(), "column " + std::to_string(c + 1) + " of the header has no name");
+  }
+
+  /// The column named `name` (case-insensitive), for option `option`; UserError if none is.
+  size_t column(const std::string& name, const std::string& option) const {
+    const std::optional<size_t> c = find(name);
+    if (!c) {
+      std::string names;
+      for (const std::string& h : header_) names += (names.empty() ? "" : ", ") + h;
+      throw UserError(option, path_ + " has no column named '" + name + "' (its columns: " + names + ")");
+    }
+    return *c;
+  }
+  std::optional<size_t> find(const std::string& name) const {
+    for (size_t c = 0; c < header_.size(); ++c)
+      if (lower(header_[c]) == lower(name)) return c;
+    return std::nullopt;
   }
 
   const std::vector<std::string>& header() const { return header_; }
@@ -77,7 +115,7 @@ class CsvTable {
     size_t rows = 0;
     std::vector<std::string_view> fields;
     while (next_line(line)) {
-      split_fields(line, fields);
+      split(line, fields);
       if (fields.size() != header_.size())
         throw UserError(where(), "the row has " + std::to_string(fields.size()) + " fields, the header has " +
                                      std::to_string(header_.size()));
@@ -134,8 +172,26 @@ class CsvTable {
     return false;
   }
 
+  void split(std::string_view line, std::vector<std::string_view>& fields) const {
+    if (comma_) {
+      split_fields(line, fields);
+      for (std::string_view& f : fields) f = unquoted(f);
+      return;
+    }
+    fields.clear();
+    size_t at = 0;
+    while (true) {
+      at = line.find_first_not_of(" \t\r", at);
+      if (at == std::string_view::npos) return;
+      const size_t end = std::min(line.size(), line.find_first_of(" \t\r", at));
+      fields.push_back(unquoted(line.substr(at, end - at)));
+      at = end;
+    }
+  }
+
   std::string path_;
   std::string text_;
+  bool comma_ = true;
   size_t pos_ = 0;
   size_t line_number_ = 0;
   std::vector<std::string> header_;
@@ -158,20 +214,41 @@ void append_number(std::string& out, double v) {
 
 // --- samples and queries ----------------------------------------------------------------------
 
-ScatteredSamples read_samples_csv(const std::string& path, std::vector<std::string>* value_names) {
-  CsvTable table(path, 3, "x,y,VALUE[,VALUE...]");
-  const size_t columns = table.header().size();
+namespace {
+
+/// The x and y columns: the named ones, else those named x and y, else the first two.
+std::pair<size_t, size_t> xy_columns(const CsvTable& table, const CsvColumns& columns) {
+  const size_t x = !columns.x.empty() ? table.column(columns.x, "--x") : table.find("x").value_or(0);
+  const size_t y = !columns.y.empty() ? table.column(columns.y, "--y") : table.find("y").value_or(1);
+  if (x == y) throw UserError("--x/--y", "x and y are the same column ('" + table.header()[x] + "')");
+  return {x, y};
+}
+
+}  // namespace
+
+ScatteredSamples read_samples_csv(const std::string& path, std::vector<std::string>* value_names,
+                                  const CsvColumns& columns) {
+  CsvTable table(path, 3, "x,y,VALUE[,VALUE...] (or --x, --y, --value naming the columns)");
+  const auto [xc, yc] = xy_columns(table, columns);
+  std::vector<size_t> value_columns;
+  for (const std::string& name : columns.values) value_columns.push_back(table.column(name, "--value"));
+  if (columns.values.empty())
+    for (size_t c = 0; c < table.header().size(); ++c)
+      if (c != xc && c != yc) value_columns.push_back(c);
   ScatteredSamples s;
-  s.channels = static_cast<int>(columns - 2);
+  s.channels = static_cast<int>(value_columns.size());
   const size_t rows = table.remaining_lines();
   s.points.reserve(rows);
-  s.values.reserve(rows * (columns - 2));
+  s.values.reserve(rows * value_columns.size());
   table.for_each_row([&](const std::vector<std::string_view>& f) {
-    const double x = table.coordinate(f, 0), y = table.coordinate(f, 1);
+    const double x = table.coordinate(f, xc), y = table.coordinate(f, yc);
     s.points.emplace_back(x, y);
-    for (size_t c = 2; c < columns; ++c) s.values.push_back(table.number(f, c));
+    for (const size_t c : value_columns) s.values.push_back(table.number(f, c));
   });
-  if (value_names) value_names->assign(table.header().begin() + 2, table.header().end());
+  if (value_names) {
+    value_names->clear();
+    for (const size_t c : value_columns) value_names->push_back(table.header()[c]);
+  }
   const size_t before = s.points.size();
   const size_t removed = merge_duplicate_points(s);
   if (removed > 0)
@@ -182,12 +259,13 @@ ScatteredSamples read_samples_csv(const std::string& path, std::vector<std::stri
   return s;
 }
 
-std::vector<Vec2> read_queries_csv(const std::string& path) {
-  CsvTable table(path, 2, "x,y[,...]");
+std::vector<Vec2> read_queries_csv(const std::string& path, const CsvColumns& columns) {
+  CsvTable table(path, 2, "x,y[,...] (or --x, --y naming the columns)");
+  const auto [xc, yc] = xy_columns(table, columns);
   std::vector<Vec2> points;
   points.reserve(table.remaining_lines());
   table.for_each_row([&](const std::vector<std::string_view>& f) {
-    const double x = table.coordinate(f, 0), y = table.coordinate(f, 1);
+    const double x = table.coordinate(f, xc), y = table.coordinate(f, yc);
     points.emplace_back(x, y);
   });
   return points;

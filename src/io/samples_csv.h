@@ -3,11 +3,18 @@
 // values out (CSV). Rasters of query points and their files: raster.h.
 //
 // CSV input rules (samples and queries):
-//   - the first line that is neither blank nor a comment is the header; its first two column
-//     names are x and y (case-insensitive);
-//   - lines whose first non-blank character is '#' and blank lines are ignored anywhere;
-//   - fields are separated by ',' with optional spaces or tabs around them; no quoting;
-//     a trailing '\r' (Windows line ends) is ignored;
+//   - the first line that is neither blank nor a comment is the header, unless all its fields
+//     are numbers: then the file has no header, its columns are x, y, then z (one value) or
+//     value1, value2, ... (nnbathy's and GMT's XYZ files);
+//   - x and y are the columns --x and --y name (CsvColumns), else those named x and y
+//     (case-insensitive), else the first two; the values are those --value names, else every
+//     other column;
+//   - lines whose first non-blank character is '#' and blank lines are ignored anywhere; a UTF-8
+//     byte order mark is skipped;
+//   - fields are separated by ',' (with optional spaces or tabs around them) when the header line
+//     has a comma, else by runs of spaces or tabs; a field in double quotes ("x", as R writes
+//     headers) loses them (no commas or quotes inside); a trailing '\r' (Windows line ends) is
+//     ignored;
 //   - every data row has as many fields as the header; numbers are decimal floating point
 //     ("1", "-2.5", "3e-4", a leading '+' allowed) and must be finite (no nan, no inf).
 // A violation throws UserError naming "FILE:LINE" and the column.
@@ -23,18 +30,26 @@
 
 namespace radrecon {
 
-/// Reads scattered samples: columns x, y, then one or more value columns (channels = number of
+/// Reads scattered samples: columns x, y and one or more value columns (channels = number of
 /// value columns). The names of the value columns go to `*value_names` when it is not null.
 /// Samples at exactly the same point (x and y equal as numbers) are merged into one, whose
 /// values are the mean of theirs, in the place of the first of them; one warning line on stderr
 /// says how many were merged (merge_duplicate_points(), reconstruct/sample_set.h). Throws UserError ("FILE:LINE: ...") for a missing file, a missing
-/// or short header (fewer than 3 columns), a header not starting with x,y, an unnamed column, a
+/// or short header (fewer than 3 columns), a column --x, --y or --value names that is not there, an unnamed column, a
 /// row with the wrong number of fields, a field that is not a finite number, or no data rows.
-ScatteredSamples read_samples_csv(const std::string& path, std::vector<std::string>* value_names);
+/// Which columns hold x, y and the values (interpolate's --x, --y, --value); empty: the defaults
+/// above. Names are matched case-insensitively.
+struct CsvColumns {
+  std::string x, y;
+  std::vector<std::string> values;
+};
 
-/// Reads query points: a header whose first two columns are x, y; further columns are allowed
-/// and ignored (their fields are not checked, but every row needs the header's field count).
-std::vector<Vec2> read_queries_csv(const std::string& path);
+ScatteredSamples read_samples_csv(const std::string& path, std::vector<std::string>* value_names,
+                                  const CsvColumns& columns = {});
+
+/// Reads query points: columns x and y as above; further columns are allowed and ignored (their
+/// fields are not checked, but every row needs the header's field count).
+std::vector<Vec2> read_queries_csv(const std::string& path, const CsvColumns& columns = {});
 
 /// Writes "x,y,NAME..." then one row per point, in the given order; numbers in their shortest
 /// form that reads back to the same double, NaN as "nan" (and infinities as "inf", "-inf").

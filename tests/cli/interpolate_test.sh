@@ -180,7 +180,7 @@ refuse both_queries_raster "--queries" "$TMP/o16.csv" --samples "$S" --method co
 refuse neither "--queries" "$TMP/o17.csv" --samples "$S" --method constant
 refuse pfm_queries "raster" "$TMP/o18.pfm" --samples "$S" --method constant --queries "$Q"
 refuse png_queries "raster" "$TMP/o19.png" --samples "$S" --method constant --queries "$Q"
-refuse unknown_extension ".tif" "$TMP/o20.tif" --samples "$S" --method constant --raster 5x5 --domain 0,0,1,1
+refuse unknown_extension ".nosuchext" "$TMP/o20.nosuchext" --samples "$S" --method constant --raster 5x5 --domain 0,0,1,1
 refuse pfm_two_columns "1 or 3" "$TMP/o21.pfm" --samples "$TMP/scattered.csv" --method constant --raster 5x5 --domain 0,0,1,1
 refuse huge_coordinate "huge.csv:3" "$TMP/o23.csv" --samples "$TMP/huge.csv" --method shepard --queries "$Q"
 refuse huge_domain "--domain" "$TMP/o24.pfm" --samples "$S" --method constant --raster 5x5 --domain=-1e200,0,1,1

@@ -106,9 +106,8 @@ TEST(SamplesIo, ReadsCommentsBlankLinesSpacesAndTwoValueColumns) {
 TEST(SamplesIo, RefusesMalformedSamplesNamingFileAndLine) {
   expect_samples_refused("", 1, "no header");
   expect_samples_refused("# only a comment\n\n", 2, "no header");
-  expect_samples_refused("x,y\n0,0\n", 1, "header has 2 columns");
-  expect_samples_refused("u,v,B\n0,0,1\n", 1, "must start with x,y");
-  expect_samples_refused("0,0,1\n1,0,2\n", 1, "must start with x,y");
+  expect_samples_refused("x,y\n0,0\n", 1, "has 2 columns");
+  expect_samples_refused("0 0\n1 0\n", 1, "has 2 columns");
   expect_samples_refused("x,y,B\n0,0,1\n1,0\n", 3, "the row has 2 fields, the header has 3");
   expect_samples_refused("x,y,B\n0,0,1,7\n", 2, "the row has 4 fields");
   expect_samples_refused("x,y,B\n# c\n0,0,1\n1,0,abc\n", 4, "column 3 (B): 'abc' is not a number");
@@ -118,6 +117,38 @@ TEST(SamplesIo, RefusesMalformedSamplesNamingFileAndLine) {
   expect_samples_refused("x,y,B\n0,0,1\n1,0,-inf\n", 3, "not finite");
   expect_samples_refused("x,y,B\n0,,1\n", 2, "column 2 (y): empty field");
   expect_samples_refused("x,y,B\n# nothing\n\n", 3, "no data rows");
+}
+
+// The files people have: a header that does not start with x,y (columns chosen by name), R's
+// quoted header, whitespace-separated XYZ without a header (nnbathy, GMT), a byte order mark.
+TEST(SamplesIo, ReadsNamedColumnsQuotedHeadersAndXyzFiles) {
+  SamplesIoFiles files;
+  std::vector<std::string> names;
+  const std::string quake = files.write("quake.csv", "long,lat,depth,mag\n174.7,-41.3,12.5,4.1\n175.1,-40.9,30,5.2\n");
+  ScatteredSamples s = read_samples_csv(quake, &names, {"LONG", "lat", {"mag"}});
+  EXPECT_EQ(names, (std::vector<std::string>{"mag"}));
+  EXPECT_EQ(s.points, (std::vector<Vec2>{{174.7, -41.3}, {175.1, -40.9}}));
+  EXPECT_EQ(s.values, (std::vector<double>{4.1, 5.2}));
+  // Without --x/--y: the first two columns; every other column is a value.
+  s = read_samples_csv(quake, &names);
+  EXPECT_EQ(names, (std::vector<std::string>{"depth", "mag"}));
+  EXPECT_EQ(s.values, (std::vector<double>{12.5, 4.1, 30, 5.2}));
+  // Columns named x and y are x and y wherever they stand.
+  s = read_samples_csv(files.write("yx.csv", "v,y,x\n1,2,3\n4,5,6\n"), &names);
+  EXPECT_EQ(s.points, (std::vector<Vec2>{{3, 2}, {6, 5}}));
+  EXPECT_EQ(names, (std::vector<std::string>{"v"}));
+  s = read_samples_csv(files.write("r.csv", "\xEF\xBB\xBF\"x\",\"y\",\"elev\"\n1,2,3\n4,5,6\n"), &names);
+  EXPECT_EQ(names, (std::vector<std::string>{"elev"}));
+  EXPECT_EQ(s.values, (std::vector<double>{3, 6}));
+  s = read_samples_csv(files.write("bathy.xyz", "# depth soundings\n0 0  -3.5\n1\t0 -4\n  0 1 -2.25\n"), &names);
+  EXPECT_EQ(names, (std::vector<std::string>{"z"}));
+  EXPECT_EQ(s.points, (std::vector<Vec2>{{0, 0}, {1, 0}, {0, 1}}));
+  EXPECT_EQ(s.values, (std::vector<double>{-3.5, -4, -2.25}));
+  const std::string missing = user_error_of([&] { read_samples_csv(quake, nullptr, {"x", "lat", {}}); });
+  EXPECT_NE(missing.find("--x"), std::string::npos) << missing;
+  EXPECT_NE(missing.find("no column named 'x' (its columns: long, lat, depth, mag)"), std::string::npos) << missing;
+  const std::string same = user_error_of([&] { read_samples_csv(quake, nullptr, {"lat", "lat", {}}); });
+  EXPECT_NE(same.find("the same column"), std::string::npos) << same;
 }
 
 TEST(SamplesIo, RefusesAMissingFile) {

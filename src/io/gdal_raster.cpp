@@ -1,0 +1,157 @@
+#include "io/gdal_raster.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <mutex>
+#include <sstream>
+#include <vector>
+
+#include <cpl_conv.h>
+#include <cpl_error.h>
+#include <gdal_priv.h>
+#include <ogr_spatialref.h>
+
+#include "core/check.h"
+#include "core/error.h"
+#include "core/parse.h"
+
+namespace radrecon {
+
+namespace {
+
+void register_gdal() {
+  static std::once_flag once;
+  std::call_once(once, [] { GDALAllRegister(); });
+}
+
+/// GDAL's own messages go to its last-error slot, not to stderr, while this lives.
+class QuietGdal {
+ public:
+  QuietGdal() {
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    CPLErrorReset();
+  }
+  ~QuietGdal() { CPLPopErrorHandler(); }
+  static std::string last_error() {
+    const char* msg = CPLGetLastErrorMsg();
+    return msg && *msg ? msg : "GDAL gave no reason";
+  }
+};
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+bool can_create_raster(GDALDriver* d) {
+  return d->GetMetadataItem(GDAL_DCAP_RASTER) != nullptr &&
+         (d->GetMetadataItem(GDAL_DCAP_CREATE) != nullptr || d->GetMetadataItem(GDAL_DCAP_CREATECOPY) != nullptr);
+}
+
+}  // namespace
+
+std::string gdal_raster_driver(const std::string& path, const std::string& format, const std::string& where) {
+  register_gdal();
+  GDALDriverManager* drivers = GetGDALDriverManager();
+  if (!format.empty()) {
+    GDALDriver* d = drivers->GetDriverByName(format.c_str());
+    if (d == nullptr || !can_create_raster(d))
+      throw UserError("--format", "'" + format + "' is no GDAL driver that creates rasters (gdalinfo --formats lists them)");
+    return format;
+  }
+  std::string ext = lower(std::filesystem::path(path).extension().string());
+  if (!ext.empty()) ext.erase(0, 1);
+  if (ext == "tif" || ext == "tiff") return "GTiff";  // before COG, which claims them too
+  std::string known;
+  for (int k = 0; k < drivers->GetDriverCount(); ++k) {
+    GDALDriver* d = drivers->GetDriver(k);
+    if (!can_create_raster(d)) continue;
+    const char* exts = d->GetMetadataItem(GDAL_DMD_EXTENSIONS);
+    if (exts == nullptr) continue;
+    std::istringstream list(exts);
+    for (std::string e; list >> e;) {
+      if (lower(e) == ext && !ext.empty()) return d->GetDescription();
+      if (known.find(" ." + e + ",") == std::string::npos) known += " ." + e + ",";
+    }
+  }
+  throw UserError(where, "unknown output extension '" + std::filesystem::path(path).extension().string() +
+                             "': radrecon writes .csv, .pfm and .png, and through GDAL" + known.substr(0, known.size() - 1) +
+                             " (or name a driver with --format)");
+}
+
+void check_gdal_crs(const std::string& crs) {
+  if (crs.empty()) return;
+  register_gdal();
+  QuietGdal quiet;
+  OGRSpatialReference srs;
+  if (srs.SetFromUserInput(crs.c_str()) != OGRERR_NONE)
+    throw UserError("--crs", "'" + crs + "' is no coordinate reference system GDAL knows (e.g. EPSG:2193, a WKT or PROJ string): " +
+                                 QuietGdal::last_error());
+}
+
+void write_raster_gdal(const std::string& path, const Raster& raster, std::span<const double> values, int channels,
+                       const GdalRasterOptions& options) {
+  RR_CHECK(channels >= 1 && values.size() == static_cast<size_t>(raster.width) * raster.height * channels,
+           "raster values do not match the raster");
+  for (const double v : values)
+    if (v == options.nodata)
+      throw UserError("--nodata", "the value " + format_number(options.nodata) +
+                                      " occurs in the results, where it would read back as no data; choose another --nodata");
+  const std::string driver_name = gdal_raster_driver(path, options.format, "--out");
+  register_gdal();
+  QuietGdal quiet;
+  GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
+  GDALDriver* driver = GetGDALDriverManager()->GetDriverByName(driver_name.c_str());
+  RR_CHECK(mem != nullptr && driver != nullptr, "GDAL drivers missing");
+  const GDALDataType type = options.float64 ? GDT_Float64 : GDT_Float32;
+  std::unique_ptr<GDALDataset> image(mem->Create("", raster.width, raster.height, channels, type, nullptr));
+  if (!image) throw UserError(path, "GDAL cannot hold the raster in memory: " + QuietGdal::last_error());
+  const Rect& d = raster.domain;
+  double transform[6] = {d.x0, (d.x1 - d.x0) / raster.width, 0, d.y1, 0, -(d.y1 - d.y0) / raster.height};
+  image->SetGeoTransform(transform);
+  if (!options.crs.empty()) {
+    OGRSpatialReference srs;
+    srs.SetFromUserInput(options.crs.c_str());
+    srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+    image->SetSpatialRef(&srs);
+  }
+  std::vector<double> row(static_cast<size_t>(raster.width));
+  for (int c = 0; c < channels; ++c) {
+    GDALRasterBand* band = image->GetRasterBand(c + 1);
+    band->SetNoDataValue(options.nodata);
+    for (int j = 0; j < raster.height; ++j) {
+      // Stored row r is the raster's row height - 1 - r: north-up.
+      const size_t first = static_cast<size_t>(raster.height - 1 - j) * raster.width;
+      for (int i = 0; i < raster.width; ++i) {
+        const double v = values[(first + i) * channels + c];
+        row[static_cast<size_t>(i)] = std::isnan(v) ? options.nodata : v;
+      }
+      if (band->RasterIO(GF_Write, 0, j, raster.width, 1, row.data(), raster.width, 1, GDT_Float64, 0, 0) != CE_None)
+        throw UserError(path, "GDAL cannot fill the raster: " + QuietGdal::last_error());
+    }
+  }
+  // Written in a fresh folder beside the output, then moved: no half-written file under the
+  // output's name, and side files (e.g. an ENVI header) move along.
+  namespace fs = std::filesystem;
+  const fs::path out(path);
+  const fs::path parent = out.has_parent_path() ? out.parent_path() : fs::path(".");
+  std::string pattern = (parent / ".radrecon-gdal-XXXXXX").string();
+  if (mkdtemp(pattern.data()) == nullptr) throw UserError(path, "cannot create a temporary folder beside it");
+  const fs::path tmp(pattern);
+  try {
+    std::unique_ptr<GDALDataset> file(driver->CreateCopy((tmp / out.filename()).c_str(), image.get(), FALSE, nullptr,
+                                                          nullptr, nullptr));
+    if (!file) throw UserError(path, "GDAL's " + driver_name + " driver cannot write it: " + QuietGdal::last_error());
+    file.reset();  // closes and flushes
+    if (CPLGetLastErrorType() >= CE_Failure) throw UserError(path, "GDAL failed writing it: " + QuietGdal::last_error());
+    for (const fs::directory_entry& e : fs::directory_iterator(tmp)) fs::rename(e.path(), parent / e.path().filename());
+    fs::remove(tmp);
+  } catch (...) {
+    std::error_code ec;
+    fs::remove_all(tmp, ec);
+    throw;
+  }
+}
+
+}  // namespace radrecon

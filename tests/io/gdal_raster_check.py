@@ -1,0 +1,118 @@
+#!/usr/bin/env python3
+"""interpolate to GDAL rasters, read back by GDAL itself (python3-gdal and gdalinfo -json):
+geotransform, north-up row order, CRS, no-data, band type and values against the closed form of a
+linear function, which `linear` reproduces exactly inside the samples' hull.
+
+Usage: gdal_raster_check.py /path/to/radrecon   (exit 77: python3-gdal or gdalinfo missing)
+"""
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+
+try:
+    from osgeo import gdal, osr
+except ImportError:
+    print("gdal_raster_check: skipped: no python3-gdal")
+    sys.exit(77)
+if shutil.which("gdalinfo") is None:
+    print("gdal_raster_check: skipped: no gdalinfo")
+    sys.exit(77)
+gdal.UseExceptions()
+
+RADRECON = sys.argv[1]
+failures = []
+
+
+def check(condition, what):
+    if not condition:
+        failures.append(what)
+        print("FAIL:", what)
+
+
+def f(x, y):
+    return 2 + 3 * x - y
+
+
+def run(*args):
+    return subprocess.run([RADRECON, "interpolate", *args, "--quiet"], capture_output=True, text=True)
+
+
+with tempfile.TemporaryDirectory() as tmp:
+    # Samples of f on a 5 x 4 grid over [0, 4] x [0, 3], columns named as a real file would.
+    samples = os.path.join(tmp, "quake.csv")
+    with open(samples, "w") as out:
+        out.write("long,lat,mag,depth\n")
+        for j in range(4):
+            for i in range(5):
+                out.write(f"{i},{j},{f(i, j)!r},{10 + i}\n")
+    x0, y0, x1, y1, W, H = -1.0, 0.0, 4.0, 3.0, 10, 6
+    domain = f"{x0},{y0},{x1},{y1}"
+    tif = os.path.join(tmp, "mag.tif")
+    r = run("--samples", samples, "--x", "long", "--y", "lat", "--value", "mag", "--method", "linear",
+            "--param", "outside=none", "--raster", f"{W}x{H}", "--domain", domain, "--crs", "EPSG:2193",
+            "--type", "float64", "--out", tif)
+    check(r.returncode == 0, f"GeoTIFF written (exit {r.returncode}: {r.stderr.strip()})")
+    if r.returncode == 0:
+        d = gdal.Open(tif)
+        dx, dy = (x1 - x0) / W, (y1 - y0) / H
+        check(d.GetDriver().ShortName == "GTiff", "a GeoTIFF")
+        check(d.GetGeoTransform() == (x0, dx, 0.0, y1, 0.0, -dy), f"geotransform {d.GetGeoTransform()}")
+        srs = osr.SpatialReference(wkt=d.GetProjection())
+        check(srs.GetAuthorityCode(None) == "2193", f"CRS {srs.GetAuthorityName(None)}:{srs.GetAuthorityCode(None)}")
+        band = d.GetRasterBand(1)
+        check(d.RasterCount == 1, "one band for one --value column")
+        check(band.GetNoDataValue() == -9999.0, f"no-data {band.GetNoDataValue()}")
+        check(gdal.GetDataTypeName(band.DataType) == "Float64", "Float64 with --type float64")
+        a = band.ReadAsArray()
+        inside = outside = 0
+        for row in range(H):
+            y = y1 - (row + 0.5) * dy  # north-up: stored row 0 is the top
+            for col in range(W):
+                x = x0 + (col + 0.5) * dx
+                if 0 <= x <= 4 and 0 <= y <= 3:
+                    inside += 1
+                    check(abs(a[row, col] - f(x, y)) <= 1e-12 * 20, f"value at ({x}, {y}): {a[row, col]} vs {f(x, y)}")
+                else:
+                    outside += 1
+                    check(a[row, col] == -9999.0, f"no-data outside the hull at ({x}, {y}): {a[row, col]}")
+        check(inside > 0 and outside > 0, "cells inside and outside the hull")
+        info = json.loads(subprocess.run(["gdalinfo", "-json", tif], capture_output=True, text=True, check=True).stdout)
+        check(info["geoTransform"] == [x0, dx, 0.0, y1, 0.0, -dy], f"gdalinfo geotransform {info['geoTransform']}")
+        check(info["bands"][0]["noDataValue"] == -9999.0, "gdalinfo no-data")
+        check(info["size"] == [W, H], f"gdalinfo size {info['size']}")
+
+    # Two value columns: two bands, Float32 by default; another driver by its extension.
+    asc = os.path.join(tmp, "both.tif")
+    r = run("--samples", samples, "--method", "linear", "--raster", "5x4", "--domain", "0,0,4,3", "--out", asc)
+    check(r.returncode == 0, f"two bands written ({r.stderr.strip()})")
+    if r.returncode == 0:
+        d = gdal.Open(asc)
+        check(d.RasterCount == 2, f"{d.RasterCount} bands for mag and depth")
+        check(gdal.GetDataTypeName(d.GetRasterBand(1).DataType) == "Float32", "Float32 by default")
+        depth = d.GetRasterBand(2).ReadAsArray()
+        check(abs(depth[0, 0] - (10 + 0.4)) < 1e-5, f"depth band {depth[0, 0]} (10 + x at x = 0.4)")
+    grd = os.path.join(tmp, "mag.asc")
+    r = run("--samples", samples, "--value", "mag", "--method", "linear", "--raster", "5x4", "--domain", "0,0,4,3",
+            "--out", grd)
+    check(r.returncode == 0 and gdal.Open(grd).GetDriver().ShortName == "AAIGrid", "Arc/Info ASCII grid by its extension")
+
+    # Refusals: exit 2, a message naming the option, nothing written.
+    for args, words, name in [
+        (["--crs", "EPSG:999999999"], "--crs", "bad.tif"),
+        (["--nodata", "5"], "--nodata", "clash.tif"),  # f takes the value 5 at a cell centre
+        (["--format", "NoSuchDriver"], "--format", "x.tif"),
+        (["--type", "int8"], "--type", "t.tif"),
+        ([], "unknown output extension", "x.nosuchext"),
+    ]:
+        out = os.path.join(tmp, name)
+        r = run("--samples", samples, "--value", "mag", "--method", "linear", "--raster", "4x3", "--domain",
+                "0,0,4,3", "--out", out, *args)
+        check(r.returncode == 2 and words in r.stderr, f"{args}: exit {r.returncode}, {r.stderr.strip()}")
+        check(not os.path.exists(out), f"{args}: nothing written")
+    check([e for e in os.listdir(tmp) if e.startswith(".radrecon-gdal")] == [], "no temporary folder left behind")
+
+print("gdal_raster_check:", "FAILED" if failures else "passed", f"({len(failures)} failures)")
+sys.exit(1 if failures else 0)
