@@ -14,6 +14,7 @@
 #include "core/error.h"
 #include "core/parse.h"
 #include "io/gdal_raster.h"
+#include "io/gdal_vector.h"
 #include "io/geojson.h"
 #include "io/image_io.h"
 #include "io/paths.h"
@@ -121,7 +122,11 @@ void run_interpolate(const InterpolateArgs& args) {
 
   // Barriers, samples, interpolant, queries.
   if (!args.barriers.empty()) {
-    Result<Barriers> barriers = Barriers::from_polylines(read_geojson_barriers(args.barriers));
+    std::string ext = std::filesystem::path(args.barriers).extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    Result<Barriers> barriers = Barriers::from_polylines(ext == ".geojson" || ext == ".json"
+                                                             ? read_geojson_barriers(args.barriers)
+                                                             : read_ogr_barriers(args.barriers));
     if (!barriers) throw UserError(args.barriers, barriers.reason());
     params.barriers = std::move(barriers).value();
   }
@@ -134,7 +139,8 @@ void run_interpolate(const InterpolateArgs& args) {
     at = comma + 1;
   }
   std::vector<std::string> value_names;
-  ScatteredSamples samples = read_samples_csv(args.samples, &value_names, columns);
+  ScatteredSamples samples = is_ogr_vector_path(args.samples) ? read_samples_ogr(args.samples, &value_names, columns)
+                                                               : read_samples_csv(args.samples, &value_names, columns);
   if (args.border_samples) {
     // On --domain (the raster's), else the samples' bounding box.
     Rect domain = raster.domain;
@@ -156,7 +162,9 @@ void run_interpolate(const InterpolateArgs& args) {
   const InterpolantResult interpolant = build_interpolant(*method, samples, params, args.samples);
   if (!interpolant) throw UserError(args.samples, interpolant.reason());
   const std::vector<Vec2> points =
-      use_queries ? read_queries_csv(args.queries, {args.x_column, args.y_column, {}}) : raster_points(raster);
+      !use_queries ? raster_points(raster)
+      : is_ogr_vector_path(args.queries) ? read_queries_ogr(args.queries, {args.x_column, args.y_column, {}})
+                                         : read_queries_csv(args.queries, {args.x_column, args.y_column, {}});
 
   const std::string description = describe_params(*method, params);
   if (!args.quiet)
@@ -198,8 +206,10 @@ void add_interpolate_command(CLI::App& app) {
       "(natural-neighbour, laplace, sibson-c1, linear, clough-tocher) follow --param outside. "
       "Exit code 2 for refused input (message names the file:line or option), nothing written then.");
   cmd->add_option("--samples", args->samples,
-                  "CSV of samples: header x,y,NAME[,NAME...] then one row per sample; '#' lines and blank lines "
-                  "are ignored; values must be finite numbers")
+                  "Samples: a CSV table (header x,y,NAME[,NAME...], or columns chosen by --x/--y/--value; "
+                  "'#' lines and blank lines ignored; a header in double quotes; whitespace-separated XYZ "
+                  "without a header), or any vector source GDAL reads (.gpkg, .shp, .geojson, ...: point "
+                  "features, numeric fields as values); values must be finite numbers")
       ->required();
   cmd->add_option("--method", args->method,
                   "constant (value of the nearest sample); scattered: shepard (inverse distance weighting), "

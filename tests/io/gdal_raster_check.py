@@ -99,6 +99,49 @@ with tempfile.TemporaryDirectory() as tmp:
             "--out", grd)
     check(r.returncode == 0 and gdal.Open(grd).GetDriver().ShortName == "AAIGrid", "Arc/Info ASCII grid by its extension")
 
+    # Samples from a GeoPackage of points (OGR), with a barrier line from a GeoPackage and the
+    # same line from GeoJSON: the two barrier readers agree, and the values match f.
+    from osgeo import ogr
+    gpkg = os.path.join(tmp, "points.gpkg")
+    ds = ogr.GetDriverByName("GPKG").CreateDataSource(gpkg)
+    layer = ds.CreateLayer("soundings", geom_type=ogr.wkbPoint)
+    layer.CreateField(ogr.FieldDefn("mag", ogr.OFTReal))
+    layer.CreateField(ogr.FieldDefn("name", ogr.OFTString))
+    for j in range(4):
+        for i in range(5):
+            feature = ogr.Feature(layer.GetLayerDefn())
+            feature.SetGeometry(ogr.CreateGeometryFromWkt(f"POINT ({i} {j})"))
+            feature.SetField("mag", f(i, j))
+            feature.SetField("name", f"p{i}{j}")
+            layer.CreateFeature(feature)
+    ds = None
+    lines = os.path.join(tmp, "fault.gpkg")
+    ds = ogr.GetDriverByName("GPKG").CreateDataSource(lines)
+    layer = ds.CreateLayer("faults", geom_type=ogr.wkbLineString)
+    feature = ogr.Feature(layer.GetLayerDefn())
+    feature.SetGeometry(ogr.CreateGeometryFromWkt("LINESTRING (2.2 -1, 2.2 4)"))
+    layer.CreateFeature(feature)
+    ds = None
+    geojson = os.path.join(tmp, "fault.geojson")
+    with open(geojson, "w") as out:
+        out.write('{"type": "LineString", "coordinates": [[2.2, -1], [2.2, 4]]}')
+    outputs = {}
+    for name, barrier in [("gpkg", lines), ("geojson", geojson)]:
+        out = os.path.join(tmp, f"nn_{name}.csv")
+        r = run("--samples", gpkg, "--method", "natural-neighbour", "--raster", "8x6", "--domain", "0,0,4,3",
+                "--barriers", barrier, "--out", out)
+        check(r.returncode == 0, f"GeoPackage samples with {name} barriers ({r.stderr.strip()})")
+        outputs[name] = open(out).read() if r.returncode == 0 else None
+    check(outputs["gpkg"] is not None and outputs["gpkg"] == outputs["geojson"], "OGR and GeoJSON barriers agree")
+    out = os.path.join(tmp, "gpkg_linear.csv")
+    r = run("--samples", gpkg, "--method", "linear", "--raster", "8x6", "--domain", "0,0,4,3", "--out", out)
+    if check(r.returncode == 0, f"GeoPackage samples ({r.stderr.strip()})") is None and r.returncode == 0:
+        rows = open(out).read().split()[1:]
+        check(len(rows) == 48, f"{len(rows)} rows")
+        for row in rows:
+            x, y, v = map(float, row.split(","))
+            check(abs(v - f(x, y)) < 1e-12 * 20, f"GeoPackage samples: value at ({x}, {y}) {v} vs {f(x, y)}")
+
     # Refusals: exit 2, a message naming the option, nothing written.
     for args, words, name in [
         (["--crs", "EPSG:999999999"], "--crs", "bad.tif"),

@@ -1,0 +1,185 @@
+#include "io/gdal_vector.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <mutex>
+#include <optional>
+
+#include <cpl_error.h>
+#include <gdal_priv.h>
+#include <ogrsf_frmts.h>
+
+#include "core/error.h"
+#include "core/parse.h"
+#include "core/tolerances.h"
+#include "reconstruct/sample_set.h"
+
+namespace radrecon {
+
+namespace {
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+/// The first layer of the vector source at `path`, opened read-only.
+class OgrLayer {
+ public:
+  explicit OgrLayer(const std::string& path) : path_(path) {
+    static std::once_flag once;
+    std::call_once(once, [] { GDALAllRegister(); });
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    CPLErrorReset();
+    data_.reset(static_cast<GDALDataset*>(
+        GDALOpenEx(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
+    const std::string reason = CPLGetLastErrorMsg();
+    CPLPopErrorHandler();
+    if (!data_)
+      throw UserError(path, "cannot open as a vector source" + (reason.empty() ? std::string() : ": " + reason));
+    if (data_->GetLayerCount() < 1) throw UserError(path, "has no layer");
+    layer_ = data_->GetLayer(0);
+  }
+
+  OGRLayer& layer() { return *layer_; }
+  const std::string& path() const { return path_; }
+  OGRFeatureDefn& fields() { return *layer_->GetLayerDefn(); }
+  std::string where(const OGRFeature& f) const {
+    return path_ + ": layer '" + layer_->GetName() + "', feature " + std::to_string(f.GetFID());
+  }
+
+  /// The field named `name` (case-insensitive) for option `option`.
+  int field(const std::string& name, const std::string& option) {
+    for (int k = 0; k < fields().GetFieldCount(); ++k)
+      if (lower(fields().GetFieldDefn(k)->GetNameRef()) == lower(name)) return k;
+    std::string names;
+    for (int k = 0; k < fields().GetFieldCount(); ++k) names += (names.empty() ? "" : ", ") + std::string(fields().GetFieldDefn(k)->GetNameRef());
+    throw UserError(option, path_ + " has no field named '" + name + "' (its fields: " + (names.empty() ? "none" : names) + ")");
+  }
+
+  bool numeric(int k) {
+    const OGRFieldType t = fields().GetFieldDefn(k)->GetType();
+    return t == OFTReal || t == OFTInteger || t == OFTInteger64;
+  }
+
+  /// The finite number in field k of feature f.
+  double number(const OGRFeature& f, int k) {
+    const std::string name = fields().GetFieldDefn(k)->GetNameRef();
+    if (!f.IsFieldSetAndNotNull(k)) throw UserError(where(f), "field " + name + " has no value");
+    if (!numeric(k)) throw UserError(where(f), "field " + name + " is not numeric");
+    const double v = f.GetFieldAsDouble(k);
+    if (!std::isfinite(v)) throw UserError(where(f), "field " + name + " is not finite");
+    return v;
+  }
+
+ private:
+  std::string path_;
+  std::unique_ptr<GDALDataset> data_;
+  OGRLayer* layer_ = nullptr;
+};
+
+/// Reads the (x, y) of every feature and, for samples, its values.
+template <typename PerFeature>
+void for_each_point(OgrLayer& src, const CsvColumns& columns, PerFeature&& each) {
+  const std::optional<int> xf = columns.x.empty() ? std::nullopt : std::optional<int>(src.field(columns.x, "--x"));
+  const std::optional<int> yf = columns.y.empty() ? std::nullopt : std::optional<int>(src.field(columns.y, "--y"));
+  if (xf.has_value() != yf.has_value()) throw UserError("--x/--y", "name both the x and the y field, or neither");
+  src.layer().ResetReading();
+  size_t count = 0;
+  for (std::unique_ptr<OGRFeature> f(src.layer().GetNextFeature()); f; f.reset(src.layer().GetNextFeature())) {
+    Vec2 p;
+    if (xf) {
+      p = Vec2(src.number(*f, *xf), src.number(*f, *yf));
+    } else {
+      const OGRGeometry* g = f->GetGeometryRef();
+      if (g == nullptr || wkbFlatten(g->getGeometryType()) != wkbPoint)
+        throw UserError(src.where(*f), std::string("has ") + (g ? g->getGeometryName() : "no geometry") +
+                                           "; expected a Point (or name x and y fields with --x and --y)");
+      const OGRPoint* point = g->toPoint();
+      p = Vec2(point->getX(), point->getY());
+    }
+    if (!(std::abs(p.x()) <= tol::kMaxSampleCoordinate && std::abs(p.y()) <= tol::kMaxSampleCoordinate))
+      throw UserError(src.where(*f), "its point is not finite or beyond the largest coordinate, " +
+                                         format_number(tol::kMaxSampleCoordinate));
+    each(*f, p);
+    ++count;
+  }
+  if (count == 0) throw UserError(src.path(), std::string("layer '") + src.layer().GetName() + "' has no features");
+}
+
+}  // namespace
+
+bool is_ogr_vector_path(const std::string& path) {
+  const std::string ext = lower(std::filesystem::path(path).extension().string());
+  return !(ext.empty() || ext == ".csv" || ext == ".txt" || ext == ".xyz" || ext == ".dat" || ext == ".tsv");
+}
+
+ScatteredSamples read_samples_ogr(const std::string& path, std::vector<std::string>* value_names, const CsvColumns& columns) {
+  OgrLayer src(path);
+  std::vector<int> value_fields;
+  for (const std::string& name : columns.values) value_fields.push_back(src.field(name, "--value"));
+  if (columns.values.empty())
+    for (int k = 0; k < src.fields().GetFieldCount(); ++k) {
+      const std::string name = lower(src.fields().GetFieldDefn(k)->GetNameRef());
+      if (src.numeric(k) && name != lower(columns.x) && name != lower(columns.y)) value_fields.push_back(k);
+    }
+  if (value_fields.empty()) throw UserError(path, "has no numeric field to interpolate (name one with --value)");
+  ScatteredSamples s;
+  s.channels = static_cast<int>(value_fields.size());
+  for_each_point(src, columns, [&](const OGRFeature& f, const Vec2& p) {
+    s.points.push_back(p);
+    for (const int k : value_fields) s.values.push_back(src.number(f, k));
+  });
+  if (value_names) {
+    value_names->clear();
+    for (const int k : value_fields) value_names->push_back(src.fields().GetFieldDefn(k)->GetNameRef());
+  }
+  const size_t before = s.points.size(), removed = merge_duplicate_points(s);
+  if (removed > 0)
+    std::fprintf(stderr, "radrecon: warning: %s: %zu samples repeat the point of an earlier one; merged, their values "
+                 "averaged (%zu samples -> %zu points)\n", path.c_str(), removed, before, s.points.size());
+  return s;
+}
+
+std::vector<Vec2> read_queries_ogr(const std::string& path, const CsvColumns& columns) {
+  OgrLayer src(path);
+  std::vector<Vec2> points;
+  for_each_point(src, columns, [&](const OGRFeature&, const Vec2& p) { points.push_back(p); });
+  return points;
+}
+
+std::vector<Polyline> read_ogr_barriers(const std::string& path) {
+  OgrLayer src(path);
+  std::vector<Polyline> lines;
+  const auto add = [&](const OGRLineString& l) {
+    Polyline line;
+    for (int k = 0; k < l.getNumPoints(); ++k) line.emplace_back(l.getX(k), l.getY(k));
+    lines.push_back(std::move(line));
+  };
+  src.layer().ResetReading();
+  for (std::unique_ptr<OGRFeature> f(src.layer().GetNextFeature()); f; f.reset(src.layer().GetNextFeature())) {
+    const OGRGeometry* g = f->GetGeometryRef();
+    if (g == nullptr) continue;
+    switch (wkbFlatten(g->getGeometryType())) {
+      case wkbLineString: add(*g->toLineString()); break;
+      case wkbMultiLineString:
+        for (const OGRLineString* l : *g->toMultiLineString()) add(*l);
+        break;
+      case wkbPolygon:
+        for (const OGRLinearRing* r : *g->toPolygon()) add(*r);
+        break;
+      case wkbMultiPolygon:
+        for (const OGRPolygon* p : *g->toMultiPolygon())
+          for (const OGRLinearRing* r : *p) add(*r);
+        break;
+      default:
+        throw UserError(src.where(*f), std::string("has a ") + g->getGeometryName() + "; a barrier is a line or a polygon's ring");
+    }
+  }
+  if (lines.empty()) throw UserError(path, "holds no barrier line");
+  return lines;
+}
+
+}  // namespace radrecon

@@ -1,0 +1,32 @@
+#pragma once
+// Samples, query points and barrier lines from any vector source GDAL's OGR reads: GeoPackage,
+// Shapefile, GeoJSON, FlatGeobuf, GML, KML, ... (`ogrinfo --formats`). The first layer is read.
+// Samples and queries: each feature's point geometry is (x, y), or the fields --x and --y name;
+// the values are the numeric fields --value names, else every numeric field (other than x, y).
+// Barriers: LineString and MultiLineString features, and the rings of Polygon and MultiPolygon
+// features. Coordinates are taken as they are stored (no reprojection).
+
+#include <string>
+#include <vector>
+
+#include "io/samples_csv.h"
+
+namespace radrecon {
+
+/// Whether `path` is read through OGR rather than as a native CSV/XYZ table: any extension but
+/// .csv, .txt, .xyz, .dat and .tsv (and none).
+bool is_ogr_vector_path(const std::string& path);
+
+/// The samples of the source's first layer. UserError naming the file and the feature for a
+/// missing or empty layer, a feature without a point (and no --x/--y fields), a non-numeric,
+/// null or non-finite value, or a coordinate beyond tol::kMaxSampleCoordinate. Duplicate points
+/// are merged as read_samples_csv() merges them.
+ScatteredSamples read_samples_ogr(const std::string& path, std::vector<std::string>* value_names, const CsvColumns& columns);
+
+/// The query points of the source's first layer (as samples, without values).
+std::vector<Vec2> read_queries_ogr(const std::string& path, const CsvColumns& columns);
+
+/// The barrier lines of the source's first layer; UserError for a point feature or none at all.
+std::vector<Polyline> read_ogr_barriers(const std::string& path);
+
+}  // namespace radrecon
