@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/check.h"
 #include "core/error.h"
@@ -116,6 +117,13 @@ MethodParams parse_params(Method method, const std::vector<std::string>& setting
       const double k = parse_number(value, where);
       if (k < 0 || k != std::floor(k) || k > 1e6) throw UserError(where, "must be an integer >= 0 (0: all samples)");
       p.shepard_k = static_cast<int>(k);
+    } else if (method == Method::shepard && name == "radius") {
+      p.shepard_radius_m = parse_number(value, where);
+      if (!(*p.shepard_radius_m > 0) || !std::isfinite(*p.shepard_radius_m)) throw UserError(where, "must be a finite number > 0");
+    } else if (method == Method::shepard && name == "min_points") {
+      const double m = parse_number(value, where);
+      if (m < 1 || m != std::floor(m) || m > 1e6) throw UserError(where, "must be an integer >= 1");
+      p.shepard_min_points = static_cast<int>(m);
     } else if (method == Method::multiquadric && name == "mu") {
       p.multiquadric_mu = parse_number(value, where);
       if (p.multiquadric_mu == 0) throw UserError(where, "must not be 0");
@@ -153,6 +161,10 @@ std::string describe_params(Method method, const MethodParams& p) {
   switch (method) {
     case Method::shepard:
       std::snprintf(buf, sizeof buf, "mu=%g, k=%s", p.shepard_mu, p.shepard_k ? std::to_string(p.shepard_k).c_str() : "all");
+      if (p.shepard_radius_m)
+        return std::string(buf) + ", radius=" + format_number(*p.shepard_radius_m) + " m, min_points=" +
+               std::to_string(p.shepard_min_points);
+      if (p.shepard_min_points != 1) return std::string(buf) + ", min_points=" + std::to_string(p.shepard_min_points);
       return buf;
     case Method::multiquadric:
       if (p.multiquadric_r) std::snprintf(buf, sizeof buf, "mu=%g, r=%g m", p.multiquadric_mu, *p.multiquadric_r);
@@ -275,7 +287,10 @@ InterpolantResult make_scattered_interpolant(Method method, const ScatteredSampl
     case Method::bicubic:
     case Method::hermite: return Failure{method_name(method) + " needs samples on a regular grid"};
     case Method::gouraud: return Failure{"gouraud needs cells (a grid's or a quadtree's), not points"};
-    case Method::shepard: return build<Shepard>(samples, params.shepard_mu, params.shepard_k, params.barriers);
+    case Method::shepard:
+      return build<Shepard>(samples, params.shepard_mu, params.shepard_k, params.barriers,
+                            params.shepard_radius_m.value_or(std::numeric_limits<double>::infinity()),
+                            params.shepard_min_points);
     case Method::multiquadric:
     case Method::thin_plate: {
       const bool thin = method == Method::thin_plate;

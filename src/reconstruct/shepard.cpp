@@ -36,6 +36,13 @@ Shepard::Shepard(ScatteredSamples samples, double mu, int k, Barriers barriers) 
   if (!barriers_.empty()) visibility_ = std::make_unique<PointVisibility>(samples_.points, barriers_);
 }
 
+Shepard::Shepard(ScatteredSamples samples, double mu, int k, Barriers barriers, double radius_m, int min_points)
+    : Shepard(std::move(samples), mu, k, std::move(barriers)) {
+  RR_CHECK(radius_m > 0 && min_points >= 1, "Shepard search radius out of range");
+  radius_sq_ = radius_m * radius_m;
+  min_points_ = static_cast<size_t>(min_points);
+}
+
 Shepard::~Shepard() = default;
 
 namespace {
@@ -85,6 +92,18 @@ void Shepard::evaluate(std::span<const Vec2> points, std::span<double> out) cons
         for (Eigen::Index i = 0; i < N; ++i)
           if (s.hidden[static_cast<size_t>(i)]) dist_sq[i] = std::numeric_limits<double>::infinity();
       }
+      if (radius_sq_ < std::numeric_limits<double>::infinity()) {
+        // Beyond the radius a sample is as good as hidden.
+        size_t within = 0;
+        for (Eigen::Index i = 0; i < N; ++i) {
+          if (dist_sq[i] > radius_sq_) dist_sq[i] = std::numeric_limits<double>::infinity();
+          else ++within;
+        }
+        if (within < min_points_) {
+          for (int c = 0; c < C; ++c) o[c] = std::numeric_limits<double>::quiet_NaN();
+          return;
+        }
+      }
       Eigen::Index first = 0;
       const double nearest_sq = dist_sq.minCoeff(&first);
       if (!(nearest_sq < std::numeric_limits<double>::infinity())) {  // sees no sample: no value
@@ -120,6 +139,11 @@ void Shepard::evaluate(std::span<const Vec2> points, std::span<double> out) cons
     }
     const std::vector<unsigned>& idx = plain ? s.idx : s.visible.idx;
     const std::vector<double>& d2 = plain ? s.d2 : s.visible.dist_sq;
+    while (found > 0 && d2[found - 1] > radius_sq_) --found;  // nearest first: those within the radius
+    if (found < min_points_ || found == 0) {
+      for (int c = 0; c < C; ++c) o[c] = std::numeric_limits<double>::quiet_NaN();
+      return;
+    }
     if (d2[0] == 0) {  // at a sample: its value
       for (int c = 0; c < C; ++c) o[c] = samples_.values[idx[0] * static_cast<size_t>(C) + c];
       return;

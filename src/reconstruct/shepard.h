@@ -4,6 +4,7 @@
 // over all samples (global) or over the k nearest (local, from a k-d tree). Exact at the
 // samples; the weights are positive and sum to one, so B stays within the samples' range.
 
+#include <limits>
 #include <memory>
 
 #include "reconstruct/barriers.h"
@@ -22,6 +23,10 @@ class Shepard final : public Interpolant {
   /// the k nearest visible ones among the nearest max(kMaxVisibleCandidates, 2k)); a query that
   /// sees none gets NaN (no value).
   Shepard(ScatteredSamples samples, double mu, int k, Barriers barriers);
+  /// With a search radius, as gdal_grid's invdist(nn) radius and min_points: only the samples
+  /// (of those above) within `radius_m` of a query contribute, and a query with fewer than
+  /// `min_points` (>= 1) of them gets NaN (no value). radius_m = infinity: no radius.
+  Shepard(ScatteredSamples samples, double mu, int k, Barriers barriers, double radius_m, int min_points);
   ~Shepard() override;
   int channels() const override { return samples_.channels; }
   void evaluate(std::span<const Vec2> points, std::span<double> out) const override;
@@ -32,6 +37,8 @@ class Shepard final : public Interpolant {
   std::vector<double> values_by_channel_;  ///< channels * samples, channel by channel
   double mu_;
   int k_;
+  double radius_sq_ = std::numeric_limits<double>::infinity();  ///< m^2
+  size_t min_points_ = 1;
   std::unique_ptr<KdTree2> tree_;
   Barriers barriers_;
   std::unique_ptr<PointVisibility> visibility_;  ///< with barriers: over samples_.points

@@ -79,6 +79,48 @@ TEST(Shepard, MatchesTheFormulaAndItsKNearestRestriction) {
   }
 }
 
+// gdal_grid's radius and min_points: only the samples within the radius count (of the k
+// nearest, if k is set), and fewer than min_points of them give no value. Brute force here.
+TEST(Shepard, SearchRadiusUsesExactlyTheSamplesWithinItAsBruteForce) {
+  std::mt19937 rng(31);
+  const ScatteredSamples s = random_samples(80, rng);
+  std::uniform_real_distribution<double> xy(-1, 5);
+  int some = 0, none = 0, too_few = 0;
+  for (const int k : {0, 12})
+    for (const int min_points : {1, 4}) {
+      const double radius = 0.6;
+      const Shepard f(s, 2, k, Barriers{}, radius, min_points);
+      for (int t = 0; t < 300; ++t) {
+        const Vec2 q(xy(rng), xy(rng));
+        std::vector<size_t> order(s.points.size());
+        std::iota(order.begin(), order.end(), 0);
+        std::sort(order.begin(), order.end(),
+                  [&](size_t a, size_t b) { return (s.points[a] - q).norm() < (s.points[b] - q).norm(); });
+        const size_t candidates = k ? static_cast<size_t>(k) : s.points.size();
+        double num = 0, den = 0;
+        int within = 0;
+        for (size_t j = 0; j < candidates; ++j) {
+          const double d = (s.points[order[j]] - q).norm();
+          if (d > radius) continue;
+          ++within;
+          num += s.values[order[j]] / (d * d);
+          den += 1 / (d * d);
+        }
+        const double v = eval1(f, q);
+        if (within < min_points) {
+          EXPECT_TRUE(std::isnan(v)) << "k=" << k << " min_points=" << min_points << ": " << within << " within";
+          (within == 0 ? none : too_few)++;
+        } else {
+          EXPECT_NEAR(v, num / den, 1e-12) << "k=" << k;
+          ++some;
+        }
+      }
+    }
+  EXPECT_GT(some, 100);
+  EXPECT_GT(none, 10);
+  EXPECT_GT(too_few, 10);
+}
+
 TEST(Shepard, FastPathsForMu4AndMu2MatchTheFormulaWithPow) {
   // mu = 4 and mu = 2 skip pow() (squares and quotients of d^2, relative to the nearest sample's);
   // they must agree with sum d^-mu B / sum d^-mu, d^-mu by std::pow, on both paths (global and k
