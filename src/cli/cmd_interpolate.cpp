@@ -198,8 +198,9 @@ void add_interpolate_command(CLI::App& app) {
   auto args = std::make_shared<InterpolateArgs>();
   CLI::App* cmd = app.add_subcommand(
       "interpolate",
-      "Interpolate scattered 2-D samples (CSV: x,y,VALUE...) at query points (--queries) or on a raster "
-      "(--raster + --domain) by one of radrecon's reconstruction methods; write CSV, PFM or PNG.\n"
+      "Interpolate scattered 2-D samples (CSV: x,y,VALUE..., XYZ, or a GDAL vector source) at query points "
+      "(--queries) or on a raster (--raster + --domain) by one of radrecon's reconstruction methods; write CSV, "
+      "PFM, PNG or any GDAL raster (.tif: GeoTIFF).\n"
       "Samples at exactly the same point are merged into one with the mean of their values (one warning on "
       "stderr). Outside the samples' extent: constant and shepard and multiquadric are defined everywhere; "
       "bilinear, bicubic and hermite clamp the point onto the grid; the triangulation methods "
@@ -238,7 +239,8 @@ void add_interpolate_command(CLI::App& app) {
   cmd->add_option("--value", args->value_columns,
                   "COL[,COL...]: the value columns of --samples, in this order (default: every column but x and y)");
   cmd->add_option("--queries", args->queries,
-                  "CSV of query points: header starting x,y (further columns ignored); outputs keep its row "
+                  "Query points: a CSV table (x, y as for --samples; further columns ignored) or a vector source's "
+                  "points; outputs keep its row "
                   "order");
   cmd->add_option("--raster", args->raster,
                   "WxH: query the W x H cell centres of --domain, row by row from the y0 row upward "
