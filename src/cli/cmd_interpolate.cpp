@@ -13,8 +13,7 @@
 #include "cli/commands.h"
 #include "core/error.h"
 #include "core/parse.h"
-#include "io/gdal_raster.h"
-#include "io/gdal_vector.h"
+#include "io/gdal_plugin.h"
 #include "io/geojson.h"
 #include "io/image_io.h"
 #include "io/paths.h"
@@ -79,8 +78,8 @@ void run_interpolate(const InterpolateArgs& args) {
       gdal ? FileFormat::pfm : file_format(args.out, {FileFormat::csv, FileFormat::pfm, FileFormat::png}, "--out");
   GdalRasterOptions gdal_options{args.gdal_format, args.gdal_type == "float64", args.crs, args.nodata};
   if (gdal) {
-    gdal_raster_driver(args.out, args.gdal_format, "--out");
-    check_gdal_crs(args.crs);
+    gdal_functions("--out").raster_driver(args.out, args.gdal_format, "--out");
+    gdal_functions("--crs").check_crs(args.crs);
     if (args.gdal_type != "float32" && args.gdal_type != "float64")
       throw UserError("--type", "'" + args.gdal_type + "' is no band type; float32 or float64");
     if (!std::isfinite(args.nodata)) throw UserError("--nodata", "must be a finite number");
@@ -126,7 +125,7 @@ void run_interpolate(const InterpolateArgs& args) {
     for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     Result<Barriers> barriers = Barriers::from_polylines(ext == ".geojson" || ext == ".json"
                                                              ? read_geojson_barriers(args.barriers)
-                                                             : read_ogr_barriers(args.barriers));
+                                                             : gdal_functions("--barriers").read_barriers(args.barriers));
     if (!barriers) throw UserError(args.barriers, barriers.reason());
     params.barriers = std::move(barriers).value();
   }
@@ -139,8 +138,16 @@ void run_interpolate(const InterpolateArgs& args) {
     at = comma + 1;
   }
   std::vector<std::string> value_names;
-  ScatteredSamples samples = is_ogr_vector_path(args.samples) ? read_samples_ogr(args.samples, &value_names, columns)
-                                                               : read_samples_csv(args.samples, &value_names, columns);
+  ScatteredSamples samples;
+  if (is_ogr_vector_path(args.samples)) {
+    samples = gdal_functions("--samples").read_samples(args.samples, &value_names, columns);
+    const size_t before = samples.points.size(), removed = merge_duplicate_points(samples);
+    if (removed > 0)
+      std::fprintf(stderr, "radrecon: warning: %s: %zu samples repeat the point of an earlier one; merged, their values "
+                   "averaged (%zu samples -> %zu points)\n", args.samples.c_str(), removed, before, samples.points.size());
+  } else {
+    samples = read_samples_csv(args.samples, &value_names, columns);
+  }
   if (args.border_samples) {
     // On --domain (the raster's), else the samples' bounding box.
     Rect domain = raster.domain;
@@ -163,7 +170,7 @@ void run_interpolate(const InterpolateArgs& args) {
   if (!interpolant) throw UserError(args.samples, interpolant.reason());
   const std::vector<Vec2> points =
       !use_queries ? raster_points(raster)
-      : is_ogr_vector_path(args.queries) ? read_queries_ogr(args.queries, {args.x_column, args.y_column, {}})
+      : is_ogr_vector_path(args.queries) ? gdal_functions("--queries").read_queries(args.queries, {args.x_column, args.y_column, {}})
                                          : read_queries_csv(args.queries, {args.x_column, args.y_column, {}});
 
   const std::string description = describe_params(*method, params);
@@ -179,7 +186,7 @@ void run_interpolate(const InterpolateArgs& args) {
   interpolant.value()->evaluate(points, values);
 
   if (gdal) {
-    write_raster_gdal(args.out, raster, values, samples.channels, gdal_options);
+    gdal_functions("--out").write_raster(args.out, raster, values, samples.channels, gdal_options);
   } else switch (format) {
     case FileFormat::csv: write_values_csv(args.out, points, values, value_names); break;
     case FileFormat::pfm: write_raster_pfm(args.out, raster, values, samples.channels); break;

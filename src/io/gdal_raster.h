@@ -3,7 +3,8 @@
 // the output's extension (.tif: GeoTIFF) or by driver name, georeferenced by the raster's domain
 // so that GIS tools place it: north-up, the first stored row is the raster's y1 row (the top),
 // geotransform (x0, (x1 - x0) / W, 0, y1, 0, -(y1 - y0) / H); a coordinate reference system passed
-// through as given; a no-data value where a method has no value (NaN).
+// through as given; a no-data value where a method has no value (NaN). The functions live in the
+// GDAL plugin (io/gdal_plugin.h); the program calls them through gdal_functions().
 
 #include <span>
 #include <string>

@@ -1,7 +1,6 @@
 #include "io/gdal_vector.h"
 
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <mutex>
@@ -14,7 +13,6 @@
 #include "core/error.h"
 #include "core/parse.h"
 #include "core/tolerances.h"
-#include "reconstruct/sample_set.h"
 
 namespace radrecon {
 
@@ -111,11 +109,6 @@ void for_each_point(OgrLayer& src, const CsvColumns& columns, PerFeature&& each)
 
 }  // namespace
 
-bool is_ogr_vector_path(const std::string& path) {
-  const std::string ext = lower(std::filesystem::path(path).extension().string());
-  return !(ext.empty() || ext == ".csv" || ext == ".txt" || ext == ".xyz" || ext == ".dat" || ext == ".tsv");
-}
-
 ScatteredSamples read_samples_ogr(const std::string& path, std::vector<std::string>* value_names, const CsvColumns& columns) {
   OgrLayer src(path);
   std::vector<int> value_fields;
@@ -136,10 +129,6 @@ ScatteredSamples read_samples_ogr(const std::string& path, std::vector<std::stri
     value_names->clear();
     for (const int k : value_fields) value_names->push_back(src.fields().GetFieldDefn(k)->GetNameRef());
   }
-  const size_t before = s.points.size(), removed = merge_duplicate_points(s);
-  if (removed > 0)
-    std::fprintf(stderr, "radrecon: warning: %s: %zu samples repeat the point of an earlier one; merged, their values "
-                 "averaged (%zu samples -> %zu points)\n", path.c_str(), removed, before, s.points.size());
   return s;
 }
 

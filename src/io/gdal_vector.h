@@ -4,7 +4,8 @@
 // Samples and queries: each feature's point geometry is (x, y), or the fields --x and --y name;
 // the values are the numeric fields --value names, else every numeric field (other than x, y).
 // Barriers: LineString and MultiLineString features, and the rings of Polygon and MultiPolygon
-// features. Coordinates are taken as they are stored (no reprojection).
+// features. Coordinates are taken as they are stored (no reprojection). These functions live in
+// the GDAL plugin (io/gdal_plugin.h); the program calls them through gdal_functions().
 
 #include <string>
 #include <vector>
@@ -12,10 +13,6 @@
 #include "io/samples_csv.h"
 
 namespace radrecon {
-
-/// Whether `path` is read through OGR rather than as a native CSV/XYZ table: any extension but
-/// .csv, .txt, .xyz, .dat and .tsv (and none).
-bool is_ogr_vector_path(const std::string& path);
 
 /// The samples of the source's first layer. UserError naming the file and the feature for a
 /// missing or empty layer, a feature without a point (and no --x/--y fields), a non-numeric,

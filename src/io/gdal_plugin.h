@@ -1,0 +1,40 @@
+#pragma once
+// GDAL support as a plugin: libgdal and the hundred libraries it pulls in would cost every
+// radrecon command about 40 ms of start-up, so the GDAL readers and writers
+// (io/gdal_raster.h, io/gdal_vector.h) are built into libradrecon_gdal.so, beside the
+// executable, and loaded on first use.
+
+#include <span>
+#include <string>
+#include <vector>
+
+#include "io/gdal_raster.h"
+#include "io/samples_csv.h"
+
+namespace radrecon {
+
+/// The plugin's entry points (same compiler and library as the program: plain C++ signatures).
+struct GdalFunctions {
+  std::string (*raster_driver)(const std::string& path, const std::string& format, const std::string& where);
+  void (*check_crs)(const std::string& crs);
+  void (*write_raster)(const std::string& path, const Raster& raster, std::span<const double> values, int channels,
+                       const GdalRasterOptions& options);
+  ScatteredSamples (*read_samples)(const std::string& path, std::vector<std::string>* value_names,
+                                   const CsvColumns& columns);
+  std::vector<Vec2> (*read_queries)(const std::string& path, const CsvColumns& columns);
+  std::vector<Polyline> (*read_barriers)(const std::string& path);
+};
+
+/// The name of the symbol the plugin exports: a function returning `const GdalFunctions*`.
+inline constexpr const char* kGdalPluginEntry = "radrecon_gdal_functions";
+
+/// The plugin's functions, loaded on the first call: from $RADRECON_GDAL_PLUGIN if set, else
+/// libradrecon_gdal.so in the executable's folder, else in ../lib/radrecon/ from it. UserError
+/// naming `what` (the option that needs GDAL) when it cannot be loaded.
+const GdalFunctions& gdal_functions(const std::string& what);
+
+/// Whether `path` is read through OGR rather than as a native CSV/XYZ table: any extension but
+/// .csv, .txt, .xyz, .dat and .tsv (and none).
+bool is_ogr_vector_path(const std::string& path);
+
+}  // namespace radrecon
