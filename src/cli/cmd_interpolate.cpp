@@ -1,17 +1,20 @@
 // radrecon interpolate: scattered 2-D samples in, values at query points or on a raster out.
 
+#include <algorithm>
 #include <cctype>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <cstdio>
 #include <memory>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "cli/commands.h"
 #include "core/error.h"
+#include "core/progress.h"
 #include "core/parse.h"
 #include "io/gdal_plugin.h"
 #include "io/geojson.h"
@@ -26,6 +29,10 @@
 namespace radrecon::cli {
 
 namespace {
+
+/// Query points evaluated between two progress reports: large enough that a batch keeps both
+/// threads busy, small enough that a slow method (global shepard on 10^6 samples) reports often.
+constexpr size_t kInterpolateBatch = 1 << 16;
 
 struct InterpolateArgs {
   std::string samples;
@@ -182,8 +189,18 @@ void run_interpolate(const InterpolateArgs& args) {
                                          : ("; " + std::to_string(params.barriers.segments().size()) +
                                             " barrier segments from " + args.barriers).c_str());
 
-  std::vector<double> values(points.size() * static_cast<size_t>(interpolant.value()->channels()));
-  interpolant.value()->evaluate(points, values);
+  // Evaluated in batches (each point on its own, so the values do not depend on the batches),
+  // with a progress line between them.
+  const size_t channels = static_cast<size_t>(interpolant.value()->channels());
+  std::vector<double> values(points.size() * channels);
+  Progress progress("interpolate", args.quiet);
+  for (size_t first = 0; first < points.size(); first += kInterpolateBatch) {
+    const size_t count = std::min(kInterpolateBatch, points.size() - first);
+    interpolant.value()->evaluate(std::span(points).subspan(first, count),
+                                  std::span(values).subspan(first * channels, count * channels));
+    progress.update(static_cast<double>(first + count) / points.size(), "the query points");
+  }
+  progress.done();
 
   if (gdal) {
     gdal_functions("--out").write_raster(args.out, raster, values, samples.channels, gdal_options);

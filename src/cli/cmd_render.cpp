@@ -11,6 +11,7 @@
 
 #include "cli/commands.h"
 #include "core/error.h"
+#include "core/progress.h"
 #include "sampling/solution_reconstruction.h"
 #include "render/exposure.h"
 #include "render/renderer.h"
@@ -177,17 +178,11 @@ void run_render(const RenderArgs& args) {
     std::fprintf(stderr, "radrecon: warning: %s: %s cannot reconstruct side %s (%s); drawn piecewise constant\n",
                  args.solution.c_str(), args.method.c_str(), f.side.c_str(), f.reason.c_str());
   const auto start = std::chrono::steady_clock::now();
-  auto last_report = start;
-  const RenderProgress progress = [&](double done) {
-    const auto now = std::chrono::steady_clock::now();
-    if (args.quiet || done >= 1 || now - last_report < std::chrono::seconds(2)) return;
-    last_report = now;
-    const double elapsed = std::chrono::duration<double>(now - start).count();
-    std::fprintf(stderr, "render: %.0f%% of the pixels, %.0f s elapsed, about %.0f s left\n", 100 * done, elapsed,
-                 elapsed * (1 - done) / done);
-  };
+  Progress reporter("render", args.quiet);
+  const RenderProgress progress = [&](double done) { reporter.update(done, "the pixels"); };
   try {
     render_and_write(args, scene, *camera, solution, recon, options, format, progress);
+    reporter.done();
   } catch (const std::bad_alloc&) {
     throw UserError("--size", "out of memory for " + std::to_string(width) + "x" + std::to_string(height) + " pixels at " +
                                   std::to_string(args.samples * args.samples) +
@@ -235,7 +230,7 @@ void add_render_command(CLI::App& app) {
   cmd->add_flag("--border-samples", args->border_samples,
                 "scattered methods but constant: add samples on each side's border and along both sides "
                 "of its barriers, extrapolated from the nearest samples they see (docs/method.md)");
-  cmd->add_flag("--quiet", args->quiet, "No progress messages (by default a line on stderr at most every 2 s)");
+  cmd->add_flag("--quiet", args->quiet, "No progress messages (by default a line on stderr at most every 2 s, updated in place on a terminal)");
   cmd->callback([args] { run_render(*args); });
 }
 

@@ -82,7 +82,6 @@ std::string gdal_raster_driver(const std::string& path, const std::string& forma
 
 void check_gdal_crs(const std::string& crs) {
   if (crs.empty()) return;
-  register_gdal();
   QuietGdal quiet;
   OGRSpatialReference srs;
   if (srs.SetFromUserInput(crs.c_str()) != OGRERR_NONE)
