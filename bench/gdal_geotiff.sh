@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # radrecon interpolate to GeoTIFF beside gdal_grid on the same data (issue 12's acceptance):
 # natural neighbour against gdal_grid's linear, and shepard with a search radius against
-# gdal_grid's invdistnn, on W1 (286 random points -> 400 x 400) and W3 (100,000 -> 2000 x 2000).
+# gdal_grid's invdistnn, on W1 (286 random points -> 400 x 400) and, with W3=1, W3 (100,000 ->
+# 2000 x 2000).
 # Whole commands, alternating, median wall time of RUNS runs. Both write Float32 GeoTIFFs with a
 # no-data value; gdal_grid reads the CSV through an OGR VRT.
 set -euo pipefail
@@ -10,23 +11,8 @@ BUILD=${BUILD:-build}
 RUNS=${RUNS:-3}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-/usr/bin/python3 - "$work" <<'PY'
-import sys, numpy as np
-work = sys.argv[1]
-for name, n in [("w1", 286), ("w3", 100000)]:
-    rng = np.random.default_rng(2024)
-    p = rng.random((n, 2))
-    v = np.sin(6 * p[:, 0]) * np.cos(4 * p[:, 1])
-    np.savetxt(f"{work}/{name}.csv", np.column_stack([p, v]), delimiter=",", header="x,y,value", comments="", fmt="%.17g")
-PY
-for name in w1 w3; do
-  cat > "$work/$name.vrt" <<VRT
-<OGRVRTDataSource><OGRVRTLayer name="$name"><SrcDataSource>$work/$name.csv</SrcDataSource>
-<GeometryType>wkbPoint</GeometryType><GeometryField encoding="PointFromColumns" x="x" y="y" z="value"/>
-</OGRVRTLayer></OGRVRTDataSource>
-VRT
-done
-median() { sort -g | awk '{a[NR]=$1} END {print (NR%2) ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2}'; }
+source bench/workloads.sh
+make_workloads "$work"
 pair() {  # LABEL_A LABEL_B -- A... -- B...: alternate A and B RUNS times, print both medians
   local la=$1 lb=$2; shift 2; shift  # --
   local a=() b=()
@@ -42,7 +28,10 @@ pair() {  # LABEL_A LABEL_B -- A... -- B...: alternate A and B RUNS times, print
   ma=$(median < "$work/ta"); mb=$(median < "$work/tb")
   printf '%-52s %8.3f s\n%-52s %8.3f s   ratio %.2f\n' "$la" "$ma" "$lb" "$mb" "$(echo "$ma / $mb" | bc -l)"
 }
-for w in "w1 400" "w3 2000"; do
+# W3 only with W3=1: gdal_grid's linear takes minutes a run there.
+sets=("w1 400")
+if [ "${W3:-0}" = 1 ]; then sets+=("w3 2000"); fi
+for w in "${sets[@]}"; do
   set -- $w
   name=$1 size=$2
   echo "== ${name^^}: $(($(wc -l < "$work/$name.csv") - 1)) points -> $size x $size GeoTIFF"

@@ -20,24 +20,8 @@ fi
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-/usr/bin/python3 - "$work" <<'PY'
-import sys, numpy as np
-work = sys.argv[1]
-for name, n in [("w1", 286), ("w3", 100000)]:
-    rng = np.random.default_rng(2024)
-    p = rng.random((n, 2))
-    v = np.sin(6 * p[:, 0]) * np.cos(4 * p[:, 1])
-    np.savetxt(f"{work}/{name}.csv", np.column_stack([p, v]), delimiter=",", header="x,y,value", comments="", fmt="%.17g")
-PY
-for name in w1 w3; do  # gdal_grid reads the CSV through an OGR VRT
-  cat > "$work/$name.vrt" <<VRT
-<OGRVRTDataSource><OGRVRTLayer name="$name"><SrcDataSource>$work/$name.csv</SrcDataSource>
-<GeometryType>wkbPoint</GeometryType><GeometryField encoding="PointFromColumns" x="x" y="y" z="value"/>
-</OGRVRTLayer></OGRVRTDataSource>
-VRT
-done
-
-median() { sort -g | awk '{a[NR]=$1} END {print (NR%2) ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2}'; }
+source bench/workloads.sh
+make_workloads "$work"
 ONLY=${ONLY:-}  # a regular expression: time only the lines whose label matches it
 timeit() {  # LABEL RUNS COMMAND...
   local label=$1 runs=$2; shift 2
