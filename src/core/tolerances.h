@@ -195,4 +195,12 @@ inline constexpr double kShaftSlack_m = 1e-6;
 /// single-precision model files (1e-7), so two triangles meeting on a straight line stay two.
 inline constexpr double kQuadMergeTurnRelative = 1e-6;
 
+/// Natural-neighbour interpolation (and laplace, sibson-c1): a query within this fraction of a
+/// hull edge's length of the edge, plus kHullEdgeRounding times its coordinates' magnitude, is
+/// on the edge, and gets the linear interpolation along it (the limit of Sibson's coordinates
+/// from inside). Points computed on a hull edge land within rounding of it, inside or outside;
+/// inside, the Voronoi computation cancels catastrophically there (tests/reconstruct).
+inline constexpr double kHullEdgeBandRelative = 1e-9;
+inline constexpr double kHullEdgeRounding = 64 * 2.220446049250313e-16;
+
 }  // namespace radrecon::tol

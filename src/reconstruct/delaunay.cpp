@@ -8,6 +8,7 @@
 #include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
+#include "core/tolerances.h"
 #include "reconstruct/interpolant.h"
 #include "reconstruct/kdtree.h"
 
@@ -121,6 +122,14 @@ void on_edge(std::span<const Vec2> points, const std::array<unsigned, 3>& vertic
 
 }  // namespace
 
+HullEdgeDistance hull_edge_distance(const Vec2& a, const Vec2& b, const Vec2& q) {
+  const Vec2 ab = b - a;
+  const double t = std::clamp((q - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+  const double band = tol::kHullEdgeBandRelative * ab.norm() +
+                      tol::kHullEdgeRounding * std::max({a.cwiseAbs().maxCoeff(), b.cwiseAbs().maxCoeff(), q.cwiseAbs().maxCoeff()});
+  return {(a + t * ab - q).norm() / band, t};
+}
+
 bool DelaunayMesh::locate(const Vec2& q, OutsideHull outside, std::int64_t& hint, Location& out) const {
   if (!q.allFinite()) return false;
   const Impl& m = *impl_;
@@ -155,6 +164,26 @@ bool DelaunayMesh::locate(const Vec2& q, OutsideHull outside, std::int64_t& hint
       hint = out.face;
       return true;
     case Delaunay::OUTSIDE_CONVEX_HULL: {
+      // Outside by rounding only: on the hull edge of the infinite face found, or of one of its
+      // two neighbours (the edges at that edge's ends), whichever is nearest.
+      const Delaunay::Vertex_handle infinite = m.dt.infinite_vertex();
+      const int i = f->index(infinite);
+      double best_bands = 1;
+      Delaunay::Face_handle on;
+      for (const Delaunay::Face_handle& g : {f, f->neighbor(Delaunay::ccw(i)), f->neighbor(Delaunay::cw(i))}) {
+        const int gi = g->index(infinite);
+        const auto& pa = g->vertex(Delaunay::ccw(gi))->point();
+        const auto& pb = g->vertex(Delaunay::cw(gi))->point();
+        const double bands = hull_edge_distance(Vec2(pa.x(), pa.y()), Vec2(pb.x(), pb.y()), q).in_bands;
+        if (bands <= best_bands) best_bands = bands, on = g;
+      }
+      if (on != Delaunay::Face_handle()) {
+        const int gi = on->index(infinite);
+        out.face = on->neighbor(gi)->info();
+        on_edge(points_, vertices_[static_cast<size_t>(out.face)], m.dt.mirror_index(on, gi), q, out.b);
+        hint = out.face;
+        return true;
+      }
       if (outside == OutsideHull::none) return false;
       double best = std::numeric_limits<double>::infinity();
       const Impl::HullEdge* nearest = nullptr;

@@ -23,6 +23,18 @@
 
 namespace radrecon {
 
+/// Whether q lies on the hull edge ab up to rounding: within tol::kHullEdgeBandRelative of the
+/// edge's length, plus tol::kHullEdgeRounding of the coordinates' magnitude. A point computed on a
+/// hull edge as a + t (b - a) lands within that of it, a little inside or outside the hull; the
+/// triangulation methods give it the value on the edge (never NaN, never a far-off value from
+/// catastrophic cancellation). Returns the distance in units of that band (<= 1: on the edge) and
+/// the parameter t in [0, 1] of q's nearest point a + t (b - a).
+struct HullEdgeDistance {
+  double in_bands = 0;
+  double t = 0;
+};
+HullEdgeDistance hull_edge_distance(const Vec2& a, const Vec2& b, const Vec2& q);
+
 class DelaunayMesh {
  public:
   /// Triangulates `points` (metres). Throws ReconstructionError, naming `method`, for fewer than 3
@@ -50,7 +62,8 @@ class DelaunayMesh {
   /// Locates q: inside the hull, the face holding it; on a vertex, coordinates (1, 0, 0) in some
   /// order (exactly: the value there is the sample's); on an edge shared by two faces, the face
   /// of smaller index, with coordinate 0 opposite the edge and the others linear along it (from
-  /// the end of smaller sample index). Outside the hull: with OutsideHull::nearest, the point of
+  /// the end of smaller sample index). On a hull edge up to rounding (hull_edge_distance()), inside
+/// or outside: that edge, as an edge. Outside the hull: with OutsideHull::nearest, the point of
   /// the hull nearest to q, located the same way on its hull edge (ties: the edge of smaller
   /// sample indices); with OutsideHull::none, or for a non-finite q, false. `hint` is a face
   /// index to start the walk from (-1: anywhere), updated to the face found: it changes the

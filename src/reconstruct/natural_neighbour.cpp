@@ -7,6 +7,7 @@
 #include "core/check.h"
 #include "core/parallel.h"
 #include "core/tolerances.h"
+#include "reconstruct/delaunay.h"
 #include "reconstruct/kdtree.h"
 #include "reconstruct/nn_delaunay.h"
 #include "reconstruct/sibson_c1.h"
@@ -24,6 +25,7 @@ struct NaturalNeighbour::Impl {
   NeighbourRule rule = NeighbourRule::sibson;
   std::vector<double> gradients;  ///< sibson-c1: per sample and channel, d/ds and d/dt (sibson_c1.h)
   std::vector<std::pair<unsigned, unsigned>> hull_edges;  ///< sample indices
+  std::vector<std::array<int, 2>> hull_edges_at;          ///< by sample: its hull edges' indices, or -1
   std::vector<Vec2> points;
   std::vector<Delaunay::Vertex_handle> vertex_of;  ///< by sample index
   std::unique_ptr<KdTree2> tree;                   ///< to start walks near a query
@@ -61,22 +63,17 @@ struct NaturalNeighbour::Impl {
     Delaunay::Locate_type lt;
     int li;
     hint = dt.locate(p, lt, li, hint);
-    if (lt == Delaunay::OUTSIDE_CONVEX_HULL || lt == Delaunay::OUTSIDE_AFFINE_HULL) return false;
+    if (lt == Delaunay::OUTSIDE_AFFINE_HULL) return false;
     if (lt == Delaunay::VERTEX) {
       out.emplace_back(hint->vertex(li)->info(), 1.0);
       return true;
     }
-    if (lt == Delaunay::EDGE && (dt.is_infinite(hint) || dt.is_infinite(hint->neighbor(li)))) {
-      // On the hull: linear along the edge (the limit of the coordinates from inside), its ends
-      // in sample order, whichever face the walk found.
-      auto a = hint->vertex(Delaunay::cw(li)), b = hint->vertex(Delaunay::ccw(li));
-      if (b->info() < a->info()) std::swap(a, b);
-      const Vec2 pa(a->point().x(), a->point().y()), pb(b->point().x(), b->point().y());
-      const double t = std::clamp((q - pa).dot(pb - pa) / (pb - pa).squaredNorm(), 0.0, 1.0);
-      out.emplace_back(a->info(), 1 - t);
-      out.emplace_back(b->info(), t);
-      return true;
-    }
+    // On a hull edge up to rounding (a point computed as a + t (b - a) may land a little inside
+    // or outside): linear along the edge, the limit of the coordinates from inside. Inside,
+    // within rounding of the edge, the conflict zone's circumcentres are far off and the
+    // coordinates' sums cancel catastrophically; outside, the point would get no value.
+    if (near_hull_edge(q, hint, out)) return true;
+    if (lt == Delaunay::OUTSIDE_CONVEX_HULL) return false;
     // A point on an inner edge lies in both of its faces, and the walk may end in either (it
     // depends on where it started). The conflict zone is the same from both, but the order of
     // its boundary, and so the last bits of the sums, is not: start from the face with the
@@ -93,6 +90,32 @@ struct NaturalNeighbour::Impl {
     const double norm = nn::hole_coordinates(dt, p, hole, rule, out);
     if (!(norm > 0)) return false;
     for (auto& [index, w] : out) w /= norm;
+    return true;
+  }
+
+  /// Whether q lies on a hull edge at a vertex of face f up to rounding (hull_edge_distance(),
+  /// delaunay.h): then the coordinates of its nearest point on the nearest such edge, into `out`
+  /// (ends in sample order).
+  bool near_hull_edge(const Vec2& q, const Delaunay::Face_handle& f, std::vector<std::pair<unsigned, double>>& out) const {
+    double best_excess = 0, best_t = 0;
+    int best = -1;
+    for (int k = 0; k < 3; ++k) {
+      const Delaunay::Vertex_handle v = f->vertex(k);
+      if (dt.is_infinite(v)) continue;
+      for (const int e : hull_edges_at[v->info()]) {
+        if (e < 0 || e == best) continue;
+        auto [ia, ib] = hull_edges[static_cast<size_t>(e)];
+        if (ib < ia) std::swap(ia, ib);
+        const HullEdgeDistance d = hull_edge_distance(points[ia], points[ib], q);
+        if (d.in_bands <= 1 && (best < 0 || d.in_bands < best_excess)) best = e, best_excess = d.in_bands, best_t = d.t;
+      }
+    }
+    if (best < 0) return false;
+    auto [ia, ib] = hull_edges[static_cast<size_t>(best)];
+    if (ib < ia) std::swap(ia, ib);
+    out.clear();
+    out.emplace_back(ia, 1 - best_t);
+    out.emplace_back(ib, best_t);
     return true;
   }
 
@@ -273,6 +296,12 @@ NaturalNeighbour::NaturalNeighbour(const ScatteredSamples& samples, OutsideHull 
     const int i = fc->index(inf);
     impl_->hull_edges.emplace_back(fc->vertex(Delaunay::ccw(i))->info(), fc->vertex(Delaunay::cw(i))->info());
   } while (++fc != done);
+  impl_->hull_edges_at.assign(n, {-1, -1});
+  for (size_t e = 0; e < impl_->hull_edges.size(); ++e)
+    for (const unsigned end : {impl_->hull_edges[e].first, impl_->hull_edges[e].second}) {
+      std::array<int, 2>& at = impl_->hull_edges_at[end];
+      (at[0] < 0 ? at[0] : at[1]) = static_cast<int>(e);
+    }
   if (rule == NeighbourRule::sibson_c1)
     impl_->gradients = nn::fit_gradients(impl_->dt, impl_->vertex_of, impl_->points, impl_->values, impl_->channels,
                                          impl_->barriers);

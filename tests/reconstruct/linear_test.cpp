@@ -113,7 +113,10 @@ TEST(Linear, OutsideTheHull) {
   EXPECT_EQ(eval1(nearest, Vec2(1.5, 1.25)), -3);
   EXPECT_EQ(eval1(nearest, Vec2(-2, -0.5)), 1);
   EXPECT_TRUE(std::isnan(eval1(none, Vec2(1.5, 0.3))));
-  EXPECT_TRUE(std::isnan(eval1(none, Vec2(-1e-9, 0.5))));
+  EXPECT_TRUE(std::isnan(eval1(none, Vec2(-1e-7, 0.5))));  // outside the edge's rounding band
+  // Outside by less than tol::kHullEdgeBandRelative of the edge: on it (a point computed on an
+  // edge lands within rounding of it), the value on the edge.
+  EXPECT_EQ(eval1(none, Vec2(-1e-12, 0.5)), eval1(nearest, Vec2(0, 0.5)));
   EXPECT_EQ(eval1(none, Vec2(1, 0.3)), eval1(nearest, Vec2(1, 0.3)));  // on the hull: a value
 }
 
