@@ -8,6 +8,7 @@
 
 #include "core/check.h"
 #include "core/parallel.h"
+#include "core/progress.h"
 #include "core/tolerances.h"
 #include "solver/bvh.h"
 #include "solver/shooter_tree.h"
@@ -75,7 +76,7 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
   const double emitted_sum = emitted.sum();
   RR_CHECK(emitted_sum > 0, "the scene emits no light");
   size_t shots = 0;
-  auto last_report = start;
+  Progress progress(options.progress_label, options.progress_label.empty());
   std::vector<Gathered> gain;
   double residual = 1.0;
   bool converged = false;  // the residual, not the shot limit, ended the loop
@@ -88,11 +89,12 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
       if (patches[k].unshot_w.sum() > patches[best].unshot_w.sum()) best = k;
     }
     residual = unshot_total.sum() / emitted_sum;
-    auto now = std::chrono::steady_clock::now();
-    if (!options.progress_label.empty() && now - last_report > std::chrono::seconds(2) && residual >= options.residual) {
-      std::fprintf(stderr, "%s: %zu shots, unshot %.2e of emitted\n", options.progress_label.c_str(),
-                   shots, residual);
-      last_report = now;
+    if (residual > 0 && residual < 1) {
+      // The residual falls about geometrically: its logarithm measures the way done.
+      char what[96];
+      std::snprintf(what, sizeof what, "the way to a residual of %.0e (%zu shots, unshot %.2e of emitted)",
+                    options.residual, shots, residual);
+      progress.update(std::log(residual) / std::log(options.residual), what);
     }
     if (residual < options.residual) {
       converged = true;
@@ -192,6 +194,7 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
   stats.residual = stats.unshot_w.sum() / emitted_sum;
   stats.converged = converged;
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  progress.done();
   if (!options.progress_label.empty())
     std::fprintf(stderr, "%s: %zu shots, unshot %.2e of emitted, %.2f s\n", options.progress_label.c_str(),
                  shots, stats.residual, stats.seconds);
