@@ -251,8 +251,9 @@ void add_interpolate_command(CLI::App& app) {
                   "multiquadric: mu (nonzero, not a positive integer; default 0.5): basis "
                   "(d^2 + r^2)^mu; r (> 0, default: per sample, the distance to its nearest other sample "
                   "(Eck)); k (0 = one global system, default; >= 3: local patches of ~k samples blended, for large "
-                  "sample sets); poly (0 default | 1: add a linear polynomial, reproducing linear functions). "
-                  "thin-plate: k (as multiquadric). natural-neighbour, laplace, sibson-c1, linear, clough-tocher: "
+                  "sample sets); poly (0 default | 1: add a linear polynomial, reproducing linear functions); "
+                  "radius, min_points: no value where fewer than min_points (default 1) samples lie within the "
+                  "radius. thin-plate: k, radius, min_points (as multiquadric). natural-neighbour, laplace, sibson-c1, linear, clough-tocher: "
                   "outside=nearest (default: the value at the nearest point of the convex hull) | none (NaN "
                   "outside the hull). natural-neighbour, laplace, sibson-c1: barrier-samples=on (default) | off: "
                   "with --barriers, also samples along both sides of each barrier. Others: no parameters");

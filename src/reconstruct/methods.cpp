@@ -21,6 +21,7 @@
 #include "reconstruct/natural_neighbour.h"
 #include "reconstruct/nearest.h"
 #include "reconstruct/nodal.h"
+#include "reconstruct/radius_gate.h"
 #include "reconstruct/shepard.h"
 
 namespace radrecon {
@@ -117,13 +118,15 @@ MethodParams parse_params(Method method, const std::vector<std::string>& setting
       const double k = parse_number(value, where);
       if (k < 0 || k != std::floor(k) || k > 1e6) throw UserError(where, "must be an integer >= 0 (0: all samples)");
       p.shepard_k = static_cast<int>(k);
-    } else if (method == Method::shepard && name == "radius") {
-      p.shepard_radius_m = parse_number(value, where);
-      if (!(*p.shepard_radius_m > 0) || !std::isfinite(*p.shepard_radius_m)) throw UserError(where, "must be a finite number > 0");
-    } else if (method == Method::shepard && name == "min_points") {
+    } else if ((method == Method::shepard || method == Method::multiquadric || method == Method::thin_plate) &&
+               name == "radius") {
+      p.search_radius_m = parse_number(value, where);
+      if (!(*p.search_radius_m > 0) || !std::isfinite(*p.search_radius_m)) throw UserError(where, "must be a finite number > 0");
+    } else if ((method == Method::shepard || method == Method::multiquadric || method == Method::thin_plate) &&
+               name == "min_points") {
       const double m = parse_number(value, where);
       if (m < 1 || m != std::floor(m) || m > 1e6) throw UserError(where, "must be an integer >= 1");
-      p.shepard_min_points = static_cast<int>(m);
+      p.min_points = static_cast<int>(m);
     } else if (method == Method::multiquadric && name == "mu") {
       p.multiquadric_mu = parse_number(value, where);
       if (p.multiquadric_mu == 0) throw UserError(where, "must not be 0");
@@ -156,21 +159,28 @@ MethodParams parse_params(Method method, const std::vector<std::string>& setting
   return p;
 }
 
+namespace {
+
+/// ", radius=R m, min_points=M" when a search radius is set.
+std::string radius_text(const MethodParams& p) {
+  return p.search_radius_m ? ", radius=" + format_number(*p.search_radius_m) + " m, min_points=" + std::to_string(p.min_points) : "";
+}
+
+}  // namespace
+
 std::string describe_params(Method method, const MethodParams& p) {
   char buf[128];
   switch (method) {
     case Method::shepard:
       std::snprintf(buf, sizeof buf, "mu=%g, k=%s", p.shepard_mu, p.shepard_k ? std::to_string(p.shepard_k).c_str() : "all");
-      if (p.shepard_radius_m)
-        return std::string(buf) + ", radius=" + format_number(*p.shepard_radius_m) + " m, min_points=" +
-               std::to_string(p.shepard_min_points);
-      if (p.shepard_min_points != 1) return std::string(buf) + ", min_points=" + std::to_string(p.shepard_min_points);
-      return buf;
+      if (!p.search_radius_m && p.min_points != 1) return std::string(buf) + ", min_points=" + std::to_string(p.min_points);
+      return std::string(buf) + radius_text(p);
     case Method::multiquadric:
       if (p.multiquadric_r) std::snprintf(buf, sizeof buf, "mu=%g, r=%g m", p.multiquadric_mu, *p.multiquadric_r);
       else std::snprintf(buf, sizeof buf, "mu=%g, r_i=Eck (nearest other sample)", p.multiquadric_mu);
       return std::string(buf) + (p.multiquadric_poly ? ", linear polynomial" : "") +
-             (p.multiquadric_k ? ", local patches of ~" + std::to_string(p.multiquadric_k) + " samples" : ", global");
+             (p.multiquadric_k ? ", local patches of ~" + std::to_string(p.multiquadric_k) + " samples" : ", global") +
+             radius_text(p);
     case Method::natural_neighbour:
     case Method::laplace:
     case Method::sibson_c1:
@@ -180,7 +190,8 @@ std::string describe_params(Method method, const MethodParams& p) {
     case Method::clough_tocher:
       return p.outside == OutsideHull::nearest ? "outside the hull: nearest hull point" : "outside the hull: no value";
     case Method::thin_plate:
-      return p.thin_plate_k ? "local patches of ~" + std::to_string(p.thin_plate_k) + " samples" : "global";
+      return (p.thin_plate_k ? "local patches of ~" + std::to_string(p.thin_plate_k) + " samples" : std::string("global")) +
+             radius_text(p);
     default:
       return "";
   }
@@ -289,8 +300,8 @@ InterpolantResult make_scattered_interpolant(Method method, const ScatteredSampl
     case Method::gouraud: return Failure{"gouraud needs cells (a grid's or a quadtree's), not points"};
     case Method::shepard:
       return build<Shepard>(samples, params.shepard_mu, params.shepard_k, params.barriers,
-                            params.shepard_radius_m.value_or(std::numeric_limits<double>::infinity()),
-                            params.shepard_min_points);
+                            params.search_radius_m.value_or(std::numeric_limits<double>::infinity()),
+                            params.min_points);
     case Method::multiquadric:
     case Method::thin_plate: {
       const bool thin = method == Method::thin_plate;
@@ -298,13 +309,16 @@ InterpolantResult make_scattered_interpolant(Method method, const ScatteredSampl
                                     : RbfKernel::multiquadric(params.multiquadric_mu, params.multiquadric_poly);
       const std::optional<double> r = thin ? std::nullopt : params.multiquadric_r;
       const int k = thin ? params.thin_plate_k : params.multiquadric_k;
-      if (k > 0 && static_cast<size_t>(k) < samples.points.size())
-        return build<LocalMultiquadric>(samples, kernel, r, k, params.barriers);
-      if (samples.points.size() > kMaxGlobalMultiquadric)
+      if (!(k > 0 && static_cast<size_t>(k) < samples.points.size()) && samples.points.size() > kMaxGlobalMultiquadric)
         return Failure{std::to_string(samples.points.size()) + " samples are too many for one global " + kernel.name() +
                        " system (at most " + std::to_string(kMaxGlobalMultiquadric) +
                        "); use local patches (parameter k, e.g. 32)"};
-      return build<Multiquadric>(samples, kernel, r, params.barriers);
+      InterpolantResult rbf = k > 0 && static_cast<size_t>(k) < samples.points.size()
+                                  ? build<LocalMultiquadric>(samples, kernel, r, k, params.barriers)
+                                  : build<Multiquadric>(samples, kernel, r, params.barriers);
+      if (!rbf || !params.search_radius_m) return rbf;
+      return InterpolantResult(std::unique_ptr<Interpolant>(std::make_unique<RadiusGate>(
+          std::move(rbf).value(), samples, *params.search_radius_m, params.min_points)));
     }
     case Method::linear: return build<DelaunayLinear>(samples, params.outside);
     case Method::clough_tocher: return build<CloughTocher>(samples, params.outside, std::span<const double>{});

@@ -87,10 +87,12 @@ enum class OutsideHull {
 struct MethodParams {
   double shepard_mu = 4.0;
   int shepard_k = 0;
-  /// Shepard's search radius (m) and the fewest samples within it that give a value (gdal_grid's
-  /// radius and min_points); no radius by default.
-  std::optional<double> shepard_radius_m;
-  int shepard_min_points = 1;
+  /// A search radius (m) and the fewest samples within it that give a value (gdal_grid's radius
+  /// and min_points): shepard uses only the samples within it (shepard.h); the multiquadric and
+  /// the thin-plate spline give no value where too few lie within it (radius_gate.h). None by
+  /// default.
+  std::optional<double> search_radius_m;
+  int min_points = 1;
   double multiquadric_mu = 0.5;
   std::optional<double> multiquadric_r;
   int multiquadric_k = 0;
