@@ -81,6 +81,7 @@ void run_interpolate(const InterpolateArgs& args) {
   std::string ext = std::filesystem::path(args.out).extension().string();
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   const bool gdal = !args.gdal_format.empty() || !(ext == ".csv" || ext == ".pfm" || ext == ".png");
+  // `format` is radrecon's own writer; unused when GDAL writes.
   const FileFormat format =
       gdal ? FileFormat::pfm : file_format(args.out, {FileFormat::csv, FileFormat::pfm, FileFormat::png}, "--out");
   GdalRasterOptions gdal_options{args.gdal_format, args.gdal_type == "float64", args.crs, args.nodata};
