@@ -12,6 +12,7 @@ packages=(
   python3-scipy  # the agreement tests against scipy (reconstruct.scipy_*)
   chromium       # the report checked in a real browser (tests/paper/report_check.sh)
   libgdal-dev gdal-bin python3-gdal  # interpolate to GeoTIFF and other GDAL rasters; its test reads them back
+  python-matplotlib-data  # a real elevation model (jacksboro_fault_dem.npz) for reconstruct.dem_edges
 )
 
 missing=()

@@ -11,6 +11,7 @@
 #include "core/check.h"
 #include "core/parallel.h"
 #include "core/tolerances.h"
+#include "reconstruct/convex_hull.h"
 #include "reconstruct/kdtree.h"
 #include "reconstruct/multiquadric_basis.h"
 
@@ -92,7 +93,9 @@ LocalMultiquadric::LocalMultiquadric(const ScatteredSamples& samples, const RbfK
     // that near, no sample of the patch hidden.
     patch.reach_m = h_ + std::sqrt(s.dist_sq[m - 1]);
     if (m > kMaxPatchSamples) return;  // refused below, outside the parallel loop
-    patch.fit = fit_rbf(points_, r_sq_, samples.values, channels_, kernel_, patch.samples);
+    patch.fit = fit_rbf(points_, r_sq_, samples.values, channels_, kernel_, patch.samples, true);
+    patch.hull = ConvexHull2(points_, patch.samples);
+    patch.inside_sq = std::pow(patch.hull.depth(patch.center), 2);
   });
   check_patches();
 }
@@ -139,10 +142,10 @@ void LocalMultiquadric::evaluate(std::span<const Vec2> points, std::span<double>
       for (int c = 0; c < C; ++c) o[c] = std::numeric_limits<double>::quiet_NaN();
       return;
     }
-    // Outside the samples' box, the weights of the nearest point x of the box; the patches'
-    // RBFs at x without a polynomial, at p with one (the header says why).
+    // Outside the samples' box, the weights of the nearest point x of the box. Each patch's RBF
+    // is evaluated at the nearest point of its samples' hull, plus its polynomial's change from
+    // there (the header says why).
     const Vec2 x = p.cwiseMax(origin_).cwiseMin(box_max_);
-    const Vec2 e = kernel_.poly ? p : x;
     const int ci = static_cast<int>(std::floor((x.x() - origin_.x()) / h_)), cj = static_cast<int>(std::floor((x.y() - origin_.y()) / h_));
     double total = 0, flat_total = 0;
     for (int j = std::max(0, cj - 1); j <= std::min(ny_ - 1, cj + 2); ++j)
@@ -153,7 +156,9 @@ void LocalMultiquadric::evaluate(std::span<const Vec2> points, std::span<double>
         if (w == 0) continue;
         // The patch's fit, or with barriers the fit through its samples x sees.
         const RbfFit* fit = &patch.fit;
+        const ConvexHull2* hull = &patch.hull;
         std::shared_ptr<const RbfFit> visible_fit;
+        ConvexHull2 visible_hull;
         if (!barriers_.none_within(x, patch.reach_m)) {
           visible.clear();
           for (unsigned s : patch.samples)
@@ -161,10 +166,13 @@ void LocalMultiquadric::evaluate(std::span<const Vec2> points, std::span<double>
           if (visible.empty()) continue;  // the patch sees nothing of x: no weight
           if (visible.size() < patch.samples.size()) {
             visible_fit = fits_.get(static_cast<unsigned>(index), visible,
-                                    [&] { return fit_rbf(points_, r_sq_, values_, channels_, kernel_, visible); });
+                                    [&] { return fit_rbf(points_, r_sq_, values_, channels_, kernel_, visible, true); });
             fit = visible_fit.get();
+            visible_hull = ConvexHull2(points_, visible);
+            hull = &visible_hull;
           }
         }
+        const Vec2 e = hull == &patch.hull && (p - patch.center).squaredNorm() < patch.inside_sq ? p : hull->nearest(p);
         // With a polynomial, a patch whose visible samples span no plane (its polynomial lacks a
         // term) gives way to those that span one, and counts only where none does.
         const bool lacks = fit->terms > 0 && fit->terms < 3;
@@ -177,8 +185,8 @@ void LocalMultiquadric::evaluate(std::span<const Vec2> points, std::span<double>
           const double b = rbf_basis(v, kernel_) * w;
           for (int c = 0; c < C; ++c) acc[c] += b * fit->alpha[a * C + c];
         }
-        if (fit->terms > 0)
-          for (int c = 0; c < C; ++c) acc[c] += w * fit->polynomial(e, c);
+        // RBF(e) + poly(e) + (poly(p) - poly(e)): the polynomial (or offset) continues past the hull.
+        for (int c = 0; c < C; ++c) acc[c] += w * fit->polynomial(p, c);
       }
     if (total == 0 && flat_total > 0) {
       total = flat_total;

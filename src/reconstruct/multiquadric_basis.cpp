@@ -67,7 +67,7 @@ void polynomial_frame(std::span<const Vec2> points, const std::vector<unsigned>&
 }  // namespace
 
 RbfFit fit_rbf(std::span<const Vec2> points, std::span<const double> r_sq, std::span<const double> values,
-               int channels, const RbfKernel& kernel, std::vector<unsigned> subset) {
+               int channels, const RbfKernel& kernel, std::vector<unsigned> subset, bool centre_values) {
   RR_CHECK(!subset.empty(), "an RBF fit needs samples");
   RbfFit fit;
   if (kernel.poly) polynomial_frame(points, subset, fit);
@@ -77,9 +77,10 @@ RbfFit fit_rbf(std::span<const Vec2> points, std::span<const double> r_sq, std::
     if (size_sq > 0) fit.kernel_scale = 1 / size_sq;
   }
   const Eigen::Index m = static_cast<Eigen::Index>(subset.size()), t = fit.terms;
-  // The values' mean per channel, taken out of the system into c_0 (with a polynomial).
+  // The values' mean per channel, taken out of the system into c_0 (with a polynomial), or into
+  // the offset.
   std::vector<double> mean(static_cast<size_t>(channels), 0.0);
-  if (t > 0) {
+  if (t > 0 || centre_values) {
     for (unsigned s : subset)
       for (int c = 0; c < channels; ++c) mean[static_cast<size_t>(c)] += values[s * static_cast<size_t>(channels) + c];
     for (double& v : mean) v /= static_cast<double>(m);
@@ -130,6 +131,7 @@ RbfFit fit_rbf(std::span<const Vec2> points, std::span<const double> r_sq, std::
   for (int c = 0; c < channels; ++c)
     for (Eigen::Index k = 0; k < t; ++k)
       fit.poly[static_cast<size_t>(c * t + k)] = x(m + k, c) + (k == 0 ? mean[static_cast<size_t>(c)] : 0.0);
+  if (t == 0 && centre_values) fit.offset = mean;
   fit.subset = std::move(subset);
   return fit;
 }
@@ -144,7 +146,7 @@ void evaluate_rbf_fit(const RbfFit& fit, const RbfKernel& kernel, int channels, 
   rbf_basis_in_place(b, kernel);
   for (int c = 0; c < channels; ++c) {
     out[c] = (b * Array(&fit.alpha_by_channel[static_cast<size_t>(c) * static_cast<size_t>(m)], m)).sum();
-    if (fit.terms > 0) out[c] += fit.polynomial(p, c);
+    out[c] += fit.polynomial(p, c);
   }
 }
 

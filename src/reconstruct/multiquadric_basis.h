@@ -99,10 +99,13 @@ struct RbfFit {
   Vec2 centre = Vec2::Zero();
   Vec2 axis1 = Vec2::Zero(), axis2 = Vec2::Zero();
   std::vector<double> poly;  ///< terms * channels, channel by channel: c_t of channel c at [c * terms + t]
+  /// Without a polynomial: the values' mean per channel, taken out before the fit when asked
+  /// (fit_rbf's centre_values); empty otherwise.
+  std::vector<double> offset;
 
-  /// The polynomial of channel c at q (0 without one).
+  /// The polynomial of channel c at q (without one: the offset, or 0).
   double polynomial(const Vec2& q, int c) const {
-    if (terms == 0) return 0;
+    if (terms == 0) return offset.empty() ? 0 : offset[static_cast<size_t>(c)];
     const double* k = &poly[static_cast<size_t>(c) * static_cast<size_t>(terms)];
     double v = k[0];
     const Vec2 d = q - centre;
@@ -113,10 +116,12 @@ struct RbfFit {
 };
 
 /// Fits the RBF through `subset` (values: channels per point, point-major; r_sq per point, zeros
-/// for the thin-plate spline). Throws ReconstructionError when the system is singular or its
+/// for the thin-plate spline). centre_values, without a polynomial: fit the deviations from the
+/// subset's mean and add the mean back (RbfFit::offset), so that constants are reproduced: a
+/// multiquadric through a few samples of a large offset (terrain at 900 m) sags between them. Throws ReconstructionError when the system is singular or its
 /// coefficients overflow.
 RbfFit fit_rbf(std::span<const Vec2> points, std::span<const double> r_sq, std::span<const double> values,
-               int channels, const RbfKernel& kernel, std::vector<unsigned> subset);
+               int channels, const RbfKernel& kernel, std::vector<unsigned> subset, bool centre_values = false);
 
 /// The fit's value at p into out[0, channels): the basis over its samples as Eigen arrays (SIMD,
 /// sums in a fixed packet order, so results do not depend on threads), plus the polynomial.
