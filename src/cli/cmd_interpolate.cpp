@@ -58,21 +58,6 @@ std::string method_list() {
 
 /// The method's interpolant of the samples (read from `file`); grid methods need the samples
 /// to be the nodes of a regular grid (UserError naming the file otherwise).
-InterpolantResult build_interpolant(Method method, const ScatteredSamples& samples, const MethodParams& params,
-                                    const std::string& file) {
-  if (!is_grid_method(method)) return make_scattered_interpolant(method, samples, params);
-  const std::optional<GridNodes> grid = as_regular_grid(samples);
-  if (!grid) {
-    const DistinctCoordinates d = count_distinct_coordinates(samples);
-    throw UserError(file, method_name(method) + " needs samples on a regular grid: every combination of nx equally spaced "
-                          "x values and ny equally spaced y values (nx, ny >= 2), each exactly once; found " +
-                              std::to_string(samples.points.size()) + " samples, " + std::to_string(d.x) +
-                              " distinct x, " + std::to_string(d.y) +
-                              " distinct y; use a scattered method (e.g. natural-neighbour, linear, shepard)");
-  }
-  return make_nodal_interpolant(method, *grid, params);
-}
-
 void run_interpolate(const InterpolateArgs& args) {
   const auto start = std::chrono::steady_clock::now();
 
@@ -174,7 +159,12 @@ void run_interpolate(const InterpolateArgs& args) {
   if (!gdal && format == FileFormat::pfm && samples.channels != 1 && samples.channels != 3)
     throw UserError("--out", "PFM needs 1 or 3 value columns (greyscale or colour); " + args.samples + " has " +
                                  std::to_string(samples.channels) + "; write .csv instead");
-  const InterpolantResult interpolant = build_interpolant(*method, samples, params, args.samples);
+  using Clock = std::chrono::steady_clock;
+  const auto seconds_since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
+  const double reading_s = seconds_since(start);
+  const auto build_start = Clock::now();
+  const InterpolantResult interpolant = make_point_interpolant(*method, samples, params);
+  const double building_s = seconds_since(build_start);
   if (!interpolant) throw UserError(args.samples, interpolant.reason());
   const std::vector<Vec2> points =
       !use_queries ? raster_points(raster)
@@ -192,6 +182,7 @@ void run_interpolate(const InterpolateArgs& args) {
 
   // Evaluated in batches (each point on its own, so the values do not depend on the batches),
   // with a progress line between them.
+  const auto query_start = Clock::now();
   const size_t channels = static_cast<size_t>(interpolant.value()->channels());
   std::vector<double> values(points.size() * channels);
   Progress progress("interpolate", args.quiet);
@@ -202,7 +193,9 @@ void run_interpolate(const InterpolateArgs& args) {
     progress.update(static_cast<double>(first + count) / points.size(), "the query points");
   }
   progress.done();
+  const double querying_s = seconds_since(query_start);
 
+  const auto write_start = Clock::now();
   if (gdal) {
     gdal_functions("--out").write_raster(args.out, raster, values, samples.channels, gdal_options);
   } else switch (format) {
@@ -211,10 +204,12 @@ void run_interpolate(const InterpolateArgs& args) {
     case FileFormat::png: write_raster_png(args.out, raster, values, samples.channels); break;
     case FileFormat::exr: break;  // refused by file_format() above
   }
-  if (!args.quiet) {
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::fprintf(stderr, "interpolate: wrote %s (%zu points) in %.3f s\n", args.out.c_str(), points.size(), seconds);
-  }
+  if (!args.quiet)
+    std::fprintf(stderr,
+                 "interpolate: wrote %s (%zu points) in %.3f s (reading and checking %.3f s, building %.3f s, "
+                 "interpolating %.3f s, writing %.3f s)\n",
+                 args.out.c_str(), points.size(), seconds_since(start), reading_s, building_s, querying_s,
+                 seconds_since(write_start));
 }
 
 }  // namespace

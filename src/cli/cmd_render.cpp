@@ -10,6 +10,7 @@
 #include <string>
 
 #include "cli/commands.h"
+#include "cli/solution_methods.h"
 #include "core/error.h"
 #include "core/progress.h"
 #include "sampling/solution_reconstruction.h"
@@ -154,29 +155,11 @@ void run_render(const RenderArgs& args) {
     for (const Camera& c : scene.cameras) names += (names.empty() ? "" : ", ") + c.name;
     throw UserError("--camera", "the scene has no camera '" + args.camera + "' (cameras: " + (names.empty() ? "none" : names) + ")");
   }
-  const auto method = parse_method(args.method);
-  if (!method) {
-    std::string names;
-    for (Method m : all_methods()) names += (names.empty() ? "" : ", ") + method_name(m);
-    throw UserError("--method", "unknown method '" + args.method + "'; valid methods: " + names);
-  }
-  const MethodParams params = parse_params(*method, args.params, "--param");
+  parse_params(method_option(args.method), args.params, "--param");  // refused before the solution is read
   const Solution solution = read_solution_json(args.solution);
-  const SideSampling sampling{.barriers = !args.no_barriers, .border_samples = args.border_samples};
-  const SolutionReconstruction recon(scene, solution, *method, params, args.solution, sampling);
-  if (!recon.fallbacks().empty() && recon.fallbacks().size() == solution.surfaces.size())
-    throw UserError(args.solution, args.method + " cannot reconstruct any side of this solution (" +
-                                       recon.fallbacks().front().reason + "); use constant, or a solution it fits");
-  if (!args.no_barriers && !takes_barriers(*method))
-    for (const SurfaceSolution& side : solution.surfaces)
-      if (!side.barriers.empty()) {
-        std::fprintf(stderr, "radrecon: warning: %s takes no barriers: sides with barriers (e.g. %s) are reconstructed "
-                             "across them\n", args.method.c_str(), side.name.c_str());
-        break;
-      }
-  for (const Fallback& f : recon.fallbacks())
-    std::fprintf(stderr, "radrecon: warning: %s: %s cannot reconstruct side %s (%s); drawn piecewise constant\n",
-                 args.solution.c_str(), args.method.c_str(), f.side.c_str(), f.reason.c_str());
+  const std::unique_ptr<SolutionReconstruction> recon_ptr = reconstruct_solution(
+      scene, solution, args.solution, args.method, args.params, args.no_barriers, args.border_samples);
+  const SolutionReconstruction& recon = *recon_ptr;
   const auto start = std::chrono::steady_clock::now();
   Progress reporter("render", args.quiet);
   const RenderProgress progress = [&](double done) { reporter.update(done, "the pixels"); };

@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   radrecon::cli::add_render_command(app);
   radrecon::cli::add_compare_command(app);
   radrecon::cli::add_cornell_command(app);
+  radrecon::cli::add_export_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -29,4 +29,15 @@ void Progress::update(double fraction, const std::string& what) {
   line_open_ = terminal_;
 }
 
+void Progress::note(const std::string& what) {
+  const auto now = std::chrono::steady_clock::now();
+  if (quiet_ || now - last_ < kProgressInterval) return;
+  last_ = now;
+  const double elapsed = std::chrono::duration<double>(now - start_).count();
+  std::fprintf(stderr, "%s%s: %s, %.0f s elapsed%s", terminal_ ? "\r" : "", label_.c_str(), what.c_str(), elapsed,
+               terminal_ ? "\033[K" : "\n");
+  std::fflush(stderr);
+  line_open_ = terminal_;
+}
+
 }  // namespace radrecon

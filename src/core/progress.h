@@ -23,6 +23,9 @@ class Progress {
   /// Reports the fraction done (0..1) of `what` with the time elapsed and the time left, if the
   /// last report is kProgressInterval old.
   void update(double fraction, const std::string& what);
+  /// Reports `what` (a stage whose share done is unknown: "refinement pass 3, 1200 links") with
+  /// the time elapsed, as update() does.
+  void note(const std::string& what);
   /// Ends an updating line, so that what follows starts a line of its own.
   void done();
 

@@ -25,6 +25,14 @@ const GdalFunctions& gdal_functions(const std::string& what) {
       candidates.push_back(exe.parent_path() / "libradrecon_gdal.so");
       candidates.push_back(exe.parent_path() / ".." / "lib" / "radrecon" / "libradrecon_gdal.so");
     }
+    // Beside (or one folder above) the shared object this code is in: the Python module in
+    // build/python, or installed beside the plugin.
+    Dl_info self{};
+    if (dladdr(reinterpret_cast<const void*>(&gdal_functions), &self) != 0 && self.dli_fname != nullptr) {
+      const fs::path here = fs::absolute(fs::path(self.dli_fname), ec).parent_path();
+      candidates.push_back(here / "libradrecon_gdal.so");
+      candidates.push_back(here / ".." / "libradrecon_gdal.so");
+    }
     for (const fs::path& c : candidates) {
       if (!fs::exists(c, ec)) continue;
       void* handle = dlopen(c.c_str(), RTLD_NOW | RTLD_LOCAL);

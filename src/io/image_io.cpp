@@ -41,7 +41,10 @@ FileFormat file_format(const std::string& path, std::initializer_list<FileFormat
                              " in '" + path + "'; expected " + names);
 }
 
-void write_png(const std::filesystem::path& path, const Image& image, bool srgb_encode_values) {
+namespace {
+
+/// Display values as 8-bit RGB, row by row (write_png()'s conversion).
+std::vector<std::uint8_t> png_bytes(const Image& image, bool srgb_encode_values) {
   std::vector<std::uint8_t> bytes(static_cast<size_t>(image.width()) * image.height() * 3);
   for (int y = 0; y < image.height(); ++y)
     for (int x = 0; x < image.width(); ++x)
@@ -51,18 +54,43 @@ void write_png(const std::filesystem::path& path, const Image& image, bool srgb_
         if (srgb_encode_values) v = srgb_encode(v);
         bytes[(static_cast<size_t>(y) * image.width() + x) * 3 + c] = static_cast<std::uint8_t>(std::lround(v * 255.0));
       }
+  return bytes;
+}
+
+png_image png_header(const Image& image) {
+  png_image png{};
+  png.version = PNG_IMAGE_VERSION;
+  png.width = static_cast<png_uint_32>(image.width());
+  png.height = static_cast<png_uint_32>(image.height());
+  png.format = PNG_FORMAT_RGB;
+  return png;
+}
+
+}  // namespace
+
+void write_png(const std::filesystem::path& path, const Image& image, bool srgb_encode_values) {
+  const std::vector<std::uint8_t> bytes = png_bytes(image, srgb_encode_values);
   write_file_atomically(path, [&](const std::filesystem::path& tmp) {
-    png_image png{};
-    png.version = PNG_IMAGE_VERSION;
-    png.width = static_cast<png_uint_32>(image.width());
-    png.height = static_cast<png_uint_32>(image.height());
-    png.format = PNG_FORMAT_RGB;
+    png_image png = png_header(image);
     if (!png_image_write_to_file(&png, tmp.c_str(), 0, bytes.data(), 0, nullptr)) {
       std::string message = png.message;
       png_image_free(&png);
       throw UserError(path.string(), "cannot write PNG: " + message);
     }
   });
+}
+
+std::vector<std::uint8_t> encode_png(const Image& image, bool srgb_encode_values) {
+  const std::vector<std::uint8_t> bytes = png_bytes(image, srgb_encode_values);
+  png_image png = png_header(image);
+  png_alloc_size_t size = 0;
+  if (!png_image_write_to_memory(&png, nullptr, &size, 0, bytes.data(), 0, nullptr))
+    throw UserError("PNG", std::string("cannot encode: ") + png.message);
+  std::vector<std::uint8_t> encoded(size);
+  if (!png_image_write_to_memory(&png, encoded.data(), &size, 0, bytes.data(), 0, nullptr))
+    throw UserError("PNG", std::string("cannot encode: ") + png.message);
+  encoded.resize(size);
+  return encoded;
 }
 
 void write_pfm(const std::filesystem::path& path, int width, int height, int channels,

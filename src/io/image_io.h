@@ -4,9 +4,11 @@
 // atomic (atomic_file.h): the file appears whole or not at all.
 
 #include <filesystem>
+#include <cstdint>
 #include <initializer_list>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "core/image.h"
 
@@ -25,6 +27,9 @@ FileFormat file_format(const std::string& path, std::initializer_list<FileFormat
 /// `srgb_encode_values` the values are taken as linear and encoded with the sRGB transfer curve;
 /// without, written as they are.
 void write_png(const std::filesystem::path& path, const Image& image, bool srgb_encode_values);
+
+/// The PNG file write_png() would write, in memory (for embedding, e.g. in a glTF binary).
+std::vector<std::uint8_t> encode_png(const Image& image, bool srgb_encode_values);
 
 /// Writes an image's linear values as a colour PFM (little endian, bottom row first as PFM
 /// requires).

@@ -22,6 +22,7 @@
 #include "reconstruct/nearest.h"
 #include "reconstruct/nodal.h"
 #include "reconstruct/radius_gate.h"
+#include "reconstruct/sample_set.h"
 #include "reconstruct/shepard.h"
 
 namespace radrecon {
@@ -335,6 +336,22 @@ InterpolantResult make_scattered_interpolant(Method method, const ScatteredSampl
   }
   RR_CHECK(false, "unknown method");
   return Failure{"unknown method"};
+}
+
+InterpolantResult make_point_interpolant(Method method, const ScatteredSamples& samples, const MethodParams& params) {
+  if (is_cell_method(method))
+    return Failure{method_name(method) + " reconstructs cells (a grid's or a quadtree's leaves: radrecon render and "
+                                         "paper), not points; use e.g. linear or natural-neighbour"};
+  if (!is_grid_method(method)) return make_scattered_interpolant(method, samples, params);
+  const std::optional<GridNodes> grid = as_regular_grid(samples);
+  if (!grid) {
+    const DistinctCoordinates d = count_distinct_coordinates(samples);
+    return Failure{method_name(method) + " needs samples on a regular grid: every combination of nx equally spaced "
+                                         "x values and ny equally spaced y values (nx, ny >= 2), each exactly once; found " +
+                   std::to_string(samples.points.size()) + " samples, " + std::to_string(d.x) + " distinct x, " +
+                   std::to_string(d.y) + " distinct y; use a scattered method (e.g. natural-neighbour, linear, shepard)"};
+  }
+  return make_nodal_interpolant(method, *grid, params);
 }
 
 }  // namespace radrecon

@@ -139,4 +139,10 @@ InterpolantResult make_nodal_interpolant(Method method, const GridNodes& nodes,
 InterpolantResult make_scattered_interpolant(Method method, const ScatteredSamples& samples,
                                                         const MethodParams& params = {});
 
+/// Points with values, as `radrecon interpolate` and the Python module take them: the grid
+/// methods (bilinear, bicubic, hermite) need them to form a regular grid (any order; the failure
+/// says how far they are from one), the cell methods are refused, the others take them as
+/// scattered samples (make_scattered_interpolant).
+InterpolantResult make_point_interpolant(Method method, const ScatteredSamples& samples, const MethodParams& params = {});
+
 }  // namespace radrecon

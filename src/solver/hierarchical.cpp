@@ -12,6 +12,7 @@
 #include "core/check.h"
 #include "core/error.h"
 #include "core/parallel.h"
+#include "core/progress.h"
 #include "core/tolerances.h"
 #include "mesh/quadtree.h"
 #include "scene/side.h"
@@ -100,14 +101,15 @@ class Hierarchy {
   void solve() {
     const auto start = std::chrono::steady_clock::now();
     int passes = 0;
+    Progress progress(options_.progress_label, options_.progress_label.empty());
     gather_until_converged();
     while (refine_pass()) {
       ++passes;
       gather_until_converged();
-      if (!options_.progress_label.empty())
-        std::fprintf(stderr, "%s: refinement pass %d, %zu links, %d leaves\n", options_.progress_label.c_str(),
-                     passes, links_.size(), total_leaves());
+      progress.note("refinement pass " + std::to_string(passes) + ", " + std::to_string(links_.size()) + " links, " +
+                    std::to_string(total_leaves()) + " leaves");
     }
+    progress.done();
     hierarchy_links_ = links_.size();
     if (options_.leaf_gather) {
       push_links_to_leaves();

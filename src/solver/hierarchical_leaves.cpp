@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "core/error.h"
+#include "core/progress.h"
 #include "scene/side.h"
 #include "solver/hierarchical.h"
 
@@ -31,17 +32,15 @@ Solution solve_hierarchical_leaves(const Scene& scene, const std::string& side, 
   LinkFormFactorCache cache;  // the solves below share most of their links
   // Leaves of `side` at epsilon `eps` (W); kTooFine when the links would not fit.
   const auto start = std::chrono::steady_clock::now();
-  auto last_report = start;
+  Progress progress(label, label.empty());
   auto count = [&](double eps) {
     options.epsilon_w = eps;
     const std::optional<Solution> sol = try_solve_hierarchical(scene, options, spec, &cache);
     const int n = sol ? static_cast<int>(leaf_count(*sol, side)) : kTooFine;
-    const auto now = std::chrono::steady_clock::now();
-    if (!label.empty() && now - last_report > std::chrono::seconds(2)) {
-      std::fprintf(stderr, "%s: searching epsilon for %d leaves on %s: %.4g W gives %s\n", label.c_str(), leaves,
-                   side.c_str(), eps, sol ? std::to_string(n).c_str() : "too many links");
-      last_report = now;
-    }
+    char what[160];
+    std::snprintf(what, sizeof what, "searching epsilon for %d leaves on %s: %.4g W gives %s", leaves, side.c_str(), eps,
+                  sol ? std::to_string(n).c_str() : "too many links");
+    progress.note(what);
     return n;
   };
   // The most leaves the side can have: split down to the minimum element size everywhere.
@@ -106,6 +105,7 @@ Solution solve_hierarchical_leaves(const Scene& scene, const std::string& side, 
     throw UserError(field, "refinement gives " + std::to_string(made) + " leaves on '" + side + "', not exactly " +
                                std::to_string(leaves) + "; try a neighbouring count (1 + 3k)");
   sol.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  progress.done();
   if (!label.empty())
     std::fprintf(stderr, "%s: epsilon %.4g W gives %d leaves on %s\n", label.c_str(), lo, leaves, side.c_str());
   return sol;

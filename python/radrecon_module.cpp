@@ -1,0 +1,289 @@
+// radrecon for Python (pybind11, NumPy): scattered-data interpolation by every reconstruction
+// method of `radrecon interpolate`, and the radiosity solvers of `radrecon solve`, on arrays.
+// The work runs without the GIL; refused input raises radrecon.Error (a ValueError) with the
+// message the command line prints. docs/python.md.
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "io/gdal_plugin.h"
+#include "io/geojson.h"
+#include "io/paths.h"
+#include "io/raster.h"
+#include "io/scene_json.h"
+#include "io/solution_json.h"
+#include "reconstruct/interpolant.h"
+#include "reconstruct/methods.h"
+#include "reconstruct/sample_set.h"
+#include "solver/solve.h"
+
+namespace py = pybind11;
+
+namespace radrecon {
+namespace {
+
+/// A C-contiguous float64 view of any array-like: no copy when it already is one.
+using Doubles = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+std::string shape_of(const py::array& a) {
+  std::string s = "(";
+  for (py::ssize_t d = 0; d < a.ndim(); ++d) s += (d ? ", " : "") + std::to_string(a.shape(d));
+  return s + (a.ndim() == 1 ? ",)" : ")");
+}
+
+/// An (n, 2) array of finite coordinates, named `what` in messages.
+void check_points(const Doubles& a, const std::string& what) {
+  if (a.ndim() != 2 || a.shape(1) != 2) throw UserError(what, "an array of shape (n, 2) is expected; got shape " + shape_of(a));
+  const double* p = a.data();
+  for (py::ssize_t i = 0; i < a.size(); ++i)
+    if (!std::isfinite(p[i])) throw UserError(what + "[" + std::to_string(i / 2) + "]", "not a finite number");
+}
+
+/// The points as Vec2: the array's own memory when it is aligned as Eigen wants, else a copy.
+std::span<const Vec2> as_vec2(const Doubles& a, std::vector<Vec2>& copy) {
+  const auto n = static_cast<size_t>(a.shape(0));
+  if (reinterpret_cast<std::uintptr_t>(a.data()) % alignof(Vec2) == 0)
+    return {reinterpret_cast<const Vec2*>(a.data()), n};
+  copy.resize(n);
+  for (size_t i = 0; i < n; ++i) copy[i] = Vec2(a.data()[2 * i], a.data()[2 * i + 1]);
+  return copy;
+}
+
+/// Keyword arguments as the NAME=VALUE settings of --param (True/False as on/off).
+std::vector<std::string> settings_of(const py::kwargs& params) {
+  std::vector<std::string> out;
+  for (const auto& [key, value] : params) {
+    std::string text;
+    if (py::isinstance<py::bool_>(value)) text = value.cast<bool>() ? "on" : "off";
+    else text = py::str(value).cast<std::string>();
+    out.push_back(py::str(key).cast<std::string>() + "=" + text);
+  }
+  return out;
+}
+
+/// Barriers from a file (GeoJSON, or any OGR line source through GDAL) or a sequence of (k, 2)
+/// polylines.
+Barriers barriers_of(const py::object& barriers) {
+  if (barriers.is_none()) return {};
+  if (py::isinstance<py::str>(barriers)) {
+    const std::string path = barriers.cast<std::string>();
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    Result<Barriers> b = Barriers::from_polylines(ext == ".geojson" || ext == ".json"
+                                                      ? read_geojson_barriers(path)
+                                                      : gdal_functions("barriers").read_barriers(path));
+    if (!b) throw UserError(path, b.reason());
+    return std::move(b).value();
+  }
+  std::vector<Polyline> lines;
+  size_t index = 0;
+  for (const py::handle item : barriers) {
+    const Doubles line = Doubles::ensure(item);
+    const std::string what = "barriers[" + std::to_string(index++) + "]";
+    if (!line) throw UserError(what, "a polyline is an array of shape (k, 2)");
+    check_points(line, what);
+    Polyline& l = lines.emplace_back();
+    for (py::ssize_t i = 0; i < line.shape(0); ++i) l.emplace_back(line.at(i, 0), line.at(i, 1));
+  }
+  Result<Barriers> b = Barriers::from_polylines(lines);
+  if (!b) throw UserError("barriers", b.reason());
+  return std::move(b).value();
+}
+
+py::array interpolate(const Doubles& points, const Doubles& values, const std::optional<Doubles>& queries,
+                      const std::optional<std::pair<int, int>>& raster, const std::optional<std::array<double, 4>>& domain,
+                      const std::string& method_text, const py::object& barriers, const py::kwargs& kwargs) {
+  check_points(points, "points");
+  const auto n = static_cast<size_t>(points.shape(0));
+  if (values.ndim() < 1 || values.ndim() > 2 || static_cast<size_t>(values.shape(0)) != n)
+    throw UserError("values", "an array of shape (" + std::to_string(n) + ",) or (" + std::to_string(n) +
+                                  ", channels) is expected, one row per point; got shape " + shape_of(values));
+  const int channels = values.ndim() == 2 ? static_cast<int>(values.shape(1)) : 1;
+  if (channels < 1) throw UserError("values", "no value columns");
+  for (py::ssize_t i = 0; i < values.size(); ++i)
+    if (!std::isfinite(values.data()[i])) throw UserError("values[" + std::to_string(i / channels) + "]", "not a finite number");
+  if (queries.has_value() == raster.has_value())
+    throw UserError("queries/raster", queries ? "give either queries or raster, not both"
+                                              : "give the query points: queries=(m, 2) array, or raster=(width, height) with "
+                                                "domain=(x0, y0, x1, y1)");
+  if (raster.has_value() != domain.has_value())
+    throw UserError("domain", raster ? "raster needs domain=(x0, y0, x1, y1), the rectangle it covers"
+                                     : "domain goes with raster");
+  const std::optional<Method> method = parse_method(method_text);
+  if (!method) {
+    std::string names;
+    for (Method m : all_methods()) names += (names.empty() ? "" : ", ") + method_name(m);
+    throw UserError("method", "unknown method '" + method_text + "'; valid methods: " + names);
+  }
+  MethodParams params = parse_params(*method, settings_of(kwargs), "params");
+  params.barriers = barriers_of(barriers);
+
+  ScatteredSamples samples;
+  samples.channels = channels;
+  samples.points.resize(n);
+  for (size_t i = 0; i < n; ++i) samples.points[i] = Vec2(points.data()[2 * i], points.data()[2 * i + 1]);
+  samples.values.assign(values.data(), values.data() + values.size());
+  const size_t removed = merge_duplicate_points(samples);
+  if (removed > 0)
+    PyErr_WarnFormat(PyExc_UserWarning, 1,
+                     "%zu samples repeat the point of an earlier one; merged, their values averaged (%zu samples -> %zu points)",
+                     removed, n, samples.points.size());
+
+  Raster grid;
+  std::vector<Vec2> copy;
+  std::span<const Vec2> at;
+  std::vector<py::ssize_t> shape;
+  if (raster) {
+    const auto [w, h] = *raster;
+    if (w < 1 || h < 1 || w > kMaxRasterSide || h > kMaxRasterSide ||
+        static_cast<double>(w) * h > static_cast<double>(kMaxRasterPoints))
+      throw UserError("raster", "(" + std::to_string(w) + ", " + std::to_string(h) + ") is out of range: 1 <= width, height <= " +
+                                    std::to_string(kMaxRasterSide) + ", at most " + std::to_string(kMaxRasterPoints) + " cells");
+    const auto& d = *domain;
+    if (!(std::isfinite(d[0]) && std::isfinite(d[1]) && std::isfinite(d[2]) && std::isfinite(d[3]) && d[2] > d[0] && d[3] > d[1]))
+      throw UserError("domain", "(x0, y0, x1, y1) with finite x1 > x0 and y1 > y0 is expected");
+    grid.width = w;
+    grid.height = h;
+    grid.domain = Rect{d[0], d[1], d[2], d[3]};
+    shape = {h, w};
+  } else {
+    check_points(*queries, "queries");
+    at = as_vec2(*queries, copy);
+    shape = {queries->shape(0)};
+  }
+  if (values.ndim() == 2) shape.push_back(channels);
+  py::array_t<double> out(shape);
+  double* result = out.mutable_data();
+  const size_t count = raster ? static_cast<size_t>(grid.width) * grid.height : at.size();
+  {
+    py::gil_scoped_release release;
+    const InterpolantResult interpolant = make_point_interpolant(*method, samples, params);
+    if (!interpolant) throw UserError("points", interpolant.reason());
+    if (raster) {
+      copy = raster_points(grid);
+      at = copy;
+    }
+    interpolant.value()->evaluate(at, std::span<double>(result, count * static_cast<size_t>(channels)));
+  }
+  return out;
+}
+
+/// A surface side of a solution, its elements as arrays.
+py::dict surface_dict(const SurfaceSolution& s) {
+  const auto n = static_cast<py::ssize_t>(s.elements.size());
+  py::array_t<double> center({n, py::ssize_t{3}}), radiosity({n, py::ssize_t{3}}), area(n), cell({n, py::ssize_t{4}});
+  py::array_t<bool> triangle(n);
+  auto c = center.mutable_unchecked<2>(), b = radiosity.mutable_unchecked<2>(), uv = cell.mutable_unchecked<2>();
+  auto a = area.mutable_unchecked<1>();
+  auto t = triangle.mutable_unchecked<1>();
+  for (py::ssize_t i = 0; i < n; ++i) {
+    const SolutionElement& e = s.elements[static_cast<size_t>(i)];
+    for (int k = 0; k < 3; ++k) c(i, k) = e.center[k], b(i, k) = e.radiosity_w_m2[k];
+    a(i) = e.area_m2;
+    uv(i, 0) = e.u0, uv(i, 1) = e.v0, uv(i, 2) = e.u1, uv(i, 3) = e.v1;
+    t(i) = e.is_triangle();
+  }
+  py::dict d;
+  d["name"] = s.name;
+  d["scene_surface"] = s.scene_surface;
+  d["back_side"] = s.back_side;
+  d["grid"] = s.grid_nu > 0 ? py::object(py::make_tuple(s.grid_nu, s.grid_nv)) : py::object(py::none());
+  d["center"] = center;
+  d["radiosity"] = radiosity;
+  d["area"] = area;
+  d["cell"] = cell;
+  d["triangle"] = triangle;
+  return d;
+}
+
+py::dict stats_dict(const SolveStats& s) {
+  auto rgb = [](const Rgb& c) { return py::make_tuple(c[0], c[1], c[2]); };
+  py::dict d;
+  d["method"] = s.method;
+  d["shots"] = s.shots;
+  d["elements"] = s.elements;
+  d["links"] = s.links;
+  d["emitted_w"] = rgb(s.emitted_w);
+  d["absorbed_w"] = rgb(s.absorbed_w);
+  d["unshot_w"] = rgb(s.unshot_w);
+  d["escaped_w"] = rgb(s.escaped_w);
+  d["residual"] = s.residual;
+  d["converged"] = s.converged;
+  d["seconds"] = s.seconds;
+  return d;
+}
+
+}  // namespace
+}  // namespace radrecon
+
+PYBIND11_MODULE(radrecon, m) {
+  using namespace radrecon;
+  m.doc() = "radrecon: radiosity solvers and scattered-data reconstruction (docs/python.md)";
+  m.attr("__version__") = RADRECON_VERSION;
+  static py::exception<UserError> error(m, "Error", PyExc_ValueError);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const UserError& e) {
+      error(e.what());
+    }
+  });
+
+  m.def("methods", [] {
+    std::vector<std::string> names;
+    for (Method method : all_methods()) names.push_back(method_name(method));
+    return names;
+  }, "The reconstruction methods' names, as method= takes them.");
+
+  m.def("interpolate", &interpolate, py::arg("points"), py::arg("values"), py::arg("queries") = py::none(),
+        py::arg("raster") = py::none(), py::arg("domain") = py::none(), py::arg("method") = "natural-neighbour",
+        py::arg("barriers") = py::none(),
+        R"doc(Interpolate scattered 2-D samples, as `radrecon interpolate` does.
+
+points: (n, 2) coordinates; values: (n,) or (n, c). Either queries: (m, 2) points, giving (m,)
+or (m, c); or raster=(width, height) with domain=(x0, y0, x1, y1), giving (height, width) or
+(height, width, c) values at the cells' centres, row 0 the y0 row. method: any of methods().
+barriers: a GeoJSON (or other OGR) file of lines, or a sequence of (k, 2) polylines. Further
+keywords are the method's parameters as in --param (k=32, mu=2, outside="none", radius=...).
+NaN where a method has no value. Samples at the same point are merged (a UserWarning).
+Raises radrecon.Error (a ValueError) for refused input.)doc");
+
+  py::class_<Solution>(m, "Solution", "A solved scene: its statistics and its surface sides' elements as arrays.")
+      .def_property_readonly("scene", [](const Solution& s) { return s.scene; })
+      .def_property_readonly("mesh", [](const Solution& s) { return s.mesh; })
+      .def_property_readonly("stats", [](const Solution& s) { return stats_dict(s.stats); })
+      .def_property_readonly("surfaces", [](const Solution& s) {
+        py::list out;
+        for (const SurfaceSolution& side : s.surfaces) out.append(surface_dict(side));
+        return out;
+      }, "Per side: name, scene_surface, back_side, grid ((nu, nv) or None), and per element center (n, 3) "
+         "metres, radiosity (n, 3) W/m^2, area (n,) m^2, cell (n, 4) its (u0, v0, u1, v1), triangle (n,)")
+      .def("save", [](const Solution& s, const std::string& path) {
+        check_output_file(path, "path");
+        write_solution_json(path, s);
+      }, py::arg("path"), "Write the solution JSON that `radrecon solve --out` writes.");
+
+  m.def("solve", [](const std::string& scene_spec, const std::string& mesh, double residual, int patches,
+                    const std::string& leaves_on) {
+    SolveSettings settings;
+    settings.residual = residual;
+    settings.patches = patches;
+    settings.leaves_on = leaves_on;
+    py::gil_scoped_release release;
+    const Scene scene = load_scene(scene_spec);
+    return solve_scene(scene, mesh, settings, "mesh");
+  }, py::arg("scene") = "paper", py::arg("mesh") = "grid:16", py::arg("residual") = kDefaultResidual,
+     py::arg("patches") = SolveSettings{}.patches, py::arg("leaves_on") = "",
+     R"doc(Solve a scene's radiosity, as `radrecon solve` does.
+
+scene: a scene JSON file, a mesh file (.obj, .gltf, .glb, .ply) with emitters, or 'paper' or
+'cornell'. mesh: grid:N, quadtree:LEAVES or quadtree-eps:E. Returns a Solution.)doc");
+}

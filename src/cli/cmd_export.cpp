@@ -1,0 +1,131 @@
+// radrecon export: a solved scene as binary glTF with its reconstructed radiosity baked into a
+// lightmap (export/gltf.h), and optionally the same atlas as linear EXR.
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "cli/commands.h"
+#include "cli/solution_methods.h"
+#include "core/error.h"
+#include "core/parse.h"
+#include "export/gltf.h"
+#include "export/lightmap.h"
+#include "io/image_io.h"
+#include "io/paths.h"
+#include "io/scene_json.h"
+#include "io/solution_json.h"
+#include "render/exposure.h"
+
+namespace radrecon::cli {
+
+namespace {
+
+struct ExportArgs {
+  std::string scene = "paper";
+  std::string solution;
+  std::string method = "natural-neighbour";
+  std::vector<std::string> params;
+  int texels = 256;
+  double white = 0;
+  std::string out;
+  std::string exr;
+  bool no_barriers = false;
+  bool border_samples = false;
+  bool quiet = false;
+};
+
+/// The default white: the kDefaultWhitePercentile-th percentile of the brightest channel of the
+/// texels of the sides that emit nothing (the lights would set it far too high), 1 if none is lit.
+double lightmap_white(const Scene& scene, const LightmapAtlas& atlas) {
+  std::vector<double> values;
+  for (const LightmapTile& t : atlas.tiles) {
+    if ((scene.surfaces[t.side.surface].emission_w_m2 > 0).any()) continue;
+    for (int j = 0; j < t.height; ++j)
+      for (int i = 0; i < t.width; ++i) values.push_back(atlas.radiosity_w_m2.at(t.x0 + i, t.y0 + j).maxCoeff());
+  }
+  if (values.empty()) return 1;
+  const size_t rank = static_cast<size_t>(std::ceil(kDefaultWhitePercentile / 100.0 * static_cast<double>(values.size())));
+  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(rank - 1), values.end());
+  const double white = values[rank - 1];
+  return white > 0 ? white : 1;
+}
+
+void run_export(const ExportArgs& args) {
+  const auto start = std::chrono::steady_clock::now();
+  std::string ext = std::filesystem::path(args.out).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext != ".glb") throw UserError("--out", "writes binary glTF: give a .glb file (got '" + args.out + "')");
+  if (!args.exr.empty()) file_format(args.exr, {FileFormat::exr}, "--exr");
+  std::vector<std::string> inputs = {args.solution};
+  if (args.scene != "paper" && args.scene != "cornell") inputs.push_back(args.scene);
+  refuse_overwriting_inputs(args.out, "--out", inputs);
+  check_output_file(args.out, "--out");
+  if (!args.exr.empty()) {
+    inputs.push_back(args.out);
+    refuse_overwriting_inputs(args.exr, "--exr", inputs);
+    check_output_file(args.exr, "--exr");
+  }
+  parse_params(method_option(args.method), args.params, "--param");  // refused before anything is read
+  const Scene scene = load_scene(args.scene);
+  const Solution solution = read_solution_json(args.solution);
+  const auto recon = reconstruct_solution(scene, solution, args.solution, args.method, args.params, args.no_barriers,
+                                          args.border_samples);
+  double longest_m = 0;
+  for (const SurfaceSolution& s : solution.surfaces) longest_m = std::max({longest_m, s.length_u_m, s.length_v_m});
+  const double density = args.texels / std::max(longest_m, 1e-300);
+  const LightmapAtlas atlas = bake_lightmaps(scene, solution, *recon, density, "--texels");
+  const double white = args.white > 0 ? args.white : lightmap_white(scene, atlas);
+  const nlohmann::json extras = {{"method", args.method}, {"params", args.params}, {"solution", solution.mesh},
+                                 {"scene", solution.scene}};
+  write_lightmapped_glb(args.out, scene, solution, atlas, white, extras);
+  if (!args.exr.empty()) write_exr(args.exr, atlas.radiosity_w_m2);
+  if (!args.quiet) {
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::fprintf(stderr, "export: wrote %s (%zu sides, lightmap %dx%d at %.4g texels/m, white %.4g W/m^2%s)%s%s in %.2f s\n",
+                 args.out.c_str(), atlas.tiles.size(), atlas.radiosity_w_m2.width(), atlas.radiosity_w_m2.height(), density,
+                 white, args.white > 0 ? ", --white" : ": the 99th percentile of the lit surfaces' texels",
+                 args.exr.empty() ? "" : " and ", args.exr.c_str(), seconds);
+  }
+}
+
+}  // namespace
+
+void add_export_command(CLI::App& app) {
+  auto args = std::make_shared<ExportArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "export",
+      "Bake a solution's reconstructed radiosity into a lightmap and write the scene as binary glTF 2.0 (.glb) for "
+      "Blender, three.js or a game engine: one mesh per surface side, the lightmap its emissive texture (an sRGB PNG "
+      "of clamp(B / white, 0, 1)), so viewers show the baked light as it is. docs/export.md.");
+  cmd->add_option("--scene", args->scene, "Scene JSON file, mesh file, or a built-in scene: 'paper' or 'cornell'")->capture_default_str();
+  cmd->add_option("--solution", args->solution, "Solution JSON written by 'radrecon solve' for this scene")->required();
+  cmd->add_option("--method", args->method, "Reconstruction method (as render's --method)")->capture_default_str();
+  cmd->add_option("--param", args->params, "NAME=VALUE method parameter, repeatable (see 'interpolate --help')");
+  cmd->add_option("--texels", args->texels,
+                  "Lightmap texels along the scene's longest surface edge; every side gets the same density (texels "
+                  "per metre)")
+      ->check(CLI::Range(2, kMaxLightmapSide))
+      ->capture_default_str();
+  cmd->add_option("--white", args->white,
+                  "The radiosity (W/m^2) shown as white in the lightmap; default: the 99th percentile of the brightest "
+                  "channel of the texels of the surfaces that emit nothing")
+      ->check(CLI::Range(0.0, 1e12));
+  cmd->add_option("--out", args->out, "The .glb file to write")->required();
+  cmd->add_option("--exr", args->exr, "Also write the lightmap's linear radiosity (W/m^2, same layout) as this .exr file");
+  cmd->add_flag("--no-barriers", args->no_barriers, "Ignore the solution's barriers (as render's)");
+  cmd->add_flag("--border-samples", args->border_samples, "Add border samples (as render's)");
+  cmd->add_flag("--quiet", args->quiet, "No messages but warnings");
+  cmd->footer(
+      "Example:\n"
+      "  radrecon solve --scene cornell --mesh grid:32 --out cornell.json\n"
+      "  radrecon export --scene cornell --solution cornell.json --method natural-neighbour --out cornell.glb");
+  cmd->callback([args] { run_export(*args); });
+}
+
+}  // namespace radrecon::cli

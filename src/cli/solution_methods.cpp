@@ -1,0 +1,42 @@
+#include "cli/solution_methods.h"
+
+#include <cstdio>
+
+#include "core/error.h"
+
+namespace radrecon::cli {
+
+Method method_option(const std::string& name) {
+  const auto method = parse_method(name);
+  if (method) return *method;
+  std::string names;
+  for (Method m : all_methods()) names += (names.empty() ? "" : ", ") + method_name(m);
+  throw UserError("--method", "unknown method '" + name + "'; valid methods: " + names);
+}
+
+std::unique_ptr<SolutionReconstruction> reconstruct_solution(const Scene& scene, const Solution& solution,
+                                                             const std::string& solution_path,
+                                                             const std::string& method_name_text,
+                                                             const std::vector<std::string>& settings, bool no_barriers,
+                                                             bool border_samples) {
+  const Method method = method_option(method_name_text);
+  const MethodParams params = parse_params(method, settings, "--param");
+  const SideSampling sampling{.barriers = !no_barriers, .border_samples = border_samples};
+  auto recon = std::make_unique<SolutionReconstruction>(scene, solution, method, params, solution_path, sampling);
+  if (!recon->fallbacks().empty() && recon->fallbacks().size() == solution.surfaces.size())
+    throw UserError(solution_path, method_name_text + " cannot reconstruct any side of this solution (" +
+                                       recon->fallbacks().front().reason + "); use constant, or a solution it fits");
+  if (!no_barriers && !takes_barriers(method))
+    for (const SurfaceSolution& side : solution.surfaces)
+      if (!side.barriers.empty()) {
+        std::fprintf(stderr, "radrecon: warning: %s takes no barriers: sides with barriers (e.g. %s) are reconstructed "
+                             "across them\n", method_name_text.c_str(), side.name.c_str());
+        break;
+      }
+  for (const Fallback& f : recon->fallbacks())
+    std::fprintf(stderr, "radrecon: warning: %s: %s cannot reconstruct side %s (%s); drawn piecewise constant\n",
+                 solution_path.c_str(), method_name_text.c_str(), f.side.c_str(), f.reason.c_str());
+  return recon;
+}
+
+}  // namespace radrecon::cli

@@ -1,0 +1,26 @@
+#pragma once
+// What `render` and `export` share: a solution reconstructed by the method and parameters of
+// their options (--method, --param, --no-barriers, --border-samples), with the warnings a user
+// should see.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "sampling/solution_reconstruction.h"
+
+namespace radrecon::cli {
+
+/// The method named by --method; UserError listing the methods otherwise.
+Method method_option(const std::string& name);
+
+/// Every side of `solution` (read from `solution_path`) reconstructed by `method_name` with the
+/// --param settings. Refuses a method that serves no side; warns of sides drawn piecewise
+/// constant instead and of barriers a method does not take.
+std::unique_ptr<SolutionReconstruction> reconstruct_solution(const Scene& scene, const Solution& solution,
+                                                             const std::string& solution_path,
+                                                             const std::string& method_name,
+                                                             const std::vector<std::string>& params, bool no_barriers,
+                                                             bool border_samples);
+
+}  // namespace radrecon::cli

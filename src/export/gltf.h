@@ -1,0 +1,26 @@
+#pragma once
+// Baked lighting out: a solved scene as binary glTF 2.0 (.glb) with its reconstructed radiosity
+// as a lightmap texture (export/lightmap.h), for Blender, three.js and game engines.
+//
+// Each surface side is a mesh of its own (named after the side; a two-sided surface gives two,
+// facing opposite ways) with positions (metres, the scene's axes), normals and TEXCOORD_0 into
+// the atlas. They share one material: black base colour, fully rough, not metallic, and the
+// lightmap as its emissive texture (emissiveFactor 1), so that any glTF viewer shows the baked
+// radiosity as it is, unlit by its own lights. The lightmap is an sRGB PNG of
+// clamp(B / white, 0, 1) per channel (core/image.h's tone mapping: B the radiosity in W/m^2,
+// white the radiosity shown as white), sampled with linear filtering and clamped at the edges.
+// asset.extras records the method, the white point (W/m^2) and the density (texels per metre).
+
+#include <filesystem>
+#include <nlohmann/json_fwd.hpp>
+
+#include "export/lightmap.h"
+
+namespace radrecon {
+
+/// Writes `path` atomically. `extras` goes into asset.extras (with white_w_m2 and
+/// texels_per_metre added).
+void write_lightmapped_glb(const std::filesystem::path& path, const Scene& scene, const Solution& solution,
+                           const LightmapAtlas& atlas, double white_w_m2, const nlohmann::json& extras);
+
+}  // namespace radrecon

@@ -1,0 +1,51 @@
+#pragma once
+// Baked lighting: every surface side of a solved scene as a tile of texels in one atlas, each
+// texel the side's reconstructed radiosity (sampling/solution_reconstruction.h) at its centre.
+//
+// A side's tile is w x h texels over its (u, v) parameter box, w = ceil(length_u * density),
+// h = ceil(length_v * density) (at least 2 each); texel (i, j) of the tile holds the radiosity at
+// (u, v) = ((i + 0.5) / w, (j + 0.5) / h): a texture coordinate (x0 + u w, y0 + v h) / atlas size
+// (texels, row 0 the image's first row) lands on the same point, so bilinear filtering inside the
+// tile is exact at texel centres. Around each tile a gutter of kLightmapGutter texels repeats its
+// border texels, so filtering at a tile's edge never reads a neighbour. A triangle's texels
+// beyond its hypotenuse hold the value at the nearest point of the triangle. Where a method has
+// no value (behind barriers, under excluded regions) a texel holds 0.
+
+#include <string>
+#include <vector>
+
+#include "core/image.h"
+#include "sampling/solution_reconstruction.h"
+#include "scene/scene.h"
+#include "solver/solution.h"
+
+namespace radrecon {
+
+/// Texels repeated around each tile (for bilinear filtering at its border).
+inline constexpr int kLightmapGutter = 2;
+/// The largest atlas side, texels (what GPUs take as one texture).
+inline constexpr int kMaxLightmapSide = 16384;
+
+/// Where one side lies in the atlas.
+struct LightmapTile {
+  size_t solution_side = 0;  ///< index into Solution::surfaces
+  SideRef side;              ///< the scene side
+  int x0 = 0, y0 = 0;        ///< the tile's first texel (its gutter outside it), atlas texels
+  int width = 0, height = 0; ///< texels along u and v
+};
+
+struct LightmapAtlas {
+  Image radiosity_w_m2{1, 1};  ///< linear, W/m^2 per channel; row 0 the first row of the image
+  std::vector<LightmapTile> tiles;
+  double texels_per_metre = 0;
+
+  /// The texture coordinate of the side's parameters (u, v), in [0, 1]^2 of the atlas.
+  Vec2 texture_coordinate(const LightmapTile& tile, double u, double v) const;
+};
+
+/// Lays out and fills the atlas at `texels_per_metre` (> 0). Throws UserError naming `where`
+/// when the atlas would exceed kMaxLightmapSide, with the density that would fit.
+LightmapAtlas bake_lightmaps(const Scene& scene, const Solution& solution, const SolutionReconstruction& reconstruction,
+                             double texels_per_metre, const std::string& where);
+
+}  // namespace radrecon

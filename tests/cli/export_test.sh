@@ -1,0 +1,68 @@
+#!/usr/bin/env bash
+# `radrecon export` as a user meets it: the Cornell box solved and exported as .glb (and the
+# linear lightmap as .exr), valid by the Khronos glTF validator when node and its npm package are
+# installed (scripts/setup.sh puts it in .tools/npm); bad options exit with 2 and leave nothing.
+# Usage: export_test.sh /path/to/radrecon
+set -u
+
+RADRECON=${1:?usage: export_test.sh /path/to/radrecon}
+RADRECON=$(cd "$(dirname "$RADRECON")" && pwd)/$(basename "$RADRECON")
+HERE=$(cd "$(dirname "$0")" && pwd)
+VALIDATOR_MODULES=$HERE/../../.tools/npm/node_modules
+TMP=$(mktemp -d "${TMPDIR:-/tmp}/radrecon_export_test.XXXXXX")
+trap 'rm -rf "$TMP"' EXIT
+cd "$TMP" || exit 1
+RADRECON_COMMAND=(export)
+# shellcheck source=harness.sh
+source "$HERE/harness.sh"
+
+"$RADRECON" solve --scene cornell --mesh grid:8 --out box.json --quiet || fail "solve: exit code $?"
+
+# --- a .glb and an .exr, for two methods -------------------------------------------------------
+for method in natural-neighbour constant; do
+  run "glb_$method" --scene cornell --solution box.json --method "$method" --texels 64 --out "box_$method.glb" \
+    --exr "box_$method.exr"
+  if expect_rc "glb_$method" 0; then
+    [ "$(head -c 4 "box_$method.glb")" = glTF ] || fail "glb_$method: no glTF header"
+    [ "$(head -c 4 "box_$method.exr" | od -An -tx1 | tr -d ' ')" = 762f3101 ] || fail "glb_$method: no EXR header"
+    expect_stderr_has "glb_$method" "white"
+  fi
+done
+cmp -s box_natural-neighbour.glb box_constant.glb && fail "the two methods' lightmaps are the same"
+
+# --- the Khronos glTF validator: no errors -------------------------------------------------------
+if command -v node >/dev/null && [ -d "$VALIDATOR_MODULES/gltf-validator" ]; then
+  NODE_PATH=$VALIDATOR_MODULES node -e '
+    const fs = require("fs"), validator = require("gltf-validator");
+    validator.validateBytes(new Uint8Array(fs.readFileSync(process.argv[1]))).then((report) => {
+      const i = report.issues;
+      console.log(`gltf-validator: ${i.numErrors} errors, ${i.numWarnings} warnings, ${i.numInfos} infos`);
+      for (const m of i.messages) if (m.severity === 0) console.log(`  ${m.code}: ${m.message} (${m.pointer})`);
+      process.exit(i.numErrors === 0 ? 0 : 1);
+    }, (e) => { console.log(e); process.exit(1); });' box_natural-neighbour.glb || fail "gltf-validator found errors"
+else
+  echo "export_test: node or gltf-validator missing (scripts/setup.sh installs it): the validator is not run"
+fi
+
+# --- refusals: exit 2, nothing written ------------------------------------------------------------
+run not_glb --scene cornell --solution box.json --out box.gltf
+expect_rc not_glb 2 && expect_stderr_has not_glb ".glb"
+expect_no_output not_glb box.gltf
+run bad_exr --scene cornell --solution box.json --out b.glb --exr b.png
+expect_rc bad_exr 2 && expect_stderr_has bad_exr "--exr"
+expect_no_output bad_exr b.glb
+run bad_method --scene cornell --solution box.json --method kriging --out b.glb
+expect_rc bad_method 2 && expect_stderr_has bad_method "unknown method 'kriging'"
+expect_no_output bad_method b.glb
+run over_input --scene cornell --solution box.json --out box.json.glb --exr box.json
+expect_rc over_input 2 && expect_stderr_has over_input "--exr"
+run wrong_scene --scene paper --solution box.json --out b.glb
+expect_rc wrong_scene 2 && expect_stderr_has wrong_scene "box.json"
+expect_no_output wrong_scene b.glb
+run too_fine --scene cornell --solution box.json --texels 16384 --out b.glb
+expect_rc too_fine 2 && expect_stderr_has too_fine "--texels"
+expect_no_output too_fine b.glb
+run no_solution --scene cornell --solution missing.json --out b.glb
+expect_rc no_solution 2 && expect_stderr_has no_solution "missing.json"
+
+finish export_test

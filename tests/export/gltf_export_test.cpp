@@ -1,0 +1,145 @@
+// radrecon export's glTF read back by an independent reader (assimp's glTF 2.0 importer, its PNG
+// decoded by libpng): the geometry is the scene's, and the lightmap texel at any texture
+// coordinate holds the tone-mapped radiosity of the surface point that coordinate maps to, for
+// radiosity that is a known linear function (which thin-plate reconstructs exactly).
+
+#include <gtest/gtest.h>
+#include <png.h>
+
+#include <assimp/Importer.hpp>
+#include <assimp/scene.h>
+#include <cmath>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "core/image.h"
+#include "export/gltf.h"
+#include "export/lightmap.h"
+#include "solver/solve.h"
+
+namespace radrecon {
+namespace {
+
+/// A 2 m x 1 m floor (u along x, v along y, facing +z) under a square lamp facing down.
+Scene floor_and_lamp() {
+  Scene scene;
+  scene.name = "floor-and-lamp";
+  Surface floor;
+  floor.name = "floor";
+  floor.corners = {Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(2, 1, 0), Vec3(0, 1, 0)};
+  floor.reflectance = Rgb(0.5, 0.5, 0.5);
+  Surface lamp;
+  lamp.name = "lamp";
+  lamp.corners = {Vec3(0.8, 0.3, 1), Vec3(0.8, 0.7, 1), Vec3(1.2, 0.7, 1), Vec3(1.2, 0.3, 1)};
+  lamp.emission_w_m2 = Rgb(10, 10, 10);
+  scene.surfaces = {floor, lamp};
+  return scene;
+}
+
+/// The radiosity the floor is given: linear in (x, y), different per channel, W/m^2.
+Rgb floor_radiosity(const Vec3& p) {
+  const double f = 0.2 + 0.6 * p.x() + 0.5 * p.y();
+  return Rgb(f, 0.5 * f, 0.25 * f + 0.1);
+}
+
+struct Decoded {
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> rgb;
+};
+
+Decoded decode_png(const std::uint8_t* data, size_t size) {
+  png_image png{};
+  png.version = PNG_IMAGE_VERSION;
+  EXPECT_TRUE(png_image_begin_read_from_memory(&png, data, size)) << png.message;
+  png.format = PNG_FORMAT_RGB;
+  Decoded d;
+  d.width = static_cast<int>(png.width);
+  d.height = static_cast<int>(png.height);
+  d.rgb.resize(PNG_IMAGE_SIZE(png));
+  EXPECT_TRUE(png_image_finish_read(&png, nullptr, d.rgb.data(), 0, nullptr)) << png.message;
+  return d;
+}
+
+TEST(GltfExport, GeometryAndTexelsReadBackByAssimp) {
+  const Scene scene = floor_and_lamp();
+  Solution solution = solve_scene(scene, "grid:16", SolveSettings{}, "mesh");
+  for (SurfaceSolution& side : solution.surfaces)
+    if (side.name == "floor")
+      for (SolutionElement& e : side.elements) e.radiosity_w_m2 = floor_radiosity(e.center);
+  const SolutionReconstruction recon(scene, solution, Method::thin_plate, {}, "test");
+  const LightmapAtlas atlas = bake_lightmaps(scene, solution, recon, 24.0, "test");
+  const double white = 2.0;  // above the floor's largest value, 1.9: nothing clips there
+  const std::filesystem::path path = std::filesystem::temp_directory_path() / "radrecon_gltf_export_test.glb";
+  write_lightmapped_glb(path, scene, solution, atlas, white, nlohmann::json::object());
+
+  Assimp::Importer importer;
+  const aiScene* read = importer.ReadFile(path.string(), 0);
+  ASSERT_NE(read, nullptr) << importer.GetErrorString();
+  ASSERT_EQ(read->mNumMeshes, 2u);
+  ASSERT_EQ(read->mNumTextures, 1u);
+  const aiTexture* texture = read->mTextures[0];
+  ASSERT_EQ(texture->mHeight, 0u);  // compressed: the PNG's bytes
+  const Decoded image = decode_png(reinterpret_cast<const std::uint8_t*>(texture->pcData), texture->mWidth);
+  EXPECT_EQ(image.width, atlas.radiosity_w_m2.width());
+  EXPECT_EQ(image.height, atlas.radiosity_w_m2.height());
+
+  const aiMesh* floor = nullptr;
+  for (unsigned m = 0; m < read->mNumMeshes; ++m)
+    if (std::string(read->mMeshes[m]->mName.C_Str()) == "floor") floor = read->mMeshes[m];
+  ASSERT_NE(floor, nullptr);
+  ASSERT_EQ(floor->mNumVertices, 4u);
+  ASSERT_TRUE(floor->HasTextureCoords(0));
+  // The corners are the scene's, the normals +z, the faces counter-clockwise seen from +z.
+  for (unsigned v = 0; v < 4; ++v) {
+    const aiVector3D p = floor->mVertices[v], n = floor->mNormals[v];
+    bool corner = false;
+    for (const Vec3& c : scene.surfaces[0].corners) corner = corner || (Vec3(p.x, p.y, p.z) - c).norm() < 1e-6;
+    EXPECT_TRUE(corner) << "vertex " << v;
+    EXPECT_NEAR(n.z, 1.0, 1e-6);
+  }
+  for (unsigned f = 0; f < floor->mNumFaces; ++f) {
+    const aiFace& face = floor->mFaces[f];
+    ASSERT_EQ(face.mNumIndices, 3u);
+    const aiVector3D a = floor->mVertices[face.mIndices[0]], b = floor->mVertices[face.mIndices[1]],
+                     c = floor->mVertices[face.mIndices[2]];
+    EXPECT_GT((b - a ^ c - a).z, 0) << "face " << f;
+  }
+  // Every texel whose centre maps into the floor: its value against the closed form at the
+  // point it maps to (assimp gives glTF texture coordinates as (s, 1 - t): its origin is the
+  // image's bottom left).
+  int checked = 0, worst = 0;
+  for (int iy = 0; iy < image.height; ++iy)
+    for (int ix = 0; ix < image.width; ++ix) {
+      const double s = (ix + 0.5) / image.width, t = 1.0 - (iy + 0.5) / image.height;
+      for (unsigned f = 0; f < floor->mNumFaces; ++f) {
+        const aiFace& face = floor->mFaces[f];
+        const aiVector3D ta = floor->mTextureCoords[0][face.mIndices[0]], tb = floor->mTextureCoords[0][face.mIndices[1]],
+                         tc = floor->mTextureCoords[0][face.mIndices[2]];
+        // Barycentric coordinates of (s, t) in the face's texture triangle.
+        const double det = (tb.x - ta.x) * (tc.y - ta.y) - (tc.x - ta.x) * (tb.y - ta.y);
+        const double l1 = ((s - ta.x) * (tc.y - ta.y) - (tc.x - ta.x) * (t - ta.y)) / det;
+        const double l2 = ((tb.x - ta.x) * (t - ta.y) - (s - ta.x) * (tb.y - ta.y)) / det;
+        const double l0 = 1 - l1 - l2;
+        if (l0 < 0 || l1 < 0 || l2 < 0) continue;
+        const auto at = [&](int k) {
+          const aiVector3D& v = floor->mVertices[face.mIndices[k]];
+          return Vec3(v.x, v.y, v.z);
+        };
+        const Rgb expected = floor_radiosity(l0 * at(0) + l1 * at(1) + l2 * at(2));
+        for (int c = 0; c < 3; ++c) {
+          const int want = static_cast<int>(std::lround(255 * srgb_encode(tone_map(expected[c], white))));
+          const int got = image.rgb[(static_cast<size_t>(iy) * image.width + ix) * 3 + c];
+          worst = std::max(worst, std::abs(got - want));
+        }
+        ++checked;
+        break;
+      }
+    }
+  std::printf("%d texels of the floor checked; largest difference %d of 255\n", checked, worst);
+  EXPECT_EQ(checked, 48 * 24);
+  EXPECT_LE(worst, 1);
+  std::filesystem::remove(path);
+}
+
+}  // namespace
+}  // namespace radrecon

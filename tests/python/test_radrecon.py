@@ -1,0 +1,215 @@
+"""The Python module against independent answers: scipy where it has the same method, defining
+properties (exact at the samples, linear functions reproduced, no influence across a barrier),
+and the command line for the same input (same values, same messages). Run by ctest
+(python.pytest) with PYTHONPATH=build/python and RADRECON_BIN=build/radrecon."""
+
+import json
+import os
+import subprocess
+import threading
+import warnings
+
+import numpy as np
+import pytest
+
+import radrecon
+
+scipy_interpolate = pytest.importorskip("scipy.interpolate")
+
+RADRECON_BIN = os.environ.get("RADRECON_BIN", "radrecon")
+
+
+def samples(n=300, seed=1, f=lambda x, y: np.sin(6 * x) * np.cos(4 * y)):
+    rng = np.random.default_rng(seed)
+    p = rng.random((n, 2))
+    return p, f(p[:, 0], p[:, 1])
+
+
+def queries(m=500, seed=2, lo=0.0, hi=1.0):
+    return np.random.default_rng(seed).uniform(lo, hi, (m, 2))
+
+
+def cli_error(tmp_path, points, values, *args):
+    """The reason radrecon interpolate gives for refusing the same input (after 'where: ')."""
+    csv = tmp_path / "s.csv"
+    np.savetxt(csv, np.column_stack([points, values]), delimiter=",", header="x,y,v", comments="", fmt="%.17g")
+    r = subprocess.run([RADRECON_BIN, "interpolate", "--samples", str(csv), "--queries", str(csv),
+                        "--out", str(tmp_path / "o.csv"), "--quiet", *args], capture_output=True, text=True)
+    assert r.returncode == 2, r.stderr
+    assert not (tmp_path / "o.csv").exists()
+    line = r.stderr.strip().splitlines()[-1]
+    return line.split(": ", 3)[-1]  # "radrecon: error: WHERE: REASON"
+
+
+def test_linear_matches_scipy_griddata():
+    p, v = samples()
+    q = queries(lo=-0.1, hi=1.1)
+    ours = radrecon.interpolate(p, v, queries=q, method="linear", outside="none")
+    theirs = scipy_interpolate.griddata(p, v, q, method="linear")
+    assert np.array_equal(np.isnan(ours), np.isnan(theirs))
+    inside = ~np.isnan(theirs)
+    assert inside.sum() > 300
+    assert np.max(np.abs(ours[inside] - theirs[inside])) < 1e-12
+
+
+def test_clough_tocher_matches_scipy():
+    p, v = samples()
+    q = queries()
+    ours = radrecon.interpolate(p, v, queries=q, method="clough-tocher", outside="none")
+    theirs = scipy_interpolate.CloughTocher2DInterpolator(p, v, tol=1e-12)(q)
+    inside = ~np.isnan(theirs)
+    assert np.array_equal(np.isnan(ours), ~inside)
+    assert np.max(np.abs(ours[inside] - theirs[inside])) < 1e-9
+
+
+def test_thin_plate_matches_scipy_rbf():
+    p, v = samples(200)
+    q = queries()
+    ours = radrecon.interpolate(p, v, queries=q, method="thin-plate")
+    theirs = scipy_interpolate.RBFInterpolator(p, v, kernel="thin_plate_spline")(q)
+    assert np.max(np.abs(ours - theirs)) < 1e-9
+
+
+def test_constant_is_the_nearest_sample_as_scipy():
+    p, v = samples()
+    q = queries()
+    ours = radrecon.interpolate(p, v, queries=q, method="constant")
+    theirs = scipy_interpolate.NearestNDInterpolator(p, v)(q)
+    assert np.array_equal(ours, theirs)
+
+
+@pytest.mark.parametrize("method", ["natural-neighbour", "laplace", "sibson-c1", "linear", "clough-tocher",
+                                    "thin-plate"])
+def test_linear_functions_reproduced_and_exact_at_samples(method):
+    p, _ = samples()
+    v = 3.0 + 2.0 * p[:, 0] - 5.0 * p[:, 1]
+    q = queries(lo=0.2, hi=0.8)
+    got = radrecon.interpolate(p, v, queries=q, method=method)
+    assert np.max(np.abs(got - (3.0 + 2.0 * q[:, 0] - 5.0 * q[:, 1]))) < 1e-10
+    assert np.max(np.abs(radrecon.interpolate(p, v, queries=p, method=method) - v)) < 1e-10
+
+
+def test_channels_and_raster_layout():
+    p, v = samples()
+    three = np.column_stack([v, 2 * v, -v])
+    got = radrecon.interpolate(p, three, raster=(40, 30), domain=(0, 0, 1, 1), method="natural-neighbour")
+    assert got.shape == (30, 40, 3)
+    # Row 0 is the y0 row: the cells' centres, as explicit queries.
+    xs = (np.arange(40) + 0.5) / 40
+    ys = (np.arange(30) + 0.5) / 30
+    grid = np.array([(x, y) for y in ys for x in xs])
+    one = radrecon.interpolate(p, v, queries=grid, method="natural-neighbour")
+    assert np.max(np.abs(got[:, :, 0].ravel() - one)) < 1e-12  # the centres' rounding may differ
+    assert np.array_equal(got[:, :, 1], 2 * got[:, :, 0])
+
+
+def test_same_values_as_the_command_line(tmp_path):
+    p, v = samples()
+    q = queries()
+    np.savetxt(tmp_path / "s.csv", np.column_stack([p, v]), delimiter=",", header="x,y,v", comments="", fmt="%.17g")
+    np.savetxt(tmp_path / "q.csv", q, delimiter=",", header="x,y", comments="", fmt="%.17g")
+    subprocess.run([RADRECON_BIN, "interpolate", "--samples", str(tmp_path / "s.csv"), "--queries",
+                    str(tmp_path / "q.csv"), "--method", "shepard", "--param", "k=12", "--out",
+                    str(tmp_path / "o.csv"), "--quiet"], check=True)
+    cli = np.loadtxt(tmp_path / "o.csv", delimiter=",", skiprows=1)[:, 2]
+    ours = radrecon.interpolate(p, v, queries=q, method="shepard", k=12)
+    assert np.max(np.abs(ours - cli)) <= 1e-15 * np.max(np.abs(cli))  # the CSV keeps 17 digits
+
+
+def test_no_influence_across_a_barrier():
+    rng = np.random.default_rng(5)
+    p = rng.random((400, 2))
+    v = np.where(p[:, 0] < 0.5, 0.0, 1.0)
+    wall = [np.array([[0.5, -1.0], [0.5, 2.0]])]
+    q = np.column_stack([np.full(50, 0.49), np.linspace(0.05, 0.95, 50)])
+    for method in ["shepard", "natural-neighbour", "multiquadric"]:
+        got = radrecon.interpolate(p, v, queries=q, method=method, barriers=wall)
+        assert np.max(np.abs(got)) < 1e-12, method
+
+
+def test_refusals_carry_the_command_lines_messages(tmp_path):
+    p, v = samples(50)
+    with pytest.raises(radrecon.Error) as e:
+        radrecon.interpolate(p, v, queries=p, method="shepard", mu=-1)
+    assert str(e.value).endswith(cli_error(tmp_path, p, v, "--method", "shepard", "--param", "mu=-1"))
+    line = np.column_stack([np.linspace(0, 1, 20), np.linspace(0, 2, 20)])
+    with pytest.raises(radrecon.Error) as e:
+        radrecon.interpolate(line, line[:, 0], queries=line, method="natural-neighbour")
+    assert str(e.value).endswith(cli_error(tmp_path, line, line[:, 0], "--method", "natural-neighbour"))
+    with pytest.raises(radrecon.Error, match="unknown method 'kriging'"):
+        radrecon.interpolate(p, v, queries=p, method="kriging")
+    assert issubclass(radrecon.Error, ValueError)
+
+
+def test_bad_arrays_are_named():
+    p, v = samples(50)
+    bad = p.copy()
+    bad[7, 1] = np.nan
+    with pytest.raises(radrecon.Error, match=r"points\[7\]: not a finite number"):
+        radrecon.interpolate(bad, v, queries=p)
+    with pytest.raises(radrecon.Error, match=r"values: an array of shape \(50,\)"):
+        radrecon.interpolate(p, v[:10], queries=p)
+    with pytest.raises(radrecon.Error, match=r"points: an array of shape \(n, 2\)"):
+        radrecon.interpolate(np.zeros((5, 3)), np.zeros(5), queries=p)
+    with pytest.raises(radrecon.Error, match="give the query points"):
+        radrecon.interpolate(p, v)
+    with pytest.raises(radrecon.Error, match="raster needs domain"):
+        radrecon.interpolate(p, v, raster=(10, 10))
+
+
+def test_duplicates_are_merged_with_a_warning():
+    p = np.array([[0, 0], [1, 0], [0, 1], [1, 1], [1, 1]], dtype=float)
+    v = np.array([0, 1, 1, 2, 4], dtype=float)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        got = radrecon.interpolate(p, v, queries=np.array([[1.0, 1.0]]), method="linear")
+    assert any("merged" in str(w.message) for w in caught)
+    assert got[0] == 3.0
+
+
+def test_the_gil_is_released_during_the_work():
+    # While one thread interpolates, another must be able to run Python code: a call that held
+    # the GIL would leave the counter at (almost) nothing until it returned.
+    p, v = samples(20000, seed=3)
+    q = queries(200000, seed=4)
+    started, done = threading.Event(), threading.Event()
+
+    def work():
+        started.set()
+        radrecon.interpolate(p, v, queries=q, method="shepard")  # global: all 20,000 samples per query
+        done.set()
+
+    t = threading.Thread(target=work)
+    t.start()
+    started.wait()
+    count = 0
+    while not done.is_set():
+        count += 1
+    t.join()
+    assert count > 10000
+
+
+def test_solve_gives_the_command_lines_solution(tmp_path):
+    sol = radrecon.solve("paper", "grid:8")
+    out = tmp_path / "s.json"
+    subprocess.run([RADRECON_BIN, "solve", "--scene", "paper", "--mesh", "grid:8", "--out", str(out), "--quiet"],
+                   check=True)
+    cli = json.load(open(out))
+    assert sol.stats["method"] == "progressive" and sol.stats["converged"]
+    assert [s["name"] for s in sol.surfaces] == [s["name"] for s in cli["surfaces"]]
+    for ours, theirs in zip(sol.surfaces, cli["surfaces"]):
+        b = np.array([e["radiosity"] for e in theirs["elements"]])
+        assert ours["radiosity"].shape == b.shape
+        assert np.max(np.abs(ours["radiosity"] - b)) <= 1e-8 * max(1.0, np.max(np.abs(b)))  # the file's 9 digits
+    # The elements tile each side: their areas add up to its area (ground: 4 m x 4 m in the paper).
+    ground = next(s for s in sol.surfaces if s["name"] == "ground")
+    assert abs(ground["area"].sum() - 16.0) < 1e-12
+    sol.save(str(tmp_path / "again.json"))
+    assert json.load(open(tmp_path / "again.json"))["mesh"] == "grid:8"
+
+
+def test_solve_refusals():
+    with pytest.raises(radrecon.Error, match="mesh"):
+        radrecon.solve("paper", "grid:banana")
+    with pytest.raises(radrecon.Error, match="nothing.json"):
+        radrecon.solve("nothing.json")
