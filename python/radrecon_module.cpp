@@ -7,6 +7,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <optional>
@@ -171,7 +172,11 @@ py::array interpolate(const Doubles& points, const Doubles& values, const std::o
       copy = raster_points(grid);
       at = copy;
     }
-    interpolant.value()->evaluate(at, std::span<double>(result, count * static_cast<size_t>(channels)));
+    const std::span<double> values(result, count * static_cast<size_t>(channels));
+    for (size_t first = 0; first < count; first += kEvaluateBatch) {
+      const size_t n = std::min(kEvaluateBatch, count - first);
+      interpolant.value()->evaluate(at.subspan(first, n), values.subspan(first * channels, n * channels));
+    }
   }
   return out;
 }

@@ -32,7 +32,6 @@ namespace {
 
 /// Query points evaluated between two progress reports: large enough that a batch keeps both
 /// threads busy, small enough that a slow method (global shepard on 10^6 samples) reports often.
-constexpr size_t kInterpolateBatch = 1 << 16;
 
 struct InterpolateArgs {
   std::string samples;
@@ -166,6 +165,9 @@ void run_interpolate(const InterpolateArgs& args) {
   const InterpolantResult interpolant = make_point_interpolant(*method, samples, params);
   const double building_s = seconds_since(build_start);
   if (!interpolant) throw UserError(args.samples, interpolant.reason());
+  // The query points: read from a file (input, untimed), or the raster's cell centres (timed
+  // with the interpolation below, as the Python module's raster is).
+  const auto raster_start = Clock::now();
   const std::vector<Vec2> points =
       !use_queries ? raster_points(raster)
       : is_ogr_vector_path(args.queries) ? gdal_functions("--queries").read_queries(args.queries, {args.x_column, args.y_column, {}})
@@ -182,12 +184,12 @@ void run_interpolate(const InterpolateArgs& args) {
 
   // Evaluated in batches (each point on its own, so the values do not depend on the batches),
   // with a progress line between them.
-  const auto query_start = Clock::now();
+  const auto query_start = use_queries ? Clock::now() : raster_start;
   const size_t channels = static_cast<size_t>(interpolant.value()->channels());
   std::vector<double> values(points.size() * channels);
   Progress progress("interpolate", args.quiet);
-  for (size_t first = 0; first < points.size(); first += kInterpolateBatch) {
-    const size_t count = std::min(kInterpolateBatch, points.size() - first);
+  for (size_t first = 0; first < points.size(); first += kEvaluateBatch) {
+    const size_t count = std::min(kEvaluateBatch, points.size() - first);
     interpolant.value()->evaluate(std::span(points).subspan(first, count),
                                   std::span(values).subspan(first * channels, count * channels));
     progress.update(static_cast<double>(first + count) / points.size(), "the query points");

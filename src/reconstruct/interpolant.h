@@ -18,6 +18,11 @@ class ReconstructionError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// Query points per evaluate() call for callers that evaluate many (interpolate, the Python
+/// module): a batch's working set stays in cache, and progress can be reported between batches.
+/// Each point is evaluated on its own, so values do not depend on the batches.
+inline constexpr size_t kEvaluateBatch = size_t{1} << 16;
+
 class Interpolant {
  public:
   virtual ~Interpolant() = default;
