@@ -28,18 +28,21 @@ pair() {  # LABEL_A LABEL_B -- A... -- B...: alternate A and B RUNS times, print
   ma=$(median < "$work/ta"); mb=$(median < "$work/tb")
   printf '%-52s %8.3f s\n%-52s %8.3f s   ratio %.2f\n' "$la" "$ma" "$lb" "$mb" "$(echo "$ma / $mb" | bc -l)"
 }
-# W3 only with W3=1: gdal_grid's linear takes minutes a run there.
+# W3 only with W3=1: gdal_grid's linear takes minutes a run there (more than 20 minutes on this
+# machine, 2026-12-01), so at W3 it runs only with W3_LINEAR=1.
 sets=("w1 400")
 if [ "${W3:-0}" = 1 ]; then sets+=("w3 2000"); fi
 for w in "${sets[@]}"; do
   set -- $w
   name=$1 size=$2
   echo "== ${name^^}: $(($(wc -l < "$work/$name.csv") - 1)) points -> $size x $size GeoTIFF"
+  if [ "$name" = w1 ] || [ "${W3_LINEAR:-0}" = 1 ]; then
   pair "radrecon natural-neighbour outside=none" "gdal_grid linear (2 threads)" -- \
     "$BUILD/radrecon" interpolate --quiet --samples "$work/$name.csv" --method natural-neighbour --param outside=none \
       --raster "${size}x${size}" --domain 0,0,1,1 --out "$work/rr.tif" -- \
     gdal_grid --config GDAL_NUM_THREADS 2 -q -a linear:nodata=-9999 -txe 0 1 -tye 1 0 -outsize "$size" "$size" \
       -ot Float32 -of GTiff -l "$name" "$work/$name.vrt" "$work/gg.tif"
+  fi
   pair "radrecon shepard mu=2 radius=0.1 k=32" "gdal_grid invdistnn r=0.1 max_points=32 (2 thr.)" -- \
     "$BUILD/radrecon" interpolate --quiet --samples "$work/$name.csv" --method shepard --param mu=2 --param radius=0.1 \
       --param k=32 --raster "${size}x${size}" --domain 0,0,1,1 --out "$work/rr.tif" -- \

@@ -65,7 +65,9 @@ std::vector<std::string> settings_of(const py::kwargs& params) {
     std::string text;
     if (py::isinstance<py::bool_>(value)) text = value.cast<bool>() ? "on" : "off";
     else text = py::str(value).cast<std::string>();
-    out.push_back(py::str(key).cast<std::string>() + "=" + text);
+    std::string name = py::str(key).cast<std::string>();
+    if (name == "barrier_samples") name = "barrier-samples";  // a keyword cannot hold a hyphen
+    out.push_back(name + "=" + text);
   }
   return out;
 }
@@ -133,10 +135,11 @@ py::array interpolate(const Doubles& points, const Doubles& values, const std::o
   for (size_t i = 0; i < n; ++i) samples.points[i] = Vec2(points.data()[2 * i], points.data()[2 * i + 1]);
   samples.values.assign(values.data(), values.data() + values.size());
   const size_t removed = merge_duplicate_points(samples);
-  if (removed > 0)
-    PyErr_WarnFormat(PyExc_UserWarning, 1,
-                     "%zu samples repeat the point of an earlier one; merged, their values averaged (%zu samples -> %zu points)",
-                     removed, n, samples.points.size());
+  if (removed > 0 &&
+      PyErr_WarnFormat(PyExc_UserWarning, 1,
+                       "%zu samples repeat the point of an earlier one; merged, their values averaged (%zu samples -> %zu points)",
+                       removed, n, samples.points.size()) != 0)
+    throw py::error_already_set();  // warnings turned into errors
 
   Raster grid;
   std::vector<Vec2> copy;

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstdio>
 
+#include "core/progress.h"
 #include "io/image_io.h"
 #include "io/paths.h"
 #include "io/solution_json.h"
@@ -61,21 +62,48 @@ void run_paper(const PaperOptions& opt, const std::string& out_where) {
         out.push_back(m);
     return out;
   };
-  PaperRun run{opt, data, at, params, evaluate_data_set(data.grid, grid_methods, at, params, plain, figures, "fig3"),
-               evaluate_data_set(data.quadtree, quadtree_methods, at, params, plain, figures, "fig4"), {}, {}, {}, {}};
+  // Progress over the reconstructions and the views, each method of a data set and each method's
+  // views a step (they take about as long).
+  auto of_paper = [](const std::vector<Method>& methods) {
+    std::vector<Method> out;
+    for (Method m : methods)
+      if (is_paper_method(m)) out.push_back(m);
+    return out;
+  };
+  size_t total_steps = grid_methods.size() + quadtree_methods.size() + 1 + of_paper(grid_methods).size() +
+                       of_paper(quadtree_methods).size();
+  if (opt.barriers)
+    total_steps += taking_barriers(grid_methods, false).size() + taking_barriers(quadtree_methods, false).size() +
+                   of_paper(taking_barriers(grid_methods, false)).size() +
+                   of_paper(taking_barriers(quadtree_methods, false)).size();
+  if (opt.barriers && opt.border_samples)
+    total_steps += taking_barriers(grid_methods, true).size() + taking_barriers(quadtree_methods, true).size();
+  Progress progress("paper", !opt.progress);
+  size_t steps_done = 0;
+  auto step = [&](size_t steps, const std::string& what) {
+    steps_done += steps;
+    progress.update(static_cast<double>(steps_done) / static_cast<double>(total_steps),
+                    "the reconstructions and views (done: " + what + ")");
+  };
+  auto evaluate = [&](const Solution& sol, const std::vector<Method>& methods, const SideSampling& sampling,
+                      const std::string& stem) {
+    std::vector<MethodResult> results = evaluate_data_set(sol, methods, at, params, sampling, figures, stem);
+    step(methods.size(), stem);
+    return results;
+  };
+  PaperRun run{opt, data, at, params, evaluate(data.grid, grid_methods, plain, "fig3"),
+               evaluate(data.quadtree, quadtree_methods, plain, "fig4"), {}, {}, {}, {}};
   write_quadtree_figure(data.quadtree, at, figures);
   // Table 3 (Fig. 5-8): the same data and methods with the scene's barriers, then with border
   // samples too.
   if (opt.barriers) {
-    run.grid_barriers = evaluate_data_set(data.grid, taking_barriers(grid_methods, false), at, params, walled, figures, "fig5");
-    run.quadtree_barriers =
-        evaluate_data_set(data.quadtree, taking_barriers(quadtree_methods, false), at, params, walled, figures, "fig6");
+    run.grid_barriers = evaluate(data.grid, taking_barriers(grid_methods, false), walled, "fig5");
+    run.quadtree_barriers = evaluate(data.quadtree, taking_barriers(quadtree_methods, false), walled, "fig6");
   }
   if (opt.barriers && opt.border_samples) {
     // Border samples change the methods that take points only.
-    run.grid_border = evaluate_data_set(data.grid, taking_barriers(grid_methods, true), at, params, bordered, figures, "fig7");
-    run.quadtree_border =
-        evaluate_data_set(data.quadtree, taking_barriers(quadtree_methods, true), at, params, bordered, figures, "fig8");
+    run.grid_border = evaluate(data.grid, taking_barriers(grid_methods, true), bordered, "fig7");
+    run.quadtree_border = evaluate(data.quadtree, taking_barriers(quadtree_methods, true), bordered, "fig8");
   }
   const double t_reconstruct = clock.lap();
 
@@ -92,14 +120,9 @@ void run_paper(const PaperOptions& opt, const std::string& out_where) {
     for (const Fallback& f :
          render_paper_views(scene, cameras, sol, m, params, sampling, at.white_w_m2, figures, stem, only_camera))
       notes.push_back(stem + ": " + f.side + " drawn piecewise constant, as " + method_name(m) + " cannot serve it: " + f.reason);
+    step(1, stem);
   };
   // Views for the paper's own methods (its Fig. 2-4); the others have their ground figures.
-  auto of_paper = [](const std::vector<Method>& methods) {
-    std::vector<Method> out;
-    for (Method m : methods)
-      if (is_paper_method(m)) out.push_back(m);
-    return out;
-  };
   views(data.reference, Method::constant, plain, "fig2_reference");
   for (Method m : of_paper(grid_methods)) views(data.grid, m, plain, "fig3_" + method_name(m));
   for (Method m : of_paper(quadtree_methods)) views(data.quadtree, m, plain, "fig4_" + method_name(m));
@@ -112,6 +135,7 @@ void run_paper(const PaperOptions& opt, const std::string& out_where) {
       views(data.quadtree, m, walled, "fig6_" + method_name(m), "closeup");
   }
   const double t_views = clock.lap();
+  progress.done();
 
   write_tables(opt.out_dir, run);
   ReportContent report = report_content(run, view.samples_per_axis * view.samples_per_axis);

@@ -127,6 +127,22 @@ def test_no_influence_across_a_barrier():
         assert np.max(np.abs(got)) < 1e-12, method
 
 
+def test_barrier_samples_keyword():
+    # barrier_samples=False is --param barrier-samples=off: without the samples along the wall a
+    # query beside it takes its natural neighbours from farther away, so the values differ.
+    rng = np.random.default_rng(6)
+    p = rng.random((200, 2))
+    v = p[:, 0] + p[:, 1] ** 2
+    wall = [np.array([[0.5, 0.2], [0.5, 0.8]])]
+    q = np.column_stack([np.full(20, 0.49), np.linspace(0.25, 0.75, 20)])
+    on = radrecon.interpolate(p, v, queries=q, barriers=wall)
+    off = radrecon.interpolate(p, v, queries=q, barriers=wall, barrier_samples=False)
+    assert np.all(np.isfinite(on)) and np.all(np.isfinite(off))
+    assert np.max(np.abs(on - off)) > 1e-6
+    with pytest.raises(radrecon.Error, match="barrier-samples"):
+        radrecon.interpolate(p, v, queries=q, barriers=wall, barrier_samples="maybe")
+
+
 def test_refusals_carry_the_command_lines_messages(tmp_path):
     p, v = samples(50)
     with pytest.raises(radrecon.Error) as e:
