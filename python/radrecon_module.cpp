@@ -9,13 +9,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "core/error.h"
-#include "io/gdal_plugin.h"
 #include "io/geojson.h"
 #include "io/paths.h"
 #include "io/raster.h"
@@ -48,14 +46,11 @@ void check_points(const Doubles& a, const std::string& what) {
     if (!std::isfinite(p[i])) throw UserError(what + "[" + std::to_string(i / 2) + "]", "not a finite number");
 }
 
-/// The points as Vec2: the array's own memory when it is aligned as Eigen wants, else a copy.
-std::span<const Vec2> as_vec2(const Doubles& a, std::vector<Vec2>& copy) {
-  const auto n = static_cast<size_t>(a.shape(0));
-  if (reinterpret_cast<std::uintptr_t>(a.data()) % alignof(Vec2) == 0)
-    return {reinterpret_cast<const Vec2*>(a.data()), n};
-  copy.resize(n);
-  for (size_t i = 0; i < n; ++i) copy[i] = Vec2(a.data()[2 * i], a.data()[2 * i + 1]);
-  return copy;
+/// The points of an (n, 2) array as Vec2 (a copy: 16 bytes a point, small beside the work).
+std::vector<Vec2> as_vec2(const Doubles& a) {
+  std::vector<Vec2> out(static_cast<size_t>(a.shape(0)));
+  for (size_t i = 0; i < out.size(); ++i) out[i] = Vec2(a.data()[2 * i], a.data()[2 * i + 1]);
+  return out;
 }
 
 /// Keyword arguments as the NAME=VALUE settings of --param (True/False as on/off).
@@ -76,16 +71,7 @@ std::vector<std::string> settings_of(const py::kwargs& params) {
 /// polylines.
 Barriers barriers_of(const py::object& barriers) {
   if (barriers.is_none()) return {};
-  if (py::isinstance<py::str>(barriers)) {
-    const std::string path = barriers.cast<std::string>();
-    std::string ext = std::filesystem::path(path).extension().string();
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    Result<Barriers> b = Barriers::from_polylines(ext == ".geojson" || ext == ".json"
-                                                      ? read_geojson_barriers(path)
-                                                      : gdal_functions("barriers").read_barriers(path));
-    if (!b) throw UserError(path, b.reason());
-    return std::move(b).value();
-  }
+  if (py::isinstance<py::str>(barriers)) return read_barriers_file(barriers.cast<std::string>(), "barriers");
   std::vector<Polyline> lines;
   size_t index = 0;
   for (const py::handle item : barriers) {
@@ -120,13 +106,8 @@ py::array interpolate(const Doubles& points, const Doubles& values, const std::o
   if (raster.has_value() != domain.has_value())
     throw UserError("domain", raster ? "raster needs domain=(x0, y0, x1, y1), the rectangle it covers"
                                      : "domain goes with raster");
-  const std::optional<Method> method = parse_method(method_text);
-  if (!method) {
-    std::string names;
-    for (Method m : all_methods()) names += (names.empty() ? "" : ", ") + method_name(m);
-    throw UserError("method", "unknown method '" + method_text + "'; valid methods: " + names);
-  }
-  MethodParams params = parse_params(*method, settings_of(kwargs), "params");
+  const Method method = method_by_name(method_text, "method");
+  MethodParams params = parse_params(method, settings_of(kwargs), "params");
   params.barriers = barriers_of(barriers);
 
   ScatteredSamples samples;
@@ -142,8 +123,7 @@ py::array interpolate(const Doubles& points, const Doubles& values, const std::o
     throw py::error_already_set();  // warnings turned into errors
 
   Raster grid;
-  std::vector<Vec2> copy;
-  std::span<const Vec2> at;
+  std::vector<Vec2> at;
   std::vector<py::ssize_t> shape;
   if (raster) {
     const auto [w, h] = *raster;
@@ -160,7 +140,7 @@ py::array interpolate(const Doubles& points, const Doubles& values, const std::o
     shape = {h, w};
   } else {
     check_points(*queries, "queries");
-    at = as_vec2(*queries, copy);
+    at = as_vec2(*queries);
     shape = {queries->shape(0)};
   }
   if (values.ndim() == 2) shape.push_back(channels);
@@ -169,16 +149,13 @@ py::array interpolate(const Doubles& points, const Doubles& values, const std::o
   const size_t count = raster ? static_cast<size_t>(grid.width) * grid.height : at.size();
   {
     py::gil_scoped_release release;
-    const InterpolantResult interpolant = make_point_interpolant(*method, samples, params);
+    const InterpolantResult interpolant = make_point_interpolant(method, samples, params);
     if (!interpolant) throw UserError("points", interpolant.reason());
-    if (raster) {
-      copy = raster_points(grid);
-      at = copy;
-    }
+    if (raster) at = raster_points(grid);
     const std::span<double> values(result, count * static_cast<size_t>(channels));
     for (size_t first = 0; first < count; first += kEvaluateBatch) {
       const size_t n = std::min(kEvaluateBatch, count - first);
-      interpolant.value()->evaluate(at.subspan(first, n), values.subspan(first * channels, n * channels));
+      interpolant.value()->evaluate(std::span<const Vec2>(at).subspan(first, n), values.subspan(first * channels, n * channels));
     }
   }
   return out;
@@ -236,14 +213,7 @@ PYBIND11_MODULE(radrecon, m) {
   using namespace radrecon;
   m.doc() = "radrecon: radiosity solvers and scattered-data reconstruction (docs/python.md)";
   m.attr("__version__") = RADRECON_VERSION;
-  static py::exception<UserError> error(m, "Error", PyExc_ValueError);
-  py::register_exception_translator([](std::exception_ptr p) {
-    try {
-      if (p) std::rethrow_exception(p);
-    } catch (const UserError& e) {
-      error(e.what());
-    }
-  });
+  py::register_exception<UserError>(m, "Error", PyExc_ValueError);
 
   m.def("methods", [] {
     std::vector<std::string> names;

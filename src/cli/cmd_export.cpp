@@ -12,6 +12,7 @@
 
 #include "cli/commands.h"
 #include "cli/solution_methods.h"
+#include "core/check.h"
 #include "core/error.h"
 #include "core/parse.h"
 #include "export/gltf.h"
@@ -21,6 +22,7 @@
 #include "io/scene_json.h"
 #include "io/solution_json.h"
 #include "render/exposure.h"
+#include "scene/side.h"
 
 namespace radrecon::cli {
 
@@ -41,19 +43,15 @@ struct ExportArgs {
 };
 
 /// The default white: the kDefaultWhitePercentile-th percentile of the brightest channel of the
-/// texels of the sides that emit nothing (the lights would set it far too high), 1 if none is lit.
+/// texels of the sides that emit nothing (the lights would set it far too high); 1 if none is lit.
 double lightmap_white(const Scene& scene, const LightmapAtlas& atlas) {
-  std::vector<double> values;
+  std::vector<double> brightest;
   for (const LightmapTile& t : atlas.tiles) {
-    if ((scene.surfaces[t.side.surface].emission_w_m2 > 0).any()) continue;
+    if ((side_emission(scene.surfaces[t.side.surface], t.side.back_side) > 0).any()) continue;
     for (int j = 0; j < t.height; ++j)
-      for (int i = 0; i < t.width; ++i) values.push_back(atlas.radiosity_w_m2.at(t.x0 + i, t.y0 + j).maxCoeff());
+      for (int i = 0; i < t.width; ++i) brightest.push_back(atlas.radiosity_w_m2.at(t.x0 + i, t.y0 + j).maxCoeff());
   }
-  if (values.empty()) return 1;
-  const size_t rank = static_cast<size_t>(std::ceil(kDefaultWhitePercentile / 100.0 * static_cast<double>(values.size())));
-  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(rank - 1), values.end());
-  const double white = values[rank - 1];
-  return white > 0 ? white : 1;
+  return percentile_white(brightest, kDefaultWhitePercentile).value_or(1.0);
 }
 
 void run_export(const ExportArgs& args) {
@@ -76,10 +74,7 @@ void run_export(const ExportArgs& args) {
   const Solution solution = read_solution_json(args.solution);
   const auto recon = reconstruct_solution(scene, solution, args.solution, args.method, args.params, args.no_barriers,
                                           args.border_samples);
-  double longest_m = 0;
-  for (const SurfaceSolution& s : solution.surfaces) longest_m = std::max({longest_m, s.length_u_m, s.length_v_m});
-  const double density = args.texels / std::max(longest_m, 1e-300);
-  const LightmapAtlas atlas = bake_lightmaps(scene, solution, *recon, density, "--texels");
+  const LightmapAtlas atlas = bake_lightmaps(scene, solution, *recon, args.texels, "--texels");
   const double white = args.white > 0 ? args.white : lightmap_white(scene, atlas);
   const nlohmann::json extras = {{"method", args.method}, {"params", args.params}, {"solution", solution.mesh},
                                  {"scene", solution.scene}};
@@ -88,8 +83,9 @@ void run_export(const ExportArgs& args) {
   if (!args.quiet) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::fprintf(stderr, "export: wrote %s (%zu sides, lightmap %dx%d at %.4g texels/m, white %.4g W/m^2%s)%s%s in %.2f s\n",
-                 args.out.c_str(), atlas.tiles.size(), atlas.radiosity_w_m2.width(), atlas.radiosity_w_m2.height(), density,
-                 white, args.white > 0 ? ", --white" : ": the 99th percentile of the lit surfaces' texels",
+                 args.out.c_str(), atlas.tiles.size(), atlas.radiosity_w_m2.width(), atlas.radiosity_w_m2.height(),
+                 atlas.texels_per_metre, white,
+                 args.white > 0 ? ", --white" : ": the 99th percentile of the non-emitting sides' texels",
                  args.exr.empty() ? "" : " and ", args.exr.c_str(), seconds);
   }
 }

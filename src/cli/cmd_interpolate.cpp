@@ -30,9 +30,6 @@ namespace radrecon::cli {
 
 namespace {
 
-/// Query points evaluated between two progress reports: large enough that a batch keeps both
-/// threads busy, small enough that a slow method (global shepard on 10^6 samples) reports often.
-
 struct InterpolateArgs {
   std::string samples;
   std::string method;
@@ -49,14 +46,8 @@ struct InterpolateArgs {
   bool quiet = false;
 };
 
-std::string method_list() {
-  std::string names;
-  for (Method m : all_methods()) names += (names.empty() ? "" : ", ") + method_name(m);
-  return names;
-}
-
-/// The method's interpolant of the samples (read from `file`); grid methods need the samples
-/// to be the nodes of a regular grid (UserError naming the file otherwise).
+/// Checks the options, reads the samples, builds the interpolant (make_point_interpolant()),
+/// evaluates it at the queries in batches with progress, and writes the output.
 void run_interpolate(const InterpolateArgs& args) {
   const auto start = std::chrono::steady_clock::now();
 
@@ -96,8 +87,7 @@ void run_interpolate(const InterpolateArgs& args) {
     raster.height = size.height;
     if (args.domain.empty()) throw UserError("--domain", "--raster needs --domain x0,y0,x1,y1 (the rectangle it covers)");
   }
-  const std::optional<Method> method = parse_method(args.method);
-  if (!method) throw UserError("--method", "unknown method '" + args.method + "'; valid methods: " + method_list());
+  const std::optional<Method> method = method_by_name(args.method, "--method");
   MethodParams params = parse_params(*method, args.params, "--param");
   if (is_cell_method(*method))
     throw UserError("--method", args.method + " reconstructs cells (a grid's or a quadtree's leaves: radrecon render "
@@ -112,15 +102,7 @@ void run_interpolate(const InterpolateArgs& args) {
   check_output_file(args.out, "--out");
 
   // Barriers, samples, interpolant, queries.
-  if (!args.barriers.empty()) {
-    std::string ext = std::filesystem::path(args.barriers).extension().string();
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    Result<Barriers> barriers = Barriers::from_polylines(ext == ".geojson" || ext == ".json"
-                                                             ? read_geojson_barriers(args.barriers)
-                                                             : gdal_functions("--barriers").read_barriers(args.barriers));
-    if (!barriers) throw UserError(args.barriers, barriers.reason());
-    params.barriers = std::move(barriers).value();
-  }
+  if (!args.barriers.empty()) params.barriers = read_barriers_file(args.barriers, "--barriers");
   CsvColumns columns{args.x_column, args.y_column, {}};
   for (size_t at = 0; !args.value_columns.empty();) {
     const size_t comma = args.value_columns.find(',', at);

@@ -6,13 +6,7 @@
 
 namespace radrecon::cli {
 
-Method method_option(const std::string& name) {
-  const auto method = parse_method(name);
-  if (method) return *method;
-  std::string names;
-  for (Method m : all_methods()) names += (names.empty() ? "" : ", ") + method_name(m);
-  throw UserError("--method", "unknown method '" + name + "'; valid methods: " + names);
-}
+Method method_option(const std::string& name) { return method_by_name(name, "--method"); }
 
 std::unique_ptr<SolutionReconstruction> reconstruct_solution(const Scene& scene, const Solution& solution,
                                                              const std::string& solution_path,

@@ -1,5 +1,6 @@
 #include "export/gltf.h"
 
+#include <bit>
 #include <cstdint>
 #include <algorithm>
 #include <cmath>
@@ -20,6 +21,9 @@ namespace {
 constexpr int kFloat = 5126, kUnsignedShort = 5123, kArrayBuffer = 34962, kElementArrayBuffer = 34963;
 constexpr int kLinear = 9729, kClampToEdge = 33071;
 constexpr std::uint32_t kGlbMagic = 0x46546C67, kJsonChunk = 0x4E4F534A, kBinChunk = 0x004E4942;
+
+// glTF's binary data is little endian; the floats and integers are copied as the machine holds them.
+static_assert(std::endian::native == std::endian::little, "the glTF writer assumes a little-endian machine");
 
 /// The binary chunk being assembled: every piece 4-byte aligned, as glTF requires of accessors.
 struct Binary {

@@ -12,13 +12,21 @@ namespace radrecon {
 
 namespace {
 
-/// The parameters of a texel centre, moved onto a triangle's domain when beyond its hypotenuse.
-Vec2 onto_domain(double u, double v, bool triangle) {
-  if (!triangle || u + v <= 1) return {u, v};
-  const double excess = 0.5 * (u + v - 1);
-  u = std::clamp(u - excess, 0.0, 1.0);
-  v = std::clamp(v - excess, 0.0, 1.0);
-  return {u, 1 - u < v ? 1 - u : v};
+/// The parameters of the surface point that a texel centre (a, b) of its tile lands on when a
+/// viewer interpolates the corners' texture coordinates over the side's triangles (header).
+Vec2 texel_point(const Surface& surface, double a, double b) {
+  if (surface.is_triangle()) {
+    if (a + b <= 1) return {a, b};
+    // Beyond the hypotenuse: the nearest point of the triangle.
+    const double excess = 0.5 * (a + b - 1);
+    const double u = std::clamp(a - excess, 0.0, 1.0);
+    return {u, std::clamp(b - excess, 0.0, 1.0 - u)};
+  }
+  const auto& c = surface.corners;  // (u, v) = (0,0), (1,0), (1,1), (0,1)
+  const Vec3 p = a >= b ? Vec3((1 - a) * c[0] + (a - b) * c[1] + b * c[2])
+                        : Vec3((1 - b) * c[0] + a * c[2] + (b - a) * c[3]);
+  const std::optional<Vec2> uv = surface.parameters(p);
+  return uv ? *uv : Vec2(a, b);  // a point of the quad's plane inside it: always found
 }
 
 }  // namespace
@@ -28,8 +36,12 @@ Vec2 LightmapAtlas::texture_coordinate(const LightmapTile& tile, double u, doubl
 }
 
 LightmapAtlas bake_lightmaps(const Scene& scene, const Solution& solution, const SolutionReconstruction& reconstruction,
-                             double texels_per_metre, const std::string& where) {
-  RR_CHECK(texels_per_metre > 0, "lightmap density must be positive");
+                             int texels_along_longest, const std::string& where) {
+  RR_CHECK(texels_along_longest >= 2, "a lightmap needs 2 texels along the longest edge");
+  double longest_m = 0;
+  for (const SurfaceSolution& s : solution.surfaces) longest_m = std::max({longest_m, s.length_u_m, s.length_v_m});
+  RR_CHECK(longest_m > 0, "a solution of no extent");
+  const double texels_per_metre = texels_along_longest / longest_m;
   LightmapAtlas atlas;
   atlas.texels_per_metre = texels_per_metre;
   constexpr int g = kLightmapGutter;
@@ -46,9 +58,9 @@ LightmapAtlas bake_lightmaps(const Scene& scene, const Solution& solution, const
     t.side = *side;
     const double w = std::ceil(s.length_u_m * texels_per_metre), h = std::ceil(s.length_v_m * texels_per_metre);
     if (!(w + 2 * g <= kMaxLightmapSide && h + 2 * g <= kMaxLightmapSide))
-      throw UserError(where, "side '" + s.name + "' would need " + std::to_string(w) + " x " + std::to_string(h) +
-                                 " texels, more than the largest texture (" + std::to_string(kMaxLightmapSide) +
-                                 " texels a side); lower the density");
+      throw UserError(where, "side '" + s.name + "' would need " + std::to_string(static_cast<long long>(w)) + " x " +
+                                 std::to_string(static_cast<long long>(h)) + " texels, more than the largest texture (" +
+                                 std::to_string(kMaxLightmapSide) + " texels a side); use fewer");
     t.width = std::max(2, static_cast<int>(w));
     t.height = std::max(2, static_cast<int>(h));
     area += static_cast<double>(t.width + 2 * g) * (t.height + 2 * g);
@@ -71,41 +83,51 @@ LightmapAtlas bake_lightmaps(const Scene& scene, const Solution& solution, const
   }
   const int atlas_height = y + shelf;
   if (atlas_width > kMaxLightmapSide || atlas_height > kMaxLightmapSide) {
-    const double fits = texels_per_metre * kMaxLightmapSide / std::max(atlas_width, atlas_height);
+    const int fits = static_cast<int>(texels_along_longest * static_cast<double>(kMaxLightmapSide) /
+                                      std::max(atlas_width, atlas_height));
     throw UserError(where, "the atlas would be " + std::to_string(atlas_width) + " x " + std::to_string(atlas_height) +
                                " texels, more than the largest texture (" + std::to_string(kMaxLightmapSide) +
-                               " a side); at most about " + std::to_string(fits) + " texels per metre fit");
+                               " a side); at most about " + std::to_string(fits) + " fit");
   }
   atlas.radiosity_w_m2 = Image(atlas_width, atlas_height);
   Image& img = atlas.radiosity_w_m2;
   for (int j = 0; j < atlas_height; ++j)
     for (int i = 0; i < atlas_width; ++i) img.at(i, j) = Rgb::Zero();
 
+  // Each tile in batches of rows (at most kEvaluateBatch texels, or one row), then its gutter: a
+  // gutter texel repeats the nearest texel of the tile.
   std::vector<Vec2> points;
   std::vector<double> values;
   for (const LightmapTile& t : atlas.tiles) {
     const SurfaceSolution& s = solution.surfaces[t.solution_side];
+    const Surface& surface = scene.surfaces[t.side.surface];
     const Interpolant* f = reconstruction.side(t.side);
     RR_CHECK(f != nullptr, "a side without its reconstruction");
     const SurfaceFrame frame = s.frame();
-    points.clear();
-    for (int j = 0; j < t.height; ++j)
-      for (int i = 0; i < t.width; ++i)
-        points.push_back(frame.st(onto_domain((i + 0.5) / t.width, (j + 0.5) / t.height, s.triangle)));
     const int channels = f->channels();
-    values.assign(points.size() * static_cast<size_t>(channels), 0.0);
-    f->evaluate(points, values);
-    // The tile and its gutter: a gutter texel repeats the nearest texel of the tile.
-    for (int j = -g; j < t.height + g; ++j)
-      for (int i = -g; i < t.width + g; ++i) {
-        const size_t k = static_cast<size_t>(std::clamp(j, 0, t.height - 1)) * t.width + std::clamp(i, 0, t.width - 1);
-        Rgb c;
-        for (int ch = 0; ch < 3; ++ch) {
-          const double v = values[k * channels + std::min(ch, channels - 1)];
-          c[ch] = std::isfinite(v) ? v : 0.0;
+    const int rows_per_batch = std::max(1, static_cast<int>(kEvaluateBatch / static_cast<size_t>(t.width)));
+    for (int j0 = 0; j0 < t.height; j0 += rows_per_batch) {
+      const int j1 = std::min(t.height, j0 + rows_per_batch);
+      points.clear();
+      for (int j = j0; j < j1; ++j)
+        for (int i = 0; i < t.width; ++i)
+          points.push_back(frame.st(texel_point(surface, (i + 0.5) / t.width, (j + 0.5) / t.height)));
+      values.assign(points.size() * static_cast<size_t>(channels), 0.0);
+      f->evaluate(points, values);
+      for (int j = j0; j < j1; ++j)
+        for (int i = 0; i < t.width; ++i) {
+          const size_t k = static_cast<size_t>(j - j0) * t.width + i;
+          Rgb& c = img.at(t.x0 + i, t.y0 + j);
+          for (int ch = 0; ch < 3; ++ch) {
+            const double v = values[k * channels + std::min(ch, channels - 1)];
+            c[ch] = std::isfinite(v) ? v : 0.0;
+          }
         }
-        img.at(t.x0 + i, t.y0 + j) = c;
-      }
+    }
+    for (int j = -g; j < t.height + g; ++j)
+      for (int i = -g; i < t.width + g; ++i)
+        if (i < 0 || j < 0 || i >= t.width || j >= t.height)
+          img.at(t.x0 + i, t.y0 + j) = img.at(t.x0 + std::clamp(i, 0, t.width - 1), t.y0 + std::clamp(j, 0, t.height - 1));
   }
   return atlas;
 }

@@ -3,10 +3,14 @@
 // texel the side's reconstructed radiosity (sampling/solution_reconstruction.h) at its centre.
 //
 // A side's tile is w x h texels over its (u, v) parameter box, w = ceil(length_u * density),
-// h = ceil(length_v * density) (at least 2 each); texel (i, j) of the tile holds the radiosity at
-// (u, v) = ((i + 0.5) / w, (j + 0.5) / h): a texture coordinate (x0 + u w, y0 + v h) / atlas size
-// (texels, row 0 the image's first row) lands on the same point, so bilinear filtering inside the
-// tile is exact at texel centres. Around each tile a gutter of kLightmapGutter texels repeats its
+// h = ceil(length_v * density) (at least 2 each). Its corners get the texture coordinates
+// (x0 + u w, y0 + v h) / atlas size (texels, row 0 the image's first row), and a viewer
+// interpolates them linearly over each of the side's triangles (a quad's two share the diagonal
+// from (0, 0) to (1, 1)); so texel (i, j) holds the radiosity at the point of the side that its
+// centre, (a, b) = ((i + 0.5) / w, (j + 0.5) / h), lands on that way: the triangle's corners
+// blended by the barycentric coordinates of (a, b). On a parallelogram or a triangle that is the
+// point (u, v) = (a, b); on any other quad (a trapezoid, as the Cornell box's floor) the
+// bilinear (u, v) of that point, which differs. Around each tile a gutter of kLightmapGutter texels repeats its
 // border texels, so filtering at a tile's edge never reads a neighbour. A triangle's texels
 // beyond its hypotenuse hold the value at the nearest point of the triangle. Where a method has
 // no value (behind barriers, under excluded regions) a texel holds 0.
@@ -43,9 +47,10 @@ struct LightmapAtlas {
   Vec2 texture_coordinate(const LightmapTile& tile, double u, double v) const;
 };
 
-/// Lays out and fills the atlas at `texels_per_metre` (> 0). Throws UserError naming `where`
-/// when the atlas would exceed kMaxLightmapSide, with the density that would fit.
+/// Lays out and fills the atlas with `texels_along_longest` (>= 2) texels along the longest
+/// surface edge of the solution, every side at that density. Throws UserError naming `where`
+/// when the atlas would exceed kMaxLightmapSide, with the setting that would fit.
 LightmapAtlas bake_lightmaps(const Scene& scene, const Solution& solution, const SolutionReconstruction& reconstruction,
-                             double texels_per_metre, const std::string& where);
+                             int texels_along_longest, const std::string& where);
 
 }  // namespace radrecon

@@ -1,5 +1,8 @@
 #include "io/geojson.h"
 
+#include <cctype>
+#include <filesystem>
+
 #include <cmath>
 
 #include <nlohmann/json.hpp>
@@ -7,6 +10,7 @@
 #include "core/error.h"
 #include "core/parse.h"
 #include "core/tolerances.h"
+#include "io/gdal_plugin.h"
 #include "io/json_reader.h"
 
 namespace radrecon {
@@ -173,6 +177,16 @@ std::vector<Polyline> read_geojson_barriers(const std::string& path) {
   if (reader.lines.empty())
     throw UserError(path, "no barrier lines: no " + kLineTypes + " (a Feature whose geometry is null holds none)");
   return std::move(reader.lines);
+}
+
+Barriers read_barriers_file(const std::string& path, const std::string& where) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  Result<Barriers> barriers = Barriers::from_polylines(ext == ".geojson" || ext == ".json"
+                                                           ? read_geojson_barriers(path)
+                                                           : gdal_functions(where).read_barriers(path));
+  if (!barriers) throw UserError(path, barriers.reason());
+  return std::move(barriers).value();
 }
 
 }  // namespace radrecon

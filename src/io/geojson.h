@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/vec.h"
+#include "reconstruct/barriers.h"
 
 namespace radrecon {
 
@@ -26,5 +27,11 @@ namespace radrecon {
 /// zero length); a coordinate that is not a number, or beyond tol::kMaxSampleCoordinate.
 /// What is returned therefore always passes Barriers::from_polylines().
 std::vector<Polyline> read_geojson_barriers(const std::string& path);
+
+/// Barrier lines from a file: .geojson and .json by read_geojson_barriers(), any other vector
+/// source (GeoPackage, Shapefile, ...) through GDAL's OGR (io/gdal_plugin.h; `where` names the
+/// option or argument if GDAL cannot be loaded). UserError naming the file when it holds no
+/// valid barriers.
+Barriers read_barriers_file(const std::string& path, const std::string& where);
 
 }  // namespace radrecon

@@ -45,6 +45,7 @@ ConvexHull2::ConvexHull2(std::span<const Vec2> points, std::span<const unsigned>
 
 Vec2 ConvexHull2::nearest(const Vec2& q) const {
   const size_t n = vertices_.size();
+  if (n == 0) return q;
   if (n == 1) return vertices_[0];
   if (n == 2) return nearest_on_segment(vertices_[0], vertices_[1], q);
   bool inside = true;

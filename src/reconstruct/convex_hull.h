@@ -1,5 +1,5 @@
 #pragma once
-// The convex hull of a small planar point set (CGAL's Andrew monotone chain, exact predicates),
+// The convex hull of a small planar point set (CGAL's Akl-Toussaint, exact predicates),
 // and the nearest point of it to a query: where a local fit (reconstruct/local_multiquadric.h)
 // stops trusting itself and holds its boundary value instead of extrapolating.
 
@@ -20,7 +20,8 @@ class ConvexHull2 {
   /// The hull's vertices, counter-clockwise, no three collinear (1 or 2 for a point or segment).
   const std::vector<Vec2>& vertices() const { return vertices_; }
 
-  /// q itself when it lies in the hull (boundary included), else the hull's nearest point to q.
+  /// q itself when it lies in the hull (boundary included) or the hull is empty (default
+  /// constructed), else the hull's nearest point to q.
   Vec2 nearest(const Vec2& q) const;
 
   /// The distance from c to the hull's boundary when c lies inside, else 0: every point within

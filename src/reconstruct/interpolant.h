@@ -19,7 +19,9 @@ class ReconstructionError : public std::runtime_error {
 };
 
 /// Query points per evaluate() call for callers that evaluate many (interpolate, the Python
-/// module): a batch's working set stays in cache, and progress can be reported between batches.
+/// module, the lightmaps): large enough that a batch keeps both threads busy, small enough that
+/// its working set stays in cache and that a slow method (global shepard on 10^6 samples)
+/// reports progress often.
 /// Each point is evaluated on its own, so values do not depend on the batches.
 inline constexpr size_t kEvaluateBatch = size_t{1} << 16;
 

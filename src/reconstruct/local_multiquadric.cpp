@@ -94,8 +94,8 @@ LocalMultiquadric::LocalMultiquadric(const ScatteredSamples& samples, const RbfK
     patch.reach_m = h_ + std::sqrt(s.dist_sq[m - 1]);
     if (m > kMaxPatchSamples) return;  // refused below, outside the parallel loop
     patch.fit = fit_rbf(points_, r_sq_, samples.values, channels_, kernel_, patch.samples, true);
-    patch.hull = ConvexHull2(points_, patch.samples);
-    patch.inside_sq = std::pow(patch.hull.depth(patch.center), 2);
+    patch.fit.hull = ConvexHull2(points_, patch.samples);
+    patch.inside_sq = std::pow(patch.fit.hull.depth(patch.center), 2);
   });
   check_patches();
 }
@@ -156,23 +156,22 @@ void LocalMultiquadric::evaluate(std::span<const Vec2> points, std::span<double>
         if (w == 0) continue;
         // The patch's fit, or with barriers the fit through its samples x sees.
         const RbfFit* fit = &patch.fit;
-        const ConvexHull2* hull = &patch.hull;
         std::shared_ptr<const RbfFit> visible_fit;
-        ConvexHull2 visible_hull;
         if (!barriers_.none_within(x, patch.reach_m)) {
           visible.clear();
           for (unsigned s : patch.samples)
             if (!barriers_.blocks(x, points_[s])) visible.push_back(s);
           if (visible.empty()) continue;  // the patch sees nothing of x: no weight
           if (visible.size() < patch.samples.size()) {
-            visible_fit = fits_.get(static_cast<unsigned>(index), visible,
-                                    [&] { return fit_rbf(points_, r_sq_, values_, channels_, kernel_, visible, true); });
+            visible_fit = fits_.get(static_cast<unsigned>(index), visible, [&] {
+              RbfFit f = fit_rbf(points_, r_sq_, values_, channels_, kernel_, visible, true);
+              f.hull = ConvexHull2(points_, visible);
+              return f;
+            });
             fit = visible_fit.get();
-            visible_hull = ConvexHull2(points_, visible);
-            hull = &visible_hull;
           }
         }
-        const Vec2 e = hull == &patch.hull && (p - patch.center).squaredNorm() < patch.inside_sq ? p : hull->nearest(p);
+        const Vec2 e = fit == &patch.fit && (p - patch.center).squaredNorm() < patch.inside_sq ? p : fit->hull.nearest(p);
         // With a polynomial, a patch whose visible samples span no plane (its polynomial lacks a
         // term) gives way to those that span one, and counts only where none does.
         const bool lacks = fit->terms > 0 && fit->terms < 3;

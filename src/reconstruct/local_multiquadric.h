@@ -32,7 +32,6 @@
 #include <vector>
 
 #include "reconstruct/barriers.h"
-#include "reconstruct/convex_hull.h"
 #include "reconstruct/interpolant.h"
 #include "reconstruct/multiquadric_basis.h"
 #include "reconstruct/samples.h"
@@ -69,8 +68,7 @@ class LocalMultiquadric final : public Interpolant {
   struct Patch {
     Vec2 center;
     std::vector<unsigned> samples;
-    RbfFit fit;           ///< through its samples
-    ConvexHull2 hull;     ///< of its samples: where its fit is evaluated (no extrapolation)
+    RbfFit fit;           ///< through its samples, with their hull (no extrapolation past it)
     double inside_sq = 0; ///< squared radius about the centre that lies in the hull
     double reach_m = 0;   ///< a bound on the distance from its support to its samples
   };

@@ -35,6 +35,7 @@
 #include <Eigen/Core>
 
 #include "core/vec.h"
+#include "reconstruct/convex_hull.h"
 
 namespace radrecon {
 
@@ -88,6 +89,9 @@ std::vector<double> eck_radii_sq(std::span<const Vec2> points, const KdTree2& tr
 /// partial pivoting (Eigen; the augmented matrix is symmetric indefinite).
 struct RbfFit {
   std::vector<unsigned> subset;  ///< sample indices
+  /// The subset's convex hull, where a caller keeps it with the fit (the local patches, which
+  /// do not extrapolate past it); empty otherwise.
+  ConvexHull2 hull;
   std::vector<double> alpha;     ///< subset.size() * channels, sample-major
   double rcond = 1;              ///< reciprocal condition estimate of the system
   // The same for evaluation as arrays (SIMD): the subset's coordinates, r^2, and alpha channel by

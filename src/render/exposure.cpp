@@ -18,6 +18,11 @@ std::optional<double> percentile_white(const Rendering& rendering, double percen
   for (int y = 0; y < img.height(); ++y)
     for (int x = 0; x < img.width(); ++x)
       if (mask[static_cast<size_t>(y) * img.width() + x]) brightest.push_back(img.at(x, y).maxCoeff());
+  return percentile_white(brightest, percentile);
+}
+
+std::optional<double> percentile_white(std::vector<double>& brightest, double percentile) {
+  RR_CHECK(percentile > 0 && percentile <= 100, "a percentile is in (0, 100]");
   if (brightest.empty()) return std::nullopt;
   // Nearest rank: the k-th smallest of n, k = ceil(p n / 100), 1 <= k <= n (p n is exact for a
   // whole p, so that k is the exact rank whenever p n / 100 is whole).

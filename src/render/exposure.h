@@ -6,6 +6,7 @@
 // a lamp) may clip while the rest keeps its contrast.
 
 #include <optional>
+#include <vector>
 
 #include "render/renderer.h"
 
@@ -20,5 +21,10 @@ inline constexpr double kDefaultWhitePercentile = 99.0;
 /// `rendering` marked reflecting; nullopt when no pixel is, or when that value is not positive
 /// (a picture of unlit surfaces).
 std::optional<double> percentile_white(const Rendering& rendering, double percentile);
+
+/// The same percentile of `brightest` (each a value's brightest channel, W/m^2; reordered):
+/// nullopt when it is empty or the percentile is not positive. The lightmaps' white
+/// (radrecon export) is this over the texels of the sides that emit nothing.
+std::optional<double> percentile_white(std::vector<double>& brightest, double percentile);
 
 }  // namespace radrecon

@@ -99,13 +99,13 @@ Solution solve_hierarchical_leaves(const Scene& scene, const std::string& side, 
   options.epsilon_w = lo;
   options.leaf_cap = std::make_pair(side, leaves);
   options.progress_label = label;
+  progress.done();  // the final solve reports on a line of its own
   Solution sol = solve_hierarchical(scene, options, spec, &cache);
   const size_t made = leaf_count(sol, side);
   if (made != static_cast<size_t>(leaves))
     throw UserError(field, "refinement gives " + std::to_string(made) + " leaves on '" + side + "', not exactly " +
                                std::to_string(leaves) + "; try a neighbouring count (1 + 3k)");
   sol.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  progress.done();
   if (!label.empty())
     std::fprintf(stderr, "%s: epsilon %.4g W gives %d leaves on %s\n", label.c_str(), lo, leaves, side.c_str());
   return sol;

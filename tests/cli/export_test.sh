@@ -32,6 +32,7 @@ cmp -s box_natural-neighbour.glb box_constant.glb && fail "the two methods' ligh
 
 # --- the Khronos glTF validator: no errors -------------------------------------------------------
 if command -v node >/dev/null && [ -d "$VALIDATOR_MODULES/gltf-validator" ]; then
+  for glb in box_natural-neighbour.glb box_constant.glb; do
   NODE_PATH=$VALIDATOR_MODULES node -e '
     const fs = require("fs"), validator = require("gltf-validator");
     validator.validateBytes(new Uint8Array(fs.readFileSync(process.argv[1]))).then((report) => {
@@ -39,7 +40,8 @@ if command -v node >/dev/null && [ -d "$VALIDATOR_MODULES/gltf-validator" ]; the
       console.log(`gltf-validator: ${i.numErrors} errors, ${i.numWarnings} warnings, ${i.numInfos} infos`);
       for (const m of i.messages) if (m.severity === 0) console.log(`  ${m.code}: ${m.message} (${m.pointer})`);
       process.exit(i.numErrors === 0 ? 0 : 1);
-    }, (e) => { console.log(e); process.exit(1); });' box_natural-neighbour.glb || fail "gltf-validator found errors"
+    }, (e) => { console.log(e); process.exit(1); });' "$glb" || fail "gltf-validator found errors in $glb"
+  done
 else
   echo "export_test: node or gltf-validator missing (scripts/setup.sh installs it): the validator is not run"
 fi
@@ -54,8 +56,11 @@ expect_no_output bad_exr b.glb
 run bad_method --scene cornell --solution box.json --method kriging --out b.glb
 expect_rc bad_method 2 && expect_stderr_has bad_method "unknown method 'kriging'"
 expect_no_output bad_method b.glb
+cp box.json keep.json
 run over_input --scene cornell --solution box.json --out box.json.glb --exr box.json
 expect_rc over_input 2 && expect_stderr_has over_input "--exr"
+expect_no_output over_input box.json.glb
+cmp -s box.json keep.json || fail "over_input: the solution was changed"
 run wrong_scene --scene paper --solution box.json --out b.glb
 expect_rc wrong_scene 2 && expect_stderr_has wrong_scene "box.json"
 expect_no_output wrong_scene b.glb

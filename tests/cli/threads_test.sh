@@ -67,6 +67,18 @@ for m in constant shepard "shepard k=12" multiquadric "multiquadric k=24" thin-p
   both "queries_$tag" "q_$tag.csv" -- interpolate --samples s.csv --method "$method" "${args[@]}" \
     --queries q.csv --out "q_$tag.csv"
 done
+# With barriers: the fits of the subsets a query sees are shared between threads (a cache).
+printf '%s\n' '{"type": "LineString", "coordinates": [[0.5, -0.2], [0.5, 0.7]]}' > wall.geojson
+cp wall.geojson t1/
+cp wall.geojson t2/
+for m in shepard natural-neighbour "multiquadric k=24" thin-plate sibson-c1; do
+  read -r method params <<< "$m"
+  args=()
+  for p in $params; do args+=(--param "$p"); done
+  tag=${m// /_}
+  both "barriers_$tag" "b_$tag.pfm" -- interpolate --samples s.csv --method "$method" "${args[@]}" --barriers wall.geojson \
+    --raster 64x48 --domain=-0.1,-0.1,1.1,1.1 --out "b_$tag.pfm"
+done
 for method in bilinear bicubic hermite; do
   both "grid_$method" "g_$method.pfm" -- interpolate --samples g.csv --method "$method" --raster 50x40 \
     --domain 0,0,6,4 --out "g_$method.pfm"
@@ -83,8 +95,9 @@ done
 both export cornell.glb -- export --scene cornell --solution cornell.json --texels 48 --out cornell.glb
 for t in 1 2; do
   (cd "t$t" && OMP_NUM_THREADS=$t "$RADRECON" compare v_natural-neighbour.pfm v_constant.pfm --json --diff cmp.png \
-     > compare.json 2>/dev/null)
+     > compare.json 2>/dev/null) || fail "compare with $t thread(s): exit code $?"
 done
+[ -s t1/compare.json ] || fail "compare: no figures"
 cmp -s t1/compare.json t2/compare.json || fail "compare: the figures differ between 1 and 2 threads"
 cmp -s t1/cmp.png t2/cmp.png || fail "compare: the difference image differs between 1 and 2 threads"
 

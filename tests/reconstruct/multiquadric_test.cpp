@@ -155,7 +155,7 @@ TEST(LocalMultiquadric, AnOffsetInTheValuesIsAddedUnchanged) {
   }
 }
 
-TEST(LocalMultiquadric, EdgesAsAccurateAsTheInteriorAndAsNaturalNeighbour) {
+TEST(LocalMultiquadric, AsAccurateAsNaturalNeighbourOverallAndAlongTheEdges) {
   // Terrain-like data (a large offset, a slope, hills) at random points; held-out points against
   // the closed form, in the box and in the band along its edges and corners. Before the patches
   // held their hull's value and fitted deviations from their mean, the band's largest error at
