@@ -117,9 +117,7 @@ py::array interpolate(const Doubles& points, const Doubles& values, const std::o
   samples.values.assign(values.data(), values.data() + values.size());
   const size_t removed = merge_duplicate_points(samples);
   if (removed > 0 &&
-      PyErr_WarnFormat(PyExc_UserWarning, 1,
-                       "%zu samples repeat the point of an earlier one; merged, their values averaged (%zu samples -> %zu points)",
-                       removed, n, samples.points.size()) != 0)
+      PyErr_WarnEx(PyExc_UserWarning, merged_samples_message(removed, n, samples.points.size()).c_str(), 1) != 0)
     throw py::error_already_set();  // warnings turned into errors
 
   Raster grid;

@@ -117,8 +117,8 @@ void run_interpolate(const InterpolateArgs& args) {
     samples = gdal_functions("--samples").read_samples(args.samples, &value_names, columns);
     const size_t before = samples.points.size(), removed = merge_duplicate_points(samples);
     if (removed > 0)
-      std::fprintf(stderr, "radrecon: warning: %s: %zu samples repeat the point of an earlier one; merged, their values "
-                   "averaged (%zu samples -> %zu points)\n", args.samples.c_str(), removed, before, samples.points.size());
+      std::fprintf(stderr, "radrecon: warning: %s: %s\n", args.samples.c_str(),
+                   merged_samples_message(removed, before, samples.points.size()).c_str());
   } else {
     samples = read_samples_csv(args.samples, &value_names, columns);
   }
@@ -205,8 +205,8 @@ void add_interpolate_command(CLI::App& app) {
       "Interpolate scattered 2-D samples (CSV: x,y,VALUE..., XYZ, or a GDAL vector source) at query points "
       "(--queries) or on a raster (--raster + --domain) by one of radrecon's reconstruction methods; write CSV, "
       "PFM, PNG or any GDAL raster (.tif: GeoTIFF).\n"
-      "Samples at exactly the same point are merged into one with the mean of their values (one warning on "
-      "stderr). Outside the samples' extent: constant and shepard and multiquadric are defined everywhere; "
+      "Samples at the same point, or within 1e-9 of the samples' extent of each other, are merged into one with "
+      "the mean of their values (one warning on stderr). Outside the samples' extent: constant and shepard and multiquadric are defined everywhere; "
       "bilinear, bicubic and hermite clamp the point onto the grid; the triangulation methods "
       "(natural-neighbour, laplace, sibson-c1, linear, clough-tocher) follow --param outside. "
       "Exit code 2 for refused input (message names the file:line or option), nothing written then.");

@@ -203,4 +203,15 @@ inline constexpr double kQuadMergeTurnRelative = 1e-6;
 inline constexpr double kHullEdgeBandRelative = 1e-9;
 inline constexpr double kHullEdgeRounding = 64 * 2.220446049250313e-16;
 
+/// Samples closer than this fraction of their extent (the larger side of their bounding box) to
+/// an earlier one are merged with it (reconstruct/sample_set.h): at 1e-12 apart natural
+/// neighbour's Sibson areas lost 7e-7 of a linear function and sibson-c1's fitted gradients 4%
+/// (tests/hostile: near_duplicates). Far below any spacing that data is sampled at.
+inline constexpr double kNearDuplicateRelative = 1e-9;
+
+/// The smallest extent (larger side of the bounding box) of a sample set the scattered methods
+/// take: below it squared distances underflow (1e-300 apart gives 0) and the triangulation
+/// methods' areas lose all precision, so such data is refused with advice to rescale it.
+inline constexpr double kMinSampleExtent = 1e-100;
+
 }  // namespace radrecon::tol

@@ -252,10 +252,8 @@ ScatteredSamples read_samples_csv(const std::string& path, std::vector<std::stri
   const size_t before = s.points.size();
   const size_t removed = merge_duplicate_points(s);
   if (removed > 0)
-    std::fprintf(stderr,
-                 "radrecon: warning: %s: %zu sample%s the point of an earlier sample; samples at the same point "
-                 "are merged, their values averaged (%zu samples -> %zu points)\n",
-                 path.c_str(), removed, removed == 1 ? " repeats" : "s repeat", before, s.points.size());
+    std::fprintf(stderr, "radrecon: warning: %s: %s\n", path.c_str(),
+                 merged_samples_message(removed, before, s.points.size()).c_str());
   return s;
 }
 

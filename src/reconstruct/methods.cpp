@@ -7,6 +7,7 @@
 #include "core/check.h"
 #include "core/error.h"
 #include "core/parse.h"
+#include "core/tolerances.h"
 #include "reconstruct/barrier_grid.h"
 #include "reconstruct/bicubic.h"
 #include "reconstruct/bilinear.h"
@@ -292,6 +293,11 @@ InterpolantResult make_scattered_interpolant(Method method, const ScatteredSampl
   RR_CHECK_EQ(samples.values.size(), samples.points.size() * static_cast<size_t>(samples.channels),
               "sample values do not match the points");
   if (samples.points.empty()) return Failure{"no samples"};
+  Vec2 lo = samples.points[0], hi = lo;
+  for (const Vec2& p : samples.points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  if (const double extent = (hi - lo).maxCoeff(); extent > 0 && extent < tol::kMinSampleExtent)
+    return Failure{"the samples span only " + format_number(extent) + " (less than " + format_number(tol::kMinSampleExtent) +
+                   "), where squared distances underflow: rescale the coordinates"};
   if (auto refused = refuse_barriers(method, params)) return *refused;
   switch (method) {
     case Method::constant: return build<NearestSample>(samples, params.barriers);

@@ -1,6 +1,8 @@
 #include "reconstruct/sample_set.h"
 
 #include <algorithm>
+#include <numeric>
+#include <string>
 #include <cmath>
 
 #include "core/check.h"
@@ -44,45 +46,67 @@ Axis axis_of(const ScatteredSamples& s, int dim) {
 std::size_t merge_duplicate_points(ScatteredSamples& s) {
   const size_t n = s.points.size(), ch = static_cast<size_t>(s.channels);
   RR_CHECK(s.values.size() == n * ch, "sample values do not match the points");
-  // Sorted by (x, y, index): equal points are adjacent, the first of them first.
-  struct Key {
-    double x, y;
-    size_t index;
-  };
-  std::vector<Key> keys(n);
-  for (size_t k = 0; k < n; ++k) keys[k] = {s.points[k].x(), s.points[k].y(), k};
-  std::sort(keys.begin(), keys.end(), [](const Key& a, const Key& b) {
-    if (a.x != b.x) return a.x < b.x;
-    if (a.y != b.y) return a.y < b.y;
-    return a.index < b.index;
+  if (n < 2) return 0;
+  Vec2 lo = s.points[0], hi = lo;
+  for (const Vec2& p : s.points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  const double eps = tol::kNearDuplicateRelative * (hi - lo).maxCoeff();
+  // Sorted by x: the points within eps of a point follow it within eps in x.
+  std::vector<size_t> order(n);
+  std::iota(order.begin(), order.end(), size_t{0});
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    if (s.points[a].x() != s.points[b].x()) return s.points[a].x() < s.points[b].x();
+    if (s.points[a].y() != s.points[b].y()) return s.points[a].y() < s.points[b].y();
+    return a < b;
   });
-  // rep[k]: the first sample at sample k's point.
+  // Union-find, the root of a group its first sample.
+  std::vector<size_t> root(n);
+  std::iota(root.begin(), root.end(), size_t{0});
+  const auto find = [&](size_t k) {
+    while (root[k] != k) k = root[k] = root[root[k]];
+    return k;
+  };
+  for (size_t a = 0; a < n; ++a)
+    for (size_t b = a + 1; b < n && s.points[order[b]].x() - s.points[order[a]].x() <= eps; ++b)
+      if ((s.points[order[b]] - s.points[order[a]]).norm() <= eps) {
+        const size_t ra = find(order[a]), rb = find(order[b]);
+        if (ra != rb) root[std::max(ra, rb)] = std::min(ra, rb);
+      }
   std::vector<size_t> rep(n);
   size_t removed = 0;
-  for (size_t a = 0; a < n;) {
-    size_t b = a + 1;
-    while (b < n && keys[b].x == keys[a].x && keys[b].y == keys[a].y) ++b;
-    for (size_t k = a; k < b; ++k) rep[keys[k].index] = keys[a].index;
-    removed += b - a - 1;
-    a = b;
+  for (size_t k = 0; k < n; ++k) {
+    rep[k] = find(k);
+    if (rep[k] != k) ++removed;
   }
   if (removed == 0) return 0;
 
+  // A group's point: the mean of its points (the first, when they are all the same point); its
+  // values: their mean. A linear function stays linear.
   std::vector<double> sum(n * ch, 0.0);
+  std::vector<Vec2> centre(n, Vec2::Zero());
   std::vector<size_t> count(n, 0);
+  std::vector<bool> same(n, true);
   for (size_t k = 0; k < n; ++k) {
-    ++count[rep[k]];
-    for (size_t c = 0; c < ch; ++c) sum[rep[k] * ch + c] += s.values[k * ch + c];
+    const size_t r = rep[k];
+    ++count[r];
+    centre[r] += s.points[k];
+    same[r] = same[r] && s.points[k] == s.points[r];
+    for (size_t c = 0; c < ch; ++c) sum[r * ch + c] += s.values[k * ch + c];
   }
   ScatteredSamples merged;
   merged.channels = s.channels;
   for (size_t k = 0; k < n; ++k) {
     if (rep[k] != k) continue;
-    merged.points.push_back(s.points[k]);
+    merged.points.push_back(same[k] ? s.points[k] : Vec2(centre[k] / static_cast<double>(count[k])));
     for (size_t c = 0; c < ch; ++c) merged.values.push_back(sum[k * ch + c] / static_cast<double>(count[k]));
   }
   s = std::move(merged);
   return removed;
+}
+
+std::string merged_samples_message(std::size_t removed, std::size_t before, std::size_t after) {
+  return std::to_string(removed) + (removed == 1 ? " sample repeats" : " samples repeat") +
+         " the point of an earlier one (or lie within 1e-9 of the samples' extent of it); merged, their values "
+         "averaged (" + std::to_string(before) + " samples -> " + std::to_string(after) + " points)";
 }
 
 // --- regular grids ----------------------------------------------------------------------------

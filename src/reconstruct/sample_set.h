@@ -4,14 +4,21 @@
 
 #include <cstddef>
 #include <optional>
+#include <string>
 
 #include "reconstruct/samples.h"
 
 namespace radrecon {
 
-/// Merges samples at exactly the same point into one with the mean of their values, keeping
-/// the order of first appearance. Returns the number of samples removed (0: no duplicates).
+/// Merges samples at the same point, or within tol::kNearDuplicateRelative (1e-9) of the
+/// samples' extent of each other (groups joined transitively), into one at the mean of their
+/// points (the point itself when they all share it) with the mean of their values, keeping the
+/// order of first appearance. Returns the number of samples removed (0: none).
 std::size_t merge_duplicate_points(ScatteredSamples& samples);
+
+/// The warning that reports merge_duplicate_points()'s work (the same words wherever samples
+/// come from).
+std::string merged_samples_message(std::size_t removed, std::size_t before, std::size_t after);
 
 /// The samples as the nodes of a regular grid, if they are one: the distinct x values (values
 /// within tol::kGridCoordinateRelative (1e-9) of the x extent of each other count as one) are nx >= 2 equally spaced values,

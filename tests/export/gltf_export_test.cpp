@@ -6,7 +6,6 @@
 // where the viewer's mapping and the surface's bilinear parameters differ.
 
 #include <gtest/gtest.h>
-#include <png.h>
 
 #include <assimp/Importer.hpp>
 #include <assimp/scene.h>
@@ -18,6 +17,7 @@
 #include "export/gltf.h"
 #include "export/lightmap.h"
 #include "solver/solve.h"
+#include "support/png_decode.h"
 
 namespace radrecon {
 namespace {
@@ -45,24 +45,6 @@ Rgb floor_radiosity(const Vec2& st) {
   return Rgb(f, 0.5 * f, 0.25 * f + 0.1);
 }
 
-struct Decoded {
-  int width = 0, height = 0;
-  std::vector<std::uint8_t> rgb;
-};
-
-Decoded decode_png(const std::uint8_t* data, size_t size) {
-  png_image png{};
-  png.version = PNG_IMAGE_VERSION;
-  EXPECT_TRUE(png_image_begin_read_from_memory(&png, data, size)) << png.message;
-  png.format = PNG_FORMAT_RGB;
-  Decoded d;
-  d.width = static_cast<int>(png.width);
-  d.height = static_cast<int>(png.height);
-  d.rgb.resize(PNG_IMAGE_SIZE(png));
-  EXPECT_TRUE(png_image_finish_read(&png, nullptr, d.rgb.data(), 0, nullptr)) << png.message;
-  return d;
-}
-
 TEST(GltfExport, GeometryAndTexelsReadBackByAssimp) {
   const Scene scene = floor_and_lamp();
   Solution solution = solve_scene(scene, "grid:16", SolveSettings{}, "mesh");
@@ -82,7 +64,7 @@ TEST(GltfExport, GeometryAndTexelsReadBackByAssimp) {
   ASSERT_EQ(read->mNumTextures, 1u);
   const aiTexture* texture = read->mTextures[0];
   ASSERT_EQ(texture->mHeight, 0u);  // compressed: the PNG's bytes
-  const Decoded image = decode_png(reinterpret_cast<const std::uint8_t*>(texture->pcData), texture->mWidth);
+  const testing_support::Png image = testing_support::decode_png(reinterpret_cast<const std::uint8_t*>(texture->pcData), texture->mWidth);
   EXPECT_EQ(image.width, atlas.radiosity_w_m2.width());
   EXPECT_EQ(image.height, atlas.radiosity_w_m2.height());
 

@@ -16,6 +16,7 @@
 #include "io/image_io.h"
 #include "io/raster.h"
 #include "support/temp_dir.h"
+#include "support/png_decode.h"
 
 namespace radrecon {
 namespace {
@@ -30,27 +31,8 @@ const testing_support::TempDir& files() {
 
 fs::path temp_file(const std::string& name) { return files() / name; }
 
-struct Png {
-  int width = 0, height = 0;
-  std::vector<std::uint8_t> rgb;  ///< row 0 = top
-  std::array<int, 3> at(int x, int y) const {
-    const size_t k = (static_cast<size_t>(y) * width + x) * 3;
-    return {rgb[k], rgb[k + 1], rgb[k + 2]};
-  }
-};
-
-Png read_png(const fs::path& path) {
-  png_image image{};
-  image.version = PNG_IMAGE_VERSION;
-  EXPECT_TRUE(png_image_begin_read_from_file(&image, path.c_str())) << image.message;
-  image.format = PNG_FORMAT_RGB;
-  Png out;
-  out.width = static_cast<int>(image.width);
-  out.height = static_cast<int>(image.height);
-  out.rgb.resize(PNG_IMAGE_SIZE(image));
-  EXPECT_TRUE(png_image_finish_read(&image, nullptr, out.rgb.data(), 0, nullptr)) << image.message;
-  return out;
-}
+using testing_support::Png;
+using testing_support::read_png;
 
 TEST(Png, WritesImageRowsTopFirstWithSrgbOrLinearValues) {
   Image img(3, 2);
