@@ -23,7 +23,7 @@ test: build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
 
 # The same tests under AddressSanitizer and UndefinedBehaviorSanitizer (run by CI). Line tables
-# only (-g1): the reports name files and lines, and the build takes a third less time.
+# only (-g1): the reports still name files and lines, and the objects are smaller.
 test-asan: setup
 	cmake -S . -B $(ASAN_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" \
 	  -DRADRECON_SANITIZE=ON -DRADRECON_BENCHMARKS=OFF
