@@ -150,10 +150,11 @@ py::array interpolate(const Doubles& points, const Doubles& values, const std::o
     const InterpolantResult interpolant = make_point_interpolant(method, samples, params);
     if (!interpolant) throw UserError("points", interpolant.reason());
     if (raster) at = raster_points(grid);
-    const std::span<double> values(result, count * static_cast<size_t>(channels));
+    const std::span<double> results(result, count * static_cast<size_t>(channels));
     for (size_t first = 0; first < count; first += kEvaluateBatch) {
-      const size_t n = std::min(kEvaluateBatch, count - first);
-      interpolant.value()->evaluate(std::span<const Vec2>(at).subspan(first, n), values.subspan(first * channels, n * channels));
+      const size_t batch = std::min(kEvaluateBatch, count - first);
+      interpolant.value()->evaluate(std::span<const Vec2>(at).subspan(first, batch),
+                                    results.subspan(first * channels, batch * channels));
     }
   }
   return out;
