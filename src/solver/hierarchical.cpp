@@ -17,6 +17,7 @@
 #include "mesh/quadtree.h"
 #include "scene/side.h"
 #include "solver/form_factor.h"
+#include "solver/hierarchy_state.h"
 #include "solver/bvh.h"
 #include "solver/visibility.h"
 
@@ -24,39 +25,12 @@ namespace radrecon {
 
 namespace {
 
-/// The radiometry of one quadtree node (the geometry is the Quadtree's, at the same index).
-struct NodeState {
-  Rgb radiosity = Rgb::Zero();
-  Rgb gathered = Rgb::Zero();  ///< irradiance through this node's own links, W/m^2
-  Rgb irradiance = Rgb::Zero();  ///< leaves: total irradiance including the ancestors', W/m^2
-  double spread_w_m2 = 0;        ///< max - min of the children's radiosity (channel mean); 0 at leaves
-};
-
-/// One side of one surface: its quadtree and the radiometry of every node.
-struct Tree {
-  Tree(const Surface& surface, size_t index, bool back)
-      : name(side_name(surface, back)), scene_surface(index), back_side(back), normal(side_normal(surface, back)),
-        reflectance(surface.reflectance), emission_w_m2(side_emission(surface, back)), quad(surface, back) {
-    state.push_back({emission_w_m2});
-  }
-  std::string name;
-  size_t scene_surface = 0;
-  bool back_side = false;
-  Vec3 normal;
-  Rgb reflectance, emission_w_m2;
-  Quadtree quad;
-  std::vector<NodeState> state;  ///< by node index
-  int leaf_cap = 0;              ///< 0: no cap
-  const QuadNode& node(int k) const { return quad.node(k); }
-  NodeState& at(int k) { return state[static_cast<size_t>(k)]; }
-  const NodeState& at(int k) const { return state[static_cast<size_t>(k)]; }
-};
-
-struct Link {
-  int receiver_tree, receiver_node, source_tree, source_node;
-  double f;         ///< area-to-area visible form factor, receiver -> source
-  double f_spread;  ///< max - min of the point form factors over the receiver's samples
-};
+using hierarchy::Link;
+using hierarchy::NodeState;
+using hierarchy::Tree;
+using hierarchy::add_absorbed;
+using hierarchy::collect_leaves;
+using hierarchy::gather_over_links;
 
 /// Thrown when a hierarchy would exceed HierarchicalOptions::max_links.
 struct TooManyLinks {};
@@ -390,65 +364,8 @@ class Hierarchy {
     links_.swap(leaf_links);
   }
 
-  /// Jacobi gathering over all links, then push-pull, until the radiosity settles.
   void gather_until_converged() {
-    converged_ = true;
-    for (int iteration = 0; iteration < options_.max_gather_iterations; ++iteration) {
-      for (Tree& t : trees_)
-        for (NodeState& n : t.state) n.gathered = Rgb::Zero();
-      for (const Link& l : links_) {
-        const NodeState& s = trees_[static_cast<size_t>(l.source_tree)].at(l.source_node);
-        trees_[static_cast<size_t>(l.receiver_tree)].at(l.receiver_node).gathered += l.f * s.radiosity;
-      }
-      double change = 0, largest = 0;
-      for (Tree& t : trees_) push_pull(t, 0, Rgb::Zero(), change, largest);
-      residual_ = largest > 0 ? change / largest : 0;
-      if (change <= options_.tolerance * largest) return;
-    }
-    converged_ = false;  // the iteration limit, not the tolerance, stopped it (the last gather's
-                         // state is what the solution reports)
-  }
-
-  /// Pushes irradiance down to the leaves and pulls area-weighted radiosity up; returns the
-  /// node's new radiosity.
-  Rgb push_pull(Tree& t, int index, const Rgb& irradiance_above, double& change, double& largest) {
-    const QuadNode& node = t.node(index);
-    NodeState& n = t.at(index);
-    const Rgb irradiance = irradiance_above + n.gathered;
-    Rgb b;
-    if (node.is_leaf()) {
-      b = t.emission_w_m2 + t.reflectance * irradiance;
-      n.irradiance = irradiance;
-      change = std::max(change, (b - n.radiosity).abs().maxCoeff());
-      largest = std::max(largest, b.abs().maxCoeff());
-    } else {
-      const int first = node.first_child;
-      b = Rgb::Zero();
-      double area = 0, lo = std::numeric_limits<double>::infinity(), hi = -lo;
-      for (int c = 0; c < 4; ++c) {
-        const Rgb bc = push_pull(t, first + c, irradiance, change, largest);
-        const double a = t.node(first + c).area_m2;
-        b += a * bc;
-        area += a;
-        lo = std::min(lo, bc.mean());
-        hi = std::max(hi, bc.mean());
-      }
-      b /= area;
-      t.at(index).spread_w_m2 = hi - lo;
-    }
-    t.at(index).radiosity = b;
-    return b;
-  }
-
-  void collect_leaves(const Tree& t, SurfaceSolution& out) const {
-    for (const int k : t.quad.leaves()) {
-      const QuadNode& n = t.node(k);
-      out.elements.push_back({n, n.center, n.area_m2, t.at(k).radiosity});
-    }
-  }
-
-  void add_absorbed(const Tree& t, Rgb& absorbed) const {
-    for (const int k : t.quad.leaves()) absorbed += t.node(k).area_m2 * (1.0 - t.reflectance) * t.at(k).irradiance;
+    converged_ = gather_over_links(trees_, links_, options_.max_gather_iterations, options_.tolerance, residual_);
   }
 
   int total_leaves() const {

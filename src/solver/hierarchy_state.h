@@ -1,0 +1,62 @@
+#pragma once
+// Hierarchical radiosity's state (solver/hierarchical.h), internal to the solver: one quadtree
+// per surface side with the radiometry of every node, the links between nodes, and the
+// gathering over them (Jacobi iterations with push-pull) that turns links into radiosity.
+
+#include <string>
+#include <vector>
+
+#include "mesh/quadtree.h"
+#include "scene/side.h"
+#include "solver/solution.h"
+
+namespace radrecon::hierarchy {
+
+/// The radiometry of one quadtree node (the geometry is the Quadtree's, at the same index).
+struct NodeState {
+  Rgb radiosity = Rgb::Zero();
+  Rgb gathered = Rgb::Zero();  ///< irradiance through this node's own links, W/m^2
+  Rgb irradiance = Rgb::Zero();  ///< leaves: total irradiance including the ancestors', W/m^2
+  double spread_w_m2 = 0;        ///< max - min of the children's radiosity (channel mean); 0 at leaves
+};
+
+/// One side of one surface: its quadtree and the radiometry of every node.
+struct Tree {
+  Tree(const Surface& surface, size_t index, bool back)
+      : name(side_name(surface, back)), scene_surface(index), back_side(back), normal(side_normal(surface, back)),
+        reflectance(surface.reflectance), emission_w_m2(side_emission(surface, back)), quad(surface, back) {
+    state.push_back({emission_w_m2});
+  }
+  std::string name;
+  size_t scene_surface = 0;
+  bool back_side = false;
+  Vec3 normal;
+  Rgb reflectance, emission_w_m2;
+  Quadtree quad;
+  std::vector<NodeState> state;  ///< by node index
+  int leaf_cap = 0;              ///< 0: no cap
+  const QuadNode& node(int k) const { return quad.node(k); }
+  NodeState& at(int k) { return state[static_cast<size_t>(k)]; }
+  const NodeState& at(int k) const { return state[static_cast<size_t>(k)]; }
+};
+
+struct Link {
+  int receiver_tree, receiver_node, source_tree, source_node;
+  double f;         ///< area-to-area visible form factor, receiver -> source
+  double f_spread;  ///< max - min of the point form factors over the receiver's samples
+};
+
+/// Jacobi gathering over all links, then push-pull, until no leaf's radiosity changes by more
+/// than `tolerance` times the largest, or `max_iterations` have run. Returns whether the
+/// tolerance stopped it (the last gather's state stays either way); `residual` gets the last
+/// relative change.
+bool gather_over_links(std::vector<Tree>& trees, const std::vector<Link>& links, int max_iterations, double tolerance,
+                       double& residual);
+
+/// The tree's leaves as solution elements (their radiosity), in leaf order.
+void collect_leaves(const Tree& t, SurfaceSolution& out);
+
+/// Adds the power the tree's leaves absorb, W per channel.
+void add_absorbed(const Tree& t, Rgb& absorbed);
+
+}  // namespace radrecon::hierarchy
