@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/limits.h"
 #include "io/geojson.h"
 #include "io/paths.h"
 #include "io/raster.h"
@@ -126,9 +127,9 @@ py::array interpolate(const Doubles& points, const Doubles& values, const std::o
   if (raster) {
     const auto [w, h] = *raster;
     if (w < 1 || h < 1 || w > kMaxRasterSide || h > kMaxRasterSide ||
-        static_cast<double>(w) * h > static_cast<double>(kMaxRasterPoints))
+        static_cast<double>(w) * h > static_cast<double>(limit_value(Limit::raster_points)))
       throw UserError("raster", "(" + std::to_string(w) + ", " + std::to_string(h) + ") is out of range: 1 <= width, height <= " +
-                                    std::to_string(kMaxRasterSide) + ", at most " + std::to_string(kMaxRasterPoints) + " cells");
+                                    std::to_string(kMaxRasterSide) + ", at most " + std::to_string(limit_value(Limit::raster_points)) + " cells");
     const auto& d = *domain;
     if (!(std::isfinite(d[0]) && std::isfinite(d[1]) && std::isfinite(d[2]) && std::isfinite(d[3]) && d[2] > d[0] && d[3] > d[1]))
       throw UserError("domain", "(x0, y0, x1, y1) with finite x1 > x0 and y1 > y0 is expected");

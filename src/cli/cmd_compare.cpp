@@ -67,8 +67,7 @@ struct Comparison {
 };
 
 bool is_solution_file(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string ext = lower_extension(path);
   return ext == ".json";
 }
 
@@ -283,6 +282,7 @@ void add_compare_command(CLI::App& app) {
       "  radrecon compare approx.pfm reference.pfm --diff diff.png\n"
       "  radrecon compare a.exr b.exr --threshold RMSE=0.01 --threshold SSIM=0.99 || echo worse\n"
       "  radrecon compare coarse.json fine.json --json");
+  add_limit_options(*cmd, {Limit::file_bytes});
   cmd->callback([args] { run_compare(*args); });
 }
 

@@ -187,6 +187,7 @@ void add_cornell_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--out", args->out, "Output folder (created if missing)")->capture_default_str();
   cmd->add_flag("--quiet", args->quiet, "No progress messages");
+  add_limit_options(*cmd, {Limit::elements, Limit::file_bytes});
   cmd->callback([args] {
     if (args->mesh.rfind("grid:", 0) != 0) throw UserError("--mesh", "must be grid:N (progressive refinement)");
     run_cornell(*args);

@@ -56,8 +56,7 @@ double lightmap_white(const Scene& scene, const LightmapAtlas& atlas) {
 
 void run_export(const ExportArgs& args) {
   const auto start = std::chrono::steady_clock::now();
-  std::string ext = std::filesystem::path(args.out).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string ext = lower_extension(args.out);
   if (ext != ".glb") throw UserError("--out", "writes binary glTF: give a .glb file (got '" + args.out + "')");
   if (!args.exr.empty()) file_format(args.exr, {FileFormat::exr}, "--exr");
   std::vector<std::string> inputs = {args.solution};
@@ -121,6 +120,7 @@ void add_export_command(CLI::App& app) {
       "Example:\n"
       "  radrecon solve --scene cornell --mesh grid:32 --out cornell.json\n"
       "  radrecon export --scene cornell --solution cornell.json --method natural-neighbour --out cornell.glb");
+  add_limit_options(*cmd, {Limit::file_bytes});
   cmd->callback([args] { run_export(*args); });
 }
 

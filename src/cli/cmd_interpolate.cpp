@@ -8,11 +8,13 @@
 #include <cstdio>
 #include <memory>
 #include <span>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "cli/commands.h"
+#include "core/limits.h"
 #include "core/error.h"
 #include "core/progress.h"
 #include "core/parse.h"
@@ -53,8 +55,7 @@ void run_interpolate(const InterpolateArgs& args) {
 
   // The command line first: cheap checks before any file is read.
   // .csv, .pfm and .png are radrecon's own; any other extension (or --format) goes to GDAL.
-  std::string ext = std::filesystem::path(args.out).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string ext = lower_extension(args.out);
   const bool gdal = !args.gdal_format.empty() || !(ext == ".csv" || ext == ".pfm" || ext == ".png");
   // `format` is radrecon's own writer; unused when GDAL writes.
   const FileFormat format =
@@ -82,7 +83,9 @@ void run_interpolate(const InterpolateArgs& args) {
   Raster raster;
   if (!args.domain.empty()) raster.domain = parse_domain(args.domain, "--domain");
   if (use_raster) {
-    const Size2 size = parse_size(args.raster, "--raster", kMaxRasterSide, kMaxRasterPoints);
+    const Size2 size = parse_size(args.raster, "--raster", kMaxRasterSide, std::numeric_limits<long long>::max());
+    check_limit(Limit::raster_points, static_cast<long long>(size.width) * size.height, "--raster",
+                "'" + args.raster + "' makes", "use a smaller --raster");
     raster.width = size.width;
     raster.height = size.height;
     if (args.domain.empty()) throw UserError("--domain", "--raster needs --domain x0,y0,x1,y1 (the rectangle it covers)");
@@ -291,6 +294,7 @@ void add_interpolate_command(CLI::App& app) {
       "  radrecon interpolate --samples s.csv --method natural-neighbour --barriers faults.geojson \\\n"
       "      --raster 400x400 --domain 0,0,4,4 --out map.pfm\n"
       "Details: docs/interpolate.md");
+  add_limit_options(*cmd, {Limit::samples, Limit::raster_points, Limit::file_bytes});
   cmd->callback([args] { run_interpolate(*args); });
 }
 

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "cli/commands.h"
+#include "core/limits.h"
 #include "cli/solution_methods.h"
 #include "core/error.h"
 #include "core/progress.h"
@@ -45,10 +46,6 @@ struct RenderArgs {
 constexpr int kMaxImageSide = 8192;
 /// At most this many pixels: the linear image takes 24 bytes a pixel (1.6 GB at this size).
 constexpr long long kMaxImagePixels = static_cast<long long>(kMaxImageSide) * kMaxImageSide;
-/// At most this many rays (pixels x rays per pixel): 8192 x 8192 at 8 x 8, or 4000 x 4000 at 16 x
-/// 16; on the paper's scene some 4 million rays a second on two cores, so about 18 minutes
-/// (docs/benchmarks.md).
-constexpr long long kMaxRenderRays = 1LL << 32;
 
 /// Bytes this process may still allocate: the physical memory, or less under a limit on its
 /// address space (ulimit -v) less what it maps already.
@@ -73,11 +70,8 @@ void check_render_size(const RenderOptions& options, double output_bytes_per_pix
   const long long per_pixel = static_cast<long long>(options.samples_per_axis) * options.samples_per_axis;
   const std::string asked = std::to_string(options.width) + "x" + std::to_string(options.height) + " pixels at " +
                             std::to_string(per_pixel) + (per_pixel == 1 ? " ray" : " rays") + " each";
-  if (pixels * per_pixel > kMaxRenderRays)
-    throw UserError("--size", asked + " is " + std::to_string(pixels * per_pixel) + " rays; at most " +
-                                  std::to_string(kMaxRenderRays) +
-                                  " pixels x rays are rendered: use fewer --samples (--samples 1 casts one ray a "
-                                  "pixel) or a smaller --size");
+  check_limit(Limit::render_rays, pixels * per_pixel, "--size", asked + " make",
+              "use fewer --samples (--samples 1 casts one ray a pixel) or a smaller --size");
   const double needed = static_cast<double>(render_memory_bytes(options)) + output_bytes_per_pixel * pixels;
   const size_t available = memory_available_bytes();
   if (needed > static_cast<double>(available))
@@ -195,8 +189,7 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--param", args->params, "NAME=VALUE method parameter, repeatable (see 'interpolate --help')");
   cmd->add_option("--camera", args->camera, "Name of a camera of the scene (paper: view, closeup; cornell: published, blocks, corner)")->required();
   cmd->add_option("--size", args->size,
-                  "Image size WxH in pixels (each at most " + std::to_string(kMaxImageSide) + "; width x height x rays per pixel at most " +
-                      std::to_string(kMaxRenderRays) + "; memory: about 25 bytes a pixel, whatever --samples)")
+                  "Image size WxH in pixels (each at most " + std::to_string(kMaxImageSide) + "; width x height x rays per pixel at most --max-rays; memory: about 25 bytes a pixel, whatever --samples)")
       ->capture_default_str();
   cmd->add_option("--samples", args->samples, "Stratified rays per pixel along each axis (N x N rays)")
       ->check(CLI::Range(1, 16))
@@ -214,6 +207,7 @@ void add_render_command(CLI::App& app) {
                 "scattered methods but constant: add samples on each side's border and along both sides "
                 "of its barriers, extrapolated from the nearest samples they see (docs/method.md)");
   cmd->add_flag("--quiet", args->quiet, "No progress messages (by default a line on stderr at most every 2 s, updated in place on a terminal)");
+  add_limit_options(*cmd, {Limit::render_rays, Limit::file_bytes});
   cmd->callback([args] { run_render(*args); });
 }
 

@@ -1,7 +1,11 @@
 #pragma once
 // The radrecon subcommands; each adds itself to the application and runs when selected.
 
+#include <initializer_list>
+
 #include <CLI/CLI.hpp>
+
+#include "core/limits.h"
 
 namespace radrecon::cli {
 
@@ -12,6 +16,9 @@ void add_render_command(CLI::App& app);
 void add_compare_command(CLI::App& app);
 void add_cornell_command(CLI::App& app);
 void add_export_command(CLI::App& app);
+
+/// Adds the --max-* options of `limits` to a command (core/limits.h, docs/hostile.md).
+void add_limit_options(CLI::App& cmd, std::initializer_list<Limit> limits);
 
 /// Thrown by a command to end the program with `code` (after its output), e.g. compare's 1
 /// when a threshold is exceeded.

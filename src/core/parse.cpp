@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 
 #include "core/error.h"
 
@@ -66,6 +67,17 @@ std::string in_quotes(std::string_view s) {
   std::string out = "'";
   out += s.size() > kMax ? std::string(s.substr(0, kMax)) + "..." : std::string(s);
   return out + "'";
+}
+
+std::string ascii_lower(std::string_view text) {
+  std::string out(text);
+  for (char& c : out)
+    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+  return out;
+}
+
+std::string lower_extension(const std::string& path) {
+  return ascii_lower(std::filesystem::path(path).extension().string());
 }
 
 Size2 parse_size(const std::string& text, const std::string& where, int max_side, long long max_pixels) {

@@ -44,4 +44,10 @@ void split_fields(std::string_view line, std::vector<std::string_view>& fields);
 /// `text` in single quotes for a message, cut to 40 characters.
 std::string in_quotes(std::string_view text);
 
+/// `text` with ASCII letters in lower case (locale-independent).
+std::string ascii_lower(std::string_view text);
+
+/// The extension of `path` with its dot, in lower case: "scene.OBJ" gives ".obj", "x" gives "".
+std::string lower_extension(const std::string& path);
+
 }  // namespace radrecon

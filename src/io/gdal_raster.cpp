@@ -39,11 +39,6 @@ class QuietGdal {
   }
 };
 
-std::string lower(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
-
 bool can_create_raster(GDALDriver* d) {
   return d->GetMetadataItem(GDAL_DCAP_RASTER) != nullptr &&
          (d->GetMetadataItem(GDAL_DCAP_CREATE) != nullptr || d->GetMetadataItem(GDAL_DCAP_CREATECOPY) != nullptr);
@@ -60,7 +55,7 @@ std::string gdal_raster_driver(const std::string& path, const std::string& forma
       throw UserError("--format", "'" + format + "' is no GDAL driver that creates rasters (gdalinfo --formats lists them)");
     return format;
   }
-  std::string ext = lower(std::filesystem::path(path).extension().string());
+  std::string ext = lower_extension(path);
   if (!ext.empty()) ext.erase(0, 1);
   if (ext == "tif" || ext == "tiff") return "GTiff";  // before COG, which claims them too
   std::string known;
@@ -71,7 +66,7 @@ std::string gdal_raster_driver(const std::string& path, const std::string& forma
     if (exts == nullptr) continue;
     std::istringstream list(exts);
     for (std::string e; list >> e;) {
-      if (lower(e) == ext && !ext.empty()) return d->GetDescription();
+      if (ascii_lower(e) == ext && !ext.empty()) return d->GetDescription();
       if (known.find(" ." + e + ",") == std::string::npos) known += " ." + e + ",";
     }
   }

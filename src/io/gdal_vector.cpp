@@ -11,17 +11,13 @@
 #include <ogrsf_frmts.h>
 
 #include "core/error.h"
+#include "core/limits.h"
 #include "core/parse.h"
 #include "core/tolerances.h"
 
 namespace radrecon {
 
 namespace {
-
-std::string lower(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
 
 /// The first layer of the vector source at `path`, opened read-only.
 class OgrLayer {
@@ -51,7 +47,7 @@ class OgrLayer {
   /// The field named `name` (case-insensitive) for option `option`.
   int field(const std::string& name, const std::string& option) {
     for (int k = 0; k < fields().GetFieldCount(); ++k)
-      if (lower(fields().GetFieldDefn(k)->GetNameRef()) == lower(name)) return k;
+      if (ascii_lower(fields().GetFieldDefn(k)->GetNameRef()) == ascii_lower(name)) return k;
     std::string names;
     for (int k = 0; k < fields().GetFieldCount(); ++k) names += (names.empty() ? "" : ", ") + std::string(fields().GetFieldDefn(k)->GetNameRef());
     throw UserError(option, path_ + " has no field named '" + name + "' (its fields: " + (names.empty() ? "none" : names) + ")");
@@ -115,13 +111,16 @@ ScatteredSamples read_samples_ogr(const std::string& path, std::vector<std::stri
   for (const std::string& name : columns.values) value_fields.push_back(src.field(name, "--value"));
   if (columns.values.empty())
     for (int k = 0; k < src.fields().GetFieldCount(); ++k) {
-      const std::string name = lower(src.fields().GetFieldDefn(k)->GetNameRef());
-      if (src.numeric(k) && name != lower(columns.x) && name != lower(columns.y)) value_fields.push_back(k);
+      const std::string name = ascii_lower(src.fields().GetFieldDefn(k)->GetNameRef());
+      if (src.numeric(k) && name != ascii_lower(columns.x) && name != ascii_lower(columns.y)) value_fields.push_back(k);
     }
   if (value_fields.empty()) throw UserError(path, "has no numeric field to interpolate (name one with --value)");
   ScatteredSamples s;
   s.channels = static_cast<int>(value_fields.size());
+  const long long features = src.layer().GetFeatureCount(FALSE);  // -1 where counting would read it all
+  if (features > 0) check_limit(Limit::samples, features, path, "holds");
   for_each_point(src, columns, [&](const OGRFeature& f, const Vec2& p) {
+    check_limit(Limit::samples, static_cast<long long>(s.points.size()) + 1, path, "holds at least");
     s.points.push_back(p);
     for (const int k : value_fields) s.values.push_back(src.number(f, k));
   });

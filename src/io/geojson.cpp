@@ -180,8 +180,7 @@ std::vector<Polyline> read_geojson_barriers(const std::string& path) {
 }
 
 Barriers read_barriers_file(const std::string& path, const std::string& where) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string ext = lower_extension(path);
   Result<Barriers> barriers = Barriers::from_polylines(ext == ".geojson" || ext == ".json"
                                                            ? read_geojson_barriers(path)
                                                            : gdal_functions(where).read_barriers(path));

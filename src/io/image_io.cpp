@@ -30,8 +30,7 @@ std::string extension_of(FileFormat format) {
 }
 
 FileFormat file_format(const std::string& path, std::initializer_list<FileFormat> allowed, const std::string& where) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string ext = lower_extension(path);
   std::string names;
   for (FileFormat f : allowed) {
     if (ext == extension_of(f)) return f;

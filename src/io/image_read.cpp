@@ -18,6 +18,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/limits.h"
 #include "core/parse.h"
 
 namespace radrecon {
@@ -38,6 +39,7 @@ void check_size(long long width, long long height, const std::string& file) {
 std::vector<unsigned char> read_bytes(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw UserError(path.string(), std::string("cannot open: ") + std::strerror(errno));
+  check_input_file_size(path.string());
   std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (in.bad()) throw UserError(path.string(), "cannot read");
   return bytes;
@@ -200,6 +202,7 @@ PictureValues read_exr(const std::filesystem::path& path) {
     std::ifstream probe(path, std::ios::binary);
     if (!probe) throw UserError(file, std::string("cannot open: ") + std::strerror(errno));
   }
+  check_input_file_size(file);
   PictureValues p;
   p.format = FileFormat::exr;
   try {

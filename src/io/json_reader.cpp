@@ -6,16 +6,22 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/limits.h"
 
 namespace radrecon {
 
 std::string read_text_file(const std::string& path, const std::string& what) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw UserError(path, "cannot open " + what);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
+  check_input_file_size(path);
+  std::string text;
+  std::vector<char> chunk(size_t{1} << 16);  // reads pipes too, within the file-size limit
+  while (in.read(chunk.data(), static_cast<std::streamsize>(chunk.size())) || in.gcount() > 0) {
+    text.append(chunk.data(), static_cast<size_t>(in.gcount()));
+    check_limit(Limit::file_bytes, static_cast<long long>(text.size()), path, "the input holds more than");
+  }
   if (in.bad()) throw UserError(path, "cannot read " + what);
-  return buffer.str();
+  return text;
 }
 
 namespace {

@@ -15,6 +15,8 @@
 #include <numbers>
 
 #include "core/error.h"
+#include "core/limits.h"
+#include "core/parse.h"
 #include "core/tolerances.h"
 #include "io/gltf_extras.h"
 #include "io/mesh_polygons.h"
@@ -27,8 +29,7 @@ namespace {
 enum class Format { kObj, kGltf, kPly };
 
 std::optional<Format> format_of(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  const std::string ext = lower_extension(path);
   if (ext == ".obj") return Format::kObj;
   if (ext == ".gltf" || ext == ".glb") return Format::kGltf;
   if (ext == ".ply") return Format::kPly;
@@ -391,6 +392,7 @@ MeshImport import_mesh(const std::string& path, const MeshPlacement& placement) 
   const auto size = std::filesystem::file_size(path, ec);
   if (ec || !std::filesystem::is_regular_file(path, ec)) throw UserError(path, "cannot open mesh file");
   if (size == 0) throw UserError(path, "empty mesh file");
+  check_input_file_size(path);
   std::optional<size_t> ply_faces;
   if (*format == Format::kPly) ply_faces = check_ply_size(path);
   // glTF: its JSON first, for messages with a line or field, and for what assimp 5.2 drops.

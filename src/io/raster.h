@@ -21,8 +21,7 @@ struct Raster {
 
 /// Largest width or height of a raster (parse_size(), core/parse.h).
 inline constexpr int kMaxRasterSide = 20000;
-/// At most this many raster points (W x H): 10^8 points need about 6 GB.
-inline constexpr long long kMaxRasterPoints = 100'000'000;
+/// The raster's points (W x H) are bounded by Limit::raster_points (core/limits.h).
 
 /// Parses "x0,y0,x1,y1" (finite, x1 > x0, y1 > y0); throws UserError naming `where`.
 Rect parse_domain(const std::string& text, const std::string& where);

@@ -14,6 +14,7 @@
 #include <optional>
 
 #include "core/check.h"
+#include "core/limits.h"
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/parse.h"
@@ -26,12 +27,6 @@ namespace radrecon {
 namespace {
 
 // --- CSV reading ------------------------------------------------------------------------------
-
-std::string lower(std::string_view s) {
-  std::string out(s);
-  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return out;
-}
 
 /// Field `f` without one pair of surrounding double quotes (R's and spreadsheets' headers).
 std::string_view unquoted(std::string_view f) {
@@ -48,12 +43,15 @@ class CsvTable {
   CsvTable(const std::string& path, size_t min_columns, const char* expected_header) : path_(path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw UserError(path, std::string("cannot open: ") + std::strerror(errno));
+    check_input_file_size(path);
     std::error_code ec;
     const auto size = std::filesystem::file_size(path, ec);
     if (!ec) text_.reserve(static_cast<size_t>(size));
-    std::vector<char> chunk(size_t{1} << 20);  // reads pipes too (no seeking)
-    while (in.read(chunk.data(), static_cast<std::streamsize>(chunk.size())) || in.gcount() > 0)
+    std::vector<char> chunk(size_t{1} << 16);  // reads pipes too (no seeking)
+    while (in.read(chunk.data(), static_cast<std::streamsize>(chunk.size())) || in.gcount() > 0) {
       text_.append(chunk.data(), static_cast<size_t>(in.gcount()));
+      check_limit(Limit::file_bytes, static_cast<long long>(text_.size()), path, "the input holds more than");
+    }
     if (in.bad()) throw UserError(path, "cannot read");
     if (text_.compare(0, 3, "\xEF\xBB\xBF") == 0) pos_ = 3;  // a UTF-8 byte order mark
 
@@ -97,7 +95,7 @@ class CsvTable {
   }
   std::optional<size_t> find(const std::string& name) const {
     for (size_t c = 0; c < header_.size(); ++c)
-      if (lower(header_[c]) == lower(name)) return c;
+      if (ascii_lower(header_[c]) == ascii_lower(name)) return c;
     return std::nullopt;
   }
 
@@ -229,7 +227,8 @@ std::pair<size_t, size_t> xy_columns(const CsvTable& table, const CsvColumns& co
 ScatteredSamples read_samples_csv(const std::string& path, std::vector<std::string>* value_names,
                                   const CsvColumns& columns) {
   CsvTable table(path, 3, "x,y,VALUE[,VALUE...] (or --x, --y, --value naming the columns)");
-  const auto [xc, yc] = xy_columns(table, columns);
+  const std::pair<size_t, size_t> xy = xy_columns(table, columns);  // not a structured binding: lambdas take these
+  const size_t xc = xy.first, yc = xy.second;
   std::vector<size_t> value_columns;
   for (const std::string& name : columns.values) value_columns.push_back(table.column(name, "--value"));
   if (columns.values.empty())
@@ -245,6 +244,7 @@ ScatteredSamples read_samples_csv(const std::string& path, std::vector<std::stri
     s.points.emplace_back(x, y);
     for (const size_t c : value_columns) s.values.push_back(table.number(f, c));
   });
+  check_limit(Limit::samples, static_cast<long long>(s.points.size()), path, "holds");
   if (value_names) {
     value_names->clear();
     for (const size_t c : value_columns) value_names->push_back(table.header()[c]);
@@ -259,7 +259,8 @@ ScatteredSamples read_samples_csv(const std::string& path, std::vector<std::stri
 
 std::vector<Vec2> read_queries_csv(const std::string& path, const CsvColumns& columns) {
   CsvTable table(path, 2, "x,y[,...] (or --x, --y naming the columns)");
-  const auto [xc, yc] = xy_columns(table, columns);
+  const std::pair<size_t, size_t> xy = xy_columns(table, columns);  // not a structured binding: lambdas take these
+  const size_t xc = xy.first, yc = xy.second;
   std::vector<Vec2> points;
   points.reserve(table.remaining_lines());
   table.for_each_row([&](const std::vector<std::string_view>& f) {

@@ -89,7 +89,7 @@ void add_mesh_surfaces(Scene& scene, std::vector<Surface> surfaces, size_t entry
   std::set<std::string> taken;
   for (const Surface& s : scene.surfaces) taken.insert(s.name);
   for (Surface& s : surfaces) {
-    if (taken.count(s.name)) s.name += "@" + std::to_string(entry);
+    if (taken.count(s.name)) s.name.append("@").append(std::to_string(entry));
     taken.insert(s.name);
     scene.surfaces.push_back(std::move(s));
   }

@@ -6,7 +6,7 @@
 
 namespace radrecon {
 
-namespace {
+namespace kdtree_detail {
 
 struct PointCloud {
   std::span<const Vec2> pts;
@@ -18,7 +18,10 @@ struct PointCloud {
 
 using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, PointCloud>, PointCloud, 2, unsigned>;
 
-}  // namespace
+}  // namespace kdtree_detail
+
+using kdtree_detail::PointCloud;
+using kdtree_detail::Tree;
 
 struct KdTree2::Impl {
   PointCloud cloud;

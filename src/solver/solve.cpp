@@ -1,8 +1,10 @@
 #include "solver/solve.h"
 
 #include <cmath>
+#include <limits>
 
 #include "core/error.h"
+#include "core/limits.h"
 #include "core/parse.h"
 #include "mesh/grid_mesh.h"
 #include "scene/contacts.h"
@@ -14,9 +16,6 @@
 namespace radrecon {
 
 namespace {
-
-/// About 1 KiB per element (mesh, solver state, output): 10^7 elements need ~10 GiB.
-constexpr size_t kMaxGridElements = 10'000'000;
 
 /// The integer in [lo, hi] that is all of `text`, a part of the specification `spec`.
 long long spec_integer(const std::string& text, long long lo, long long hi, const std::string& field,
@@ -56,9 +55,8 @@ Solution solve_by_spec(const Scene& scene, const std::string& spec, const SolveS
     const int n = static_cast<int>(spec_integer(value, 1, 100000, field, spec));
     const GridMeshOptions mesh_options{n, settings.patches};
     const size_t elements = grid_element_count(scene, mesh_options);
-    if (elements > kMaxGridElements)
-      throw UserError(field, "'" + spec + "' would make " + std::to_string(elements) + " elements, more than the limit of " +
-                                 std::to_string(kMaxGridElements) + " (about 1 KiB each)");
+    check_limit(Limit::elements, static_cast<long long>(elements), field, "'" + spec + "' makes",
+                "use a smaller N");
     const Mesh mesh = make_grid_mesh(scene, mesh_options);
     if (!settings.progress_label.empty())
       std::fprintf(stderr, "%s: %s, %zu elements on %zu surface sides\n", settings.progress_label.c_str(), spec.c_str(),
@@ -75,7 +73,9 @@ Solution solve_by_spec(const Scene& scene, const std::string& spec, const SolveS
     return solve_hierarchical(scene, ho, spec);
   }
   if (kind == "quadtree") {
-    const int leaves = static_cast<int>(spec_integer(value, 1, 10000000, field, spec));
+    const long long asked = spec_integer(value, 1, std::numeric_limits<int>::max(), field, spec);
+    check_limit(Limit::leaves, asked, field, "'" + spec + "' asks for");
+    const int leaves = static_cast<int>(asked);
     const std::string side = settings.leaves_on.empty() ? default_leaf_side(scene) : settings.leaves_on;
     if (!find_side(scene, side))
       throw UserError(settings.leaves_on_where, "the scene has no surface side named '" + side + "' (its sides: " + side_names(scene) + ")");

@@ -6,7 +6,7 @@
 #include "core/math.h"
 
 namespace radrecon {
-namespace {
+namespace math_test {
 
 /// Double-precision round-off of the reduction steps, a few ulps of pi.
 constexpr double kAbsolute = 1e-15;
@@ -31,5 +31,5 @@ TEST(Atan2NonNeg, SpecialAngles) {
   EXPECT_NEAR(atan2_nonneg(1e-300, 1), 1e-300, 1e-310);
 }
 
-}  // namespace
+}  // namespace math_test
 }  // namespace radrecon

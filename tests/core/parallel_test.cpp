@@ -11,7 +11,7 @@
 #include "core/parallel.h"
 
 namespace radrecon {
-namespace {
+namespace parallel_test {
 
 TEST(ParallelFor, VisitsEveryIndexOnceOnOneAndTwoThreads) {
   const int threads = omp_get_max_threads();
@@ -48,5 +48,5 @@ TEST(ParallelFor, AnExceptionFromAnIterationIsRethrownToTheCaller) {
   omp_set_num_threads(threads);
 }
 
-}  // namespace
+}  // namespace parallel_test
 }  // namespace radrecon

@@ -16,7 +16,7 @@
 #include "evaluate/metrics.h"
 
 namespace radrecon {
-namespace {
+namespace metrics_test {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 /// Sums of a few hundred terms of size ~1: the two computations differ in the last bits only.
@@ -281,5 +281,5 @@ TEST(FiguresJson, HasEveryKeyAndNullWhereNotDefined) {
   EXPECT_TRUE(j["overshoot"].is_null());
 }
 
-}  // namespace
+}  // namespace metrics_test
 }  // namespace radrecon

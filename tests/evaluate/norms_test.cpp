@@ -9,7 +9,7 @@
 #include "evaluate/norms.h"
 
 namespace radrecon {
-namespace {
+namespace norms_test {
 
 // Small integers summed and divided by 4: exact in binary except for the square root.
 constexpr double kExact = 1e-15;
@@ -70,5 +70,5 @@ TEST(ErrorNorms, NanInApproxGivesNanNorms) {
   }
 }
 
-}  // namespace
+}  // namespace norms_test
 }  // namespace radrecon

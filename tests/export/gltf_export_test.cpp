@@ -20,7 +20,7 @@
 #include "support/png_decode.h"
 
 namespace radrecon {
-namespace {
+namespace gltf_export_test {
 
 /// A trapezoidal floor (2 m wide at y = 0, 1 m at y = 1; u along x, v along y, facing +z) under a
 /// square lamp facing down.
@@ -87,7 +87,7 @@ TEST(GltfExport, GeometryAndTexelsReadBackByAssimp) {
     ASSERT_EQ(face.mNumIndices, 3u);
     const aiVector3D a = floor->mVertices[face.mIndices[0]], b = floor->mVertices[face.mIndices[1]],
                      c = floor->mVertices[face.mIndices[2]];
-    EXPECT_GT((b - a ^ c - a).z, 0) << "face " << f;
+    EXPECT_GT(((b - a) ^ (c - a)).z, 0) << "face " << f;
   }
   // Every texel whose centre maps into the floor: its value against the closed form at the
   // point it maps to (assimp gives glTF texture coordinates as (s, 1 - t): its origin is the
@@ -128,5 +128,5 @@ TEST(GltfExport, GeometryAndTexelsReadBackByAssimp) {
   std::filesystem::remove(path);
 }
 
-}  // namespace
+}  // namespace gltf_export_test
 }  // namespace radrecon

@@ -14,7 +14,7 @@
 #include "support/temp_dir.h"
 
 namespace radrecon {
-namespace {
+namespace geojson_test {
 
 namespace fs = std::filesystem;
 
@@ -316,5 +316,5 @@ TEST_F(GeojsonBarriers, RefusesGeometryCollectionsNestedTooDeep) {
   EXPECT_TRUE(RefusedMentioning(deep, {"b.geojson: geometries[0]", "nested more than 64 deep"}));
 }
 
-}  // namespace
+}  // namespace geojson_test
 }  // namespace radrecon

@@ -19,7 +19,7 @@
 #include "support/png_decode.h"
 
 namespace radrecon {
-namespace {
+namespace image_io_test {
 
 namespace fs = std::filesystem;
 
@@ -119,5 +119,5 @@ TEST(FileFormat, ChoosesByExtensionInAnyCaseAndRefusesOthers) {
   EXPECT_THROW(file_format("noext", {FileFormat::csv}, "--out"), UserError);
 }
 
-}  // namespace
+}  // namespace image_io_test
 }  // namespace radrecon

@@ -21,7 +21,7 @@
 #include "support/temp_dir.h"
 
 namespace radrecon {
-namespace {
+namespace image_read_test {
 
 namespace fs = std::filesystem;
 using testing_support::user_error_message;
@@ -195,5 +195,5 @@ TEST(ReadPicture, RefusesBrokenFilesNamingThem) {
   EXPECT_NE(user_error_message([&] { read_picture(files() / "x.tif", "A"); }).find(".pfm"), std::string::npos);
 }
 
-}  // namespace
+}  // namespace image_read_test
 }  // namespace radrecon

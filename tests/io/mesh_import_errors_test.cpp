@@ -12,7 +12,7 @@
 #include "support/temp_dir.h"
 
 namespace radrecon {
-namespace {
+namespace mesh_import_errors_test {
 
 using testing_support::TempDir;
 using testing_support::write_file;
@@ -184,5 +184,5 @@ TEST(MeshImportErrors, SceneJsonNamesTheEntryAndTheModelFile) {
   EXPECT_NE(unknown.find("meshes[0]"), std::string::npos) << unknown;
 }
 
-}  // namespace
+}  // namespace mesh_import_errors_test
 }  // namespace radrecon

@@ -16,7 +16,7 @@
 #include "support/temp_dir.h"
 
 namespace radrecon {
-namespace {
+namespace mesh_import_test {
 
 using testing_support::TempDir;
 using testing_support::write_file;
@@ -377,5 +377,5 @@ TEST(MeshImport, LoadSceneTakesAModelWithAnEmitterAndRefusesOneWithout) {
   EXPECT_NE(message.find("\"meshes\""), std::string::npos) << message;
 }
 
-}  // namespace
+}  // namespace mesh_import_test
 }  // namespace radrecon

@@ -10,7 +10,7 @@
 #include "io/mesh_polygons.h"
 
 namespace radrecon {
-namespace {
+namespace mesh_polygons_test {
 
 constexpr double kExact = 1e-12;
 
@@ -135,5 +135,5 @@ TEST(TriangulatePolygon, ConcaveLShapeIsCoveredByCounterClockwiseTrianglesOfItsA
   EXPECT_TRUE(triangulate_polygon(std::vector<Vec3>{{0, 0, 0}, {1, 0, 0}, {2, 0, 0}}).empty());
 }
 
-}  // namespace
+}  // namespace mesh_polygons_test
 }  // namespace radrecon

@@ -15,7 +15,7 @@
 #include "support/temp_dir.h"
 
 namespace radrecon {
-namespace {
+namespace mesh_solve_test {
 
 using testing_support::TempDir;
 using testing_support::write_file;
@@ -95,5 +95,5 @@ TEST(MeshSolve, YUpGltfPlacedZUpMatchesTheClosedForm) {
   expect_floor_under_light(scene, "floor:0", "light:0");
 }
 
-}  // namespace
+}  // namespace mesh_solve_test
 }  // namespace radrecon

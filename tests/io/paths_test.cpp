@@ -11,7 +11,7 @@
 #include "support/temp_dir.h"
 
 namespace radrecon {
-namespace {
+namespace paths_test {
 
 namespace fs = std::filesystem;
 
@@ -64,5 +64,5 @@ TEST_F(Paths, UnwritableOutputsAreRefused) {
   EXPECT_NE(refusal([&] { check_output_folder("", "--out"); }).find("empty"), std::string::npos);
 }
 
-}  // namespace
+}  // namespace paths_test
 }  // namespace radrecon

@@ -22,7 +22,7 @@
 #include "reconstruct/sample_set.h"
 
 namespace radrecon {
-namespace {
+namespace samples_csv_test {
 
 namespace fs = std::filesystem;
 
@@ -286,15 +286,16 @@ TEST(SamplesIo, ReadsQueriesIgnoringExtraColumns) {
 }
 
 TEST(SamplesIo, ParsesAndChecksRasterOptions) {
-  const Size2 a = parse_size("400x300", "--raster", kMaxRasterSide, kMaxRasterPoints);
+  constexpr long long kMaxPoints = 100'000'000;  // parse_size's own bound ("20000x20000" is beyond it)
+  const Size2 a = parse_size("400x300", "--raster", kMaxRasterSide, kMaxPoints);
   EXPECT_EQ(a.width, 400);
   EXPECT_EQ(a.height, 300);
-  const Size2 b = parse_size("1X20000", "--raster", kMaxRasterSide, kMaxRasterPoints);
+  const Size2 b = parse_size("1X20000", "--raster", kMaxRasterSide, kMaxPoints);
   EXPECT_EQ(b.width, 1);
   EXPECT_EQ(b.height, 20000);
   for (const char* bad : {"0x5", "5x0", "20001x2", "-3x4", "4", "4x", "x4", "4x4x4", "a x b", "2.5x3", "", "+4x4",
                           "20000x20000"}) {
-    const std::string msg = user_error_of([&] { parse_size(bad, "--raster", kMaxRasterSide, kMaxRasterPoints); });
+    const std::string msg = user_error_of([&] { parse_size(bad, "--raster", kMaxRasterSide, kMaxPoints); });
     EXPECT_NE(msg.find("--raster"), std::string::npos) << "'" << bad << "': " << msg;
   }
 
@@ -385,5 +386,5 @@ TEST(SamplesIo, PngIsWrittenWithTheRasterSize) {
   EXPECT_EQ(be32(20), 3u);  // IHDR height
 }
 
-}  // namespace
+}  // namespace samples_csv_test
 }  // namespace radrecon

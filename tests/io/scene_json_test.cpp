@@ -14,7 +14,7 @@
 #include "scene/scene.h"
 
 namespace radrecon {
-namespace {
+namespace scene_json_test {
 
 using json = nlohmann::json;
 
@@ -287,5 +287,5 @@ TEST(SceneJson, RefusesACoordinateThatOverflowsToInfinity) {
   EXPECT_TRUE(RefusedMentioning(text, {kSource}));
 }
 
-}  // namespace
+}  // namespace scene_json_test
 }  // namespace radrecon

@@ -12,7 +12,7 @@
 #include "support/temp_dir.h"
 
 namespace radrecon {
-namespace {
+namespace solution_json_test {
 
 namespace fs = std::filesystem;
 
@@ -165,5 +165,5 @@ TEST_F(SolutionFiles, ATrianglesSideReadsBackWithItsShapesAndShear) {
   EXPECT_NE(refusal(side(R"(, "shear_m": 0.5)", "", "[0, 0]")).find("shear_m"), std::string::npos);
 }
 
-}  // namespace
+}  // namespace solution_json_test
 }  // namespace radrecon

@@ -9,7 +9,7 @@
 #include "scene/scene.h"
 
 namespace radrecon {
-namespace {
+namespace grid_mesh_test {
 
 // Element geometry is a few multiplications of metre-scale numbers; sums over up to 160000
 // elements accumulate round-off of order n * eps, far below 1e-9 relative.
@@ -130,5 +130,5 @@ TEST(GridMesh, BackSideIsTheFrontTurnedOver) {
   EXPECT_FALSE(mesh.find("wall1").has_value());
 }
 
-}  // namespace
+}  // namespace grid_mesh_test
 }  // namespace radrecon

@@ -8,7 +8,7 @@
 #include "mesh/quadtree.h"
 
 namespace radrecon {
-namespace {
+namespace quadtree_test {
 
 Surface trapezoid() {
   // A planar, non-parallelogram quad (z = 0), so that (u,v) -> point is truly bilinear.
@@ -102,5 +102,5 @@ TEST(Quadtree, SplittingAnInnerNodeKeepsItsChildren) {
   EXPECT_EQ(t.node_count(), 5);
 }
 
-}  // namespace
+}  // namespace quadtree_test
 }  // namespace radrecon

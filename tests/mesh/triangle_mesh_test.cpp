@@ -11,7 +11,7 @@
 #include "scene/param_cell.h"
 
 namespace radrecon {
-namespace {
+namespace triangle_mesh_test {
 
 /// Whether (u, v) lies in the closed cell, by its vertices' half-planes (independent of
 /// ParamCell::quarter_of()).
@@ -132,5 +132,5 @@ TEST(TriangleGridMesh, BackSideElementsTurnTheOtherWay) {
     EXPECT_GT((e.corners[1] - e.corners[0]).cross(e.corners[2] - e.corners[0]).dot(back.normal), 0);
 }
 
-}  // namespace
+}  // namespace triangle_mesh_test
 }  // namespace radrecon

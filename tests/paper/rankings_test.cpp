@@ -8,7 +8,7 @@
 #include <cmath>
 
 namespace radrecon {
-namespace {
+namespace rankings_test {
 
 const double kNan = std::nan("");
 
@@ -58,5 +58,5 @@ TEST(Rankings, ParagraphNamesTheBestOfEachAndTheSamePlaces) {
             std::string::npos);
 }
 
-}  // namespace
+}  // namespace rankings_test
 }  // namespace radrecon

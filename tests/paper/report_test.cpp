@@ -14,7 +14,7 @@
 #include <sstream>
 
 namespace radrecon {
-namespace {
+namespace report_test {
 
 ReportRow row(const std::string& method, double l1, double l2, double linf, std::array<double, 3> paper, bool views) {
   ReportRow r;
@@ -112,5 +112,5 @@ TEST(Report, TablesMarkTheBestEntryAndGiveBothRankings) {
   EXPECT_NE(html.find("the scenes differ"), std::string::npos);
 }
 
-}  // namespace
+}  // namespace report_test
 }  // namespace radrecon

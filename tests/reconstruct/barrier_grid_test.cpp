@@ -24,7 +24,7 @@
 #include "reconstruct/nodal.h"
 
 namespace radrecon {
-namespace {
+namespace barrier_grid_test {
 
 using Kind = BarrierGrid::Kind;
 using Fn = std::function<double(const Vec2&)>;
@@ -640,5 +640,5 @@ TEST(BarrierGrid, ABatchGivesWhatEachPointAloneGives) {
   }
 }
 
-}  // namespace
+}  // namespace barrier_grid_test
 }  // namespace radrecon

@@ -15,7 +15,7 @@
 #include "support/barrier_cases.h"
 
 namespace radrecon {
-namespace {
+namespace barrier_methods_test {
 
 using namespace testing_support;
 
@@ -213,5 +213,5 @@ TEST(BarrierMethods, ContinuousOnEachSideAndJumpingAcrossTheWall) {
   }
 }
 
-}  // namespace
+}  // namespace barrier_methods_test
 }  // namespace radrecon

@@ -15,7 +15,7 @@
 #include "support/barrier_cases.h"
 
 namespace radrecon {
-namespace {
+namespace barriers_test {
 
 using namespace testing_support;
 
@@ -271,5 +271,5 @@ TEST(ShepardWithBarriers, KNearestUsesTheKNearestVisibleSamplesAsTheFormulaSays)
   }
 }
 
-}  // namespace
+}  // namespace barriers_test
 }  // namespace radrecon

@@ -10,7 +10,7 @@
 #include "reconstruct/bicubic.h"
 
 namespace radrecon {
-namespace {
+namespace bicubic_test {
 
 constexpr double kAgree = 1e-11;  ///< two exact constructions in double precision
 
@@ -121,5 +121,5 @@ TEST(NaturalSplineSecondDerivatives, SatisfyTheTridiagonalSystem) {
     EXPECT_NEAR(m[i - 1] + 4 * m[i] + m[i + 1], 6 * (y[i - 1] - 2 * y[i] + y[i + 1]) / 0.25, 1e-12);
 }
 
-}  // namespace
+}  // namespace bicubic_test
 }  // namespace radrecon

@@ -13,7 +13,7 @@
 #include "reconstruct/bilinear.h"
 
 namespace radrecon {
-namespace {
+namespace bilinear_test {
 
 // Bilinear interpolation of exactly-representable data is a handful of multiply-adds per point:
 // results agree with the closed form to a few ulps. 1e-12 relative leaves ample margin while
@@ -148,5 +148,5 @@ TEST(Bilinear, NanQueryGivesNan) {
   ExpectClose(out[5], 1.0, "finite query after NaN ones");
 }
 
-}  // namespace
+}  // namespace bilinear_test
 }  // namespace radrecon

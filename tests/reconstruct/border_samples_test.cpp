@@ -16,7 +16,7 @@
 #include "reconstruct/border_samples.h"
 
 namespace radrecon {
-namespace {
+namespace border_samples_test {
 
 constexpr Rect kUnit{0, 0, 1, 1};
 
@@ -346,5 +346,5 @@ TEST(BorderSamples, AHundredThousandSamplesTakeWellUnderASecond) {
   EXPECT_LT(seconds, 1.0);  // measured ~0.05 s; generous for a busy machine
 }
 
-}  // namespace
+}  // namespace border_samples_test
 }  // namespace radrecon

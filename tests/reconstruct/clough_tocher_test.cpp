@@ -16,7 +16,7 @@
 #include "support/scattered.h"
 
 namespace radrecon {
-namespace {
+namespace clough_tocher_test {
 
 using testing::eval1;
 using testing::random_samples;
@@ -260,5 +260,5 @@ TEST(CloughTocher, RefusesTooFewCollinearOrDuplicateSamples) {
   EXPECT_NE(rd.reason().find("duplicate"), std::string::npos) << rd.reason();
 }
 
-}  // namespace
+}  // namespace clough_tocher_test
 }  // namespace radrecon

@@ -15,7 +15,7 @@
 #include "reconstruct/methods.h"
 
 namespace radrecon {
-namespace {
+namespace constant_test {
 
 constexpr unsigned kSeed = 12345;
 
@@ -209,5 +209,5 @@ TEST(PiecewiseConstant, GapBetweenCellsGivesNan) {
   EXPECT_EQ(pc.locate(Vec2(1.5, -4.0)), -1);
 }
 
-}  // namespace
+}  // namespace constant_test
 }  // namespace radrecon

@@ -26,7 +26,7 @@
 #include "reconstruct/multiquadric.h"
 
 namespace radrecon {
-namespace {
+namespace contract_test {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
@@ -387,5 +387,5 @@ TEST(InterpolantContract, SlowOneAndTwoThreadsGiveIdenticalResults) {
   });
 }
 
-}  // namespace
+}  // namespace contract_test
 }  // namespace radrecon

@@ -9,7 +9,7 @@
 #include "reconstruct/convex_hull.h"
 
 namespace radrecon {
-namespace {
+namespace convex_hull_test {
 
 double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
@@ -86,5 +86,5 @@ TEST(ConvexHull2, SegmentsAndPointsOfDegenerateSets) {
   EXPECT_TRUE(part.nearest(Vec2(3, 3)).isApprox(Vec2(2, 2)));
 }
 
-}  // namespace
+}  // namespace convex_hull_test
 }  // namespace radrecon

@@ -20,7 +20,7 @@
 #include "reconstruct/methods.h"
 
 namespace radrecon {
-namespace {
+namespace gouraud_test {
 
 // Values that are exact in exact arithmetic cost rounding only: a handful of multiply-adds of
 // values of order 1, barycentric weights from coordinates of order 1. 1e-12 leaves ample margin
@@ -415,5 +415,5 @@ TEST(Gouraud, RefusesCellsThatDoNotTileARectangle) {
   EXPECT_NE(p.reason().find("needs cells"), std::string::npos) << p.reason();
 }
 
-}  // namespace
+}  // namespace gouraud_test
 }  // namespace radrecon

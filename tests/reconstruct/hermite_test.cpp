@@ -18,7 +18,7 @@
 #include "reconstruct/methods.h"
 
 namespace radrecon {
-namespace {
+namespace hermite_test {
 
 // Every check below that is exact in exact arithmetic costs rounding only: a few dozen
 // multiply-adds of values of the data's magnitude, derivatives divided by the spacing and
@@ -260,7 +260,7 @@ TEST(Hermite, RefusesWhatItCannotInterpolate) {
   const InterpolantResult b = make_nodal_interpolant(Method::hermite, good, walled);
   ASSERT_TRUE(b) << b.reason();
   const Hermite plain(good);
-  for (const Vec2 q : {Vec2(good.x0, good.y0), Vec2(good.x0 + 0.37 * good.dx, good.y0 + 1.61 * good.dy)}) {
+  for (const Vec2& q : {Vec2(good.x0, good.y0), Vec2(good.x0 + 0.37 * good.dx, good.y0 + 1.61 * good.dy)}) {
     double with = 0, without = 0;
     b.value()->evaluate(std::span(&q, 1), std::span(&with, 1));
     plain.evaluate(std::span(&q, 1), std::span(&without, 1));
@@ -278,5 +278,5 @@ TEST(Hermite, RefusesWhatItCannotInterpolate) {
   ASSERT_TRUE(ok) << ok.reason();
 }
 
-}  // namespace
+}  // namespace hermite_test
 }  // namespace radrecon

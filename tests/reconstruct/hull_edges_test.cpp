@@ -12,7 +12,7 @@
 #include "reconstruct/methods.h"
 
 namespace radrecon {
-namespace {
+namespace hull_edges_test {
 
 double f(const Vec2& p) { return 2 + 3 * p.x() - 5 * p.y(); }
 
@@ -77,5 +77,5 @@ TEST(HullEdges, EveryTriangulationMethodReproducesALinearFunctionOnEveryHullEdge
   EXPECT_GT(queries, 3000);
 }
 
-}  // namespace
+}  // namespace hull_edges_test
 }  // namespace radrecon

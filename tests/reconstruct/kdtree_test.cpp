@@ -12,7 +12,7 @@
 #include "reconstruct/kdtree.h"
 
 namespace radrecon {
-namespace {
+namespace kdtree_test {
 
 constexpr int kMaxK = 64;
 
@@ -105,5 +105,5 @@ TEST(KdTree2, FindsAllPointsWhenKIsTheirNumber) {
   }
 }
 
-}  // namespace
+}  // namespace kdtree_test
 }  // namespace radrecon

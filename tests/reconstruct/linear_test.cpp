@@ -14,7 +14,7 @@
 #include "support/scattered.h"
 
 namespace radrecon {
-namespace {
+namespace linear_test {
 
 using testing::eval1;
 using testing::random_samples;
@@ -182,5 +182,5 @@ TEST(Linear, ParametersAndBarriers) {
   EXPECT_NE(r.reason().find("does not take barriers"), std::string::npos) << r.reason();
 }
 
-}  // namespace
+}  // namespace linear_test
 }  // namespace radrecon

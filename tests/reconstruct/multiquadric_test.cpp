@@ -12,7 +12,7 @@
 #include "reconstruct/natural_neighbour.h"
 
 namespace radrecon {
-namespace {
+namespace multiquadric_test {
 
 ScatteredSamples random_samples(int n, std::mt19937& rng) {
   std::uniform_real_distribution<double> xy(0, 4), value(0, 1);
@@ -197,5 +197,5 @@ TEST(LocalMultiquadric, AsAccurateAsNaturalNeighbourOverallAndAlongTheEdges) {
   }
 }
 
-}  // namespace
+}  // namespace multiquadric_test
 }  // namespace radrecon

@@ -12,7 +12,7 @@
 #include "support/scattered.h"
 
 namespace radrecon {
-namespace {
+namespace natural_neighbour_test {
 
 using testing::eval1;
 using testing::random_samples;
@@ -123,5 +123,5 @@ TEST(NaturalNeighbour, RefusesTooFewCollinearOrDuplicateSamples) {
   EXPECT_THROW(NaturalNeighbour(dup, OutsideHull::none), ReconstructionError);
 }
 
-}  // namespace
+}  // namespace natural_neighbour_test
 }  // namespace radrecon

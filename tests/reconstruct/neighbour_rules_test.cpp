@@ -19,7 +19,7 @@
 #include "support/scattered.h"
 
 namespace radrecon {
-namespace {
+namespace neighbour_rules_test {
 
 using testing::eval1;
 using testing::random_samples;
@@ -206,7 +206,7 @@ TEST(SibsonC1, FirstDerivativesAreContinuousAtTheSamplesAndAcrossEdges) {
   for (size_t i = 0; i < s.points.size(); ++i) {
     const Vec2 p = s.points[i];
     if ((p.array() < 0.8).any() || (p.array() > 3.2).any()) continue;  // inside, away from the hull
-    for (const Vec2 dir : {Vec2(1, 0), Vec2(0, 1)}) {
+    for (const Vec2& dir : {Vec2(1, 0), Vec2(0, 1)}) {
       auto jump = [&](const Interpolant& g) {
         const double right = (eval1(g, p + h * dir) - eval1(g, p)) / h, left = (eval1(g, p) - eval1(g, p - h * dir)) / h;
         return std::abs(right - left);
@@ -238,5 +238,5 @@ TEST(SibsonC1, FirstDerivativesAreContinuousAtTheSamplesAndAcrossEdges) {
   EXPECT_LT(worst_edges, kC1);
 }
 
-}  // namespace
+}  // namespace neighbour_rules_test
 }  // namespace radrecon

@@ -8,7 +8,7 @@
 #include "reconstruct/nodal.h"
 
 namespace radrecon {
-namespace {
+namespace nodal_test {
 
 // Means of at most four small numbers: exact up to a few ulps.
 constexpr double kExact = 1e-12;
@@ -123,5 +123,5 @@ TEST(NodalAverage, LinearDataIsExactAtInteriorNodes) {
   EXPECT_NEAR(Node(n, 0, 0) - f(n.x0, n.y0), border_offset, kExact);
 }
 
-}  // namespace
+}  // namespace nodal_test
 }  // namespace radrecon

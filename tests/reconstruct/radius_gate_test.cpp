@@ -9,7 +9,7 @@
 #include "reconstruct/methods.h"
 
 namespace radrecon {
-namespace {
+namespace radius_gate_test {
 
 TEST(RadiusGate, TheMethodsValueWhereEnoughSamplesAreWithinTheRadiusElseNone) {
   std::mt19937 rng(41);
@@ -50,5 +50,5 @@ TEST(RadiusGate, TheMethodsValueWhereEnoughSamplesAreWithinTheRadiusElseNone) {
     }
 }
 
-}  // namespace
+}  // namespace radius_gate_test
 }  // namespace radrecon

@@ -11,7 +11,7 @@
 #include "reconstruct/shepard.h"
 
 namespace radrecon {
-namespace {
+namespace shepard_test {
 
 ScatteredSamples random_samples(int n, std::mt19937& rng, int channels = 1) {
   std::uniform_real_distribution<double> xy(0, 4), value(-1, 3);
@@ -186,5 +186,5 @@ TEST(NearestSample, IsTheValueOfTheClosestSample) {
   }
 }
 
-}  // namespace
+}  // namespace shepard_test
 }  // namespace radrecon

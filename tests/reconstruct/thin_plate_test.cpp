@@ -18,7 +18,7 @@
 #include "support/barrier_cases.h"
 
 namespace radrecon {
-namespace {
+namespace thin_plate_test {
 
 using namespace testing_support;
 
@@ -251,5 +251,5 @@ TEST(RbfWithPolynomial, OneOrTwoSamples) {
   EXPECT_THROW(Multiquadric(dup, RbfKernel::thin_plate(), std::nullopt), ReconstructionError);
 }
 
-}  // namespace
+}  // namespace thin_plate_test
 }  // namespace radrecon

@@ -13,7 +13,7 @@
 #include "support/scenes.h"
 
 namespace radrecon {
-namespace {
+namespace exposure_test {
 
 Rendering strip(const std::vector<Rgb>& values, const std::vector<std::uint8_t>& reflecting) {
   Rendering r{Image(static_cast<int>(values.size()), 1), reflecting};
@@ -82,9 +82,9 @@ TEST(Exposure, ARenderedPictureIsExposedByItsLitSurfacesNotItsLight) {
   // and one drawn black (no reconstruction) does not.
   using testing_support::quad;
   const Camera above{"above", Vec3(0, 0, 4), Vec3(0, 0, 0), Vec3(0, 1, 0), 60.0};
-  const PiecewiseConstant floor(CellSamples{{Rect{0, 0, 10, 10}}, {0.8, 0.8, 0.8}, 3});
-  const PiecewiseConstant lit(CellSamples{{Rect{0, 0, 2, 2}}, {40, 40, 40}, 3});
-  const PiecewiseConstant card(CellSamples{{Rect{0, 0, 2, 2}}, {5, 5, 5}, 3});
+  const PiecewiseConstant floor(CellSamples{{Rect{0, 0, 10, 10}}, {0.8, 0.8, 0.8}, 3, {}});
+  const PiecewiseConstant lit(CellSamples{{Rect{0, 0, 2, 2}}, {40, 40, 40}, 3, {}});
+  const PiecewiseConstant card(CellSamples{{Rect{0, 0, 2, 2}}, {5, 5, 5}, 3, {}});
   RenderOptions options;
   options.width = 40;
   options.height = 40;
@@ -107,5 +107,5 @@ TEST(Exposure, ARenderedPictureIsExposedByItsLitSurfacesNotItsLight) {
   }
 }
 
-}  // namespace
+}  // namespace exposure_test
 }  // namespace radrecon

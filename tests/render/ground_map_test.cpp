@@ -20,7 +20,7 @@
 #include "render/ground_map.h"
 
 namespace radrecon {
-namespace {
+namespace ground_map_test {
 
 namespace fs = std::filesystem;
 
@@ -128,5 +128,5 @@ TEST_F(RenderFiles, ZeroDifferenceIsByte128InThePng) {
   for (std::uint8_t b : bytes) EXPECT_EQ(b, 128);  // round(0.5 * 255) = round(127.5) = 128
 }
 
-}  // namespace
+}  // namespace ground_map_test
 }  // namespace radrecon

@@ -22,7 +22,7 @@
 #include "support/scenes.h"
 
 namespace radrecon {
-namespace {
+namespace renderer_test {
 
 /// A black quad (reflectance and emission 0).
 Surface quad(const std::string& name, const Vec3& c0, const Vec3& c1, const Vec3& c2, const Vec3& c3) {
@@ -168,8 +168,8 @@ TEST(EmitterTie, ALightInTheCeilingsPlaneRendersBright) {
   // Looking straight up from 2 m below the ceiling (60 degrees): the ceiling spans 2 tan 30 deg =
   // 1.1547 m either side of the centre, the light 0.5 m. Pixels whose rays all land within the
   // light show its 40 W/m^2, those all beside it the ceiling's 0.3 W/m^2.
-  const PiecewiseConstant ceiling(CellSamples{{Rect{0, 0, 4, 4}}, {0.3, 0.3, 0.3}, 3});
-  const PiecewiseConstant light(CellSamples{{Rect{0, 0, 1, 1}}, {40, 40, 40}, 3});
+  const PiecewiseConstant ceiling(CellSamples{{Rect{0, 0, 4, 4}}, {0.3, 0.3, 0.3}, 3, {}});
+  const PiecewiseConstant light(CellSamples{{Rect{0, 0, 1, 1}}, {40, 40, 40}, 3, {}});
   RenderOptions options;
   options.width = 60;
   options.height = 60;
@@ -198,5 +198,5 @@ TEST(EmitterTie, ALightInTheCeilingsPlaneRendersBright) {
   }
 }
 
-}  // namespace
+}  // namespace renderer_test
 }  // namespace radrecon

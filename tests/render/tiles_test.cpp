@@ -46,7 +46,7 @@ void operator delete(void* p, std::size_t) noexcept { counted_delete(p); }
 void operator delete[](void* p, std::size_t) noexcept { counted_delete(p); }
 
 namespace radrecon {
-namespace {
+namespace tiles_test {
 
 using testing_support::quad;
 
@@ -69,7 +69,7 @@ struct TestScene {
       }
     floor = make_scattered_interpolant(Method::natural_neighbour, samples).value();
     wall = make_scattered_interpolant(Method::shepard, samples).value();
-    CellSamples lit{{Rect{0, 0, 1, 1}}, {40, 40, 40}, 3};
+    CellSamples lit{{Rect{0, 0, 1, 1}}, {40, 40, 40}, 3, {}};
     light = std::make_unique<PiecewiseConstant>(lit);
   }
   SideReconstruction reconstruction() const {
@@ -198,5 +198,5 @@ TEST(Tiles, ProgressAfterEveryTileUpToTheWhole) {
   EXPECT_EQ(calls.back(), 1.0);
 }
 
-}  // namespace
+}  // namespace tiles_test
 }  // namespace radrecon

@@ -11,7 +11,7 @@
 #include "support/scenes.h"
 
 namespace radrecon {
-namespace {
+namespace solution_reconstruction_test {
 
 using testing_support::quad;
 
@@ -98,5 +98,5 @@ TEST(SideReconstruction, ATrianglesSideReconstructsInItsMetricFrame) {
     EXPECT_NEAR(at(*linear.value(), centres.points[k]), side.elements[k].radiosity_w_m2[0], 1e-12);
 }
 
-}  // namespace
+}  // namespace solution_reconstruction_test
 }  // namespace radrecon

@@ -11,7 +11,7 @@
 #include "support/scenes.h"
 
 namespace radrecon {
-namespace {
+namespace contacts_test {
 
 using testing_support::quad;
 
@@ -233,5 +233,5 @@ TEST(ContactLines, AStandingSurfaceIsClippedToTheSide) {
   expect_segment(lines[0], {0, 2}, {4, 2});
 }
 
-}  // namespace
+}  // namespace contacts_test
 }  // namespace radrecon

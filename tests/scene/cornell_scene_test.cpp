@@ -11,7 +11,7 @@
 #include "scene/scene.h"
 
 namespace radrecon {
-namespace {
+namespace cornell_scene_test {
 
 /// Vector area (m^2) of a planar polygon: half the sum of c_i x c_{i+1}; along the front normal.
 Vec3 vector_area(const Surface& s) {
@@ -104,5 +104,5 @@ TEST(CornellScene, PublishedCameraSeesTheWholeFrontOpening) {
   EXPECT_LT(c.eye.y() - half, 0.0);
 }
 
-}  // namespace
+}  // namespace cornell_scene_test
 }  // namespace radrecon

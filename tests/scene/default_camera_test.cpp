@@ -10,7 +10,7 @@
 #include "scene/default_camera.h"
 
 namespace radrecon {
-namespace {
+namespace default_camera_test {
 
 TEST(DefaultCamera, SeesEveryCornerWithinHalfTheFieldOfView) {
   Scene scene = paper_scene();
@@ -37,5 +37,5 @@ TEST(DefaultCamera, SeesEveryCornerWithinHalfTheFieldOfView) {
   EXPECT_NO_THROW(validate_scene(scene, "default camera"));
 }
 
-}  // namespace
+}  // namespace default_camera_test
 }  // namespace radrecon

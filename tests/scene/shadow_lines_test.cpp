@@ -8,7 +8,7 @@
 #include "scene/shadow_lines.h"
 
 namespace radrecon {
-namespace {
+namespace shadow_lines_test {
 
 bool has_segment(const std::vector<Segment2>& lines, Vec2 a, Vec2 b, double tol = 1e-12) {
   if (std::tie(b.x(), b.y()) < std::tie(a.x(), a.y())) std::swap(a, b);
@@ -53,5 +53,5 @@ TEST(ShadowLines, ALightFacingAwayOrAnUnlitSideCastsNone) {
   EXPECT_TRUE(shadow_lines(paper, *find_side(paper, "light")).empty());
 }
 
-}  // namespace
+}  // namespace shadow_lines_test
 }  // namespace radrecon

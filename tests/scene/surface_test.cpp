@@ -12,7 +12,7 @@
 #include "support/scenes.h"
 
 namespace radrecon {
-namespace {
+namespace surface_test {
 
 /// A black quad (reflectance and emission 0).
 Surface quad(const std::string& name, const Vec3& c0, const Vec3& c1, const Vec3& c2, const Vec3& c3) {
@@ -133,5 +133,5 @@ TEST(RegulariseSurfaces, LeavesABowTieForValidationToRefuse) {
   EXPECT_THROW(validate_scene(scene, "s.json"), UserError);
 }
 
-}  // namespace
+}  // namespace surface_test
 }  // namespace radrecon

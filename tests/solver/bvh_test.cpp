@@ -13,7 +13,7 @@
 #include "support/ray_scene.h"
 
 namespace radrecon {
-namespace {
+namespace bvh_test {
 
 using testing_support::intersect_quad;
 
@@ -224,5 +224,5 @@ TEST(OccluderBvh, EmptyAndSingleOccluderScenes) {
   EXPECT_TRUE(out.empty()) << "the receiver's and shooter's own surfaces are skipped";
 }
 
-}  // namespace
+}  // namespace bvh_test
 }  // namespace radrecon

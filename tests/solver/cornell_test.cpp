@@ -13,7 +13,7 @@
 #include "support/path_tracer.h"
 
 namespace radrecon {
-namespace {
+namespace cornell_test {
 
 using testing_support::PathTracer;
 
@@ -116,5 +116,5 @@ TEST(CornellBox, PublishedFloorMeanAgreesWithPathTracing) {
   expect_floor_agrees(scene);
 }
 
-}  // namespace
+}  // namespace cornell_test
 }  // namespace radrecon

@@ -11,7 +11,7 @@
 #include "support/closed_forms.h"
 
 namespace radrecon {
-namespace {
+namespace form_factor_test {
 
 using testing_support::parallel_corner_form_factor;
 using testing_support::perpendicular_corner_form_factor;
@@ -112,5 +112,5 @@ TEST(ClipToHorizon, KeepsOnlyThePartAboveTheReceiver) {
   EXPECT_NEAR(lambert_form_factor(p, n, upper), 2 * perpendicular_corner_form_factor(0.5, 1, 1), 1e-14);
 }
 
-}  // namespace
+}  // namespace form_factor_test
 }  // namespace radrecon

@@ -14,7 +14,7 @@
 #include "solver/closed_room.h"
 
 namespace radrecon {
-namespace {
+namespace hierarchical_test {
 
 using testing_support::quad;
 
@@ -183,5 +183,5 @@ TEST(Hierarchical, SmallerEpsilonRefinesMore) {
             leaf_count(solve_hierarchical(paper_scene(), fine, "f"), "ground"));
 }
 
-}  // namespace
+}  // namespace hierarchical_test
 }  // namespace radrecon

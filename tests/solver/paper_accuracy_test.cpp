@@ -13,7 +13,7 @@
 #include "support/path_tracer.h"
 
 namespace radrecon {
-namespace {
+namespace paper_accuracy_test {
 
 using testing_support::PathTracer;
 
@@ -97,5 +97,5 @@ TEST(PaperQuadtree, LeavesAgreeWithTheReferenceAveragedOverEachLeaf) {
   EXPECT_LT(rms, kLeafRms_w_m2);
 }
 
-}  // namespace
+}  // namespace paper_accuracy_test
 }  // namespace radrecon

@@ -8,7 +8,7 @@
 #include "support/path_tracer.h"
 
 namespace radrecon {
-namespace {
+namespace path_tracer_test {
 
 using testing_support::intersect_quad;
 using testing_support::uniform_point;
@@ -57,5 +57,5 @@ TEST(PathTracerSupport, RaysMeetATriangleInsideItsHypotenuseOnly) {
   EXPECT_NEAR(*intersect_quad(t, Vec3(0.2, 0.3, 1), down, 0, 10), 1.0, 1e-15);
 }
 
-}  // namespace
+}  // namespace path_tracer_test
 }  // namespace radrecon

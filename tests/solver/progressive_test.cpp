@@ -13,7 +13,7 @@
 #include "solver/progressive.h"
 
 namespace radrecon {
-namespace {
+namespace progressive_test {
 
 using testing_support::quad;
 
@@ -184,5 +184,5 @@ TEST(Progressive, ResultDoesNotDependOnThreadCount) {
   EXPECT_EQ(one.stats.escaped_w[0], many.stats.escaped_w[0]);
 }
 
-}  // namespace
+}  // namespace progressive_test
 }  // namespace radrecon

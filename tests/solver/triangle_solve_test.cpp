@@ -13,7 +13,7 @@
 #include "support/scenes.h"
 
 namespace radrecon {
-namespace {
+namespace triangle_solve_test {
 
 using testing_support::as_triangles;
 using testing_support::quad;
@@ -116,5 +116,5 @@ TEST(TriangleProgressive, SlowClosedBoxOfTrianglesHoldsEmittedOverOneMinusReflec
   EXPECT_TRUE(sol.stats.converged);
 }
 
-}  // namespace
+}  // namespace triangle_solve_test
 }  // namespace radrecon

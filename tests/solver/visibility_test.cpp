@@ -9,7 +9,7 @@
 #include "support/ray_scene.h"
 
 namespace radrecon {
-namespace {
+namespace visibility_test {
 
 using testing_support::visible;
 
@@ -122,11 +122,11 @@ TEST(VisibleFormFactor, ZeroBehindTheShooter) {
   EXPECT_EQ(visible_form_factor(Vec3(0.5, 0.5, 3), -Vec3::UnitZ(), light, -Vec3::UnitZ(), {}), 0.0);
 }
 
-}  // namespace
+}  // namespace visibility_test
 }  // namespace radrecon
 
 namespace radrecon {
-namespace {
+namespace visibility_test {
 
 TEST(VisibleFormFactor, ManyVertexFragmentsAreCutAndStayAdditive) {
   // A 36-gon shooter (near kCapacity: the general path cuts it in two before clipping) seen past
@@ -235,5 +235,5 @@ TEST(AreaVisibleFormFactor, MatchesBruteForceBehindAnOccluder) {
   EXPECT_NEAR(f, sum / (kN * kN), 2e-3 * f);
 }
 
-}  // namespace
+}  // namespace visibility_test
 }  // namespace radrecon
