@@ -66,9 +66,12 @@ LocalMultiquadric::LocalMultiquadric(const ScatteredSamples& samples, const RbfK
   nx_ = static_cast<int>(std::ceil(extent.x() / h_)) + 1;
   ny_ = static_cast<int>(std::ceil(extent.y() / h_)) + 1;
   patches_.resize(static_cast<size_t>(nx_) * ny_);
-  const int kk = std::min<int>(kMinPatchSamples, static_cast<int>(n));
+  // With barriers, part of a patch's samples may be hidden from where it is evaluated, and a
+  // patch of a few samples near a wall (or the domain's edge) may see fewer than a plane needs:
+  // it then holds at least k.
+  const int kk = std::min<int>(barriers_.empty() ? kMinPatchSamples : k, static_cast<int>(n));
   // Each patch: the samples in its disc (found among the nearest ones, growing the query until
-  // the farthest found lies outside the disc), at least kMinPatchSamples.
+  // the farthest found lies outside the disc), at least kk.
   parallel_for_with_scratch<NearestScratch>(0, static_cast<std::int64_t>(patches_.size()), [&](std::int64_t pk, NearestScratch& s) {
     Patch& patch = patches_[static_cast<size_t>(pk)];
     const int i = static_cast<int>(pk % nx_), j = static_cast<int>(pk / nx_);
