@@ -3,6 +3,8 @@
 #include <unistd.h>
 
 #include <array>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <system_error>
 
@@ -29,6 +31,18 @@ std::array<fs::path, 2> spellings(const std::string& path) {
   return out;
 }
 
+/// A file can be made in `dir`: one is made and removed. access() alone passes for root where
+/// none can be (/proc, /sys), and the refusal would then come only after the work.
+void probe_writable(const fs::path& dir, const fs::path& path, const std::string& where) {
+  std::string probe = (dir / ".radrecon-probe-XXXXXX").string();
+  const int fd = ::mkstemp(probe.data());
+  if (fd < 0)
+    throw UserError(where, "'" + path.string() + "' cannot be written: cannot create a file in '" + dir.string() +
+                               "': " + std::strerror(errno));
+  ::close(fd);
+  ::unlink(probe.c_str());
+}
+
 /// The path's nearest ancestor that exists must be a folder we may write into.
 void check_writable_ancestor(const fs::path& path, const std::string& where) {
   std::error_code ec;
@@ -41,6 +55,7 @@ void check_writable_ancestor(const fs::path& path, const std::string& where) {
     throw UserError(where, "'" + path.string() + "' cannot be created: '" + dir.string() + "' is not a folder");
   if (::access(dir.c_str(), W_OK | X_OK) != 0)
     throw UserError(where, "'" + path.string() + "' cannot be written: no permission to write in '" + dir.string() + "'");
+  probe_writable(dir, path, where);
 }
 
 }  // namespace
@@ -79,6 +94,7 @@ void check_output_folder(const std::string& path, const std::string& where) {
     throw UserError(where, "'" + path + "' exists and is not a folder");
   if (fs::is_directory(status)) {
     if (::access(path.c_str(), W_OK | X_OK) != 0) throw UserError(where, "no permission to write in '" + path + "'");
+    probe_writable(path, path, where);
     return;
   }
   check_writable_ancestor(path, where);
