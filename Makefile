@@ -4,6 +4,8 @@ ASAN_DIR  ?= build-asan
 JOBS      ?= $(shell nproc)
 OUT       ?= out/paper
 FUZZ_SECONDS ?= 60
+# Sanitizer reports with function names, files and lines (llvm-14, installed by setup).
+export ASAN_SYMBOLIZER_PATH ?= /usr/lib/llvm-14/bin/llvm-symbolizer
 
 .PHONY: setup build run test asan-build test-asan fuzz bench report-check clean
 
@@ -36,7 +38,7 @@ asan-build: setup
 test-asan: asan-build
 	cd $(ASAN_DIR) && ctest --output-on-failure -j $(JOBS) -LE slow
 
-# Every reader's fuzzer for FUZZ_SECONDS each, two at a time (docs/hostile.md, "Fuzzing").
+# Every reader's fuzzer for FUZZ_SECONDS each, a core each (docs/hostile.md, "Fuzzing").
 fuzz: asan-build
 	bash fuzz/run.sh $(ASAN_DIR) $(FUZZ_SECONDS)
 

@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -18,15 +19,25 @@
 
 namespace radrecon::fuzz {
 
-/// Writes the input to one file per process and extension, in /dev/shm when there is one, and
-/// returns its path. The file is overwritten by the next input.
-inline std::string input_file(const std::uint8_t* data, std::size_t size, const std::string& extension) {
+/// The process's folder for its input files, removed when the process exits.
+inline const std::filesystem::path& input_folder() {
   static const std::filesystem::path folder = [] {
     const std::filesystem::path base = std::filesystem::is_directory("/dev/shm") ? "/dev/shm" : "/tmp";
     std::filesystem::path f = base / ("radrecon-fuzz-" + std::to_string(::getpid()));
     std::filesystem::create_directories(f);
+    std::atexit([] {
+      std::error_code ec;
+      std::filesystem::remove_all(input_folder(), ec);
+    });
     return f;
   }();
+  return folder;
+}
+
+/// Writes the input to one file per process and extension, in /dev/shm when there is one, and
+/// returns its path. The file is overwritten by the next input.
+inline std::string input_file(const std::uint8_t* data, std::size_t size, const std::string& extension) {
+  const std::filesystem::path& folder = input_folder();
   const std::string path = (folder / ("input" + extension)).string();
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));

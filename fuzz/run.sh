@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # Runs every libFuzzer harness of radrecon for a set time (docs/hostile.md, "Fuzzing"):
 #   fuzz/run.sh BUILD_DIR [SECONDS_EACH=60] [OUT=out/fuzz]
-# BUILD_DIR is a tree configured with -DRADRECON_FUZZ=ON (clang). The harnesses run two at a time
-# (FUZZ_JOBS, default nproc), each from its seed corpus (fuzz/corpus/<harness>) and the hostile
-# inputs of its kind (tests/hostile/inputs), growing a working corpus in OUT/<harness>/corpus that
-# later runs start from. A crash, leak, timeout or out-of-memory leaves its input in
+# BUILD_DIR is a tree configured with -DRADRECON_FUZZ=ON (clang). The harnesses run FUZZ_JOBS at a
+# time (default nproc: two on the project's machine), each from its seed corpus
+# (fuzz/corpus/<harness>) and the hostile inputs of its kind (tests/hostile/inputs), growing a
+# working corpus in OUT/<harness>/corpus that later runs start from. A crash, leak, timeout or out-of-memory leaves its input in
 # OUT/<harness>/ and fails the run, naming it: fix the reader, then add the input to the seed
 # corpus, where ctest's fuzz.<harness> replays it from then on.
 set -uo pipefail
@@ -34,8 +34,9 @@ done
 
 run_one() {
   local h=$1
-  # Inputs up to 4 KiB; 10 s per input and 2 GiB are a hang and a memory blow-up.
-  "$build/fuzz/fuzz_$h" -max_total_time="$seconds" -max_len=4096 -timeout=10 -rss_limit_mb=2048 \
+  # Inputs up to 16 KiB (the largest seed is 8 KiB); 10 s per input and 2 GiB are a hang and a
+  # memory blow-up.
+  "$build/fuzz/fuzz_$h" -max_total_time="$seconds" -max_len=16384 -timeout=10 -rss_limit_mb=2048 \
     -print_final_stats=1 -artifact_prefix="$out/$h/" "$out/$h/corpus" "$here/corpus/$h" \
     > "$out/$h/log.txt" 2>&1
   local status=$?

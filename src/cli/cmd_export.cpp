@@ -3,10 +3,10 @@
 
 #include <algorithm>
 #include <cctype>
-#include <filesystem>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
 

@@ -4,20 +4,20 @@
 #include <cctype>
 #include <chrono>
 #include <cmath>
-#include <filesystem>
 #include <cstdio>
+#include <filesystem>
+#include <limits>
 #include <memory>
 #include <span>
-#include <limits>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "cli/commands.h"
-#include "core/limits.h"
 #include "core/error.h"
-#include "core/progress.h"
+#include "core/limits.h"
 #include "core/parse.h"
+#include "core/progress.h"
 #include "io/gdal_plugin.h"
 #include "io/geojson.h"
 #include "io/image_io.h"
@@ -25,8 +25,8 @@
 #include "io/raster.h"
 #include "io/samples_csv.h"
 #include "reconstruct/border_samples.h"
-#include "reconstruct/sample_set.h"
 #include "reconstruct/methods.h"
+#include "reconstruct/sample_set.h"
 
 namespace radrecon::cli {
 
@@ -118,6 +118,8 @@ void run_interpolate(const InterpolateArgs& args) {
   ScatteredSamples samples;
   if (is_ogr_vector_path(args.samples)) {
     samples = gdal_functions("--samples").read_samples(args.samples, &value_names, columns);
+    // Here, not in the plugin: it links its own copy of the limits, which --max-samples does not set.
+    check_limit(Limit::samples, static_cast<long long>(samples.points.size()), args.samples, "holds");
     const size_t before = samples.points.size(), removed = merge_duplicate_points(samples);
     if (removed > 0)
       std::fprintf(stderr, "radrecon: warning: %s: %s\n", args.samples.c_str(),
@@ -157,6 +159,9 @@ void run_interpolate(const InterpolateArgs& args) {
       !use_queries ? raster_points(raster)
       : is_ogr_vector_path(args.queries) ? gdal_functions("--queries").read_queries(args.queries, {args.x_column, args.y_column, {}})
                                          : read_queries_csv(args.queries, {args.x_column, args.y_column, {}});
+  if (use_queries)
+    check_limit(Limit::raster_points, static_cast<long long>(points.size()), args.queries, "holds",
+                "query points count as raster points");
 
   const std::string description = describe_params(*method, params);
   if (!args.quiet)

@@ -10,18 +10,18 @@
 #include <string>
 
 #include "cli/commands.h"
-#include "core/limits.h"
 #include "cli/solution_methods.h"
 #include "core/error.h"
-#include "core/progress.h"
-#include "sampling/solution_reconstruction.h"
-#include "render/exposure.h"
-#include "render/renderer.h"
+#include "core/limits.h"
 #include "core/parse.h"
+#include "core/progress.h"
 #include "io/image_io.h"
 #include "io/paths.h"
 #include "io/scene_json.h"
 #include "io/solution_json.h"
+#include "render/exposure.h"
+#include "render/renderer.h"
+#include "sampling/solution_reconstruction.h"
 
 namespace radrecon::cli {
 

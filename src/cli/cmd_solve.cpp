@@ -78,7 +78,7 @@ void add_solve_command(CLI::App& app) {
                 "Also list the direct light's D1/D2 lines (umbra and penumbra boundaries cast by occluder edges) "
                 "among each side's barriers; experimental (docs/method.md)");
   cmd->add_flag("--quiet", args->quiet, "No progress messages");
-  add_limit_options(*cmd, {Limit::elements, Limit::leaves, Limit::file_bytes});
+  add_limit_options(*cmd, {Limit::elements, Limit::leaves, Limit::links, Limit::file_bytes});
   cmd->callback([args, cmd] { run_solve(*args, *cmd); });
 }
 

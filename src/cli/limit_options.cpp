@@ -12,7 +12,7 @@ void add_limit_options(CLI::App& cmd, std::initializer_list<Limit> limits) {
     cmd.add_option_function<long long>(
            spec.option, [which](const long long& value) { set_limit(which, value); },
            std::string("Limit: at most this many ") + spec.unit + " (default " + std::to_string(spec.default_value) +
-               ": " + spec.why + "); refused before any work beyond it")
+               ": " + spec.why + "); beyond it, refused with nothing written")
         ->check(CLI::PositiveNumber)
         ->group("Limits");
   }

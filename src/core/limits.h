@@ -14,6 +14,7 @@ enum class Limit {
   render_rays,    ///< rays of one rendering (W x H x rays per pixel)
   elements,       ///< elements of a grid mesh (grid:N)
   leaves,         ///< leaves asked of a quadtree (quadtree:LEAVES)
+  links,          ///< links of a hierarchical solve
   file_bytes,     ///< bytes of one input file
 };
 
@@ -25,8 +26,8 @@ struct LimitSpec {
 };
 
 /// Every limit, in the order of the enum.
-inline constexpr Limit kAllLimits[] = {Limit::samples,  Limit::raster_points, Limit::render_rays,
-                                       Limit::elements, Limit::leaves,        Limit::file_bytes};
+inline constexpr Limit kAllLimits[] = {Limit::samples, Limit::raster_points, Limit::render_rays, Limit::elements,
+                                       Limit::leaves,  Limit::links,         Limit::file_bytes};
 
 const LimitSpec& limit_spec(Limit which);
 

@@ -11,7 +11,6 @@
 #include <ogrsf_frmts.h>
 
 #include "core/error.h"
-#include "core/limits.h"
 #include "core/parse.h"
 #include "core/tolerances.h"
 
@@ -117,10 +116,7 @@ ScatteredSamples read_samples_ogr(const std::string& path, std::vector<std::stri
   if (value_fields.empty()) throw UserError(path, "has no numeric field to interpolate (name one with --value)");
   ScatteredSamples s;
   s.channels = static_cast<int>(value_fields.size());
-  const long long features = src.layer().GetFeatureCount(FALSE);  // -1 where counting would read it all
-  if (features > 0) check_limit(Limit::samples, features, path, "holds");
   for_each_point(src, columns, [&](const OGRFeature& f, const Vec2& p) {
-    check_limit(Limit::samples, static_cast<long long>(s.points.size()) + 1, path, "holds at least");
     s.points.push_back(p);
     for (const int k : value_fields) s.values.push_back(src.number(f, k));
   });

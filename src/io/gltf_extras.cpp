@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "core/error.h"
+#include "core/parse.h"
 #include "io/gltf_indices.h"
 #include "io/json_reader.h"
 
@@ -81,7 +82,7 @@ size_t primitive_faces(const json& doc, const json& primitive) {
 
 GltfExtras read_gltf_extras(const std::string& path) {
   std::string text = read_text_file(path, "mesh file");
-  const bool binary = path.size() >= 4 && (path.compare(path.size() - 4, 4, ".glb") == 0 || path.compare(path.size() - 4, 4, ".GLB") == 0);
+  const bool binary = lower_extension(path) == ".glb";
   std::string bin;
   if (binary) std::tie(text, bin) = glb_chunks(text, path);
   const JsonReader r(path);

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/limits.h"
 
 namespace radrecon {
 
@@ -67,11 +68,16 @@ class Buffers {
         if (comma != std::string::npos && uri.substr(0, comma).find(";base64") != std::string::npos)
           slot = base64_decode(uri.substr(comma + 1));
       } else if (uri.find("://") == std::string::npos) {
-        std::ifstream in(std::filesystem::path(folder_) / uri, std::ios::binary);
-        if (in) {
-          std::stringstream bytes;
-          bytes << in.rdbuf();
-          slot = bytes.str();
+        const std::string file = (std::filesystem::path(folder_) / uri).string();
+        std::error_code ec;
+        if (std::filesystem::is_regular_file(file, ec)) {  // not a pipe or a device
+          check_input_file_size(file);
+          std::ifstream in(file, std::ios::binary);
+          if (in) {
+            std::stringstream bytes;
+            bytes << in.rdbuf();
+            slot = bytes.str();
+          }
         }
       }
     }

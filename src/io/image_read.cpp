@@ -20,6 +20,7 @@
 #include "core/error.h"
 #include "core/limits.h"
 #include "core/parse.h"
+#include "io/json_reader.h"
 
 namespace radrecon {
 
@@ -37,12 +38,8 @@ void check_size(long long width, long long height, const std::string& file) {
 }
 
 std::vector<unsigned char> read_bytes(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw UserError(path.string(), std::string("cannot open: ") + std::strerror(errno));
-  check_input_file_size(path.string());
-  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw UserError(path.string(), "cannot read");
-  return bytes;
+  const std::string text = read_text_file(path.string(), "picture");  // chunked, under the file-size limit
+  return std::vector<unsigned char>(text.begin(), text.end());
 }
 
 // --- PFM -----------------------------------------------------------------------------------

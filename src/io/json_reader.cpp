@@ -15,10 +15,13 @@ std::string read_text_file(const std::string& path, const std::string& what) {
   if (!in) throw UserError(path, "cannot open " + what);
   check_input_file_size(path);
   std::string text;
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path, ec);
+  if (!ec) text.reserve(static_cast<size_t>(size));
   std::vector<char> chunk(size_t{1} << 16);  // reads pipes too, within the file-size limit
   while (in.read(chunk.data(), static_cast<std::streamsize>(chunk.size())) || in.gcount() > 0) {
     text.append(chunk.data(), static_cast<size_t>(in.gcount()));
-    check_limit(Limit::file_bytes, static_cast<long long>(text.size()), path, "the input holds more than");
+    check_limit(Limit::file_bytes, static_cast<long long>(text.size()), path, "the input holds at least");
   }
   if (in.bad()) throw UserError(path, "cannot read " + what);
   return text;

@@ -10,9 +10,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
-#include <set>
 #include <numbers>
+#include <set>
+#include <sstream>
 
 #include "core/error.h"
 #include "core/limits.h"

@@ -14,8 +14,8 @@
 #include <optional>
 
 #include "core/check.h"
-#include "core/limits.h"
 #include "core/error.h"
+#include "core/limits.h"
 #include "core/parallel.h"
 #include "core/parse.h"
 #include "core/tolerances.h"
@@ -50,7 +50,7 @@ class CsvTable {
     std::vector<char> chunk(size_t{1} << 16);  // reads pipes too (no seeking)
     while (in.read(chunk.data(), static_cast<std::streamsize>(chunk.size())) || in.gcount() > 0) {
       text_.append(chunk.data(), static_cast<size_t>(in.gcount()));
-      check_limit(Limit::file_bytes, static_cast<long long>(text_.size()), path, "the input holds more than");
+      check_limit(Limit::file_bytes, static_cast<long long>(text_.size()), path, "the input holds at least");
     }
     if (in.bad()) throw UserError(path, "cannot read");
     if (text_.compare(0, 3, "\xEF\xBB\xBF") == 0) pos_ = 3;  // a UTF-8 byte order mark
@@ -236,15 +236,15 @@ ScatteredSamples read_samples_csv(const std::string& path, std::vector<std::stri
       if (c != xc && c != yc) value_columns.push_back(c);
   ScatteredSamples s;
   s.channels = static_cast<int>(value_columns.size());
-  const size_t rows = table.remaining_lines();
+  const size_t rows = std::min<size_t>(table.remaining_lines(), static_cast<size_t>(limit_value(Limit::samples)) + 1);
   s.points.reserve(rows);
   s.values.reserve(rows * value_columns.size());
   table.for_each_row([&](const std::vector<std::string_view>& f) {
+    check_limit(Limit::samples, static_cast<long long>(s.points.size()) + 1, path, "holds at least");
     const double x = table.coordinate(f, xc), y = table.coordinate(f, yc);
     s.points.emplace_back(x, y);
     for (const size_t c : value_columns) s.values.push_back(table.number(f, c));
   });
-  check_limit(Limit::samples, static_cast<long long>(s.points.size()), path, "holds");
   if (value_names) {
     value_names->clear();
     for (const size_t c : value_columns) value_names->push_back(table.header()[c]);
@@ -262,8 +262,10 @@ std::vector<Vec2> read_queries_csv(const std::string& path, const CsvColumns& co
   const std::pair<size_t, size_t> xy = xy_columns(table, columns);  // not a structured binding: lambdas take these
   const size_t xc = xy.first, yc = xy.second;
   std::vector<Vec2> points;
-  points.reserve(table.remaining_lines());
+  points.reserve(std::min<size_t>(table.remaining_lines(), static_cast<size_t>(limit_value(Limit::raster_points)) + 1));
   table.for_each_row([&](const std::vector<std::string_view>& f) {
+    check_limit(Limit::raster_points, static_cast<long long>(points.size()) + 1, path, "holds at least",
+                "query points count as raster points");
     const double x = table.coordinate(f, xc), y = table.coordinate(f, yc);
     points.emplace_back(x, y);
   });

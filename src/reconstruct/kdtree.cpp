@@ -20,12 +20,9 @@ using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<do
 
 }  // namespace kdtree_detail
 
-using kdtree_detail::PointCloud;
-using kdtree_detail::Tree;
-
 struct KdTree2::Impl {
-  PointCloud cloud;
-  Tree tree;
+  kdtree_detail::PointCloud cloud;
+  kdtree_detail::Tree tree;
   explicit Impl(std::span<const Vec2> p) : cloud{p}, tree(2, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10)) {
     tree.buildIndex();
   }

@@ -11,14 +11,15 @@
 
 #include "core/check.h"
 #include "core/error.h"
+#include "core/limits.h"
 #include "core/parallel.h"
 #include "core/progress.h"
 #include "core/tolerances.h"
 #include "mesh/quadtree.h"
 #include "scene/side.h"
+#include "solver/bvh.h"
 #include "solver/form_factor.h"
 #include "solver/hierarchy_state.h"
-#include "solver/bvh.h"
 #include "solver/visibility.h"
 
 namespace radrecon {
@@ -411,7 +412,8 @@ Solution solve_hierarchical(const Scene& scene, const HierarchicalOptions& optio
     char eps[32];
     std::snprintf(eps, sizeof eps, "%g", options.epsilon_w);
     throw UserError(mesh_spec, std::string("epsilon ") + eps + " W would need more than " +
-                                   std::to_string(options.max_links) + " links; use a larger epsilon or fewer leaves");
+                                   std::to_string(options.max_links) + " links; use a larger epsilon, or " +
+                                   limit_spec(Limit::links).option + " raises the limit (nothing was written)");
   }
   return std::move(*sol);
 }

@@ -42,7 +42,7 @@ struct HierarchicalOptions {
   /// Refinement that needs more links than this is given up (try_solve_hierarchical() returns
   /// nullopt, solve_hierarchical() refuses it): a guard against an epsilon so small that the
   /// links (which grow as the square of the elements) exhaust memory.
-  size_t max_links = 4'000'000;
+  size_t max_links = 4'000'000;  ///< the solve calls set it to Limit::links (core/limits.h)
   /// Name printed in progress messages on stderr; empty: quiet.
   std::string progress_label;
 };

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "core/error.h"
+#include "core/limits.h"
 #include "core/progress.h"
 #include "scene/side.h"
 #include "solver/hierarchical.h"
@@ -94,7 +95,8 @@ Solution solve_hierarchical_leaves(const Scene& scene, const std::string& side, 
   }
   if (c_lo == kTooFine)
     throw UserError(field, std::to_string(leaves) + " leaves on '" + side + "' need more than " +
-                               std::to_string(options.max_links) + " links");
+                               std::to_string(options.max_links) + " links; use fewer leaves, or " +
+                               limit_spec(Limit::links).option + " raises the limit (nothing was written)");
   options.leaf_gather = leaf_gather;
   options.epsilon_w = lo;
   options.leaf_cap = std::make_pair(side, leaves);

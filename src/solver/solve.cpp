@@ -68,6 +68,7 @@ Solution solve_by_spec(const Scene& scene, const std::string& spec, const SolveS
   }
   HierarchicalOptions ho;
   ho.progress_label = settings.progress_label;
+  ho.max_links = static_cast<size_t>(limit_value(Limit::links));
   if (kind == "quadtree-eps") {
     ho.epsilon_w = parse_positive(value, field, spec);
     return solve_hierarchical(scene, ho, spec);
