@@ -19,16 +19,17 @@
 
 namespace radrecon::fuzz {
 
-/// The process's folder for its input files, removed when the process exits.
+/// The process's folder for its input files: radrecon-fuzz-PID in $RADRECON_FUZZ_TMP (set by
+/// fuzz/run.sh and ctest to folders they own), else in /dev/shm or /tmp. libFuzzer ends with
+/// _Exit, so a process cannot remove its own folder: whoever sets the variable does.
 inline const std::filesystem::path& input_folder() {
   static const std::filesystem::path folder = [] {
-    const std::filesystem::path base = std::filesystem::is_directory("/dev/shm") ? "/dev/shm" : "/tmp";
+    const char* set = std::getenv("RADRECON_FUZZ_TMP");
+    const std::filesystem::path base = set != nullptr && *set != '\0'                     ? set
+                                       : std::filesystem::is_directory("/dev/shm") ? "/dev/shm"
+                                                                                   : "/tmp";
     std::filesystem::path f = base / ("radrecon-fuzz-" + std::to_string(::getpid()));
     std::filesystem::create_directories(f);
-    std::atexit([] {
-      std::error_code ec;
-      std::filesystem::remove_all(input_folder(), ec);
-    });
     return f;
   }();
   return folder;

@@ -34,12 +34,15 @@ done
 
 run_one() {
   local h=$1
+  # The harness's input files, in a folder removed after it (libFuzzer's _Exit cannot).
+  export RADRECON_FUZZ_TMP="$out/$h/inputs"
   # Inputs up to 16 KiB (the largest seed is 8 KiB); 10 s per input and 2 GiB are a hang and a
   # memory blow-up.
   "$build/fuzz/fuzz_$h" -max_total_time="$seconds" -max_len=16384 -timeout=10 -rss_limit_mb=2048 \
     -print_final_stats=1 -artifact_prefix="$out/$h/" "$out/$h/corpus" "$here/corpus/$h" \
     > "$out/$h/log.txt" 2>&1
   local status=$?
+  rm -rf "$RADRECON_FUZZ_TMP"
   local runs
   runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$out/$h/log.txt" | grep -o '[0-9]*$')
   if [ $status -eq 0 ]; then

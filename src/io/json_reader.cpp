@@ -1,9 +1,13 @@
 #include "io/json_reader.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 #include "core/error.h"
 #include "core/limits.h"
@@ -12,7 +16,7 @@ namespace radrecon {
 
 std::string read_text_file(const std::string& path, const std::string& what) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw UserError(path, "cannot open " + what);
+  if (!in) throw UserError(path, "cannot open " + what + ": " + std::strerror(errno));
   check_input_file_size(path);
   std::string text;
   std::error_code ec;

@@ -20,6 +20,7 @@
 #include "core/parse.h"
 #include "core/tolerances.h"
 #include "io/atomic_file.h"
+#include "io/json_reader.h"
 #include "reconstruct/sample_set.h"
 
 namespace radrecon {
@@ -40,19 +41,8 @@ std::string_view unquoted(std::string_view f) {
 class CsvTable {
  public:
   /// Reads the whole file and its header; `min_columns` names the columns the header must have.
-  CsvTable(const std::string& path, size_t min_columns, const char* expected_header) : path_(path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw UserError(path, std::string("cannot open: ") + std::strerror(errno));
-    check_input_file_size(path);
-    std::error_code ec;
-    const auto size = std::filesystem::file_size(path, ec);
-    if (!ec) text_.reserve(static_cast<size_t>(size));
-    std::vector<char> chunk(size_t{1} << 16);  // reads pipes too (no seeking)
-    while (in.read(chunk.data(), static_cast<std::streamsize>(chunk.size())) || in.gcount() > 0) {
-      text_.append(chunk.data(), static_cast<size_t>(in.gcount()));
-      check_limit(Limit::file_bytes, static_cast<long long>(text_.size()), path, "the input holds at least");
-    }
-    if (in.bad()) throw UserError(path, "cannot read");
+  CsvTable(const std::string& path, size_t min_columns, const char* expected_header)
+      : path_(path), text_(read_text_file(path, "CSV file")) {  // pipes too, within the file-size limit
     if (text_.compare(0, 3, "\xEF\xBB\xBF") == 0) pos_ = 3;  // a UTF-8 byte order mark
 
     std::string_view line;
