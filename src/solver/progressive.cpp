@@ -35,6 +35,7 @@ struct SideState {
 Solution solve_progressive(const Scene& scene, const Mesh& mesh, const ProgressiveOptions& options,
                            const std::string& mesh_spec) {
   RR_CHECK(options.residual > 0 && options.residual < 1, "residual must be in (0, 1)");
+  RR_CHECK(options.far_field_error >= 0 && options.far_field_error < 1, "far_field_error must be in [0, 1)");
   const auto start = std::chrono::steady_clock::now();
   const std::vector<Occluder> occluders = make_occluders(scene);
   const OccluderBvh bvh(occluders);
@@ -43,13 +44,17 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
   std::vector<Patch> patches;
   std::vector<size_t> first_patch(mesh.surfaces.size());
   Rgb emitted = Rgb::Zero();
+  double total_area_m2 = 0;
   for (size_t s = 0; s < mesh.surfaces.size(); ++s) {
     const MeshSurface& side = mesh.surfaces[s];
     SideState& st = state[s];
     st.radiosity.assign(side.elements.size(), side.emission_w_m2);
     st.unshot.assign(side.elements.size(), side.emission_w_m2);
     st.irradiance.assign(side.elements.size(), Rgb::Zero());
-    for (const MeshElement& e : side.elements) emitted += e.area_m2 * side.emission_w_m2;
+    for (const MeshElement& e : side.elements) {
+      emitted += e.area_m2 * side.emission_w_m2;
+      total_area_m2 += e.area_m2;
+    }
     // Every patch of the side's patch grid, empty ones beyond a triangle's hypotenuse included
     // (they never shoot: no power), so that patch (pi, pj) is at first_patch + pj * patches_u + pi.
     first_patch[s] = patches.size();
@@ -116,6 +121,11 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
     update_patch_power(shooter.surface);
 
     const Block& root = tree.root();
+    ConvexPolygon patch_outline;
+    for (int k = 0; k < root.corner_count; ++k) patch_outline.push(root.corners[k]);
+    // The far field's error budget is made for no less irradiance than 1% of the shot's power
+    // spread over the scene (receivers in the dark would otherwise split every block).
+    const double least_irradiance_w_m2 = 1e-2 * shot_power.sum() / total_area_m2;
     const Vec3 shooter_normal = shooter_side.normal;
     Rgb delivered = Rgb::Zero();
     for (size_t r = 0; r < mesh.surfaces.size(); ++r) {
@@ -130,6 +140,7 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
           bvh.between(shooter_outline, receiver_surface.polygon(), receiver.scene_surface, shooter_side.scene_surface);
 
       gain.assign(receiver.elements.size(), Gathered{});
+      SideState& st = state[r];
       parallel_for(0, static_cast<std::int64_t>(receiver.elements.size()), [&](std::int64_t e) {
         const Receiver element = make_receiver(receiver_surface, receiver.elements[static_cast<size_t>(e)], receiver.normal);
         // gather() looks from the centre and the Gauss points: the shaft from the centre, widened
@@ -142,9 +153,18 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
           bvh.collect(Shaft({&element.center, 1}, shooter_outline, reach_m), receiver.scene_surface,
                       shooter_side.scene_surface, near);
         }
-        gain[static_cast<size_t>(e)] = gather(tree, tree.root(), element, shooter_normal, near);
+        double budget_w_m2 = 0;  // the distance rule
+        if (options.far_field_error > 0) {
+          // A fraction of the element's irradiance: gathered so far, plus this shot's as the
+          // whole patch would give it.
+          const double estimate =
+              visible_form_factor(element.center, element.normal, patch_outline, shooter_normal, near) *
+              root.unshot_w_m2.sum();
+          budget_w_m2 = options.far_field_error *
+                        std::max(st.irradiance[static_cast<size_t>(e)].sum() + estimate, least_irradiance_w_m2);
+        }
+        gain[static_cast<size_t>(e)] = gather(tree, tree.root(), element, shooter_normal, near, budget_w_m2);
       });
-      SideState& st = state[r];
       for (size_t e = 0; e < receiver.elements.size(); ++e) {
         const Gathered& h = gain[e];
         st.irradiance[e] += h.mean;

@@ -7,7 +7,8 @@
 // F(dA_receiver -> part), with F the exact visible point-to-polygon form factor at the element
 // centre (visibility.h). Parts: the patch as a whole when it is far from the receiver (or its
 // unshot radiosity is uniform, which is exact), else recursively its quarters, down to single
-// elements (tolerances.h, kFarFieldDiagonals).
+// elements; "far" is a fixed multiple of the block's diagonal (tolerances.h, kFarFieldDiagonals)
+// or, with ProgressiveOptions::far_field_error, an error bound.
 
 #include <string>
 
@@ -22,12 +23,18 @@ inline constexpr double kDefaultResidual = 1e-4;
 /// The residuals a user may ask for: below 1e-12 round-off dominates; above 0.5 half the light
 /// is never distributed.
 inline constexpr double kMinResidual = 1e-12, kMaxResidual = 0.5;
+/// The far-field error bounds a user may ask for (ProgressiveOptions::far_field_error; 0: off).
+inline constexpr double kMinFarFieldError = 1e-6, kMaxFarFieldError = 0.5;
 
 struct ProgressiveOptions {
   /// Stop when the unshot power falls below this fraction of the emitted power, in (0, 1).
   double residual = kDefaultResidual;
   /// Stop after this many shots at the latest (0: no limit).
   size_t max_shots = 0;
+  /// The far field's error bound, as a fraction of each receiving point's irradiance (gathered so
+  /// far plus this shot's); 0: blocks shoot as one beyond tol::kFarFieldDiagonals of their
+  /// diagonal instead, without a bound (faster). See gather() in solver/shooter_tree.h.
+  double far_field_error = 0;
   /// Name printed in progress messages on stderr; empty: quiet.
   std::string progress_label;
 };

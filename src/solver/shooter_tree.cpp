@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include "core/tolerances.h"
 
@@ -63,7 +64,10 @@ void ShooterTree::set_radiosity(Block& b, std::span<const size_t> elements) cons
     hi = hi.max(unshot_[k]);
   }
   b.unshot_w_m2 = weighted / area;
+  b.area_m2 = area;
   b.center = center / area;
+  b.radius_m = 0;
+  for (int k = 0; k < b.corner_count; ++k) b.radius_m = std::max(b.radius_m, (b.corners[k] - b.center).norm());
   b.lowest_w_m2 = lo;
   b.highest_w_m2 = hi;
   b.dipole.setZero();
@@ -71,6 +75,29 @@ void ShooterTree::set_radiosity(Block& b, std::span<const size_t> elements) cons
     b.dipole += side_.elements[k].area_m2 * (side_.elements[k].center - b.center) *
                 (unshot_[k] - b.unshot_w_m2).matrix().transpose();
   b.dipole /= area;
+  // The linear fit in the block's plane: G = M^+ dipole, M the second moment of the elements'
+  // centres about the centroid (a block one element wide has a singular M: the pseudo-inverse
+  // fits along its length only).
+  const Vec3 t1 = (b.corners[1] - b.corners[0]).normalized(), t2 = side_.normal.cross(t1);
+  Eigen::Matrix2d moment = Eigen::Matrix2d::Zero();
+  for (const size_t k : elements) {
+    const Vec3 d = side_.elements[k].center - b.center;
+    const Eigen::Vector2d uv(t1.dot(d), t2.dot(d));
+    moment += side_.elements[k].area_m2 * uv * uv.transpose();
+  }
+  moment /= area;
+  Eigen::Matrix<double, 2, 3> dipole_uv;
+  dipole_uv.row(0) = t1.transpose() * b.dipole;
+  dipole_uv.row(1) = t2.transpose() * b.dipole;
+  const Eigen::Matrix<double, 2, 3> gradient_uv = moment.completeOrthogonalDecomposition().solve(dipole_uv);
+  b.gradient_w_m3 = gradient_uv.colwise().norm().sum();
+  b.fit_residual_w_m2 = 0;
+  for (const size_t k : elements) {
+    const Vec3 d = side_.elements[k].center - b.center;
+    const Eigen::Vector2d uv(t1.dot(d), t2.dot(d));
+    const Rgb fit = b.unshot_w_m2 + (gradient_uv.transpose() * uv).array();
+    b.fit_residual_w_m2 = std::max(b.fit_residual_w_m2, (unshot_[k] - fit).abs().sum());
+  }
   b.uniform = ((hi - lo) <= tol::kUniformRelative * hi.abs().max(std::numeric_limits<double>::min())).all();
 }
 
@@ -123,11 +150,17 @@ void ShooterTree::add_element_children(size_t index, const std::vector<size_t>& 
   }
 }
 
-Rgb far_field_radiosity(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal) {
+bool kernel_log_gradient(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal, Vec3& g) {
   const Vec3 d = p - b.center;  // from the source point y = c to the receiver x = p
   const double r2 = d.squaredNorm(), cos_y = shooter_normal.dot(d), cos_x = -n.dot(d);
-  if (!(cos_y > tol::kKernelCosine * std::sqrt(r2) && cos_x > tol::kKernelCosine * std::sqrt(r2))) return b.unshot_w_m2;
-  const Vec3 g = -shooter_normal / cos_y - n / cos_x + 4.0 * d / r2;
+  if (!(cos_y > tol::kKernelCosine * std::sqrt(r2) && cos_x > tol::kKernelCosine * std::sqrt(r2))) return false;
+  g = -shooter_normal / cos_y - n / cos_x + 4.0 * d / r2;
+  return true;
+}
+
+Rgb far_field_radiosity(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal) {
+  Vec3 g;
+  if (!kernel_log_gradient(b, p, n, shooter_normal, g)) return b.unshot_w_m2;
   const Rgb corrected = b.unshot_w_m2 + (g.transpose() * b.dipole).transpose().array();
   return corrected.max(b.lowest_w_m2).min(b.highest_w_m2);
 }
@@ -158,30 +191,87 @@ Receiver make_receiver(const Surface& surface, const MeshElement& e, const Vec3&
   return r;
 }
 
+double form_factor_bound(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal) {
+  const double d = (p - b.center).norm() - b.radius_m;  // no point of the block is nearer to p
+  if (!(d > 0)) return std::numeric_limits<double>::infinity();
+  const double h = shooter_normal.dot(p - b.center);  // cos_y = h / r, the same plane for all y
+  double lift = 0;  // n . (y - p) is linear in y: largest at a corner
+  for (int k = 0; k < b.corner_count; ++k) lift = std::max(lift, n.dot(b.corners[k] - p));
+  if (!(h > 0) || !(lift > 0)) return 0;
+  return b.area_m2 * std::min(1.0, lift / d) * std::min(1.0, h / d) / (std::numbers::pi * d * d);
+}
+
+namespace {
+
+/// Whether the block may shoot to the receiver point p as one source: see gather(). Sets
+/// `error` to the error estimate it was accepted with, and `f` to the visible form factor when
+/// it was computed to decide (else -1).
+bool shoots_whole(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal,
+                  const std::vector<const Occluder*>& occluders, double budget_w_m2, double& f, double& error) {
+  f = -1;
+  error = 0;
+  if (b.first_child < 0 || b.uniform) return true;
+  if (budget_w_m2 <= 0) {
+    const double far_m = tol::kFarFieldDiagonals * b.diagonal_m;
+    return (p - b.center).squaredNorm() > far_m * far_m;
+  }
+  const double spread = (b.highest_w_m2 - b.lowest_w_m2).sum();
+  const double bound = form_factor_bound(b, p, n, shooter_normal);
+  // Any far field lies in [lowest, highest], as the children's sum does: a strict bound.
+  error = bound * spread;
+  if (error <= budget_w_m2) return true;
+  if (!std::isfinite(bound)) return false;
+  // The first-order far field is exact for radiosity linear over the block and a kernel whose
+  // logarithm is linear over it: what is left is the fit's residual, and the gradient times the
+  // error of the kernel-weighted centroid, of second order in radius |g|.
+  Vec3 g;
+  if (!kernel_log_gradient(b, p, n, shooter_normal, g)) return false;
+  const double spin = b.radius_m * g.norm();
+  const double centroid_error_m = b.radius_m * std::min(2.0, spin * spin);
+  error = bound * (b.fit_residual_w_m2 + b.gradient_w_m3 * centroid_error_m);
+  if (error > budget_w_m2) return false;
+  // ... provided p sees all of the block: else the visible part's centroid is elsewhere.
+  ConvexPolygon poly;
+  for (int k = 0; k < b.corner_count; ++k) poly.push(b.corners[k]);
+  bool partly_seen = false;
+  f = visible_form_factor(p, n, poly, shooter_normal, occluders, &partly_seen);
+  if (!partly_seen) return true;
+  error = f * spread;
+  return error <= budget_w_m2;
+}
+
+}  // namespace
+
 Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, const Vec3& shooter_normal,
-                const std::vector<const Occluder*>& occluders) {
+                const std::vector<const Occluder*>& occluders, double budget_w_m2) {
   Gathered out;
-  const double far_m = tol::kFarFieldDiagonals * b.diagonal_m;  // shoots as one beyond this
-  if (b.first_child < 0 || b.uniform || (r.center - b.center).squaredNorm() > far_m * far_m) {
-    if ((b.highest_w_m2 == 0).all()) return out;
-    ConvexPolygon poly;
-    for (int k = 0; k < b.corner_count; ++k) poly.push(b.corners[k]);
-    const auto at = [&](const Vec3& p) -> Rgb {
-      const double f = visible_form_factor(p, r.normal, poly, shooter_normal, occluders);
-      if (f == 0 || b.uniform) return f * b.unshot_w_m2;
-      return f * far_field_radiosity(b, p, r.normal, shooter_normal);
-    };
-    out.at_center = at(r.center);
-    const double gap_m = (r.center - b.center).norm() - 0.5 * b.diagonal_m;
-    if (r.size_m <= tol::kMidpointReceiverRatio * gap_m) {
-      out.mean = out.at_center;
-    } else {
-      for (int k = 0; k < r.gauss_count; ++k) out.mean += at(r.gauss[k]);
-      out.mean /= r.gauss_count;
-    }
+  if ((b.highest_w_m2 == 0).all()) return out;
+  double f_center = -1;
+  double error = 0;
+  // The budget is shared among the blocks in proportion to their area: those that shoot as one
+  // tile the patch, so their errors add up to at most budget_w_m2.
+  const double share = budget_w_m2 * b.area_m2 / tree.root().area_m2;
+  if (!shoots_whole(b, r.center, r.normal, shooter_normal, occluders, share, f_center, error)) {
+    for (int c = 0; c < b.child_count; ++c)
+      out += gather(tree, tree.block(b.first_child + c), r, shooter_normal, occluders, budget_w_m2);
     return out;
   }
-  for (int c = 0; c < b.child_count; ++c) out += gather(tree, tree.block(b.first_child + c), r, shooter_normal, occluders);
+  ConvexPolygon poly;
+  for (int k = 0; k < b.corner_count; ++k) poly.push(b.corners[k]);
+  const auto at = [&](const Vec3& p, double f) -> Rgb {
+    if (f < 0) f = visible_form_factor(p, r.normal, poly, shooter_normal, occluders);
+    if (f == 0 || b.uniform) return f * b.unshot_w_m2;
+    return f * far_field_radiosity(b, p, r.normal, shooter_normal);
+  };
+  out.at_center = at(r.center, f_center);
+  out.error_w_m2 = error;
+  const double gap_m = (r.center - b.center).norm() - 0.5 * b.diagonal_m;
+  if (r.size_m <= tol::kMidpointReceiverRatio * gap_m) {
+    out.mean = out.at_center;
+  } else {
+    for (int k = 0; k < r.gauss_count; ++k) out.mean += at(r.gauss[k], -1);
+    out.mean /= r.gauss_count;
+  }
   return out;
 }
 

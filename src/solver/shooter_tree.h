@@ -21,11 +21,17 @@ struct Block {
   int corner_count = 0;
   Vec3 center;
   double diagonal_m = 0;          ///< the largest distance between two corners
+  double area_m2 = 0;             ///< the sum of its elements' areas
+  double radius_m = 0;            ///< the largest distance from `center` to a corner
   Rgb unshot_w_m2 = Rgb::Zero();  ///< area-weighted mean unshot radiosity of the block
   Rgb lowest_w_m2 = Rgb::Zero(), highest_w_m2 = Rgb::Zero();  ///< its elements' extremes
   /// The first moment of the unshot radiosity about the block's centroid, per channel (column),
   /// divided by the block's area: sum_k A_k (c_k - c) (B_k - B_mean) / A, W/m^2 times metres.
   Eigen::Matrix3d dipole = Eigen::Matrix3d::Zero();
+  /// The unshot radiosity's least-squares linear fit over the block, B(y) ~ mean + G^T (y - c):
+  /// the norms of G's columns summed over channels (W/m^2 per metre), and the largest deviation
+  /// of an element's radiosity from the fit, summed over channels (W/m^2).
+  double gradient_w_m3 = 0, fit_residual_w_m2 = 0;
   bool uniform = true;            ///< every element has the same unshot radiosity
   int first_child = -1;           ///< children are consecutive; -1 for a single element
   int child_count = 0;
@@ -71,6 +77,11 @@ class ShooterTree {
 /// power. Clamped to the block's range of unshot radiosity.
 Rgb far_field_radiosity(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal);
 
+/// The gradient g over the source point y, at the block's centroid, of ln k(p, y) (see
+/// far_field_radiosity()), 1/m; false at grazing angles (tol::kKernelCosine), where the first
+/// order is not used.
+bool kernel_log_gradient(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal, Vec3& g);
+
 /// A receiving element as gather() sees it: its centre, and the points of a Gauss rule over it
 /// for the blocks it is near to.
 struct Receiver {
@@ -93,24 +104,46 @@ GaussPoints gauss_points(const ParamCell& cell);
 /// The element as a receiver: its centre and its Gauss points on the surface.
 Receiver make_receiver(const Surface& surface, const MeshElement& e, const Vec3& normal);
 
+/// An upper bound of the unoccluded form factor from a differential area at p (unit normal n)
+/// to the block: A cos_x cos_y / (pi r^2) with r no less than p's distance d to the block's
+/// bounding sphere, cos_y = h / r (h: p's height over the shooter's plane) and cos_x no more
+/// than the largest height of a corner over p's plane divided by d. Infinite when p is inside
+/// the bounding sphere; 0 when p cannot see the block's front.
+double form_factor_bound(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal);
+
 /// What a receiving element gathers from one shot, W/m^2 per channel.
 struct Gathered {
   Rgb at_center = Rgb::Zero();  ///< the irradiance at its centre: its radiosity's
   Rgb mean = Rgb::Zero();       ///< its mean irradiance: the power it absorbs and reflects
+  /// The sum of the error estimates of the blocks that shot as one (channels summed), W/m^2.
+  double error_w_m2 = 0;
   Gathered& operator+=(const Gathered& o) {
     at_center += o.at_center;
     mean += o.mean;
+    error_w_m2 += o.error_w_m2;
     return *this;
   }
 };
 
 /// Irradiance on the receiving element from the shooter's unshot radiosity: the block as a whole
-/// when far or uniform, else the sum over its children. The element's radiosity is its value at
-/// its centre (what reconstructions sample); its power is its mean, the midpoint rule's (the
-/// centre's value, relative error of order (size / distance)^2) unless the element is large
-/// against its distance to the block (tol::kMidpointReceiverRatio): then by the Gauss rule, so
-/// that no power is gained or lost by point collocation next to the shooter.
+/// when it is uniform or a single element, or when it may shoot as one; else the sum over its
+/// children. With `budget_w_m2` <= 0 a block may shoot as one beyond tol::kFarFieldDiagonals of
+/// its diagonal from the element's centre. With a budget, while its error estimate at the
+/// centre is at most the budget's share in proportion to its area (the shares of the blocks that
+/// shoot as one add up to the budget):
+/// - form_factor_bound() times the spread of its unshot radiosity (channels summed), a strict
+///   bound: the far field and the children's sum both lie in [lowest, highest] times the
+///   visible form factor; or, when smaller,
+/// - the same bound times the residual of the far field's first order: the radiosity's
+///   deviation from its linear fit, plus its gradient times radius (radius |g|)^2 for the
+///   kernel's (g: kernel_log_gradient()); used only if the centre sees the whole block (a block
+///   cut by the receiver's horizon or a shadow is seen through part of it only).
+/// The element's radiosity is its value at its centre (what reconstructions sample); its power
+/// is its mean, the midpoint rule's (the centre's value, relative error of order
+/// (size / distance)^2) unless the element is large against its distance to the block
+/// (tol::kMidpointReceiverRatio): then by the Gauss rule, so that no power is gained or lost by
+/// point collocation next to the shooter.
 Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, const Vec3& shooter_normal,
-                const std::vector<const Occluder*>& occluders);
+                const std::vector<const Occluder*>& occluders, double budget_w_m2);
 
 }  // namespace radrecon

@@ -63,6 +63,7 @@ Solution solve_by_spec(const Scene& scene, const std::string& spec, const SolveS
                    mesh.element_count(), mesh.surfaces.size());
     ProgressiveOptions po;
     po.residual = settings.residual;
+    po.far_field_error = settings.far_field_error;
     po.progress_label = settings.progress_label;
     return solve_progressive(scene, mesh, po, "grid:" + std::to_string(n));
   }

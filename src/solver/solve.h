@@ -16,6 +16,9 @@ namespace radrecon {
 struct SolveSettings {
   double residual = kDefaultResidual;  ///< progressive: stop below this unshot fraction of the emitted power
   int patches = GridMeshOptions{}.max_patches;  ///< progressive: shooting patches along the longest edge
+  /// progressive: the far field's error bound as a fraction of irradiance; 0: the distance rule
+  /// (ProgressiveOptions::far_field_error)
+  double far_field_error = 0;
   /// quadtree:LEAVES: the side that gets LEAVES leaves; empty: "ground" if the scene has such a
   /// side, else the side of the largest surface.
   std::string leaves_on;

@@ -153,11 +153,15 @@ void subtract(const ConvexPolygon& q, const std::array<HalfSpace, 5>& volume,
 
 double visible_form_factor(const Vec3& p, const Vec3& n, const ConvexPolygon& shooter,
                            const Vec3& shooter_normal,
-                           const std::vector<const Occluder*>& occluders) {
+                           const std::vector<const Occluder*>& occluders, bool* partly_seen) {
+  bool partly_unused = false;
+  bool& partly = partly_seen != nullptr ? *partly_seen : partly_unused;
+  partly = false;
   if (shooter.empty()) return 0.0;
   if (shooter_normal.dot(p - shooter.v[0]) <= tol::kPlaneDistance_m) return 0.0;
   ConvexPolygon front = clip_to_horizon(p, n, shooter);
   if (front.empty()) return 0.0;
+  for (int i = 0; i < shooter.n && !partly; ++i) partly = n.dot(shooter.v[i] - p) < 0;
 
   // Common cases first: no occluder, or a single one, cast a shadow on the polygon.
   std::array<HalfSpace, 5> volume;
@@ -169,7 +173,10 @@ double visible_form_factor(const Vec3& p, const Vec3& n, const ConvexPolygon& sh
     ConvexPolygon shadow = clip_all(front, volume);
     if (shadow.empty()) continue;
     // Every clip left the polygon whole: the occluder hides all of it.
-    if (shadow.n == front.n && std::equal(front.v.begin(), front.v.begin() + front.n, shadow.v.begin())) return 0.0;
+    if (shadow.n == front.n && std::equal(front.v.begin(), front.v.begin() + front.n, shadow.v.begin())) {
+      partly = false;
+      return 0.0;
+    }
     if (first == nullptr) {
       first = occluders[k];
       first_shadow = shadow;
@@ -179,6 +186,7 @@ double visible_form_factor(const Vec3& p, const Vec3& n, const ConvexPolygon& sh
   }
   const double unoccluded = lambert_form_factor(p, n, front);
   if (first == nullptr) return unoccluded;
+  partly = true;
   if (k == occluders.size())
     return std::max(0.0, unoccluded - lambert_form_factor(p, n, first_shadow));
 
@@ -200,7 +208,10 @@ double visible_form_factor(const Vec3& p, const Vec3& n, const ConvexPolygon& sh
       else subtract_large(q, volume, next);
     }
     fragments.swap(next);
-    if (fragments.empty()) return 0.0;
+    if (fragments.empty()) {
+      partly = false;
+      return 0.0;
+    }
   }
   double visible = 0.0;
   for (const ConvexPolygon& q : fragments) visible += lambert_form_factor(p, n, q);

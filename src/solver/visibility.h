@@ -49,9 +49,14 @@ std::vector<const Occluder*> occluders_in_box(const std::vector<Occluder>& occlu
 /// the convex polygon `shooter` that is in front of the receiver and not hidden by any of the
 /// `occluders` (which must not include the surfaces of `p` and of `shooter`). Returns 0 when `p`
 /// is not in front of the shooter's plane, whose unit normal is `shooter_normal`.
+///
+/// `partly_seen`, when given, is set to whether p may see only part of the polygon: some of it
+/// lies behind p's plane (the horizon) or some occluder's shadow falls on it, and not all of it
+/// is hidden. A shooter block of varying radiosity seen in part is not represented by its
+/// first-order far field (solver/shooter_tree.h, gather()).
 double visible_form_factor(const Vec3& p, const Vec3& n, const ConvexPolygon& shooter,
                            const Vec3& shooter_normal,
-                           const std::vector<const Occluder*>& occluders);
+                           const std::vector<const Occluder*>& occluders, bool* partly_seen = nullptr);
 
 /// F(R -> S) = (1 / A_R) * integral over R of F(x -> S) dA_x: the form factor from the planar
 /// quad R (corners in order around it; its points are the bilinear patch through them, so any

@@ -5,12 +5,15 @@
 
 #include <cstdio>
 #include <omp.h>
+#include <random>
 
 #include "mesh/grid_mesh.h"
 #include "support/closed_forms.h"
 #include "support/scenes.h"
 #include "solver/closed_room.h"
+#include "solver/form_factor.h"
 #include "solver/progressive.h"
+#include "solver/shooter_tree.h"
 
 namespace radrecon {
 namespace progressive_test {
@@ -32,10 +35,12 @@ double floor_to_light(double x, double y, double x0, double y0, double x1, doubl
   return testing_support::floor_to_rectangle(x, y, x0, y0, x1, y1, h);
 }
 
-Solution solve(const Scene& scene, int divisions, double residual = 1e-6, size_t max_shots = 0) {
+Solution solve(const Scene& scene, int divisions, double residual = 1e-6, size_t max_shots = 0,
+               double far_field_error = 0) {
   ProgressiveOptions po;
   po.residual = residual;
   po.max_shots = max_shots;
+  po.far_field_error = far_field_error;
   return solve_progressive(scene, make_grid_mesh(scene, {divisions, 2}), po, "grid:" + std::to_string(divisions));
 }
 
@@ -172,16 +177,83 @@ TEST(Progressive, ShotLimitIsReportedNotConverged) {
 TEST(Progressive, ResultDoesNotDependOnThreadCount) {
   const Scene scene = paper_scene();
   const int threads = omp_get_max_threads();
-  omp_set_num_threads(1);
-  const Solution one = solve(scene, 32, 1e-4);
-  omp_set_num_threads(std::max(2, threads));
-  const Solution many = solve(scene, 32, 1e-4);
-  omp_set_num_threads(threads);
-  ASSERT_EQ(one.surfaces.size(), many.surfaces.size());
-  for (size_t s = 0; s < one.surfaces.size(); ++s)
-    for (size_t e = 0; e < one.surfaces[s].elements.size(); ++e)
-      ASSERT_EQ(one.surfaces[s].elements[e].radiosity_w_m2[0], many.surfaces[s].elements[e].radiosity_w_m2[0]);
-  EXPECT_EQ(one.stats.escaped_w[0], many.stats.escaped_w[0]);
+  for (const double far_field_error : {0.0, 1e-2}) {
+    omp_set_num_threads(1);
+    const Solution one = solve(scene, 32, 1e-4, 0, far_field_error);
+    omp_set_num_threads(std::max(2, threads));
+    const Solution many = solve(scene, 32, 1e-4, 0, far_field_error);
+    omp_set_num_threads(threads);
+    ASSERT_EQ(one.surfaces.size(), many.surfaces.size());
+    for (size_t s = 0; s < one.surfaces.size(); ++s)
+      for (size_t e = 0; e < one.surfaces[s].elements.size(); ++e)
+        ASSERT_EQ(one.surfaces[s].elements[e].radiosity_w_m2[0], many.surfaces[s].elements[e].radiosity_w_m2[0]);
+    EXPECT_EQ(one.stats.escaped_w[0], many.stats.escaped_w[0]);
+  }
+}
+
+TEST(ShooterTree, FormFactorBoundIsAtLeastTheExactFormFactor) {
+  // Random parallelograms and receiver points: the bound against the closed-form point-to-polygon
+  // form factor (Lambert's formula) of the part in front of the receiver.
+  std::mt19937_64 rng(42);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const auto direction = [&] { return Vec3(u(rng), u(rng), u(rng)).normalized(); };
+  int finite = 0, zero = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const Vec3 origin(u(rng), u(rng), u(rng)), a = 0.5 * direction(), b0 = 0.5 * direction();
+    const Vec3 normal = a.cross(b0).normalized(), b = normal.cross(a).normalized() * 0.3 + 0.2 * a;
+    Block block;
+    block.corners = {origin, origin + a, origin + a + b, origin + b, Vec3::Zero()};
+    block.corner_count = 4;
+    block.center = origin + 0.5 * (a + b);
+    block.area_m2 = a.cross(b).norm();
+    for (int k = 0; k < 4; ++k) block.radius_m = std::max(block.radius_m, (block.corners[k] - block.center).norm());
+    const Vec3 p = block.center + 3 * Vec3(u(rng), u(rng), u(rng)), n = direction();
+    ConvexPolygon polygon;
+    for (int k = 0; k < 4; ++k) polygon.push(block.corners[k]);
+    const double exact = normal.dot(p - origin) > 0 ? lambert_form_factor(p, n, clip_to_horizon(p, n, polygon)) : 0.0;
+    const double bound = form_factor_bound(block, p, n, normal);
+    if (!std::isfinite(bound)) continue;
+    ++finite;
+    zero += bound == 0 ? 1 : 0;
+    ASSERT_LE(exact, bound * (1 + 1e-12)) << "trial " << trial;
+  }
+  EXPECT_GT(finite, 10000);
+  EXPECT_GT(zero, 1000);  // points behind the block or with the block behind them
+}
+
+/// Issue 13's targets for the far field with an error bound: the walls' radiosity within 0.5% of
+/// a fine solve's everywhere (their back sides included), the umbra on the ground within 2%.
+constexpr double kWallRelative = 5e-3, kUmbraRelative = 2e-2;
+
+TEST(Progressive, SlowFarFieldErrorBoundKeepsWallsAndUmbraNearAFineSolve) {
+  // The paper scene at grid:100, against the same solve with a bound 100 times finer. The default
+  // distance rule is shown to miss the walls' target: the test tells the two apart.
+  const Scene scene = paper_scene();
+  const Solution fine = solve(scene, 100, 1e-4, 0, 1e-4);
+  const Solution bounded = solve(scene, 100, 1e-4, 0, 1e-2);
+  const Solution distance_rule = solve(scene, 100, 1e-4, 0, 0.0);
+  const auto worst = [&](const Solution& sol, bool walls) {
+    double out = 0;
+    for (size_t s = 0; s < fine.surfaces.size(); ++s) {
+      const SurfaceSolution& ref = fine.surfaces[s];
+      if (ref.name == "light" || (ref.name == "ground") == walls) continue;
+      double peak = 0;
+      for (const SolutionElement& e : ref.elements) peak = std::max(peak, e.radiosity_w_m2[0]);
+      for (size_t e = 0; e < ref.elements.size(); ++e) {
+        const double b_ref = ref.elements[e].radiosity_w_m2[0];
+        // Walls: every element that gets light; ground: the umbra (below 15% of the peak).
+        if (walls ? b_ref <= 1e-3 * peak : b_ref >= 0.15 * peak || b_ref <= 0) continue;
+        out = std::max(out, std::abs(sol.surfaces[s].elements[e].radiosity_w_m2[0] - b_ref) / b_ref);
+      }
+    }
+    return out;
+  };
+  std::printf("largest relative difference from the fine solve: walls %.2e (distance rule %.2e), umbra %.2e "
+              "(distance rule %.2e)\n",
+              worst(bounded, true), worst(distance_rule, true), worst(bounded, false), worst(distance_rule, false));
+  EXPECT_LT(worst(bounded, true), kWallRelative);
+  EXPECT_LT(worst(bounded, false), kUmbraRelative);
+  EXPECT_GT(worst(distance_rule, true), kWallRelative);
 }
 
 }  // namespace progressive_test
