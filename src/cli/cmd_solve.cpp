@@ -18,7 +18,7 @@ struct SolveArgs {
   std::string out;
   double residual = kDefaultResidual;
   int patches = SolveSettings{}.patches;
-  double far_field_error = 0;
+  double far_field_error = kDefaultFarFieldError;
   std::string leaves_on;
   bool shadow_barriers = false;
   bool quiet = false;
@@ -77,11 +77,11 @@ void add_solve_command(CLI::App& app) {
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
   cmd->add_option("--far-field-error", args->far_field_error,
-                  "grid: shoot a block of a patch as one source only while its error estimate is at most this "
-                  "fraction of the receiver's irradiance (1e-2 keeps the paper scene's walls within 0.3%, at about "
-                  "twice the time); by default blocks shoot as one beyond 2.5 diagonals, with no bound "
-                  "(docs/method.md)")
-      ->check(CLI::Range(kMinFarFieldError, kMaxFarFieldError));
+                  "grid: a block of a shooting patch shoots as one source only while its error estimate is at most "
+                  "this fraction of the receiver's irradiance; 0: beyond 2.5 of its diagonals instead, with no "
+                  "bound (docs/method.md)")
+      ->check(CLI::IsMember({0.0}) | CLI::Range(kMinFarFieldError, kMaxFarFieldError))
+      ->capture_default_str();
   cmd->add_flag("--shadow-barriers", args->shadow_barriers,
                 "Also list the direct light's D1/D2 lines (umbra and penumbra boundaries cast by occluder edges) "
                 "among each side's barriers; experimental (docs/method.md)");

@@ -27,9 +27,9 @@ inline constexpr double kParallelSine = 1e-6;
 /// Adaptive shooting: a shooter block is used as a whole when its distance from the receiver
 /// point exceeds this multiple of its diagonal; closer, it is split into its elements. At 2
 /// diagonals the point-collocated form factor of a block differs from the sum over its parts
-/// by well under 1% for smoothly varying radiosity. This is the default rule; it has no error
-/// bound (a wall's back side is up to 6% too bright in the paper scene, docs/method.md), which
-/// ProgressiveOptions::far_field_error gives instead.
+/// by well under 1% for smoothly varying radiosity. This rule (`solve --far-field-error 0`) has
+/// no error bound: a wall's back side is 6% too bright in the paper scene (docs/method.md);
+/// ProgressiveOptions::far_field_error, the default, bounds the error instead.
 inline constexpr double kFarFieldDiagonals = 2.5;
 
 /// Two values of unshot radiosity (W/m^2) within this relative difference count as equal, so a

@@ -163,7 +163,16 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
           budget_w_m2 = options.far_field_error *
                         std::max(st.irradiance[static_cast<size_t>(e)].sum() + estimate, least_irradiance_w_m2);
         }
-        gain[static_cast<size_t>(e)] = gather(tree, tree.root(), element, shooter_normal, near, budget_w_m2);
+        Gathered got = gather(tree, tree.root(), element, shooter_normal, near, budget_w_m2);
+        if (budget_w_m2 > 0) {
+          // The whole patch's estimate can exceed what the element gets many times over (a dark
+          // element beside a bright one, a patch seen in part): then again, with the budget made
+          // for what it got.
+          const double irradiance = st.irradiance[static_cast<size_t>(e)].sum() + std::min(got.at_center.sum(), got.mean.sum());
+          const double budget_got = options.far_field_error * std::max(irradiance, least_irradiance_w_m2);
+          if (budget_got < 0.5 * budget_w_m2) got = gather(tree, tree.root(), element, shooter_normal, near, budget_got);
+        }
+        gain[static_cast<size_t>(e)] = got;
       });
       for (size_t e = 0; e < receiver.elements.size(); ++e) {
         const Gathered& h = gain[e];

@@ -203,41 +203,43 @@ double form_factor_bound(const Block& b, const Vec3& p, const Vec3& n, const Vec
 
 namespace {
 
-/// Whether the block may shoot to the receiver point p as one source: see gather(). Sets
-/// `error` to the error estimate it was accepted with, and `f` to the visible form factor when
-/// it was computed to decide (else -1).
-bool shoots_whole(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal,
-                  const std::vector<const Occluder*>& occluders, double budget_w_m2, double& f, double& error) {
+/// Whether the block may shoot to the receiving element as one source: see gather(). Sets `f`
+/// to the visible form factor at the element's centre when it was computed to decide (else -1).
+/// `midpoint`: the element gathers at its centre alone.
+bool shoots_whole(const Block& b, const Receiver& r, const Vec3& shooter_normal,
+                  const std::vector<const Occluder*>& occluders, double budget_w_m2, bool midpoint, double& f) {
   f = -1;
-  error = 0;
   if (b.first_child < 0 || b.uniform) return true;
+  const Vec3 &p = r.center, &n = r.normal;
   if (budget_w_m2 <= 0) {
     const double far_m = tol::kFarFieldDiagonals * b.diagonal_m;
     return (p - b.center).squaredNorm() > far_m * far_m;
   }
   const double spread = (b.highest_w_m2 - b.lowest_w_m2).sum();
-  const double bound = form_factor_bound(b, p, n, shooter_normal);
-  // Any far field lies in [lowest, highest], as the children's sum does: a strict bound.
-  error = bound * spread;
-  if (error <= budget_w_m2) return true;
-  if (!std::isfinite(bound)) return false;
-  // The first-order far field is exact for radiosity linear over the block and a kernel whose
-  // logarithm is linear over it: what is left is the fit's residual, and the gradient times the
-  // error of the kernel-weighted centroid, of second order in radius |g|.
-  Vec3 g;
-  if (!kernel_log_gradient(b, p, n, shooter_normal, g)) return false;
-  const double spin = b.radius_m * g.norm();
-  const double centroid_error_m = b.radius_m * std::min(2.0, spin * spin);
-  error = bound * (b.fit_residual_w_m2 + b.gradient_w_m3 * centroid_error_m);
-  if (error > budget_w_m2) return false;
-  // ... provided p sees all of the block: else the visible part's centroid is elsewhere.
+  // Any far field lies in [lowest, highest] times the visible form factor, as the children's sum
+  // does: a strict bound with form_factor_bound() at the centre (the Gauss points, which only
+  // the element's power uses, are within half its size of it).
+  double form_factor = form_factor_bound(b, p, n, shooter_normal);
+  if (form_factor * spread <= budget_w_m2) return true;
+  if (!std::isfinite(form_factor)) return false;
   ConvexPolygon poly;
   for (int k = 0; k < b.corner_count; ++k) poly.push(b.corners[k]);
   bool partly_seen = false;
   f = visible_form_factor(p, n, poly, shooter_normal, occluders, &partly_seen);
-  if (!partly_seen) return true;
-  error = f * spread;
-  return error <= budget_w_m2;
+  if (midpoint) {
+    // The element gathers at its centre alone: bound with the visible form factor there.
+    form_factor = f;
+    if (f * spread <= budget_w_m2) return true;
+  }
+  // The first-order far field is exact for radiosity linear over the block and a kernel whose
+  // logarithm is linear over it: what is left is the fit's residual, and the gradient times the
+  // error of the kernel-weighted centroid, of second order in radius |g|; provided the centre
+  // sees all of the block (else the visible part's centroid is elsewhere).
+  Vec3 g;
+  if (partly_seen || !kernel_log_gradient(b, p, n, shooter_normal, g)) return false;
+  const double spin = b.radius_m * g.norm();
+  const double centroid_error_m = b.radius_m * std::min(2.0, spin * spin);
+  return form_factor * (b.fit_residual_w_m2 + b.gradient_w_m3 * centroid_error_m) <= budget_w_m2;
 }
 
 }  // namespace
@@ -247,11 +249,12 @@ Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, cons
   Gathered out;
   if ((b.highest_w_m2 == 0).all()) return out;
   double f_center = -1;
-  double error = 0;
   // The budget is shared among the blocks in proportion to their area: those that shoot as one
   // tile the patch, so their errors add up to at most budget_w_m2.
   const double share = budget_w_m2 * b.area_m2 / tree.root().area_m2;
-  if (!shoots_whole(b, r.center, r.normal, shooter_normal, occluders, share, f_center, error)) {
+  const double gap_m = (r.center - b.center).norm() - 0.5 * b.diagonal_m;
+  const bool midpoint = r.size_m <= tol::kMidpointReceiverRatio * gap_m;
+  if (!shoots_whole(b, r, shooter_normal, occluders, share, midpoint, f_center)) {
     for (int c = 0; c < b.child_count; ++c)
       out += gather(tree, tree.block(b.first_child + c), r, shooter_normal, occluders, budget_w_m2);
     return out;
@@ -264,9 +267,7 @@ Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, cons
     return f * far_field_radiosity(b, p, r.normal, shooter_normal);
   };
   out.at_center = at(r.center, f_center);
-  out.error_w_m2 = error;
-  const double gap_m = (r.center - b.center).norm() - 0.5 * b.diagonal_m;
-  if (r.size_m <= tol::kMidpointReceiverRatio * gap_m) {
+  if (midpoint) {
     out.mean = out.at_center;
   } else {
     for (int k = 0; k < r.gauss_count; ++k) out.mean += at(r.gauss[k], -1);

@@ -115,12 +115,9 @@ double form_factor_bound(const Block& b, const Vec3& p, const Vec3& n, const Vec
 struct Gathered {
   Rgb at_center = Rgb::Zero();  ///< the irradiance at its centre: its radiosity's
   Rgb mean = Rgb::Zero();       ///< its mean irradiance: the power it absorbs and reflects
-  /// The sum of the error estimates of the blocks that shot as one (channels summed), W/m^2.
-  double error_w_m2 = 0;
   Gathered& operator+=(const Gathered& o) {
     at_center += o.at_center;
     mean += o.mean;
-    error_w_m2 += o.error_w_m2;
     return *this;
   }
 };
@@ -131,10 +128,11 @@ struct Gathered {
 /// its diagonal from the element's centre. With a budget, while its error estimate at the
 /// centre is at most the budget's share in proportion to its area (the shares of the blocks that
 /// shoot as one add up to the budget):
-/// - form_factor_bound() times the spread of its unshot radiosity (channels summed), a strict
-///   bound: the far field and the children's sum both lie in [lowest, highest] times the
-///   visible form factor; or, when smaller,
-/// - the same bound times the residual of the far field's first order: the radiosity's
+/// - its form factor times the spread of its unshot radiosity (channels summed), a strict bound:
+///   the far field and the children's sum both lie in [lowest, highest] times the visible form
+///   factor. The form factor is form_factor_bound(), or the visible form factor itself when the
+///   element gathers at its centre alone; or, when smaller,
+/// - the same form factor times the residual of the far field's first order: the radiosity's
 ///   deviation from its linear fit, plus its gradient times radius (radius |g|)^2 for the
 ///   kernel's (g: kernel_log_gradient()); used only if the centre sees the whole block (a block
 ///   cut by the receiver's horizon or a shadow is seen through part of it only).

@@ -18,7 +18,7 @@ struct SolveSettings {
   int patches = GridMeshOptions{}.max_patches;  ///< progressive: shooting patches along the longest edge
   /// progressive: the far field's error bound as a fraction of irradiance; 0: the distance rule
   /// (ProgressiveOptions::far_field_error)
-  double far_field_error = 0;
+  double far_field_error = kDefaultFarFieldError;
   /// quadtree:LEAVES: the side that gets LEAVES leaves; empty: "ground" if the scene has such a
   /// side, else the side of the largest surface.
   std::string leaves_on;

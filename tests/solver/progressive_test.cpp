@@ -36,7 +36,7 @@ double floor_to_light(double x, double y, double x0, double y0, double x1, doubl
 }
 
 Solution solve(const Scene& scene, int divisions, double residual = 1e-6, size_t max_shots = 0,
-               double far_field_error = 0) {
+               double far_field_error = kDefaultFarFieldError) {
   ProgressiveOptions po;
   po.residual = residual;
   po.max_shots = max_shots;
