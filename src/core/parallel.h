@@ -56,6 +56,22 @@ void parallel_for(std::int64_t begin, std::int64_t end, Body&& body) {
   error.rethrow();
 }
 
+/// parallel_for for iterations of widely varying cost, each far more than handing it out (a
+/// receiving element's gathering from a shot: microseconds to milliseconds): chunks of `grain`
+/// iterations, in parallel from two chunks on.
+template <typename Body>
+void parallel_for_grained(std::int64_t begin, std::int64_t end, std::int64_t grain, Body&& body) {
+  LoopException error;
+  const std::int64_t chunks = end > begin ? (end - begin + grain - 1) / grain : 0;
+#pragma omp parallel for schedule(dynamic, 1) if (chunks >= 2)
+  for (std::int64_t c = 0; c < chunks; ++c)
+    error.run([&] {
+      const std::int64_t lo = begin + c * grain, hi = std::min(end, lo + grain);
+      for (std::int64_t i = lo; i < hi; ++i) body(i);
+    });
+  error.rethrow();
+}
+
 /// parallel_for for iterations that each cost far more than waking the team (a link's form
 /// factor by cubature, a block of receivers): handed out one at a time, in parallel from two on.
 template <typename Body>

@@ -1,8 +1,10 @@
 #include "solver/progressive.h"
 
 #include <chrono>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 #include <limits>
 #include <span>
 
@@ -29,6 +31,17 @@ struct Patch {
 struct SideState {
   std::vector<Rgb> radiosity, unshot, irradiance;
 };
+
+/// A side that receives from the current shot: its elements are gain[first, first + count).
+struct ReceivingSide {
+  size_t side;
+  size_t first;
+  std::vector<const Occluder*> blockers;  ///< in the shaft between the two surfaces
+};
+
+/// Receiving elements handed to a thread at a time: one costs a microsecond (a far patch, no
+/// occluder) to milliseconds (a near one behind many occluders).
+constexpr std::int64_t kReceiverGrain = 16;
 
 }  // namespace
 
@@ -82,7 +95,8 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
   RR_CHECK(emitted_sum > 0, "the scene emits no light");
   size_t shots = 0;
   Progress progress(options.progress_label, options.progress_label.empty());
-  std::vector<Gathered> gain;
+  std::vector<Gathered> gain;  // per receiving element of the shot, in the order of `jobs`
+  std::vector<ReceivingSide> jobs;
   double residual = 1.0;
   bool converged = false;  // the residual, not the shot limit, ended the loop
 
@@ -127,61 +141,78 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
     // spread over the scene (receivers in the dark would otherwise split every block).
     const double least_irradiance_w_m2 = 1e-2 * shot_power.sum() / total_area_m2;
     const Vec3 shooter_normal = shooter_side.normal;
-    Rgb delivered = Rgb::Zero();
+    // The sides that can receive from the shooter, with the occluders in the shaft between the
+    // two surfaces (then, per receiving element, in the shaft between the element and the
+    // shooting patch: solver/bvh.h, the same shadows, fewer tests); their elements numbered
+    // one after the other, so that one parallel loop covers every receiving element.
+    const std::span<const Vec3> shooter_outline(root.corners.data(), static_cast<size_t>(root.corner_count));
+    jobs.clear();
+    size_t receiving = 0;
     for (size_t r = 0; r < mesh.surfaces.size(); ++r) {
       const MeshSurface& receiver = mesh.surfaces[r];
       if (receiver.scene_surface == shooter_side.scene_surface) continue;
-      const Surface& receiver_surface = scene.surfaces[receiver.scene_surface];
-      if (!quads_face(receiver_surface.corners, receiver.normal, shooter_surface.corners, shooter_normal)) continue;
-      // Occluders in the shaft between the two surfaces; then, per receiver element, in the shaft
-      // between the element and the shooting patch (solver/bvh.h: the same shadows, fewer tests).
-      const std::span<const Vec3> shooter_outline(root.corners.data(), static_cast<size_t>(root.corner_count));
-      const std::vector<const Occluder*> blockers =
-          bvh.between(shooter_outline, receiver_surface.polygon(), receiver.scene_surface, shooter_side.scene_surface);
-
-      gain.assign(receiver.elements.size(), Gathered{});
-      SideState& st = state[r];
-      parallel_for(0, static_cast<std::int64_t>(receiver.elements.size()), [&](std::int64_t e) {
-        const Receiver element = make_receiver(receiver_surface, receiver.elements[static_cast<size_t>(e)], receiver.normal);
-        // gather() looks from the centre and the Gauss points: the shaft from the centre, widened
-        // by their farthest distance from it, holds every segment it follows.
-        thread_local std::vector<const Occluder*> near;
-        near.clear();
-        if (!blockers.empty()) {
-          double reach_m = 0;
-          for (int k = 0; k < element.gauss_count; ++k) reach_m = std::max(reach_m, (element.gauss[k] - element.center).norm());
-          bvh.collect(Shaft({&element.center, 1}, shooter_outline, reach_m), receiver.scene_surface,
-                      shooter_side.scene_surface, near);
-        }
-        double budget_w_m2 = 0;  // the distance rule
-        if (options.far_field_error > 0) {
-          // A fraction of the element's irradiance: gathered so far, plus this shot's as the
-          // whole patch would give it.
-          const double estimate =
-              visible_form_factor(element.center, element.normal, patch_outline, shooter_normal, near) *
-              root.unshot_w_m2.sum();
-          budget_w_m2 = options.far_field_error *
-                        std::max(st.irradiance[static_cast<size_t>(e)].sum() + estimate, least_irradiance_w_m2);
-        }
-        Gathered got = gather(tree, tree.root(), element, shooter_normal, near, budget_w_m2);
-        if (budget_w_m2 > 0) {
-          // The whole patch's estimate can exceed what the element gets many times over (a dark
-          // element beside a bright one, a patch seen in part): then again, with the budget made
-          // for what it got.
-          const double irradiance = st.irradiance[static_cast<size_t>(e)].sum() + std::min(got.at_center.sum(), got.mean.sum());
-          const double budget_got = options.far_field_error * std::max(irradiance, least_irradiance_w_m2);
-          if (budget_got < 0.5 * budget_w_m2) got = gather(tree, tree.root(), element, shooter_normal, near, budget_got);
-        }
-        gain[static_cast<size_t>(e)] = got;
-      });
+      if (!quads_face(scene.surfaces[receiver.scene_surface].corners, receiver.normal, shooter_surface.corners,
+                      shooter_normal))
+        continue;
+      jobs.push_back({r, receiving, {}});
+      receiving += receiver.elements.size();
+    }
+    parallel_for_coarse(0, static_cast<std::int64_t>(jobs.size()), [&](std::int64_t j) {
+      ReceivingSide& job = jobs[static_cast<size_t>(j)];
+      const MeshSurface& receiver = mesh.surfaces[job.side];
+      job.blockers = bvh.between(shooter_outline, scene.surfaces[receiver.scene_surface].polygon(),
+                                 receiver.scene_surface, shooter_side.scene_surface);
+    });
+    gain.assign(receiving, Gathered{});
+    parallel_for_grained(0, static_cast<std::int64_t>(receiving), kReceiverGrain, [&](std::int64_t i) {
+      const auto job = std::prev(std::upper_bound(jobs.begin(), jobs.end(), static_cast<size_t>(i),
+                                                  [](size_t k, const ReceivingSide& s) { return k < s.first; }));
+      const size_t e = static_cast<size_t>(i) - job->first;
+      const MeshSurface& receiver = mesh.surfaces[job->side];
+      const Receiver element = make_receiver(scene.surfaces[receiver.scene_surface], receiver.elements[e], receiver.normal);
+      // gather() looks from the centre and the Gauss points: the shaft from the centre, widened
+      // by their farthest distance from it, holds every segment it follows.
+      thread_local std::vector<const Occluder*> near;
+      near.clear();
+      if (!job->blockers.empty()) {
+        double reach_m = 0;
+        for (int k = 0; k < element.gauss_count; ++k) reach_m = std::max(reach_m, (element.gauss[k] - element.center).norm());
+        bvh.collect(Shaft({&element.center, 1}, shooter_outline, reach_m), receiver.scene_surface,
+                    shooter_side.scene_surface, near);
+      }
+      const double so_far_w_m2 = state[job->side].irradiance[e].sum();
+      double budget_w_m2 = 0;  // the distance rule
+      if (options.far_field_error > 0) {
+        // A fraction of the element's irradiance: gathered so far, plus this shot's as the
+        // whole patch would give it.
+        const double estimate =
+            visible_form_factor(element.center, element.normal, patch_outline, shooter_normal, near) *
+            root.unshot_w_m2.sum();
+        budget_w_m2 = options.far_field_error * std::max(so_far_w_m2 + estimate, least_irradiance_w_m2);
+      }
+      Gathered got = gather(tree, tree.root(), element, shooter_normal, near, budget_w_m2);
+      if (budget_w_m2 > 0) {
+        // The whole patch's estimate can exceed what the element gets many times over (a dark
+        // element beside a bright one, a patch seen in part): then again, with the budget made
+        // for what it got.
+        const double irradiance = so_far_w_m2 + std::min(got.at_center.sum(), got.mean.sum());
+        const double budget_got = options.far_field_error * std::max(irradiance, least_irradiance_w_m2);
+        if (budget_got < 0.5 * budget_w_m2) got = gather(tree, tree.root(), element, shooter_normal, near, budget_got);
+      }
+      gain[static_cast<size_t>(i)] = got;
+    });
+    Rgb delivered = Rgb::Zero();
+    for (const ReceivingSide& job : jobs) {
+      const MeshSurface& receiver = mesh.surfaces[job.side];
+      SideState& st = state[job.side];
       for (size_t e = 0; e < receiver.elements.size(); ++e) {
-        const Gathered& h = gain[e];
+        const Gathered& h = gain[job.first + e];
         st.irradiance[e] += h.mean;
         st.radiosity[e] += receiver.reflectance * h.at_center;
         st.unshot[e] += receiver.reflectance * h.mean;
         delivered += receiver.elements[e].area_m2 * h.mean;
       }
-      update_patch_power(r);
+      update_patch_power(job.side);
     }
     escaped += shot_power - delivered;
     ++shots;

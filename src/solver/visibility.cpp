@@ -190,22 +190,26 @@ double visible_form_factor(const Vec3& p, const Vec3& n, const ConvexPolygon& sh
   if (k == occluders.size())
     return std::max(0.0, unoccluded - lambert_form_factor(p, n, first_shadow));
 
-  // General case: subtract every shadow volume from the fragments of the visible polygon.
-  // Nearest occluders first: their shadows are the largest seen from p, so the fragments shrink
-  // (or vanish, ending the loop) early and later shadows cut fewer of them.
-  thread_local std::vector<std::pair<double, const Occluder*>> by_distance;
-  by_distance.clear();
-  for (const Occluder* o : occluders) by_distance.emplace_back((o->centroid - p).squaredNorm(), o);
-  std::sort(by_distance.begin(), by_distance.end(),
-            [](const auto& x, const auto& y) { return x.first < y.first; });
+  // General case: subtract every shadow volume that meets the polygon from the fragments of the
+  // visible polygon. Nearest occluders first: their shadows are the largest seen from p, so the
+  // fragments shrink (or vanish, ending the loop) early and later shadows cut fewer of them.
+  struct Shadow {
+    double distance_m2;
+    std::array<HalfSpace, 5> volume;
+  };
+  thread_local std::vector<Shadow> shadows;
+  shadows.clear();
+  for (const Occluder* o : occluders)
+    if (shadow_volume(p, *o, front, volume)) shadows.push_back({(o->centroid - p).squaredNorm(), volume});
+  std::stable_sort(shadows.begin(), shadows.end(),
+                   [](const Shadow& x, const Shadow& y) { return x.distance_m2 < y.distance_m2; });
   thread_local std::vector<ConvexPolygon> fragments, next;
   fragments.assign(1, front);
-  for (const auto& [distance_m2, o] : by_distance) {
-    if (!shadow_volume(p, *o, front, volume)) continue;
+  for (const Shadow& shadow : shadows) {
     next.clear();
     for (const ConvexPolygon& q : fragments) {
-      if (q.n <= kMaxSubtractVertices) subtract(q, volume, next);
-      else subtract_large(q, volume, next);
+      if (q.n <= kMaxSubtractVertices) subtract(q, shadow.volume, next);
+      else subtract_large(q, shadow.volume, next);
     }
     fragments.swap(next);
     if (fragments.empty()) {
