@@ -1,3 +1,4 @@
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -29,6 +30,10 @@ void run_solve(const SolveArgs& args, const CLI::App& cmd) {
   const bool grid = args.mesh.rfind("grid:", 0) == 0, leaves = args.mesh.rfind("quadtree:", 0) == 0;
   for (const char* option : {"--residual", "--patches", "--far-field-error"})
     if (!grid && cmd.count(option) > 0) throw UserError(option, "applies to grid:N meshes only");
+  // CLI11's ranges let NaN through (every comparison with it is false).
+  if (!std::isfinite(args.residual)) throw UserError("--residual", "must be a number in [1e-12, 0.5]");
+  if (!std::isfinite(args.far_field_error))
+    throw UserError("--far-field-error", "must be 0 or a number in [1e-6, 0.5]");
   if (!leaves && cmd.count("--leaves-on")) throw UserError("--leaves-on", "applies to quadtree:LEAVES meshes only");
   if (args.scene != "paper" && args.scene != "cornell") refuse_overwriting_inputs(args.out, "--out", {args.scene});
   check_output_file(args.out, "--out");

@@ -61,6 +61,7 @@ void parallel_for(std::int64_t begin, std::int64_t end, Body&& body) {
 /// iterations, in parallel from two chunks on.
 template <typename Body>
 void parallel_for_grained(std::int64_t begin, std::int64_t end, std::int64_t grain, Body&& body) {
+  grain = std::max<std::int64_t>(grain, 1);
   LoopException error;
   const std::int64_t chunks = end > begin ? (end - begin + grain - 1) / grain : 0;
 #pragma omp parallel for schedule(dynamic, 1) if (chunks >= 2)

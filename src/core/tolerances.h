@@ -32,6 +32,22 @@ inline constexpr double kParallelSine = 1e-6;
 /// ProgressiveOptions::far_field_error, the default, bounds the error instead.
 inline constexpr double kFarFieldDiagonals = 2.5;
 
+/// The far field's error bound (ProgressiveOptions::far_field_error) is made for no less
+/// irradiance than this fraction of the shot's power spread over the scene's area: a receiver in
+/// the dark would otherwise split every block down to its elements for light it barely gets.
+inline constexpr double kFarFieldLeastIrradianceFraction = 1e-2;
+/// An element whose gathered irradiance falls below this fraction of the estimate its budget was
+/// made for (the whole patch's, at its centre) gathers again with the budget of what it got.
+inline constexpr double kFarFieldRegatherRatio = 0.5;
+/// The error of the first-order far field's kernel-weighted centroid, in block radii, at most:
+/// the centroid lies within one radius of the block's, and the clamp of the far field to the
+/// block's range of radiosity limits what a larger first-order shift can add.
+inline constexpr double kFarFieldCentroidErrorRadii = 2.0;
+/// A shooter block's linear fit of its radiosity (solver/shooter_tree.cpp) ignores directions in
+/// which the second moment of its elements' centres is below this fraction of its radius
+/// squared: a block one element wide has none across it but round-off.
+inline constexpr double kFitMomentRelative = 1e-9;
+
 /// Two values of unshot radiosity (W/m^2) within this relative difference count as equal, so a
 /// block of uniform unshot radiosity (an emitter's first shot) is never split: by additivity of
 /// form factors that is exact.

@@ -1,7 +1,7 @@
 #include "solver/progressive.h"
 
-#include <chrono>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iterator>
@@ -137,9 +137,7 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
     const Block& root = tree.root();
     ConvexPolygon patch_outline;
     for (int k = 0; k < root.corner_count; ++k) patch_outline.push(root.corners[k]);
-    // The far field's error budget is made for no less irradiance than 1% of the shot's power
-    // spread over the scene (receivers in the dark would otherwise split every block).
-    const double least_irradiance_w_m2 = 1e-2 * shot_power.sum() / total_area_m2;
+    const double least_irradiance_w_m2 = tol::kFarFieldLeastIrradianceFraction * shot_power.sum() / total_area_m2;
     const Vec3 shooter_normal = shooter_side.normal;
     // The sides that can receive from the shooter, with the occluders in the shaft between the
     // two surfaces (then, per receiving element, in the shaft between the element and the
@@ -197,7 +195,7 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
         // for what it got.
         const double irradiance = so_far_w_m2 + std::min(got.at_center.sum(), got.mean.sum());
         const double budget_got = options.far_field_error * std::max(irradiance, least_irradiance_w_m2);
-        if (budget_got < 0.5 * budget_w_m2) got = gather(tree, tree.root(), element, shooter_normal, near, budget_got);
+        if (budget_got < tol::kFarFieldRegatherRatio * budget_w_m2) got = gather(tree, tree.root(), element, shooter_normal, near, budget_got);
       }
       gain[static_cast<size_t>(i)] = got;
     });

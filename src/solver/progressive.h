@@ -24,8 +24,9 @@ inline constexpr double kDefaultResidual = 1e-4;
 /// is never distributed.
 inline constexpr double kMinResidual = 1e-12, kMaxResidual = 0.5;
 /// The far field's default error bound (ProgressiveOptions::far_field_error): measured, it keeps
-/// the paper scene's walls within 0.5% of a solve with a bound 100 times finer (docs/method.md).
-inline constexpr double kDefaultFarFieldError = 1e-2;
+/// the paper reference's walls within 0.5% of a solve with a bound 10 times finer
+/// (docs/benchmarks.md, "The far field's error bound").
+inline constexpr double kDefaultFarFieldError = 5e-3;
 /// The far-field error bounds a user may ask for, besides 0 (the distance rule).
 inline constexpr double kMinFarFieldError = 1e-6, kMaxFarFieldError = 0.5;
 
@@ -34,9 +35,11 @@ struct ProgressiveOptions {
   double residual = kDefaultResidual;
   /// Stop after this many shots at the latest (0: no limit).
   size_t max_shots = 0;
-  /// The far field's error bound, as a fraction of each receiving point's irradiance (gathered so
-  /// far plus this shot's); 0: blocks shoot as one beyond tol::kFarFieldDiagonals of their
-  /// diagonal instead, without a bound. See gather() in solver/shooter_tree.h.
+  /// The far field's error bound in each shot, at each receiving element's centre, as a fraction
+  /// of its irradiance (gathered so far plus this shot's); the errors of successive shots add
+  /// up, and the element's mean (its power) is estimated rather than bounded. 0: blocks shoot as
+  /// one beyond tol::kFarFieldDiagonals of their diagonal instead, with no bound. See gather()
+  /// in solver/shooter_tree.h.
   double far_field_error = kDefaultFarFieldError;
   /// Name printed in progress messages on stderr; empty: quiet.
   std::string progress_label;

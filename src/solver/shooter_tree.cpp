@@ -5,6 +5,8 @@
 #include <limits>
 #include <numbers>
 
+#include <Eigen/Eigenvalues>
+
 #include "core/tolerances.h"
 
 namespace radrecon {
@@ -77,7 +79,8 @@ void ShooterTree::set_radiosity(Block& b, std::span<const size_t> elements) cons
   b.dipole /= area;
   // The linear fit in the block's plane: G = M^+ dipole, M the second moment of the elements'
   // centres about the centroid (a block one element wide has a singular M: the pseudo-inverse
-  // fits along its length only).
+  // fits along its length only; nearly collinear centres inflate G, which only splits the block
+  // sooner).
   const Vec3 t1 = (b.corners[1] - b.corners[0]).normalized(), t2 = side_.normal.cross(t1);
   Eigen::Matrix2d moment = Eigen::Matrix2d::Zero();
   for (const size_t k : elements) {
@@ -89,7 +92,15 @@ void ShooterTree::set_radiosity(Block& b, std::span<const size_t> elements) cons
   Eigen::Matrix<double, 2, 3> dipole_uv;
   dipole_uv.row(0) = t1.transpose() * b.dipole;
   dipole_uv.row(1) = t2.transpose() * b.dipole;
-  const Eigen::Matrix<double, 2, 3> gradient_uv = moment.completeOrthogonalDecomposition().solve(dipole_uv);
+  // The pseudo-inverse by eigen-decomposition, with directions of a second moment below
+  // kFitMomentRelative of the block's radius squared taken as null (a single element's, made of
+  // round-off, among them).
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(moment);
+  Eigen::Matrix2d pseudo_inverse = Eigen::Matrix2d::Zero();
+  for (int k = 0; k < 2; ++k)
+    if (eigen.eigenvalues()[k] > tol::kFitMomentRelative * b.radius_m * b.radius_m)
+      pseudo_inverse += eigen.eigenvectors().col(k) * eigen.eigenvectors().col(k).transpose() / eigen.eigenvalues()[k];
+  const Eigen::Matrix<double, 2, 3> gradient_uv = pseudo_inverse * dipole_uv;
   b.gradient_w_m3 = gradient_uv.colwise().norm().sum();
   b.fit_residual_w_m2 = 0;
   for (const size_t k : elements) {
@@ -151,10 +162,12 @@ void ShooterTree::add_element_children(size_t index, const std::vector<size_t>& 
 }
 
 bool kernel_log_gradient(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal, Vec3& g) {
+  // k = (n_s . d)(-n . d) / (pi |d|^4) with d = x - y (n_s the shooter's normal, n the
+  // receiver's): over y, grad ln k = -n_s / (n_s . d) + n / (-n . d) + 4 d / |d|^2.
   const Vec3 d = p - b.center;  // from the source point y = c to the receiver x = p
-  const double r2 = d.squaredNorm(), cos_y = shooter_normal.dot(d), cos_x = -n.dot(d);
+  const double r2 = d.squaredNorm(), cos_y = shooter_normal.dot(d), cos_x = -n.dot(d);  // times |d|
   if (!(cos_y > tol::kKernelCosine * std::sqrt(r2) && cos_x > tol::kKernelCosine * std::sqrt(r2))) return false;
-  g = -shooter_normal / cos_y - n / cos_x + 4.0 * d / r2;
+  g = -shooter_normal / cos_y + n / cos_x + 4.0 * d / r2;
   return true;
 }
 
@@ -238,7 +251,7 @@ bool shoots_whole(const Block& b, const Receiver& r, const Vec3& shooter_normal,
   Vec3 g;
   if (partly_seen || !kernel_log_gradient(b, p, n, shooter_normal, g)) return false;
   const double spin = b.radius_m * g.norm();
-  const double centroid_error_m = b.radius_m * std::min(2.0, spin * spin);
+  const double centroid_error_m = b.radius_m * std::min(tol::kFarFieldCentroidErrorRadii, spin * spin);
   return form_factor * (b.fit_residual_w_m2 + b.gradient_w_m3 * centroid_error_m) <= budget_w_m2;
 }
 
