@@ -48,9 +48,22 @@ TEST(ShooterTree, FormFactorBoundIsAtLeastTheExactFormFactor) {
   EXPECT_GT(zero, 1000);  // points behind the block or with the block behind them
 }
 
-/// Radiosity linear in (x, y) on a 2 m x 1 m quad in the plane z = 0: B = 1 + 2x + 3y per
-/// channel, times (1, 2, 3) over the channels.
-Rgb linear_radiosity(const Vec3& c) { return (1 + 2 * c.x() + 3 * c.y()) * Rgb(1, 2, 3); }
+/// A 2 m x 1 m plate in the plane z = 0, facing +z, meshed with `divisions` elements along its
+/// length, and an unshot radiosity linear in (x, y) over it: B = 1 + 2x + 3y per channel, times
+/// (1, 2, 3) over the channels. Kept whole: a ShooterTree refers to its parts.
+struct LinearPlate {
+  Scene scene;
+  Mesh mesh;
+  std::vector<Rgb> unshot;
+  explicit LinearPlate(int divisions) {
+    scene.name = "plate";
+    scene.surfaces.push_back(quad("plate", {0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {0, 1, 0}, 0.5));
+    mesh = make_grid_mesh(scene, {divisions, 1});
+    for (const MeshElement& e : side().elements) unshot.push_back((1 + 2 * e.center.x() + 3 * e.center.y()) * Rgb(1, 2, 3));
+  }
+  const MeshSurface& side() const { return mesh.surfaces[0]; }
+  ShooterTree tree() const { return ShooterTree(scene.surfaces[0], side(), unshot, 0, 0, side().nu, side().nv); }
+};
 
 /// The blocks of a tree, depth first.
 template <typename Visit>
@@ -60,17 +73,11 @@ void visit_blocks(const ShooterTree& tree, const Block& b, Visit&& visit) {
 }
 
 TEST(ShooterTree, LinearRadiosityIsFittedExactlyByEveryBlock) {
-  Scene scene;
-  scene.name = "plate";
-  scene.surfaces.push_back(quad("plate", {0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {0, 1, 0}, 0.5));
   // 7 x 4 elements: blocks of odd sizes, and blocks one element wide (a singular second moment).
-  const Mesh mesh = make_grid_mesh(scene, {7, 1});
-  const MeshSurface& side = mesh.surfaces[0];
-  ASSERT_EQ(side.nu, 7);
-  ASSERT_EQ(side.nv, 4);
-  std::vector<Rgb> unshot;
-  for (const MeshElement& e : side.elements) unshot.push_back(linear_radiosity(e.center));
-  const ShooterTree tree(scene.surfaces[0], side, unshot, 0, 0, side.nu, side.nv);
+  const LinearPlate plate(7);
+  ASSERT_EQ(plate.side().nu, 7);
+  ASSERT_EQ(plate.side().nv, 4);
+  const ShooterTree tree = plate.tree();
   // Summed over channels, the norms of (2, 3), (2, 0) and (0, 3) times (1, 2, 3).
   const double full = std::sqrt(13.0) * 6, along_x = 2.0 * 6, along_y = 3.0 * 6;
   const double dx = 2.0 / 7, dy = 1.0 / 4;
@@ -98,14 +105,10 @@ TEST(ShooterTree, FarFieldOfLinearRadiosityMatchesTheSumOverElements) {
   // A far block shoots with its first-order corrected radiosity: for radiosity linear over it,
   // the form-factor-weighted sum over its elements (each element's exact form factor times its
   // radiosity) to second order in size / distance.
-  Scene scene;
-  scene.name = "plate";
-  scene.surfaces.push_back(quad("plate", {0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {0, 1, 0}, 0.5));
-  const Mesh mesh = make_grid_mesh(scene, {32, 1});
-  const MeshSurface& side = mesh.surfaces[0];
-  std::vector<Rgb> unshot;
-  for (const MeshElement& e : side.elements) unshot.push_back(linear_radiosity(e.center));
-  const ShooterTree tree(scene.surfaces[0], side, unshot, 0, 0, side.nu, side.nv);
+  const LinearPlate plate(32);
+  const MeshSurface& side = plate.side();
+  const std::vector<Rgb>& unshot = plate.unshot;
+  const ShooterTree tree = plate.tree();
   const Block& root = tree.root();
   for (const double distance_m : {4.0, 8.0, 16.0}) {
     const Vec3 p(1.0 + 0.3 * distance_m, 0.5, distance_m), n = -Vec3(0.3, 0, 1).normalized();
