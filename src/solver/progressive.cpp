@@ -32,7 +32,7 @@ struct SideState {
   std::vector<Rgb> radiosity, unshot, irradiance;
 };
 
-/// A side that receives from the current shot: its elements are gain[first, first + count).
+/// A side that receives from the current shot: its elements are gain[first, first + their count).
 struct ReceivingSide {
   size_t side;
   size_t first;

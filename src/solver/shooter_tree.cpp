@@ -219,7 +219,7 @@ namespace {
 /// Whether the block may shoot to the receiving element as one source: see gather(). Sets `f`
 /// to the visible form factor at the element's centre when it was computed to decide (else -1).
 /// `midpoint`: the element gathers at its centre alone.
-bool shoots_whole(const Block& b, const Receiver& r, const Vec3& shooter_normal,
+bool shoots_whole(const Block& b, const ConvexPolygon& poly, const Receiver& r, const Vec3& shooter_normal,
                   const std::vector<const Occluder*>& occluders, double budget_w_m2, bool midpoint, double& f) {
   f = -1;
   if (b.first_child < 0 || b.uniform) return true;
@@ -235,8 +235,6 @@ bool shoots_whole(const Block& b, const Receiver& r, const Vec3& shooter_normal,
   double form_factor = form_factor_bound(b, p, n, shooter_normal);
   if (form_factor * spread <= budget_w_m2) return true;
   if (!std::isfinite(form_factor)) return false;
-  ConvexPolygon poly;
-  for (int k = 0; k < b.corner_count; ++k) poly.push(b.corners[k]);
   bool partly_seen = false;
   f = visible_form_factor(p, n, poly, shooter_normal, occluders, &partly_seen);
   if (midpoint) {
@@ -267,13 +265,13 @@ Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, cons
   const double share = budget_w_m2 * b.area_m2 / tree.root().area_m2;
   const double gap_m = (r.center - b.center).norm() - 0.5 * b.diagonal_m;
   const bool midpoint = r.size_m <= tol::kMidpointReceiverRatio * gap_m;
-  if (!shoots_whole(b, r, shooter_normal, occluders, share, midpoint, f_center)) {
+  ConvexPolygon poly;  // the block's outline, for its form factors
+  for (int k = 0; k < b.corner_count; ++k) poly.push(b.corners[k]);
+  if (!shoots_whole(b, poly, r, shooter_normal, occluders, share, midpoint, f_center)) {
     for (int c = 0; c < b.child_count; ++c)
       out += gather(tree, tree.block(b.first_child + c), r, shooter_normal, occluders, budget_w_m2);
     return out;
   }
-  ConvexPolygon poly;
-  for (int k = 0; k < b.corner_count; ++k) poly.push(b.corners[k]);
   const auto at = [&](const Vec3& p, double f) -> Rgb {
     if (f < 0) f = visible_form_factor(p, r.normal, poly, shooter_normal, occluders);
     if (f == 0 || b.uniform) return f * b.unshot_w_m2;
