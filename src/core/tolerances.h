@@ -39,14 +39,10 @@ inline constexpr double kFarFieldLeastIrradianceFraction = 1e-2;
 /// An element whose gathered irradiance falls below this fraction of the estimate its budget was
 /// made for (the whole patch's, at its centre) gathers again with the budget of what it got.
 inline constexpr double kFarFieldRegatherRatio = 0.5;
-/// The error of the first-order far field's kernel-weighted centroid, in block radii, at most:
-/// the centroid lies within one radius of the block's, and the clamp of the far field to the
-/// block's range of radiosity limits what a larger first-order shift can add.
-inline constexpr double kFarFieldCentroidErrorRadii = 2.0;
-/// A shooter block's linear fit of its radiosity (solver/shooter_tree.cpp) ignores directions in
-/// which the second moment of its elements' centres is below this fraction of its radius
-/// squared: a block one element wide has none across it but round-off.
-inline constexpr double kFitMomentRelative = 1e-9;
+/// The far field's second-order error estimate (solver/shooter_tree.h kernel_curvature()) is
+/// trusted while the kernel's second-order term across the block, relative to the kernel, is at
+/// most this: beyond, the orders it leaves out are no longer small, and the block is split.
+inline constexpr double kFarFieldCurvatureLimit = 0.25;
 
 /// Two values of unshot radiosity (W/m^2) within this relative difference count as equal, so a
 /// block of uniform unshot radiosity (an emitter's first shot) is never split: by additivity of

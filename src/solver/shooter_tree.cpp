@@ -5,8 +5,6 @@
 #include <limits>
 #include <numbers>
 
-#include <Eigen/Eigenvalues>
-
 #include "core/tolerances.h"
 
 namespace radrecon {
@@ -77,38 +75,6 @@ void ShooterTree::set_radiosity(Block& b, std::span<const size_t> elements) cons
     b.dipole += side_.elements[k].area_m2 * (side_.elements[k].center - b.center) *
                 (unshot_[k] - b.unshot_w_m2).matrix().transpose();
   b.dipole /= area;
-  // The linear fit in the block's plane: G = M^+ dipole, M the second moment of the elements'
-  // centres about the centroid (a block one element wide has a singular M: the pseudo-inverse
-  // fits along its length only; nearly collinear centres inflate G, which only splits the block
-  // sooner).
-  const Vec3 t1 = (b.corners[1] - b.corners[0]).normalized(), t2 = side_.normal.cross(t1);
-  Eigen::Matrix2d moment = Eigen::Matrix2d::Zero();
-  for (const size_t k : elements) {
-    const Vec3 d = side_.elements[k].center - b.center;
-    const Eigen::Vector2d uv(t1.dot(d), t2.dot(d));
-    moment += side_.elements[k].area_m2 * uv * uv.transpose();
-  }
-  moment /= area;
-  Eigen::Matrix<double, 2, 3> dipole_uv;
-  dipole_uv.row(0) = t1.transpose() * b.dipole;
-  dipole_uv.row(1) = t2.transpose() * b.dipole;
-  // The pseudo-inverse by eigen-decomposition, with directions of a second moment below
-  // kFitMomentRelative of the block's radius squared taken as null (a single element's, made of
-  // round-off, among them).
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(moment);
-  Eigen::Matrix2d pseudo_inverse = Eigen::Matrix2d::Zero();
-  for (int k = 0; k < 2; ++k)
-    if (eigen.eigenvalues()[k] > tol::kFitMomentRelative * b.radius_m * b.radius_m)
-      pseudo_inverse += eigen.eigenvectors().col(k) * eigen.eigenvectors().col(k).transpose() / eigen.eigenvalues()[k];
-  const Eigen::Matrix<double, 2, 3> gradient_uv = pseudo_inverse * dipole_uv;
-  b.gradient_w_m3 = gradient_uv.colwise().norm().sum();
-  b.fit_residual_w_m2 = 0;
-  for (const size_t k : elements) {
-    const Vec3 d = side_.elements[k].center - b.center;
-    const Eigen::Vector2d uv(t1.dot(d), t2.dot(d));
-    const Rgb fit = b.unshot_w_m2 + (gradient_uv.transpose() * uv).array();
-    b.fit_residual_w_m2 = std::max(b.fit_residual_w_m2, (unshot_[k] - fit).abs().sum());
-  }
   b.uniform = ((hi - lo) <= tol::kUniformRelative * hi.abs().max(std::numeric_limits<double>::min())).all();
 }
 
@@ -169,6 +135,29 @@ bool kernel_log_gradient(const Block& b, const Vec3& p, const Vec3& n, const Vec
   if (!(cos_y > tol::kKernelCosine * std::sqrt(r2) && cos_x > tol::kKernelCosine * std::sqrt(r2))) return false;
   g = -shooter_normal / cos_y + n / cos_x + 4.0 * d / r2;
   return true;
+}
+
+double kernel_curvature(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal, const Vec3& g) {
+  // k(y) = k(c) exp(g . t + t^T H t / 2 + ...) for y = c + t in the shooter's plane (|t| <= R,
+  // the block's radius), H the Hessian of ln k. With d = p - y, ln k = ln(n_s . d) +
+  // ln(-n . d) - 4 ln|d| + const: the first term is constant in the plane; the second's Hessian
+  // is -n n^T / (n . d)^2; the third's 4 (2 d d^T / |d|^4 - I / |d|^2), of norm 4 / |d|^2. So
+  // k(y) / k(c) = 1 + g . t + q(t) to second order, q = t^T M t / 2 with M = H + g g^T, whose
+  // norm in the plane is at most m = |n_t|^2 / (n . d)^2 + 4 / |d|^2 + |g_t|^2 (n_t, g_t: the
+  // parts in the plane).
+  const Vec3 d = p - b.center;
+  const double r2 = d.squaredNorm(), cos_x = -n.dot(d);  // times |d|
+  const Vec3 n_t = n - n.dot(shooter_normal) * shooter_normal, g_t = g - g.dot(shooter_normal) * shooter_normal;
+  const double radius2 = b.radius_m * b.radius_m;
+  const double m = n_t.squaredNorm() / (cos_x * cos_x) + 4.0 / r2 + g_t.squaredNorm();
+  // Beyond the limit the orders left out are not small.
+  if (!(0.5 * radius2 * m <= tol::kFarFieldCurvatureLimit)) return std::numeric_limits<double>::infinity();
+  // The far field's error over its form factor is two terms: the kernel-weighted mean of the
+  // radiosity's deviation from its mid-range (at most half the spread) times q - mean(q), and
+  // mean(q) times g . dipole / area (|dipole| / area <= R spread / 2). Over the block's bounding disk, mean|q - mean(q)| <=
+  // sqrt(var q) <= R^2 |M|_F / (2 sqrt(12)) and mean(q) <= m R^2 / 4, with |M|_F <= sqrt(2) m:
+  // per unit spread, m R^2 (sqrt(2) / (4 sqrt(12)) + R |g_t| / 8).
+  return m * radius2 * (std::numbers::sqrt2 / (4.0 * std::sqrt(12.0)) + b.radius_m * g_t.norm() / 8.0);
 }
 
 Rgb far_field_radiosity(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal) {
@@ -235,6 +224,16 @@ bool shoots_whole(const Block& b, const ConvexPolygon& poly, const Receiver& r, 
   double form_factor = form_factor_bound(b, p, n, shooter_normal);
   if (form_factor * spread <= budget_w_m2) return true;
   if (!std::isfinite(form_factor)) return false;
+  // The first-order far field is exact, whatever the radiosity over the block, where the kernel
+  // is linear over it (far_field_radiosity()): what is left is the spread times the kernel's
+  // second order, provided the centre sees all of the block (else the kernel seen is cut).
+  Vec3 g;
+  const double curvature = kernel_log_gradient(b, p, n, shooter_normal, g)
+                               ? kernel_curvature(b, p, n, shooter_normal, g)
+                               : std::numeric_limits<double>::infinity();
+  const bool expands = std::isfinite(curvature);
+  // Off the midpoint the bound's form factor stays: without the visible one, the block splits.
+  if (!midpoint && !(expands && form_factor * spread * curvature <= budget_w_m2)) return false;
   bool partly_seen = false;
   f = visible_form_factor(p, n, poly, shooter_normal, occluders, &partly_seen);
   if (midpoint) {
@@ -242,15 +241,7 @@ bool shoots_whole(const Block& b, const ConvexPolygon& poly, const Receiver& r, 
     form_factor = f;
     if (f * spread <= budget_w_m2) return true;
   }
-  // The first-order far field is exact for radiosity linear over the block and a kernel whose
-  // logarithm is linear over it: what is left is the fit's residual, and the gradient times the
-  // error of the kernel-weighted centroid, of second order in radius |g|; provided the centre
-  // sees all of the block (else the visible part's centroid is elsewhere).
-  Vec3 g;
-  if (partly_seen || !kernel_log_gradient(b, p, n, shooter_normal, g)) return false;
-  const double spin = b.radius_m * g.norm();
-  const double centroid_error_m = b.radius_m * std::min(tol::kFarFieldCentroidErrorRadii, spin * spin);
-  return form_factor * (b.fit_residual_w_m2 + b.gradient_w_m3 * centroid_error_m) <= budget_w_m2;
+  return expands && !partly_seen && form_factor * spread * curvature <= budget_w_m2;
 }
 
 }  // namespace

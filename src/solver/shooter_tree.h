@@ -28,10 +28,6 @@ struct Block {
   /// The first moment of the unshot radiosity about the block's centroid, per channel (column),
   /// divided by the block's area: sum_k A_k (c_k - c) (B_k - B_mean) / A, W/m^2 times metres.
   Eigen::Matrix3d dipole = Eigen::Matrix3d::Zero();
-  /// The unshot radiosity's least-squares linear fit over the block, B(y) ~ mean + G^T (y - c):
-  /// the norms of G's columns summed over channels (W/m^2 per metre), and the largest deviation
-  /// of an element's radiosity from the fit, summed over channels (W/m^2).
-  double gradient_w_m3 = 0, fit_residual_w_m2 = 0;
   bool uniform = true;            ///< every element has the same unshot radiosity
   int first_child = -1;           ///< children are consecutive; -1 for a single element
   int child_count = 0;
@@ -81,6 +77,14 @@ Rgb far_field_radiosity(const Block& b, const Vec3& p, const Vec3& n, const Vec3
 /// far_field_radiosity()), 1/m; false at grazing angles (tol::kKernelCosine), where the first
 /// order is not used.
 bool kernel_log_gradient(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal, Vec3& g);
+
+/// The first-order far field's error at p (unit normal n) per unit spread of the block's
+/// radiosity, relative to its form factor, given g = kernel_log_gradient(): an estimate from the
+/// Hessian of ln k at the centroid (second order in radius / distance; see the definition).
+/// Infinite where the second-order term exceeds tol::kFarFieldCurvatureLimit: the orders left
+/// out are then not small. A block's far field errs by about its spread times its form factor
+/// times this, or less.
+double kernel_curvature(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal, const Vec3& g);
 
 /// A receiving element as gather() sees it: its centre, and the points of a Gauss rule over it
 /// for the blocks it is near to.
@@ -132,10 +136,10 @@ struct Gathered {
 ///   the far field and the children's sum both lie in [lowest, highest] times the visible form
 ///   factor. The form factor is form_factor_bound(), or the visible form factor itself when the
 ///   element gathers at its centre alone; or, when smaller,
-/// - the same form factor times the residual of the far field's first order: the radiosity's
-///   deviation from its linear fit, plus its gradient times radius (radius |g|)^2 for the
-///   kernel's (g: kernel_log_gradient()); used only if the centre sees the whole block (a block
-///   cut by the receiver's horizon or a shadow is seen through part of it only).
+/// - the same form factor times the spread times kernel_curvature(): the first-order far field
+///   is exact for any radiosity over the block where the kernel is linear over it; used only if
+///   the centre sees the whole block (a block cut by the receiver's horizon or a shadow is seen
+///   through part of it only) and the curvature is finite.
 /// The element's radiosity is its value at its centre (what reconstructions sample); its power
 /// is its mean, the midpoint rule's (the centre's value, relative error of order
 /// (size / distance)^2) unless the element is large against its distance to the block
