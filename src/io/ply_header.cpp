@@ -1,6 +1,9 @@
 #include "io/ply_header.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cstdint>
+#include <optional>
 #include <sstream>
 #include <vector>
 
@@ -47,41 +50,61 @@ size_t check_ply_size(const std::string& path) {
     return line;
   };
   if (next_line() != "ply") throw bad("not a PLY file (its first line is not 'ply')");
+  // The header is read as strictly as the format's definition says: assimp's reader takes
+  // liberties with malformed headers (a second format line, counts like '1.0', trailing words)
+  // that it should refuse, and the fuzzers found its heap corrupted after such inputs.
   std::string format;
   std::vector<Element> elements;
-  for (std::string line = next_line(); line != "end_header"; line = next_line()) {
+  const auto words_of = [](const std::string& line) {
+    std::vector<std::string> words;
     std::istringstream in(line);
-    std::string word;
-    in >> word;
+    for (std::string w; in >> w;) words.push_back(w);
+    return words;
+  };
+  // Names are identifiers: assimp reads an element named '111...vertex' as a count of
+  // 10^44 vertices and allocates for them.
+  const auto is_name = [](const std::string& word) {
+    return !word.empty() && std::isalpha(static_cast<unsigned char>(word[0])) &&
+           std::all_of(word.begin(), word.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+  };
+  const auto count_of = [](const std::string& word) -> std::optional<size_t> {
+    if (word.empty() || word.size() > 18 || word.find_first_not_of("0123456789") != std::string::npos) return std::nullopt;
+    return static_cast<size_t>(std::stoull(word));
+  };
+  for (std::string line = next_line(); line != "end_header"; line = next_line()) {
+    const std::vector<std::string> words = words_of(line);
     const std::string where = "PLY header line " + std::to_string(line_no) + ": ";
+    const std::string word = words.empty() ? "" : words[0];
     if (word == "format") {
-      in >> format;
+      if (line_no != 2) throw bad(where + "the format line must be the second line");
+      if (words.size() != 3 || words[2] != "1.0") throw bad(where + "malformed format line (expected 'format TYPE 1.0')");
+      format = words[1];
     } else if (word == "element") {
-      Element e;
-      long long count = -1;
-      if (!(in >> e.name >> count) || count < 0) throw bad(where + "malformed element line");
-      e.count = static_cast<size_t>(count);
-      elements.push_back(e);
+      const std::optional<size_t> count = words.size() == 3 ? count_of(words[2]) : std::nullopt;
+      if (!count || !is_name(words[1])) throw bad(where + "malformed element line (expected 'element NAME COUNT')");
+      for (const Element& e : elements)
+        if (e.name == words[1]) throw bad(where + "element '" + words[1] + "' declared twice");
+      elements.push_back({words[1], *count, {}});
     } else if (word == "property") {
       if (elements.empty()) throw bad(where + "property before any element");
-      std::string type;
-      in >> type;
       Property p;
-      if (type == "list") {
-        std::string count_type, item_type;
-        in >> count_type >> item_type;
-        p.count_size = type_size(count_type);
-        p.size = type_size(item_type);
-        if (p.count_size == 0 || p.size == 0) throw bad(where + "unknown list types '" + count_type + " " + item_type + "'");
+      if (words.size() >= 2 && words[1] == "list") {
+        if (words.size() != 5 || !is_name(words[4]))
+          throw bad(where + "malformed property line (expected 'property list COUNT_TYPE ITEM_TYPE NAME')");
+        p.count_size = type_size(words[2]);
+        p.size = type_size(words[3]);
+        if (p.count_size == 0 || p.size == 0) throw bad(where + "unknown list types '" + words[2] + " " + words[3] + "'");
       } else {
-        p.size = type_size(type);
-        if (p.size == 0) throw bad(where + "unknown property type '" + type + "'");
+        if (words.size() != 3 || !is_name(words[2])) throw bad(where + "malformed property line (expected 'property TYPE NAME')");
+        p.size = type_size(words[1]);
+        if (p.size == 0) throw bad(where + "unknown property type '" + words[1] + "'");
       }
       elements.back().properties.push_back(p);
     } else if (word != "comment" && word != "obj_info" && !word.empty()) {
       throw bad(where + "unknown keyword '" + word + "'");
     }
   }
+  if (format.empty()) throw bad("PLY header has no format line");
   if (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian")
     throw bad("PLY header: unknown format '" + format + "'");
   size_t faces = 0;

@@ -99,6 +99,10 @@ write("obj_inf.obj", "v 0 0 0\nv inf 0 0\nv 1 1 0\nf 1 2 3\n")
 write("obj_no_light.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 3\n")
 write("gltf_bad_json.gltf", '{"asset": {"version": "2.0"}, "meshes": [')
 write("glb_truncated.glb", "glTF\x02\x00\x00\x00")
+# assimp 5.2 corrupted its heap after the first (a second format line) and allocated for 10^44
+# vertices on the second (an element named by digits): found by fuzz_mesh_ply, refused before it.
+write("ply_two_formats.ply", "ply\nformat ascii 1.0\nelement vertex 1\nformat binary_little_endian 1.0\nproperty float x\nend_header\n0\n")
+write("ply_digit_element.ply", "ply\nformat ascii 1.0\nelement 1111111111vertex 3\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n1 0 0\n0 1 0\n")
 write("ply_truncated.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n")
 # Pictures for compare
 write("tiny_a.pfm", "PF\n2 1\n-1.0\n" + "\0" * 24)
