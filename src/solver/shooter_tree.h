@@ -28,6 +28,12 @@ struct Block {
   /// The first moment of the unshot radiosity about the block's centroid, per channel (column),
   /// divided by the block's area: sum_k A_k (c_k - c) (B_k - B_mean) / A, W/m^2 times metres.
   Eigen::Matrix3d dipole = Eigen::Matrix3d::Zero();
+  /// The block's second moment of area about its centroid over its area, int (y - c)(y - c)^T
+  /// dA / A, m^2; and, per channel, the second moment of the unshot radiosity's deviation from
+  /// its mean, sum_k A_k (B_k - B_mean) (c_k - c)(c_k - c)^T / A, W/m^2 times m^2 (the
+  /// elements' own second moments cancel in it where they are alike: sum_k A_k (B_k - B_mean) = 0).
+  Eigen::Matrix3d area_moment = Eigen::Matrix3d::Zero();
+  std::array<Eigen::Matrix3d, 3> quadrupole{Eigen::Matrix3d::Zero(), Eigen::Matrix3d::Zero(), Eigen::Matrix3d::Zero()};
   bool uniform = true;            ///< every element has the same unshot radiosity
   int first_child = -1;           ///< children are consecutive; -1 for a single element
   int child_count = 0;
@@ -63,14 +69,17 @@ class ShooterTree {
   std::vector<Block> blocks_;
 };
 
-/// The radiosity a far block shoots with to the receiver point p (unit normal n): its mean plus the
-/// first-order correction for the variation of both the radiosity and the form factor's kernel
-/// across the block. With F_k = (A_k / A) F (1 + g . (c_k - c)), g the gradient over the
-/// source point y of ln k(x, y), k = cos_y cos_x / (pi r^2) the point-to-point kernel, the sum
-/// over the block's elements sum_k F_k B_k = F (B_mean + g . dipole): the mean alone errs to
-/// first order in (block size / distance) wherever the radiosity varies (a wall lit at its top
-/// and dark at its foot), and that error does not cancel over the receivers: it gains or loses
-/// power. Clamped to the block's range of unshot radiosity.
+/// The radiosity a far block shoots with to the receiver point p (unit normal n), second order:
+/// with k(y) = k(c) exp(g . t + t^T H t / 2 + ...) the point-to-point kernel (k = cos_y cos_x /
+/// (pi r^2)) for y = c + t, g and H the gradient and Hessian of ln k over the source point at
+/// the centroid c, M = H + g g^T, the block's form factor is F = k(c) A (1 + tr(M S) / 2) and
+/// the sum over its elements sum_k F_k B_k = k(c) A (B_mean (1 + tr(M S) / 2) + g . dipole +
+/// tr(M Q) / 2) (S: area_moment, Q: quadrupole), so the block shoots with
+/// B_mean + (g . dipole + tr(M Q) / 2) / (1 + tr(M S) / 2), exact to third order in
+/// radius / distance whatever the radiosity over the block. The mean alone errs to first order
+/// wherever the radiosity varies (a wall lit at its top and dark at its foot), and that error
+/// does not cancel over the receivers: it gains or loses power. Clamped to the block's range of
+/// unshot radiosity.
 Rgb far_field_radiosity(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal);
 
 /// The gradient g over the source point y, at the block's centroid, of ln k(p, y) (see
@@ -78,13 +87,12 @@ Rgb far_field_radiosity(const Block& b, const Vec3& p, const Vec3& n, const Vec3
 /// order is not used.
 bool kernel_log_gradient(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal, Vec3& g);
 
-/// The first-order far field's error at p (unit normal n) per unit spread of the block's
-/// radiosity, relative to its form factor, given g = kernel_log_gradient(): an estimate from the
-/// Hessian of ln k at the centroid (second order in radius / distance; see the definition).
-/// Infinite where the second-order term exceeds tol::kFarFieldCurvatureLimit: the orders left
-/// out are then not small. A block's far field errs by about its spread times its form factor
-/// times this, or less.
-double kernel_curvature(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal, const Vec3& g);
+/// The far field's error at p (unit normal n) per unit spread of the block's radiosity,
+/// relative to its form factor, given g = kernel_log_gradient(): an estimate of its third-order
+/// term (see the definition). Infinite where the kernel's second-order term exceeds
+/// tol::kFarFieldCurvatureLimit: the expansion is then not to be trusted. A block's far field
+/// errs by about its spread times its form factor times this, or less.
+double far_field_error(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal, const Vec3& g);
 
 /// A receiving element as gather() sees it: its centre, and the points of a Gauss rule over it
 /// for the blocks it is near to.
@@ -136,8 +144,8 @@ struct Gathered {
 ///   the far field and the children's sum both lie in [lowest, highest] times the visible form
 ///   factor. The form factor is form_factor_bound(), or the visible form factor itself when the
 ///   element gathers at its centre alone; or, when smaller,
-/// - the same form factor times the spread times kernel_curvature(): the first-order far field
-///   is exact for any radiosity over the block where the kernel is linear over it; used only if
+/// - the same form factor times the spread times far_field_error(): the far field is exact to
+///   third order for any radiosity over the block; used only if
 ///   the centre sees the whole block (a block cut by the receiver's horizon or a shadow is seen
 ///   through part of it only) and the curvature is finite.
 /// The element's radiosity is its value at its centre (what reconstructions sample); its power
