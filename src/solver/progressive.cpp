@@ -97,6 +97,7 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
   Progress progress(options.progress_label, options.progress_label.empty());
   std::vector<Gathered> gain;  // per receiving element of the shot, in the order of `jobs`
   std::vector<ReceivingSide> jobs;
+  std::vector<Block> tree_storage;  // the shooter trees' blocks, reused from shot to shot
   double residual = 1.0;
   bool converged = false;  // the residual, not the shot limit, ended the loop
 
@@ -124,8 +125,8 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
     const Patch shooter = patches[best];
     const MeshSurface& shooter_side = mesh.surfaces[shooter.surface];
     const Surface& shooter_surface = scene.surfaces[shooter_side.scene_surface];
-    const ShooterTree tree(shooter_surface, shooter_side, state[shooter.surface].unshot, shooter.i0,
-                           shooter.j0, shooter.i1, shooter.j1);
+    ShooterTree tree(shooter_surface, shooter_side, state[shooter.surface].unshot, shooter.i0, shooter.j0,
+                     shooter.i1, shooter.j1, std::move(tree_storage));
     Rgb shot_power = shooter.unshot_w;
     for (int j = shooter.j0; j < shooter.j1; ++j)
       for (int i = shooter.i0; i < shooter.i1; ++i) {
@@ -214,6 +215,7 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
     }
     escaped += shot_power - delivered;
     ++shots;
+    tree_storage = std::move(tree).release();
   }
 
   Solution sol;

@@ -95,11 +95,53 @@ void ShooterTree::set_radiosity(Block& b, std::span<const size_t> elements) cons
   for (const size_t k : elements) {
     const MeshElement& e = side_.elements[k];
     const Vec3 t = e.center - b.center;
-    const Eigen::Matrix3d tt = e.area_m2 * t * t.transpose();
-    b.area_moment += tt + e.area_m2 * own_area_moment(e);
+    const Eigen::Matrix3d moment = e.area_m2 * (t * t.transpose() + own_area_moment(e));
+    b.area_moment += moment;
     const Rgb deviation = unshot_[k] - b.unshot_w_m2;
-    for (int c = 0; c < 3; ++c) b.quadrupole[static_cast<size_t>(c)] += deviation[c] * tt;
+    for (int c = 0; c < 3; ++c) b.quadrupole[static_cast<size_t>(c)] += deviation[c] * moment;
   }
+  b.area_moment /= area;
+  for (auto& q : b.quadrupole) q /= area;
+  b.uniform = ((hi - lo) <= tol::kUniformRelative * hi.abs().max(std::numeric_limits<double>::min())).all();
+}
+
+void ShooterTree::aggregate(Block& b) const {
+  // Each child's moments moved to the parent's centroid (w = its centroid's offset from it): the
+  // cross terms vanish, as a child's deviations from its own means sum to zero.
+  const std::span<const Block> children(blocks_.data() + b.first_child, static_cast<size_t>(b.child_count));
+  Rgb weighted = Rgb::Zero(), lo = children[0].lowest_w_m2, hi = children[0].highest_w_m2;
+  double area = 0;
+  Vec3 center = Vec3::Zero();
+  for (const Block& c : children) {
+    weighted += c.area_m2 * c.unshot_w_m2;
+    center += c.area_m2 * c.center;
+    area += c.area_m2;
+    lo = lo.min(c.lowest_w_m2);
+    hi = hi.max(c.highest_w_m2);
+  }
+  b.unshot_w_m2 = weighted / area;
+  b.area_m2 = area;
+  b.center = center / area;
+  b.radius_m = 0;
+  for (int k = 0; k < b.corner_count; ++k) b.radius_m = std::max(b.radius_m, (b.corners[k] - b.center).norm());
+  b.lowest_w_m2 = lo;
+  b.highest_w_m2 = hi;
+  b.dipole.setZero();
+  b.area_moment.setZero();
+  for (auto& q : b.quadrupole) q.setZero();
+  for (const Block& c : children) {
+    const Vec3 w = c.center - b.center;
+    const Eigen::RowVector3d deviation = (c.unshot_w_m2 - b.unshot_w_m2).matrix().transpose();
+    const Eigen::Matrix3d moment = c.area_m2 * (c.area_moment + w * w.transpose());
+    b.dipole += c.area_m2 * (c.dipole + w * deviation);
+    b.area_moment += moment;
+    for (int ch = 0; ch < 3; ++ch) {
+      const Vec3 d = c.dipole.col(ch);
+      b.quadrupole[static_cast<size_t>(ch)] += c.area_m2 * (c.quadrupole[static_cast<size_t>(ch)] + d * w.transpose() + w * d.transpose()) +
+                                               deviation[ch] * moment;
+    }
+  }
+  b.dipole /= area;
   b.area_moment /= area;
   for (auto& q : b.quadrupole) q /= area;
   b.uniform = ((hi - lo) <= tol::kUniformRelative * hi.abs().max(std::numeric_limits<double>::min())).all();
@@ -107,16 +149,12 @@ void ShooterTree::set_radiosity(Block& b, std::span<const size_t> elements) cons
 
 void ShooterTree::build(size_t index, int i0, int j0, int i1, int j1) {
   const int nu = side_.nu, nv = side_.nv;
-  std::vector<size_t> elements;
-  for (int j = j0; j < j1; ++j)
-    for (int i = i0; i < i1; ++i) {
-      const auto [first, last] = side_.cell_elements(i, j);
-      for (size_t k = first; k < last; ++k) elements.push_back(k);
-    }
-  Block& b = blocks_[index];
-  set_outline(b, double(i0) / nu, double(j0) / nv, double(i1) / nu, double(j1) / nv);
-  set_radiosity(b, elements);
+  set_outline(blocks_[index], double(i0) / nu, double(j0) / nv, double(i1) / nu, double(j1) / nv);
   if (i1 - i0 == 1 && j1 - j0 == 1) {
+    const auto [first, last] = side_.cell_elements(i0, j0);
+    std::vector<size_t> elements;
+    for (size_t k = first; k < last; ++k) elements.push_back(k);
+    set_radiosity(blocks_[index], elements);
     if (elements.size() > 1) add_element_children(index, elements);
     return;
   }
@@ -136,6 +174,7 @@ void ShooterTree::build(size_t index, int i0, int j0, int i1, int j1) {
   int c = 0;
   for (const auto& q : quads)
     if (holds_elements(q)) build(static_cast<size_t>(first + c++), q[0], q[1], q[2], q[3]);
+  aggregate(blocks_[index]);
 }
 
 /// A cell of two elements: one child block per element.

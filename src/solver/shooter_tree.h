@@ -29,9 +29,8 @@ struct Block {
   /// divided by the block's area: sum_k A_k (c_k - c) (B_k - B_mean) / A, W/m^2 times metres.
   Eigen::Matrix3d dipole = Eigen::Matrix3d::Zero();
   /// The block's second moment of area about its centroid over its area, int (y - c)(y - c)^T
-  /// dA / A, m^2; and, per channel, the second moment of the unshot radiosity's deviation from
-  /// its mean, sum_k A_k (B_k - B_mean) (c_k - c)(c_k - c)^T / A, W/m^2 times m^2 (the
-  /// elements' own second moments cancel in it where they are alike: sum_k A_k (B_k - B_mean) = 0).
+  /// dA / A, m^2; and, per channel, that of the unshot radiosity's deviation from its mean,
+  /// int (B(y) - B_mean)(y - c)(y - c)^T dA / A, W/m^2 times m^2 (B constant over each element).
   Eigen::Matrix3d area_moment = Eigen::Matrix3d::Zero();
   std::array<Eigen::Matrix3d, 3> quadrupole{Eigen::Matrix3d::Zero(), Eigen::Matrix3d::Zero(), Eigen::Matrix3d::Zero()};
   bool uniform = true;            ///< every element has the same unshot radiosity
@@ -43,13 +42,18 @@ struct Block {
 /// patch down to single elements, with their unshot radiosity when built.
 class ShooterTree {
  public:
+  /// `storage`: the blocks of an earlier tree (release()) to build in, so that successive shots
+  /// reuse their memory rather than fault in fresh pages each (tens of MB for a large patch).
   ShooterTree(const Surface& surface, const MeshSurface& side, const std::vector<Rgb>& unshot,
-              int i0, int j0, int i1, int j1)
-      : surface_(surface), side_(side), unshot_(unshot) {
+              int i0, int j0, int i1, int j1, std::vector<Block> storage = {})
+      : surface_(surface), side_(side), unshot_(unshot), blocks_(std::move(storage)) {
+    blocks_.clear();
     blocks_.reserve(static_cast<size_t>(3 * (i1 - i0) * (j1 - j0)));
     blocks_.emplace_back();
     build(0, i0, j0, i1, j1);
   }
+  /// The blocks' memory, for the next tree.
+  std::vector<Block> release() && { return std::move(blocks_); }
 
   const Block& root() const { return blocks_[0]; }
   const Block& block(int k) const { return blocks_[static_cast<size_t>(k)]; }
@@ -58,7 +62,10 @@ class ShooterTree {
   /// The outline of the (u,v) box [u0,u1] x [v0,v1] inside the side's parameter domain.
   void set_outline(Block& b, double u0, double v0, double u1, double v1) const;
   void set_corners(Block& b, const Vec2* uv, int n) const;
+  /// The block's radiosity and moments from its elements (a cell's).
   void set_radiosity(Block& b, std::span<const size_t> elements) const;
+  /// The block's radiosity and moments from its children's: O(children), not O(elements).
+  void aggregate(Block& b) const;
   void build(size_t index, int i0, int j0, int i1, int j1);
   /// A cell of two elements: one child block per element.
   void add_element_children(size_t index, const std::vector<size_t>& elements);

@@ -72,6 +72,65 @@ void visit_blocks(const ShooterTree& tree, const Block& b, Visit&& visit) {
   for (int c = 0; c < b.child_count; ++c) visit_blocks(tree, tree.block(b.first_child + c), visit);
 }
 
+/// Whether the element centre c lies in the block (the plate's blocks are boxes in z = 0).
+bool inside(const Block& b, const Vec3& c) {
+  double x0 = b.corners[0].x(), x1 = x0, y0 = b.corners[0].y(), y1 = y0;
+  for (int k = 1; k < b.corner_count; ++k) {
+    x0 = std::min(x0, b.corners[k].x()), x1 = std::max(x1, b.corners[k].x());
+    y0 = std::min(y0, b.corners[k].y()), y1 = std::max(y1, b.corners[k].y());
+  }
+  return c.x() > x0 && c.x() < x1 && c.y() > y0 && c.y() < y1;
+}
+
+TEST(ShooterTree, BlockMomentsAreTheSumsOverTheirElements) {
+  // The tree adds its children's moments up; here every block's against the sums over its
+  // elements: 7 x 4 rectangles of 2/7 x 1/4 m (own second moment diag(dx^2, dy^2, 0) / 12), with
+  // random radiosity.
+  LinearPlate plate(7);
+  const MeshSurface& side = plate.side();
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (Rgb& b : plate.unshot) b = Rgb(u(rng), u(rng), u(rng));
+  const double dx = 2.0 / 7, dy = 1.0 / 4;
+  const Eigen::Matrix3d own = Eigen::Vector3d(dx * dx / 12, dy * dy / 12, 0).asDiagonal();
+  const ShooterTree tree = plate.tree();
+  int blocks = 0;
+  visit_blocks(tree, tree.root(), [&](const Block& b) {
+    ++blocks;
+    double area = 0;
+    Vec3 centre = Vec3::Zero();
+    Rgb mean = Rgb::Zero();
+    for (size_t k = 0; k < side.elements.size(); ++k)
+      if (inside(b, side.elements[k].center)) {
+        area += side.elements[k].area_m2;
+        centre += side.elements[k].area_m2 * side.elements[k].center;
+        mean += side.elements[k].area_m2 * plate.unshot[k];
+      }
+    centre /= area;
+    mean /= area;
+    Eigen::Matrix3d dipole = Eigen::Matrix3d::Zero(), moment = Eigen::Matrix3d::Zero();
+    std::array<Eigen::Matrix3d, 3> quadrupole{Eigen::Matrix3d::Zero(), Eigen::Matrix3d::Zero(), Eigen::Matrix3d::Zero()};
+    for (size_t k = 0; k < side.elements.size(); ++k) {
+      if (!inside(b, side.elements[k].center)) continue;
+      const double a = side.elements[k].area_m2 / area;
+      const Vec3 t = side.elements[k].center - centre;
+      const Rgb deviation = plate.unshot[k] - mean;
+      dipole += a * t * deviation.matrix().transpose();
+      moment += a * (t * t.transpose() + own);
+      for (int c = 0; c < 3; ++c) quadrupole[static_cast<size_t>(c)] += a * deviation[c] * (t * t.transpose() + own);
+    }
+    EXPECT_NEAR(b.area_m2, area, 1e-12) << "block " << blocks;
+    EXPECT_LT((b.center - centre).norm(), 1e-12) << "block " << blocks;
+    EXPECT_LT((b.unshot_w_m2 - mean).abs().maxCoeff(), 1e-12) << "block " << blocks;
+    EXPECT_LT((b.dipole - dipole).cwiseAbs().maxCoeff(), 1e-12) << "block " << blocks;
+    EXPECT_LT((b.area_moment - moment).cwiseAbs().maxCoeff(), 1e-12) << "block " << blocks;
+    for (int c = 0; c < 3; ++c)
+      EXPECT_LT((b.quadrupole[static_cast<size_t>(c)] - quadrupole[static_cast<size_t>(c)]).cwiseAbs().maxCoeff(), 1e-12)
+          << "block " << blocks << ", channel " << c;
+  });
+  EXPECT_GT(blocks, 20);
+}
+
 TEST(ShooterTree, FarFieldErrorIsWithinItsEstimate) {
   // Radiosity far from linear (a step across the plate; random values per element): every
   // block's far field against the sum over its elements of their exact form factors
@@ -82,14 +141,6 @@ TEST(ShooterTree, FarFieldErrorIsWithinItsEstimate) {
   const MeshSurface& side = plate.side();
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> u(0, 1);
-  const auto inside = [](const Block& b, const Vec3& c) {  // the plate's blocks are boxes in z = 0
-    double x0 = b.corners[0].x(), x1 = x0, y0 = b.corners[0].y(), y1 = y0;
-    for (int k = 1; k < b.corner_count; ++k) {
-      x0 = std::min(x0, b.corners[k].x()), x1 = std::max(x1, b.corners[k].x());
-      y0 = std::min(y0, b.corners[k].y()), y1 = std::max(y1, b.corners[k].y());
-    }
-    return c.x() > x0 && c.x() < x1 && c.y() > y0 && c.y() < y1;
-  };
   for (const bool step : {true, false}) {
     for (size_t k = 0; k < side.elements.size(); ++k)
       plate.unshot[k] = step ? (side.elements[k].center.x() < 0.7 ? Rgb(5, 4, 3) : Rgb(0.1, 0.2, 0.3))
