@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/image.h"
 #include "io/image_io.h"
 #include "io/raster.h"
 #include "support/temp_dir.h"
@@ -52,6 +53,35 @@ TEST(Png, WritesImageRowsTopFirstWithSrgbOrLinearValues) {
   EXPECT_EQ(a.at(1, 1), (std::array<int, 3>{0, 255, 0}));
   // sRGB of 0.5 is 0.7354: 188 (IEC 61966-2-1).
   EXPECT_EQ(b.at(1, 0), (std::array<int, 3>{188, 188, 188}));
+}
+
+TEST(Png, SrgbCodesAreTheTransferCurveRounded) {
+  // 120,000 values over [0, 1], finer near 0 where the curve is steep, and the codes' borders
+  // from either side: each byte against lround(255 srgb_encode(v)) (IEC 61966-2-1's curve).
+  std::vector<double> values;
+  for (int k = 0; k < 100000; ++k) values.push_back(k / 99999.0);
+  for (int k = 0; k < 20000; ++k) values.push_back(std::pow(k / 19999.0, 4.0));
+  for (int code = 1; code < 256; ++code) {
+    double lo = 0, hi = 1;  // the border of `code`, by bisection on the formula
+    while (std::nextafter(lo, 1.0) < hi) {
+      const double mid = 0.5 * (lo + hi);
+      (std::lround(255.0 * srgb_encode(mid)) >= code ? hi : lo) = mid;
+    }
+    values.push_back(lo);
+    values.push_back(hi);
+  }
+  const int width = 1000, height = static_cast<int>((values.size() + width - 1) / width);
+  Image img(width, height);
+  for (size_t k = 0; k < values.size(); ++k) img.at(static_cast<int>(k % width), static_cast<int>(k / width)) = Rgb::Constant(values[k]);
+  const fs::path path = temp_file("srgb_codes.png");
+  write_png(path, img, true);
+  const Png png = read_png(path);
+  int wrong = 0;
+  for (size_t k = 0; k < values.size(); ++k) {
+    const int expected = static_cast<int>(std::lround(255.0 * srgb_encode(values[k])));
+    wrong += png.at(static_cast<int>(k % width), static_cast<int>(k / width))[1] != expected ? 1 : 0;
+  }
+  EXPECT_EQ(wrong, 0);
 }
 
 TEST(RasterPng, ShowsYUpwardAndMapsMinToBlackMaxToWhiteNanBlack) {
