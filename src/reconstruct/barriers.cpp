@@ -25,15 +25,19 @@ constexpr double kOrientationErrorBound = (3.0 + 16.0 * 0x1p-53) * 0x1p-53;
 /// Sign of the orientation of (a, b, c): +1 counter-clockwise, -1 clockwise, 0 collinear; exact.
 /// The double determinant decides when it clears its error bound (almost always); CGAL's exact
 /// predicate decides the rest.
-int orientation(const Vec2& a, const Vec2& b, const Vec2& c) {
+[[gnu::noinline]] int exact_orientation(const Vec2& a, const Vec2& b, const Vec2& c) {
+  const CGAL::Orientation o = CGAL::orientation(K::Point_2(a.x(), a.y()), K::Point_2(b.x(), b.y()),
+                                                K::Point_2(c.x(), c.y()));
+  return o == CGAL::LEFT_TURN ? 1 : (o == CGAL::RIGHT_TURN ? -1 : 0);
+}
+/// (The double path inlined into the visibility loops, the exact one called out of line.)
+inline int orientation(const Vec2& a, const Vec2& b, const Vec2& c) {
   const double left = (b.x() - a.x()) * (c.y() - a.y()), right = (b.y() - a.y()) * (c.x() - a.x());
   const double det = left - right;
   const double bound = kOrientationErrorBound * (std::abs(left) + std::abs(right));
   if (det > bound) return 1;
   if (det < -bound) return -1;
-  const CGAL::Orientation o = CGAL::orientation(K::Point_2(a.x(), a.y()), K::Point_2(b.x(), b.y()),
-                                                K::Point_2(c.x(), c.y()));
-  return o == CGAL::LEFT_TURN ? 1 : (o == CGAL::RIGHT_TURN ? -1 : 0);
+  return exact_orientation(a, b, c);
 }
 
 /// The grid index of coordinate v (origin o, cells of cell_m, n of them), clamped to [0, n) in
