@@ -193,7 +193,7 @@ inline constexpr double kRepeatedCornerRelative = 1e-9;
 /// 1/32 agree there to 0.5%).
 inline constexpr double kMidpointReceiverRatio = 1.0 / 16;
 
-/// The far-field correction of progressive refinement (solver/progressive.cpp
+/// The far-field correction of progressive refinement (solver/shooter_tree.cpp
 /// far_field_radiosity()) divides by the cosines at both ends of the kernel: at grazing angles,
 /// below this cosine, the block shoots with its mean radiosity alone.
 inline constexpr double kKernelCosine = 1e-3;

@@ -10,6 +10,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <fstream>
 #include <limits>
 #include <vector>
@@ -51,8 +52,8 @@ namespace {
 
 /// The 8-bit sRGB code of a linear value in [0, 1], lround(255 srgb_encode(v)), by thresholds
 /// rather than a power per value: code k from the least v whose encoding rounds to k (found by
-/// stepping to the neighbouring doubles, so the codes are exactly the formula's), and a table of
-/// 4096 buckets for where to start.
+/// bisection down to neighbouring doubles, so the codes are exactly the formula's), and a table
+/// of 4096 buckets for where to start.
 class SrgbCodes {
  public:
   SrgbCodes() {
@@ -102,29 +103,48 @@ std::vector<std::uint8_t> png_bytes(const Image& image, bool srgb_encode_values)
   return bytes;
 }
 
-/// libpng's output into a byte vector; an allocation failure becomes libpng's error.
-void append_to_vector(png_structp png, png_bytep data, size_t size) {
-  auto* out = static_cast<std::vector<std::uint8_t>*>(png_get_io_ptr(png));
+/// Where encode_rgb8() collects libpng's output and its error message.
+struct PngSink {
+  std::vector<std::uint8_t>* bytes;
+  char message[256] = "";
+};
+
+/// libpng's output into the sink; an allocation failure becomes libpng's error (raised outside
+/// the handler: longjmp must not leave a catch block).
+void append_to_sink(png_structp png, png_bytep data, size_t size) {
+  auto* sink = static_cast<PngSink*>(png_get_io_ptr(png));
+  bool failed = false;
   try {
-    out->insert(out->end(), data, data + size);
+    sink->bytes->insert(sink->bytes->end(), data, data + size);
   } catch (const std::bad_alloc&) {
-    png_error(png, "out of memory");
+    failed = true;
   }
+  if (failed) png_error(png, "out of memory");
 }
 void flush_nothing(png_structp) {}
+/// libpng's error message kept for the caller, then back to setjmp.
+void keep_message(png_structp png, png_const_charp message) {
+  auto* sink = static_cast<PngSink*>(png_get_error_ptr(png));
+  std::snprintf(sink->message, sizeof sink->message, "%s", message);
+  png_longjmp(png, 1);
+}
 
 /// 8-bit RGB rows as a PNG file (sRGB, zlib level kPngCompressionLevel with the Sub filter:
-/// a fifth of the default's time for files 10-20% larger); false on a libpng error. No C++ object
-/// lives in this frame across setjmp.
-bool encode_rgb8(const std::uint8_t* rgb, int width, int height, std::vector<std::uint8_t>& out) {
-  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+/// a fifth of the default's time for files 10-20% larger) into sink.bytes; false on a libpng
+/// error, its message in sink.message. No C++ object lives in this frame across setjmp.
+bool encode_rgb8(const std::uint8_t* rgb, int width, int height, PngSink& sink) {
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &sink, keep_message, nullptr);
   if (png == nullptr) return false;
   png_infop info = png_create_info_struct(png);
-  if (info == nullptr || setjmp(png_jmpbuf(png))) {
+  if (info == nullptr) {
+    png_destroy_write_struct(&png, nullptr);
+    return false;
+  }
+  if (setjmp(png_jmpbuf(png))) {
     png_destroy_write_struct(&png, &info);
     return false;
   }
-  png_set_write_fn(png, &out, append_to_vector, flush_nothing);
+  png_set_write_fn(png, &sink, append_to_sink, flush_nothing);
   png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), 8, PNG_COLOR_TYPE_RGB,
                PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
   png_set_sRGB_gAMA_and_cHRM(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
@@ -144,12 +164,14 @@ void write_png(const std::filesystem::path& path, const Image& image, bool srgb_
   try {
     encoded = encode_png(image, srgb_encode_values);
   } catch (const UserError& e) {
-    throw UserError(path.string(), "cannot write PNG: out of memory");
+    const std::string reason = e.what();
+    throw UserError(path.string(), "cannot write PNG: " + reason);
   }
   write_file_atomically(path, [&](const std::filesystem::path& tmp) {
     std::ofstream out(tmp, std::ios::binary);
     out.write(reinterpret_cast<const char*>(encoded.data()), static_cast<std::streamsize>(encoded.size()));
-    if (!out) throw UserError(path.string(), "cannot write PNG");
+    out.close();  // the last bytes are flushed here: a full disk shows now
+    if (!out) throw UserError(path.string(), "cannot write PNG: writing failed (disk full?)");
   });
 }
 
@@ -157,8 +179,11 @@ std::vector<std::uint8_t> encode_png(const Image& image, bool srgb_encode_values
   const std::vector<std::uint8_t> bytes = png_bytes(image, srgb_encode_values);
   std::vector<std::uint8_t> encoded;
   encoded.reserve(bytes.size() / 4);
-  if (!encode_rgb8(bytes.data(), image.width(), image.height(), encoded))
-    throw UserError("PNG", "cannot encode: out of memory");
+  PngSink sink{&encoded};
+  if (!encode_rgb8(bytes.data(), image.width(), image.height(), sink)) {
+    const std::string reason = sink.message[0] != 0 ? sink.message : "out of memory";
+    throw UserError("PNG", "cannot encode: " + reason);
+  }
   return encoded;
 }
 

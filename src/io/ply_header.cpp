@@ -61,10 +61,11 @@ size_t check_ply_size(const std::string& path) {
     for (std::string w; in >> w;) words.push_back(w);
     return words;
   };
-  // Names are identifiers: assimp reads an element named '111...vertex' as a count of
+  // Element names are identifiers: assimp reads an element named '111...vertex' as a count of
   // 10^44 vertices and allocates for them.
+  // (Property names are any word: custom attributes use '-', '.' and ':'.)
   const auto is_name = [](const std::string& word) {
-    return !word.empty() && std::isalpha(static_cast<unsigned char>(word[0])) &&
+    return !word.empty() && (std::isalpha(static_cast<unsigned char>(word[0])) || word[0] == '_') &&
            std::all_of(word.begin(), word.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
   };
   const auto count_of = [](const std::string& word) -> std::optional<size_t> {
@@ -89,13 +90,12 @@ size_t check_ply_size(const std::string& path) {
       if (elements.empty()) throw bad(where + "property before any element");
       Property p;
       if (words.size() >= 2 && words[1] == "list") {
-        if (words.size() != 5 || !is_name(words[4]))
-          throw bad(where + "malformed property line (expected 'property list COUNT_TYPE ITEM_TYPE NAME')");
+        if (words.size() != 5) throw bad(where + "malformed property line (expected 'property list COUNT_TYPE ITEM_TYPE NAME')");
         p.count_size = type_size(words[2]);
         p.size = type_size(words[3]);
         if (p.count_size == 0 || p.size == 0) throw bad(where + "unknown list types '" + words[2] + " " + words[3] + "'");
       } else {
-        if (words.size() != 3 || !is_name(words[2])) throw bad(where + "malformed property line (expected 'property TYPE NAME')");
+        if (words.size() != 3) throw bad(where + "malformed property line (expected 'property TYPE NAME')");
         p.size = type_size(words[1]);
         if (p.size == 0) throw bad(where + "unknown property type '" + words[1] + "'");
       }

@@ -24,8 +24,8 @@ inline constexpr double kDefaultResidual = 1e-4;
 /// is never distributed.
 inline constexpr double kMinResidual = 1e-12, kMaxResidual = 0.5;
 /// The far field's default error bound (ProgressiveOptions::far_field_error): measured, it keeps
-/// the paper reference's walls within 0.2% and its ground within 0.3% of a solve with a bound of
-/// 1e-3 (docs/benchmarks.md, "The far field's error bound").
+/// the paper reference's walls within 0.1% and its ground within 0.2% of a solve with a bound of
+/// 1e-3 (docs/benchmarks.md, "The far field to second order").
 inline constexpr double kDefaultFarFieldError = 2e-2;
 /// The far-field error bounds a user may ask for, besides 0 (the distance rule).
 inline constexpr double kMinFarFieldError = 1e-6, kMaxFarFieldError = 0.5;

@@ -223,11 +223,12 @@ double far_field_error(const Block& b, const Vec3& p, const Vec3& n, const Vec3&
   // k(y) / k(c) = exp(g . t + t^T H t / 2 + T[t, t, t] / 6 + ...) in the plane (n_t, g_t: the
   // parts of n and g in it; the n_s terms of H and T vanish there): H has norm at most
   // |n_t|^2 / (n . d)^2 + 4 / |d|^2, so M = H + g g^T at most m = that + |g_t|^2; the third
-  // derivative T of ln k is 2 (n . t)^3 / (n . d)^3 from ln(-n . d) and at most 16 R^3 / |d|^3
+  // derivative T of ln k is 2 (n . t)^3 / (n . d)^3 from ln(-n . d) and at most 8 R^3 / |d|^3
   // from -4 ln |d|. The third-order term of the exponential, (g . t)^3 / 6 + (g . t) t^T H t / 2
   // + T / 6, is then at most R^3 (|g_t|^3 / 6 + |g_t| m / 2 + |n_t|^3 / (3 |n . d|^3) +
-  // 8 / (3 |d|^3)): the far field (exact to second order) errs by the radiosity's deviation from
-  // its mid-range (at most half the spread) times that, at most.
+  // 4 / (3 |d|^3)). The far field, whose error is of third order, errs by the kernel-weighted
+  // mean of the radiosity's deviation times that remainder; with the deviations taken from a
+  // middle value, within half the spread of it, about half the spread times that.
   const Vec3 d = p - b.center;
   const double r2 = d.squaredNorm(), r = std::sqrt(r2), cos_x = std::abs(n.dot(d));  // times |d|
   const Vec3 n_t = n - n.dot(shooter_normal) * shooter_normal, g_t = g - g.dot(shooter_normal) * shooter_normal;
@@ -237,7 +238,7 @@ double far_field_error(const Block& b, const Vec3& p, const Vec3& n, const Vec3&
   if (!(0.5 * radius * radius * m <= tol::kFarFieldCurvatureLimit)) return std::numeric_limits<double>::infinity();
   const double third = radius * radius * radius *
                        (g_across * g_across * g_across / 6.0 + 0.5 * g_across * m +
-                        n_across * n_across * n_across / 3.0 + 8.0 / (3.0 * r2 * r));
+                        n_across * n_across * n_across / 3.0 + 4.0 / (3.0 * r2 * r));
   return 0.5 * third;
 }
 
@@ -247,8 +248,14 @@ Rgb far_field_radiosity(const Block& b, const Vec3& p, const Vec3& n, const Vec3
   const Eigen::Matrix3d m = kernel_second_order(b, p, n, shooter_normal, g);
   const double shape = 1.0 + 0.5 * (m.cwiseProduct(b.area_moment)).sum();
   Rgb corrected = (g.transpose() * b.dipole).transpose().array();
-  for (int c = 0; c < 3; ++c) corrected[c] += 0.5 * (m.cwiseProduct(b.quadrupole[static_cast<size_t>(c)])).sum();
-  corrected = b.unshot_w_m2 + corrected / shape;
+  // Where the second-order term is not small (near grazing, or a block near the receiver that
+  // shoots whole by the strict bound or the distance rule) the expansion is not to be trusted,
+  // and 1 / shape could even change sign: first order only.
+  if (std::abs(shape - 1.0) <= tol::kFarFieldCurvatureLimit) {
+    for (int c = 0; c < 3; ++c) corrected[c] += 0.5 * (m.cwiseProduct(b.quadrupole[static_cast<size_t>(c)])).sum();
+    corrected /= shape;
+  }
+  corrected += b.unshot_w_m2;
   return corrected.max(b.lowest_w_m2).min(b.highest_w_m2);
 }
 

@@ -82,16 +82,17 @@ class ShooterTree {
 /// the centroid c, M = H + g g^T, the block's form factor is F = k(c) A (1 + tr(M S) / 2) and
 /// the sum over its elements sum_k F_k B_k = k(c) A (B_mean (1 + tr(M S) / 2) + g . dipole +
 /// tr(M Q) / 2) (S: area_moment, Q: quadrupole), so the block shoots with
-/// B_mean + (g . dipole + tr(M Q) / 2) / (1 + tr(M S) / 2), exact to third order in
-/// radius / distance whatever the radiosity over the block. The mean alone errs to first order
+/// B_mean + (g . dipole + tr(M Q) / 2) / (1 + tr(M S) / 2), with an error of third order in
+/// radius / distance whatever the radiosity over the block (first order only, B_mean +
+/// g . dipole, where |tr(M S)| / 2 exceeds tol::kFarFieldCurvatureLimit). The mean alone errs to first order
 /// wherever the radiosity varies (a wall lit at its top and dark at its foot), and that error
 /// does not cancel over the receivers: it gains or loses power. Clamped to the block's range of
 /// unshot radiosity.
 Rgb far_field_radiosity(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal);
 
 /// The gradient g over the source point y, at the block's centroid, of ln k(p, y) (see
-/// far_field_radiosity()), 1/m; false at grazing angles (tol::kKernelCosine), where the first
-/// order is not used.
+/// far_field_radiosity()), 1/m; false at grazing angles (tol::kKernelCosine), where the far
+/// field is the block's mean alone.
 bool kernel_log_gradient(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal, Vec3& g);
 
 /// The far field's error at p (unit normal n) per unit spread of the block's radiosity,
@@ -150,11 +151,11 @@ struct Gathered {
 /// - its form factor times the spread of its unshot radiosity (channels summed), a strict bound:
 ///   the far field and the children's sum both lie in [lowest, highest] times the visible form
 ///   factor. The form factor is form_factor_bound(), or the visible form factor itself when the
-///   element gathers at its centre alone; or, when smaller,
-/// - the same form factor times the spread times far_field_error(): the far field is exact to
-///   third order for any radiosity over the block; used only if
-///   the centre sees the whole block (a block cut by the receiver's horizon or a shadow is seen
-///   through part of it only) and the curvature is finite.
+///   element gathers at its centre alone and sees all of the block; or, when smaller,
+/// - the same form factor times the spread times far_field_error(): the far field errs to third
+///   order for any radiosity over the block; used only if the centre sees the whole block (a
+///   block cut by the receiver's horizon or a shadow is seen through part of it only) and the
+///   estimate is finite.
 /// The element's radiosity is its value at its centre (what reconstructions sample); its power
 /// is its mean, the midpoint rule's (the centre's value, relative error of order
 /// (size / distance)^2) unless the element is large against its distance to the block
