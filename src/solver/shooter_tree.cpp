@@ -66,6 +66,23 @@ void ShooterTree::set_corners(Block& b, const Vec2* uv, int n) const {
   b.diagonal_m = widest(b);
 }
 
+namespace {
+
+/// The block's area, centroid (from the area-weighted sum of centres), mean radiosity (from the
+/// area-weighted sum), range and radius.
+void set_means(Block& b, double area, const Vec3& weighted_center, const Rgb& weighted, const Rgb& lo, const Rgb& hi) {
+  b.unshot_w_m2 = weighted / area;
+  b.area_m2 = area;
+  b.center = weighted_center / area;
+  b.radius_m = 0;
+  for (int k = 0; k < b.corner_count; ++k) b.radius_m = std::max(b.radius_m, (b.corners[k] - b.center).norm());
+  b.lowest_w_m2 = lo;
+  b.highest_w_m2 = hi;
+  b.uniform = ((hi - lo) <= tol::kUniformRelative * hi.abs().max(std::numeric_limits<double>::min())).all();
+}
+
+}  // namespace
+
 void ShooterTree::set_radiosity(Block& b, std::span<const size_t> elements) const {
   Rgb weighted = Rgb::Zero(), lo = unshot_[elements[0]], hi = lo;
   double area = 0;
@@ -78,13 +95,7 @@ void ShooterTree::set_radiosity(Block& b, std::span<const size_t> elements) cons
     lo = lo.min(unshot_[k]);
     hi = hi.max(unshot_[k]);
   }
-  b.unshot_w_m2 = weighted / area;
-  b.area_m2 = area;
-  b.center = center / area;
-  b.radius_m = 0;
-  for (int k = 0; k < b.corner_count; ++k) b.radius_m = std::max(b.radius_m, (b.corners[k] - b.center).norm());
-  b.lowest_w_m2 = lo;
-  b.highest_w_m2 = hi;
+  set_means(b, area, center, weighted, lo, hi);
   b.dipole.setZero();
   for (const size_t k : elements)
     b.dipole += side_.elements[k].area_m2 * (side_.elements[k].center - b.center) *
@@ -102,7 +113,6 @@ void ShooterTree::set_radiosity(Block& b, std::span<const size_t> elements) cons
   }
   b.area_moment /= area;
   for (auto& q : b.quadrupole) q /= area;
-  b.uniform = ((hi - lo) <= tol::kUniformRelative * hi.abs().max(std::numeric_limits<double>::min())).all();
 }
 
 void ShooterTree::aggregate(Block& b) const {
@@ -119,13 +129,7 @@ void ShooterTree::aggregate(Block& b) const {
     lo = lo.min(c.lowest_w_m2);
     hi = hi.max(c.highest_w_m2);
   }
-  b.unshot_w_m2 = weighted / area;
-  b.area_m2 = area;
-  b.center = center / area;
-  b.radius_m = 0;
-  for (int k = 0; k < b.corner_count; ++k) b.radius_m = std::max(b.radius_m, (b.corners[k] - b.center).norm());
-  b.lowest_w_m2 = lo;
-  b.highest_w_m2 = hi;
+  set_means(b, area, center, weighted, lo, hi);
   b.dipole.setZero();
   b.area_moment.setZero();
   for (auto& q : b.quadrupole) q.setZero();
@@ -144,7 +148,6 @@ void ShooterTree::aggregate(Block& b) const {
   b.dipole /= area;
   b.area_moment /= area;
   for (auto& q : b.quadrupole) q /= area;
-  b.uniform = ((hi - lo) <= tol::kUniformRelative * hi.abs().max(std::numeric_limits<double>::min())).all();
 }
 
 void ShooterTree::build(size_t index, int i0, int j0, int i1, int j1) {
