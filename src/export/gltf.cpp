@@ -4,7 +4,6 @@
 #include <cstdint>
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "core/check.h"
@@ -134,11 +133,7 @@ void write_lightmapped_glb(const std::filesystem::path& path, const Scene& scene
   put_u32(glb, static_cast<std::uint32_t>(bin.bytes.size()));
   put_u32(glb, kBinChunk);
   glb.insert(glb.end(), bin.bytes.begin(), bin.bytes.end());
-  write_file_atomically(path, [&](const std::filesystem::path& tmp) {
-    std::ofstream out(tmp, std::ios::binary);
-    out.write(reinterpret_cast<const char*>(glb.data()), static_cast<std::streamsize>(glb.size()));
-    if (!out) throw UserError(path.string(), "cannot write");
-  });
+  write_binary_file(path, glb);
 }
 
 }  // namespace radrecon

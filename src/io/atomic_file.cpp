@@ -44,10 +44,14 @@ void write_file_atomically(const std::filesystem::path& requested,
 }
 
 void write_text_file(const std::filesystem::path& path, const std::string& text) {
+  write_binary_file(path, {reinterpret_cast<const std::uint8_t*>(text.data()), text.size()});
+}
+
+void write_binary_file(const std::filesystem::path& path, std::span<const std::uint8_t> bytes) {
   write_file_atomically(path, [&](const std::filesystem::path& tmp) {
     std::ofstream out(tmp, std::ios::binary);
-    out << text;
-    out.close();
+    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+    out.close();  // the last bytes are flushed here: a full disk shows now
     if (!out) throw UserError(path.string(), "cannot write");
   });
 }

@@ -2,8 +2,10 @@
 // Output files appear whole or not at all: content goes to a temporary file beside the target,
 // which is renamed over it only once complete.
 
+#include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <span>
 #include <string>
 
 namespace radrecon {
@@ -16,5 +18,9 @@ void write_file_atomically(const std::filesystem::path& path,
 
 /// Writes `text` to `path` atomically.
 void write_text_file(const std::filesystem::path& path, const std::string& text);
+
+/// Writes `bytes` to `path` atomically; a failed write, the final flush's included (a full
+/// disk), throws UserError naming `path`.
+void write_binary_file(const std::filesystem::path& path, std::span<const std::uint8_t> bytes);
 
 }  // namespace radrecon

@@ -167,12 +167,7 @@ void write_png(const std::filesystem::path& path, const Image& image, bool srgb_
     const std::string reason = e.what();
     throw UserError(path.string(), "cannot write PNG: " + reason);
   }
-  write_file_atomically(path, [&](const std::filesystem::path& tmp) {
-    std::ofstream out(tmp, std::ios::binary);
-    out.write(reinterpret_cast<const char*>(encoded.data()), static_cast<std::streamsize>(encoded.size()));
-    out.close();  // the last bytes are flushed here: a full disk shows now
-    if (!out) throw UserError(path.string(), "cannot write PNG: writing failed (disk full?)");
-  });
+  write_binary_file(path, encoded);
 }
 
 std::vector<std::uint8_t> encode_png(const Image& image, bool srgb_encode_values) {

@@ -323,24 +323,23 @@ bool shoots_whole(const Block& b, const ConvexPolygon& poly, const Receiver& r, 
   // (far_field_radiosity()): what is left is the spread times the kernel's third order,
   // provided the centre sees all of the block (else the kernel seen is cut).
   Vec3 g;
-  const double curvature = kernel_log_gradient(b, p, n, shooter_normal, g)
-                               ? far_field_error(b, p, n, shooter_normal, g)
-                               : std::numeric_limits<double>::infinity();
-  const bool expands = std::isfinite(curvature);
+  const double error_per_spread = kernel_log_gradient(b, p, n, shooter_normal, g)
+                                      ? far_field_error(b, p, n, shooter_normal, g)
+                                      : std::numeric_limits<double>::infinity();
   // Off the midpoint the bound's form factor stays: without the visible one, the block splits.
-  if (!midpoint && !(expands && form_factor * spread * curvature <= budget_w_m2)) return false;
+  if (!midpoint && !(form_factor * spread * error_per_spread <= budget_w_m2)) return false;
   bool partly_seen = false;
   f = visible_form_factor(p, n, poly, shooter_normal, occluders, &partly_seen);
+  // A block seen in part splits: it would shoot with the mean of all of it, an error within the
+  // bound but of one sign for every element that sees the same part (the ground's blocks behind
+  // a wall's horizon), which adds up over the shots: the paper's walls were 0.1% too dark.
+  if (partly_seen) return false;
   if (midpoint) {
-    // The element gathers at its centre alone: bound with the visible form factor there, if it
-    // sees all of the block. (A block seen in part shoots with the mean of all of it: its error
-    // is within the bound, but of one sign for every element that sees the same part, such as
-    // the ground's blocks behind a wall's horizon, and it adds up over the shots: the paper's
-    // walls were 0.1% too dark on average.)
+    // The element gathers at its centre alone: bound with the visible form factor there.
     form_factor = f;
-    if (!partly_seen && f * spread <= budget_w_m2) return true;
+    if (f * spread <= budget_w_m2) return true;
   }
-  return expands && !partly_seen && form_factor * spread * curvature <= budget_w_m2;
+  return form_factor * spread * error_per_spread <= budget_w_m2;
 }
 
 }  // namespace
