@@ -1,8 +1,7 @@
 #pragma once
-// GDAL support as a plugin: libgdal and the hundred libraries it pulls in would cost every
-// radrecon command about 40 ms of start-up, so the GDAL readers and writers
-// (io/gdal_raster.h, io/gdal_vector.h) are built into libradrecon_gdal.so, beside the
-// executable, and loaded on first use.
+// GDAL support as a plugin (io/plugin.h): the GDAL readers and writers (io/gdal_raster.h,
+// io/gdal_vector.h) are built into libradrecon_gdal.so, beside the executable, and loaded on
+// first use.
 
 #include <span>
 #include <string>
@@ -25,12 +24,11 @@ struct GdalFunctions {
   std::vector<Polyline> (*read_barriers)(const std::string& path);
 };
 
-/// The name of the symbol the plugin exports: a function returning `const GdalFunctions*`.
+/// The name of the symbol the plugin exports: `const void* ()`, the address of its GdalFunctions.
 inline constexpr const char* kGdalPluginEntry = "radrecon_gdal_functions";
 
-/// The plugin's functions, loaded on the first call: from $RADRECON_GDAL_PLUGIN if set, else
-/// libradrecon_gdal.so in the executable's folder, else in ../lib/radrecon/ from it. UserError
-/// naming `what` (the option that needs GDAL) when it cannot be loaded.
+/// The plugin's functions, loaded on the first call (plugin_table(); $RADRECON_GDAL_PLUGIN may
+/// name its path). UserError naming `what` (the option that needs GDAL) when it cannot be loaded.
 const GdalFunctions& gdal_functions(const std::string& what);
 
 /// Whether `path` is read through OGR rather than as a native CSV/XYZ table: any extension but

@@ -1,6 +1,5 @@
 #include "io/image_io.h"
 
-#include <OpenEXR/ImfRgbaFile.h>
 #include <png.h>
 
 #include <algorithm>
@@ -19,6 +18,8 @@
 #include "core/error.h"
 #include "core/parse.h"
 #include "io/atomic_file.h"
+#include "io/openexr_io.h"
+#include "io/plugin.h"
 
 namespace radrecon {
 
@@ -219,24 +220,21 @@ void write_pfm(const std::filesystem::path& path, const Image& image) {
   write_pfm(path, W, H, 3, values);
 }
 
+const OpenExrFunctions& openexr_functions(const std::string& what) {
+  static const PluginSpec kPlugin{"libradrecon_openexr.so", kOpenExrPluginEntry, "RADRECON_OPENEXR_PLUGIN",
+                                  "OpenEXR support"};
+  return *static_cast<const OpenExrFunctions*>(plugin_table(kPlugin, what));
+}
+
 void write_exr(const std::filesystem::path& path, const Image& image) {
-  std::vector<Imf::Rgba> pixels(static_cast<size_t>(image.width()) * image.height());
+  const OpenExrFunctions& exr = openexr_functions(path.string());
+  std::vector<float> rgb(static_cast<size_t>(image.width()) * image.height() * 3);
   for (int y = 0; y < image.height(); ++y)
-    for (int x = 0; x < image.width(); ++x) {
-      const Rgb& c = image.at(x, y);
-      pixels[static_cast<size_t>(y) * image.width() + x] =
-          Imf::Rgba(static_cast<float>(c[0]), static_cast<float>(c[1]), static_cast<float>(c[2]), 1.0f);
-    }
+    for (int x = 0; x < image.width(); ++x)
+      for (int c = 0; c < 3; ++c)
+        rgb[(static_cast<size_t>(y) * image.width() + x) * 3 + c] = static_cast<float>(image.at(x, y)[c]);
   write_file_atomically(path, [&](const std::filesystem::path& tmp) {
-    try {
-      Imf::RgbaOutputFile file(tmp.c_str(), image.width(), image.height(), Imf::WRITE_RGB);
-      file.setFrameBuffer(pixels.data(), 1, static_cast<size_t>(image.width()));
-      file.writePixels(image.height());
-    } catch (const std::bad_alloc&) {
-      throw;  // out of memory, not a file problem
-    } catch (const std::exception& e) {
-      throw UserError(path.string(), std::string("cannot write OpenEXR: ") + e.what());
-    }
+    exr.write_rgb(tmp, path.string(), image.width(), image.height(), rgb);
   });
 }
 

@@ -1,9 +1,5 @@
 #include "io/image_read.h"
 
-#include <OpenEXR/ImfChannelList.h>
-#include <OpenEXR/ImfFrameBuffer.h>
-#include <OpenEXR/ImfHeader.h>
-#include <OpenEXR/ImfInputFile.h>
 #include <png.h>
 
 #include <bit>
@@ -21,21 +17,11 @@
 #include "core/limits.h"
 #include "core/parse.h"
 #include "io/json_reader.h"
+#include "io/openexr_io.h"
 
 namespace radrecon {
 
 namespace {
-
-/// Refuses a picture's declared size when it is not positive or beyond the limits.
-void check_size(long long width, long long height, const std::string& file) {
-  if (width < 1 || height < 1)
-    throw UserError(file, "the picture's size is " + std::to_string(width) + " x " + std::to_string(height) +
-                              "; width and height must be at least 1");
-  if (width > kMaxPictureSide || height > kMaxPictureSide || width * height > kMaxPicturePixels)
-    throw UserError(file, "the picture is too large: " + std::to_string(width) + " x " + std::to_string(height) +
-                              " (at most " + std::to_string(kMaxPictureSide) + " a side and " +
-                              std::to_string(kMaxPicturePixels) + " pixels)");
-}
 
 std::vector<unsigned char> read_bytes(const std::filesystem::path& path) {
   const std::string text = read_text_file(path.string(), "picture");  // chunked, under the file-size limit
@@ -64,7 +50,7 @@ PictureValues read_pfm(const std::filesystem::path& path) {
   const std::optional<double> scale = parse_finite(s_text);
   if (!width || !height) throw UserError(file, "PFM header: the size " + in_quotes(w_text + " " + h_text) + " is not two whole numbers");
   if (!scale || *scale == 0) throw UserError(file, "PFM header: the scale " + in_quotes(s_text) + " is not a nonzero number");
-  check_size(*width, *height, file);
+  check_picture_size(*width, *height, file);
   if (pos >= bytes.size() || !std::isspace(bytes[pos])) throw UserError(file, "PFM header: no pixels after the scale");
   ++pos;  // the single blank that ends the header
   PictureValues p;
@@ -200,42 +186,7 @@ PictureValues read_exr(const std::filesystem::path& path) {
     if (!probe) throw UserError(file, std::string("cannot open: ") + std::strerror(errno));
   }
   check_input_file_size(file);
-  PictureValues p;
-  p.format = FileFormat::exr;
-  try {
-    Imf::InputFile in(path.c_str());
-    const Imath::Box2i dw = in.header().dataWindow();
-    const long long width = static_cast<long long>(dw.max.x) - dw.min.x + 1,
-                    height = static_cast<long long>(dw.max.y) - dw.min.y + 1;
-    check_size(width, height, file);
-    const Imf::ChannelList& list = in.header().channels();
-    std::vector<const char*> names;
-    if (list.findChannel("R") && list.findChannel("G") && list.findChannel("B"))
-      names = {"R", "G", "B"};
-    else if (list.findChannel("Y"))
-      names = {"Y"};
-    else
-      throw UserError(file, "OpenEXR: no R, G, B channels and no Y channel");
-    if (!in.isComplete()) throw UserError(file, "OpenEXR: the file is incomplete (truncated)");
-    p.width = static_cast<int>(width);
-    p.height = static_cast<int>(height);
-    p.channels = static_cast<int>(names.size());
-    std::vector<float> buffer(static_cast<size_t>(width) * height * p.channels);
-    Imf::FrameBuffer frame;
-    for (size_t c = 0; c < names.size(); ++c)
-      frame.insert(names[c], Imf::Slice::Make(Imf::FLOAT, buffer.data() + c, dw, sizeof(float) * p.channels,
-                                              sizeof(float) * p.channels * static_cast<size_t>(width)));
-    in.setFrameBuffer(frame);
-    in.readPixels(dw.min.y, dw.max.y);
-    p.values.assign(buffer.begin(), buffer.end());  // OpenEXR's y grows downward: row 0 is the top
-  } catch (const UserError&) {
-    throw;
-  } catch (const std::bad_alloc&) {
-    throw;
-  } catch (const std::exception& e) {
-    throw UserError(file, std::string("cannot read OpenEXR: ") + e.what());
-  }
-  return p;
+  return openexr_functions(file).read(path);
 }
 
 }  // namespace

@@ -3,8 +3,10 @@
 // image_io.h). For comparing images (`radrecon compare`), not for editing them.
 
 #include <filesystem>
+#include <string>
 #include <vector>
 
+#include "core/error.h"
 #include "io/image_io.h"
 
 namespace radrecon {
@@ -21,6 +23,17 @@ struct PictureValues {
 /// refused rather than read (a 20000 x 20000 3-channel picture takes 9.6 GB as doubles).
 inline constexpr int kMaxPictureSide = 65536;
 inline constexpr long long kMaxPicturePixels = 100'000'000;
+
+/// Refuses a picture's declared size when it is not positive or beyond the limits.
+inline void check_picture_size(long long width, long long height, const std::string& file) {
+  if (width < 1 || height < 1)
+    throw UserError(file, "the picture's size is " + std::to_string(width) + " x " + std::to_string(height) +
+                              "; width and height must be at least 1");
+  if (width > kMaxPictureSide || height > kMaxPictureSide || width * height > kMaxPicturePixels)
+    throw UserError(file, "the picture is too large: " + std::to_string(width) + " x " + std::to_string(height) +
+                              " (at most " + std::to_string(kMaxPictureSide) + " a side and " +
+                              std::to_string(kMaxPicturePixels) + " pixels)");
+}
 
 /// Reads a picture, the format by the extension (file_format(): .pfm, .png, .exr; `where` names
 /// the option or argument that gave the path):

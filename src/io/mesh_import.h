@@ -1,18 +1,32 @@
 #pragma once
 // Mesh import through assimp (Debian's libassimp-dev): OBJ with MTL, glTF 2.0 (.gltf, .glb) and
-// PLY, each face a radrecon Surface (docs/formats.md, "Meshes").
+// PLY, each face a radrecon Surface (docs/formats.md, "Meshes"). The reader itself
+// (io/assimp_import.h) is the plugin libradrecon_assimp.so (io/plugin.h), loaded by the first
+// import.
 
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "core/parse.h"
 #include "scene/scene.h"
 
 namespace radrecon {
 
-/// Whether `path` names a model file import_mesh() reads, by its extension (.obj .gltf .glb .ply,
-/// any case).
-bool is_mesh_file(const std::string& path);
+enum class MeshFormat { kObj, kGltf, kPly };
+
+/// The model format import_mesh() reads `path` as, by its extension (.obj; .gltf and .glb; .ply;
+/// any case), if any.
+inline std::optional<MeshFormat> mesh_format(const std::string& path) {
+  const std::string ext = lower_extension(path);
+  if (ext == ".obj") return MeshFormat::kObj;
+  if (ext == ".gltf" || ext == ".glb") return MeshFormat::kGltf;
+  if (ext == ".ply") return MeshFormat::kPly;
+  return std::nullopt;
+}
+
+/// Whether `path` names a model file import_mesh() reads.
+inline bool is_mesh_file(const std::string& path) { return mesh_format(path).has_value(); }
 
 /// How a model's faces are placed and what overrides their materials. A point p of the file
 /// (after its node transforms) lands at translate_m + scale * R_x(rotate_x_deg) p: the file's
@@ -47,7 +61,14 @@ struct MeshImport {
 /// warning. Warped or concave quads are left to regularise_surfaces().
 /// Throws UserError naming `path` and what is wrong for any file it cannot read whole: unknown
 /// extension, empty, truncated, malformed, indices out of range, non-finite numbers, no faces.
+/// Loads the plugin on first use (a UserError naming `path` if it cannot be).
 MeshImport import_mesh(const std::string& path, const MeshPlacement& placement = {});
+
+/// The function import_mesh() calls: the plugin's by default. A program linked with the reader
+/// itself (the fuzz harnesses, io/assimp_import.h) sets it to import_mesh_assimp, so that the
+/// reader is instrumented with the program.
+using MeshImporter = MeshImport (*)(const std::string& path, const MeshPlacement& placement);
+void set_mesh_importer(MeshImporter importer);
 
 /// Prints `warnings` on stderr ("radrecon: warning: ..."), at most `limit` of them and then a
 /// line counting the rest.

@@ -1,0 +1,433 @@
+#include "io/assimp_import.h"
+
+#include <assimp/Importer.hpp>
+#include <assimp/material.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <set>
+#include <sstream>
+
+#include "core/error.h"
+#include "core/limits.h"
+#include "core/parse.h"
+#include "core/tolerances.h"
+#include "io/gltf_extras.h"
+#include "io/mesh_polygons.h"
+#include "io/ply_header.h"
+
+namespace radrecon {
+
+namespace {
+
+using Format = MeshFormat;
+
+/// Reflectance 0.5 grey: what a face gets when its file gives it none (docs/formats.md).
+const Rgb kDefaultReflectance = Rgb::Constant(0.5);
+/// The largest reflectance a file's colour is clamped to (radrecon needs reflectance < 1).
+constexpr double kMaxReflectance = 0.999;
+
+struct Material {
+  Rgb reflectance = kDefaultReflectance;
+  Rgb emission_w_m2 = Rgb::Zero();
+};
+
+std::string rgb_text(const Rgb& c) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "(%g, %g, %g)", c[0], c[1], c[2]);
+  return buf;
+}
+
+/// A file's colour as a reflectance: refused if not finite, clamped into [0, 0.999] with a warning.
+Rgb reflectance_from(const Rgb& c, const std::string& path, const std::string& what, std::vector<std::string>& warnings) {
+  if (!c.allFinite()) throw UserError(path, what + " is not finite " + rgb_text(c));
+  const Rgb clamped = c.max(0.0).min(kMaxReflectance);
+  if ((clamped != c).any())
+    warnings.push_back(path + ": " + what + " " + rgb_text(c) + " clamped to " + rgb_text(clamped) +
+                       " (a reflectance must lie in [0, 1))");
+  return clamped;
+}
+
+Rgb emission_from(const Rgb& c, const std::string& path, const std::string& what) {
+  if (!c.allFinite() || (c < 0).any()) throw UserError(path, what + " must be finite and >= 0, got " + rgb_text(c));
+  return c;
+}
+
+std::optional<Rgb> colour_key(const aiMaterial* m, const char* key, unsigned type, unsigned index) {
+  aiColor4D c;
+  if (m->Get(key, type, index, c) != aiReturn_SUCCESS) return std::nullopt;
+  return Rgb(c.r, c.g, c.b);
+}
+
+bool near(const Rgb& a, const Rgb& b) { return ((a - b).abs() <= 1e-6 * (1.0 + a.abs().max(b.abs()))).all(); }
+
+std::vector<Material> read_materials(const aiScene& scene, Format format, const std::string& path,
+                                     const std::vector<GltfMaterialFactors>& gltf, const std::set<std::string>& obj_defined,
+                                     std::vector<std::string>& warnings) {
+  std::vector<Material> out(scene.mNumMaterials);
+  for (unsigned i = 0; i < scene.mNumMaterials; ++i) {
+    const aiMaterial* m = scene.mMaterials[i];
+    if (m == nullptr) throw UserError(path, "material " + std::to_string(i) + " is missing");
+    aiString ai_name;
+    m->Get(AI_MATKEY_NAME, ai_name);
+    const std::string name = ai_name.C_Str();
+    const std::string what = "material '" + name + "'";
+    Material& mat = out[i];
+    if (format == Format::kObj) {
+      if (!obj_defined.count(name)) continue;  // faces before any usemtl, or of an undefined one: the default
+      if (auto kd = colour_key(m, AI_MATKEY_COLOR_DIFFUSE)) mat.reflectance = reflectance_from(*kd, path, what + " Kd", warnings);
+      if (auto ke = colour_key(m, AI_MATKEY_COLOR_EMISSIVE)) mat.emission_w_m2 = emission_from(*ke, path, what + " Ke");
+    } else if (format == Format::kGltf) {
+      auto base = colour_key(m, AI_MATKEY_BASE_COLOR);
+      if (!base) base = colour_key(m, AI_MATKEY_COLOR_DIFFUSE);
+      const Rgb emissive = colour_key(m, AI_MATKEY_COLOR_EMISSIVE).value_or(Rgb::Zero());
+      // assimp 5.2 drops KHR_materials_emissive_strength and renumbers the materials: find this
+      // one in the file by name (and by factors among materials of the same name), for its
+      // strength. Unnamed and not in the file: assimp's default material, for a primitive
+      // without one.
+      std::vector<const GltfMaterialFactors*> same;
+      for (const GltfMaterialFactors& f : gltf)
+        if (f.name == name) same.push_back(&f);
+      const auto strengths_differ = [&] {
+        for (const GltfMaterialFactors* f : same)
+          if (f->emissive_strength != same.front()->emissive_strength) return true;
+        return false;
+      };
+      if (name.empty() || strengths_differ())
+        std::erase_if(same, [&](const GltfMaterialFactors* f) { return !base || !near(*base, f->base_colour) || !near(emissive, f->emissive); });
+      if (same.empty() && name.empty()) continue;  // the default: 0.5 grey
+      if (strengths_differ())
+        throw UserError(path, "glTF materials named '" + name + "' with the same factors have different emissive strengths: give them distinct names");
+      const double strength = same.empty() ? 1.0 : same.front()->emissive_strength;
+      if (base) mat.reflectance = reflectance_from(*base, path, what + " baseColorFactor", warnings);
+      mat.emission_w_m2 = emission_from(emissive * strength, path, what + " emissiveFactor x emissiveStrength");
+    }
+    // PLY: no material; vertex colours per face (below), else the default.
+  }
+  return out;
+}
+
+void check_finite_vertex(const aiVector3D& v, const std::string& path, const std::string& mesh, unsigned index) {
+  if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
+    throw UserError(path, "mesh '" + mesh + "' vertex " + std::to_string(index) + " has a coordinate that is not finite (" +
+                              std::to_string(v.x) + ", " + std::to_string(v.y) + ", " + std::to_string(v.z) + ")");
+}
+
+bool degenerate(std::span<const Vec3> c) {
+  double longest_sq = 0;
+  for (size_t i = 0; i < c.size(); ++i) longest_sq = std::max(longest_sq, (c[(i + 1) % c.size()] - c[i]).squaredNorm());
+  Surface s;
+  if (c.size() == 3) s.set_triangle(c[0], c[1], c[2]);
+  else std::copy(c.begin(), c.end(), s.corners.begin());
+  return longest_sq == 0 || !(s.area_m2() > tol::kDegenerateAreaRelative * longest_sq);
+}
+
+/// A name fit for the scene and its JSON files: '/' (reserved for sides), control characters and
+/// bytes that are not valid UTF-8 replaced by '_'.
+std::string clean_name(const std::string& raw) {
+  std::string out;
+  for (size_t i = 0; i < raw.size();) {
+    const unsigned char c = static_cast<unsigned char>(raw[i]);
+    size_t length = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xE ? 3 : (c >> 3) == 0x1E ? 4 : 0;
+    bool valid = length > 0 && i + length <= raw.size();
+    for (size_t k = 1; valid && k < length; ++k) valid = (static_cast<unsigned char>(raw[i + k]) >> 6) == 0x2;
+    if (!valid) {
+      out += '_';
+      ++i;
+      continue;
+    }
+    out += (length == 1 && (c < 0x20 || c == 0x7F || c == '/')) ? std::string("_") : raw.substr(i, length);
+    i += length;
+  }
+  return out;
+}
+
+/// The materials an OBJ's MTL files (`mtllib`) define (`newmtl`), and a warning for each MTL
+/// file not beside it. assimp reads on without it, giving a material named by `usemtl` but
+/// defined nowhere Kd 0.6: radrecon gives such faces the default instead.
+struct ObjMaterials {
+  std::set<std::string> defined;
+  std::vector<std::string> warnings;
+};
+
+/// The words after `keyword` on each line of the file that starts with it.
+std::vector<std::string> keyword_arguments(const std::filesystem::path& file, const std::string& keyword) {
+  std::vector<std::string> out;
+  std::ifstream in(file, std::ios::binary);
+  std::string line;
+  while (std::getline(in, line)) {
+    const size_t start = line.find_first_not_of(" \t");
+    if (start == std::string::npos || line.compare(start, keyword.size(), keyword) != 0) continue;
+    const size_t after = start + keyword.size();
+    if (after >= line.size() || !std::isspace(static_cast<unsigned char>(line[after]))) continue;
+    std::string rest = line.substr(after);
+    while (!rest.empty() && std::isspace(static_cast<unsigned char>(rest.back()))) rest.pop_back();
+    rest.erase(0, rest.find_first_not_of(" \t"));
+    out.push_back(rest);
+  }
+  return out;
+}
+
+/// Refuses an OBJ face (or line, or point) whose vertex index is 0 or names a vertex the file
+/// does not have (a negative one counting back from the vertices before it), naming the line:
+/// assimp 5.2 refuses it too, without the line, and leaks memory doing so (LeakSanitizer, found
+/// by fuzzing).
+void check_obj_indices(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  long long vertices = 0, line_no = 0;
+  std::vector<std::pair<long long, long long>> positive;  // (index, line) checked at the end
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (line.size() < 2 || !std::isspace(static_cast<unsigned char>(line[1]))) continue;
+    if (line[0] == 'v') {
+      ++vertices;
+      continue;
+    }
+    if (line[0] != 'f' && line[0] != 'l' && line[0] != 'p') continue;
+    std::istringstream words(line.substr(1));
+    std::string word;
+    while (words >> word) {
+      long long index = 0;
+      try {
+        size_t used = 0;
+        index = std::stoll(word, &used);
+        if (used < word.size() && word[used] != '/') continue;
+      } catch (const std::exception&) {
+        continue;  // not a number: assimp's to refuse
+      }
+      const long long absolute = index < 0 ? vertices + 1 + index : index;
+      if (index == 0 || absolute < 1)
+        throw UserError(path + ":" + std::to_string(line_no), "vertex index " + std::to_string(index) + " out of range (" +
+                                                                    std::to_string(vertices) + " vertices before it)");
+      if (index > 0) positive.push_back({index, line_no});
+    }
+  }
+  for (const auto& [index, at] : positive)
+    if (index > vertices)
+      throw UserError(path + ":" + std::to_string(at),
+                      "vertex index " + std::to_string(index) + " out of range (" + std::to_string(vertices) + " vertices)");
+}
+
+ObjMaterials obj_materials(const std::string& path) {
+  ObjMaterials out;
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  for (const std::string& files : keyword_arguments(path, "mtllib")) {
+    std::istringstream words(files);
+    std::string file;
+    while (words >> file) {
+      std::error_code ec;
+      if (!std::filesystem::is_regular_file(folder / file, ec)) {
+        out.warnings.push_back(path + ": mtllib '" + file + "' not found beside it: faces of its materials are 0.5 grey, without emission");
+        continue;
+      }
+      for (const std::string& name : keyword_arguments(folder / file, "newmtl")) out.defined.insert(name);
+    }
+  }
+  return out;
+}
+
+class Builder {
+ public:
+  Builder(const aiScene& scene, Format format, std::string path, const std::vector<GltfMaterialFactors>& gltf,
+          const std::set<std::string>& obj_defined, const MeshPlacement& placement, MeshImport& out)
+      : scene_(scene), format_(format), path_(std::move(path)), placement_(placement), out_(out) {
+    stem_ = std::filesystem::path(path_).stem().string();
+    materials_ = read_materials(scene, format, path_, gltf, obj_defined, out.warnings);
+    const double a = placement.rotate_x_deg * std::numbers::pi / 180.0;
+    Eigen::Matrix3d rx;
+    rx << 1, 0, 0, 0, std::cos(a), -std::sin(a), 0, std::sin(a), std::cos(a);
+    placement_linear_ = placement.scale * rx;
+  }
+
+  void node(const aiNode* n, const aiMatrix4x4& parent, int depth) {
+    if (n == nullptr) return;
+    if (depth > 1000) throw UserError(path_, "node tree deeper than 1000 levels");
+    const aiMatrix4x4 m = parent * n->mTransformation;
+    for (unsigned k = 0; k < n->mNumMeshes; ++k) {
+      if (n->mMeshes[k] >= scene_.mNumMeshes || scene_.mMeshes[n->mMeshes[k]] == nullptr)
+        throw UserError(path_, "node '" + std::string(n->mName.C_Str()) + "' refers to a missing mesh");
+      mesh(*scene_.mMeshes[n->mMeshes[k]], m);
+    }
+    for (unsigned c = 0; c < n->mNumChildren; ++c) node(n->mChildren[c], m, depth + 1);
+  }
+
+  /// One warning for the faces whose mean vertex colour was clamped (a white PLY has them all).
+  void finish() {
+    if (colours_clamped_ > 0)
+      out_.warnings.push_back(path_ + ": the mean vertex colour of " + std::to_string(colours_clamped_) +
+                              " face(s) clamped into [0, 0.999] (a reflectance must lie in [0, 1))");
+  }
+
+ private:
+  void mesh(const aiMesh& mesh, const aiMatrix4x4& m) {
+    std::string base = clean_name(mesh.mName.length > 0 ? std::string(mesh.mName.C_Str()) : stem_);
+    const std::string first = base;
+    for (int instance = 2; !bases_.insert(base).second; ++instance) base = first + "#" + std::to_string(instance);
+    Eigen::Matrix3d node_linear;
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) node_linear(r, c) = m[r][c];
+    const Vec3 node_translate(m.a4, m.b4, m.c4);
+    if (!node_linear.allFinite() || !node_translate.allFinite())
+      throw UserError(path_, "mesh '" + base + "': its node transform is not finite");
+    const Eigen::Matrix3d linear = placement_linear_ * node_linear;
+    const Vec3 translate = placement_linear_ * node_translate + placement_.translate_m;
+    const double det = linear.determinant();
+    if (!(std::abs(det) > 0) || !std::isfinite(det)) throw UserError(path_, "mesh '" + base + "': its transform is singular");
+    const bool mirrored = det < 0;  // a mirroring transform turns counter-clockwise corners clockwise
+
+    if (mesh.mMaterialIndex >= materials_.size()) throw UserError(path_, "mesh '" + base + "' refers to a missing material");
+    const Material& material = materials_[mesh.mMaterialIndex];
+    const bool vertex_colours = format_ == Format::kPly && mesh.HasVertexColors(0);
+    std::vector<Vec3> corners;
+    for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+      ++out_.faces_read;
+      const aiFace& face = mesh.mFaces[f];
+      if (face.mNumIndices < 3 || face.mIndices == nullptr) {
+        ++out_.degenerate_skipped;
+        continue;
+      }
+      corners.clear();
+      Rgb colour_sum = Rgb::Zero();
+      for (unsigned k = 0; k < face.mNumIndices; ++k) {
+        const unsigned idx = face.mIndices[k];
+        if (idx >= mesh.mNumVertices)
+          throw UserError(path_, "mesh '" + base + "' face " + std::to_string(f) + ": vertex index " + std::to_string(idx) +
+                                     " out of range (" + std::to_string(mesh.mNumVertices) + " vertices)");
+        const aiVector3D& v = mesh.mVertices[idx];
+        check_finite_vertex(v, path_, base, idx);
+        const Vec3 p = linear * Vec3(v.x, v.y, v.z) + translate;
+        if (!p.allFinite() || p.cwiseAbs().maxCoeff() > tol::kMaxCoordinate_m)
+          throw UserError(path_, "mesh '" + base + "' vertex " + std::to_string(idx) + " lands outside the +-" +
+                                     std::to_string(tol::kMaxCoordinate_m) + " m of a scene after placement");
+        corners.push_back(p);
+        if (vertex_colours) {
+          const aiColor4D& c = mesh.mColors[0][idx];
+          colour_sum += Rgb(c.r, c.g, c.b);
+        }
+      }
+      if (mirrored) std::reverse(corners.begin(), corners.end());
+      Surface s;
+      s.reflectance = material.reflectance;
+      if (vertex_colours) {
+        const Rgb mean = colour_sum / face.mNumIndices;
+        if (!mean.allFinite()) throw UserError(path_, "mesh '" + base + "' face " + std::to_string(f) + ": vertex colours not finite");
+        s.reflectance = mean.max(0.0).min(kMaxReflectance);
+        colours_clamped_ += (s.reflectance != mean).any();
+      }
+      s.emission_w_m2 = material.emission_w_m2;
+      if (placement_.reflectance) s.reflectance = *placement_.reflectance;
+      if (placement_.emission_w_m2) s.emission_w_m2 = *placement_.emission_w_m2;
+      s.two_sided = placement_.two_sided.value_or(false);
+      s.max_divisions = placement_.max_divisions;
+      const std::string name = base + ":" + std::to_string(f);
+      if (corners.size() <= 4) {
+        add(s, name, corners);
+        continue;
+      }
+      const std::vector<std::array<int, 3>> triangles = triangulate_polygon(corners);
+      if (triangles.empty()) {
+        ++out_.degenerate_skipped;
+        continue;
+      }
+      ++out_.polygons_triangulated;
+      for (size_t t = 0; t < triangles.size(); ++t) {
+        const std::array<Vec3, 3> tri = {corners[triangles[t][0]], corners[triangles[t][1]], corners[triangles[t][2]]};
+        add(s, name + ".t" + std::to_string(t), tri);
+      }
+    }
+  }
+
+  void add(Surface s, const std::string& name, std::span<const Vec3> corners) {
+    if (degenerate(corners)) {
+      ++out_.degenerate_skipped;
+      return;
+    }
+    s.name = name;
+    if (corners.size() == 3) {
+      s.set_triangle(corners[0], corners[1], corners[2]);
+    } else {
+      s.corner_count = 4;
+      std::copy(corners.begin(), corners.end(), s.corners.begin());
+    }
+    out_.surfaces.push_back(std::move(s));
+  }
+
+  const aiScene& scene_;
+  Format format_;
+  std::string path_, stem_;
+  const MeshPlacement& placement_;
+  MeshImport& out_;
+  std::vector<Material> materials_;
+  Eigen::Matrix3d placement_linear_;
+  std::set<std::string> bases_;  ///< the mesh names given so far
+  size_t colours_clamped_ = 0;
+};
+
+}  // namespace
+
+MeshImport import_mesh_assimp(const std::string& path, const MeshPlacement& placement) {
+  const std::optional<Format> format = mesh_format(path);
+  if (!format) throw UserError(path, "unknown mesh format (expected .obj, .gltf, .glb or .ply)");
+  if (!(placement.scale > 0) || !std::isfinite(placement.scale)) throw UserError(path, "scale must be a finite number > 0");
+  if (!std::isfinite(placement.rotate_x_deg) || !placement.translate_m.allFinite())
+    throw UserError(path, "rotate_x_deg and translate must be finite");
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path, ec);
+  if (ec || !std::filesystem::is_regular_file(path, ec)) throw UserError(path, "cannot open mesh file");
+  if (size == 0) throw UserError(path, "empty mesh file");
+  check_input_file_size(path);
+  std::optional<size_t> ply_faces;
+  if (*format == Format::kPly) ply_faces = check_ply_size(path);
+  // glTF: its JSON first, for messages with a line or field, and for what assimp 5.2 drops.
+  GltfExtras gltf;
+  if (*format == Format::kGltf) gltf = read_gltf_extras(path);
+
+  MeshImport out;
+  ObjMaterials obj;
+  if (*format == Format::kObj) {
+    check_obj_indices(path);
+    obj = obj_materials(path);
+    out.warnings = obj.warnings;
+  }
+  Assimp::Importer importer;
+  const aiScene* scene = nullptr;
+  try {
+    // No aiProcess_Triangulate: quads stay quads; larger polygons are cut here.
+    scene = importer.ReadFile(path, aiProcess_JoinIdenticalVertices | aiProcess_ValidateDataStructure);
+  } catch (const std::bad_alloc&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw UserError(path, std::string("cannot be read: ") + e.what());
+  } catch (...) {
+    throw UserError(path, "cannot be read (the model library failed)");
+  }
+  if (scene == nullptr) throw UserError(path, std::string("cannot be read: ") + importer.GetErrorString());
+  if (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) throw UserError(path, "incomplete model (no geometry was read)");
+  if (scene->mRootNode == nullptr) throw UserError(path, "model has no node tree");
+  size_t read = 0;
+  for (unsigned i = 0; i < scene->mNumMeshes; ++i) read += scene->mMeshes[i] ? scene->mMeshes[i]->mNumFaces : 0;
+  if (ply_faces && read < *ply_faces)
+    throw UserError(path, "truncated: its header declares " + std::to_string(*ply_faces) + " faces, " + std::to_string(read) + " were read");
+  // assimp 5.2 drops a glTF face with a vertex index out of range, without a word.
+  if (*format == Format::kGltf && read < gltf.faces)
+    throw UserError(path, "vertex indices out of range: its primitives declare " + std::to_string(gltf.faces) + " faces, " +
+                              std::to_string(gltf.faces - read) + " of them with an index past their vertices");
+  Builder builder(*scene, *format, path, gltf.materials, obj.defined, placement, out);
+  builder.node(scene->mRootNode, aiMatrix4x4(), 0);
+  builder.finish();
+  if (out.degenerate_skipped > 0)
+    out.warnings.push_back(path + ": " + std::to_string(out.degenerate_skipped) +
+                           " face(s) of fewer than 3 corners or of zero area skipped");
+  if (out.surfaces.empty()) throw UserError(path, "has no face of non-zero area (" + std::to_string(out.faces_read) + " faces read)");
+  if (placement.merge_triangles) out.triangle_pairs_merged = merge_coplanar_triangle_pairs(out.surfaces);
+  return out;
+}
+
+}  // namespace radrecon

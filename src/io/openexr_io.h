@@ -1,0 +1,31 @@
+#pragma once
+// OpenEXR reading and writing (Debian's libopenexr-dev) behind write_exr() (io/image_io.h) and
+// read_picture() (io/image_read.h), built into the plugin libradrecon_openexr.so (io/plugin.h):
+// OpenEXR's libraries are loaded only by a command that reads or writes an EXR file.
+
+#include <filesystem>
+#include <span>
+#include <string>
+
+#include "io/image_read.h"
+
+namespace radrecon {
+
+/// The plugin's table of functions.
+struct OpenExrFunctions {
+  /// Writes width x height RGB pixels (3 floats each, the top row first) as 16-bit half floats
+  /// into `file`; a UserError naming `shown_as` if OpenEXR cannot.
+  void (*write_rgb)(const std::filesystem::path& file, const std::string& shown_as, int width, int height,
+                    std::span<const float> rgb);
+  /// Reads R, G, B (or Y) over the data window (read_picture()'s rules); a UserError naming
+  /// `file` for anything it cannot read whole.
+  PictureValues (*read)(const std::filesystem::path& file);
+};
+
+/// The name of the symbol the plugin exports: `const void* ()`, the address of its OpenExrFunctions.
+inline constexpr const char* kOpenExrPluginEntry = "radrecon_openexr_functions";
+
+/// The plugin's functions, loaded on first use (a UserError naming `what` if they cannot be).
+const OpenExrFunctions& openexr_functions(const std::string& what);
+
+}  // namespace radrecon

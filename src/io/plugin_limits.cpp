@@ -1,0 +1,8 @@
+// Built into every plugin (io/plugin.h): the program's resource limits into the plugin's copy.
+
+#include "core/limits.h"
+#include "io/plugin.h"
+
+extern "C" __attribute__((visibility("default"))) void radrecon_plugin_set_limit(int which, long long value) {
+  radrecon::set_limit(static_cast<radrecon::Limit>(which), value);
+}
