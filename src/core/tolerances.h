@@ -117,6 +117,13 @@ inline constexpr double kGridCoordinateRelative = 1e-9;
 /// when the next visible sample lies beyond the bound rho + max(rho, r) by this relative margin
 /// (the bound's own round-off is some 1e-15).
 inline constexpr double kSibsonCertificateRelative = 1e-9;
+/// A natural-neighbour query reuses the previous query's conflict zone (nn::ConflictZone) when
+/// each in-circle test s(q) = a |q|^2 + b qx + c qy + d of the zone's faces has the zone's sign
+/// and a magnitude above this fraction of a bound on the sum of its terms' magnitudes (from the
+/// zone's extent): some 5,000 times the test's round-off (a few units of 2^-53 of that sum), so
+/// that a reused zone is the zone CGAL's exact conflict search finds; closer calls take that
+/// search.
+inline constexpr double kConflictZoneTestRelative = 1e-12;
 /// A query's visibility tests are skipped when no barrier comes within its farthest neighbour's
 /// distance enlarged by this fraction of that distance plus the coordinates' magnitude
 /// (Barriers::none_within()): far above the distance's round-off (some 1e-15 of those), so that

@@ -40,7 +40,15 @@ struct NaturalNeighbour::Impl {
     Delaunay local;
     std::vector<std::pair<Point, unsigned>> local_input;
     std::vector<Delaunay::Face_handle> conflicts;
+    nn::ConflictZone zone;  ///< the last query's conflict zone (Sibson's coordinates)
   };
+
+  /// Coordinates into `out`, normalised by their sum `norm`; false when that is not positive.
+  static bool normalise(double norm, std::vector<std::pair<unsigned, double>>& out) {
+    if (!(norm > 0)) return false;
+    for (auto& [index, w] : out) w /= norm;
+    return true;
+  }
 
   /// What a query gets: Sibson coordinates, the value of a point on a hull edge (outside the
   /// hull), or nothing (NaN).
@@ -59,6 +67,11 @@ struct NaturalNeighbour::Impl {
     std::vector<std::pair<unsigned, double>>& out = scratch.coords;
     std::vector<Delaunay::Edge>& hole = scratch.hole;
     out.clear();
+    // The last query's conflict zone, when q certainly has the same: no walk, no conflict search.
+    if (rule != NeighbourRule::laplace && scratch.zone.holds(q)) {
+      hint = scratch.zone.face();
+      return normalise(scratch.zone.sibson(q, out), out);
+    }
     const Point p(q.x(), q.y());
     Delaunay::Locate_type lt;
     int li;
@@ -83,14 +96,20 @@ struct NaturalNeighbour::Impl {
       const Delaunay::Face_handle other = hint->neighbor(li);
       if (face_key(other) < face_key(hint)) hint = other;
     }
-    // The boundary of the conflict zone into a reused buffer (CGAL's own entry point builds a
-    // std::list per query), then the coordinates over that hole.
+    // The conflict zone into reused buffers (CGAL's own entry point builds a std::list per
+    // query), then the coordinates over it.
     hole.clear();
-    dt.get_boundary_of_conflicts(p, std::back_inserter(hole), hint);
-    const double norm = nn::hole_coordinates(dt, p, hole, rule, out);
-    if (!(norm > 0)) return false;
-    for (auto& [index, w] : out) w /= norm;
-    return true;
+    if (rule == NeighbourRule::laplace) {
+      dt.get_boundary_of_conflicts(p, std::back_inserter(hole), hint);
+      return normalise(nn::hole_coordinates(dt, p, hole, rule, out), out);
+    }
+    scratch.conflicts.clear();
+    dt.get_conflicts_and_boundary(p, std::back_inserter(scratch.conflicts), std::back_inserter(hole), hint);
+    const auto hull_vertex = [&](unsigned i) { return hull_edges_at[i][0] >= 0; };
+    if (scratch.zone.build(dt, scratch.conflicts, hole, hull_vertex))
+      return normalise(scratch.zone.sibson(q, out), out);
+    scratch.zone.forget();
+    return normalise(nn::hole_coordinates(dt, p, hole, rule, out), out);  // CGAL's areas
   }
 
   /// Whether q lies on a hull edge at a vertex of face f up to rounding (hull_edge_distance(),

@@ -1,6 +1,9 @@
 #include "reconstruct/nn_delaunay.h"
 
+#include <array>
 #include <cmath>
+
+#include "core/tolerances.h"
 
 #include <CGAL/natural_neighbor_coordinates_2.h>
 
@@ -46,6 +49,62 @@ double laplace(const Point& p, const std::vector<Delaunay::Edge>& hole, std::vec
 }
 
 }  // namespace
+
+ConflictZone::CircleTest ConflictZone::circle_test(const std::array<Vec2, 3>& p) {
+  // det |x y x^2+y^2 1| of the corners (counterclockwise) and q, expanded along q's row.
+  std::array<double, 3> x, y, l;
+  for (size_t k = 0; k < 3; ++k) x[k] = p[k].x(), y[k] = p[k].y(), l[k] = p[k].squaredNorm();
+  const auto minor = [](const std::array<double, 3>& r, const std::array<double, 3>& s) {  // det |r s 1|
+    return r[0] * (s[1] - s[2]) + r[1] * (s[2] - s[0]) + r[2] * (s[0] - s[1]);
+  };
+  const double m44 = x[0] * (y[1] * l[2] - y[2] * l[1]) - x[1] * (y[0] * l[2] - y[2] * l[0]) + x[2] * (y[0] * l[1] - y[1] * l[0]);
+  return {-minor(x, y), -minor(y, l), minor(x, l), m44};
+}
+
+bool ConflictZone::holds(const Vec2& q) const {
+  if (!reusable_) return false;
+  const Vec2 r = q - origin_;
+  const double rr = r.squaredNorm();
+  // Each coefficient is a sum of 6 products of corner coordinates (at most extent_, a lift at
+  // most 2 extent_^2): its terms, and those of s, are bounded by the sums below.
+  const double e = extent_, e2 = e * e;
+  const double bound = tol::kConflictZoneTestRelative * (6 * e2 * rr + 12 * e2 * e * (std::abs(r.x()) + std::abs(r.y())) + 12 * e2 * e2);
+  for (const CircleTest& t : inside_)
+    if (!(t.a * rr + t.b * r.x() + t.c * r.y() + t.d > bound)) return false;
+  for (const CircleTest& t : outside_)
+    if (!(t.a * rr + t.b * r.x() + t.c * r.y() + t.d < -bound)) return false;
+  return true;
+}
+
+double ConflictZone::sibson(const Vec2& q, std::vector<std::pair<unsigned, double>>& out) const {
+  // The new Voronoi vertex over boundary edge k, g_k = the circumcentre of (q, v_k, v_{k+1});
+  // v_k's share is the polygon g_{k-1}, g_k, then the old Voronoi vertices (its chain's
+  // circumcentres), all relative to q: convex, so its shoelace sum's magnitude is twice its area.
+  const size_t m = vertex_.size();
+  const Vec2 r = q - origin_;
+  thread_local std::vector<Vec2> g;
+  g.resize(m);
+  for (size_t k = 0; k < m; ++k) g[k] = circumcentre_from(r, at_[k], at_[(k + 1) % m]);
+  const auto cross = [](const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); };
+  double sum = 0;
+  for (size_t k = 0; k < m; ++k) {
+    const Vec2& g_in = g[(k + m - 1) % m];
+    Vec2 previous = g[k];
+    double twice = cross(g_in, previous);
+    for (int c = chain_first_[k]; c < chain_first_[k + 1]; ++c) {
+      const Vec2 next = centre_[static_cast<size_t>(chain_[static_cast<size_t>(c)])] - r;
+      twice += cross(previous, next);
+      previous = next;
+    }
+    twice += cross(previous, g_in);
+    const double area = 0.5 * std::abs(twice);
+    if (!std::isfinite(area)) return 0;
+    if (area == 0) continue;
+    out.emplace_back(vertex_[k], area);
+    sum += area;
+  }
+  return sum;
+}
 
 double hole_coordinates(const Delaunay& dt, const Point& p, const std::vector<Delaunay::Edge>& hole,
                         NeighbourRule rule, std::vector<std::pair<unsigned, double>>& out) {

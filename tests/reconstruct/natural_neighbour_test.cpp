@@ -6,8 +6,11 @@
 #include <cmath>
 #include <random>
 
+#include <CGAL/natural_neighbor_coordinates_2.h>
+
 #include "core/error.h"
 #include "reconstruct/natural_neighbour.h"
+#include "reconstruct/nn_delaunay.h"
 #include "support/voronoi.h"
 #include "support/scattered.h"
 
@@ -106,6 +109,86 @@ TEST(NaturalNeighbour, OutsideTheHull) {
   EXPECT_NEAR(eval1(nearest, Vec2(-1, 0.25)), 0.75, 1e-14);
   // Beyond a corner: the corner's value.
   EXPECT_NEAR(eval1(nearest, Vec2(2, 2)), 2.0, 1e-14);
+}
+
+/// Every sample's coordinate at every query of a batch: the samples' values one-hot, one
+/// channel per sample.
+std::vector<double> batch_coordinates(const ScatteredSamples& s, const std::vector<Vec2>& queries) {
+  ScatteredSamples one_hot;
+  one_hot.points = s.points;
+  one_hot.channels = static_cast<int>(s.points.size());
+  one_hot.values.assign(s.points.size() * s.points.size(), 0.0);
+  for (size_t i = 0; i < s.points.size(); ++i) one_hot.values[i * s.points.size() + i] = 1.0;
+  const NaturalNeighbour nn(one_hot, OutsideHull::none);
+  std::vector<double> out(queries.size() * s.points.size());
+  nn.evaluate(queries, out);
+  return out;
+}
+
+TEST(NaturalNeighbour, RasterBatchesReusingConflictZonesGiveCgalsCoordinates) {
+  // A raster's queries, most of which reuse the conflict zone of the query before
+  // (nn::ConflictZone), against CGAL's own natural_neighbor_coordinates_2 one query at a time;
+  // some samples on raster nodes (queries on a vertex), some queries on Delaunay edges.
+  std::mt19937 rng(24);
+  ScatteredSamples s = random_samples(60, rng, 0, 1);
+  for (const Vec2& node : {Vec2(0.25, 0.5), Vec2(0.5, 0.5), Vec2(0.75, 0.25)}) {
+    s.points.push_back(node);
+    s.values.push_back(0);
+  }
+  std::vector<Vec2> queries;
+  const int side = 120;
+  for (int j = 0; j <= side; ++j)
+    for (int i = 0; i <= side; ++i) queries.emplace_back(double(i) / side, double(j) / side);
+  for (int k = 0; k <= 50; ++k) queries.push_back(s.points[0] + (k / 50.0) * (s.points[60] - s.points[0]));
+  const std::vector<double> got = batch_coordinates(s, queries);
+
+  nn::Delaunay dt;
+  for (size_t i = 0; i < s.points.size(); ++i) dt.insert(nn::Point(s.points[i].x(), s.points[i].y()))->info() = static_cast<unsigned>(i);
+  const size_t n = s.points.size();
+  size_t compared = 0;
+  double worst = 0;
+  for (size_t q = 0; q < queries.size(); ++q) {
+    std::vector<std::pair<unsigned, double>> expected;
+    const auto result = CGAL::natural_neighbor_coordinates_2(dt, nn::Point(queries[q].x(), queries[q].y()),
+                                                             std::back_inserter(expected), nn::VertexIndex());
+    if (!result.third) {  // outside the hull: no value
+      EXPECT_TRUE(std::isnan(got[q * n])) << "query " << q;
+      continue;
+    }
+    std::vector<double> want(n, 0.0);
+    for (const auto& [i, w] : expected) want[i] += w / result.second;
+    double sum = 0;
+    for (size_t i = 0; i < n; ++i) sum += got[q * n + i];
+    ASSERT_NEAR(sum, 1.0, 1e-12) << "query " << q;
+    for (size_t i = 0; i < n; ++i) {
+      worst = std::max(worst, std::abs(got[q * n + i] - want[i]));
+      ASSERT_NEAR(got[q * n + i], want[i], 1e-12) << "query " << q << " (" << queries[q].transpose() << "), sample " << i;
+    }
+    ++compared;
+  }
+  EXPECT_GT(compared, queries.size() / 2);
+  std::printf("natural neighbour: %zu queries within %.2g of CGAL's coordinates\n", compared, worst);
+}
+
+TEST(NaturalNeighbour, ABatchGivesWhatEachPointGivesAlone) {
+  // Bit for bit: a reused conflict zone computes what the zone built for the point alone does.
+  std::mt19937 rng(25);
+  const ScatteredSamples s = random_samples(200, rng, 0, 1);
+  const NaturalNeighbour nn(s, OutsideHull::none);
+  std::vector<Vec2> queries;
+  for (int j = 0; j < 150; ++j)
+    for (int i = 0; i < 150; ++i) queries.emplace_back((i + 0.5) / 150, (j + 0.5) / 150);
+  std::vector<double> batch(queries.size());
+  nn.evaluate(queries, batch);
+  for (size_t q = 0; q < queries.size(); q += 7) {
+    double alone = 0;
+    nn.evaluate(std::span<const Vec2>(&queries[q], 1), std::span<double>(&alone, 1));
+    if (std::isnan(alone)) {
+      EXPECT_TRUE(std::isnan(batch[q]));
+    } else {
+      ASSERT_EQ(batch[q], alone) << "query " << q;
+    }
+  }
 }
 
 TEST(NaturalNeighbour, RefusesTooFewCollinearOrDuplicateSamples) {
