@@ -170,6 +170,47 @@ TEST(NaturalNeighbour, RasterBatchesReusingConflictZonesGiveCgalsCoordinates) {
   std::printf("natural neighbour: %zu queries within %.2g of CGAL's coordinates\n", compared, worst);
 }
 
+TEST(ConflictZone, AwayFromTheHullItIsBuiltHoldsForItsQueryAndGivesCgalsAreas) {
+  // Guards the reuse itself: a zone that silently failed to build or to hold would still give
+  // right values (through CGAL), only slowly.
+  std::mt19937 rng(26);
+  const ScatteredSamples s = random_samples(200, rng, 0, 1);
+  nn::Delaunay dt;
+  for (size_t i = 0; i < s.points.size(); ++i) dt.insert(nn::Point(s.points[i].x(), s.points[i].y()))->info() = static_cast<unsigned>(i);
+  std::vector<bool> on_hull(s.points.size(), false);
+  auto circulator = dt.incident_vertices(dt.infinite_vertex()), done = circulator;
+  do on_hull[circulator->info()] = true;
+  while (++circulator != done);
+  std::uniform_real_distribution<double> inner(0.3, 0.7);
+  int reusable = 0;
+  for (int t = 0; t < 100; ++t) {
+    const Vec2 q(inner(rng), inner(rng));
+    const nn::Point p(q.x(), q.y());
+    std::vector<nn::Delaunay::Face_handle> conflicts;
+    std::vector<nn::Delaunay::Edge> hole;
+    dt.get_conflicts_and_boundary(p, std::back_inserter(conflicts), std::back_inserter(hole), dt.locate(p));
+    nn::ConflictZone zone;
+    ASSERT_TRUE(zone.build(dt, conflicts, hole, [&](unsigned i) { return bool(on_hull[i]); })) << "query " << t;
+    if (zone.reusable()) {
+      ++reusable;
+      EXPECT_TRUE(zone.holds(q)) << "query " << t;
+    }
+    std::vector<std::pair<unsigned, double>> ours, cgal;
+    const double sum = zone.sibson(q, ours);
+    const auto result = CGAL::natural_neighbor_coordinates_2(dt, p, std::back_inserter(cgal), nn::VertexIndex());
+    ASSERT_TRUE(result.third);
+    EXPECT_NEAR(sum, result.second, 1e-13 * result.second);
+    std::sort(ours.begin(), ours.end());
+    std::sort(cgal.begin(), cgal.end());
+    ASSERT_EQ(ours.size(), cgal.size());
+    for (size_t k = 0; k < ours.size(); ++k) {
+      EXPECT_EQ(ours[k].first, cgal[k].first);
+      EXPECT_NEAR(ours[k].second, cgal[k].second, 1e-13 * result.second);
+    }
+  }
+  EXPECT_GE(reusable, 95);
+}
+
 TEST(NaturalNeighbour, ABatchGivesWhatEachPointGivesAlone) {
   // Bit for bit: a reused conflict zone computes what the zone built for the point alone does.
   std::mt19937 rng(25);
