@@ -6,7 +6,9 @@
 // documented std::map), so the peer is not slowed down by its data access. CGAL fits no gradient
 // on the hull; queries whose neighbours include a hull vertex fall back to Sibson's C0 value.
 // Beside it, radrecon's sibson-c1 on the same data (build and evaluate, as BM_W3_* in
-// reconstruct_bench.cpp).
+// reconstruct_bench.cpp). And the peer for natural neighbour (issue 13): CGAL's
+// natural_neighbor_coordinates_2 and the linear combination of the values, written the same way,
+// beside radrecon's natural-neighbour.
 
 #include <benchmark/benchmark.h>
 #include <omp.h>
@@ -129,6 +131,62 @@ void BM_W3_RadreconSibsonC1(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(raster.size()));
 }
 
+void BM_W3_CgalNaturalNeighbour(benchmark::State& state) {
+  const Data& d = data();
+  std::vector<double> out(d.raster.size());
+  for (auto _ : state) {
+    std::vector<std::pair<K::Point_2, unsigned>> input;
+    for (unsigned i = 0; i < d.points.size(); ++i) input.emplace_back(d.points[i], i);
+    Delaunay dt(input.begin(), input.end());
+    using Coords = std::vector<std::pair<Delaunay::Vertex_handle, double>>;
+#pragma omp parallel
+    {
+      Coords coords;
+      Delaunay::Face_handle hint;
+#pragma omp for schedule(static)
+      for (int row = 0; row < kSide; ++row)
+        for (int col = 0; col < kSide; ++col) {
+          const size_t q = static_cast<size_t>(row) * kSide + col;
+          coords.clear();
+          hint = dt.locate(d.raster[q], hint);
+          const auto r = CGAL::natural_neighbor_coordinates_2(
+              dt, d.raster[q], std::back_inserter(coords),
+              CGAL::Identity<std::pair<Delaunay::Vertex_handle, double>>(), hint);
+          if (!r.third) {
+            out[q] = NAN;
+            continue;
+          }
+          double v = 0;
+          for (const auto& [vh, w] : coords) v += w * d.values[vh->info()];
+          out[q] = v / r.second;
+        }
+    }
+    benchmark::DoNotOptimize(out.data());
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(d.raster.size()));
+}
+
+void BM_W3_RadreconNaturalNeighbour(benchmark::State& state) {
+  using namespace radrecon;
+  const Data& d = data();
+  ScatteredSamples samples;
+  for (const auto& p : d.points) samples.points.emplace_back(p.x(), p.y());
+  samples.values = d.values;
+  std::vector<Vec2> raster;
+  for (const auto& p : d.raster) raster.emplace_back(p.x(), p.y());
+  std::vector<double> out(raster.size());
+  for (auto _ : state) {
+    MethodParams params;
+    params.outside = OutsideHull::none;  // as CGAL: no value outside the hull
+    const auto f = make_scattered_interpolant(Method::natural_neighbour, samples, params).value();
+    f->evaluate(raster, out);
+    benchmark::DoNotOptimize(out.data());
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(raster.size()));
+}
+
+BENCHMARK(BM_W3_CgalNaturalNeighbour)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_W3_RadreconNaturalNeighbour)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_W3_CgalSibsonC1)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_W3_RadreconSibsonC1)->Unit(benchmark::kMillisecond)->Iterations(1);
 

@@ -49,11 +49,13 @@ compare() {
 }
 
 echo "== $RUNS runs each, interleaved, $(nproc) cores"
+compare "--version (start-up)" --version
 compare "paper" paper --out OUT --quiet
 compare "solve quadtree:1000" solve --mesh quadtree:1000 --out OUT.json --quiet
 compare "render 1600x1200, 9 rays/pixel, shepard" render --solution "$work/grid16.json" --method shepard \
   --camera view --size 1600x1200 --out OUT.png --quiet
 compare "W1 natural-neighbour" interpolate --samples "$work/w1.csv" --method natural-neighbour --raster 400x400 --domain 0,0,1,1 --out OUT.pfm --quiet
+compare "W1 natural-neighbour to GeoTIFF" interpolate --samples "$work/w1.csv" --method natural-neighbour --raster 400x400 --domain 0,0,1,1 --out OUT.tif --quiet
 compare "W1 shepard" interpolate --samples "$work/w1.csv" --method shepard --raster 400x400 --domain 0,0,1,1 --out OUT.pfm --quiet
 compare "W1 multiquadric" interpolate --samples "$work/w1.csv" --method multiquadric --raster 400x400 --domain 0,0,1,1 --out OUT.pfm --quiet
 compare "W3 natural-neighbour" interpolate --samples "$work/w3.csv" --method natural-neighbour --raster 2000x2000 --domain 0,0,1,1 --out OUT.pfm --quiet

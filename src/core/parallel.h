@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <exception>
 #include <optional>
+#include <utility>
 
 namespace radrecon {
 
@@ -83,6 +84,30 @@ void parallel_for_coarse(std::int64_t begin, std::int64_t end, Body&& body) {
   error.rethrow();
 }
 
+/// parallel_for_with_scratch (below) with chunks of `grain` iterations, in parallel from `least`
+/// iterations on: for iterations that each cost far more than handing them out (a run of
+/// natural-neighbour queries).
+template <typename Scratch, typename Body>
+void parallel_for_with_scratch(std::int64_t begin, std::int64_t end, std::int64_t grain, std::int64_t least,
+                               Body&& body) {
+  grain = std::max<std::int64_t>(grain, 1);
+  LoopException error;
+  const std::int64_t chunks = end > begin ? (end - begin + grain - 1) / grain : 0;
+#pragma omp parallel if (end - begin >= least)
+  {
+    std::optional<Scratch> scratch;
+    error.run([&] { scratch.emplace(); });
+#pragma omp for schedule(dynamic, 1)
+    for (std::int64_t c = 0; c < chunks; ++c)
+      error.run([&] {
+        if (!scratch) return;
+        const std::int64_t lo = begin + c * grain, hi = std::min(end, lo + grain);
+        for (std::int64_t i = lo; i < hi; ++i) body(i, *scratch);
+      });
+  }
+  error.rethrow();
+}
+
 /// parallel_for with one Scratch object per thread, default-constructed when the thread joins
 /// the loop and passed to every iteration that thread runs: body(i, scratch). Buffers in it grow
 /// once per thread and call, never per iteration, and nothing outlives the call (no
@@ -91,21 +116,7 @@ void parallel_for_coarse(std::int64_t begin, std::int64_t end, Body&& body) {
 /// which iteration. Same schedule and threshold as parallel_for.
 template <typename Scratch, typename Body>
 void parallel_for_with_scratch(std::int64_t begin, std::int64_t end, Body&& body) {
-  LoopException error;
-  const std::int64_t chunks = end > begin ? (end - begin + kParallelChunk - 1) / kParallelChunk : 0;
-#pragma omp parallel if (end - begin >= kParallelMinIterations)
-  {
-    std::optional<Scratch> scratch;
-    error.run([&] { scratch.emplace(); });
-#pragma omp for schedule(dynamic, 1)
-    for (std::int64_t c = 0; c < chunks; ++c)
-      error.run([&] {
-        if (!scratch) return;
-        const std::int64_t lo = begin + c * kParallelChunk, hi = std::min(end, lo + kParallelChunk);
-        for (std::int64_t i = lo; i < hi; ++i) body(i, *scratch);
-      });
-  }
-  error.rethrow();
+  parallel_for_with_scratch<Scratch>(begin, end, kParallelChunk, kParallelMinIterations, std::forward<Body>(body));
 }
 
 }  // namespace radrecon

@@ -40,7 +40,10 @@ struct NaturalNeighbour::Impl {
     Delaunay local;
     std::vector<std::pair<Point, unsigned>> local_input;
     std::vector<Delaunay::Face_handle> conflicts;
-    nn::ConflictZone zone;  ///< the last query's conflict zone (Sibson's coordinates)
+    /// The last query's conflict zone (Sibson's coordinates). It outlives its query, which
+    /// parallel_for_with_scratch's rule forbids, and safely so: a query gets the same bits from
+    /// a reused zone as from its own (nn::ConflictZone), whichever thread ran what before.
+    nn::ConflictZone zone;
   };
 
   /// Coordinates into `out`, normalised by their sum `norm`; false when that is not positive.
@@ -346,9 +349,11 @@ void NaturalNeighbour::evaluate(std::span<const Vec2> points, std::span<double> 
   // first query, then from the face found last (raster queries are coherent). A query on a
   // Delaunay edge may be located in either face, and the coordinates' last bits depend on which;
   // fixed chunks with deterministic starts make that independent of the number of threads.
-  constexpr std::int64_t kChunk = 64;
+  // Runs of 4 chunks are handed out to the threads, in parallel from 2 chunks on: a chunk costs
+  // some 10 us, far more than handing it out.
+  constexpr std::int64_t kChunk = 64, kChunksPerRun = 4;
   const std::int64_t n = static_cast<std::int64_t>(points.size());
-  parallel_for_with_scratch<Impl::Scratch>(0, (n + kChunk - 1) / kChunk, [&](std::int64_t chunk, Impl::Scratch& scratch) {
+  parallel_for_with_scratch<Impl::Scratch>(0, (n + kChunk - 1) / kChunk, kChunksPerRun, 2, [&](std::int64_t chunk, Impl::Scratch& scratch) {
     Delaunay::Face_handle hint;
     const size_t first = static_cast<size_t>(chunk * kChunk);
     if (points[first].allFinite()) {
