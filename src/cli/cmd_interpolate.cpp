@@ -153,12 +153,16 @@ void run_interpolate(const InterpolateArgs& args) {
   const double building_s = seconds_since(build_start);
   if (!interpolant) throw UserError(args.samples, interpolant.reason());
   // The query points: read from a file (input, untimed), or the raster's cell centres (timed
-  // with the interpolation below, as the Python module's raster is).
+  // with the interpolation below, as the Python module's raster is), made batch by batch unless
+  // a CSV output lists them all: W3's 4,000,000 would take 64 MB.
   const auto raster_start = Clock::now();
+  const bool raster_batches = !use_queries && !(!gdal && format == FileFormat::csv);
   const std::vector<Vec2> points =
-      !use_queries ? raster_points(raster)
+      raster_batches ? std::vector<Vec2>()
+      : !use_queries ? raster_points(raster)
       : is_ogr_vector_path(args.queries) ? gdal_functions("--queries").read_queries(args.queries, {args.x_column, args.y_column, {}})
                                          : read_queries_csv(args.queries, {args.x_column, args.y_column, {}});
+  const size_t point_count = raster_batches ? static_cast<size_t>(raster.width) * raster.height : points.size();
   if (use_queries)
     check_limit(Limit::raster_points, static_cast<long long>(points.size()), args.queries, "holds",
                 "query points count as raster points");
@@ -167,7 +171,7 @@ void run_interpolate(const InterpolateArgs& args) {
   if (!args.quiet)
     std::fprintf(stderr, "interpolate: %zu samples (%d value column%s) from %s; %s%s%s; %zu query points%s\n",
                  samples.points.size(), samples.channels, samples.channels == 1 ? "" : "s", args.samples.c_str(),
-                 method_name(*method).c_str(), description.empty() ? "" : ", ", description.c_str(), points.size(),
+                 method_name(*method).c_str(), description.empty() ? "" : ", ", description.c_str(), point_count,
                  params.barriers.empty() ? ""
                                          : ("; " + std::to_string(params.barriers.segments().size()) +
                                             " barrier segments from " + args.barriers).c_str());
@@ -176,13 +180,15 @@ void run_interpolate(const InterpolateArgs& args) {
   // with a progress line between them.
   const auto query_start = use_queries ? Clock::now() : raster_start;
   const size_t channels = static_cast<size_t>(interpolant.value()->channels());
-  std::vector<double> values(points.size() * channels);
+  std::vector<double> values(point_count * channels);
   Progress progress("interpolate", args.quiet);
-  for (size_t first = 0; first < points.size(); first += kEvaluateBatch) {
-    const size_t count = std::min(kEvaluateBatch, points.size() - first);
-    interpolant.value()->evaluate(std::span(points).subspan(first, count),
+  std::vector<Vec2> batch;
+  for (size_t first = 0; first < point_count; first += kEvaluateBatch) {
+    const size_t count = std::min(kEvaluateBatch, point_count - first);
+    if (raster_batches) raster_points(raster, first, count, batch);
+    interpolant.value()->evaluate(raster_batches ? std::span<const Vec2>(batch) : std::span(points).subspan(first, count),
                                   std::span(values).subspan(first * channels, count * channels));
-    progress.update(static_cast<double>(first + count) / points.size(), "the query points");
+    progress.update(static_cast<double>(first + count) / point_count, "the query points");
   }
   progress.done();
   const double querying_s = seconds_since(query_start);
@@ -200,7 +206,7 @@ void run_interpolate(const InterpolateArgs& args) {
     std::fprintf(stderr,
                  "interpolate: wrote %s (%zu points) in %.3f s (reading and checking %.3f s, building %.3f s, "
                  "interpolating %.3f s, writing %.3f s)\n",
-                 args.out.c_str(), points.size(), seconds_since(start), reading_s, building_s, querying_s,
+                 args.out.c_str(), point_count, seconds_since(start), reading_s, building_s, querying_s,
                  seconds_since(write_start));
 }
 

@@ -2,6 +2,7 @@
 
 #include <dlfcn.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <map>
@@ -17,7 +18,7 @@ namespace {
 
 struct Loaded {
   const void* table = nullptr;
-  void (*set_limit)(int, long long) = nullptr;  ///< the plugin's own copy of the limits
+  void (*set_limit)(int, long long) = nullptr;  ///< into the plugin's own copy of the limits
   std::string failure;
 };
 
@@ -38,26 +39,44 @@ Loaded load(const PluginSpec& plugin) {
     candidates.push_back(here / ".." / plugin.file);
   }
   Loaded out;
+  const auto fail = [&](const std::string& why) { out.failure += (out.failure.empty() ? "" : "; ") + why; };
+  if (const char* env = std::getenv(plugin.env); env && *env && !fs::exists(env, ec))
+    fail(std::string("$") + plugin.env + " names " + env + ", which does not exist");
+  std::vector<fs::path> tried;  // the executable's folder is also the code's, outside Python
   for (const fs::path& c : candidates) {
     if (!fs::exists(c, ec)) continue;
+    const fs::path canonical = fs::weakly_canonical(c, ec);
+    if (std::find(tried.begin(), tried.end(), canonical) != tried.end()) continue;
+    tried.push_back(canonical);
     // Lazy binding: resolving every symbol of GDAL's libraries up front cost 20 ms.
     void* handle = dlopen(c.c_str(), RTLD_LAZY | RTLD_LOCAL);
     if (handle == nullptr) {
-      out.failure += std::string(out.failure.empty() ? "" : "; ") + dlerror();
+      fail(dlerror());
       continue;
     }
+    // A plugin of another build (an installed one, a stale one) passes other types: refused.
+    using Abi = int (*)();
     using Entry = const void* (*)();
+    const auto abi = reinterpret_cast<Abi>(dlsym(handle, kPluginAbiEntry));
     const auto entry = reinterpret_cast<Entry>(dlsym(handle, plugin.entry));
-    if (entry == nullptr) {
-      out.failure += std::string(out.failure.empty() ? "" : "; ") + c.string() + " has no " + plugin.entry;
+    const auto set_limit = reinterpret_cast<void (*)(int, long long)>(dlsym(handle, kPluginSetLimit));
+    if (abi == nullptr || entry == nullptr || set_limit == nullptr || abi() != kPluginAbi) {
+      fail(c.string() + (abi != nullptr && entry != nullptr && set_limit != nullptr
+                             ? " is of another radrecon version (interface " + std::to_string(abi()) + ", this is " +
+                                   std::to_string(kPluginAbi) + ")"
+                             : std::string(" is no radrecon plugin (it lacks ") + plugin.entry + ", " +
+                                   kPluginAbiEntry + " or " + kPluginSetLimit + ")"));
+      dlclose(handle);
       continue;
     }
     out.table = entry();
-    out.set_limit = reinterpret_cast<void (*)(int, long long)>(dlsym(handle, kPluginSetLimit));
+    out.set_limit = set_limit;
     return out;
   }
   if (out.failure.empty())
-    out.failure = std::string(plugin.file) + " is not beside the executable (build it: it comes with radrecon)";
+    fail(std::string(plugin.file) +
+         " is neither beside the executable (or in ../lib/radrecon) nor beside the Python module; it is built "
+         "with radrecon");
   return out;
 }
 
@@ -75,8 +94,7 @@ const void* plugin_table(const PluginSpec& plugin, const std::string& what) {
   }
   if (result.table == nullptr)
     throw UserError(what, std::string("needs ") + plugin.gives + ", which cannot be loaded: " + result.failure);
-  if (result.set_limit != nullptr)
-    for (const Limit limit : kAllLimits) result.set_limit(static_cast<int>(limit), limit_value(limit));
+  for (const Limit limit : kAllLimits) result.set_limit(static_cast<int>(limit), limit_value(limit));
   return result.table;
 }
 

@@ -20,15 +20,23 @@ struct PluginSpec {
   const char* gives;
 };
 
-/// The symbol every plugin exports (io/plugin.cpp, built into each) to take the program's
-/// resource limits (core/limits.h): the plugin links its own copy of that process-wide table,
-/// which plugin_table() brings up to date with the program's on every call.
+/// The symbols every plugin exports besides its entry (io/plugin_limits.cpp, built into each):
+/// - kPluginSetLimit, `void (int, long long)`, takes the program's resource limits (core/limits.h):
+///   the plugin links its own copy of that process-wide table, which plugin_table() brings up to
+///   date with the program's on every call;
+/// - kPluginAbiEntry, `int ()`, returns the kPluginAbi it was built with: a plugin of another
+///   interface is refused, not called.
 inline constexpr const char* kPluginSetLimit = "radrecon_plugin_set_limit";
+inline constexpr const char* kPluginAbiEntry = "radrecon_plugin_abi";
+/// The plugins' interface version: raise it whenever a table of functions, or a type they pass
+/// (MeshImport, PictureValues, ScatteredSamples, ...), changes.
+inline constexpr int kPluginAbi = 1;
 
 /// The plugin's table of functions, loaded on the first call: from $env if set, else `file`
 /// in the executable's folder, else in ../lib/radrecon/ from it, else beside (or one folder
-/// above) the shared object this code is in (the Python module). UserError naming `what` (the
-/// option or file that needs it) when it cannot be loaded.
+/// above) the shared object this code is in (the Python module); the first that loads and has
+/// this program's interface. UserError naming `what` (the option or file that needs it), and
+/// why each candidate failed, when none does.
 const void* plugin_table(const PluginSpec& plugin, const std::string& what);
 
 }  // namespace radrecon

@@ -1,4 +1,5 @@
-// Built into every plugin (io/plugin.h): the program's resource limits into the plugin's copy.
+// Built into every plugin (io/plugin.h): its interface version, and the program's resource
+// limits into the plugin's copy.
 
 #include "core/limits.h"
 #include "io/plugin.h"
@@ -6,3 +7,5 @@
 extern "C" __attribute__((visibility("default"))) void radrecon_plugin_set_limit(int which, long long value) {
   radrecon::set_limit(static_cast<radrecon::Limit>(which), value);
 }
+
+extern "C" __attribute__((visibility("default"))) int radrecon_plugin_abi() { return radrecon::kPluginAbi; }

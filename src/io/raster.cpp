@@ -42,13 +42,21 @@ Rect parse_domain(const std::string& text, const std::string& where) {
 }
 
 std::vector<Vec2> raster_points(const Raster& r) {
-  RR_CHECK(r.width > 0 && r.height > 0, "raster size must be positive");
-  std::vector<Vec2> points(static_cast<size_t>(r.width) * r.height);
-  const double sx = (r.domain.x1 - r.domain.x0) / r.width, sy = (r.domain.y1 - r.domain.y0) / r.height;
-  for (int j = 0; j < r.height; ++j)
-    for (int i = 0; i < r.width; ++i)
-      points[static_cast<size_t>(j) * r.width + i] = Vec2(r.domain.x0 + (i + 0.5) * sx, r.domain.y0 + (j + 0.5) * sy);
+  std::vector<Vec2> points;
+  raster_points(r, 0, static_cast<size_t>(r.width) * r.height, points);
   return points;
+}
+
+void raster_points(const Raster& r, size_t first, size_t count, std::vector<Vec2>& out) {
+  RR_CHECK(r.width > 0 && r.height > 0, "raster size must be positive");
+  RR_CHECK(first + count <= static_cast<size_t>(r.width) * r.height, "raster points out of range");
+  out.resize(count);
+  const double sx = (r.domain.x1 - r.domain.x0) / r.width, sy = (r.domain.y1 - r.domain.y0) / r.height;
+  const size_t w = static_cast<size_t>(r.width);
+  for (size_t k = 0; k < count; ++k) {
+    const size_t i = (first + k) % w, j = (first + k) / w;
+    out[k] = Vec2(r.domain.x0 + (static_cast<double>(i) + 0.5) * sx, r.domain.y0 + (static_cast<double>(j) + 0.5) * sy);
+  }
 }
 
 void write_raster_pfm(const std::string& path, const Raster& raster, std::span<const double> values, int channels) {

@@ -28,6 +28,10 @@ Rect parse_domain(const std::string& text, const std::string& where);
 /// The query points of a raster, in raster order.
 std::vector<Vec2> raster_points(const Raster& raster);
 
+/// Points [first, first + count) of raster_points(raster), into `out` (resized): a batch of a
+/// large raster without the whole raster's points in memory.
+void raster_points(const Raster& raster, size_t first, size_t count, std::vector<Vec2>& out);
+
 /// Writes raster values (raster order, `channels` per point, channels 1 or 3) as a little-endian
 /// PFM: "Pf" (greyscale) for 1 channel, "PF" (colour) for 3. PFM stores the
 /// bottom row of the picture first, and the picture shows y upward, so the file's first row is

@@ -40,9 +40,9 @@ struct NaturalNeighbour::Impl {
     Delaunay local;
     std::vector<std::pair<Point, unsigned>> local_input;
     std::vector<Delaunay::Face_handle> conflicts;
-    /// The last query's conflict zone (Sibson's coordinates). It outlives its query, which
-    /// parallel_for_with_scratch's rule forbids, and safely so: a query gets the same bits from
-    /// a reused zone as from its own (nn::ConflictZone), whichever thread ran what before.
+    /// The last query's conflict zone (Sibson's coordinates). It outlives its query (within a
+    /// chunk of queries: evaluate()), which parallel_for_with_scratch's rule forbids, and safely
+    /// so: a query gets the same bits from a reused zone as from its own (nn::ConflictZone).
     nn::ConflictZone zone;
   };
 
@@ -349,11 +349,14 @@ void NaturalNeighbour::evaluate(std::span<const Vec2> points, std::span<double> 
   // first query, then from the face found last (raster queries are coherent). A query on a
   // Delaunay edge may be located in either face, and the coordinates' last bits depend on which;
   // fixed chunks with deterministic starts make that independent of the number of threads.
-  // Runs of 4 chunks are handed out to the threads, in parallel from 2 chunks on: a chunk costs
+  // Runs of 4 chunks are handed out to the threads, in parallel from 2 runs on: a chunk costs
   // some 10 us, far more than handing it out.
   constexpr std::int64_t kChunk = 64, kChunksPerRun = 4;
   const std::int64_t n = static_cast<std::int64_t>(points.size());
-  parallel_for_with_scratch<Impl::Scratch>(0, (n + kChunk - 1) / kChunk, kChunksPerRun, 2, [&](std::int64_t chunk, Impl::Scratch& scratch) {
+  parallel_for_with_scratch<Impl::Scratch>(0, (n + kChunk - 1) / kChunk, kChunksPerRun, 2 * kChunksPerRun, [&](std::int64_t chunk, Impl::Scratch& scratch) {
+    // A chunk's conflict zones are its own: its walks start from its own first query, whatever
+    // the thread ran before (which face an edge's point is located in decides the hull-edge test).
+    scratch.zone.forget();
     Delaunay::Face_handle hint;
     const size_t first = static_cast<size_t>(chunk * kChunk);
     if (points[first].allFinite()) {

@@ -63,11 +63,11 @@ ConflictZone::CircleTest ConflictZone::circle_test(const std::array<Vec2, 3>& p)
 
 bool ConflictZone::holds(const Vec2& q) const {
   if (!reusable_) return false;
-  const Vec2 r = q - origin_;
+  const Vec2 r = (q - origin_) * scale_;
   const double rr = r.squaredNorm();
-  // Each coefficient is a sum of 6 products of corner coordinates (at most extent_, a lift at
-  // most 2 extent_^2): its terms, and those of s, are bounded by the sums below.
-  const double e = extent_, e2 = e * e;
+  // Each coefficient is a sum of 6 products of corner coordinates (at most e = 2 in magnitude,
+  // a lift at most 2 e^2): its terms, and those of s, are bounded by the sums below.
+  const double e = 2, e2 = e * e;
   const double bound = tol::kConflictZoneTestRelative * (6 * e2 * rr + 12 * e2 * e * (std::abs(r.x()) + std::abs(r.y())) + 12 * e2 * e2);
   for (const CircleTest& t : inside_)
     if (!(t.a * rr + t.b * r.x() + t.c * r.y() + t.d > bound)) return false;
@@ -81,7 +81,7 @@ double ConflictZone::sibson(const Vec2& q, std::vector<std::pair<unsigned, doubl
   // v_k's share is the polygon g_{k-1}, g_k, then the old Voronoi vertices (its chain's
   // circumcentres), all relative to q: convex, so its shoelace sum's magnitude is twice its area.
   const size_t m = vertex_.size();
-  const Vec2 r = q - origin_;
+  const Vec2 r = (q - origin_) * scale_;
   thread_local std::vector<Vec2> g;
   g.resize(m);
   for (size_t k = 0; k < m; ++k) g[k] = circumcentre_from(r, at_[k], at_[(k + 1) % m]);

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <utility>
 #include <vector>
 
@@ -53,7 +54,8 @@ class ConflictZone {
  public:
   /// Builds the zone from CGAL's conflict faces and boundary (get_conflicts_and_boundary()) of a
   /// query inside the triangulation's hull. `hull_vertex(i)`: whether sample i is on the hull.
-  /// False (the zone unusable) when the boundary is not a simple cycle of finite faces.
+  /// False (the zone unusable: CGAL's own coordinates then) when a conflict face is infinite or
+  /// the boundary edges do not join up into one cycle around the zone.
   template <class HullVertex>
   bool build(const Delaunay& dt, const std::vector<Delaunay::Face_handle>& conflicts,
              const std::vector<Delaunay::Edge>& hole, HullVertex hull_vertex);
@@ -64,9 +66,9 @@ class ConflictZone {
   /// apply (a point on a hull edge up to rounding).
   bool holds(const Vec2& q) const;
 
-  /// Sibson's coordinates of q, a point of this zone, into `out` as (sample index, weight)
-  /// pairs, unnormalised (the area of q's Voronoi cell taken from each neighbour's). Returns
-  /// their sum, or 0 when not finite.
+  /// Sibson's coordinates of q (metres), a point of this zone, into `out` as (sample index,
+  /// weight) pairs, unnormalised (the area of q's Voronoi cell taken from each neighbour's, in
+  /// the zone's scaled units, scale_^2 per m^2). Returns their sum, or 0 when not finite.
   double sibson(const Vec2& q, std::vector<std::pair<unsigned, double>>& out) const;
 
   bool reusable() const { return reusable_; }
@@ -75,7 +77,7 @@ class ConflictZone {
   Delaunay::Face_handle face() const { return face_; }
 
  private:
-  /// s(q) = a (qx^2 + qy^2) + b qx + c qy + d (q relative to origin_): the 4 x 4 in-circle
+  /// s(q) = a (qx^2 + qy^2) + b qx + c qy + d (q in the zone's scaled coordinates): the 4 x 4 in-circle
   /// determinant of a face's corners and q, positive inside its circle. Faces inside the zone
   /// must stay positive, the faces across its boundary negative.
   struct CircleTest {
@@ -83,14 +85,16 @@ class ConflictZone {
   };
   static CircleTest circle_test(const std::array<Vec2, 3>& corners);
 
-  Vec2 origin_ = Vec2::Zero();
+  Vec2 origin_ = Vec2::Zero();  ///< metres
+  /// Coordinates below are (x - origin_) times this (a power of two, 1/m): their largest
+  /// magnitude over the zone's and the tested faces' corners lies in [1, 2).
+  double scale_ = 1;
   std::vector<unsigned> vertex_;     ///< hole vertices v_k, counterclockwise from the smallest index
-  std::vector<Vec2> at_;             ///< their positions, relative to origin_
-  std::vector<Vec2> centre_;         ///< circumcentres of the conflict faces, relative to origin_
+  std::vector<Vec2> at_;             ///< their positions (scaled coordinates)
+  std::vector<Vec2> centre_;         ///< circumcentres of the conflict faces (scaled coordinates)
   std::vector<int> chain_first_;     ///< v_k's chain: chain_[chain_first_[k], chain_first_[k + 1])
   std::vector<int> chain_;           ///< centres of the faces around v_k, from edge k's to edge k-1's
   std::vector<CircleTest> inside_, outside_;
-  double extent_ = 0;  ///< the largest |coordinate| of a tested face's corner: the tests' scale
   bool reusable_ = false;
   Delaunay::Face_handle face_;
 };
@@ -124,7 +128,22 @@ bool ConflictZone::build(const Delaunay& dt, const std::vector<Delaunay::Face_ha
   std::rotate(cycle.begin(), cycle.begin() + static_cast<std::ptrdiff_t>(start), cycle.end());
   const Point& o = cycle.front().a->point();
   origin_ = Vec2(o.x(), o.y());
-  const auto rel = [&](const Point& p) { return Vec2(p.x() - origin_.x(), p.y() - origin_.y()); };
+  // Coordinates relative to the origin, scaled by a power of two (exactly) to an extent in
+  // [1, 2): the tests' degree-4 terms neither underflow nor overflow at any sample spacing.
+  double extent_m = 0;
+  const auto widen = [&](const Delaunay::Face_handle& f) {
+    for (int k = 0; k < 3; ++k)
+      if (!dt.is_infinite(f->vertex(k))) {
+        const Point& p = f->vertex(k)->point();
+        extent_m = std::max({extent_m, std::abs(p.x() - origin_.x()), std::abs(p.y() - origin_.y())});
+      }
+  };
+  for (const auto& f : conflicts) widen(f);
+  for (const HoleEdge& e : cycle) widen(e.outer);
+  if (!(extent_m > 0) || !std::isfinite(extent_m)) return false;
+  scale_ = std::ldexp(1.0, -std::ilogb(extent_m));
+  if (!std::isfinite(scale_)) return false;
+  const auto rel = [&](const Point& p) { return Vec2((p.x() - origin_.x()) * scale_, (p.y() - origin_.y()) * scale_); };
   vertex_.clear();
   at_.clear();
   for (const HoleEdge& e : cycle) {
@@ -168,14 +187,10 @@ bool ConflictZone::build(const Delaunay& dt, const std::vector<Delaunay::Face_ha
   // Reused only away from the hull, where every face tested is finite.
   inside_.clear();
   outside_.clear();
-  extent_ = 0;
   if (near_hull) return true;
   const auto corners = [&](const Delaunay::Face_handle& f) {
     std::array<Vec2, 3> c;
-    for (int k = 0; k < 3; ++k) {
-      c[static_cast<size_t>(k)] = rel(f->vertex(k)->point());
-      extent_ = std::max(extent_, c[static_cast<size_t>(k)].cwiseAbs().maxCoeff());
-    }
+    for (int k = 0; k < 3; ++k) c[static_cast<size_t>(k)] = rel(f->vertex(k)->point());
     return c;
   };
   for (const auto& f : conflicts) inside_.push_back(circle_test(corners(f)));

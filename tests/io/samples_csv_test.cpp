@@ -313,6 +313,10 @@ TEST(SamplesIo, ParsesAndChecksRasterOptions) {
   const std::vector<Vec2> p = raster_points(Raster{2, 3, Rect{0, 10, 4, 16}});
   const std::vector<Vec2> expected = {{1, 11}, {3, 11}, {1, 13}, {3, 13}, {1, 15}, {3, 15}};
   EXPECT_EQ(p, expected);
+  // A batch (across a row's end) is that slice of the whole.
+  std::vector<Vec2> batch;
+  raster_points(Raster{2, 3, Rect{0, 10, 4, 16}}, 1, 4, batch);
+  EXPECT_EQ(batch, std::vector<Vec2>(expected.begin() + 1, expected.begin() + 5));
 }
 
 TEST(SamplesIo, CsvWriterRoundTrips) {
