@@ -59,13 +59,49 @@ const Data& data() {
   return d;
 }
 
+/// The Delaunay triangulation of the samples, each vertex's info its sample index.
+Delaunay triangulate(const Data& d) {
+  std::vector<std::pair<K::Point_2, unsigned>> input;
+  for (unsigned i = 0; i < d.points.size(); ++i) input.emplace_back(d.points[i], i);
+  return Delaunay(input.begin(), input.end());
+}
+
+using Coords = std::vector<std::pair<Delaunay::Vertex_handle, double>>;
+
+/// out[q] = value(coords, their sum, q) at every raster point q inside the hull, NaN outside, as
+/// a CGAL user writes it: rows in parallel (OpenMP), each walk from the previous query's face.
+template <typename Value>
+void evaluate_raster(const Delaunay& dt, const Data& d, std::vector<double>& out, Value value) {
+#pragma omp parallel
+  {
+    Coords coords;
+    Delaunay::Face_handle hint;
+#pragma omp for schedule(static)
+    for (int row = 0; row < kSide; ++row)
+      for (int col = 0; col < kSide; ++col) {
+        const size_t q = static_cast<size_t>(row) * kSide + col;
+        coords.clear();
+        hint = dt.locate(d.raster[q], hint);
+        const auto r = CGAL::natural_neighbor_coordinates_2(
+            dt, d.raster[q], std::back_inserter(coords), CGAL::Identity<std::pair<Delaunay::Vertex_handle, double>>(),
+            hint);
+        out[q] = r.third ? value(coords, r.second, d.raster[q]) : NAN;
+      }
+  }
+}
+
+/// Sibson's C0 value from the coordinates.
+double sibson_c0(const Data& d, const Coords& coords, double norm) {
+  double v = 0;
+  for (const auto& [vh, w] : coords) v += w * d.values[vh->info()];
+  return v / norm;
+}
+
 void BM_W3_CgalSibsonC1(benchmark::State& state) {
   const Data& d = data();
   std::vector<double> out(d.raster.size());
   for (auto _ : state) {
-    std::vector<std::pair<K::Point_2, unsigned>> input;
-    for (unsigned i = 0; i < d.points.size(); ++i) input.emplace_back(d.points[i], i);
-    Delaunay dt(input.begin(), input.end());
+    const Delaunay dt = triangulate(d);
     // Gradients by vertex index; hull vertices get none.
     std::vector<K::Vector_2> gradient(d.points.size(), K::Vector_2(0, 0));
     std::vector<char> has_gradient(d.points.size(), 0);
@@ -80,93 +116,29 @@ void BM_W3_CgalSibsonC1(benchmark::State& state) {
     auto gradient_by_vertex = [&](Delaunay::Vertex_handle v) {
       return std::make_pair(gradient[v->info()], has_gradient[v->info()] != 0);
     };
-    using Coords = std::vector<std::pair<Delaunay::Vertex_handle, double>>;
-#pragma omp parallel
-    {
-      Coords coords;
-      Delaunay::Face_handle hint;
-#pragma omp for schedule(static)
-      for (int row = 0; row < kSide; ++row)
-        for (int col = 0; col < kSide; ++col) {
-          const size_t q = static_cast<size_t>(row) * kSide + col;
-          coords.clear();
-          hint = dt.locate(d.raster[q], hint);
-          const auto r = CGAL::natural_neighbor_coordinates_2(
-              dt, d.raster[q], std::back_inserter(coords),
-              CGAL::Identity<std::pair<Delaunay::Vertex_handle, double>>(), hint);
-          if (!r.third) {
-            out[q] = NAN;
-            continue;
-          }
-          const auto c1 = CGAL::sibson_c1_interpolation(coords.begin(), coords.end(), r.second, d.raster[q],
-                                                        value_by_vertex, gradient_by_vertex, Traits());
-          if (c1.second) {
-            out[q] = c1.first;
-          } else {  // a hull vertex among the neighbours: Sibson's C0 value
-            double v = 0;
-            for (const auto& [vh, w] : coords) v += w * d.values[vh->info()];
-            out[q] = v / r.second;
-          }
-        }
-    }
+    evaluate_raster(dt, d, out, [&](const Coords& coords, double norm, const K::Point_2& p) {
+      const auto c1 =
+          CGAL::sibson_c1_interpolation(coords.begin(), coords.end(), norm, p, value_by_vertex, gradient_by_vertex, Traits());
+      return c1.second ? c1.first : sibson_c0(d, coords, norm);  // a hull vertex among the neighbours: C0
+    });
     benchmark::DoNotOptimize(out.data());
   }
   state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(d.raster.size()));
-}
-
-void BM_W3_RadreconSibsonC1(benchmark::State& state) {
-  using namespace radrecon;
-  const Data& d = data();
-  ScatteredSamples samples;
-  for (const auto& p : d.points) samples.points.emplace_back(p.x(), p.y());
-  samples.values = d.values;
-  std::vector<Vec2> raster;
-  for (const auto& p : d.raster) raster.emplace_back(p.x(), p.y());
-  std::vector<double> out(raster.size());
-  for (auto _ : state) {
-    const auto f = make_scattered_interpolant(Method::sibson_c1, samples).value();
-    f->evaluate(raster, out);
-    benchmark::DoNotOptimize(out.data());
-  }
-  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(raster.size()));
 }
 
 void BM_W3_CgalNaturalNeighbour(benchmark::State& state) {
   const Data& d = data();
   std::vector<double> out(d.raster.size());
   for (auto _ : state) {
-    std::vector<std::pair<K::Point_2, unsigned>> input;
-    for (unsigned i = 0; i < d.points.size(); ++i) input.emplace_back(d.points[i], i);
-    Delaunay dt(input.begin(), input.end());
-    using Coords = std::vector<std::pair<Delaunay::Vertex_handle, double>>;
-#pragma omp parallel
-    {
-      Coords coords;
-      Delaunay::Face_handle hint;
-#pragma omp for schedule(static)
-      for (int row = 0; row < kSide; ++row)
-        for (int col = 0; col < kSide; ++col) {
-          const size_t q = static_cast<size_t>(row) * kSide + col;
-          coords.clear();
-          hint = dt.locate(d.raster[q], hint);
-          const auto r = CGAL::natural_neighbor_coordinates_2(
-              dt, d.raster[q], std::back_inserter(coords),
-              CGAL::Identity<std::pair<Delaunay::Vertex_handle, double>>(), hint);
-          if (!r.third) {
-            out[q] = NAN;
-            continue;
-          }
-          double v = 0;
-          for (const auto& [vh, w] : coords) v += w * d.values[vh->info()];
-          out[q] = v / r.second;
-        }
-    }
+    const Delaunay dt = triangulate(d);
+    evaluate_raster(dt, d, out, [&](const Coords& coords, double norm, const K::Point_2&) { return sibson_c0(d, coords, norm); });
     benchmark::DoNotOptimize(out.data());
   }
   state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(d.raster.size()));
 }
 
-void BM_W3_RadreconNaturalNeighbour(benchmark::State& state) {
+/// radrecon's `method` on the same data: build and evaluate, no value outside the hull (as CGAL).
+void run_radrecon(benchmark::State& state, radrecon::Method method) {
   using namespace radrecon;
   const Data& d = data();
   ScatteredSamples samples;
@@ -175,15 +147,18 @@ void BM_W3_RadreconNaturalNeighbour(benchmark::State& state) {
   std::vector<Vec2> raster;
   for (const auto& p : d.raster) raster.emplace_back(p.x(), p.y());
   std::vector<double> out(raster.size());
+  MethodParams params;
+  params.outside = OutsideHull::none;
   for (auto _ : state) {
-    MethodParams params;
-    params.outside = OutsideHull::none;  // as CGAL: no value outside the hull
-    const auto f = make_scattered_interpolant(Method::natural_neighbour, samples, params).value();
+    const auto f = make_scattered_interpolant(method, samples, params).value();
     f->evaluate(raster, out);
     benchmark::DoNotOptimize(out.data());
   }
   state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(raster.size()));
 }
+
+void BM_W3_RadreconSibsonC1(benchmark::State& state) { run_radrecon(state, radrecon::Method::sibson_c1); }
+void BM_W3_RadreconNaturalNeighbour(benchmark::State& state) { run_radrecon(state, radrecon::Method::natural_neighbour); }
 
 BENCHMARK(BM_W3_CgalNaturalNeighbour)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_W3_RadreconNaturalNeighbour)->Unit(benchmark::kMillisecond)->Iterations(1);
