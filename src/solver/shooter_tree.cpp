@@ -247,7 +247,12 @@ double far_field_error(const Block& b, const Vec3& p, const Vec3& n, const Vec3&
 
 Rgb far_field_radiosity(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal) {
   Vec3 g;
-  if (!kernel_log_gradient(b, p, n, shooter_normal, g)) return b.unshot_w_m2;
+  return far_field_radiosity(b, p, n, shooter_normal, kernel_log_gradient(b, p, n, shooter_normal, g) ? &g : nullptr);
+}
+
+Rgb far_field_radiosity(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal, const Vec3* gradient) {
+  if (gradient == nullptr) return b.unshot_w_m2;
+  const Vec3& g = *gradient;
   const Eigen::Matrix3d m = kernel_second_order(b, p, n, shooter_normal, g);
   const double shape = 1.0 + 0.5 * (m.cwiseProduct(b.area_moment)).sum();
   Rgb corrected = (g.transpose() * b.dipole).transpose().array();
@@ -300,12 +305,21 @@ double form_factor_bound(const Block& b, const Vec3& p, const Vec3& n, const Vec
 
 namespace {
 
-/// Whether the block may shoot to the receiving element as one source: see gather(). Sets `f`
-/// to the visible form factor at the element's centre when it was computed to decide (else -1).
-/// `midpoint`: the element gathers at its centre alone.
+/// What shoots_whole() found at the receiving element's centre, for gather() to reuse: the
+/// visible form factor (-1 if not computed) and the kernel's log-gradient (if computed: `g` when
+/// `expands`, else the angle is grazing).
+struct AtCentre {
+  double f = -1;
+  bool gradient_known = false, expands = false;
+  Vec3 g;
+};
+
+/// Whether the block may shoot to the receiving element as one source: see gather(). Fills
+/// `centre` with what it computed there to decide. `midpoint`: the element gathers at its
+/// centre alone.
 bool shoots_whole(const Block& b, const ConvexPolygon& poly, const Receiver& r, const Vec3& shooter_normal,
-                  const std::vector<const Occluder*>& occluders, double budget_w_m2, bool midpoint, double& f) {
-  f = -1;
+                  const std::vector<const Occluder*>& occluders, double budget_w_m2, bool midpoint, AtCentre& centre) {
+  double& f = centre.f;
   if (b.first_child < 0 || b.uniform) return true;
   const Vec3 &p = r.center, &n = r.normal;
   if (budget_w_m2 <= 0) {
@@ -322,10 +336,10 @@ bool shoots_whole(const Block& b, const ConvexPolygon& poly, const Receiver& r, 
   // The far field is exact to second order, whatever the radiosity over the block
   // (far_field_radiosity()): what is left is the spread times the kernel's third order,
   // provided the centre sees all of the block (else the kernel seen is cut).
-  Vec3 g;
-  const double error_per_spread = kernel_log_gradient(b, p, n, shooter_normal, g)
-                                      ? far_field_error(b, p, n, shooter_normal, g)
-                                      : std::numeric_limits<double>::infinity();
+  centre.gradient_known = true;
+  centre.expands = kernel_log_gradient(b, p, n, shooter_normal, centre.g);
+  const double error_per_spread = centre.expands ? far_field_error(b, p, n, shooter_normal, centre.g)
+                                                 : std::numeric_limits<double>::infinity();
   // Off the midpoint the bound's form factor stays: without the visible one, the block splits.
   if (!midpoint && !(form_factor * spread * error_per_spread <= budget_w_m2)) return false;
   bool partly_seen = false;
@@ -348,7 +362,7 @@ Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, cons
                 const std::vector<const Occluder*>& occluders, double budget_w_m2) {
   Gathered out;
   if ((b.highest_w_m2 == 0).all()) return out;
-  double f_center = -1;
+  AtCentre centre;
   // The budget is shared among the blocks in proportion to their area: those that shoot as one
   // tile the patch, so their errors add up to at most budget_w_m2.
   const double share = budget_w_m2 * b.area_m2 / tree.root().area_m2;
@@ -356,21 +370,23 @@ Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, cons
   const bool midpoint = r.size_m <= tol::kMidpointReceiverRatio * gap_m;
   ConvexPolygon poly;  // the block's outline, for its form factors
   for (int k = 0; k < b.corner_count; ++k) poly.push(b.corners[k]);
-  if (!shoots_whole(b, poly, r, shooter_normal, occluders, share, midpoint, f_center)) {
+  if (!shoots_whole(b, poly, r, shooter_normal, occluders, share, midpoint, centre)) {
     for (int c = 0; c < b.child_count; ++c)
       out += gather(tree, tree.block(b.first_child + c), r, shooter_normal, occluders, budget_w_m2);
     return out;
   }
-  const auto at = [&](const Vec3& p, double f) -> Rgb {
+  const auto at = [&](const Vec3& p, double f, const AtCentre* known) -> Rgb {
     if (f < 0) f = visible_form_factor(p, r.normal, poly, shooter_normal, occluders);
     if (f == 0 || b.uniform) return f * b.unshot_w_m2;
+    if (known != nullptr && known->gradient_known)
+      return f * far_field_radiosity(b, p, r.normal, shooter_normal, known->expands ? &known->g : nullptr);
     return f * far_field_radiosity(b, p, r.normal, shooter_normal);
   };
-  out.at_center = at(r.center, f_center);
+  out.at_center = at(r.center, centre.f, &centre);
   if (midpoint) {
     out.mean = out.at_center;
   } else {
-    for (int k = 0; k < r.gauss_count; ++k) out.mean += at(r.gauss[k], -1);
+    for (int k = 0; k < r.gauss_count; ++k) out.mean += at(r.gauss[k], -1, nullptr);
     out.mean /= r.gauss_count;
   }
   return out;

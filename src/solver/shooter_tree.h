@@ -89,6 +89,9 @@ class ShooterTree {
 /// does not cancel over the receivers: it gains or loses power. Clamped to the block's range of
 /// unshot radiosity.
 Rgb far_field_radiosity(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal);
+/// The same with the kernel's log-gradient at p already known: kernel_log_gradient()'s g, or
+/// nullptr where it returned false (grazing: the block's mean).
+Rgb far_field_radiosity(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal, const Vec3* gradient);
 
 /// The gradient g over the source point y, at the block's centroid, of ln k(p, y) (see
 /// far_field_radiosity()), 1/m; false at grazing angles (tol::kKernelCosine), where the far
