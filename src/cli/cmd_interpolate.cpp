@@ -156,7 +156,8 @@ void run_interpolate(const InterpolateArgs& args) {
   // with the interpolation below, as the Python module's raster is), made batch by batch unless
   // a CSV output lists them all: W3's 4,000,000 would take 64 MB.
   const auto raster_start = Clock::now();
-  const bool raster_batches = !use_queries && !(!gdal && format == FileFormat::csv);
+  const bool csv_out = !gdal && format == FileFormat::csv;
+  const bool raster_batches = !use_queries && !csv_out;
   const std::vector<Vec2> points =
       raster_batches ? std::vector<Vec2>()
       : !use_queries ? raster_points(raster)

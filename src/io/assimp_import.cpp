@@ -14,6 +14,7 @@
 #include <set>
 #include <sstream>
 
+#include "core/check.h"
 #include "core/error.h"
 #include "core/limits.h"
 #include "core/parse.h"
@@ -374,7 +375,7 @@ class Builder {
 
 MeshImport import_mesh_assimp(const std::string& path, const MeshPlacement& placement) {
   const std::optional<Format> format = mesh_format(path);
-  if (!format) throw UserError(path, "unknown mesh format (expected .obj, .gltf, .glb or .ply)");
+  RR_CHECK(format.has_value(), "import_mesh() passes model files only");
   if (!(placement.scale > 0) || !std::isfinite(placement.scale)) throw UserError(path, "scale must be a finite number > 0");
   if (!std::isfinite(placement.rotate_x_deg) || !placement.translate_m.allFinite())
     throw UserError(path, "rotate_x_deg and translate must be finite");

@@ -7,7 +7,8 @@
 
 namespace radrecon {
 
-/// import_mesh() as the plugin carries it out (its documentation there).
+/// import_mesh() as the plugin carries it out (its documentation there), for a path import_mesh()
+/// has checked names a model file (mesh_format()).
 MeshImport import_mesh_assimp(const std::string& path, const MeshPlacement& placement);
 
 /// The plugin's table of functions.

@@ -58,7 +58,7 @@ std::string gdal_raster_driver(const std::string& path, const std::string& forma
   std::string ext = lower_extension(path);
   if (!ext.empty()) ext.erase(0, 1);
   if (format.empty() && (ext == "tif" || ext == "tiff")) return "GTiff";  // before COG, which claims them too
-  register_drivers(format.empty() ? "" : format);
+  register_drivers(format);
   GDALDriverManager* drivers = GetGDALDriverManager();
   if (!format.empty()) {
     GDALDriver* d = drivers->GetDriverByName(format.c_str());

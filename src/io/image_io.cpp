@@ -228,14 +228,7 @@ const OpenExrFunctions& openexr_functions(const std::string& what) {
 
 void write_exr(const std::filesystem::path& path, const Image& image) {
   const OpenExrFunctions& exr = openexr_functions(path.string());
-  std::vector<float> rgb(static_cast<size_t>(image.width()) * image.height() * 3);
-  for (int y = 0; y < image.height(); ++y)
-    for (int x = 0; x < image.width(); ++x)
-      for (int c = 0; c < 3; ++c)
-        rgb[(static_cast<size_t>(y) * image.width() + x) * 3 + c] = static_cast<float>(image.at(x, y)[c]);
-  write_file_atomically(path, [&](const std::filesystem::path& tmp) {
-    exr.write_rgb(tmp, path.string(), image.width(), image.height(), rgb);
-  });
+  write_file_atomically(path, [&](const std::filesystem::path& tmp) { exr.write(tmp, path.string(), image); });
 }
 
 }  // namespace radrecon

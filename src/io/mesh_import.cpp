@@ -19,11 +19,11 @@ std::atomic<MeshImporter> g_importer{nullptr};
 void set_mesh_importer(MeshImporter importer) { g_importer = importer; }
 
 MeshImport import_mesh(const std::string& path, const MeshPlacement& placement) {
-  if (const MeshImporter importer = g_importer.load()) return importer(path, placement);
-  // What needs no reader, before loading it (the reader checks them again).
+  // What needs no reader, before loading it.
   if (!mesh_format(path)) throw UserError(path, "unknown mesh format (expected .obj, .gltf, .glb or .ply)");
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw UserError(path, "cannot open mesh file");
+  if (const MeshImporter importer = g_importer.load()) return importer(path, placement);
   static const PluginSpec kPlugin{"libradrecon_assimp.so", kAssimpPluginEntry, "RADRECON_ASSIMP_PLUGIN",
                                   "the model reader (assimp)"};
   return static_cast<const AssimpFunctions*>(plugin_table(kPlugin, path))->import_mesh(path, placement);

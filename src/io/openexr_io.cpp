@@ -17,10 +17,15 @@ namespace radrecon {
 
 namespace {
 
-void write_rgb(const std::filesystem::path& file, const std::string& shown_as, int width, int height,
-               std::span<const float> rgb) {
+void write(const std::filesystem::path& file, const std::string& shown_as, const Image& image) {
+  const int width = image.width(), height = image.height();
   std::vector<Imf::Rgba> pixels(static_cast<size_t>(width) * height);
-  for (size_t k = 0; k < pixels.size(); ++k) pixels[k] = Imf::Rgba(rgb[3 * k], rgb[3 * k + 1], rgb[3 * k + 2], 1.0f);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const Rgb& c = image.at(x, y);
+      pixels[static_cast<size_t>(y) * width + x] =
+          Imf::Rgba(static_cast<float>(c[0]), static_cast<float>(c[1]), static_cast<float>(c[2]), 1.0f);
+    }
   try {
     Imf::RgbaOutputFile out(file.c_str(), width, height, Imf::WRITE_RGB);
     out.setFrameBuffer(pixels.data(), 1, static_cast<size_t>(width));
@@ -77,6 +82,6 @@ PictureValues read(const std::filesystem::path& path) {
 }  // namespace radrecon
 
 extern "C" __attribute__((visibility("default"))) const void* radrecon_openexr_functions() {
-  static const radrecon::OpenExrFunctions functions{radrecon::write_rgb, radrecon::read};
+  static const radrecon::OpenExrFunctions functions{radrecon::write, radrecon::read};
   return &functions;
 }

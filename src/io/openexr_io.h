@@ -4,19 +4,18 @@
 // OpenEXR's libraries are loaded only by a command that reads or writes an EXR file.
 
 #include <filesystem>
-#include <span>
 #include <string>
 
+#include "core/image.h"
 #include "io/image_read.h"
 
 namespace radrecon {
 
 /// The plugin's table of functions.
 struct OpenExrFunctions {
-  /// Writes width x height RGB pixels (3 floats each, the top row first) as 16-bit half floats
-  /// into `file`; a UserError naming `shown_as` if OpenEXR cannot.
-  void (*write_rgb)(const std::filesystem::path& file, const std::string& shown_as, int width, int height,
-                    std::span<const float> rgb);
+  /// Writes the image's linear RGB as 16-bit half floats into `file`; a UserError naming
+  /// `shown_as` if OpenEXR cannot.
+  void (*write)(const std::filesystem::path& file, const std::string& shown_as, const Image& image);
   /// Reads R, G, B (or Y) over the data window (read_picture()'s rules); a UserError naming
   /// `file` for anything it cannot read whole.
   PictureValues (*read)(const std::filesystem::path& file);

@@ -24,9 +24,14 @@ struct Loaded {
 
 Loaded load(const PluginSpec& plugin) {
   namespace fs = std::filesystem;
+  Loaded out;
+  const auto fail = [&](const std::string& why) { out.failure += (out.failure.empty() ? "" : "; ") + why; };
   std::vector<fs::path> candidates;
-  if (const char* env = std::getenv(plugin.env); env && *env) candidates.emplace_back(env);
   std::error_code ec;
+  if (const char* env = std::getenv(plugin.env); env && *env) {
+    if (fs::exists(env, ec)) candidates.emplace_back(env);
+    else fail(std::string("$") + plugin.env + " names " + env + ", which does not exist");
+  }
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
   if (!ec) {
     candidates.push_back(exe.parent_path() / plugin.file);
@@ -38,10 +43,6 @@ Loaded load(const PluginSpec& plugin) {
     candidates.push_back(here / plugin.file);
     candidates.push_back(here / ".." / plugin.file);
   }
-  Loaded out;
-  const auto fail = [&](const std::string& why) { out.failure += (out.failure.empty() ? "" : "; ") + why; };
-  if (const char* env = std::getenv(plugin.env); env && *env && !fs::exists(env, ec))
-    fail(std::string("$") + plugin.env + " names " + env + ", which does not exist");
   std::vector<fs::path> tried;  // the executable's folder is also the code's, outside Python
   for (const fs::path& c : candidates) {
     if (!fs::exists(c, ec)) continue;

@@ -53,9 +53,10 @@ void raster_points(const Raster& r, size_t first, size_t count, std::vector<Vec2
   out.resize(count);
   const double sx = (r.domain.x1 - r.domain.x0) / r.width, sy = (r.domain.y1 - r.domain.y0) / r.height;
   const size_t w = static_cast<size_t>(r.width);
+  size_t i = first % w, j = first / w;  // the cell of point `first`, then row by row
   for (size_t k = 0; k < count; ++k) {
-    const size_t i = (first + k) % w, j = (first + k) / w;
     out[k] = Vec2(r.domain.x0 + (static_cast<double>(i) + 0.5) * sx, r.domain.y0 + (static_cast<double>(j) + 0.5) * sy);
+    if (++i == w) i = 0, ++j;
   }
 }
 

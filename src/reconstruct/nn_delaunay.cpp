@@ -11,14 +11,6 @@ namespace radrecon::nn {
 
 namespace {
 
-/// The circumcentre of the triangle (p, a, b), relative to p (metres).
-Vec2 circumcentre_from(const Vec2& p, const Vec2& a, const Vec2& b) {
-  const Vec2 u = a - p, v = b - p;
-  const double d = 2 * (u.x() * v.y() - u.y() * v.x());
-  const double uu = u.squaredNorm(), vv = v.squaredNorm();
-  return Vec2((v.y() * uu - u.y() * vv) / d, (u.x() * vv - v.x() * uu) / d);
-}
-
 double laplace(const Point& p, const std::vector<Delaunay::Edge>& hole, std::vector<std::pair<unsigned, double>>& out) {
   // Consecutive boundary edges (f, i) share the vertex f->vertex(cw(i)) of the second (CGAL's
   // order), so the Voronoi edge facing that vertex joins the circumcentres over the two edges.

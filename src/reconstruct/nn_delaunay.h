@@ -32,6 +32,14 @@ struct VertexIndex {
   result_type operator()(const argument_type& p) const { return {p.first->info(), p.second}; }
 };
 
+/// The circumcentre of the triangle (p, a, b), relative to p (in the points' unit).
+inline Vec2 circumcentre_from(const Vec2& p, const Vec2& a, const Vec2& b) {
+  const Vec2 u = a - p, v = b - p;
+  const double d = 2 * (u.x() * v.y() - u.y() * v.x());
+  const double uu = u.squaredNorm(), vv = v.squaredNorm();
+  return Vec2((v.y() * uu - u.y() * vv) / d, (u.x() * vv - v.x() * uu) / d);
+}
+
 /// The natural-neighbour coordinates of p, a point strictly inside the triangulation's hull and on
 /// no vertex, over the boundary `hole` of its conflict zone (as get_boundary_of_conflicts() gives
 /// it, counterclockwise), into `out` as (sample index, weight) pairs, unnormalised. Returns the
@@ -153,11 +161,8 @@ bool ConflictZone::build(const Delaunay& dt, const std::vector<Delaunay::Face_ha
   centre_.clear();
   bool near_hull = false;
   for (const auto& f : conflicts) {
-    const Vec2 a = rel(f->vertex(0)->point()), b = rel(f->vertex(1)->point()), c = rel(f->vertex(2)->point());
-    const Vec2 u = b - a, v = c - a;
-    const double d = 2 * (u.x() * v.y() - u.y() * v.x());
-    const double uu = u.squaredNorm(), vv = v.squaredNorm();
-    centre_.push_back(a + Vec2((v.y() * uu - u.y() * vv) / d, (u.x() * vv - v.x() * uu) / d));
+    const Vec2 a = rel(f->vertex(0)->point());
+    centre_.push_back(a + circumcentre_from(a, rel(f->vertex(1)->point()), rel(f->vertex(2)->point())));
     for (int k = 0; k < 3; ++k) near_hull = near_hull || hull_vertex(f->vertex(k)->info());
   }
   const auto index_of = [&](const Delaunay::Face_handle& f) {
