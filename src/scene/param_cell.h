@@ -50,6 +50,10 @@ struct ParamCell {
   /// order; calls f(Vec2) for each.
   template <class F>
   void for_each_midpoint(int n, F&& f) const;
+  /// The cells of that subdivision, in the same order: calls f(ParamCell) for each; the k-th
+  /// point of for_each_midpoint(n) is the k-th cell's centroid (up to rounding).
+  template <class F>
+  void for_each_subcell(int n, F&& f) const;
 };
 
 /// The parameter domain of a polygon of `corner_count` corners: the unit box or the lower half
@@ -76,6 +80,27 @@ void ParamCell::for_each_midpoint(int n, F&& f) const {
         f(flip ? Vec2(u1 - a, v1 - b) : Vec2(u0 + a, v0 + b));
       }
     }
+}
+
+template <class F>
+void ParamCell::for_each_subcell(int n, F&& f) const {
+  const double du = (u1 - u0) / n, dv = (v1 - v0) / n;
+  if (shape == CellShape::box) {
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) f(ParamCell{u0 + i * du, v0 + j * dv, u0 + (i + 1) * du, v0 + (j + 1) * dv, CellShape::box});
+    return;
+  }
+  // As for_each_midpoint(): the lower half's sub-triangles, the upper half's by point reflection,
+  // which turns the box [a, a + du] x [b, b + dv] into [u1 - a - du, u1 - a] x [v1 - b - dv, v1 - b]
+  // and swaps its halves.
+  const bool flip = shape == CellShape::upper;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i + j < n; ++i)
+      for (int half = 0; half < (i + j < n - 1 ? 2 : 1); ++half) {
+        const bool lower = (half == 0) != flip;
+        if (!flip) f(ParamCell{u0 + i * du, v0 + j * dv, u0 + (i + 1) * du, v0 + (j + 1) * dv, lower ? CellShape::lower : CellShape::upper});
+        else f(ParamCell{u1 - (i + 1) * du, v1 - (j + 1) * dv, u1 - i * du, v1 - j * dv, lower ? CellShape::lower : CellShape::upper});
+      }
 }
 
 }  // namespace radrecon

@@ -1,35 +1,13 @@
 #include "solver/link_form_factor.h"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <limits>
 
 #include "solver/visibility.h"
 
 namespace radrecon {
-
-namespace {
-
-LinkFormFactor sample_link(const LinkEnd& receiver, const LinkEnd& source, const std::vector<const Occluder*>& occluders,
-                           int n) {
-  const QuadNode& r = receiver.node;
-  const QuadNode& s = source.node;
-  ConvexPolygon polygon;
-  for (int k = 0; k < s.vertex_count(); ++k) polygon.push(s.corners[k]);
-  LinkFormFactor out;
-  double lo = std::numeric_limits<double>::infinity(), hi = 0;
-  r.for_each_midpoint(n, [&](const Vec2& uv) {
-    const Vec3 p = receiver.surface->point(uv.x(), uv.y());
-    const double f = visible_form_factor(p, receiver.normal, polygon, source.normal, occluders);
-    out.f += f;
-    lo = std::min(lo, f);
-    hi = std::max(hi, f);
-  });
-  out.f /= n * n;
-  out.f_spread = hi - lo;
-  return out;
-}
-
-}  // namespace
 
 LinkFormFactor measure_link(const LinkEnd& receiver, const LinkEnd& source, const OccluderBvh& bvh,
                             bool may_be_occluded) {
@@ -41,11 +19,50 @@ LinkFormFactor measure_link(const LinkEnd& receiver, const LinkEnd& source, cons
     bvh.collect(Shaft(std::span<const Vec3>(r.corners.data(), static_cast<size_t>(r.vertex_count())),
                       std::span<const Vec3>(s.corners.data(), static_cast<size_t>(s.vertex_count()))),
                 receiver.scene_surface, source.scene_surface, occluders);
-  LinkFormFactor link = sample_link(receiver, source, occluders, kLinkQuadrature);
-  // A discontinuity makes the coarse rule's error of order 1 / kLinkQuadrature of the jump.
-  if (link.f_spread > kDiscontinuousSpread * (link.f + link.f_spread))
-    link = sample_link(receiver, source, occluders, kLinkQuadratureFine);
-  return link;
+  ConvexPolygon polygon;
+  for (int k = 0; k < s.vertex_count(); ++k) polygon.push(s.corners[k]);
+  double lo = std::numeric_limits<double>::infinity(), hi = 0;
+  const auto point_form_factor = [&](const Vec2& uv) {
+    const double f = visible_form_factor(receiver.surface->point(uv.x(), uv.y()), receiver.normal, polygon,
+                                         source.normal, occluders);
+    lo = std::min(lo, f);
+    hi = std::max(hi, f);
+    return f;
+  };
+  constexpr int kCells = kLinkQuadrature * kLinkQuadrature;
+  std::array<double, kCells> cell_f;
+  int k = 0;
+  double sum = 0;
+  r.for_each_midpoint(kLinkQuadrature, [&](const Vec2& uv) { sum += cell_f[static_cast<size_t>(k++)] = point_form_factor(uv); });
+  LinkFormFactor link{sum / kCells, hi - lo};
+  // A discontinuity makes the coarse rule's error of order 1 / kLinkQuadrature of the jump:
+  // refine the cells beside it, those whose value differs from a neighbour's by a share of the
+  // spread (neighbours: cells whose centroids are at most one cell apart in u and in v).
+  if (!(link.f_spread > kDiscontinuousSpread * (link.f + link.f_spread))) return link;
+  std::array<ParamCell, kCells> cells;
+  k = 0;
+  r.for_each_subcell(kLinkQuadrature, [&](const ParamCell& c) { cells[static_cast<size_t>(k++)] = c; });
+  const double du = (r.u1 - r.u0) / kLinkQuadrature, dv = (r.v1 - r.v0) / kLinkQuadrature;
+  constexpr double kNeighbour = 1.01;  // one cell apart, with room for rounding
+  std::array<bool, kCells> beside_jump{};
+  for (int a = 0; a < kCells; ++a)
+    for (int b = a + 1; b < kCells; ++b) {
+      const Vec2 d = cells[static_cast<size_t>(a)].centroid() - cells[static_cast<size_t>(b)].centroid();
+      if (std::abs(d.x()) > kNeighbour * du || std::abs(d.y()) > kNeighbour * dv) continue;
+      if (std::abs(cell_f[static_cast<size_t>(a)] - cell_f[static_cast<size_t>(b)]) > kJumpShare * link.f_spread)
+        beside_jump[static_cast<size_t>(a)] = beside_jump[static_cast<size_t>(b)] = true;
+    }
+  sum = 0;
+  for (int a = 0; a < kCells; ++a) {
+    if (!beside_jump[static_cast<size_t>(a)]) {
+      sum += cell_f[static_cast<size_t>(a)];
+      continue;
+    }
+    double fine = 0;
+    cells[static_cast<size_t>(a)].for_each_midpoint(kLinkQuadratureFine, [&](const Vec2& uv) { fine += point_form_factor(uv); });
+    sum += fine / (kLinkQuadratureFine * kLinkQuadratureFine);
+  }
+  return {sum / kCells, hi - lo};
 }
 
 }  // namespace radrecon

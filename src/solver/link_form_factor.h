@@ -25,14 +25,17 @@ struct LinkFormFactor {
 
 /// Midpoint samples per receiver edge for a link's area-to-area form factor, and the finer rule
 /// used where the point form factor jumps across the receiver (its spread exceeds this
-/// fraction of its maximum).
+/// fraction of its maximum): kLinkQuadratureFine per edge of each of the coarse rule's cells
+/// next to a jump, a neighbouring cell whose value differs by more than kJumpShare of the
+/// spread; the other cells keep their midpoint.
 inline constexpr int kLinkQuadrature = 4;
-inline constexpr int kLinkQuadratureFine = 16;
+inline constexpr int kLinkQuadratureFine = 4;
 inline constexpr double kDiscontinuousSpread = 0.5;
+inline constexpr double kJumpShare = 0.1;
 
 /// F(receiver -> source): the mean over kLinkQuadrature^2 midpoint samples of the receiver (the
-/// finer rule where the point value jumps: a shadow boundary, the foot of a wall standing on the
-/// receiver) of the exact visible point-to-polygon form factor (visibility.h), with the occluders
+/// finer rule next to where the point value jumps: a shadow boundary, the foot of a wall standing
+/// on the receiver) of the exact visible point-to-polygon form factor (visibility.h), with the occluders
 /// found by `bvh` in the shaft between the two nodes when `may_be_occluded` (the surfaces' own
 /// shaft holds some). Deterministic, and safe to call from several threads.
 LinkFormFactor measure_link(const LinkEnd& receiver, const LinkEnd& source, const OccluderBvh& bvh,

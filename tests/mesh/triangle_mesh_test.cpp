@@ -71,6 +71,33 @@ TEST(ParamCell, MidpointsAreNSquaredPointsAveragingToTheCentroid) {
   }
 }
 
+TEST(ParamCell, SubcellsTileTheCellWithTheMidpointsAsCentroids) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> U(0, 1);
+  for (const CellShape shape : {CellShape::box, CellShape::lower, CellShape::upper}) {
+    const ParamCell cell{0.1, 0.2, 0.5, 0.4, shape};
+    for (const int n : {1, 2, 4, 5}) {
+      std::vector<Vec2> midpoints;
+      cell.for_each_midpoint(n, [&](const Vec2& p) { midpoints.push_back(p); });
+      std::vector<ParamCell> cells;
+      cell.for_each_subcell(n, [&](const ParamCell& c) { cells.push_back(c); });
+      ASSERT_EQ(cells.size(), midpoints.size());
+      for (size_t k = 0; k < cells.size(); ++k) {
+        EXPECT_NEAR((cells[k].centroid() - midpoints[k]).norm(), 0, 1e-15) << cell_shape_name(shape) << " n " << n << " cell " << k;
+        EXPECT_NEAR(cells[k].area(), cell.area() / (n * n), 1e-15);
+      }
+      // A tiling: every point of the cell lies in exactly one subcell (up to their shared edges).
+      for (int k = 0; k < 500; ++k) {
+        const Vec2 p(cell.u0 + U(rng) * (cell.u1 - cell.u0), cell.v0 + U(rng) * (cell.v1 - cell.v0));
+        if (!contains(cell, p, 0)) continue;
+        int holders = 0;
+        for (const ParamCell& c : cells) holders += contains(c, p, 0) ? 1 : 0;
+        EXPECT_EQ(holders, 1) << cell_shape_name(shape) << " n " << n << " at " << p.transpose();
+      }
+    }
+  }
+}
+
 TEST(TriangleGridMesh, IsTheRegularSubdivisionIntoNSquaredEqualTriangles) {
   Scene scene;
   scene.surfaces = {triangle()};
