@@ -9,16 +9,18 @@
 namespace radrecon {
 
 Shaft::Shaft(std::span<const Vec3> a, std::span<const Vec3> b, double margin_m)
-    : margin_m_(tol::kShaftSlack_m + std::max(margin_m, 0.0)) {
+    : margin_m_(tol::kShaftSlack_m + std::max(margin_m, 0.0)), reach_m_(std::max(margin_m, 0.0)) {
   RR_CHECK(!a.empty() && !b.empty() && a.size() + b.size() <= static_cast<size_t>(kMaxPoints),
            "shaft: 1 to 16 points in all, at least one on each side");
-  for (auto set : {a, b})
-    for (const Vec3& p : set) {
-      // A triangle given as a quad repeats its last corner: keep each point once.
-      bool seen = false;
-      for (int k = 0; k < point_count_ && !seen; ++k) seen = points_[k] == p;
-      if (!seen) points_[point_count_++] = p;
-    }
+  // A triangle given as a quad repeats its last corner: keep each point once.
+  const auto add_point = [&](const Vec3& p) {
+    bool seen = false;
+    for (int k = 0; k < point_count_ && !seen; ++k) seen = points_[k] == p;
+    if (!seen) points_[point_count_++] = p;
+  };
+  for (const Vec3& p : a) add_point(p);
+  a_count_ = point_count_;
+  for (const Vec3& p : b) add_point(p);
   lo_ = hi_ = points_[0];
   for (int k = 1; k < point_count_; ++k) {
     lo_ = lo_.cwiseMin(points_[k]);
@@ -100,14 +102,20 @@ bool Shaft::may_meet(const Occluder& o) const {
     for (int c = 0; c < o.corner_count && all_outside; ++c) all_outside = normal_[k].dot(o.corners[c]) > offset_[k];
     if (all_outside) return false;
   }
-  // The occluder's own plane separates it from the shaft.
-  bool all_front = true, all_back = true;
+  // The occluder's own plane: when both ends (the first widened by its margin) lie on one closed
+  // side of it, a segment between them meets the plane at an end or runs in it, and the
+  // occluder shades nothing. Closed to tol::kPlaneDistance_m, the clipping's own tolerance: a
+  // point that near the plane sees no shadow of it, and a polygon that reaches no farther
+  // beyond it is not shaded by it (visibility.cpp). So the walls that meet a shooter at its
+  // edges, or a light set into the ceiling, are no occluders.
+  bool front = true, back = true;
   for (int q = 0; q < point_count_; ++q) {
     const double d = o.plane.eval(points_[q]);
-    all_front = all_front && d > margin_m_;
-    all_back = all_back && d < -margin_m_;
+    const double reach_m = q < a_count_ ? reach_m_ : 0.0;
+    front = front && d - reach_m >= -tol::kPlaneDistance_m;
+    back = back && d + reach_m <= tol::kPlaneDistance_m;
   }
-  return !(all_front || all_back);
+  return !(front || back);
 }
 
 OccluderBvh::OccluderBvh(const std::vector<Occluder>& occluders) {

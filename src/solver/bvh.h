@@ -11,7 +11,8 @@
 // separating test, so round-off in finding the hull's faces can only make the cull weaker,
 // never wrong. A BVH node (or an occluder) entirely outside one of these half-spaces, by more
 // than tol::kShaftSlack_m, is skipped; so is an occluder whose own plane has all the shaft's
-// corners strictly on one side.
+// corners on one closed side (a segment between them can only touch the plane at an end, or run
+// in it, where it carries no light).
 //
 // Why a BVH of our own rather than Embree: Embree answers ray queries (the first hit, or any
 // hit, along a ray), while exact visibility needs the whole set of polygons that can meet a
@@ -43,8 +44,9 @@ class Shaft {
   /// tol::kShaftSlack_m): nothing inside it can meet the shaft.
   bool may_meet_box(const Vec3& lo, const Vec3& hi) const;
 
-  /// False when the occluder's polygon cannot meet the shaft: its corners all lie outside one of
-  /// the shaft's half-spaces, or the shaft's points all lie strictly on one side of its plane.
+  /// False when the occluder's polygon cannot shade the shaft: its corners all lie outside one of
+  /// the shaft's half-spaces, or the shaft's points (the first set's widened by the margin) all
+  /// lie on one closed side of its plane.
   bool may_meet(const Occluder& o) const;
 
   int plane_count() const { return plane_count_; }
@@ -58,6 +60,8 @@ class Shaft {
   std::array<double, kMaxPlanes> offset_;
   int plane_count_ = 0;
   double margin_m_ = 0;  ///< kShaftSlack_m plus the caller's margin
+  double reach_m_ = 0;   ///< the caller's margin alone, around the first set's points
+  int a_count_ = 0;      ///< points_[0, a_count_) are the first set's
   Vec3 lo_, hi_;
 };
 

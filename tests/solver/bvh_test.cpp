@@ -198,6 +198,50 @@ TEST(OccluderBvh, WidenedPointShaftHoldsTheSegmentsFromNearbyPoints) {
   EXPECT_GT(segments, 300 * 4 * 200 * 10 / 2);
 }
 
+TEST(OccluderBvh, WallsThatOnlyTouchTheShaftAreCulledAndShadeNothing) {
+  // A room's corner: the back wall shoots to points of the floor. The side wall meets both at
+  // their edges, and a light sits in the ceiling's plane, which another ceiling panel shoots
+  // from: every segment of either shaft stays on one closed side of these planes. A partition
+  // standing across the room is kept.
+  Scene scene;
+  const auto quad = [&](const std::string& name, std::array<Vec3, 4> c) {
+    Surface s;
+    s.name = name;
+    s.corners = c;
+    scene.surfaces.push_back(s);
+  };
+  quad("back", {Vec3(0, 1, 0), Vec3(0, 1, 1), Vec3(1, 1, 1), Vec3(1, 1, 0)});          // faces -y
+  quad("side", {Vec3(0, 0, 0), Vec3(0, 0, 1), Vec3(0, 1, 1), Vec3(0, 1, 0)});          // x = 0
+  quad("light", {Vec3(0.4, 0.4, 1), Vec3(0.6, 0.4, 1), Vec3(0.6, 0.6, 1), Vec3(0.4, 0.6, 1)});
+  quad("panel", {Vec3(0, 0, 1), Vec3(0, 0.3, 1), Vec3(1, 0.3, 1), Vec3(1, 0, 1)});     // faces -z
+  quad("partition", {Vec3(0.5, 0.5, 0), Vec3(0.5, 0.5, 0.4), Vec3(0.5, 0.8, 0.4), Vec3(0.5, 0.8, 0)});
+  const std::vector<Occluder> occ = make_occluders(scene);
+  const OccluderBvh bvh(occ);
+  constexpr size_t kFloor = 99;  // the receiver's surface: none of these
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> U(0.05, 0.95);
+  int partition_kept = 0;
+  for (int k = 0; k < 200; ++k) {
+    const Vec3 p(U(rng), U(rng), 0), n = Vec3::UnitZ();
+    const double reach_m = 0.02;  // a receiving element's Gauss points about p
+    for (const size_t shooter : {size_t{0}, size_t{3}}) {
+      const Surface& s = scene.surfaces[shooter];
+      std::vector<const Occluder*> near;
+      bvh.collect(Shaft({&p, 1}, s.polygon(), reach_m), kFloor, shooter, near);
+      for (const Occluder* o : near) {
+        EXPECT_NE(scene.surfaces[o->scene_surface].name, "side") << "at " << p.transpose();
+        EXPECT_NE(scene.surfaces[o->scene_surface].name, "light") << "at " << p.transpose();
+        partition_kept += scene.surfaces[o->scene_surface].name == "partition" ? 1 : 0;
+      }
+      // The culled walls shade nothing: the same form factor with every occluder.
+      const std::vector<const Occluder*> all = all_but(occ, kFloor, shooter);
+      EXPECT_NEAR(visible_form_factor(p, n, polygon_of(s), s.normal(), near),
+                  visible_form_factor(p, n, polygon_of(s), s.normal(), all), 1e-15);
+    }
+  }
+  EXPECT_GT(partition_kept, 20);
+}
+
 TEST(OccluderBvh, EmptyAndSingleOccluderScenes) {
   const std::vector<Occluder> none;
   const OccluderBvh empty(none);
