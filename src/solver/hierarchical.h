@@ -64,8 +64,9 @@ double min_element_size_m(const Scene& scene, const HierarchicalOptions& options
 /// Number of leaves of the named surface side in a solution.
 size_t leaf_count(const Solution& solution, const std::string& side);
 
-/// quadtree:LEAVES: the largest epsilon (bisection on log epsilon) whose quadtree gives the side
-/// `side` at least `leaves` leaves, then solved with a cap of exactly `leaves`. Throws
+/// quadtree:LEAVES: an epsilon whose quadtree gives the side `side` exactly `leaves` leaves, or
+/// the largest within 0.1% that gives at least that many (the Illinois method on log count
+/// against log epsilon), then solved with a cap of exactly `leaves`. Throws
 /// UserError (naming `field`) if `leaves` is not 1 + 3k or cannot be reached above the
 /// minimum element size.
 Solution solve_hierarchical_leaves(const Scene& scene, const std::string& side, int leaves,

@@ -1,6 +1,7 @@
 // quadtree:LEAVES: hierarchical radiosity with exactly a given number of leaves on one side, by
 // a search over the refinement threshold epsilon.
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -57,13 +58,14 @@ Solution solve_hierarchical_leaves(const Scene& scene, const std::string& side, 
       throw UserError(field, std::to_string(leaves) + " leaves on '" + side + "' cannot be reached above the minimum element size (" +
                                  std::to_string(min_size) + " m allows at most " + std::to_string(static_cast<long long>(most)) + ")");
   }
-  // Bracket count(lo) >= leaves > count(hi), stepping down by kStep at most, then bisect on log
-  // epsilon until the bracket is kBracket wide or lo gives exactly `leaves`. An epsilon far too
+  // Bracket count(lo) >= leaves > count(hi), stepping down by kStep at most, then narrow it in
+  // log epsilon until it is kBracket wide or lo gives exactly `leaves`. An epsilon far too
   // small costs far more than the rest of the search (the links grow as the square of the
   // leaves), so a step goes no lower than kUndershoot times where the last two counts,
   // extrapolated as a power of epsilon, reach `leaves`.
   constexpr double kStep = 10, kBracket = 1.001, kStart = 1e-3, kLargest = 1e12, kUndershoot = 0.9;
   constexpr int kMaxSteps = 24, kMaxBisections = 60;
+  constexpr double kLeast = 0.05;
   double hi = 1.0, lo = kStart;
   int c_hi = count(hi);
   while (c_hi >= leaves && hi < kLargest) c_hi = count(hi *= kStep);
@@ -83,14 +85,26 @@ Solution solve_hierarchical_leaves(const Scene& scene, const std::string& side, 
   if (c_lo < leaves)
     throw UserError(field, std::to_string(leaves) + " leaves on '" + side + "' cannot be reached: refinement stops at " +
                                std::to_string(c_lo));
+  // The Illinois method on f = log(count / leaves) against log epsilon: regula falsi, with the
+  // end kept twice in a row weighed down by half so that neither end stagnates.
+  const auto f = [&](int c) { return c == kTooFine ? 1.0 : std::log(double(std::max(c, 1)) / leaves); };
+  double f_lo = f(c_lo), f_hi = f(c_hi);
+  int kept = 0;  // +1: lo was kept last step, -1: hi was
   for (int k = 0; k < kMaxBisections && c_lo != leaves && hi / lo > kBracket; ++k) {
-    const double mid = std::sqrt(lo * hi);
+    double t = f_lo > f_hi ? f_lo / (f_lo - f_hi) : 0.5;  // the way from lo to hi, in log epsilon
+    const double mid = lo * std::pow(hi / lo, std::clamp(t, kLeast, 1 - kLeast));
     const int c = count(mid);
     if (c >= leaves) {
       lo = mid;
       c_lo = c;
+      f_lo = f(c);
+      if (kept == -1) f_hi /= 2;
+      kept = -1;
     } else {
       hi = mid;
+      f_hi = f(c);
+      if (kept == 1) f_lo /= 2;
+      kept = 1;
     }
   }
   if (c_lo == kTooFine)
