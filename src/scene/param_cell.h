@@ -87,7 +87,8 @@ void ParamCell::for_each_subcell(int n, F&& f) const {
   const double du = (u1 - u0) / n, dv = (v1 - v0) / n;
   if (shape == CellShape::box) {
     for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) f(ParamCell{u0 + i * du, v0 + j * dv, u0 + (i + 1) * du, v0 + (j + 1) * dv, CellShape::box});
+      for (int i = 0; i < n; ++i)
+        f(ParamCell{u0 + i * du, v0 + j * dv, u0 + (i + 1) * du, v0 + (j + 1) * dv, CellShape::box});
     return;
   }
   // As for_each_midpoint(): the lower half's sub-triangles, the upper half's by point reflection,
@@ -97,9 +98,9 @@ void ParamCell::for_each_subcell(int n, F&& f) const {
   for (int j = 0; j < n; ++j)
     for (int i = 0; i + j < n; ++i)
       for (int half = 0; half < (i + j < n - 1 ? 2 : 1); ++half) {
-        const bool lower = (half == 0) != flip;
-        if (!flip) f(ParamCell{u0 + i * du, v0 + j * dv, u0 + (i + 1) * du, v0 + (j + 1) * dv, lower ? CellShape::lower : CellShape::upper});
-        else f(ParamCell{u1 - (i + 1) * du, v1 - (j + 1) * dv, u1 - i * du, v1 - j * dv, lower ? CellShape::lower : CellShape::upper});
+        const CellShape kind = (half == 0) != flip ? CellShape::lower : CellShape::upper;
+        if (!flip) f(ParamCell{u0 + i * du, v0 + j * dv, u0 + (i + 1) * du, v0 + (j + 1) * dv, kind});
+        else f(ParamCell{u1 - (i + 1) * du, v1 - (j + 1) * dv, u1 - i * du, v1 - j * dv, kind});
       }
 }
 
