@@ -305,6 +305,31 @@ double form_factor_bound(const Block& b, const Vec3& p, const Vec3& n, const Vec
 
 namespace {
 
+/// The occluders' shadow volumes as the receiving element's centre (point 0) and Gauss points
+/// (1 to gauss_count) see them, each point's made on first use and kept for every block it looks
+/// at, in buffers of the calling thread (gather() does not nest).
+class ReceiverShadows {
+ public:
+  ReceiverShadows(const Receiver& r, const std::vector<const Occluder*>& occluders) : r_(r), occluders_(occluders) {
+    made_.fill(false);
+  }
+  std::span<const ShadowVolume> at(int point) const {
+    const size_t k = static_cast<size_t>(point);
+    if (!made_[k]) {
+      shadow_volumes(point == 0 ? r_.center : r_.gauss[k - 1], occluders_, volumes_[k]);
+      made_[k] = true;
+    }
+    return volumes_[k];
+  }
+
+ private:
+  const Receiver& r_;
+  const std::vector<const Occluder*>& occluders_;
+  mutable std::array<bool, 5> made_;
+  static thread_local std::array<std::vector<ShadowVolume>, 5> volumes_;
+};
+thread_local std::array<std::vector<ShadowVolume>, 5> ReceiverShadows::volumes_;
+
 /// What shoots_whole() found at the receiving element's centre, for gather() to reuse: the
 /// visible form factor (-1 if not computed) and the kernel's log-gradient (if computed: `g` when
 /// `expands`, else the angle is grazing).
@@ -318,7 +343,7 @@ struct AtCentre {
 /// `centre` with what it computed there to decide. `midpoint`: the element gathers at its
 /// centre alone.
 bool shoots_whole(const Block& b, const ConvexPolygon& poly, const Receiver& r, const Vec3& shooter_normal,
-                  const std::vector<const Occluder*>& occluders, double budget_w_m2, bool midpoint, AtCentre& centre) {
+                  const ReceiverShadows& shadows, double budget_w_m2, bool midpoint, AtCentre& centre) {
   double& f = centre.f;
   if (b.first_child < 0 || b.uniform) return true;
   const Vec3 &p = r.center, &n = r.normal;
@@ -343,7 +368,7 @@ bool shoots_whole(const Block& b, const ConvexPolygon& poly, const Receiver& r, 
   // Off the midpoint the bound's form factor stays: without the visible one, the block splits.
   if (!midpoint && !(form_factor * spread * error_per_spread <= budget_w_m2)) return false;
   bool partly_seen = false;
-  f = visible_form_factor(p, n, poly, shooter_normal, occluders, &partly_seen);
+  f = visible_form_factor_past(p, n, poly, shooter_normal, shadows.at(0), &partly_seen);
   // A block seen in part splits: it would shoot with the mean of all of it, an error within the
   // bound but of one sign for every element that sees the same part (the ground's blocks behind
   // a wall's horizon), which adds up over the shots: the paper's walls were 0.1% too dark.
@@ -356,10 +381,9 @@ bool shoots_whole(const Block& b, const ConvexPolygon& poly, const Receiver& r, 
   return form_factor * spread * error_per_spread <= budget_w_m2;
 }
 
-}  // namespace
-
-Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, const Vec3& shooter_normal,
-                const std::vector<const Occluder*>& occluders, double budget_w_m2) {
+/// gather() over the block and its children.
+Gathered gather_blocks(const ShooterTree& tree, const Block& b, const Receiver& r, const Vec3& shooter_normal,
+                       const ReceiverShadows& shadows, double budget_w_m2) {
   Gathered out;
   if ((b.highest_w_m2 == 0).all()) return out;
   AtCentre centre;
@@ -370,26 +394,34 @@ Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, cons
   const bool midpoint = r.size_m <= tol::kMidpointReceiverRatio * gap_m;
   ConvexPolygon poly;  // the block's outline, for its form factors
   for (int k = 0; k < b.corner_count; ++k) poly.push(b.corners[k]);
-  if (!shoots_whole(b, poly, r, shooter_normal, occluders, share, midpoint, centre)) {
+  if (!shoots_whole(b, poly, r, shooter_normal, shadows, share, midpoint, centre)) {
     for (int c = 0; c < b.child_count; ++c)
-      out += gather(tree, tree.block(b.first_child + c), r, shooter_normal, occluders, budget_w_m2);
+      out += gather_blocks(tree, tree.block(b.first_child + c), r, shooter_normal, shadows, budget_w_m2);
     return out;
   }
-  const auto at = [&](const Vec3& p, double f, const AtCentre* known) -> Rgb {
-    if (f < 0) f = visible_form_factor(p, r.normal, poly, shooter_normal, occluders);
+  const auto at = [&](const Vec3& p, int point, double f, const AtCentre* known) -> Rgb {
+    if (f < 0) f = visible_form_factor_past(p, r.normal, poly, shooter_normal, shadows.at(point));
     if (f == 0 || b.uniform) return f * b.unshot_w_m2;
     if (known != nullptr && known->gradient_known)
       return f * far_field_radiosity(b, p, r.normal, shooter_normal, known->expands ? &known->g : nullptr);
     return f * far_field_radiosity(b, p, r.normal, shooter_normal);
   };
-  out.at_center = at(r.center, centre.f, &centre);
+  out.at_center = at(r.center, 0, centre.f, &centre);
   if (midpoint) {
     out.mean = out.at_center;
   } else {
-    for (int k = 0; k < r.gauss_count; ++k) out.mean += at(r.gauss[k], -1, nullptr);
+    for (int k = 0; k < r.gauss_count; ++k) out.mean += at(r.gauss[k], k + 1, -1, nullptr);
     out.mean /= r.gauss_count;
   }
   return out;
+}
+
+}  // namespace
+
+Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, const Vec3& shooter_normal,
+                const std::vector<const Occluder*>& occluders, double budget_w_m2) {
+  const ReceiverShadows shadows(r, occluders);
+  return gather_blocks(tree, b, r, shooter_normal, shadows, budget_w_m2);
 }
 
 }  // namespace radrecon

@@ -66,31 +66,40 @@ std::vector<const Occluder*> occluders_between(const std::vector<Occluder>& occl
   return occluders_in_box(occluders, lo, hi, surface_a, surface_b);
 }
 
-namespace {
-
-/// The five half-spaces whose intersection is the shadow volume of `o` seen from `p`; false if
-/// `o` cannot hide any point of `polygon` from `p`.
-bool shadow_volume(const Vec3& p, const Occluder& o, const ConvexPolygon& polygon,
-                   std::array<HalfSpace, 5>& volume) {
-  double side_p = o.plane.eval(p);
-  if (std::abs(side_p) <= tol::kPlaneDistance_m) return false;  // p in the occluder's plane
+ShadowVolume shadow_volume(const Vec3& p, const Occluder& o) {
+  ShadowVolume volume;
+  volume.occluder = &o;
+  const double side_p = o.plane.eval(p);
+  if (std::abs(side_p) <= tol::kPlaneDistance_m) return volume;  // p in the occluder's plane
   // Beyond the occluder's plane, as seen from p.
-  HalfSpace beyond = side_p > 0 ? o.plane.complement() : o.plane;
-  bool any_beyond = false;
-  for (int i = 0; i < polygon.n && !any_beyond; ++i) any_beyond = beyond.eval(polygon.v[i]) > 0;
-  if (!any_beyond) return false;
-  volume[0] = beyond;
+  volume.planes[0] = side_p > 0 ? o.plane.complement() : o.plane;
   const int n = o.corner_count;
   for (int i = 0; i < n; ++i) {
     Vec3 m = (o.corners[i] - p).cross(o.corners[(i + 1) % n] - p);
     if (m.dot(o.centroid - p) < 0) m = -m;
-    HalfSpace h{m, m.dot(p)};
-    bool any_inside = false;
-    for (int k = 0; k < polygon.n && !any_inside; ++k) any_inside = h.eval(polygon.v[k]) > 0;
-    if (!any_inside) return false;  // the polygon lies wholly outside this side of the cone
-    volume[i + 1] = h;
+    volume.planes[i + 1] = HalfSpace{m, m.dot(p)};
   }
-  if (n == 3) volume[4] = volume[3];  // a triangle's cone has three sides: clip by one twice
+  if (n == 3) volume.planes[4] = volume.planes[3];  // a triangle's cone has three sides: clip by one twice
+  volume.sides = n;
+  return volume;
+}
+
+void shadow_volumes(const Vec3& p, const std::vector<const Occluder*>& occluders, std::vector<ShadowVolume>& out) {
+  out.clear();
+  for (const Occluder* o : occluders) out.push_back(shadow_volume(p, *o));
+}
+
+namespace {
+
+/// Whether the shadow volume can hide any point of `polygon`: some vertex of it lies inside each
+/// of the volume's half-spaces (else the polygon lies wholly outside one of them).
+bool meets(const ShadowVolume& volume, const ConvexPolygon& polygon) {
+  if (volume.sides == 0) return false;  // the point lies in the occluder's plane
+  for (int h = 0; h <= volume.sides; ++h) {
+    bool any_inside = false;
+    for (int i = 0; i < polygon.n && !any_inside; ++i) any_inside = volume.planes[h].eval(polygon.v[i]) > 0;
+    if (!any_inside) return false;
+  }
   return true;
 }
 
@@ -154,6 +163,13 @@ void subtract(const ConvexPolygon& q, const std::array<HalfSpace, 5>& volume,
 double visible_form_factor(const Vec3& p, const Vec3& n, const ConvexPolygon& shooter,
                            const Vec3& shooter_normal,
                            const std::vector<const Occluder*>& occluders, bool* partly_seen) {
+  thread_local std::vector<ShadowVolume> volumes;
+  shadow_volumes(p, occluders, volumes);
+  return visible_form_factor_past(p, n, shooter, shooter_normal, volumes, partly_seen);
+}
+
+double visible_form_factor_past(const Vec3& p, const Vec3& n, const ConvexPolygon& shooter, const Vec3& shooter_normal,
+                                std::span<const ShadowVolume> volumes, bool* partly_seen) {
   bool partly_unused = false;
   bool& partly = partly_seen != nullptr ? *partly_seen : partly_unused;
   partly = false;
@@ -164,13 +180,12 @@ double visible_form_factor(const Vec3& p, const Vec3& n, const ConvexPolygon& sh
   for (int i = 0; i < shooter.n && !partly; ++i) partly = n.dot(shooter.v[i] - p) < 0;
 
   // Common cases first: no occluder, or a single one, cast a shadow on the polygon.
-  std::array<HalfSpace, 5> volume;
-  const Occluder* first = nullptr;
+  const ShadowVolume* first = nullptr;
   ConvexPolygon first_shadow;
   size_t k = 0;
-  for (; k < occluders.size(); ++k) {
-    if (!shadow_volume(p, *occluders[k], front, volume)) continue;
-    ConvexPolygon shadow = clip_all(front, volume);
+  for (; k < volumes.size(); ++k) {
+    if (!meets(volumes[k], front)) continue;
+    ConvexPolygon shadow = clip_all(front, volumes[k].planes);
     if (shadow.empty()) continue;
     // Every clip left the polygon whole: the occluder hides all of it.
     if (shadow.n == front.n && std::equal(front.v.begin(), front.v.begin() + front.n, shadow.v.begin())) {
@@ -178,7 +193,7 @@ double visible_form_factor(const Vec3& p, const Vec3& n, const ConvexPolygon& sh
       return 0.0;
     }
     if (first == nullptr) {
-      first = occluders[k];
+      first = &volumes[k];
       first_shadow = shadow;
     } else {
       break;  // a second shadow: fall back to the general difference below
@@ -187,7 +202,7 @@ double visible_form_factor(const Vec3& p, const Vec3& n, const ConvexPolygon& sh
   const double unoccluded = lambert_form_factor(p, n, front);
   if (first == nullptr) return unoccluded;
   partly = true;
-  if (k == occluders.size())
+  if (k == volumes.size())
     return std::max(0.0, unoccluded - lambert_form_factor(p, n, first_shadow));
 
   // General case: subtract every shadow volume that meets the polygon from the fragments of the
@@ -199,8 +214,8 @@ double visible_form_factor(const Vec3& p, const Vec3& n, const ConvexPolygon& sh
   };
   thread_local std::vector<Shadow> shadows;
   shadows.clear();
-  for (const Occluder* o : occluders)
-    if (shadow_volume(p, *o, front, volume)) shadows.push_back({(o->centroid - p).squaredNorm(), volume});
+  for (const ShadowVolume& v : volumes)
+    if (meets(v, front)) shadows.push_back({(v.occluder->centroid - p).squaredNorm(), v.planes});
   std::stable_sort(shadows.begin(), shadows.end(),
                    [](const Shadow& x, const Shadow& y) { return x.distance_m2 < y.distance_m2; });
   thread_local std::vector<ConvexPolygon> fragments, next;

@@ -7,6 +7,8 @@
 // shooter, where a point stands poorly for a receiving element, the same form factor averaged
 // over the element (area_visible_form_factor()).
 
+#include <array>
+#include <span>
 #include <vector>
 
 #include "scene/scene.h"
@@ -45,6 +47,19 @@ std::vector<const Occluder*> occluders_in_box(const std::vector<Occluder>& occlu
                                               const Vec3& lo, const Vec3& hi,
                                               size_t skip_surface_a, size_t skip_surface_b);
 
+/// The shadow volume of an occluder seen from a point: the half-spaces beyond the occluder's
+/// plane (planes[0]) and inside the planes through the point and its edges (planes[1..sides]; a
+/// triangle's third repeated as the fourth). It depends on the point and the occluder alone, so
+/// a point that looks at many polygons (the blocks of a shooting patch) makes it once.
+struct ShadowVolume {
+  std::array<HalfSpace, 5> planes;
+  int sides = 0;  ///< 0: the point lies in the occluder's plane, and it hides nothing from it
+  const Occluder* occluder = nullptr;
+};
+ShadowVolume shadow_volume(const Vec3& p, const Occluder& o);
+/// The shadow volumes of `occluders` seen from p, in their order, into `out` (cleared first).
+void shadow_volumes(const Vec3& p, const std::vector<const Occluder*>& occluders, std::vector<ShadowVolume>& out);
+
 /// The form factor from a differential receiver area at `p` with unit normal `n` to the part of
 /// the convex polygon `shooter` that is in front of the receiver and not hidden by any of the
 /// `occluders` (which must not include the surfaces of `p` and of `shooter`). Returns 0 when `p`
@@ -57,6 +72,10 @@ std::vector<const Occluder*> occluders_in_box(const std::vector<Occluder>& occlu
 double visible_form_factor(const Vec3& p, const Vec3& n, const ConvexPolygon& shooter,
                            const Vec3& shooter_normal,
                            const std::vector<const Occluder*>& occluders, bool* partly_seen = nullptr);
+/// The same with the occluders' shadow volumes from p already made (shadow_volumes()); the same
+/// value, bit for bit.
+double visible_form_factor_past(const Vec3& p, const Vec3& n, const ConvexPolygon& shooter, const Vec3& shooter_normal,
+                                std::span<const ShadowVolume> volumes, bool* partly_seen = nullptr);
 
 /// F(R -> S) = (1 / A_R) * integral over R of F(x -> S) dA_x: the form factor from the planar
 /// quad R (corners in order around it; its points are the bilinear patch through them, so any
