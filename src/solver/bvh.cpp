@@ -9,7 +9,7 @@
 namespace radrecon {
 
 Shaft::Shaft(std::span<const Vec3> a, std::span<const Vec3> b, double margin_m)
-    : margin_m_(tol::kShaftSlack_m + std::max(margin_m, 0.0)), reach_m_(std::max(margin_m, 0.0)) {
+    : reach_m_(std::max(margin_m, 0.0)) {
   RR_CHECK(!a.empty() && !b.empty() && a.size() + b.size() <= static_cast<size_t>(kMaxPoints),
            "shaft: 1 to 16 points in all, at least one on each side");
   // A triangle given as a quad repeats its last corner: keep each point once.
@@ -77,13 +77,13 @@ void Shaft::add_plane(const Vec3& unit_normal) {
   double offset = unit_normal.dot(points_[0]);
   for (int q = 1; q < point_count_; ++q) offset = std::max(offset, unit_normal.dot(points_[q]));
   normal_[plane_count_] = unit_normal;
-  offset_[plane_count_] = offset + margin_m_;
+  offset_[plane_count_] = offset + margin_m();
   ++plane_count_;
 }
 
 bool Shaft::may_meet_box(const Vec3& lo, const Vec3& hi) const {
   // The box's bounding-box test first (the first six planes), then its nearest corner to each face.
-  if ((lo.array() > hi_.array() + margin_m_).any() || (hi.array() < lo_.array() - margin_m_).any())
+  if ((lo.array() > hi_.array() + margin_m()).any() || (hi.array() < lo_.array() - margin_m()).any())
     return false;
   for (int k = 6; k < plane_count_; ++k) {
     const Vec3& m = normal_[k];

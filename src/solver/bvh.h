@@ -59,8 +59,10 @@ class Shaft {
   std::array<Vec3, kMaxPlanes> normal_;
   std::array<double, kMaxPlanes> offset_;
   int plane_count_ = 0;
-  double margin_m_ = 0;  ///< kShaftSlack_m plus the caller's margin
-  double reach_m_ = 0;   ///< the caller's margin alone, around the first set's points
+  /// The hull's widening: kShaftSlack_m plus the caller's margin.
+  double margin_m() const { return tol::kShaftSlack_m + reach_m_; }
+
+  double reach_m_ = 0;   ///< the caller's margin, around the first set's points
   int a_count_ = 0;      ///< points_[0, a_count_) are the first set's
   Vec3 lo_, hi_;
 };

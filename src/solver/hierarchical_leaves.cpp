@@ -64,7 +64,7 @@ Solution solve_hierarchical_leaves(const Scene& scene, const std::string& side, 
   // leaves), so a step goes no lower than kUndershoot times where the last two counts,
   // extrapolated as a power of epsilon, reach `leaves`.
   constexpr double kStep = 10, kBracket = 1.001, kStart = 1e-3, kLargest = 1e12, kUndershoot = 0.9;
-  constexpr int kMaxSteps = 24, kMaxBisections = 60;
+  constexpr int kMaxSteps = 24, kMaxNarrowings = 60;
   constexpr double kLeast = 0.05;
   double hi = 1.0, lo = kStart;
   int c_hi = count(hi);
@@ -90,7 +90,7 @@ Solution solve_hierarchical_leaves(const Scene& scene, const std::string& side, 
   const auto f = [&](int c) { return c == kTooFine ? 1.0 : std::log(double(std::max(c, 1)) / leaves); };
   double f_lo = f(c_lo), f_hi = f(c_hi);
   int kept = 0;  // +1: lo was kept last step, -1: hi was
-  for (int k = 0; k < kMaxBisections && c_lo != leaves && hi / lo > kBracket; ++k) {
+  for (int k = 0; k < kMaxNarrowings && c_lo != leaves && hi / lo > kBracket; ++k) {
     double t = f_lo > f_hi ? f_lo / (f_lo - f_hi) : 0.5;  // the way from lo to hi, in log epsilon
     const double mid = lo * std::pow(hi / lo, std::clamp(t, kLeast, 1 - kLeast));
     const int c = count(mid);

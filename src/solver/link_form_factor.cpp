@@ -31,27 +31,31 @@ LinkFormFactor measure_link(const LinkEnd& receiver, const LinkEnd& source, cons
   };
   constexpr int kCells = kLinkQuadrature * kLinkQuadrature;
   std::array<double, kCells> cell_f;
+  std::array<Vec2, kCells> midpoint;  // the cells' centroids (ParamCell::for_each_subcell())
   int k = 0;
   double sum = 0;
-  r.for_each_midpoint(kLinkQuadrature, [&](const Vec2& uv) { sum += cell_f[static_cast<size_t>(k++)] = point_form_factor(uv); });
+  r.for_each_midpoint(kLinkQuadrature, [&](const Vec2& uv) {
+    midpoint[static_cast<size_t>(k)] = uv;
+    sum += cell_f[static_cast<size_t>(k++)] = point_form_factor(uv);
+  });
   LinkFormFactor link{sum / kCells, hi - lo};
   // A discontinuity makes the coarse rule's error of order 1 / kLinkQuadrature of the jump:
   // refine the cells beside it, those whose value differs from a neighbour's by a share of the
   // spread (neighbours: cells whose centroids are at most one cell apart in u and in v).
   if (!(link.f_spread > kDiscontinuousSpread * (link.f + link.f_spread))) return link;
-  std::array<ParamCell, kCells> cells;
-  k = 0;
-  r.for_each_subcell(kLinkQuadrature, [&](const ParamCell& c) { cells[static_cast<size_t>(k++)] = c; });
   const double du = (r.u1 - r.u0) / kLinkQuadrature, dv = (r.v1 - r.v0) / kLinkQuadrature;
   constexpr double kNeighbour = 1.01;  // one cell apart, with room for rounding
   std::array<bool, kCells> beside_jump{};
   for (int a = 0; a < kCells; ++a)
     for (int b = a + 1; b < kCells; ++b) {
-      const Vec2 d = cells[static_cast<size_t>(a)].centroid() - cells[static_cast<size_t>(b)].centroid();
+      const Vec2 d = midpoint[static_cast<size_t>(a)] - midpoint[static_cast<size_t>(b)];
       if (std::abs(d.x()) > kNeighbour * du || std::abs(d.y()) > kNeighbour * dv) continue;
       if (std::abs(cell_f[static_cast<size_t>(a)] - cell_f[static_cast<size_t>(b)]) > kJumpShare * link.f_spread)
         beside_jump[static_cast<size_t>(a)] = beside_jump[static_cast<size_t>(b)] = true;
     }
+  std::array<ParamCell, kCells> cells;
+  k = 0;
+  r.for_each_subcell(kLinkQuadrature, [&](const ParamCell& c) { cells[static_cast<size_t>(k++)] = c; });
   sum = 0;
   for (int a = 0; a < kCells; ++a) {
     if (!beside_jump[static_cast<size_t>(a)]) {

@@ -305,31 +305,6 @@ double form_factor_bound(const Block& b, const Vec3& p, const Vec3& n, const Vec
 
 namespace {
 
-/// The occluders' shadow volumes as the receiving element's centre (point 0) and Gauss points
-/// (1 to gauss_count) see them, each point's made on first use and kept for every block it looks
-/// at, in buffers of the calling thread (gather() does not nest).
-class ReceiverShadows {
- public:
-  ReceiverShadows(const Receiver& r, const std::vector<const Occluder*>& occluders) : r_(r), occluders_(occluders) {
-    made_.fill(false);
-  }
-  std::span<const ShadowVolume> at(int point) const {
-    const size_t k = static_cast<size_t>(point);
-    if (!made_[k]) {
-      shadow_volumes(point == 0 ? r_.center : r_.gauss[k - 1], occluders_, volumes_[k]);
-      made_[k] = true;
-    }
-    return volumes_[k];
-  }
-
- private:
-  const Receiver& r_;
-  const std::vector<const Occluder*>& occluders_;
-  mutable std::array<bool, 5> made_;
-  static thread_local std::array<std::vector<ShadowVolume>, 5> volumes_;
-};
-thread_local std::array<std::vector<ShadowVolume>, 5> ReceiverShadows::volumes_;
-
 /// What shoots_whole() found at the receiving element's centre, for gather() to reuse: the
 /// visible form factor (-1 if not computed) and the kernel's log-gradient (if computed: `g` when
 /// `expands`, else the angle is grazing).
@@ -381,9 +356,22 @@ bool shoots_whole(const Block& b, const ConvexPolygon& poly, const Receiver& r, 
   return form_factor * spread * error_per_spread <= budget_w_m2;
 }
 
-/// gather() over the block and its children.
-Gathered gather_blocks(const ShooterTree& tree, const Block& b, const Receiver& r, const Vec3& shooter_normal,
-                       const ReceiverShadows& shadows, double budget_w_m2) {
+}  // namespace
+
+std::span<const ShadowVolume> ReceiverShadows::at(int point) const {
+  RR_CHECK(point >= 0 && point <= r_.gauss_count, "receiver point out of range");
+  const size_t k = static_cast<size_t>(point);
+  if (!made_[k]) {
+    shadow_volumes(point == 0 ? r_.center : r_.gauss[k - 1], occluders_, volumes_[k]);
+    made_[k] = true;
+  }
+  return volumes_[k];
+}
+
+thread_local std::array<std::vector<ShadowVolume>, 5> ReceiverShadows::volumes_;
+
+Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, const Vec3& shooter_normal,
+                const ReceiverShadows& shadows, double budget_w_m2) {
   Gathered out;
   if ((b.highest_w_m2 == 0).all()) return out;
   AtCentre centre;
@@ -396,7 +384,7 @@ Gathered gather_blocks(const ShooterTree& tree, const Block& b, const Receiver& 
   for (int k = 0; k < b.corner_count; ++k) poly.push(b.corners[k]);
   if (!shoots_whole(b, poly, r, shooter_normal, shadows, share, midpoint, centre)) {
     for (int c = 0; c < b.child_count; ++c)
-      out += gather_blocks(tree, tree.block(b.first_child + c), r, shooter_normal, shadows, budget_w_m2);
+      out += gather(tree, tree.block(b.first_child + c), r, shooter_normal, shadows, budget_w_m2);
     return out;
   }
   const auto at = [&](const Vec3& p, int point, double f, const AtCentre* known) -> Rgb {
@@ -414,14 +402,6 @@ Gathered gather_blocks(const ShooterTree& tree, const Block& b, const Receiver& 
     out.mean /= r.gauss_count;
   }
   return out;
-}
-
-}  // namespace
-
-Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, const Vec3& shooter_normal,
-                const std::vector<const Occluder*>& occluders, double budget_w_m2) {
-  const ReceiverShadows shadows(r, occluders);
-  return gather_blocks(tree, b, r, shooter_normal, shadows, budget_w_m2);
 }
 
 }  // namespace radrecon

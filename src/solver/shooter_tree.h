@@ -145,6 +145,22 @@ struct Gathered {
   }
 };
 
+/// The occluders' shadow volumes (visibility.h) as a receiving element's centre (point 0) and
+/// Gauss points (1 to gauss_count) see them: each point's made on first use and kept for every
+/// polygon it looks at (the blocks of a shooting patch, the whole patch). The volumes live in
+/// buffers of the calling thread: one at a time per thread. Receiver and occluders must outlive it.
+class ReceiverShadows {
+ public:
+  ReceiverShadows(const Receiver& r, const std::vector<const Occluder*>& occluders) : r_(r), occluders_(occluders) {}
+  std::span<const ShadowVolume> at(int point) const;
+
+ private:
+  const Receiver& r_;
+  const std::vector<const Occluder*>& occluders_;
+  mutable std::array<bool, 5> made_{};
+  static thread_local std::array<std::vector<ShadowVolume>, 5> volumes_;
+};
+
 /// Irradiance on the receiving element from the shooter's unshot radiosity: the block as a whole
 /// when it is uniform or a single element, or when it may shoot as one; else the sum over its
 /// children. With `budget_w_m2` <= 0 a block may shoot as one beyond tol::kFarFieldDiagonals of
@@ -165,6 +181,6 @@ struct Gathered {
 /// (tol::kMidpointReceiverRatio): then by the Gauss rule, so that no power is gained or lost by
 /// point collocation next to the shooter.
 Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, const Vec3& shooter_normal,
-                const std::vector<const Occluder*>& occluders, double budget_w_m2);
+                const ReceiverShadows& shadows, double budget_w_m2);
 
 }  // namespace radrecon
