@@ -12,6 +12,7 @@ packages=(
   python3-scipy  # the agreement tests against scipy (reconstruct.scipy_*)
   chromium       # the report checked in a real browser (tests/paper/report_check.sh)
   libgdal-dev gdal-bin python3-gdal  # interpolate to GeoTIFF and other GDAL rasters; its test reads them back
+  libtiff-dev libgeotiff-dev libproj-dev  # GeoTIFF without GDAL's start-up (src/io/geotiff.h)
   pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module (python/) and its tests
   clang-14 libclang-rt-14-dev libomp-14-dev llvm-14  # the sanitized tree and its fuzzers (make test-asan, make fuzz); llvm-14: the symbolizer
   python-matplotlib-data  # a real elevation model (jacksboro_fault_dem.npz) for reconstruct.dem_edges

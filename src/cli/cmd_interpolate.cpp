@@ -18,7 +18,10 @@
 #include "core/limits.h"
 #include "core/parse.h"
 #include "core/progress.h"
+#include "io/atomic_file.h"
 #include "io/gdal_plugin.h"
+#include "io/geo_raster.h"
+#include "io/geotiff.h"
 #include "io/geojson.h"
 #include "io/image_io.h"
 #include "io/paths.h"
@@ -54,16 +57,21 @@ void run_interpolate(const InterpolateArgs& args) {
   const auto start = std::chrono::steady_clock::now();
 
   // The command line first: cheap checks before any file is read.
-  // .csv, .pfm and .png are radrecon's own; any other extension (or --format) goes to GDAL.
+  // .csv, .pfm and .png are radrecon's own; any other extension (or --format) is a georeferenced
+  // raster: a GeoTIFF by libtiff when its CRS is none or an EPSG code, else by GDAL.
   const std::string ext = lower_extension(args.out);
-  const bool gdal = !args.gdal_format.empty() || !(ext == ".csv" || ext == ".pfm" || ext == ".png");
-  // `format` is radrecon's own writer; unused when GDAL writes.
+  const bool geo_raster = !args.gdal_format.empty() || !(ext == ".csv" || ext == ".pfm" || ext == ".png");
+  const bool geotiff = geo_raster && is_geotiff_output(args.out, args.gdal_format) &&
+                       geotiff_functions("--out").can_record_crs(args.crs);
+  // `format` is radrecon's own writer; unused for a georeferenced raster.
   const FileFormat format =
-      gdal ? FileFormat::pfm : file_format(args.out, {FileFormat::csv, FileFormat::pfm, FileFormat::png}, "--out");
-  GdalRasterOptions gdal_options{args.gdal_format, args.gdal_type == "float64", args.crs, args.nodata};
-  if (gdal) {
-    gdal_functions("--out").raster_driver(args.out, args.gdal_format, "--out");
-    gdal_functions("--crs").check_crs(args.crs);
+      geo_raster ? FileFormat::pfm : file_format(args.out, {FileFormat::csv, FileFormat::pfm, FileFormat::png}, "--out");
+  GeoRasterOptions gdal_options{args.gdal_format, args.gdal_type == "float64", args.crs, args.nodata};
+  if (geo_raster) {
+    if (!geotiff) {
+      gdal_functions("--out").raster_driver(args.out, args.gdal_format, "--out");
+      gdal_functions("--crs").check_crs(args.crs);
+    }
     if (args.gdal_type != "float32" && args.gdal_type != "float64")
       throw UserError("--type", "'" + args.gdal_type + "' is no band type; float32 or float64");
     if (!std::isfinite(args.nodata)) throw UserError("--nodata", "must be a finite number");
@@ -77,7 +85,7 @@ void run_interpolate(const InterpolateArgs& args) {
                                 : "give the query points: --queries FILE.csv or --raster WxH --domain x0,y0,x1,y1");
   if (!use_raster && !args.domain.empty() && !args.border_samples)
     throw UserError("--domain", "--domain goes with --raster (or with --border-samples: the border they go on)");
-  if (use_queries && (gdal || format != FileFormat::csv))
+  if (use_queries && (geo_raster || format != FileFormat::csv))
     throw UserError("--out", "PFM, PNG and GDAL outputs need a raster (--raster WxH --domain ...); "
                              "with --queries write a .csv file");
   Raster raster;
@@ -142,7 +150,7 @@ void run_interpolate(const InterpolateArgs& args) {
     params.barrier_samples = false;  // added with the border's
     if (!args.quiet) std::fprintf(stderr, "interpolate: %zu border samples added\n", added);
   }
-  if (!gdal && format == FileFormat::pfm && samples.channels != 1 && samples.channels != 3)
+  if (!geo_raster && format == FileFormat::pfm && samples.channels != 1 && samples.channels != 3)
     throw UserError("--out", "PFM needs 1 or 3 value columns (greyscale or colour); " + args.samples + " has " +
                                  std::to_string(samples.channels) + "; write .csv instead");
   using Clock = std::chrono::steady_clock;
@@ -156,7 +164,7 @@ void run_interpolate(const InterpolateArgs& args) {
   // with the interpolation below, as the Python module's raster is), made batch by batch unless
   // a CSV output lists them all: W3's 4,000,000 would take 64 MB.
   const auto raster_start = Clock::now();
-  const bool csv_out = !gdal && format == FileFormat::csv;
+  const bool csv_out = !geo_raster && format == FileFormat::csv;
   const bool raster_batches = !use_queries && !csv_out;
   const std::vector<Vec2> points =
       raster_batches ? std::vector<Vec2>()
@@ -195,7 +203,12 @@ void run_interpolate(const InterpolateArgs& args) {
   const double querying_s = seconds_since(query_start);
 
   const auto write_start = Clock::now();
-  if (gdal) {
+  if (geo_raster) refuse_nodata_clash(values, args.nodata);
+  if (geotiff) {
+    write_file_atomically(args.out, [&](const std::filesystem::path& tmp) {
+      geotiff_functions("--out").write(tmp, args.out, raster, values, samples.channels, gdal_options);
+    });
+  } else if (geo_raster) {
     gdal_functions("--out").write_raster(args.out, raster, values, samples.channels, gdal_options);
   } else switch (format) {
     case FileFormat::csv: write_values_csv(args.out, points, values, value_names); break;

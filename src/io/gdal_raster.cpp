@@ -93,13 +93,9 @@ void check_gdal_crs(const std::string& crs) {
 }
 
 void write_raster_gdal(const std::string& path, const Raster& raster, std::span<const double> values, int channels,
-                       const GdalRasterOptions& options) {
+                       const GeoRasterOptions& options) {
   RR_CHECK(channels >= 1 && values.size() == static_cast<size_t>(raster.width) * raster.height * channels,
            "raster values do not match the raster");
-  for (const double v : values)
-    if (v == options.nodata)
-      throw UserError("--nodata", "the value " + format_number(options.nodata) +
-                                      " occurs in the results, where it would read back as no data; choose another --nodata");
   const std::string driver_name = gdal_raster_driver(path, options.format, "--out");
   register_drivers(driver_name);
   QuietGdal quiet;

@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
-"""interpolate to GDAL rasters, read back by GDAL itself (python3-gdal and gdalinfo -json):
+"""interpolate to georeferenced rasters, read back by GDAL itself (python3-gdal and gdalinfo -json):
 geotransform, north-up row order, CRS, no-data, band type and values against the closed form of a
-linear function, which `linear` reproduces exactly inside the samples' hull.
+linear function, which `linear` reproduces exactly inside the samples' hull. GeoTIFFs whose CRS is
+an EPSG code (or none) are radrecon's own libtiff writer's; those of any other CRS, and the other
+formats, GDAL's: the two must give the same file content.
 
 Usage: gdal_raster_check.py /path/to/radrecon   (exit 77: python3-gdal or gdalinfo missing)
 """
@@ -84,6 +86,30 @@ with tempfile.TemporaryDirectory() as tmp:
         check(info["bands"][0]["noDataValue"] == -9999.0, "gdalinfo no-data")
         check(info["size"] == [W, H], f"gdalinfo size {info['size']}")
 
+    # The same raster written by GDAL (a CRS without an EPSG code: the libtiff writer cannot
+    # record it) holds the same pixels, geotransform, no-data value and CRS; and a geographic CRS.
+    if r.returncode == 0:
+        tmerc = ("+proj=tmerc +lat_0=0 +lon_0=173 +k=0.9996 +x_0=1600000 +y_0=10000000 +ellps=GRS80 "
+                 "+towgs84=0,0,0,0,0,0,0 +units=m +no_defs +type=crs")
+        for crs, name in [(tmerc, "gdal_written.tif"), ("EPSG:4326", "lonlat.tif")]:
+            other = os.path.join(tmp, name)
+            r2 = run("--samples", samples, "--x", "long", "--y", "lat", "--value", "mag", "--method", "linear",
+                     "--param", "outside=none", "--raster", f"{W}x{H}", "--domain", domain, "--crs", crs,
+                     "--type", "float64", "--out", other)
+            check(r2.returncode == 0, f"{name} written ({r2.stderr.strip()})")
+            if r2.returncode != 0:
+                continue
+            o = gdal.Open(other)
+            check(o.GetGeoTransform() == d.GetGeoTransform(), f"{name}: geotransform {o.GetGeoTransform()}")
+            check(o.GetRasterBand(1).GetNoDataValue() == -9999.0, f"{name}: no-data")
+            check((o.GetRasterBand(1).ReadAsArray() == a).all(), f"{name}: the same pixels")
+            osrs = osr.SpatialReference(wkt=o.GetProjection())
+            if name == "lonlat.tif":
+                check(osrs.IsGeographic() and osrs.GetAuthorityCode(None) == "4326", f"{name}: CRS EPSG:4326")
+            else:
+                check(osrs.ExportToProj4() == srs.ExportToProj4() and osrs.GetAuthorityCode(None) is None,
+                      f"{name}: GDAL's CRS is EPSG:2193's projection, without the code")
+
     # Two value columns: two bands, Float32 by default; another driver by its extension.
     asc = os.path.join(tmp, "both.tif")
     r = run("--samples", samples, "--method", "linear", "--raster", "5x4", "--domain", "0,0,4,3", "--out", asc)
@@ -94,6 +120,8 @@ with tempfile.TemporaryDirectory() as tmp:
         check(gdal.GetDataTypeName(d.GetRasterBand(1).DataType) == "Float32", "Float32 by default")
         depth = d.GetRasterBand(2).ReadAsArray()
         check(abs(depth[0, 0] - (10 + 0.4)) < 1e-5, f"depth band {depth[0, 0]} (10 + x at x = 0.4)")
+        mag = d.GetRasterBand(1).ReadAsArray()
+        check(abs(mag[0, 0] - f(0.4, 2.625)) < 1e-5, f"mag band {mag[0, 0]} at the top-left cell")
     grd = os.path.join(tmp, "mag.asc")
     r = run("--samples", samples, "--value", "mag", "--method", "linear", "--raster", "5x4", "--domain", "0,0,4,3",
             "--out", grd)
@@ -155,7 +183,14 @@ with tempfile.TemporaryDirectory() as tmp:
                 "0,0,4,3", "--out", out, *args)
         check(r.returncode == 2 and words in r.stderr, f"{args}: exit {r.returncode}, {r.stderr.strip()}")
         check(not os.path.exists(out), f"{args}: nothing written")
-    check([e for e in os.listdir(tmp) if e.startswith(".radrecon-gdal")] == [], "no temporary folder left behind")
+    # An output that cannot be created (its folder is a file): exit 2 naming it, nothing left behind.
+    blocker = os.path.join(tmp, "not_a_folder")
+    open(blocker, "w").close()
+    r = run("--samples", samples, "--value", "mag", "--method", "linear", "--raster", "4x3", "--domain", "0,0,4,3",
+            "--out", os.path.join(blocker, "x.tif"))
+    check(r.returncode == 2 and "not_a_folder" in r.stderr, f"unwritable GeoTIFF: exit {r.returncode}, {r.stderr.strip()}")
+    check([e for e in os.listdir(tmp) if e.startswith(".radrecon-gdal") or ".tmp" in e] == [],
+          "no temporary file or folder left behind")
 
 print("gdal_raster_check:", "FAILED" if failures else "passed", f"({len(failures)} failures)")
 sys.exit(1 if failures else 0)

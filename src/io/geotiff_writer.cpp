@@ -1,0 +1,216 @@
+// The GeoTIFF plugin (io/geotiff.h): libtiff writes the image, libgeotiff its GeoKeys, PROJ
+// reads the CRS.
+
+#include <cfloat>
+#include <charconv>
+#include <cmath>
+#include <cstdarg>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <geotiff/geotiffio.h>
+#include <geotiff/geovalues.h>
+#include <geotiff/xtiffio.h>
+#include <proj.h>
+#include <tiffio.h>
+
+#include "core/check.h"
+#include "core/error.h"
+#include "io/geotiff.h"
+
+namespace radrecon {
+
+namespace {
+
+/// Largest code a GeoKey's SHORT holds below GeoTIFF's "user-defined" 32767.
+constexpr int kLargestGeoKeyCode = 32766;
+
+/// The CRS as GeoKeys: its EPSG code, whether projected (else geographic 2-D), its name, and the
+/// EPSG code of its axes' unit (0: none known).
+struct CrsKeys {
+  int epsg = 0;
+  bool projected = false;
+  std::string name;
+  int unit_epsg = 0;
+};
+
+/// `text` as an EPSG code a GeoKey holds, or 0.
+int geokey_code(const char* authority, const char* code) {
+  if (authority == nullptr || code == nullptr || std::string(authority) != "EPSG") return 0;
+  const std::string text(code);
+  int value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  return error == std::errc() && end == text.data() + text.size() && value >= 1 && value <= kLargestGeoKeyCode ? value
+                                                                                                                : 0;
+}
+
+/// `crs` as GeoKeys, or nothing if PROJ cannot read it or it is no EPSG-coded projected or
+/// geographic 2-D CRS.
+std::optional<CrsKeys> crs_keys(const std::string& crs) {
+  const std::unique_ptr<PJ_CONTEXT, decltype(&proj_context_destroy)> context(proj_context_create(),
+                                                                              proj_context_destroy);
+  if (!context) return std::nullopt;
+  proj_log_level(context.get(), PJ_LOG_NONE);
+  const std::unique_ptr<PJ, decltype(&proj_destroy)> object(proj_create(context.get(), crs.c_str()), proj_destroy);
+  if (!object) return std::nullopt;
+  CrsKeys keys;
+  const PJ_TYPE type = proj_get_type(object.get());
+  keys.projected = type == PJ_TYPE_PROJECTED_CRS;
+  if (!keys.projected && type != PJ_TYPE_GEOGRAPHIC_2D_CRS) return std::nullopt;
+  keys.epsg = geokey_code(proj_get_id_auth_name(object.get(), 0), proj_get_id_code(object.get(), 0));
+  if (keys.epsg == 0) return std::nullopt;
+  const char* name = proj_get_name(object.get());
+  keys.name = name != nullptr ? name : "";
+  const std::unique_ptr<PJ, decltype(&proj_destroy)> axes(
+      proj_crs_get_coordinate_system(context.get(), object.get()), proj_destroy);
+  const char* unit_authority = nullptr;
+  const char* unit_code = nullptr;
+  if (axes && proj_cs_get_axis_info(context.get(), axes.get(), 0, nullptr, nullptr, nullptr, nullptr, nullptr,
+                                    &unit_authority, &unit_code))
+    keys.unit_epsg = geokey_code(unit_authority, unit_code);
+  // EPSG's degree for axes is GeoTIFF's Angular_Degree (as GDAL writes it).
+  constexpr int kEpsgAxisDegree = 9122;
+  if (keys.unit_epsg == kEpsgAxisDegree) keys.unit_epsg = Angular_Degree;
+  return keys;
+}
+
+bool can_record_crs(const std::string& crs) { return crs.empty() || crs_keys(crs).has_value(); }
+
+/// GDAL's no-data tag (its TIFF tag 42113: the value as text), which libtiff must be told of.
+constexpr ttag_t kTagGdalNoData = 42113;
+TIFFExtendProc parent_extender = nullptr;
+void add_gdal_tags(TIFF* tif) {
+  static const TIFFFieldInfo kFields[] = {
+      {kTagGdalNoData, -1, -1, TIFF_ASCII, FIELD_CUSTOM, 1, 0, const_cast<char*>("GDALNoDataValue")}};
+  TIFFMergeFieldInfo(tif, kFields, 1);
+  if (parent_extender != nullptr) parent_extender(tif);
+}
+
+/// libtiff's messages kept (its last error) rather than printed, while this lives.
+class TiffMessages {
+ public:
+  TiffMessages() : error_(TIFFSetErrorHandler(keep)), warning_(TIFFSetWarningHandler(nullptr)) { last().clear(); }
+  ~TiffMessages() {
+    TIFFSetErrorHandler(error_);
+    TIFFSetWarningHandler(warning_);
+  }
+  TiffMessages(const TiffMessages&) = delete;
+  TiffMessages& operator=(const TiffMessages&) = delete;
+  static std::string& last() {
+    thread_local std::string message;
+    return message;
+  }
+  static std::string reason() { return last().empty() ? "libtiff gave no reason" : last(); }
+
+ private:
+  static void keep(const char* module, const char* format, va_list args) {
+    char text[512];
+    std::vsnprintf(text, sizeof text, format, args);
+    last() = (module != nullptr && *module ? std::string(module) + ": " : std::string()) + text;
+  }
+  TIFFErrorHandler error_, warning_;
+};
+
+/// GDAL writes a Float32 band's out-of-range finite values as the largest float, not infinity.
+float to_float32(double v) {
+  if (std::isnan(v) || std::isinf(v)) return static_cast<float>(v);
+  return static_cast<float>(std::fmax(-double(FLT_MAX), std::fmin(double(FLT_MAX), v)));
+}
+
+/// Past this size (bytes of pixels) the file is a BigTIFF: a classic TIFF's offsets are 32-bit.
+constexpr double kBigTiffBytes = 4.0e9;
+
+void write(const std::filesystem::path& file, const std::string& shown_as, const Raster& raster,
+           std::span<const double> values, int channels, const GeoRasterOptions& options) {
+  const size_t width = static_cast<size_t>(raster.width), height = static_cast<size_t>(raster.height);
+  RR_CHECK(channels >= 1 && width >= 1 && height >= 1 && values.size() == width * height * channels,
+           "raster values do not match the raster");
+  std::optional<CrsKeys> crs;
+  if (!options.crs.empty()) {
+    crs = crs_keys(options.crs);
+    RR_CHECK(crs.has_value(), "a CRS the GeoTIFF writer cannot record reached it (can_record_crs())");
+  }
+  static std::once_flag tags;
+  std::call_once(tags, [] { parent_extender = TIFFSetTagExtender(add_gdal_tags); });
+  TiffMessages messages;
+  const int bytes = options.float64 ? 8 : 4;
+  const bool big = static_cast<double>(width) * height * channels * bytes > kBigTiffBytes;
+  const std::unique_ptr<TIFF, decltype(&XTIFFClose)> tif(XTIFFOpen(file.c_str(), big ? "w8" : "w"), XTIFFClose);
+  if (!tif) throw UserError(shown_as, "cannot create it: " + TiffMessages::reason());
+  const auto require = [&](int ok, const char* what) {
+    if (ok != 1) throw UserError(shown_as, std::string("libtiff cannot write ") + what + ": " + TiffMessages::reason());
+  };
+  TIFF* t = tif.get();
+  require(TIFFSetField(t, TIFFTAG_IMAGEWIDTH, static_cast<uint32_t>(width)), "the width");
+  require(TIFFSetField(t, TIFFTAG_IMAGELENGTH, static_cast<uint32_t>(height)), "the height");
+  require(TIFFSetField(t, TIFFTAG_SAMPLESPERPIXEL, static_cast<uint16_t>(channels)), "the band count");
+  require(TIFFSetField(t, TIFFTAG_BITSPERSAMPLE, static_cast<uint16_t>(8 * bytes)), "the sample size");
+  require(TIFFSetField(t, TIFFTAG_SAMPLEFORMAT, SAMPLEFORMAT_IEEEFP), "the sample format");
+  require(TIFFSetField(t, TIFFTAG_PHOTOMETRIC, PHOTOMETRIC_MINISBLACK), "the photometric interpretation");
+  require(TIFFSetField(t, TIFFTAG_PLANARCONFIG, PLANARCONFIG_CONTIG), "the band interleaving");
+  require(TIFFSetField(t, TIFFTAG_COMPRESSION, COMPRESSION_NONE), "the compression");
+  if (channels > 1) {  // bands past the first: unspecified extra samples, as GDAL writes them
+    const std::vector<uint16_t> extra(static_cast<size_t>(channels - 1), EXTRASAMPLE_UNSPECIFIED);
+    require(TIFFSetField(t, TIFFTAG_EXTRASAMPLES, static_cast<uint16_t>(extra.size()), extra.data()), "the extra samples");
+  }
+  require(TIFFSetField(t, TIFFTAG_ROWSPERSTRIP, TIFFDefaultStripSize(t, 0)), "the strip size");
+
+  // Georeferencing: the top-left corner (x0, y1) is the tie point of pixel (0, 0), north-up.
+  const Rect& d = raster.domain;
+  const double scale[3] = {(d.x1 - d.x0) / raster.width, (d.y1 - d.y0) / raster.height, 0};
+  const double tie[6] = {0, 0, 0, d.x0, d.y1, 0};
+  require(TIFFSetField(t, TIFFTAG_GEOPIXELSCALE, 3, scale), "the pixel scale");
+  require(TIFFSetField(t, TIFFTAG_GEOTIEPOINTS, 6, tie), "the tie point");
+  char nodata[40];
+  std::snprintf(nodata, sizeof nodata, "%.18g", options.nodata);  // GDAL's own spelling
+  require(TIFFSetField(t, kTagGdalNoData, nodata), "the no-data value");
+  if (crs) {  // the GeoKeys GDAL writes for an EPSG code; none without a CRS, as GDAL writes none
+    const std::unique_ptr<GTIF, decltype(&GTIFFree)> keys(GTIFNew(t), GTIFFree);
+    if (!keys) throw UserError(shown_as, "libgeotiff cannot start its keys");
+    GTIF* k = keys.get();
+    GTIFKeySet(k, GTModelTypeGeoKey, TYPE_SHORT, 1, crs->projected ? ModelTypeProjected : ModelTypeGeographic);
+    GTIFKeySet(k, GTRasterTypeGeoKey, TYPE_SHORT, 1, RasterPixelIsArea);
+    const bool named = !crs->name.empty();
+    if (crs->projected) {
+      GTIFKeySet(k, ProjectedCSTypeGeoKey, TYPE_SHORT, 1, crs->epsg);
+      if (named) GTIFKeySet(k, GTCitationGeoKey, TYPE_ASCII, 0, crs->name.c_str());
+      if (crs->unit_epsg != 0) GTIFKeySet(k, ProjLinearUnitsGeoKey, TYPE_SHORT, 1, crs->unit_epsg);
+    } else {
+      GTIFKeySet(k, GeographicTypeGeoKey, TYPE_SHORT, 1, crs->epsg);
+      if (named) GTIFKeySet(k, GeogCitationGeoKey, TYPE_ASCII, 0, crs->name.c_str());
+      if (crs->unit_epsg != 0) GTIFKeySet(k, GeogAngularUnitsGeoKey, TYPE_SHORT, 1, crs->unit_epsg);
+    }
+    require(GTIFWriteKeys(k), "the GeoKeys");
+  }
+
+  // Stored row r is the raster's row height - 1 - r: north-up.
+  std::vector<unsigned char> row(width * channels * bytes);
+  for (size_t r = 0; r < height; ++r) {
+    const double* from = values.data() + (height - 1 - r) * width * channels;
+    for (size_t k = 0; k < width * channels; ++k) {
+      const double v = std::isnan(from[k]) ? options.nodata : from[k];
+      if (options.float64) std::memcpy(row.data() + 8 * k, &v, 8);
+      else {
+        const float f = to_float32(v);
+        std::memcpy(row.data() + 4 * k, &f, 4);
+      }
+    }
+    require(TIFFWriteScanline(t, row.data(), static_cast<uint32_t>(r), 0), "a row");
+  }
+  require(TIFFFlush(t), "the file's end");  // a full disk shows here
+}
+
+}  // namespace
+
+}  // namespace radrecon
+
+extern "C" __attribute__((visibility("default"))) const void* radrecon_geotiff_functions() {
+  static const radrecon::GeoTiffFunctions functions{radrecon::can_record_crs, radrecon::write};
+  return &functions;
+}
