@@ -61,12 +61,13 @@ void run_interpolate(const InterpolateArgs& args) {
   // raster: a GeoTIFF by libtiff when its CRS is none or an EPSG code, else by GDAL.
   const std::string ext = lower_extension(args.out);
   const bool geo_raster = !args.gdal_format.empty() || !(ext == ".csv" || ext == ".pfm" || ext == ".png");
+  GeoTiffCrs geotiff_crs;
   const bool geotiff = geo_raster && is_geotiff_output(args.out, args.gdal_format) &&
-                       geotiff_functions("--out").can_record_crs(args.crs);
+                       geotiff_functions("--out").resolve_crs(args.crs, &geotiff_crs);
   // `format` is radrecon's own writer; unused for a georeferenced raster.
   const FileFormat format =
       geo_raster ? FileFormat::pfm : file_format(args.out, {FileFormat::csv, FileFormat::pfm, FileFormat::png}, "--out");
-  GeoRasterOptions gdal_options{args.gdal_format, args.gdal_type == "float64", args.crs, args.nodata};
+  GeoRasterOptions geo_options{args.gdal_format, args.gdal_type == "float64", args.crs, args.nodata};
   if (geo_raster) {
     if (!geotiff) {
       gdal_functions("--out").raster_driver(args.out, args.gdal_format, "--out");
@@ -203,13 +204,13 @@ void run_interpolate(const InterpolateArgs& args) {
   const double querying_s = seconds_since(query_start);
 
   const auto write_start = Clock::now();
-  if (geo_raster) refuse_nodata_clash(values, args.nodata);
+  if (geo_raster) refuse_nodata_clash(values, args.nodata, geo_options.float64);
   if (geotiff) {
     write_file_atomically(args.out, [&](const std::filesystem::path& tmp) {
-      geotiff_functions("--out").write(tmp, args.out, raster, values, samples.channels, gdal_options);
+      geotiff_functions("--out").write(tmp, args.out, raster, values, samples.channels, geo_options, geotiff_crs);
     });
   } else if (geo_raster) {
-    gdal_functions("--out").write_raster(args.out, raster, values, samples.channels, gdal_options);
+    gdal_functions("--out").write_raster(args.out, raster, values, samples.channels, geo_options);
   } else switch (format) {
     case FileFormat::csv: write_values_csv(args.out, points, values, value_names); break;
     case FileFormat::pfm: write_raster_pfm(args.out, raster, values, samples.channels); break;

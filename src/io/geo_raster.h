@@ -21,8 +21,9 @@ struct GeoRasterOptions {
   double nodata = kDefaultNoData;  ///< written for NaN and declared as each band's no-data value
 };
 
-/// UserError naming --nodata if a finite value equals `nodata`: it would read back as missing.
-void refuse_nodata_clash(std::span<const double> values, double nodata);
+/// UserError naming --nodata if a value equals `nodata` as the band stores both (rounded to a
+/// float unless `float64`): it would read back as missing.
+void refuse_nodata_clash(std::span<const double> values, double nodata, bool float64);
 
 /// Whether writing `path` with --format `format` makes a GeoTIFF: .tif or .tiff without
 /// --format, or --format GTiff (GDAL's name, in any case).

@@ -17,18 +17,28 @@
 
 namespace radrecon {
 
+/// A CRS as the GeoKeys record it: by its EPSG code (as GDAL records an EPSG-coded CRS, any
+/// parameters a WKT changes beside its ID are not kept).
+struct GeoTiffCrs {
+  int epsg = 0;            ///< 0: no CRS (no GeoKeys written)
+  bool projected = false;  ///< else geographic 2-D
+  std::string name;        ///< its name, for the citation key
+  int unit_epsg = 0;       ///< the EPSG code of its axes' unit; 0: unknown
+};
+
 /// The plugin's table of functions.
 struct GeoTiffFunctions {
-  /// Whether write() can record `crs`: none (empty), or one that PROJ reads as a projected or
-  /// geographic 2-D CRS with an EPSG code (EPSG:2193, or a WKT carrying its ID). Any other CRS
-  /// takes GDAL, which writes it whole and reports one it cannot read.
-  bool (*can_record_crs)(const std::string& crs);
+  /// `crs` as write() records it, or false when it cannot: it takes none (empty), or a CRS in a
+  /// form GDAL's --crs takes too (EPSG:n, urn:ogc:def:crs:EPSG::n, or a WKT CRS) that PROJ reads
+  /// as a projected or geographic 2-D CRS with an EPSG code. Any other CRS takes GDAL, which
+  /// writes it whole or refuses it.
+  bool (*resolve_crs)(const std::string& crs, GeoTiffCrs* out);
   /// Writes raster values (raster order: the y0 row first, `channels` per point) as a GeoTIFF
   /// of `channels` bands into `file` (a temporary file: the caller makes it atomic), NaN written
-  /// as options.nodata (the caller has refused a clash: refuse_nodata_clash()); UserError naming
-  /// `shown_as` if libtiff cannot.
+  /// as options.nodata (the caller has refused a clash: refuse_nodata_clash()), with `crs`
+  /// (options.crs is not read); UserError naming `shown_as` if libtiff cannot.
   void (*write)(const std::filesystem::path& file, const std::string& shown_as, const Raster& raster,
-                std::span<const double> values, int channels, const GeoRasterOptions& options);
+                std::span<const double> values, int channels, const GeoRasterOptions& options, const GeoTiffCrs& crs);
 };
 
 /// The name of the symbol the plugin exports: `const void* ()`, the address of its GeoTiffFunctions.

@@ -1,7 +1,7 @@
 // The GeoTIFF plugin (io/geotiff.h): libtiff writes the image, libgeotiff its GeoKeys, PROJ
 // reads the CRS.
 
-#include <cfloat>
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdarg>
@@ -10,7 +10,7 @@
 #include <cstring>
 #include <memory>
 #include <mutex>
-#include <optional>
+#include <string_view>
 #include <string>
 #include <vector>
 
@@ -22,6 +22,7 @@
 
 #include "core/check.h"
 #include "core/error.h"
+#include "core/parse.h"
 #include "io/geotiff.h"
 
 namespace radrecon {
@@ -31,16 +32,7 @@ namespace {
 /// Largest code a GeoKey's SHORT holds below GeoTIFF's "user-defined" 32767.
 constexpr int kLargestGeoKeyCode = 32766;
 
-/// The CRS as GeoKeys: its EPSG code, whether projected (else geographic 2-D), its name, and the
-/// EPSG code of its axes' unit (0: none known).
-struct CrsKeys {
-  int epsg = 0;
-  bool projected = false;
-  std::string name;
-  int unit_epsg = 0;
-};
-
-/// `text` as an EPSG code a GeoKey holds, or 0.
+/// The code `authority` gives as a GeoKey holds it (EPSG, 1 to kLargestGeoKeyCode), else 0.
 int geokey_code(const char* authority, const char* code) {
   if (authority == nullptr || code == nullptr || std::string(authority) != "EPSG") return 0;
   const std::string text(code);
@@ -50,21 +42,37 @@ int geokey_code(const char* authority, const char* code) {
                                                                                                                 : 0;
 }
 
-/// `crs` as GeoKeys, or nothing if PROJ cannot read it or it is no EPSG-coded projected or
-/// geographic 2-D CRS.
-std::optional<CrsKeys> crs_keys(const std::string& crs) {
+/// Whether `crs` is in a form GDAL's SetFromUserInput takes too (PROJ takes more, such as a bare
+/// CRS name, which GDAL refuses): EPSG:n, urn:ogc:def:crs:EPSG::n, or a WKT CRS.
+bool in_gdal_form(const std::string& crs) {
+  const std::string lower = ascii_lower(crs);
+  const auto code_after = [&](std::string_view prefix) {
+    return lower.starts_with(prefix) && lower.size() > prefix.size() &&
+           lower.find_first_not_of("0123456789", prefix.size()) == std::string::npos;
+  };
+  if (code_after("epsg:") || code_after("urn:ogc:def:crs:epsg::")) return true;
+  for (const char* keyword : {"projcs[", "geogcs[", "projcrs[", "projectedcrs[", "geogcrs[", "geographiccrs[",
+                              "geodcrs[", "geodeticcrs["})
+    if (lower.starts_with(keyword)) return true;
+  return false;
+}
+
+bool resolve_crs(const std::string& crs, GeoTiffCrs* out) {
+  *out = GeoTiffCrs{};
+  if (crs.empty()) return true;
+  if (!in_gdal_form(crs)) return false;
   const std::unique_ptr<PJ_CONTEXT, decltype(&proj_context_destroy)> context(proj_context_create(),
                                                                               proj_context_destroy);
-  if (!context) return std::nullopt;
+  if (!context) return false;
   proj_log_level(context.get(), PJ_LOG_NONE);
   const std::unique_ptr<PJ, decltype(&proj_destroy)> object(proj_create(context.get(), crs.c_str()), proj_destroy);
-  if (!object) return std::nullopt;
-  CrsKeys keys;
+  if (!object) return false;
+  GeoTiffCrs keys;
   const PJ_TYPE type = proj_get_type(object.get());
   keys.projected = type == PJ_TYPE_PROJECTED_CRS;
-  if (!keys.projected && type != PJ_TYPE_GEOGRAPHIC_2D_CRS) return std::nullopt;
+  if (!keys.projected && type != PJ_TYPE_GEOGRAPHIC_2D_CRS) return false;
   keys.epsg = geokey_code(proj_get_id_auth_name(object.get(), 0), proj_get_id_code(object.get(), 0));
-  if (keys.epsg == 0) return std::nullopt;
+  if (keys.epsg == 0) return false;
   const char* name = proj_get_name(object.get());
   keys.name = name != nullptr ? name : "";
   const std::unique_ptr<PJ, decltype(&proj_destroy)> axes(
@@ -77,10 +85,9 @@ std::optional<CrsKeys> crs_keys(const std::string& crs) {
   // EPSG's degree for axes is GeoTIFF's Angular_Degree (as GDAL writes it).
   constexpr int kEpsgAxisDegree = 9122;
   if (keys.unit_epsg == kEpsgAxisDegree) keys.unit_epsg = Angular_Degree;
-  return keys;
+  *out = keys;
+  return true;
 }
-
-bool can_record_crs(const std::string& crs) { return crs.empty() || crs_keys(crs).has_value(); }
 
 /// GDAL's no-data tag (its TIFF tag 42113: the value as text), which libtiff must be told of.
 constexpr ttag_t kTagGdalNoData = 42113;
@@ -92,59 +99,49 @@ void add_gdal_tags(TIFF* tif) {
   if (parent_extender != nullptr) parent_extender(tif);
 }
 
-/// libtiff's messages kept (its last error) rather than printed, while this lives.
-class TiffMessages {
- public:
-  TiffMessages() : error_(TIFFSetErrorHandler(keep)), warning_(TIFFSetWarningHandler(nullptr)) { last().clear(); }
-  ~TiffMessages() {
-    TIFFSetErrorHandler(error_);
-    TIFFSetWarningHandler(warning_);
-  }
-  TiffMessages(const TiffMessages&) = delete;
-  TiffMessages& operator=(const TiffMessages&) = delete;
-  static std::string& last() {
-    thread_local std::string message;
-    return message;
-  }
-  static std::string reason() { return last().empty() ? "libtiff gave no reason" : last(); }
-
- private:
-  static void keep(const char* module, const char* format, va_list args) {
+/// libtiff's last error on one file (its own handler, not the process-wide one: other code, GDAL
+/// included, may use libtiff at the same time), naming `shown_as` rather than the temporary file.
+struct TiffMessages {
+  std::string file, shown_as, last;
+  static int keep(TIFF*, void* self, const char* module, const char* format, va_list args) {
+    auto& m = *static_cast<TiffMessages*>(self);
     char text[512];
     std::vsnprintf(text, sizeof text, format, args);
-    last() = (module != nullptr && *module ? std::string(module) + ": " : std::string()) + text;
+    m.last = (module != nullptr && *module ? std::string(module) + ": " : std::string()) + text;
+    for (size_t at; !m.file.empty() && (at = m.last.find(m.file)) != std::string::npos;)
+      m.last.replace(at, m.file.size(), m.shown_as);
+    return 1;  // handled: not passed on to the process-wide handler
   }
-  TIFFErrorHandler error_, warning_;
+  static int ignore(TIFF*, void*, const char*, const char*, va_list) { return 1; }
+  std::string reason() const { return last.empty() ? "libtiff gave no reason" : last; }
 };
-
-/// GDAL writes a Float32 band's out-of-range finite values as the largest float, not infinity.
-float to_float32(double v) {
-  if (std::isnan(v) || std::isinf(v)) return static_cast<float>(v);
-  return static_cast<float>(std::fmax(-double(FLT_MAX), std::fmin(double(FLT_MAX), v)));
-}
 
 /// Past this size (bytes of pixels) the file is a BigTIFF: a classic TIFF's offsets are 32-bit.
 constexpr double kBigTiffBytes = 4.0e9;
 
 void write(const std::filesystem::path& file, const std::string& shown_as, const Raster& raster,
-           std::span<const double> values, int channels, const GeoRasterOptions& options) {
+           std::span<const double> values, int channels, const GeoRasterOptions& options, const GeoTiffCrs& crs) {
   const size_t width = static_cast<size_t>(raster.width), height = static_cast<size_t>(raster.height);
   RR_CHECK(channels >= 1 && width >= 1 && height >= 1 && values.size() == width * height * channels,
            "raster values do not match the raster");
-  std::optional<CrsKeys> crs;
-  if (!options.crs.empty()) {
-    crs = crs_keys(options.crs);
-    RR_CHECK(crs.has_value(), "a CRS the GeoTIFF writer cannot record reached it (can_record_crs())");
-  }
   static std::once_flag tags;
-  std::call_once(tags, [] { parent_extender = TIFFSetTagExtender(add_gdal_tags); });
-  TiffMessages messages;
+  std::call_once(tags, [] {
+    XTIFFInitialize();  // the GeoTIFF tags
+    parent_extender = TIFFSetTagExtender(add_gdal_tags);
+  });
+  TiffMessages messages{file.string(), shown_as, {}};
+  const std::unique_ptr<TIFFOpenOptions, decltype(&TIFFOpenOptionsFree)> open_options(TIFFOpenOptionsAlloc(),
+                                                                                         TIFFOpenOptionsFree);
+  if (!open_options) throw UserError(shown_as, "libtiff cannot start");
+  TIFFOpenOptionsSetErrorHandlerExtR(open_options.get(), TiffMessages::keep, &messages);
+  TIFFOpenOptionsSetWarningHandlerExtR(open_options.get(), TiffMessages::ignore, nullptr);
   const int bytes = options.float64 ? 8 : 4;
   const bool big = static_cast<double>(width) * height * channels * bytes > kBigTiffBytes;
-  const std::unique_ptr<TIFF, decltype(&XTIFFClose)> tif(XTIFFOpen(file.c_str(), big ? "w8" : "w"), XTIFFClose);
-  if (!tif) throw UserError(shown_as, "cannot create it: " + TiffMessages::reason());
+  const std::unique_ptr<TIFF, decltype(&XTIFFClose)> tif(TIFFOpenExt(file.c_str(), big ? "w8" : "w", open_options.get()),
+                                                         XTIFFClose);
+  if (!tif) throw UserError(shown_as, "cannot create it: " + messages.reason());
   const auto require = [&](int ok, const char* what) {
-    if (ok != 1) throw UserError(shown_as, std::string("libtiff cannot write ") + what + ": " + TiffMessages::reason());
+    if (ok != 1) throw UserError(shown_as, std::string("libtiff cannot write ") + what + ": " + messages.reason());
   };
   TIFF* t = tif.get();
   require(TIFFSetField(t, TIFFTAG_IMAGEWIDTH, static_cast<uint32_t>(width)), "the width");
@@ -159,7 +156,8 @@ void write(const std::filesystem::path& file, const std::string& shown_as, const
     const std::vector<uint16_t> extra(static_cast<size_t>(channels - 1), EXTRASAMPLE_UNSPECIFIED);
     require(TIFFSetField(t, TIFFTAG_EXTRASAMPLES, static_cast<uint16_t>(extra.size()), extra.data()), "the extra samples");
   }
-  require(TIFFSetField(t, TIFFTAG_ROWSPERSTRIP, TIFFDefaultStripSize(t, 0)), "the strip size");
+  require(TIFFSetField(t, TIFFTAG_ROWSPERSTRIP, std::min(static_cast<uint32_t>(height), TIFFDefaultStripSize(t, 0))),
+          "the strip size");
 
   // Georeferencing: the top-left corner (x0, y1) is the tie point of pixel (0, 0), north-up.
   const Rect& d = raster.domain;
@@ -170,21 +168,21 @@ void write(const std::filesystem::path& file, const std::string& shown_as, const
   char nodata[40];
   std::snprintf(nodata, sizeof nodata, "%.18g", options.nodata);  // GDAL's own spelling
   require(TIFFSetField(t, kTagGdalNoData, nodata), "the no-data value");
-  if (crs) {  // the GeoKeys GDAL writes for an EPSG code; none without a CRS, as GDAL writes none
+  if (crs.epsg != 0) {  // the GeoKeys GDAL writes for an EPSG code; none without a CRS, as GDAL writes none
     const std::unique_ptr<GTIF, decltype(&GTIFFree)> keys(GTIFNew(t), GTIFFree);
     if (!keys) throw UserError(shown_as, "libgeotiff cannot start its keys");
     GTIF* k = keys.get();
-    GTIFKeySet(k, GTModelTypeGeoKey, TYPE_SHORT, 1, crs->projected ? ModelTypeProjected : ModelTypeGeographic);
+    GTIFKeySet(k, GTModelTypeGeoKey, TYPE_SHORT, 1, crs.projected ? ModelTypeProjected : ModelTypeGeographic);
     GTIFKeySet(k, GTRasterTypeGeoKey, TYPE_SHORT, 1, RasterPixelIsArea);
-    const bool named = !crs->name.empty();
-    if (crs->projected) {
-      GTIFKeySet(k, ProjectedCSTypeGeoKey, TYPE_SHORT, 1, crs->epsg);
-      if (named) GTIFKeySet(k, GTCitationGeoKey, TYPE_ASCII, 0, crs->name.c_str());
-      if (crs->unit_epsg != 0) GTIFKeySet(k, ProjLinearUnitsGeoKey, TYPE_SHORT, 1, crs->unit_epsg);
+    const bool named = !crs.name.empty();
+    if (crs.projected) {
+      GTIFKeySet(k, ProjectedCSTypeGeoKey, TYPE_SHORT, 1, crs.epsg);
+      if (named) GTIFKeySet(k, GTCitationGeoKey, TYPE_ASCII, 0, crs.name.c_str());
+      if (crs.unit_epsg != 0) GTIFKeySet(k, ProjLinearUnitsGeoKey, TYPE_SHORT, 1, crs.unit_epsg);
     } else {
-      GTIFKeySet(k, GeographicTypeGeoKey, TYPE_SHORT, 1, crs->epsg);
-      if (named) GTIFKeySet(k, GeogCitationGeoKey, TYPE_ASCII, 0, crs->name.c_str());
-      if (crs->unit_epsg != 0) GTIFKeySet(k, GeogAngularUnitsGeoKey, TYPE_SHORT, 1, crs->unit_epsg);
+      GTIFKeySet(k, GeographicTypeGeoKey, TYPE_SHORT, 1, crs.epsg);
+      if (named) GTIFKeySet(k, GeogCitationGeoKey, TYPE_ASCII, 0, crs.name.c_str());
+      if (crs.unit_epsg != 0) GTIFKeySet(k, GeogAngularUnitsGeoKey, TYPE_SHORT, 1, crs.unit_epsg);
     }
     require(GTIFWriteKeys(k), "the GeoKeys");
   }
@@ -197,7 +195,7 @@ void write(const std::filesystem::path& file, const std::string& shown_as, const
       const double v = std::isnan(from[k]) ? options.nodata : from[k];
       if (options.float64) std::memcpy(row.data() + 8 * k, &v, 8);
       else {
-        const float f = to_float32(v);
+        const float f = static_cast<float>(v);  // beyond a float's range: +-infinity, as GDAL writes it
         std::memcpy(row.data() + 4 * k, &f, 4);
       }
     }
@@ -211,6 +209,6 @@ void write(const std::filesystem::path& file, const std::string& shown_as, const
 }  // namespace radrecon
 
 extern "C" __attribute__((visibility("default"))) const void* radrecon_geotiff_functions() {
-  static const radrecon::GeoTiffFunctions functions{radrecon::can_record_crs, radrecon::write};
+  static const radrecon::GeoTiffFunctions functions{radrecon::resolve_crs, radrecon::write};
   return &functions;
 }

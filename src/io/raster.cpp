@@ -1,7 +1,4 @@
 #include "io/raster.h"
-#include "io/geo_raster.h"
-#include "io/geotiff.h"
-#include "io/plugin.h"
 
 #include <algorithm>
 #include <cmath>
@@ -95,25 +92,6 @@ void write_raster_png(const std::string& path, const Raster& raster, std::span<c
       else px = Rgb::Constant(display(values[k]));
     }
   write_png(path, img, true);
-}
-
-void refuse_nodata_clash(std::span<const double> values, double nodata) {
-  for (const double v : values)
-    if (v == nodata)
-      throw UserError("--nodata", "the value " + format_number(nodata) +
-                                      " occurs in the results, where it would read back as no data; choose another --nodata");
-}
-
-const GeoTiffFunctions& geotiff_functions(const std::string& what) {
-  static const PluginSpec kPlugin{"libradrecon_geotiff.so", kGeoTiffPluginEntry, "RADRECON_GEOTIFF_PLUGIN",
-                                  "GeoTIFF support (libtiff)"};
-  return *static_cast<const GeoTiffFunctions*>(plugin_table(kPlugin, what));
-}
-
-bool is_geotiff_output(const std::string& path, const std::string& format) {
-  if (!format.empty()) return ascii_lower(format) == "gtiff";
-  const std::string ext = lower_extension(path);
-  return ext == ".tif" || ext == ".tiff";
 }
 
 }  // namespace radrecon

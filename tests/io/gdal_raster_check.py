@@ -110,6 +110,22 @@ with tempfile.TemporaryDirectory() as tmp:
                 check(osrs.ExportToProj4() == srs.ExportToProj4() and osrs.GetAuthorityCode(None) is None,
                       f"{name}: GDAL's CRS is EPSG:2193's projection, without the code")
 
+    # Values beyond a float's range: +-infinity in a Float32 band from both writers (GDAL's rule).
+    huge = os.path.join(tmp, "huge.csv")
+    with open(huge, "w") as out:
+        out.write("x,y,v\n0,0,1e39\n1,0,-1e39\n0,1,0.5\n1,1,3e38\n")
+    stored = {}
+    for crs, name in [("EPSG:2193", "huge_tiff.tif"), ("+proj=longlat +ellps=GRS80 +no_defs +type=crs", "huge_gdal.tif")]:
+        out = os.path.join(tmp, name)
+        r = run("--samples", huge, "--method", "constant", "--raster", "2x2", "--domain", "0,0,1,1", "--crs", crs,
+                "--out", out)
+        check(r.returncode == 0, f"{name} written ({r.stderr.strip()})")
+        stored[name] = gdal.Open(out).ReadAsArray().tolist() if r.returncode == 0 else None
+    check(stored["huge_tiff.tif"] is not None and stored["huge_tiff.tif"] == stored["huge_gdal.tif"],
+          f"out-of-range values as GDAL stores them: {stored}")
+    check(stored["huge_tiff.tif"] is not None and stored["huge_tiff.tif"][1][0] == float("inf"),
+          f"1e39 stored as infinity: {stored['huge_tiff.tif']}")
+
     # Two value columns: two bands, Float32 by default; another driver by its extension.
     asc = os.path.join(tmp, "both.tif")
     r = run("--samples", samples, "--method", "linear", "--raster", "5x4", "--domain", "0,0,4,3", "--out", asc)
@@ -183,6 +199,25 @@ with tempfile.TemporaryDirectory() as tmp:
                 "0,0,4,3", "--out", out, *args)
         check(r.returncode == 2 and words in r.stderr, f"{args}: exit {r.returncode}, {r.stderr.strip()}")
         check(not os.path.exists(out), f"{args}: nothing written")
+    # A CRS that PROJ reads but GDAL refuses (a bare name) is refused for a GeoTIFF as for any format.
+    for crs in ["WGS 84", " EPSG:2193"]:
+        out = os.path.join(tmp, "named.tif")
+        r = run("--samples", samples, "--value", "mag", "--method", "linear", "--raster", "4x3", "--domain",
+                "0,0,4,3", "--crs", crs, "--out", out)
+        check(r.returncode == 2 and "--crs" in r.stderr and not os.path.exists(out),
+              f"--crs '{crs}': exit {r.returncode}, {r.stderr.strip()}")
+    # A value that only a Float32 band's rounding makes the no-data value is refused too.
+    near = os.path.join(tmp, "near.csv")
+    with open(near, "w") as out:
+        out.write("x,y,v\n0,0,-9999.0001\n1,1,3\n")
+    out = os.path.join(tmp, "near.tif")
+    r = run("--samples", near, "--method", "constant", "--raster", "2x2", "--domain", "0,0,1,1", "--out", out)
+    check(r.returncode == 2 and "--nodata" in r.stderr and not os.path.exists(out),
+          f"-9999.0001 in a Float32 band: exit {r.returncode}, {r.stderr.strip()}")
+    r = run("--samples", near, "--method", "constant", "--raster", "2x2", "--domain", "0,0,1,1", "--type", "float64",
+            "--out", out)
+    check(r.returncode == 0, f"-9999.0001 in a Float64 band is no clash ({r.stderr.strip()})")
+
     # An output that cannot be created (its folder is a file): exit 2 naming it, nothing left behind.
     blocker = os.path.join(tmp, "not_a_folder")
     open(blocker, "w").close()
