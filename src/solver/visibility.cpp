@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <optional>
 
 #include "core/tolerances.h"
 #include "solver/form_factor.h"
@@ -111,6 +113,66 @@ ConvexPolygon clip_all(ConvexPolygon poly, const std::array<HalfSpace, 5>& volum
   return poly;
 }
 
+/// A box in a plane's 2-D coordinates (PlaneBasis), m; empty when lo > hi, everything when
+/// infinite.
+struct Box2 {
+  double lo_u = std::numeric_limits<double>::infinity(), lo_w = lo_u;
+  double hi_u = -lo_u, hi_w = -lo_u;
+  void add(double u, double w) {
+    lo_u = std::min(lo_u, u), hi_u = std::max(hi_u, u);
+    lo_w = std::min(lo_w, w), hi_w = std::max(hi_w, w);
+  }
+  bool meets(const Box2& o) const { return lo_u <= o.hi_u && o.lo_u <= hi_u && lo_w <= o.hi_w && o.lo_w <= hi_w; }
+  static Box2 everything() {
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    return Box2{-inf, -inf, inf, inf};
+  }
+};
+
+/// Coordinates in a plane {x : normal . x = offset} (normal of unit length).
+class PlaneBasis {
+ public:
+  PlaneBasis(const Vec3& normal, double offset) : normal_(normal), offset_(offset) {
+    u_ = (std::abs(normal.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(normal).normalized();
+    w_ = normal.cross(u_);
+  }
+  /// The box of a polygon lying in the plane, widened (tol::kShadowTraceRelative).
+  Box2 box(const ConvexPolygon& polygon) const {
+    Box2 b;
+    for (int i = 0; i < polygon.n; ++i) b.add(u_.dot(polygon.v[i]), w_.dot(polygon.v[i]));
+    return widened(b);
+  }
+  /// The box of the occluder's projection from p (in front of the plane) onto the plane, widened
+  /// by kTraceMargin: it holds the occluder's shadow's trace on the plane when every corner lies
+  /// between p and the plane; else everything.
+  Box2 trace(const Vec3& p, const Occluder& o) const {
+    const double height_p = normal_.dot(p) - offset_;
+    Box2 b;
+    for (int i = 0; i < o.corner_count; ++i) {
+      const Vec3 ray = o.corners[i] - p;
+      const double down = -normal_.dot(ray);  // how far the corner is from p toward the plane
+      if (!(down > 0) || normal_.dot(o.corners[i]) - offset_ < 0) return Box2::everything();
+      const Vec3 x = p + (height_p / down) * ray;
+      b.add(u_.dot(x), w_.dot(x));
+    }
+    return widened(b);
+  }
+
+ private:
+  /// Rounding in the projections, and clip()'s own tolerance, kept out of the boxes' verdict.
+  static Box2 widened(Box2 b) {
+    const double margin = tol::kShadowTraceRelative * (1 + std::max(b.hi_u - b.lo_u, b.hi_w - b.lo_w) +
+                                          std::max({std::abs(b.lo_u), std::abs(b.hi_u), std::abs(b.lo_w), std::abs(b.hi_w)}));
+    b.lo_u -= margin, b.lo_w -= margin, b.hi_u += margin, b.hi_w += margin;
+    return b;
+  }
+  Vec3 normal_, u_, w_;
+  double offset_;
+};
+
+/// The fewest shadows on a shooter for which visible_form_factor_past() rejects shadows by boxes.
+constexpr size_t kBoxedShadows = 16;
+
 /// Each of subtract()'s five clips adds at most one vertex: a polygon with more vertices than this
 /// is cut in two first (subtract_large()).
 constexpr int kMaxSubtractVertices = ConvexPolygon::kCapacity - 6;
@@ -211,26 +273,59 @@ double visible_form_factor_past(const Vec3& p, const Vec3& n, const ConvexPolygo
   struct Shadow {
     double distance_m2;
     std::array<HalfSpace, 5> volume;
+    const Occluder* occluder;
   };
   thread_local std::vector<Shadow> shadows;
   shadows.clear();
   for (const ShadowVolume& v : volumes)
-    if (meets(v, front)) shadows.push_back({(v.occluder->centroid - p).squaredNorm(), v.planes});
+    if (meets(v, front)) shadows.push_back({(v.occluder->centroid - p).squaredNorm(), v.planes, v.occluder});
   std::stable_sort(shadows.begin(), shadows.end(),
                    [](const Shadow& x, const Shadow& y) { return x.distance_m2 < y.distance_m2; });
+  // With many shadows (a light seen past hundreds of a model's small triangles), each one's trace
+  // on the shooter's plane, when its occluder lies wholly between p and that plane, is the
+  // occluder projected from p: a fragment whose box in the plane misses that projection's box
+  // misses the shadow, and is kept whole without subtract()'s plane tests. With a few there are
+  // few fragments, and the boxes would cost more than they save.
+  thread_local std::vector<Box2> traces, boxes, next_boxes;
+  std::optional<PlaneBasis> plane;
+  traces.clear();
+  if (shadows.size() >= kBoxedShadows) {
+    plane.emplace(shooter_normal, shooter_normal.dot(shooter.v[0]));
+    for (const Shadow& shadow : shadows) traces.push_back(plane->trace(p, *shadow.occluder));
+  }
   thread_local std::vector<ConvexPolygon> fragments, next;
-  fragments.assign(1, front);
-  for (const Shadow& shadow : shadows) {
-    next.clear();
-    for (const ConvexPolygon& q : fragments) {
-      if (q.n <= kMaxSubtractVertices) subtract(q, shadow.volume, next);
-      else subtract_large(q, shadow.volume, next);
+  // The fragments left after each shadow, with their boxes when `Boxed`.
+  const auto subtract_shadows = [&]<bool Boxed>() {
+    fragments.assign(1, front);
+    if constexpr (Boxed) boxes.assign(1, plane->box(front));
+    for (size_t k_shadow = 0; k_shadow < shadows.size(); ++k_shadow) {
+      next.clear();
+      if constexpr (Boxed) next_boxes.clear();
+      for (size_t f = 0; f < fragments.size(); ++f) {
+        const ConvexPolygon& q = fragments[f];
+        if constexpr (Boxed) {
+          if (!boxes[f].meets(traces[k_shadow])) {
+            next.push_back(q);
+            next_boxes.push_back(boxes[f]);
+            continue;
+          }
+        }
+        [[maybe_unused]] const size_t before = next.size();
+        if (q.n <= kMaxSubtractVertices) subtract(q, shadows[k_shadow].volume, next);
+        else subtract_large(q, shadows[k_shadow].volume, next);
+        if constexpr (Boxed)
+          for (size_t i = before; i < next.size(); ++i) next_boxes.push_back(plane->box(next[i]));
+      }
+      fragments.swap(next);
+      if constexpr (Boxed) boxes.swap(next_boxes);
+      if (fragments.empty()) return;
     }
-    fragments.swap(next);
-    if (fragments.empty()) {
-      partly = false;
-      return 0.0;
-    }
+  };
+  if (plane) subtract_shadows.template operator()<true>();
+  else subtract_shadows.template operator()<false>();
+  if (fragments.empty()) {
+    partly = false;
+    return 0.0;
   }
   double visible = 0.0;
   for (const ConvexPolygon& q : fragments) visible += lambert_form_factor(p, n, q);
