@@ -205,10 +205,11 @@ inline constexpr double kMidpointReceiverRatio = 1.0 / 16;
 /// below this cosine, the block shoots with its mean radiosity alone.
 inline constexpr double kKernelCosine = 1e-3;
 
-/// The boxes by which visibility.cpp rejects a shadow for a fragment of the shooter (an
-/// occluder's projection onto the shooter's plane against the fragment) are widened by this
-/// fraction of (1 m + their extent + their coordinates' size): far above the projections'
-/// rounding and kPlaneDistance_m, so that only fragments clear of the shadow are passed over.
+/// The boxes by which visibility.cpp rejects a shadow for a fragment of the shooter (the
+/// projections from the receiving point onto the shooter's plane of the occluder and of the
+/// fragment) are widened by this fraction of (1 m + their extent + their coordinates' size):
+/// far above the projections' rounding, so that only fragments clear of the shadow are passed
+/// over.
 inline constexpr double kShadowTraceRelative = 1e-7;
 
 /// Shaft culling (solver/bvh.h): a BVH node or occluder counts as outside the shaft between a

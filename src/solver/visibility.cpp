@@ -114,7 +114,7 @@ ConvexPolygon clip_all(ConvexPolygon poly, const std::array<HalfSpace, 5>& volum
 }
 
 /// A box in a plane's 2-D coordinates (PlaneBasis), m; empty when lo > hi, everything when
-/// infinite.
+/// infinite. A NaN bound meets everything: a box decides nothing it cannot.
 struct Box2 {
   double lo_u = std::numeric_limits<double>::infinity(), lo_w = lo_u;
   double hi_u = -lo_u, hi_w = -lo_u;
@@ -122,52 +122,56 @@ struct Box2 {
     lo_u = std::min(lo_u, u), hi_u = std::max(hi_u, u);
     lo_w = std::min(lo_w, w), hi_w = std::max(hi_w, w);
   }
-  bool meets(const Box2& o) const { return lo_u <= o.hi_u && o.lo_u <= hi_u && lo_w <= o.hi_w && o.lo_w <= hi_w; }
+  bool meets(const Box2& o) const { return !(o.hi_u < lo_u || hi_u < o.lo_u || o.hi_w < lo_w || hi_w < o.lo_w); }
   static Box2 everything() {
     constexpr double inf = std::numeric_limits<double>::infinity();
     return Box2{-inf, -inf, inf, inf};
   }
 };
 
-/// Coordinates in a plane {x : normal . x = offset} (normal of unit length).
+/// Central projection from a point p in front of a plane {x : normal . x = offset} (normal of
+/// unit length) onto it, in the plane's 2-D coordinates. Points of the shooter and of its
+/// fragments are projected too, not taken as lying in the plane: a quad may be off its plane
+/// within tol::kPlanarityRelative, and projected from p both boxes see what the shadow volumes'
+/// planes through p see.
 class PlaneBasis {
  public:
-  PlaneBasis(const Vec3& normal, double offset) : normal_(normal), offset_(offset) {
+  PlaneBasis(const Vec3& p, const Vec3& normal, double offset)
+      : p_(p), normal_(normal), height_p_(normal.dot(p) - offset) {
     u_ = (std::abs(normal.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(normal).normalized();
     w_ = normal.cross(u_);
   }
-  /// The box of a polygon lying in the plane, widened (tol::kShadowTraceRelative).
-  Box2 box(const ConvexPolygon& polygon) const {
+  /// The box of the projections of a fragment's vertices, widened (tol::kShadowTraceRelative).
+  Box2 box(const ConvexPolygon& polygon) const { return projected(polygon.v.data(), polygon.n); }
+  /// The box of the occluder's projection, widened (tol::kShadowTraceRelative): it holds the trace
+  /// of the occluder's shadow on the plane (the projection of the part of the occluder between p
+  /// and the plane) when every corner lies on the plane's side of the plane through p parallel to
+  /// it; else everything.
+  Box2 trace(const Occluder& o) const { return projected(o.corners.data(), o.corner_count); }
+
+ private:
+  Box2 projected(const Vec3* points, int count) const {
     Box2 b;
-    for (int i = 0; i < polygon.n; ++i) b.add(u_.dot(polygon.v[i]), w_.dot(polygon.v[i]));
-    return widened(b);
-  }
-  /// The box of the occluder's projection from p (in front of the plane) onto the plane, widened
-  /// by kTraceMargin: it holds the occluder's shadow's trace on the plane when every corner lies
-  /// between p and the plane; else everything.
-  Box2 trace(const Vec3& p, const Occluder& o) const {
-    const double height_p = normal_.dot(p) - offset_;
-    Box2 b;
-    for (int i = 0; i < o.corner_count; ++i) {
-      const Vec3 ray = o.corners[i] - p;
-      const double down = -normal_.dot(ray);  // how far the corner is from p toward the plane
-      if (!(down > 0) || normal_.dot(o.corners[i]) - offset_ < 0) return Box2::everything();
-      const Vec3 x = p + (height_p / down) * ray;
+    for (int i = 0; i < count; ++i) {
+      const Vec3 ray = points[i] - p_;
+      const double down = -normal_.dot(ray);  // how far the point is from p toward the plane
+      if (!(down > 0)) return Box2::everything();
+      const Vec3 x = p_ + (height_p_ / down) * ray;
       b.add(u_.dot(x), w_.dot(x));
     }
     return widened(b);
   }
-
- private:
   /// Rounding in the projections, and clip()'s own tolerance, kept out of the boxes' verdict.
   static Box2 widened(Box2 b) {
     const double margin = tol::kShadowTraceRelative * (1 + std::max(b.hi_u - b.lo_u, b.hi_w - b.lo_w) +
                                           std::max({std::abs(b.lo_u), std::abs(b.hi_u), std::abs(b.lo_w), std::abs(b.hi_w)}));
     b.lo_u -= margin, b.lo_w -= margin, b.hi_u += margin, b.hi_w += margin;
+    if (!(std::isfinite(b.lo_u) && std::isfinite(b.lo_w) && std::isfinite(b.hi_u) && std::isfinite(b.hi_w)))
+      return Box2::everything();
     return b;
   }
-  Vec3 normal_, u_, w_;
-  double offset_;
+  Vec3 p_, normal_, u_, w_;
+  double height_p_;
 };
 
 /// The fewest shadows on a shooter for which visible_form_factor_past() rejects shadows by boxes.
@@ -272,26 +276,25 @@ double visible_form_factor_past(const Vec3& p, const Vec3& n, const ConvexPolygo
   // fragments shrink (or vanish, ending the loop) early and later shadows cut fewer of them.
   struct Shadow {
     double distance_m2;
-    std::array<HalfSpace, 5> volume;
-    const Occluder* occluder;
+    const ShadowVolume* volume;
   };
   thread_local std::vector<Shadow> shadows;
   shadows.clear();
   for (const ShadowVolume& v : volumes)
-    if (meets(v, front)) shadows.push_back({(v.occluder->centroid - p).squaredNorm(), v.planes, v.occluder});
+    if (meets(v, front)) shadows.push_back({(v.occluder->centroid - p).squaredNorm(), &v});
   std::stable_sort(shadows.begin(), shadows.end(),
                    [](const Shadow& x, const Shadow& y) { return x.distance_m2 < y.distance_m2; });
   // With many shadows (a light seen past hundreds of a model's small triangles), each one's trace
-  // on the shooter's plane, when its occluder lies wholly between p and that plane, is the
-  // occluder projected from p: a fragment whose box in the plane misses that projection's box
-  // misses the shadow, and is kept whole without subtract()'s plane tests. With a few there are
+  // on the shooter's plane lies within the occluder's projection from p (PlaneBasis): a fragment
+  // whose projection's box misses that one's misses the shadow, and is kept whole without
+  // subtract()'s plane tests. With a few there are
   // few fragments, and the boxes would cost more than they save.
   thread_local std::vector<Box2> traces, boxes, next_boxes;
   std::optional<PlaneBasis> plane;
   traces.clear();
   if (shadows.size() >= kBoxedShadows) {
-    plane.emplace(shooter_normal, shooter_normal.dot(shooter.v[0]));
-    for (const Shadow& shadow : shadows) traces.push_back(plane->trace(p, *shadow.occluder));
+    plane.emplace(p, shooter_normal, shooter_normal.dot(shooter.v[0]));
+    for (const Shadow& shadow : shadows) traces.push_back(plane->trace(*shadow.volume->occluder));
   }
   thread_local std::vector<ConvexPolygon> fragments, next;
   // The fragments left after each shadow, with their boxes when `Boxed`.
@@ -311,8 +314,8 @@ double visible_form_factor_past(const Vec3& p, const Vec3& n, const ConvexPolygo
           }
         }
         [[maybe_unused]] const size_t before = next.size();
-        if (q.n <= kMaxSubtractVertices) subtract(q, shadows[k_shadow].volume, next);
-        else subtract_large(q, shadows[k_shadow].volume, next);
+        if (q.n <= kMaxSubtractVertices) subtract(q, shadows[k_shadow].volume->planes, next);
+        else subtract_large(q, shadows[k_shadow].volume->planes, next);
         if constexpr (Boxed)
           for (size_t i = before; i < next.size(); ++i) next_boxes.push_back(plane->box(next[i]));
       }

@@ -160,38 +160,45 @@ TEST(VisibleFormFactor, ManySmallOccludersHideExactlyTheirProjections) {
   // projections from p onto the shooter disjoint and inside it (a model's small triangles seen
   // against a light): the visible form factor is the shooter's less each projection's, each
   // by Lambert's formula on its own. The shadows' fragments are passed over where their boxes
-  // miss a shadow's trace; this checks that none is passed over that the shadow cuts.
-  const Vec3 p(0.1, -0.05, 0), n(0, 0, 1), down(0, 0, -1);
-  ConvexPolygon shooter;
-  for (const Vec3& c : {Vec3(-1, -1, 2), Vec3(-1, 1, 2), Vec3(1, 1, 2), Vec3(1, -1, 2)}) shooter.push(c);
-  Scene scene;
-  std::mt19937 rng(21);
-  std::uniform_real_distribution<double> height(0.8, 1.2), angle(0, std::numbers::pi / 2), tilt(-0.4, 0.4);
-  double hidden = 0;
-  for (int j = 0; j < 12; ++j)
-    for (int i = 0; i < 12; ++i) {
-      const double z = height(rng);
-      // Cell (i, j) of a 12 x 12 grid over the shooter, brought down to height z along the ray
-      // from p, with room around it: the projections stay apart.
-      const Vec3 target(-1 + (i + 0.5) / 6, -1 + (j + 0.5) / 6, 2);
-      const Vec3 c = p + (z - p.z()) / (2 - p.z()) * (target - p);
-      const double half = 0.25 / 6 * (z - p.z()) / (2 - p.z());
-      const Eigen::Matrix3d rot =
-          (Eigen::AngleAxisd(angle(rng), Vec3::UnitZ()) * Eigen::AngleAxisd(tilt(rng), Vec3::UnitX())).toRotationMatrix();
-      const Vec3 u = rot * Vec3(half, 0, 0), v = rot * Vec3(0, half, 0);
-      scene.surfaces.push_back(make_quad("o" + std::to_string(scene.surfaces.size()), c - u - v, c + u - v, c + u + v, c - u + v));
-      ConvexPolygon projection;
-      for (const Vec3& corner : scene.surfaces.back().corners)
-        projection.push(p + (2 - p.z()) / (corner.z() - p.z()) * (corner - p));
-      hidden += lambert_form_factor(p, n, projection);
-    }
-  const std::vector<Occluder> occ = make_occluders(scene);
-  std::vector<const Occluder*> all;
-  for (const Occluder& o : occ) all.push_back(&o);
-  const double unoccluded = lambert_form_factor(p, n, shooter);
-  const double seen = visible_form_factor(p, n, shooter, down, all);
-  EXPECT_NEAR(seen, unoccluded - hidden, 1e-12 * unoccluded) << "hidden " << hidden / unoccluded << " of it";
-  EXPECT_GT(hidden, 0.05 * unoccluded);
+  // miss a shadow's trace; this checks that none is passed over that the shadow cuts. The same
+  // scene turned (a tilted shooter: the plane's other coordinate axes) gives the same.
+  const Eigen::Matrix3d turns[2] = {Eigen::Matrix3d::Identity(),
+                                    Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix()};
+  for (const Eigen::Matrix3d& turn : turns) {
+    const Vec3 p0(0.1, -0.05, 0);
+    const Vec3 p = turn * p0, n = turn * Vec3(0, 0, 1), down = turn * Vec3(0, 0, -1);
+    ConvexPolygon shooter;
+    for (const Vec3& c : {Vec3(-1, -1, 2), Vec3(-1, 1, 2), Vec3(1, 1, 2), Vec3(1, -1, 2)}) shooter.push(turn * c);
+    Scene scene;
+    std::mt19937 rng(21);
+    std::uniform_real_distribution<double> height(0.8, 1.2), angle(0, std::numbers::pi / 2), tilt(-0.4, 0.4);
+    double hidden = 0;
+    for (int j = 0; j < 12; ++j)
+      for (int i = 0; i < 12; ++i) {
+        const double z = height(rng);
+        // Cell (i, j) of a 12 x 12 grid over the shooter, brought down to height z along the ray
+        // from p, with room around it: the projections stay apart.
+        const Vec3 target(-1 + (i + 0.5) / 6, -1 + (j + 0.5) / 6, 2);
+        const Vec3 c = p0 + (z - p0.z()) / (2 - p0.z()) * (target - p0);
+        const double half = 0.25 / 6 * (z - p0.z()) / (2 - p0.z());
+        const Eigen::Matrix3d rot =
+            (Eigen::AngleAxisd(angle(rng), Vec3::UnitZ()) * Eigen::AngleAxisd(tilt(rng), Vec3::UnitX())).toRotationMatrix();
+        const Vec3 u = rot * Vec3(half, 0, 0), v = rot * Vec3(0, half, 0);
+        const std::array<Vec3, 4> corners = {c - u - v, c + u - v, c + u + v, c - u + v};
+        ConvexPolygon projection;
+        for (const Vec3& corner : corners) projection.push(turn * (p0 + (2 - p0.z()) / (corner.z() - p0.z()) * (corner - p0)));
+        hidden += lambert_form_factor(p, n, projection);
+        scene.surfaces.push_back(make_quad("o" + std::to_string(scene.surfaces.size()), turn * corners[0],
+                                           turn * corners[1], turn * corners[2], turn * corners[3]));
+      }
+    const std::vector<Occluder> occ = make_occluders(scene);
+    std::vector<const Occluder*> all;
+    for (const Occluder& o : occ) all.push_back(&o);
+    const double unoccluded = lambert_form_factor(p, n, shooter);
+    const double seen = visible_form_factor(p, n, shooter, down, all);
+    EXPECT_NEAR(seen, unoccluded - hidden, 1e-12 * unoccluded) << "hidden " << hidden / unoccluded << " of it";
+    EXPECT_GT(hidden, 0.05 * unoccluded);
+  }
 }
 
 /// Howell's C-11: F between directly opposed parallel rectangles a x b (metres) at distance c.
