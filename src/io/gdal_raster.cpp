@@ -57,7 +57,7 @@ bool can_create_raster(GDALDriver* d) {
 std::string gdal_raster_driver(const std::string& path, const std::string& format, const std::string& where) {
   std::string ext = lower_extension(path);
   if (!ext.empty()) ext.erase(0, 1);
-  if (format.empty() && (ext == "tif" || ext == "tiff")) return "GTiff";  // before COG, which claims them too
+  if (format.empty() && is_geotiff_output(path, format)) return "GTiff";  // before COG, which claims them too
   register_drivers(format);
   GDALDriverManager* drivers = GetGDALDriverManager();
   if (!format.empty()) {

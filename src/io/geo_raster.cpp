@@ -18,12 +18,6 @@ void refuse_nodata_clash(std::span<const double> values, double nodata, bool flo
                                       ", where it would read back as no data; choose another --nodata");
 }
 
-bool is_geotiff_output(const std::string& path, const std::string& format) {
-  if (!format.empty()) return ascii_lower(format) == "gtiff";
-  const std::string ext = lower_extension(path);
-  return ext == ".tif" || ext == ".tiff";
-}
-
 const GeoTiffFunctions& geotiff_functions(const std::string& what) {
   static const PluginSpec kPlugin{"libradrecon_geotiff.so", kGeoTiffPluginEntry, "RADRECON_GEOTIFF_PLUGIN",
                                   "GeoTIFF support (libtiff)"};

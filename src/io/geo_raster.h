@@ -8,6 +8,8 @@
 #include <span>
 #include <string>
 
+#include "core/parse.h"
+
 namespace radrecon {
 
 /// The no-data value written by default: gdal_grid's -nodata is 0, which is a real value of many
@@ -26,7 +28,11 @@ struct GeoRasterOptions {
 void refuse_nodata_clash(std::span<const double> values, double nodata, bool float64);
 
 /// Whether writing `path` with --format `format` makes a GeoTIFF: .tif or .tiff without
-/// --format, or --format GTiff (GDAL's name, in any case).
-bool is_geotiff_output(const std::string& path, const std::string& format);
+/// --format, or --format GTiff (GDAL's name, in any case). Inline: the GDAL plugin asks too.
+inline bool is_geotiff_output(const std::string& path, const std::string& format) {
+  if (!format.empty()) return ascii_lower(format) == "gtiff";
+  const std::string ext = lower_extension(path);
+  return ext == ".tif" || ext == ".tiff";
+}
 
 }  // namespace radrecon
