@@ -125,8 +125,9 @@ double gradient_l2(std::span<const double> a, std::span<const double> reference,
 std::vector<double> display_values(std::span<const double> values_w_m2, double white_w_m2) {
   RR_CHECK_GT(white_w_m2, 0.0, "display values need a positive white");
   std::vector<double> out(values_w_m2.size());
-  for (size_t k = 0; k < out.size(); ++k)
+  parallel_for(0, static_cast<std::int64_t>(out.size()), [&](std::int64_t k) {
     out[k] = std::isnan(values_w_m2[k]) ? kNaN : srgb_encode(tone_map(values_w_m2[k], white_w_m2));
+  });
   return out;
 }
 

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 
+#include "evaluate/metrics.h"
 #include "sampling/surface_samples.h"
 #include "solver/solve.h"
 
@@ -41,6 +42,7 @@ EvaluationGrid evaluation_grid(const Solution& reference) {
   e.dy_m = cells.dy;
   e.white_w_m2 = 0;
   for (double v : e.reference_w_m2) e.white_w_m2 = std::max(e.white_w_m2, v);
+  e.reference_display = display_values(e.reference_w_m2, e.white_w_m2);
   return e;
 }
 

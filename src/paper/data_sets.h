@@ -27,6 +27,8 @@ struct EvaluationGrid {
   std::vector<double> reference_w_m2;
   double dx_m = 1, dy_m = 1;  ///< the spacing of the points
   double white_w_m2 = 1;  ///< the largest reference value: white in every figure
+  /// display_values(reference_w_m2, white_w_m2) (evaluate/metrics.h): SSIM's reference, made once.
+  std::vector<double> reference_display;
 };
 EvaluationGrid evaluation_grid(const Solution& reference);
 

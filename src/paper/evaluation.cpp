@@ -27,7 +27,7 @@ MethodResult evaluate(const InterpolantResult& built, const std::string& name, c
   MethodResult r{name, {}};
   r.figures.norms = error_norms(values, at.reference_w_m2);
   const ImageShape shape{at.width, at.height, 3};
-  r.figures.ssim = ssim(display_values(values, at.white_w_m2), display_values(at.reference_w_m2, at.white_w_m2), shape);
+  r.figures.ssim = ssim(display_values(values, at.white_w_m2), at.reference_display, shape);
   r.figures.gradient_l2 = gradient_l2(values, at.reference_w_m2, shape, at.dx_m, at.dy_m);
   if (ranges) r.figures.overshoot = overshoot(*ranges, values);
   return r;
