@@ -82,6 +82,7 @@ class PointVisibility {
   std::span<const Vec2> points_;
   const Barriers* barriers_;
   std::vector<signed char> side_;  ///< segment-major: side_[s * n + i], the sign of orient(a_s, b_s, p_i)
+  std::vector<double> px_, py_;    ///< the points' coordinates, m, as arrays (vectorised tests)
 };
 
 class KdTree2;

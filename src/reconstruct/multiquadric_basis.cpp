@@ -85,15 +85,27 @@ RbfFit fit_rbf(std::span<const Vec2> points, std::span<const double> r_sq, std::
       for (int c = 0; c < channels; ++c) mean[static_cast<size_t>(c)] += values[s * static_cast<size_t>(channels) + c];
     for (double& v : mean) v /= static_cast<double>(m);
   }
+  const size_t count = subset.size();
+  fit.px.resize(count);
+  fit.py.resize(count);
+  for (size_t a = 0; a < count; ++a) fit.px[a] = points[subset[a]].x(), fit.py[a] = points[subset[a]].y();
+  // The kernel column by column in packets (SIMD), by the basis evaluate_rbf_fit() uses too:
+  // A(a, b) = phi(s (|p_a - p_b|^2 + r_b^2)).
   Eigen::MatrixXd A(m + t, m + t), B(m + t, channels);
+  {
+    using Array = Eigen::Map<const Eigen::ArrayXd>;
+    const Array sx(fit.px.data(), m), sy(fit.py.data(), m);
+    Eigen::ArrayXd v(m);
+    for (Eigen::Index b = 0; b < m; ++b) {
+      const size_t sb = subset[static_cast<size_t>(b)];
+      v = (sx - fit.px[static_cast<size_t>(b)]).square() + (sy - fit.py[static_cast<size_t>(b)]).square() + r_sq[sb];
+      if (fit.kernel_scale != 1) v *= fit.kernel_scale;
+      rbf_basis_in_place(v, kernel);
+      A.col(b).head(m) = v.matrix();
+    }
+  }
   for (Eigen::Index a = 0; a < m; ++a) {
     const unsigned sa = subset[static_cast<size_t>(a)];
-    for (Eigen::Index b = 0; b < m; ++b) {
-      const unsigned sb = subset[static_cast<size_t>(b)];
-      double v = (points[sa] - points[sb]).squaredNorm() + r_sq[sb];
-      if (fit.kernel_scale != 1) v *= fit.kernel_scale;
-      A(a, b) = rbf_basis(v, kernel);
-    }
     for (int c = 0; c < channels; ++c) B(a, c) = values[sa * static_cast<size_t>(channels) + c] - mean[static_cast<size_t>(c)];
     if (t > 0) {
       const Vec2 d = points[sa] - fit.centre;
@@ -111,15 +123,10 @@ RbfFit fit_rbf(std::span<const Vec2> points, std::span<const double> r_sq, std::
   if (!x.allFinite())
     throw ReconstructionError("the " + kernel.name() + " coefficients overflow: the sample values are too large "
                               "for the system (scale them down)");
-  const size_t count = subset.size();
   fit.alpha.resize(count * static_cast<size_t>(channels));
-  fit.px.resize(count);
-  fit.py.resize(count);
   fit.r_sq.resize(count);
   fit.alpha_by_channel.resize(count * static_cast<size_t>(channels));
   for (size_t a = 0; a < count; ++a) {
-    fit.px[a] = points[subset[a]].x();
-    fit.py[a] = points[subset[a]].y();
     fit.r_sq[a] = r_sq[subset[a]];
     for (int c = 0; c < channels; ++c) {
       const double alpha = x(static_cast<Eigen::Index>(a), c);

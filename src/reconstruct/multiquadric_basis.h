@@ -71,8 +71,8 @@ inline double rbf_basis(double v, const RbfKernel& kernel) {
 
 /// The same basis over an array of v, in place, with Eigen's packet functions (SIMD): sqrt for
 /// mu = 1/2, rsqrt for -1/2, pow otherwise, log for the thin-plate spline. Its last bits may
-/// differ from the scalar form's (rsqrt is not 1 / sqrt in every lane); each evaluator uses one
-/// form throughout.
+/// differ from the scalar form's (rsqrt is not 1 / sqrt in every lane); fit_rbf() builds its
+/// matrix and evaluate_rbf_fit() evaluates with this form (sqrt, the default, is exact in both).
 inline void rbf_basis_in_place(Eigen::ArrayXd& v, const RbfKernel& kernel) {
   if (kernel.is_thin_plate()) v = (v > 0).select(0.5 * v * v.log(), 0.0);
   else if (kernel.mu == 0.5) v = v.sqrt();
