@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <ranges>
 #include <utility>
 #include <vector>
 
@@ -60,27 +61,36 @@ std::optional<NeighbourRanges> neighbour_ranges(const ScatteredSamples& samples,
   ranges.channels = C;
   ranges.lo.resize(points.size() * C);
   ranges.hi.resize(points.size() * C);
-  parallel_for_with_scratch<Scratch>(0, static_cast<std::int64_t>(points.size()), [&](std::int64_t p, Scratch& s) {
-    const Vec2& q = points[p];
-    s.neighbours.clear();
-    for (const auto& [index, lambda] : nn->coordinates(q))
-      if (lambda != 0) s.neighbours.push_back(index);
-    if (s.neighbours.empty()) {  // outside the hull
-      const auto [e0, e1] = nearest_edge(q, samples.points, edges);
-      s.neighbours.push_back(e0);
-      s.neighbours.push_back(e1);
-      const size_t found = tree.nearest(q, nearest, s.indices, s.dist_sq);
-      s.neighbours.insert(s.neighbours.end(), s.indices.begin(), s.indices.begin() + static_cast<std::ptrdiff_t>(found));
-    }
+  auto set_range = [&](size_t p, auto&& neighbours) {
     for (int c = 0; c < C; ++c) {
       double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-      for (const unsigned k : s.neighbours) {
+      for (const unsigned k : neighbours) {
         lo = std::min(lo, samples.values[static_cast<size_t>(k) * C + c]);
         hi = std::max(hi, samples.values[static_cast<size_t>(k) * C + c]);
       }
-      ranges.lo[static_cast<size_t>(p) * C + c] = lo;
-      ranges.hi[static_cast<size_t>(p) * C + c] = hi;
+      ranges.lo[p * C + c] = lo;
+      ranges.hi[p * C + c] = hi;
     }
+  };
+  // Inside the hull, the natural neighbours (all queries at once, as the interpolant finds them);
+  // the queries outside it afterwards.
+  std::vector<char> outside(points.size(), 0);
+  nn->visit_coordinates(points, [&](size_t p, std::span<const std::pair<unsigned, double>> coordinates) {
+    auto nonzero = coordinates | std::views::filter([](const auto& c) { return c.second != 0; }) |
+                   std::views::transform([](const auto& c) { return c.first; });
+    if (nonzero.empty()) outside[p] = 1;
+    else set_range(p, nonzero);
+  });
+  parallel_for_with_scratch<Scratch>(0, static_cast<std::int64_t>(points.size()), [&](std::int64_t p, Scratch& s) {
+    if (!outside[static_cast<size_t>(p)]) return;
+    const Vec2& q = points[p];
+    s.neighbours.clear();
+    const auto [e0, e1] = nearest_edge(q, samples.points, edges);
+    s.neighbours.push_back(e0);
+    s.neighbours.push_back(e1);
+    const size_t found = tree.nearest(q, nearest, s.indices, s.dist_sq);
+    s.neighbours.insert(s.neighbours.end(), s.indices.begin(), s.indices.begin() + static_cast<std::ptrdiff_t>(found));
+    set_range(static_cast<size_t>(p), s.neighbours);
   });
   return ranges;
 }

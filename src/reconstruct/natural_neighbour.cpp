@@ -342,18 +342,21 @@ std::vector<std::pair<unsigned, double>> NaturalNeighbour::coordinates(const Vec
   return std::move(scratch.coords);
 }
 
-void NaturalNeighbour::evaluate(std::span<const Vec2> points, std::span<double> out) const {
-  const int C = impl_->channels;
-  RR_CHECK(out.size() == points.size() * static_cast<size_t>(C), "output size does not match the query points");
-  // Queries in fixed chunks: each chunk's walk starts at a face of the sample nearest to its
-  // first query, then from the face found last (raster queries are coherent). A query on a
-  // Delaunay edge may be located in either face, and the coordinates' last bits depend on which;
-  // fixed chunks with deterministic starts make that independent of the number of threads.
-  // Runs of 4 chunks are handed out to the threads, in parallel from 2 runs on: a chunk costs
-  // some 10 us, far more than handing it out.
+namespace {
+
+/// Runs body(q, kind, scratch) for every query q, kind and scratch.coords as Impl::query() leaves
+/// them (kind nothing for a non-finite point), in fixed chunks: each chunk's walk starts at a face
+/// of the sample nearest to its first query, then from the face found last (raster queries are
+/// coherent). A query on a Delaunay edge may be located in either face, and the coordinates' last
+/// bits depend on which; fixed chunks with deterministic starts make that independent of the
+/// number of threads. Runs of 4 chunks are handed out to the threads, in parallel from 2 runs on:
+/// a chunk costs some 10 us, far more than handing it out.
+template <typename Impl, typename Body>
+void for_each_query(const Impl& impl, std::span<const Vec2> points, Body&& body) {
   constexpr std::int64_t kChunk = 64, kChunksPerRun = 4;
   const std::int64_t n = static_cast<std::int64_t>(points.size());
-  parallel_for_with_scratch<Impl::Scratch>(0, (n + kChunk - 1) / kChunk, kChunksPerRun, 2 * kChunksPerRun, [&](std::int64_t chunk, Impl::Scratch& scratch) {
+  using Scratch = typename Impl::Scratch;
+  parallel_for_with_scratch<Scratch>(0, (n + kChunk - 1) / kChunk, kChunksPerRun, 2 * kChunksPerRun, [&](std::int64_t chunk, Scratch& scratch) {
     // A chunk's conflict zones are its own: its walks start from its own first query, whatever
     // the thread ran before (which face an edge's point is located in decides the hull-edge test).
     scratch.zone.forget();
@@ -362,19 +365,38 @@ void NaturalNeighbour::evaluate(std::span<const Vec2> points, std::span<double> 
     if (points[first].allFinite()) {
       unsigned nearest[1];
       double nearest_d2[1];
-      impl_->tree->nearest(points[first], 1, nearest, nearest_d2);
-      hint = impl_->vertex_of[nearest[0]]->face();
+      impl.tree->nearest(points[first], 1, nearest, nearest_d2);
+      hint = impl.vertex_of[nearest[0]]->face();
     }
     for (std::int64_t k = chunk * kChunk; k < std::min(n, (chunk + 1) * kChunk); ++k) {
       const size_t q = static_cast<size_t>(k);
-      double* o = &out[q * C];
-      const Impl::Kind kind = points[q].allFinite() ? impl_->query(points[q], hint, scratch) : Impl::Kind::nothing;
-      if (kind == Impl::Kind::coordinates || (kind == Impl::Kind::on_hull && impl_->outside == OutsideHull::nearest)) {
-        impl_->combine(scratch.coords, o);
-      } else {
-        for (int c = 0; c < C; ++c) o[c] = std::numeric_limits<double>::quiet_NaN();
-      }
+      const typename Impl::Kind kind = points[q].allFinite() ? impl.query(points[q], hint, scratch) : Impl::Kind::nothing;
+      body(q, kind, scratch);
     }
+  });
+}
+
+}  // namespace
+
+void NaturalNeighbour::evaluate(std::span<const Vec2> points, std::span<double> out) const {
+  const int C = impl_->channels;
+  RR_CHECK(out.size() == points.size() * static_cast<size_t>(C), "output size does not match the query points");
+  for_each_query(*impl_, points, [&](size_t q, Impl::Kind kind, const Impl::Scratch& scratch) {
+    double* o = &out[q * C];
+    if (kind == Impl::Kind::coordinates || (kind == Impl::Kind::on_hull && impl_->outside == OutsideHull::nearest)) {
+      impl_->combine(scratch.coords, o);
+    } else {
+      for (int c = 0; c < C; ++c) o[c] = std::numeric_limits<double>::quiet_NaN();
+    }
+  });
+}
+
+void NaturalNeighbour::visit_coordinates(
+    std::span<const Vec2> points,
+    const std::function<void(size_t, std::span<const std::pair<unsigned, double>>)>& visit) const {
+  for_each_query(*impl_, points, [&](size_t q, Impl::Kind kind, const Impl::Scratch& scratch) {
+    if (kind == Impl::Kind::coordinates) visit(q, scratch.coords);
+    else visit(q, {});
   });
 }
 

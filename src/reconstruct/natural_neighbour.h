@@ -37,6 +37,7 @@
 //     at the samples from their natural neighbours. Exact at the samples, C1 away from them,
 //     reproduces quadratics given exact gradients.
 
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -67,6 +68,12 @@ class NaturalNeighbour final : public Interpolant {
   /// index, lambda), lambda summing to one; empty outside the convex hull (of the samples visible
   /// from q, with barriers).
   std::vector<std::pair<unsigned, double>> coordinates(const Vec2& q) const;
+  /// coordinates() of every query point at once, as evaluate() finds them (coherent queries
+  /// share their walks and conflict zones): visit(i, coordinates of points[i]), called from
+  /// several threads at once for distinct i. A query on a Delaunay edge may have other last bits
+  /// than coordinates() gives it alone; they do not depend on the number of threads.
+  void visit_coordinates(std::span<const Vec2> points,
+                         const std::function<void(size_t, std::span<const std::pair<unsigned, double>>)>& visit) const;
 
   /// The edges of the samples' convex hull as pairs of sample indices (consecutive samples along
   /// the hull, collinear ones included: the finite edges of the Delaunay triangulation's

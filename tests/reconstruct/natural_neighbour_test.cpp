@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -262,6 +263,44 @@ TEST(NaturalNeighbour, ABatchGivesWhatEachPointGivesAlone) {
     } else {
       ASSERT_EQ(batch[q], alone) << "query " << q;
     }
+  }
+}
+
+TEST(NaturalNeighbour, VisitedCoordinatesAreEachPointsCoordinates) {
+  // visit_coordinates() (a raster's queries sharing walks and conflict zones, on both threads)
+  // against coordinates() one point at a time, without and with barriers: the same samples, the
+  // same nonzero coordinates to round-off, none outside the hull.
+  std::mt19937 rng(26);
+  const ScatteredSamples s = random_samples(150, rng, 0, 1);
+  std::vector<Vec2> queries;
+  for (int j = 0; j <= 90; ++j)
+    for (int i = 0; i <= 90; ++i) queries.emplace_back(-0.05 + 1.1 * i / 90, -0.05 + 1.1 * j / 90);
+  const std::vector<Polyline> walls = {{{0.3, 0.2}, {0.3, 0.8}}, {{0.5, 0.5}, {0.9, 0.5}}};
+  for (const bool walled : {false, true}) {
+    const NaturalNeighbour nn(s, OutsideHull::none, walled ? Barriers::from_polylines(walls).value() : Barriers{});
+    std::vector<std::vector<std::pair<unsigned, double>>> visited(queries.size());
+    std::vector<int> visits(queries.size(), 0);
+    nn.visit_coordinates(queries, [&](size_t q, std::span<const std::pair<unsigned, double>> c) {
+      visited[q].assign(c.begin(), c.end());
+      ++visits[q];
+    });
+    size_t inside = 0;
+    for (size_t q = 0; q < queries.size(); ++q) {
+      ASSERT_EQ(visits[q], 1) << "query " << q;
+      auto sorted = [](std::vector<std::pair<unsigned, double>> c) {
+        std::sort(c.begin(), c.end());
+        return c;
+      };
+      const auto alone = sorted(nn.coordinates(queries[q])), got = sorted(visited[q]);
+      ASSERT_EQ(got.size(), alone.size()) << "query " << q << (walled ? ", walled" : "");
+      for (size_t k = 0; k < got.size(); ++k) {
+        ASSERT_EQ(got[k].first, alone[k].first) << "query " << q;
+        ASSERT_NEAR(got[k].second, alone[k].second, 1e-12) << "query " << q;
+      }
+      inside += !got.empty();
+    }
+    EXPECT_GT(inside, queries.size() / 2);
+    EXPECT_LT(inside, queries.size());  // the raster reaches past the hull
   }
 }
 
