@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <ranges>
 #include <utility>
 #include <vector>
 
@@ -61,7 +60,7 @@ std::optional<NeighbourRanges> neighbour_ranges(const ScatteredSamples& samples,
   ranges.channels = C;
   ranges.lo.resize(points.size() * C);
   ranges.hi.resize(points.size() * C);
-  auto set_range = [&](size_t p, auto&& neighbours) {
+  auto set_range = [&](size_t p, const std::vector<unsigned>& neighbours) {
     for (int c = 0; c < C; ++c) {
       double lo = std::numeric_limits<double>::infinity(), hi = -lo;
       for (const unsigned k : neighbours) {
@@ -76,10 +75,12 @@ std::optional<NeighbourRanges> neighbour_ranges(const ScatteredSamples& samples,
   // the queries outside it afterwards.
   std::vector<char> outside(points.size(), 0);
   nn->visit_coordinates(points, [&](size_t p, std::span<const std::pair<unsigned, double>> coordinates) {
-    auto nonzero = coordinates | std::views::filter([](const auto& c) { return c.second != 0; }) |
-                   std::views::transform([](const auto& c) { return c.first; });
-    if (nonzero.empty()) outside[p] = 1;
-    else set_range(p, nonzero);
+    thread_local std::vector<unsigned> neighbours;  // the visitor's buffer, one per thread
+    neighbours.clear();
+    for (const auto& [index, lambda] : coordinates)
+      if (lambda != 0) neighbours.push_back(index);
+    if (neighbours.empty()) outside[p] = 1;
+    else set_range(p, neighbours);
   });
   parallel_for_with_scratch<Scratch>(0, static_cast<std::int64_t>(points.size()), [&](std::int64_t p, Scratch& s) {
     if (!outside[static_cast<size_t>(p)]) return;
