@@ -290,8 +290,6 @@ void PointVisibility::hidden_from(const Vec2& q, std::vector<char>& hidden) cons
   // line from q is hidden when the segment meets line (q, p) between its ends (o1 * o2 <= 0);
   // when q and p both lie on the line, the collinear case decides.
   char* const out = hidden.data();
-  const double* const px = px_.data();
-  const double* const py = py_.data();
   for (size_t k = 0; k < segs.size(); ++k) {
     const BarrierSegment& s = segs[k];
     const int oq = orientation(s.a, s.b, q);
@@ -301,20 +299,19 @@ void PointVisibility::hidden_from(const Vec2& q, std::vector<char>& hidden) cons
         if (!out[i] && side[i] == 0) out[i] = segment_blocked(q, points_[i], s);
       continue;
     }
-    // orientation(q, p_i, a) and orientation(q, p_i, b) for every point, in the same operations
-    // as orientation() (so with the same verdicts), four points at a time where AVX2 is there. A
-    // point across the line whose two signs are both certain is decided here; the rare uncertain
-    // one by the exact predicate below.
+    // With AVX2, orientation(q, p_i, a) and orientation(q, p_i, b) four points at a time, in the
+    // same operations as orientation()'s filter (so with its verdicts): a point across the line
+    // whose two signs are both certain is decided here; the rare uncertain one below.
     const signed char across = static_cast<signed char>(-oq);
-    const double ax = s.a.x() - q.x(), ay = s.a.y() - q.y(), bx = s.b.x() - q.x(), by = s.b.y() - q.y();
     bool uncertain = false;
     size_t i = 0;
 #if defined(__AVX2__)
+    const double ax = s.a.x() - q.x(), ay = s.a.y() - q.y(), bx = s.b.x() - q.x(), by = s.b.y() - q.y();
     const __m256d qx4 = _mm256_set1_pd(q.x()), qy4 = _mm256_set1_pd(q.y());
     const __m256d ax4 = _mm256_set1_pd(ax), ay4 = _mm256_set1_pd(ay), bx4 = _mm256_set1_pd(bx), by4 = _mm256_set1_pd(by);
     const __m256d bound4 = _mm256_set1_pd(kOrientationErrorBound), sign = _mm256_set1_pd(-0.0);
     for (; i + 4 <= n; i += 4) {
-      const __m256d dx = _mm256_sub_pd(_mm256_loadu_pd(px + i), qx4), dy = _mm256_sub_pd(_mm256_loadu_pd(py + i), qy4);
+      const __m256d dx = _mm256_sub_pd(_mm256_loadu_pd(&px_[i]), qx4), dy = _mm256_sub_pd(_mm256_loadu_pd(&py_[i]), qy4);
       const __m256d la = _mm256_mul_pd(dx, ay4), ra = _mm256_mul_pd(dy, ax4), da = _mm256_sub_pd(la, ra);
       const __m256d lb = _mm256_mul_pd(dx, by4), rb = _mm256_mul_pd(dy, bx4), db = _mm256_sub_pd(lb, rb);
       const __m256d ea = _mm256_mul_pd(bound4, _mm256_add_pd(_mm256_andnot_pd(sign, la), _mm256_andnot_pd(sign, ra)));
@@ -332,18 +329,10 @@ void PointVisibility::hidden_from(const Vec2& q, std::vector<char>& hidden) cons
       uncertain |= (opposite & ~certain) != 0;
     }
 #endif
-    for (; i < n; ++i) {
-      const double dx = px[i] - q.x(), dy = py[i] - q.y();
-      const double la = dx * ay, ra = dy * ax, da = la - ra, ea = kOrientationErrorBound * (std::abs(la) + std::abs(ra));
-      const double lb = dx * by, rb = dy * bx, db = lb - rb, eb = kOrientationErrorBound * (std::abs(lb) + std::abs(rb));
-      const bool a_pos = da > ea, a_neg = da < -ea, b_pos = db > eb, b_neg = db < -eb;
-      const bool certain = (a_pos || a_neg) && (b_pos || b_neg), opposite = side[i] == across;
-      if (opposite && certain && ((a_pos && b_neg) || (a_neg && b_pos))) out[i] = 1;
-      uncertain |= opposite && !certain;
-    }
-    if (uncertain)
-      for (size_t i = 0; i < n; ++i)
-        if (!out[i] && side[i] == across) out[i] = orientation(q, points_[i], s.a) * orientation(q, points_[i], s.b) <= 0;
+    // Point by point: those the packets left (all of them without AVX2), or all again when a
+    // sign was uncertain (the certain ones get the same verdict).
+    for (i = uncertain ? 0 : i; i < n; ++i)
+      if (!out[i] && side[i] == across) out[i] = orientation(q, points_[i], s.a) * orientation(q, points_[i], s.b) <= 0;
   }
 }
 

@@ -269,13 +269,16 @@ TEST(NaturalNeighbour, ABatchGivesWhatEachPointGivesAlone) {
 TEST(NaturalNeighbour, VisitedCoordinatesAreEachPointsCoordinates) {
   // visit_coordinates() (a raster's queries sharing walks and conflict zones, on both threads)
   // against coordinates() one point at a time, without and with barriers: the same samples, the
-  // same nonzero coordinates to round-off, none outside the hull.
+  // same nonzero coordinates to round-off, none outside the hull; without barriers against
+  // CGAL's natural_neighbor_coordinates_2 as well.
   std::mt19937 rng(26);
   const ScatteredSamples s = random_samples(150, rng, 0, 1);
   std::vector<Vec2> queries;
   for (int j = 0; j <= 90; ++j)
     for (int i = 0; i <= 90; ++i) queries.emplace_back(-0.05 + 1.1 * i / 90, -0.05 + 1.1 * j / 90);
   const std::vector<Polyline> walls = {{{0.3, 0.2}, {0.3, 0.8}}, {{0.5, 0.5}, {0.9, 0.5}}};
+  nn::Delaunay dt;
+  for (size_t i = 0; i < s.points.size(); ++i) dt.insert(nn::Point(s.points[i].x(), s.points[i].y()))->info() = static_cast<unsigned>(i);
   for (const bool walled : {false, true}) {
     const NaturalNeighbour nn(s, OutsideHull::none, walled ? Barriers::from_polylines(walls).value() : Barriers{});
     std::vector<std::vector<std::pair<unsigned, double>>> visited(queries.size());
@@ -298,6 +301,19 @@ TEST(NaturalNeighbour, VisitedCoordinatesAreEachPointsCoordinates) {
         ASSERT_NEAR(got[k].second, alone[k].second, 1e-12) << "query " << q;
       }
       inside += !got.empty();
+      if (walled) continue;
+      // Without barriers, an independent answer too: CGAL's coordinates.
+      std::vector<std::pair<unsigned, double>> expected;
+      const auto result = CGAL::natural_neighbor_coordinates_2(dt, nn::Point(queries[q].x(), queries[q].y()),
+                                                               std::back_inserter(expected), nn::VertexIndex());
+      if (!result.third) {
+        EXPECT_TRUE(got.empty()) << "query " << q << " is outside the hull";
+        continue;
+      }
+      std::vector<double> want(s.points.size(), 0.0), have(s.points.size(), 0.0);
+      for (const auto& [i, w] : expected) want[i] += w / result.second;
+      for (const auto& [i, w] : got) have[i] += w;
+      for (size_t i = 0; i < want.size(); ++i) ASSERT_NEAR(have[i], want[i], 1e-12) << "query " << q << ", sample " << i;
     }
     EXPECT_GT(inside, queries.size() / 2);
     EXPECT_LT(inside, queries.size());  // the raster reaches past the hull
