@@ -1,5 +1,9 @@
 #include "reconstruct/kdtree.h"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
 #include <nanoflann.hpp>
 
 #include "core/check.h"
@@ -56,6 +60,205 @@ size_t KdTree2::nearest(const Vec2& q, int k, std::span<unsigned> indices, std::
     indices[j] = index;
   }
   return found;
+}
+
+}  // namespace radrecon
+
+namespace radrecon {
+
+namespace {
+
+/// A tile of queries (and a bucket of points) is made to hold about this fraction of k points:
+/// smaller tiles have fewer candidates per query, larger ones fewer tiles to set up (a tree
+/// search and a gathering of candidates each).
+constexpr double kTilePointsPerK = 0.125;
+/// A tile gives up on candidates, and its queries search the tree, when its candidate disc
+/// covers more buckets than this (queries far from the points, whose discs hold a large part
+/// of them).
+constexpr long kMaxTileBuckets = 4096;
+/// The distance bounds are widened by this relative amount against the rounding of the
+/// distances they add: a wider bound only ranks a few more candidates.
+constexpr double kBoundSlack = 1e-9;
+/// Up to this many candidates more than k within a query's radius are dropped one at a time
+/// (the farthest each time); more (a tile's first query) go through a selection.
+constexpr size_t kFewTooMany = 6;
+
+struct Box {
+  Vec2 lo{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  Vec2 hi{-std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+  void add(const Vec2& p) { lo = lo.cwiseMin(p), hi = hi.cwiseMax(p); }
+  bool empty() const { return !(lo.x() <= hi.x()); }
+};
+
+/// Squared distance as nanoflann's L2_Simple_Adaptor forms it (0 + dx^2 + dy^2), bit for bit.
+inline double distance_sq(double qx, double qy, double px, double py) {
+  const double dx = qx - px, dy = qy - py;
+  return dx * dx + dy * dy;
+}
+
+}  // namespace
+
+CoherentNearest::CoherentNearest(const KdTree2& tree, std::span<const Vec2> points, int k) : tree_(tree), k_(k) {
+  RR_CHECK(k >= 1 && static_cast<size_t>(k) <= points.size() && points.size() == tree.size(),
+           "k must be in [1, number of points], and the tree over the points");
+  RR_CHECK(points.size() < (size_t{1} << 31), "too many points");
+  Box box;
+  for (const Vec2& p : points) box.add(p);
+  const Vec2 extent = box.hi - box.lo;
+  // Points on a line have no area: a strip a ten-thousandth of its length wide stands for it
+  // (and a unit square for a single point).
+  double length = std::max(extent.x(), extent.y());
+  if (!(length > 0 && std::isfinite(length))) length = 1;
+  const double area = std::max(extent.x() * extent.y(), 1e-4 * length * length);
+  tile_m_ = std::sqrt(kTilePointsPerK * k * area / static_cast<double>(points.size()));
+  if (!(tile_m_ > 0 && std::isfinite(tile_m_))) tile_m_ = length;
+  bucket_m_ = tile_m_;
+  const auto count = [&](double span) { return static_cast<long>(std::min(span / bucket_m_, 1e9)) + 1; };
+  long bx = count(extent.x()), by = count(extent.y());
+  const long most = 2 * static_cast<long>(points.size()) + 16;
+  if (bx * by > most) {
+    bucket_m_ *= std::sqrt(static_cast<double>(bx * by) / static_cast<double>(most));
+    bx = count(extent.x()), by = count(extent.y());
+  }
+  buckets_x_ = static_cast<int>(bx), buckets_y_ = static_cast<int>(by);
+  bucket_origin_ = box.lo;
+  const auto bucket_of = [&](const Vec2& p) {
+    const long a = std::clamp(static_cast<long>((p.x() - bucket_origin_.x()) / bucket_m_), 0L, bx - 1);
+    const long b = std::clamp(static_cast<long>((p.y() - bucket_origin_.y()) / bucket_m_), 0L, by - 1);
+    return static_cast<size_t>(b * bx + a);
+  };
+  bucket_first_.assign(static_cast<size_t>(bx * by) + 1, 0);
+  for (const Vec2& p : points) ++bucket_first_[bucket_of(p) + 1];
+  for (size_t b = 1; b < bucket_first_.size(); ++b) bucket_first_[b] += bucket_first_[b - 1];
+  std::vector<std::uint32_t> next(bucket_first_.begin(), bucket_first_.end() - 1);
+  bucket_x_.resize(points.size()), bucket_y_.resize(points.size()), bucket_index_.resize(points.size());
+  for (size_t i = 0; i < points.size(); ++i) {
+    const std::uint32_t slot = next[bucket_of(points[i])]++;
+    bucket_x_[slot] = points[i].x(), bucket_y_[slot] = points[i].y(), bucket_index_[slot] = static_cast<unsigned>(i);
+  }
+}
+
+CoherentNearest::Tiles CoherentNearest::tile(std::span<const Vec2> queries) const {
+  RR_CHECK(queries.size() < (size_t{1} << 32), "too many queries");
+  Tiles tiles;
+  Box box;
+  for (const Vec2& q : queries)
+    if (q.allFinite()) box.add(q);
+  if (box.empty()) return tiles;
+  const Vec2 extent = box.hi - box.lo;
+  double side = tile_m_;
+  const auto count = [&](double span) { return static_cast<long>(std::min(span / side, 1e9)) + 1; };
+  long tx = count(extent.x()), ty = count(extent.y());
+  const long most = 4 * static_cast<long>(queries.size()) + 64;
+  if (tx * ty > most) {
+    side *= std::sqrt(static_cast<double>(tx * ty) / static_cast<double>(most));
+    tx = count(extent.x()), ty = count(extent.y());
+  }
+  const auto tile_of = [&](const Vec2& q) {
+    const long a = std::clamp(static_cast<long>((q.x() - box.lo.x()) / side), 0L, tx - 1);
+    const long b = std::clamp(static_cast<long>((q.y() - box.lo.y()) / side), 0L, ty - 1);
+    return static_cast<size_t>(b * tx + a);
+  };
+  std::vector<std::uint32_t> first(static_cast<size_t>(tx * ty) + 1, 0);
+  for (const Vec2& q : queries)
+    if (q.allFinite()) ++first[tile_of(q) + 1];
+  for (size_t t = 1; t < first.size(); ++t) first[t] += first[t - 1];
+  tiles.order.resize(first.back());
+  std::vector<std::uint32_t> next(first.begin(), first.end() - 1);
+  for (size_t q = 0; q < queries.size(); ++q)
+    if (queries[q].allFinite()) tiles.order[next[tile_of(queries[q])]++] = static_cast<std::uint32_t>(q);
+  // The non-empty tiles, with their queries' boxes.
+  for (size_t t = 0; t + 1 < first.size(); ++t) {
+    if (first[t] == first[t + 1]) continue;
+    Box b;
+    for (std::uint32_t k = first[t]; k < first[t + 1]; ++k) b.add(queries[tiles.order[k]]);
+    tiles.first.push_back(first[t]);
+    tiles.centre.push_back(0.5 * (b.lo + b.hi));
+    tiles.half_diagonal_m.push_back(0.5 * (b.hi - b.lo).norm());
+  }
+  tiles.first.push_back(first.back());
+  return tiles;
+}
+
+bool CoherentNearest::gather_candidates(const Vec2& c, double h, Scratch& s) const {
+  const size_t k = static_cast<size_t>(k_);
+  s.indices.resize(k), s.dist_sq.resize(k);
+  tree_.nearest(c, k_, s.indices, s.dist_sq);
+  s.centre_kth_m = std::sqrt(s.dist_sq[k - 1]);
+  const double reach = (s.centre_kth_m + 2 * h) * (1 + kBoundSlack), reach_sq = reach * reach;
+  const auto range = [&](double lo, double hi, double origin, int n, long& a0, long& a1) {
+    a0 = static_cast<long>(std::floor(std::max((lo - origin) / bucket_m_, -1.0)));
+    a1 = static_cast<long>(std::floor(std::min((hi - origin) / bucket_m_, static_cast<double>(n))));
+    a0 = std::max(a0, 0L), a1 = std::min(a1, static_cast<long>(n) - 1);
+  };
+  long a0, a1, b0, b1;
+  range(c.x() - reach, c.x() + reach, bucket_origin_.x(), buckets_x_, a0, a1);
+  range(c.y() - reach, c.y() + reach, bucket_origin_.y(), buckets_y_, b0, b1);
+  if (!(std::isfinite(reach)) || (a1 - a0 + 1) * (b1 - b0 + 1) > kMaxTileBuckets) return false;
+  s.cx.clear(), s.cy.clear(), s.ci.clear();
+  for (long b = b0; b <= b1; ++b) {
+    const size_t row = static_cast<size_t>(b) * static_cast<size_t>(buckets_x_);
+    for (std::uint32_t e = bucket_first_[row + static_cast<size_t>(a0)]; e < bucket_first_[row + static_cast<size_t>(a1) + 1]; ++e)
+      if (distance_sq(c.x(), c.y(), bucket_x_[e], bucket_y_[e]) <= reach_sq)
+        s.cx.push_back(bucket_x_[e]), s.cy.push_back(bucket_y_[e]), s.ci.push_back(bucket_index_[e]);
+  }
+  s.d2.resize(s.cx.size());
+  return s.cx.size() >= k;  // always (c's k nearest are within reach), unless rounding says otherwise
+}
+
+double CoherentNearest::select(const Vec2& q, const Vec2& centre, const Vec2& last, double last_kth_m,
+                               Scratch& s, size_t& nearest) const {
+  const size_t k = static_cast<size_t>(k_), n = s.cx.size();
+  const double qx = q.x(), qy = q.y();
+  double* d2 = s.d2.data();
+  const unsigned* ci = s.ci.data();
+  const double *cx = s.cx.data(), *cy = s.cy.data();
+  for (size_t i = 0; i < n; ++i) d2[i] = distance_sq(qx, qy, cx[i], cy[i]);
+  // The candidates within a radius that holds at least k of them hold the k nearest. Tried
+  // first: the last query's k-th distance (the next query's is about the same); then a bound:
+  // that distance plus the step between the two queries (or the tile centre's k-th distance
+  // plus q's distance to it); then all of them, should rounding defeat the slack.
+  s.pos.resize(n);
+  std::uint32_t* pos = s.pos.data();
+  const auto within = [&](double radius_sq) {
+    size_t m = 0;
+    for (size_t i = 0; i < n; ++i) {  // without branches: the test's outcome is random
+      pos[m] = static_cast<std::uint32_t>(i);
+      m += d2[i] <= radius_sq;
+    }
+    return m;
+  };
+  const double bound = (last_kth_m >= 0 ? last_kth_m + (q - last).norm() : s.centre_kth_m + (q - centre).norm()) *
+                       (1 + kBoundSlack);
+  size_t m = last_kth_m >= 0 ? within(last_kth_m * last_kth_m) : 0;
+  if (m < k) m = within(bound * bound);
+  if (m < k) m = within(std::numeric_limits<double>::infinity());
+  // Candidate a before b in the order by (distance, index).
+  const auto before = [&](std::uint32_t a, std::uint32_t b) { return d2[a] < d2[b] || (d2[a] == d2[b] && ci[a] < ci[b]); };
+  if (m - k <= kFewTooMany) {
+    // Drop the farthest, one at a time, keeping the others' order.
+    for (; m > k; --m) {
+      size_t worst = 0;
+      for (size_t j = 1; j < m; ++j) worst = before(pos[worst], pos[j]) ? j : worst;
+      std::copy(pos + worst + 1, pos + m, pos + worst);
+    }
+  } else {
+    // Select the k-th in a copy, then keep those not after it, in their order.
+    s.spare.assign(pos, pos + m);
+    std::nth_element(s.spare.begin(), s.spare.begin() + static_cast<std::ptrdiff_t>(k - 1), s.spare.end(), before);
+    const std::uint32_t kth = s.spare[k - 1];
+    size_t kept = 0;
+    for (size_t j = 0; j < m; ++j)
+      if (!before(kth, pos[j])) pos[kept++] = pos[j];
+  }
+  nearest = 0;
+  size_t farthest = 0;
+  for (size_t j = 0; j < k; ++j) {
+    s.dist_sq[j] = d2[pos[j]], s.indices[j] = ci[pos[j]];
+    if (before(pos[j], pos[nearest])) nearest = j;
+    if (d2[pos[j]] > d2[pos[farthest]]) farthest = j;
+  }
+  return std::sqrt(s.dist_sq[farthest]);
 }
 
 }  // namespace radrecon

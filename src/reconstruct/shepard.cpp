@@ -26,6 +26,7 @@ Shepard::Shepard(ScatteredSamples samples, double mu, int k) : samples_(std::mov
       values_by_channel_[static_cast<size_t>(c) * n + i] = samples_.values[i * samples_.channels + c];
   if (k_ > 0 && static_cast<size_t>(k_) < samples_.points.size()) {
     tree_ = std::make_unique<KdTree2>(samples_.points);
+    nearest_ = std::make_unique<CoherentNearest>(*tree_, samples_.points, k_);
   } else {
     k_ = 0;
   }
@@ -61,16 +62,76 @@ inline double weight(double dist_sq, double mu) {
 /// sample), the local path's k nearest.
 struct Shepard::Scratch {
   Eigen::ArrayXd dist_sq, w;
-  std::vector<unsigned> idx;
-  std::vector<double> d2;
+  CoherentNearest::Scratch tile;  ///< the local path's k nearest
   VisibleNeighbours visible;  ///< with barriers: the k nearest visible samples
   std::vector<char> hidden;   ///< with barriers, global: which samples a query does not see
 };
+
+void Shepard::local_value(const Vec2& p, std::span<const unsigned> nearest_idx, std::span<const double> nearest_d2,
+                          size_t nearest, Scratch& s, double* o) const {
+  const int C = samples_.channels;
+  const auto no_value = [&] {
+    for (int c = 0; c < C; ++c) o[c] = std::numeric_limits<double>::quiet_NaN();
+  };
+  // The k nearest; with barriers the k nearest visible (nearest first), which are the k
+  // nearest when no barrier comes within reach of the farthest of them.
+  std::span<const unsigned> idx = nearest_idx;
+  std::span<const double> d2 = nearest_d2;
+  if (!barriers_.none_within(p, std::sqrt(*std::max_element(d2.begin(), d2.end())))) {
+    const size_t found = nearest_visible(*tree_, samples_.points, barriers_, p, static_cast<size_t>(k_), s.visible);
+    if (found == 0) return no_value();  // sees no sample
+    idx = std::span<const unsigned>(s.visible.idx.data(), found);
+    d2 = std::span<const double>(s.visible.dist_sq.data(), found);
+    nearest = 0;
+  }
+  // Those within the radius.
+  size_t within = 0;
+  for (const double d : d2) within += d <= radius_sq_;
+  if (within < min_points_ || within == 0) return no_value();
+  const double nearest_sq = d2[nearest];
+  if (nearest_sq == 0) {  // at a sample: its value
+    for (int c = 0; c < C; ++c) o[c] = samples_.values[idx[nearest] * static_cast<size_t>(C) + c];
+    return;
+  }
+  double total = 0, s0 = 0, s1 = 0, s2 = 0;
+  for (size_t j = 0; j < d2.size(); ++j) {
+    if (!(d2[j] <= radius_sq_)) continue;
+    const double w = weight(d2[j] / nearest_sq, mu_);  // relative to the nearest: in (0, 1]
+    const double* v = &samples_.values[idx[j] * static_cast<size_t>(C)];
+    total += w;
+    s0 += w * v[0];
+    if (C > 1) s1 += w * v[1];
+    if (C > 2) s2 += w * v[2];
+  }
+  o[0] = s0 / total;
+  if (C > 1) o[1] = s1 / total;
+  if (C > 2) o[2] = s2 / total;
+  for (int c = 3; c < C; ++c) {
+    double sum = 0;
+    for (size_t j = 0; j < d2.size(); ++j)
+      if (d2[j] <= radius_sq_) sum += weight(d2[j] / nearest_sq, mu_) * samples_.values[idx[j] * static_cast<size_t>(C) + c];
+    o[c] = sum / total;
+  }
+}
 
 void Shepard::evaluate(std::span<const Vec2> points, std::span<double> out) const {
   const int C = samples_.channels;
   RR_CHECK(out.size() == points.size() * static_cast<size_t>(C), "output size does not match the query points");
   const size_t n = samples_.points.size();
+  if (k_ > 0) {
+    // The k nearest of coherent queries by tiles (kdtree.h), each query on its own values.
+    for (size_t q = 0; q < points.size(); ++q)
+      if (!points[q].allFinite())
+        for (int c = 0; c < C; ++c) out[q * C + c] = std::numeric_limits<double>::quiet_NaN();
+    const CoherentNearest::Tiles tiles = nearest_->tile(points);
+    parallel_for_with_scratch<Shepard::Scratch>(0, static_cast<std::int64_t>(tiles.count()), 1, 2, [&](std::int64_t t, Scratch& s) {
+      nearest_->visit_tile(tiles, points, static_cast<size_t>(t), s.tile,
+                           [&](size_t q, std::span<const unsigned> idx, std::span<const double> d2, size_t nearest) {
+                             local_value(points[q], idx, d2, nearest, s, &out[q * C]);
+                           });
+    });
+    return;
+  }
   parallel_for_with_scratch<Shepard::Scratch>(0, static_cast<std::int64_t>(points.size()), [&](std::int64_t k, Scratch& s) {
     const size_t q = static_cast<size_t>(k);
     double* o = &out[q * C];
@@ -79,92 +140,48 @@ void Shepard::evaluate(std::span<const Vec2> points, std::span<double> out) cons
       for (int c = 0; c < C; ++c) o[c] = std::numeric_limits<double>::quiet_NaN();
       return;
     }
-    if (k_ == 0) {
-      // Global: all samples at once as Eigen arrays (SIMD, sums in a fixed packet order).
-      using Array = Eigen::Map<const Eigen::ArrayXd>;
-      const Eigen::Index N = static_cast<Eigen::Index>(n);
-      Eigen::ArrayXd& dist_sq = s.dist_sq;
-      Eigen::ArrayXd& w = s.w;
-      dist_sq = (p.x() - Array(px_.data(), N)).square() + (p.y() - Array(py_.data(), N)).square();
-      if (!barriers_.empty()) {
-        // A hidden sample is infinitely far: its weight is 0 below.
-        visibility_->hidden_from(p, s.hidden);
-        for (Eigen::Index i = 0; i < N; ++i)
-          if (s.hidden[static_cast<size_t>(i)]) dist_sq[i] = std::numeric_limits<double>::infinity();
-      }
-      if (radius_sq_ < std::numeric_limits<double>::infinity()) {
-        // Beyond the radius a sample is as good as hidden.
-        size_t within = 0;
-        for (Eigen::Index i = 0; i < N; ++i) {
-          if (dist_sq[i] > radius_sq_) dist_sq[i] = std::numeric_limits<double>::infinity();
-          else ++within;
-        }
-        if (within < min_points_) {
-          for (int c = 0; c < C; ++c) o[c] = std::numeric_limits<double>::quiet_NaN();
-          return;
-        }
-      }
-      Eigen::Index first = 0;
-      const double nearest_sq = dist_sq.minCoeff(&first);
-      if (!(nearest_sq < std::numeric_limits<double>::infinity())) {  // sees no sample: no value
-        for (int c = 0; c < C; ++c) o[c] = std::numeric_limits<double>::quiet_NaN();
-        return;
-      }
-      if (nearest_sq == 0) {  // at a sample: its value (the limit of the weights)
-        for (int c = 0; c < C; ++c) o[c] = samples_.values[static_cast<size_t>(first) * C + c];
-        return;
-      }
-      // Weights relative to the nearest sample's, (d_min / d_i)^mu in (0, 1]: no overflow or
-      // underflow whatever mu and the distances (the ratio cancels in the quotient).
-      w = nearest_sq / dist_sq;
-      if (mu_ == 4.0) w = w.square();
-      else if (mu_ != 2.0) w = w.pow(0.5 * mu_);
-      const double total = w.sum();
-      for (int c = 0; c < C; ++c) o[c] = (w * Array(&values_by_channel_[static_cast<size_t>(c) * n], N)).sum() / total;
-      return;
+    // Global: all samples at once as Eigen arrays (SIMD, sums in a fixed packet order).
+    using Array = Eigen::Map<const Eigen::ArrayXd>;
+    const Eigen::Index N = static_cast<Eigen::Index>(n);
+    Eigen::ArrayXd& dist_sq = s.dist_sq;
+    Eigen::ArrayXd& w = s.w;
+    dist_sq = (p.x() - Array(px_.data(), N)).square() + (p.y() - Array(py_.data(), N)).square();
+    if (!barriers_.empty()) {
+      // A hidden sample is infinitely far: its weight is 0 below.
+      visibility_->hidden_from(p, s.hidden);
+      for (Eigen::Index i = 0; i < N; ++i)
+        if (s.hidden[static_cast<size_t>(i)]) dist_sq[i] = std::numeric_limits<double>::infinity();
     }
-    // k nearest, nearest first; with barriers the k nearest visible, which are the k nearest
-    // when no barrier comes within reach of the k-th.
-    size_t found = 0;
-    s.idx.resize(static_cast<size_t>(k_));  // allocates on a thread's first query only
-    s.d2.resize(static_cast<size_t>(k_));
-    found = tree_->nearest(p, k_, s.idx, s.d2);
-    const bool plain = barriers_.none_within(p, std::sqrt(s.d2[found - 1]));
-    if (!plain) {
-      found = nearest_visible(*tree_, samples_.points, barriers_, p, static_cast<size_t>(k_), s.visible);
-      if (found == 0) {  // sees no sample: no value
+    if (radius_sq_ < std::numeric_limits<double>::infinity()) {
+      // Beyond the radius a sample is as good as hidden.
+      size_t within = 0;
+      for (Eigen::Index i = 0; i < N; ++i) {
+        if (dist_sq[i] > radius_sq_) dist_sq[i] = std::numeric_limits<double>::infinity();
+        else ++within;
+      }
+      if (within < min_points_) {
         for (int c = 0; c < C; ++c) o[c] = std::numeric_limits<double>::quiet_NaN();
         return;
       }
     }
-    const std::vector<unsigned>& idx = plain ? s.idx : s.visible.idx;
-    const std::vector<double>& d2 = plain ? s.d2 : s.visible.dist_sq;
-    while (found > 0 && d2[found - 1] > radius_sq_) --found;  // nearest first: those within the radius
-    if (found < min_points_ || found == 0) {
+    Eigen::Index first = 0;
+    const double nearest_sq = dist_sq.minCoeff(&first);
+    if (!(nearest_sq < std::numeric_limits<double>::infinity())) {  // sees no sample: no value
       for (int c = 0; c < C; ++c) o[c] = std::numeric_limits<double>::quiet_NaN();
       return;
     }
-    if (d2[0] == 0) {  // at a sample: its value
-      for (int c = 0; c < C; ++c) o[c] = samples_.values[idx[0] * static_cast<size_t>(C) + c];
+    if (nearest_sq == 0) {  // at a sample: its value (the limit of the weights)
+      for (int c = 0; c < C; ++c) o[c] = samples_.values[static_cast<size_t>(first) * C + c];
       return;
     }
-    double total = 0, s0 = 0, s1 = 0, s2 = 0;
-    for (size_t j = 0; j < found; ++j) {
-      const double w = weight(d2[j] / d2[0], mu_);  // relative to the nearest: in (0, 1]
-      const double* v = &samples_.values[idx[j] * static_cast<size_t>(C)];
-      total += w;
-      s0 += w * v[0];
-      if (C > 1) s1 += w * v[1];
-      if (C > 2) s2 += w * v[2];
-    }
-    o[0] = s0 / total;
-    if (C > 1) o[1] = s1 / total;
-    if (C > 2) o[2] = s2 / total;
-    for (int c = 3; c < C; ++c) {
-      double sum = 0;
-      for (size_t j = 0; j < found; ++j) sum += weight(d2[j] / d2[0], mu_) * samples_.values[idx[j] * static_cast<size_t>(C) + c];
-      o[c] = sum / total;
-    }
+    // Weights relative to the nearest sample's, (d_min / d_i)^mu in (0, 1]: no overflow or
+    // underflow whatever mu and the distances (the ratio cancels in the quotient).
+    w = nearest_sq / dist_sq;
+    if (mu_ == 4.0) w = w.square();
+    else if (mu_ != 2.0) w = w.pow(0.5 * mu_);
+    const double total = w.sum();
+    for (int c = 0; c < C; ++c) o[c] = (w * Array(&values_by_channel_[static_cast<size_t>(c) * n], N)).sum() / total;
+    return;
   });
 }
 

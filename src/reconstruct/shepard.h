@@ -14,6 +14,7 @@
 namespace radrecon {
 
 class KdTree2;
+class CoherentNearest;
 
 class Shepard final : public Interpolant {
  public:
@@ -40,10 +41,15 @@ class Shepard final : public Interpolant {
   double radius_sq_ = std::numeric_limits<double>::infinity();  ///< m^2
   size_t min_points_ = 1;
   std::unique_ptr<KdTree2> tree_;
+  std::unique_ptr<CoherentNearest> nearest_;  ///< k > 0: the k nearest of coherent queries, over tree_
   Barriers barriers_;
   std::unique_ptr<PointVisibility> visibility_;  ///< with barriers: over samples_.points
   /// Per-thread buffers of evaluate().
   struct Scratch;
+  /// The local path's value at p (o: a value per channel) from its k nearest samples, in any
+  /// order, `nearest` the position of the nearest among them.
+  void local_value(const Vec2& p, std::span<const unsigned> nearest_idx, std::span<const double> nearest_d2,
+                   size_t nearest, Scratch& s, double* o) const;
 };
 
 }  // namespace radrecon

@@ -1,10 +1,12 @@
 // KdTree2::nearest against brute force: for every k the k smallest squared distances exactly,
 // every point strictly closer than the k-th found, ordered by (dist_sq, index); on random points
-// and on an integer lattice, where equal distances are everywhere.
+// and on an integer lattice, where equal distances are everywhere. CoherentNearest against the
+// same brute force: exactly the k smallest by (dist_sq, index), ties at the k-th included.
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <random>
 #include <vector>
@@ -103,6 +105,96 @@ TEST(KdTree2, FindsAllPointsWhenKIsTheirNumber) {
     EXPECT_EQ(indices[j], expected[j]);
     EXPECT_EQ(d2[j], j == 0 ? 0.0 : 0.5);
   }
+}
+
+/// Checks CoherentNearest on every query against brute force: the set of the k smallest
+/// (dist_sq, index) pairs exactly, each distance its point's, the nearest flagged, every finite
+/// query visited once and no other. Returns the number of queries visited.
+size_t check_coherent(const std::vector<Vec2>& points, const std::vector<Vec2>& queries, int k) {
+  const KdTree2 tree(points);
+  const CoherentNearest nearest(tree, points, k);
+  const CoherentNearest::Tiles tiles = nearest.tile(queries);
+  CoherentNearest::Scratch scratch;
+  std::vector<int> visits(queries.size(), 0);
+  std::vector<unsigned> last_order;  // the order of a query's answer, to compare with the next's
+  for (size_t t = 0; t < tiles.count(); ++t)
+    nearest.visit_tile(tiles, queries, t, scratch,
+                       [&](size_t q, std::span<const unsigned> idx, std::span<const double> d2, size_t at) {
+                         ++visits[q];
+                         std::vector<std::pair<double, unsigned>> brute(points.size());
+                         for (size_t i = 0; i < points.size(); ++i)
+                           brute[i] = {dist_sq(points[i], queries[q]), static_cast<unsigned>(i)};
+                         std::sort(brute.begin(), brute.end());
+                         brute.resize(static_cast<size_t>(k));
+                         std::vector<std::pair<double, unsigned>> got;
+                         for (size_t j = 0; j < idx.size(); ++j) {
+                           ASSERT_LT(idx[j], points.size());
+                           EXPECT_EQ(d2[j], dist_sq(points[idx[j]], queries[q]));
+                           got.emplace_back(d2[j], idx[j]);
+                         }
+                         ASSERT_LT(at, got.size());
+                         EXPECT_EQ(got[at], brute.front()) << "the nearest, query " << q;
+                         std::sort(got.begin(), got.end());
+                         EXPECT_EQ(got, brute) << "query " << q << " (" << queries[q].x() << ", " << queries[q].y() << ")";
+                       });
+  size_t visited = 0;
+  for (size_t q = 0; q < queries.size(); ++q) {
+    EXPECT_EQ(visits[q], queries[q].allFinite() ? 1 : 0) << "query " << q;
+    visited += static_cast<size_t>(visits[q]);
+  }
+  return visited;
+}
+
+/// A raster's cell centres over [x0, x1] x [y0, y1], row by row.
+std::vector<Vec2> raster(int w, int h, double x0, double y0, double x1, double y1) {
+  std::vector<Vec2> out;
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i) out.emplace_back(x0 + (i + 0.5) * (x1 - x0) / w, y0 + (j + 0.5) * (y1 - y0) / h);
+  return out;
+}
+
+TEST(CoherentNearest, MatchesBruteForceOnARasterOverRandomPoints) {
+  std::mt19937 rng(20261202);
+  std::uniform_real_distribution<double> xy(0, 1);
+  std::vector<Vec2> points;
+  for (int i = 0; i < 3000; ++i) points.emplace_back(xy(rng), xy(rng));
+  // The raster reaches beyond the points on every side, and a few queries are far away.
+  std::vector<Vec2> queries = raster(70, 60, -0.2, -0.1, 1.1, 1.2);
+  queries.emplace_back(40, -30);
+  queries.emplace_back(0.5, 1e6);
+  for (const int k : {1, 2, 7, 32, 100}) EXPECT_EQ(check_coherent(points, queries, k), queries.size()) << "k=" << k;
+}
+
+TEST(CoherentNearest, TiesAtTheKthGoToTheLowestIndicesOnALattice) {
+  // A shuffled integer lattice, queried at lattice points, cell centres and edge midpoints:
+  // most k-th distances are shared by 4 or 8 points.
+  std::vector<Vec2> points;
+  for (int j = 0; j < 30; ++j)
+    for (int i = 0; i < 40; ++i) points.emplace_back(double(i), double(j));
+  std::mt19937 rng(11);
+  std::shuffle(points.begin(), points.end(), rng);
+  std::vector<Vec2> queries;
+  for (int j = -2; j < 62; ++j)
+    for (int i = -2; i < 82; ++i) queries.emplace_back(0.5 * i, 0.5 * j);
+  for (const int k : {1, 4, 5, 9, 13, 32}) EXPECT_EQ(check_coherent(points, queries, k), queries.size()) << "k=" << k;
+}
+
+TEST(CoherentNearest, HandlesPointsOnALineAllPointsAndNonFiniteQueries) {
+  std::vector<Vec2> line;
+  for (int i = 0; i < 500; ++i) line.emplace_back(0.01 * i, 0.5 + 0.002 * i);  // no area at all
+  std::vector<Vec2> queries = raster(40, 40, -1, -1, 6, 3);
+  queries.emplace_back(std::numeric_limits<double>::quiet_NaN(), 0.3);
+  queries.emplace_back(0.3, std::numeric_limits<double>::infinity());
+  EXPECT_EQ(check_coherent(line, queries, 16), queries.size() - 2);
+  // k = every point, and a single point.
+  const std::vector<Vec2> few = {{0, 0}, {1, 0}, {0, 1}, {1, 1}, {0.5, 0.5}};
+  EXPECT_EQ(check_coherent(few, raster(9, 9, -1, -1, 2, 2), 5), 81u);
+  EXPECT_EQ(check_coherent({Vec2(0.25, 0.75)}, raster(5, 5, 0, 0, 1, 1), 1), 25u);
+  // No finite query: no tile.
+  const KdTree2 tree(few);
+  const CoherentNearest nearest(tree, few, 3);
+  EXPECT_EQ(nearest.tile(std::vector<Vec2>{Vec2(std::nan(""), 0)}).count(), 0u);
+  EXPECT_EQ(nearest.tile(std::vector<Vec2>{}).count(), 0u);
 }
 
 }  // namespace kdtree_test
