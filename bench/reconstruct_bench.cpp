@@ -105,7 +105,7 @@ void BM_RbfFitSubset(benchmark::State& state) {
   for (unsigned i = 0; i < points.size(); i += 2) subset.push_back(i);
   for (auto _ : state) {
     RbfFit fit = fit_rbf(points, r_sq, values, 3, kernel, subset);
-    benchmark::DoNotOptimize(fit.alpha.data());
+    benchmark::DoNotOptimize(fit.alpha_by_channel.data());
   }
   state.SetLabel(kernel.name());
 }

@@ -132,6 +132,7 @@ void LocalMultiquadric::evaluate(std::span<const Vec2> points, std::span<double>
   struct Scratch {
     std::vector<unsigned> visible;
     std::vector<double> flat;  ///< the blend of the patches whose visible samples span no plane
+    Eigen::ArrayXd basis;      ///< a patch's basis at the query
   };
   parallel_for_with_scratch<Scratch>(0, static_cast<std::int64_t>(points.size()), [&](std::int64_t k, Scratch& scratch) {
     std::vector<unsigned>& visible = scratch.visible;
@@ -180,13 +181,7 @@ void LocalMultiquadric::evaluate(std::span<const Vec2> points, std::span<double>
         const bool lacks = fit->terms > 0 && fit->terms < 3;
         double* acc = lacks ? flat.data() : o;
         (lacks ? flat_total : total) += w;
-        for (size_t a = 0; a < fit->subset.size(); ++a) {
-          const unsigned s = fit->subset[a];
-          double v = (e - points_[s]).squaredNorm() + r_sq_[s];
-          if (fit->kernel_scale != 1) v *= fit->kernel_scale;
-          const double b = rbf_basis(v, kernel_) * w;
-          for (int c = 0; c < C; ++c) acc[c] += b * fit->alpha[a * C + c];
-        }
+        add_rbf_sum(*fit, kernel_, C, e, w, scratch.basis, acc);
         // RBF(e) + poly(e) + (poly(p) - poly(e)): the polynomial (or offset) continues past the hull.
         for (int c = 0; c < C; ++c) acc[c] += w * fit->polynomial(p, c);
       }

@@ -92,10 +92,9 @@ struct RbfFit {
   /// The subset's convex hull, where a caller keeps it with the fit (the local patches, which
   /// do not extrapolate past it); empty otherwise.
   ConvexHull2 hull;
-  std::vector<double> alpha;     ///< subset.size() * channels, sample-major
   double rcond = 1;              ///< reciprocal condition estimate of the system
-  // The same for evaluation as arrays (SIMD): the subset's coordinates, r^2, and alpha channel by
-  // channel.
+  // For evaluation as arrays (SIMD): the subset's coordinates, r^2, and the coefficients alpha
+  // channel by channel (subset.size() each).
   std::vector<double> px, py, r_sq, alpha_by_channel;
   double kernel_scale = 1;  ///< s: d^2 + r^2 is multiplied by it before phi
   // The polynomial: `terms` of u_0 = 1, u_1 = axis1 . (q - centre), u_2 = axis2 . (q - centre).
@@ -132,6 +131,10 @@ RbfFit fit_rbf(std::span<const Vec2> points, std::span<const double> r_sq, std::
 /// `b` is scratch.
 void evaluate_rbf_fit(const RbfFit& fit, const RbfKernel& kernel, int channels, const Vec2& p, Eigen::ArrayXd& b,
                       double* out);
+/// The basis part alone (no polynomial) at p, times `weight`, added to out[0, channels): what
+/// evaluate_rbf_fit() sums, for the local methods' blends.
+void add_rbf_sum(const RbfFit& fit, const RbfKernel& kernel, int channels, const Vec2& p, double weight,
+                 Eigen::ArrayXd& b, double* out);
 
 /// Fits over subsets of the samples, each solved once and shared: with barriers, a query's
 /// RBF is the one through the samples it sees, and neighbouring queries see the same.
