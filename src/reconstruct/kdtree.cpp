@@ -82,6 +82,10 @@ constexpr double kBoundSlack = 1e-9;
 /// Up to this many candidates more than k within a query's radius are dropped one at a time
 /// (the farthest each time); more (a tile's first query) go through a selection.
 constexpr size_t kFewTooMany = 6;
+/// A query first ranks the candidates within the last query's k-th distance, its square widened
+/// by this factor: enough most of the time (a raster's next pixel is a small step away), and a
+/// few too many otherwise.
+constexpr double kFirstRadiusSqGrowth = 1.05;
 
 struct Box {
   Vec2 lo{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
@@ -215,50 +219,56 @@ double CoherentNearest::select(const Vec2& q, const Vec2& centre, const Vec2& la
   const double *cx = s.cx.data(), *cy = s.cy.data();
   for (size_t i = 0; i < n; ++i) d2[i] = distance_sq(qx, qy, cx[i], cy[i]);
   // The candidates within a radius that holds at least k of them hold the k nearest. Tried
-  // first: the last query's k-th distance (the next query's is about the same); then a bound:
-  // that distance plus the step between the two queries (or the tile centre's k-th distance
-  // plus q's distance to it); then all of them, should rounding defeat the slack.
-  s.pos.resize(n);
-  std::uint32_t* pos = s.pos.data();
+  // first: the last query's k-th distance, a little widened (the next query's is about the
+  // same); then a bound: that distance plus the step between the two queries (or the tile
+  // centre's k-th distance plus q's distance to it); then all of them, should rounding defeat
+  // the slack. Kept as squared distances and indices, in the candidates' order.
+  s.pos.resize(n), s.dist_sq.resize(n + 1), s.indices.resize(n + 1);
+  double* sd = s.dist_sq.data();
+  unsigned* si = s.indices.data();
   const auto within = [&](double radius_sq) {
     size_t m = 0;
     for (size_t i = 0; i < n; ++i) {  // without branches: the test's outcome is random
-      pos[m] = static_cast<std::uint32_t>(i);
+      sd[m] = d2[i], si[m] = ci[i];
       m += d2[i] <= radius_sq;
     }
     return m;
   };
   const double bound = (last_kth_m >= 0 ? last_kth_m + (q - last).norm() : s.centre_kth_m + (q - centre).norm()) *
                        (1 + kBoundSlack);
-  size_t m = last_kth_m >= 0 ? within(last_kth_m * last_kth_m) : 0;
+  size_t m = last_kth_m >= 0 ? within(std::min(last_kth_m * last_kth_m * kFirstRadiusSqGrowth, bound * bound)) : 0;
   if (m < k) m = within(bound * bound);
   if (m < k) m = within(std::numeric_limits<double>::infinity());
-  // Candidate a before b in the order by (distance, index).
-  const auto before = [&](std::uint32_t a, std::uint32_t b) { return d2[a] < d2[b] || (d2[a] == d2[b] && ci[a] < ci[b]); };
   if (m - k <= kFewTooMany) {
-    // Drop the farthest, one at a time, keeping the others' order.
+    // Drop the farthest (the highest index among equally far), one at a time, keeping the
+    // others' order.
     for (; m > k; --m) {
-      size_t worst = 0;
-      for (size_t j = 1; j < m; ++j) worst = before(pos[worst], pos[j]) ? j : worst;
-      std::copy(pos + worst + 1, pos + m, pos + worst);
+      double far = sd[0];
+      for (size_t j = 1; j < m; ++j) far = std::max(far, sd[j]);
+      size_t worst = m;
+      for (size_t j = 0; j < m; ++j)
+        if (sd[j] == far && (worst == m || si[j] > si[worst])) worst = j;
+      std::copy(sd + worst + 1, sd + m, sd + worst);
+      std::copy(si + worst + 1, si + m, si + worst);
     }
   } else {
-    // Select the k-th in a copy, then keep those not after it, in their order.
-    s.spare.assign(pos, pos + m);
-    std::nth_element(s.spare.begin(), s.spare.begin() + static_cast<std::ptrdiff_t>(k - 1), s.spare.end(), before);
-    const std::uint32_t kth = s.spare[k - 1];
+    // Select the k-th (by distance, then index) in a copy, then keep those not after it.
+    s.pos.resize(m);
+    for (size_t j = 0; j < m; ++j) s.pos[j] = static_cast<std::uint32_t>(j);
+    const auto before = [&](std::uint32_t a, std::uint32_t b) { return sd[a] < sd[b] || (sd[a] == sd[b] && si[a] < si[b]); };
+    std::nth_element(s.pos.begin(), s.pos.begin() + static_cast<std::ptrdiff_t>(k - 1), s.pos.end(), before);
+    const double kth_sq = sd[s.pos[k - 1]];
+    const unsigned kth_index = si[s.pos[k - 1]];
     size_t kept = 0;
     for (size_t j = 0; j < m; ++j)
-      if (!before(kth, pos[j])) pos[kept++] = pos[j];
+      if (sd[j] < kth_sq || (sd[j] == kth_sq && si[j] <= kth_index)) sd[kept] = sd[j], si[kept] = si[j], ++kept;
   }
-  nearest = 0;
-  size_t farthest = 0;
-  for (size_t j = 0; j < k; ++j) {
-    s.dist_sq[j] = d2[pos[j]], s.indices[j] = ci[pos[j]];
-    if (before(pos[j], pos[nearest])) nearest = j;
-    if (d2[pos[j]] > d2[pos[farthest]]) farthest = j;
-  }
-  return std::sqrt(s.dist_sq[farthest]);
+  double near = sd[0], far = sd[0];
+  for (size_t j = 1; j < k; ++j) near = std::min(near, sd[j]), far = std::max(far, sd[j]);
+  nearest = k;
+  for (size_t j = 0; j < k; ++j)
+    if (sd[j] == near && (nearest == k || si[j] < si[nearest])) nearest = j;
+  return std::sqrt(far);
 }
 
 }  // namespace radrecon

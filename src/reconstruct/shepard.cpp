@@ -48,12 +48,13 @@ Shepard::~Shepard() = default;
 
 namespace {
 
-/// d^-mu from d^2: (d^2)^(-mu/2), with the common even exponents without pow(). Called with
-/// d^2 relative to the nearest sample's (>= 1), so it never overflows.
-inline double weight(double dist_sq, double mu) {
-  if (mu == 4.0) return 1.0 / (dist_sq * dist_sq);
-  if (mu == 2.0) return 1.0 / dist_sq;
-  return std::pow(dist_sq, -0.5 * mu);
+/// A sample's weight relative to the nearest one's, (d_min / d)^mu, from ratio = d_min^2 / d^2
+/// in (0, 1]: no overflow or underflow whatever mu and the distances (the ratio cancels in the
+/// quotient). The common even exponents without pow(); the global path's arrays do the same.
+inline double relative_weight(double ratio, double mu) {
+  if (mu == 4.0) return ratio * ratio;
+  if (mu == 2.0) return ratio;
+  return std::pow(ratio, 0.5 * mu);
 }
 
 }  // namespace
@@ -77,7 +78,7 @@ void Shepard::local_value(const Vec2& p, std::span<const unsigned> nearest_idx, 
   // nearest when no barrier comes within reach of the farthest of them.
   std::span<const unsigned> idx = nearest_idx;
   std::span<const double> d2 = nearest_d2;
-  if (!barriers_.none_within(p, std::sqrt(*std::max_element(d2.begin(), d2.end())))) {
+  if (!barriers_.empty() && !barriers_.none_within(p, std::sqrt(*std::max_element(d2.begin(), d2.end())))) {
     const size_t found = nearest_visible(*tree_, samples_.points, barriers_, p, static_cast<size_t>(k_), s.visible);
     if (found == 0) return no_value();  // sees no sample
     idx = std::span<const unsigned>(s.visible.idx.data(), found);
@@ -85,9 +86,12 @@ void Shepard::local_value(const Vec2& p, std::span<const unsigned> nearest_idx, 
     nearest = 0;
   }
   // Those within the radius.
-  size_t within = 0;
-  for (const double d : d2) within += d <= radius_sq_;
-  if (within < min_points_ || within == 0) return no_value();
+  const bool radius = radius_sq_ < std::numeric_limits<double>::infinity();
+  if (radius) {
+    size_t within = 0;
+    for (const double d : d2) within += d <= radius_sq_;
+    if (within < min_points_ || within == 0) return no_value();
+  }
   const double nearest_sq = d2[nearest];
   if (nearest_sq == 0) {  // at a sample: its value
     for (int c = 0; c < C; ++c) o[c] = samples_.values[idx[nearest] * static_cast<size_t>(C) + c];
@@ -95,8 +99,8 @@ void Shepard::local_value(const Vec2& p, std::span<const unsigned> nearest_idx, 
   }
   double total = 0, s0 = 0, s1 = 0, s2 = 0;
   for (size_t j = 0; j < d2.size(); ++j) {
-    if (!(d2[j] <= radius_sq_)) continue;
-    const double w = weight(d2[j] / nearest_sq, mu_);  // relative to the nearest: in (0, 1]
+    if (radius && !(d2[j] <= radius_sq_)) continue;
+    const double w = relative_weight(nearest_sq / d2[j], mu_);  // relative to the nearest: in (0, 1]
     const double* v = &samples_.values[idx[j] * static_cast<size_t>(C)];
     total += w;
     s0 += w * v[0];
@@ -109,7 +113,7 @@ void Shepard::local_value(const Vec2& p, std::span<const unsigned> nearest_idx, 
   for (int c = 3; c < C; ++c) {
     double sum = 0;
     for (size_t j = 0; j < d2.size(); ++j)
-      if (d2[j] <= radius_sq_) sum += weight(d2[j] / nearest_sq, mu_) * samples_.values[idx[j] * static_cast<size_t>(C) + c];
+      if (d2[j] <= radius_sq_) sum += relative_weight(nearest_sq / d2[j], mu_) * samples_.values[idx[j] * static_cast<size_t>(C) + c];
     o[c] = sum / total;
   }
 }
