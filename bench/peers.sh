@@ -75,8 +75,8 @@ timeit "scipy CloughTocher2DInterpolator" "$RUNS" /usr/bin/python3 "$work/rbf.py
 
 echo "== W3: 100,000 points -> 2000 x 2000"
 timeit "radrecon natural-neighbour (PFM)" "$RUNS" rr w3 --method natural-neighbour --raster 2000x2000 --domain 0,0,1,1 --out "$work/o.pfm"
-timeit "radrecon shepard mu=4 k=32 (PFM)" 1 rr w3 --method shepard --param k=32 --raster 2000x2000 --domain 0,0,1,1 --out "$work/o.pfm"
-timeit "radrecon multiquadric k=32, local patches (PFM)" 1 rr w3 --method multiquadric --param k=32 --raster 2000x2000 --domain 0,0,1,1 --out "$work/o.pfm"
+timeit "radrecon shepard mu=4 k=32 (PFM)" "$RUNS" rr w3 --method shepard --param k=32 --raster 2000x2000 --domain 0,0,1,1 --out "$work/o.pfm"
+timeit "radrecon multiquadric k=32, local patches (PFM)" "$RUNS" rr w3 --method multiquadric --param k=32 --raster 2000x2000 --domain 0,0,1,1 --out "$work/o.pfm"
 timeit "radrecon thin-plate k=32, local patches (PFM)" "$RUNS" rr w3 --method thin-plate --param k=32 --raster 2000x2000 --domain 0,0,1,1 --out "$work/o.pfm"
 # RBFInterpolator(neighbors=32) solves one 32-point system per query: on every 5th row and column
 # of the raster (1/25 of the queries); multiply by 25 for the whole raster.
