@@ -136,9 +136,11 @@ CoherentNearest::CoherentNearest(const KdTree2& tree, std::span<const Vec2> poin
   for (size_t b = 1; b < bucket_first_.size(); ++b) bucket_first_[b] += bucket_first_[b - 1];
   std::vector<std::uint32_t> next(bucket_first_.begin(), bucket_first_.end() - 1);
   bucket_x_.resize(points.size()), bucket_y_.resize(points.size()), bucket_index_.resize(points.size());
+  bucket_slot_.resize(points.size());
   for (size_t i = 0; i < points.size(); ++i) {
     const std::uint32_t slot = next[bucket_of(points[i])]++;
     bucket_x_[slot] = points[i].x(), bucket_y_[slot] = points[i].y(), bucket_index_[slot] = static_cast<unsigned>(i);
+    bucket_slot_[i] = slot;
   }
 }
 
@@ -190,6 +192,7 @@ bool CoherentNearest::gather_candidates(const Vec2& c, double h, Scratch& s) con
   tree_.nearest(c, k_, s.indices, s.dist_sq);
   s.centre_kth_m = std::sqrt(s.dist_sq[k - 1]);
   const double reach = (s.centre_kth_m + 2 * h) * (1 + kBoundSlack), reach_sq = reach * reach;
+  if (!std::isfinite(reach)) return false;
   const auto range = [&](double lo, double hi, double origin, int n, long& a0, long& a1) {
     a0 = static_cast<long>(std::floor(std::max((lo - origin) / bucket_m_, -1.0)));
     a1 = static_cast<long>(std::floor(std::min((hi - origin) / bucket_m_, static_cast<double>(n))));
@@ -198,7 +201,7 @@ bool CoherentNearest::gather_candidates(const Vec2& c, double h, Scratch& s) con
   long a0, a1, b0, b1;
   range(c.x() - reach, c.x() + reach, bucket_origin_.x(), buckets_x_, a0, a1);
   range(c.y() - reach, c.y() + reach, bucket_origin_.y(), buckets_y_, b0, b1);
-  if (!(std::isfinite(reach)) || (a1 - a0 + 1) * (b1 - b0 + 1) > kMaxTileBuckets) return false;
+  if ((a1 - a0 + 1) * (b1 - b0 + 1) > kMaxTileBuckets) return false;
   s.cx.clear(), s.cy.clear(), s.ci.clear();
   for (long b = b0; b <= b1; ++b) {
     const size_t row = static_cast<size_t>(b) * static_cast<size_t>(buckets_x_);
@@ -208,6 +211,23 @@ bool CoherentNearest::gather_candidates(const Vec2& c, double h, Scratch& s) con
   }
   s.d2.resize(s.cx.size());
   return s.cx.size() >= k;  // always (c's k nearest are within reach), unless rounding says otherwise
+}
+
+size_t CoherentNearest::in_bucket_order(Scratch& s) const {
+  const size_t k = static_cast<size_t>(k_);
+  s.slots.resize(k);
+  for (size_t j = 0; j < k; ++j) s.slots[j] = {bucket_slot_[s.indices[j]], static_cast<std::uint32_t>(j)};
+  std::sort(s.slots.begin(), s.slots.end());
+  s.pos.resize(k);
+  for (size_t j = 0; j < k; ++j) s.pos[j] = s.slots[j].second;
+  s.ranked_d2.assign(s.dist_sq.begin(), s.dist_sq.begin() + static_cast<std::ptrdiff_t>(k));
+  s.ranked_index.assign(s.indices.begin(), s.indices.begin() + static_cast<std::ptrdiff_t>(k));
+  size_t nearest = 0;
+  for (size_t j = 0; j < k; ++j) {
+    s.dist_sq[j] = s.ranked_d2[s.pos[j]], s.indices[j] = s.ranked_index[s.pos[j]];
+    if (s.pos[j] == 0) nearest = j;  // the tree's first: the nearest, ties to the lowest index
+  }
+  return nearest;
 }
 
 double CoherentNearest::select(const Vec2& q, const Vec2& centre, const Vec2& last, double last_kth_m,

@@ -43,8 +43,9 @@ class KdTree2 {
 /// of its queries' k nearest: those within r + 2h of its centre c, with r the distance of c's
 /// k-th nearest and h the tile's half-diagonal (a query q within h of c has k points within
 /// |q - c| + r, so its k-th nearest is no farther, and that disc lies within r + 2h of c). Each
-/// query then ranks only the candidates within the previous query's k-th distance plus the step
-/// between the two (the same bound), usually a few more than k.
+/// query then ranks only the candidates within the previous query's k-th distance, a little
+/// widened, when they are at least k (they then hold the k nearest), else within that distance
+/// plus the step between the two queries (a bound, by the same argument): usually k and a few.
 ///
 /// Answers: the k smallest by (squared distance, index), so the points of nearest() except that
 /// ties at the k-th distance go to the lowest indices; squared distances computed as nearest()
@@ -70,9 +71,12 @@ class CoherentNearest {
   struct Scratch {
     std::vector<double> cx, cy, d2;  ///< the tile's candidates, and their squared distances to a query
     std::vector<unsigned> ci;        ///< their indices
-    std::vector<std::uint32_t> pos, spare;  ///< positions among the candidates
-    std::vector<unsigned> indices;
-    std::vector<double> dist_sq;
+    std::vector<std::uint32_t> pos;  ///< positions among a query's candidates (a selection's)
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> slots;  ///< in_bucket_order()'s
+    std::vector<double> ranked_d2;                                ///< ...
+    std::vector<unsigned> ranked_index;                           ///< ...
+    std::vector<unsigned> indices;   ///< a query's answer; while ranking, its candidates' indices
+    std::vector<double> dist_sq;     ///< ... and squared distances
     double centre_kth_m = 0;  ///< the tile centre's k-th distance
   };
 
@@ -86,12 +90,13 @@ class CoherentNearest {
     double last_kth_m = -1;  // the previous query's k-th distance; < 0: none yet
     for (std::uint32_t k = tiles.first[t]; k < tiles.first[t + 1]; ++k) {
       const size_t q = tiles.order[k];
-      size_t nearest = 0;  // the tree's answers come nearest first
+      size_t nearest = 0;
       if (candidates) {
         last_kth_m = select(queries[q], tiles.centre[t], last, last_kth_m, s, nearest);
         last = queries[q];
       } else {
         tree_.nearest(queries[q], k_, s.indices, s.dist_sq);
+        nearest = in_bucket_order(s);
       }
       visit(q, std::span<const unsigned>(s.indices.data(), static_cast<size_t>(k_)),
             std::span<const double>(s.dist_sq.data(), static_cast<size_t>(k_)), nearest);
@@ -102,6 +107,10 @@ class CoherentNearest {
   /// The candidates of the tile (centre c, half-diagonal h) into s; false when they would be
   /// too many (queries far from the points): its queries then search the tree one at a time.
   bool gather_candidates(const Vec2& c, double h, Scratch& s) const;
+  /// Puts a tree search's answer (nearest first) in the points' bucket order, as select() gives
+  /// it, so that a sum over them does not depend on which way they were found; returns the
+  /// position of the nearest.
+  size_t in_bucket_order(Scratch& s) const;
   /// q's k nearest among the candidates into s.indices and s.dist_sq, the position of the
   /// nearest into `nearest`; returns q's k-th distance.
   double select(const Vec2& q, const Vec2& centre, const Vec2& last, double last_kth_m, Scratch& s,
@@ -118,6 +127,7 @@ class CoherentNearest {
   std::vector<std::uint32_t> bucket_first_;
   std::vector<double> bucket_x_, bucket_y_;
   std::vector<unsigned> bucket_index_;
+  std::vector<std::uint32_t> bucket_slot_;  ///< point i is entry bucket_slot_[i] of the arrays above
 };
 
 }  // namespace radrecon

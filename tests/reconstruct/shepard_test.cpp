@@ -79,6 +79,28 @@ TEST(Shepard, MatchesTheFormulaAndItsKNearestRestriction) {
   }
 }
 
+// Local Shepard finds its k nearest for a batch of queries at once, by tiles (kdtree.h
+// CoherentNearest): a query's value must not depend on the batch it comes in. Bitwise: the raster
+// at once (tiles of many queries, far ones included) against one query at a time.
+TEST(Shepard, LocalValuesDoNotDependOnTheBatch) {
+  std::mt19937 rng(17);
+  const ScatteredSamples s = random_samples(2000, rng, 3);
+  std::vector<Vec2> queries;
+  for (int j = 0; j < 40; ++j)
+    for (int i = 0; i < 40; ++i) queries.emplace_back(-1 + 6.0 * i / 39, -1 + 6.0 * j / 39);
+  queries.emplace_back(300, -200);  // far from every sample: its tile may search the tree
+  queries.emplace_back(-1e5, 2);
+  for (const int k : {1, 12, 32}) {
+    const Shepard f(s, 4, k);
+    std::vector<double> together(queries.size() * 3), alone(3);
+    f.evaluate(queries, together);
+    for (size_t q = 0; q < queries.size(); ++q) {
+      f.evaluate(std::span(&queries[q], 1), alone);
+      for (int c = 0; c < 3; ++c) EXPECT_EQ(together[q * 3 + c], alone[c]) << "k=" << k << " query " << q << " channel " << c;
+    }
+  }
+}
+
 // gdal_grid's radius and min_points: only the samples within the radius count (of the k
 // nearest, if k is set), and fewer than min_points of them give no value. Brute force here.
 TEST(Shepard, SearchRadiusUsesExactlyTheSamplesWithinItAsBruteForce) {
