@@ -22,6 +22,11 @@ namespace {
 /// Radius of a patch's sample disc over the radius of its support.
 constexpr double kSampleMargin = 1.5;
 
+/// A patch is passed over without its weight when the query's squared distance to its centre
+/// exceeds h^2 widened by this: its Wendland weight is then 0 (t = d / h > 1 however d / h
+/// rounds), as computed.
+constexpr double kSupportSlack = 1e-12;
+
 /// Wendland's C2 function of t = d / h, zero for t >= 1.
 inline double wendland(double t) {
   if (t >= 1) return 0;
@@ -152,11 +157,15 @@ void LocalMultiquadric::evaluate(std::span<const Vec2> points, std::span<double>
     const Vec2 x = p.cwiseMax(origin_).cwiseMin(box_max_);
     const int ci = static_cast<int>(std::floor((x.x() - origin_.x()) / h_)), cj = static_cast<int>(std::floor((x.y() - origin_.y()) / h_));
     double total = 0, flat_total = 0;
+    const double support_sq = h_ * h_ * (1 + kSupportSlack);
     for (int j = std::max(0, cj - 1); j <= std::min(ny_ - 1, cj + 2); ++j)
       for (int i = std::max(0, ci - 1); i <= std::min(nx_ - 1, ci + 2); ++i) {
         const size_t index = static_cast<size_t>(j) * nx_ + i;
         const Patch& patch = patches_[index];
-        const double w = wendland((x - patch.center).norm() / h_);
+        // Most of the 16 patches are beyond their support: passed over without a square root.
+        const double dist_sq = (x - patch.center).squaredNorm();
+        if (dist_sq > support_sq) continue;
+        const double w = wendland(std::sqrt(dist_sq) / h_);
         if (w == 0) continue;
         // The patch's fit, or with barriers the fit through its samples x sees.
         const RbfFit* fit = &patch.fit;
