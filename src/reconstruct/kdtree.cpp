@@ -94,6 +94,33 @@ struct Box {
   bool empty() const { return !(lo.x() <= hi.x()); }
 };
 
+/// A grid over a box (lower corner `origin`, `extent` wide) of square cells of at least `side`,
+/// doubled until there are at most `most` cells; one cell for a box of no finite extent.
+struct CellGrid {
+  Vec2 origin;
+  double side;
+  long nx = 1, ny = 1;
+  CellGrid(const Vec2& lower, const Vec2& extent, double least_side, long most) : origin(lower), side(least_side) {
+    if (!extent.allFinite() || !(side > 0)) return;
+    const auto count = [&](double span) -> long {
+      const double c = span / side;
+      return c < 1e9 ? static_cast<long>(c) + 1 : 1000000001L;
+    };
+    for (nx = count(extent.x()), ny = count(extent.y()); nx * ny > most; nx = count(extent.x()), ny = count(extent.y()))
+      side *= 2;
+  }
+  /// The cell's index along one axis of a coordinate's offset from the origin, clamped.
+  static long index(double offset, double side, long n) {
+    const double c = offset / side;
+    if (!(c < static_cast<double>(n))) return c >= static_cast<double>(n) ? n - 1 : 0;  // beyond, or NaN
+    return c > 0 ? static_cast<long>(c) : 0;
+  }
+  size_t cell(const Vec2& p) const {
+    return static_cast<size_t>(index(p.y() - origin.y(), side, ny) * nx + index(p.x() - origin.x(), side, nx));
+  }
+  size_t count() const { return static_cast<size_t>(nx * ny); }
+};
+
 /// Squared distance as nanoflann's L2_Simple_Adaptor forms it (0 + dx^2 + dy^2), bit for bit.
 inline double distance_sq(double qx, double qy, double px, double py) {
   const double dx = qx - px, dy = qy - py;
@@ -116,22 +143,11 @@ CoherentNearest::CoherentNearest(const KdTree2& tree, std::span<const Vec2> poin
   const double area = std::max(extent.x() * extent.y(), 1e-4 * length * length);
   tile_m_ = std::sqrt(kTilePointsPerK * k * area / static_cast<double>(points.size()));
   if (!(tile_m_ > 0 && std::isfinite(tile_m_))) tile_m_ = length;
-  bucket_m_ = tile_m_;
-  const auto count = [&](double span) { return static_cast<long>(std::min(span / bucket_m_, 1e9)) + 1; };
-  long bx = count(extent.x()), by = count(extent.y());
-  const long most = 2 * static_cast<long>(points.size()) + 16;
-  if (bx * by > most) {
-    bucket_m_ *= std::sqrt(static_cast<double>(bx * by) / static_cast<double>(most));
-    bx = count(extent.x()), by = count(extent.y());
-  }
-  buckets_x_ = static_cast<int>(bx), buckets_y_ = static_cast<int>(by);
-  bucket_origin_ = box.lo;
-  const auto bucket_of = [&](const Vec2& p) {
-    const long a = std::clamp(static_cast<long>((p.x() - bucket_origin_.x()) / bucket_m_), 0L, bx - 1);
-    const long b = std::clamp(static_cast<long>((p.y() - bucket_origin_.y()) / bucket_m_), 0L, by - 1);
-    return static_cast<size_t>(b * bx + a);
-  };
-  bucket_first_.assign(static_cast<size_t>(bx * by) + 1, 0);
+  const CellGrid buckets(box.lo, extent, tile_m_, 2 * static_cast<long>(points.size()) + 16);
+  bucket_origin_ = buckets.origin, bucket_m_ = buckets.side;
+  buckets_x_ = static_cast<int>(buckets.nx), buckets_y_ = static_cast<int>(buckets.ny);
+  const auto bucket_of = [&](const Vec2& p) { return buckets.cell(p); };
+  bucket_first_.assign(buckets.count() + 1, 0);
   for (const Vec2& p : points) ++bucket_first_[bucket_of(p) + 1];
   for (size_t b = 1; b < bucket_first_.size(); ++b) bucket_first_[b] += bucket_first_[b - 1];
   std::vector<std::uint32_t> next(bucket_first_.begin(), bucket_first_.end() - 1);
@@ -152,20 +168,9 @@ CoherentNearest::Tiles CoherentNearest::tile(std::span<const Vec2> queries) cons
     if (q.allFinite()) box.add(q);
   if (box.empty()) return tiles;
   const Vec2 extent = box.hi - box.lo;
-  double side = tile_m_;
-  const auto count = [&](double span) { return static_cast<long>(std::min(span / side, 1e9)) + 1; };
-  long tx = count(extent.x()), ty = count(extent.y());
-  const long most = 4 * static_cast<long>(queries.size()) + 64;
-  if (tx * ty > most) {
-    side *= std::sqrt(static_cast<double>(tx * ty) / static_cast<double>(most));
-    tx = count(extent.x()), ty = count(extent.y());
-  }
-  const auto tile_of = [&](const Vec2& q) {
-    const long a = std::clamp(static_cast<long>((q.x() - box.lo.x()) / side), 0L, tx - 1);
-    const long b = std::clamp(static_cast<long>((q.y() - box.lo.y()) / side), 0L, ty - 1);
-    return static_cast<size_t>(b * tx + a);
-  };
-  std::vector<std::uint32_t> first(static_cast<size_t>(tx * ty) + 1, 0);
+  const CellGrid grid(box.lo, extent, tile_m_, 4 * static_cast<long>(queries.size()) + 64);
+  const auto tile_of = [&](const Vec2& q) { return grid.cell(q); };
+  std::vector<std::uint32_t> first(grid.count() + 1, 0);
   for (const Vec2& q : queries)
     if (q.allFinite()) ++first[tile_of(q) + 1];
   for (size_t t = 1; t < first.size(); ++t) first[t] += first[t - 1];

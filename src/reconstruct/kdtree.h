@@ -48,8 +48,9 @@ class KdTree2 {
 /// plus the step between the two queries (a bound, by the same argument): usually k and a few.
 ///
 /// Answers: the k smallest by (squared distance, index), so the points of nearest() except that
-/// ties at the k-th distance go to the lowest indices; squared distances computed as nearest()
-/// computes them, bit for bit. They come in an order fixed by the points alone (the order of
+/// ties at the k-th distance go to the lowest indices (but for a tile far from the points, whose
+/// queries search the tree: there the tree's choice among such ties stands); squared distances
+/// computed as nearest() computes them, bit for bit. They come in an order fixed by the points alone (the order of
 /// their buckets), not by distance: sorting is most of a tree search's cost, and a sum over them
 /// in this order still does not depend on which tile, batch or thread a query was in.
 class CoherentNearest {
@@ -72,9 +73,10 @@ class CoherentNearest {
     std::vector<double> cx, cy, d2;  ///< the tile's candidates, and their squared distances to a query
     std::vector<unsigned> ci;        ///< their indices
     std::vector<std::uint32_t> pos;  ///< positions among a query's candidates (a selection's)
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> slots;  ///< in_bucket_order()'s
-    std::vector<double> ranked_d2;                                ///< ...
-    std::vector<unsigned> ranked_index;                           ///< ...
+    /// in_bucket_order(): (bucket slot, position) of a tree search's answers, and a copy of them
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> slots;
+    std::vector<double> ranked_d2;
+    std::vector<unsigned> ranked_index;
     std::vector<unsigned> indices;   ///< a query's answer; while ranking, its candidates' indices
     std::vector<double> dist_sq;     ///< ... and squared distances
     double centre_kth_m = 0;  ///< the tile centre's k-th distance
@@ -88,8 +90,8 @@ class CoherentNearest {
     const bool candidates = gather_candidates(tiles.centre[t], tiles.half_diagonal_m[t], s);
     Vec2 last(0, 0);
     double last_kth_m = -1;  // the previous query's k-th distance; < 0: none yet
-    for (std::uint32_t k = tiles.first[t]; k < tiles.first[t + 1]; ++k) {
-      const size_t q = tiles.order[k];
+    for (std::uint32_t e = tiles.first[t]; e < tiles.first[t + 1]; ++e) {
+      const size_t q = tiles.order[e];
       size_t nearest = 0;
       if (candidates) {
         last_kth_m = select(queries[q], tiles.centre[t], last, last_kth_m, s, nearest);
@@ -118,7 +120,7 @@ class CoherentNearest {
 
   const KdTree2& tree_;
   int k_;
-  double tile_m_ = 1;  ///< a tile's side: a few times the spacing of k points
+  double tile_m_ = 1;  ///< a tile's side, metres: its square holds about k / 8 points on average
   /// The points bucketed on a grid of `bucket_m_` from bucket_origin_: bucket (a, b) holds
   /// entries [bucket_first_[b * buckets_x_ + a], bucket_first_[... + 1]) of the arrays below.
   Vec2 bucket_origin_;

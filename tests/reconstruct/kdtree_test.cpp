@@ -190,6 +190,19 @@ TEST(CoherentNearest, HandlesPointsOnALineAllPointsAndNonFiniteQueries) {
   const std::vector<Vec2> few = {{0, 0}, {1, 0}, {0, 1}, {1, 1}, {0.5, 0.5}};
   EXPECT_EQ(check_coherent(few, raster(9, 9, -1, -1, 2, 2), 5), 81u);
   EXPECT_EQ(check_coherent({Vec2(0.25, 0.75)}, raster(5, 5, 0, 0, 1, 1), 1), 25u);
+  // Queries spread over 1e150: still a few tiles, and the right answers.
+  std::vector<Vec2> spread = raster(7, 7, 0, 0, 1, 1);
+  spread.emplace_back(-1e150, 0), spread.emplace_back(1e150, 1e150);
+  EXPECT_EQ(check_coherent(few, spread, 2), spread.size());
+  {
+    // Queries whose box has no finite extent (its width overflows): one tile.
+    const KdTree2 tree(few);
+    const CoherentNearest nearest(tree, few, 3);
+    const std::vector<Vec2> wide = {Vec2(-1.7e308, 0), Vec2(1.7e308, 0), Vec2(0.5, 0.5)};
+    const CoherentNearest::Tiles tiles = nearest.tile(wide);
+    ASSERT_EQ(tiles.count(), 1u);
+    EXPECT_EQ(tiles.first[1] - tiles.first[0], 3u);
+  }
   // No finite query: no tile.
   const KdTree2 tree(few);
   const CoherentNearest nearest(tree, few, 3);
