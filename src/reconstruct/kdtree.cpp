@@ -7,6 +7,7 @@
 #include <nanoflann.hpp>
 
 #include "core/check.h"
+#include "reconstruct/samples.h"
 
 namespace radrecon {
 
@@ -61,10 +62,6 @@ size_t KdTree2::nearest(const Vec2& q, int k, std::span<unsigned> indices, std::
   }
   return found;
 }
-
-}  // namespace radrecon
-
-namespace radrecon {
 
 namespace {
 
@@ -127,36 +124,39 @@ inline double distance_sq(double qx, double qy, double px, double py) {
   return dx * dx + dy * dy;
 }
 
+/// Sorts the items 0 .. count - 1 by cell, increasing within a cell: `cell_of(i)` is item i's
+/// cell in [0, cells), or kNoCell to leave it out. Returns the items cell by cell, and sets
+/// `first` to the cells + 1 offsets into them (a counting sort).
+constexpr size_t kNoCell = static_cast<size_t>(-1);
+template <typename CellOf>
+std::vector<std::uint32_t> sort_by_cell(size_t count, size_t cells, CellOf&& cell_of, std::vector<std::uint32_t>& first) {
+  first.assign(cells + 1, 0);
+  for (size_t i = 0; i < count; ++i)
+    if (const size_t c = cell_of(i); c != kNoCell) ++first[c + 1];
+  for (size_t c = 1; c <= cells; ++c) first[c] += first[c - 1];
+  std::vector<std::uint32_t> order(first.back());
+  std::vector<std::uint32_t> next(first.begin(), first.end() - 1);
+  for (size_t i = 0; i < count; ++i)
+    if (const size_t c = cell_of(i); c != kNoCell) order[next[c]++] = static_cast<std::uint32_t>(i);
+  return order;
+}
+
 }  // namespace
 
 CoherentNearest::CoherentNearest(const KdTree2& tree, std::span<const Vec2> points, int k) : tree_(tree), k_(k) {
   RR_CHECK(k >= 1 && static_cast<size_t>(k) <= points.size() && points.size() == tree.size(),
            "k must be in [1, number of points], and the tree over the points");
   RR_CHECK(points.size() < (size_t{1} << 31), "too many points");
-  Box box;
-  for (const Vec2& p : points) box.add(p);
-  const Vec2 extent = box.hi - box.lo;
-  // Points on a line have no area: a strip a ten-thousandth of its length wide stands for it
-  // (and a unit square for a single point).
-  double length = std::max(extent.x(), extent.y());
-  if (!(length > 0 && std::isfinite(length))) length = 1;
-  const double area = std::max(extent.x() * extent.y(), 1e-4 * length * length);
-  tile_m_ = std::sqrt(kTilePointsPerK * k * area / static_cast<double>(points.size()));
-  if (!(tile_m_ > 0 && std::isfinite(tile_m_))) tile_m_ = length;
-  const CellGrid buckets(box.lo, extent, tile_m_, 2 * static_cast<long>(points.size()) + 16);
+  const PointSpread spread = point_spread(points);
+  tile_m_ = std::sqrt(kTilePointsPerK * k * spread.area_m2 / static_cast<double>(points.size()));
+  const CellGrid buckets(spread.lo, spread.extent, tile_m_, 2 * static_cast<long>(points.size()) + 16);
   bucket_origin_ = buckets.origin, bucket_m_ = buckets.side;
   buckets_x_ = static_cast<int>(buckets.nx), buckets_y_ = static_cast<int>(buckets.ny);
-  const auto bucket_of = [&](const Vec2& p) { return buckets.cell(p); };
-  bucket_first_.assign(buckets.count() + 1, 0);
-  for (const Vec2& p : points) ++bucket_first_[bucket_of(p) + 1];
-  for (size_t b = 1; b < bucket_first_.size(); ++b) bucket_first_[b] += bucket_first_[b - 1];
-  std::vector<std::uint32_t> next(bucket_first_.begin(), bucket_first_.end() - 1);
-  bucket_x_.resize(points.size()), bucket_y_.resize(points.size()), bucket_index_.resize(points.size());
-  bucket_slot_.resize(points.size());
-  for (size_t i = 0; i < points.size(); ++i) {
-    const std::uint32_t slot = next[bucket_of(points[i])]++;
-    bucket_x_[slot] = points[i].x(), bucket_y_[slot] = points[i].y(), bucket_index_[slot] = static_cast<unsigned>(i);
-    bucket_slot_[i] = slot;
+  bucket_index_ = sort_by_cell(points.size(), buckets.count(), [&](size_t i) { return buckets.cell(points[i]); }, bucket_first_);
+  bucket_x_.resize(points.size()), bucket_y_.resize(points.size()), bucket_slot_.resize(points.size());
+  for (size_t e = 0; e < points.size(); ++e) {
+    const Vec2& p = points[bucket_index_[e]];
+    bucket_x_[e] = p.x(), bucket_y_[e] = p.y(), bucket_slot_[bucket_index_[e]] = static_cast<std::uint32_t>(e);
   }
 }
 
@@ -169,15 +169,10 @@ CoherentNearest::Tiles CoherentNearest::tile(std::span<const Vec2> queries) cons
   if (box.empty()) return tiles;
   const Vec2 extent = box.hi - box.lo;
   const CellGrid grid(box.lo, extent, tile_m_, 4 * static_cast<long>(queries.size()) + 64);
-  const auto tile_of = [&](const Vec2& q) { return grid.cell(q); };
-  std::vector<std::uint32_t> first(grid.count() + 1, 0);
-  for (const Vec2& q : queries)
-    if (q.allFinite()) ++first[tile_of(q) + 1];
-  for (size_t t = 1; t < first.size(); ++t) first[t] += first[t - 1];
-  tiles.order.resize(first.back());
-  std::vector<std::uint32_t> next(first.begin(), first.end() - 1);
-  for (size_t q = 0; q < queries.size(); ++q)
-    if (queries[q].allFinite()) tiles.order[next[tile_of(queries[q])]++] = static_cast<std::uint32_t>(q);
+  std::vector<std::uint32_t> first;
+  tiles.order = sort_by_cell(
+      queries.size(), grid.count(), [&](size_t q) { return queries[q].allFinite() ? grid.cell(queries[q]) : kNoCell; },
+      first);
   // The non-empty tiles, with their queries' boxes.
   for (size_t t = 0; t + 1 < first.size(); ++t) {
     if (first[t] == first[t + 1]) continue;
@@ -218,19 +213,18 @@ bool CoherentNearest::gather_candidates(const Vec2& c, double h, Scratch& s) con
   return s.cx.size() >= k;  // always (c's k nearest are within reach), unless rounding says otherwise
 }
 
-size_t CoherentNearest::in_bucket_order(Scratch& s) const {
+size_t CoherentNearest::in_bucket_order(const Vec2& q, Scratch& s) const {
   const size_t k = static_cast<size_t>(k_);
-  s.slots.resize(k);
-  for (size_t j = 0; j < k; ++j) s.slots[j] = {bucket_slot_[s.indices[j]], static_cast<std::uint32_t>(j)};
-  std::sort(s.slots.begin(), s.slots.end());
+  const unsigned nearest_index = s.indices[0];  // the tree's first: the nearest, ties to the lowest index
   s.pos.resize(k);
-  for (size_t j = 0; j < k; ++j) s.pos[j] = s.slots[j].second;
-  s.ranked_d2.assign(s.dist_sq.begin(), s.dist_sq.begin() + static_cast<std::ptrdiff_t>(k));
-  s.ranked_index.assign(s.indices.begin(), s.indices.begin() + static_cast<std::ptrdiff_t>(k));
+  for (size_t j = 0; j < k; ++j) s.pos[j] = bucket_slot_[s.indices[j]];
+  std::sort(s.pos.begin(), s.pos.end());
   size_t nearest = 0;
   for (size_t j = 0; j < k; ++j) {
-    s.dist_sq[j] = s.ranked_d2[s.pos[j]], s.indices[j] = s.ranked_index[s.pos[j]];
-    if (s.pos[j] == 0) nearest = j;  // the tree's first: the nearest, ties to the lowest index
+    const std::uint32_t e = s.pos[j];
+    s.indices[j] = bucket_index_[e];
+    s.dist_sq[j] = distance_sq(q.x(), q.y(), bucket_x_[e], bucket_y_[e]);  // the tree's, bit for bit
+    if (s.indices[j] == nearest_index) nearest = j;
   }
   return nearest;
 }
@@ -248,7 +242,7 @@ double CoherentNearest::select(const Vec2& q, const Vec2& centre, const Vec2& la
   // same); then a bound: that distance plus the step between the two queries (or the tile
   // centre's k-th distance plus q's distance to it); then all of them, should rounding defeat
   // the slack. Kept as squared distances and indices, in the candidates' order.
-  s.pos.resize(n), s.dist_sq.resize(n + 1), s.indices.resize(n + 1);
+  s.dist_sq.resize(n + 1), s.indices.resize(n + 1);
   double* sd = s.dist_sq.data();
   unsigned* si = s.indices.data();
   const auto within = [&](double radius_sq) {

@@ -5,7 +5,6 @@
 #include <cstdint>
 #include <memory>
 #include <span>
-#include <utility>
 #include <vector>
 
 #include "core/vec.h"
@@ -72,11 +71,7 @@ class CoherentNearest {
   struct Scratch {
     std::vector<double> cx, cy, d2;  ///< the tile's candidates, and their squared distances to a query
     std::vector<unsigned> ci;        ///< their indices
-    std::vector<std::uint32_t> pos;  ///< positions among a query's candidates (a selection's)
-    /// in_bucket_order(): (bucket slot, position) of a tree search's answers, and a copy of them
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> slots;
-    std::vector<double> ranked_d2;
-    std::vector<unsigned> ranked_index;
+    std::vector<std::uint32_t> pos;  ///< positions among a query's candidates, or bucket slots
     std::vector<unsigned> indices;   ///< a query's answer; while ranking, its candidates' indices
     std::vector<double> dist_sq;     ///< ... and squared distances
     double centre_kth_m = 0;  ///< the tile centre's k-th distance
@@ -98,7 +93,7 @@ class CoherentNearest {
         last = queries[q];
       } else {
         tree_.nearest(queries[q], k_, s.indices, s.dist_sq);
-        nearest = in_bucket_order(s);
+        nearest = in_bucket_order(queries[q], s);
       }
       visit(q, std::span<const unsigned>(s.indices.data(), static_cast<size_t>(k_)),
             std::span<const double>(s.dist_sq.data(), static_cast<size_t>(k_)), nearest);
@@ -112,7 +107,7 @@ class CoherentNearest {
   /// Puts a tree search's answer (nearest first) in the points' bucket order, as select() gives
   /// it, so that a sum over them does not depend on which way they were found; returns the
   /// position of the nearest.
-  size_t in_bucket_order(Scratch& s) const;
+  size_t in_bucket_order(const Vec2& q, Scratch& s) const;
   /// q's k nearest among the candidates into s.indices and s.dist_sq, the position of the
   /// nearest into `nearest`; returns q's k-th distance.
   double select(const Vec2& q, const Vec2& centre, const Vec2& last, double last_kth_m, Scratch& s,

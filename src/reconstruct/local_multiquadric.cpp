@@ -55,14 +55,11 @@ LocalMultiquadric::LocalMultiquadric(const ScatteredSamples& samples, const RbfK
   r_sq_ = eck_radii_sq(points_, tree);  // also refuses duplicate points, whatever r
   if (r_m) r_sq_.assign(n, *r_m * *r_m);
   if (kernel.is_thin_plate()) r_sq_.assign(n, 0.0);
-  Vec2 lo = points_[0], hi = points_[0];
-  for (const Vec2& p : points_) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-  // Samples on a line (or nearly) have a box of no width: give it a sliver of width and area so
-  // that the patch grid stays finite.
-  const Vec2 extent = (hi - lo).cwiseMax(
-      Vec2::Constant(tol::kFlatBoxWidthRelative * std::max(1.0, (hi - lo).maxCoeff())));
-  const double area =
-      std::max(extent.x() * extent.y(), extent.maxCoeff() * extent.maxCoeff() * tol::kFlatBoxAreaRelative);
+  // Samples on a line (or nearly) have a box of no width: point_spread() gives it a sliver of
+  // width and area so that the patch grid stays finite.
+  const PointSpread spread = point_spread(points_);
+  const Vec2 &lo = spread.lo, &hi = spread.hi, &extent = spread.extent;
+  const double area = spread.area_m2;
   // The patch's samples come from a disc kSampleMargin times its support, so that its
   // interpolant never extrapolates where its weight is nonzero; that disc holds ~k samples.
   h_ = std::sqrt(std::min<double>(k, n) * area / (std::numbers::pi * n)) / kSampleMargin;

@@ -138,36 +138,21 @@ RbfFit fit_rbf(std::span<const Vec2> points, std::span<const double> r_sq, std::
   return fit;
 }
 
-namespace {
-
-/// The basis over the fit's samples at p into b, as Eigen arrays (SIMD).
-void basis_at(const RbfFit& fit, const RbfKernel& kernel, const Vec2& p, Eigen::ArrayXd& b) {
-  using Array = Eigen::Map<const Eigen::ArrayXd>;
-  const Eigen::Index m = static_cast<Eigen::Index>(fit.subset.size());
-  b = (p.x() - Array(fit.px.data(), m)).square() + (p.y() - Array(fit.py.data(), m)).square() +
-      Array(fit.r_sq.data(), m);
-  if (fit.kernel_scale != 1) b *= fit.kernel_scale;
-  rbf_basis_in_place(b, kernel);
-}
-
-}  // namespace
-
 void evaluate_rbf_fit(const RbfFit& fit, const RbfKernel& kernel, int channels, const Vec2& p, Eigen::ArrayXd& b,
                       double* out) {
-  using Array = Eigen::Map<const Eigen::ArrayXd>;
-  const Eigen::Index m = static_cast<Eigen::Index>(fit.subset.size());
-  basis_at(fit, kernel, p, b);
-  for (int c = 0; c < channels; ++c) {
-    out[c] = (b * Array(&fit.alpha_by_channel[static_cast<size_t>(c) * static_cast<size_t>(m)], m)).sum();
-    out[c] += fit.polynomial(p, c);
-  }
+  for (int c = 0; c < channels; ++c) out[c] = 0;
+  add_rbf_sum(fit, kernel, channels, p, 1.0, b, out);
+  for (int c = 0; c < channels; ++c) out[c] += fit.polynomial(p, c);
 }
 
 void add_rbf_sum(const RbfFit& fit, const RbfKernel& kernel, int channels, const Vec2& p, double weight,
                  Eigen::ArrayXd& b, double* out) {
   using Array = Eigen::Map<const Eigen::ArrayXd>;
   const Eigen::Index m = static_cast<Eigen::Index>(fit.subset.size());
-  basis_at(fit, kernel, p, b);
+  b = (p.x() - Array(fit.px.data(), m)).square() + (p.y() - Array(fit.py.data(), m)).square() +
+      Array(fit.r_sq.data(), m);
+  if (fit.kernel_scale != 1) b *= fit.kernel_scale;
+  rbf_basis_in_place(b, kernel);
   for (int c = 0; c < channels; ++c)
     out[c] += weight * (b * Array(&fit.alpha_by_channel[static_cast<size_t>(c) * static_cast<size_t>(m)], m)).sum();
 }

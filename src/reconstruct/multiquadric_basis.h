@@ -132,7 +132,7 @@ RbfFit fit_rbf(std::span<const Vec2> points, std::span<const double> r_sq, std::
 void evaluate_rbf_fit(const RbfFit& fit, const RbfKernel& kernel, int channels, const Vec2& p, Eigen::ArrayXd& b,
                       double* out);
 /// The basis part alone (no polynomial) at p, times `weight`, added to out[0, channels): what
-/// evaluate_rbf_fit() sums, for the local methods' blends.
+/// evaluate_rbf_fit() sums, and the local methods blend.
 void add_rbf_sum(const RbfFit& fit, const RbfKernel& kernel, int channels, const Vec2& p, double weight,
                  Eigen::ArrayXd& b, double* out);
 

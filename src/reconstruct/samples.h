@@ -2,9 +2,12 @@
 // The data a reconstruction starts from, on a 2-D domain in metres (a surface's (s, t), see
 // SurfaceFrame in scene/scene.h). Values are stored point-major: `channels` values per point.
 
+#include <algorithm>
 #include <array>
+#include <span>
 #include <vector>
 
+#include "core/tolerances.h"
 #include "core/vec.h"
 
 namespace radrecon {
@@ -31,6 +34,23 @@ struct ScatteredSamples {
   std::vector<double> values;  ///< points.size() * channels
   int channels = 1;
 };
+
+/// The box of points, and the area they spread over for grids sized by the area per point (the
+/// local multiquadric's patches, the k-nearest search's tiles): a box of no width (points on a
+/// line) gets tol::kFlatBoxWidthRelative of its length as width, and at least
+/// tol::kFlatBoxAreaRelative of its squared length as area, so that such grids stay finite.
+struct PointSpread {
+  Vec2 lo, hi;    ///< the box, metres
+  Vec2 extent;    ///< its sides, widened where flat
+  double area_m2 = 0;
+};
+inline PointSpread point_spread(std::span<const Vec2> points) {
+  PointSpread s{points.front(), points.front(), Vec2::Zero(), 0};
+  for (const Vec2& p : points) s.lo = s.lo.cwiseMin(p), s.hi = s.hi.cwiseMax(p);
+  s.extent = (s.hi - s.lo).cwiseMax(Vec2::Constant(tol::kFlatBoxWidthRelative * std::max(1.0, (s.hi - s.lo).maxCoeff())));
+  s.area_m2 = std::max(s.extent.x() * s.extent.y(), s.extent.maxCoeff() * s.extent.maxCoeff() * tol::kFlatBoxAreaRelative);
+  return s;
+}
 
 /// A regular grid of nx x ny cells of size dx x dy starting at (x0, y0), one value per cell,
 /// stored row by row from y0 upward (cell (i, j) at j * nx + i).

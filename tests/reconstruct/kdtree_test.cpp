@@ -74,15 +74,20 @@ TEST(KdTree2, MatchesBruteForceOnRandomPointsForEveryK) {
   for (int t = 0; t < 20; ++t) check_query(tree, points, points[static_cast<size_t>(t) * 487]);  // at a point
 }
 
-TEST(KdTree2, MatchesBruteForceOnALatticeFullOfTies) {
-  // Integer lattice 0..39 x 0..29, in a shuffled order so that index order differs from the
-  // tree's spatial order. Squared distances from lattice points and cell centres are exact, and
-  // 4 or 8 points share most of them.
+/// The integer lattice 0..39 x 0..29, in a shuffled order so that index order differs from any
+/// spatial order. Squared distances from lattice points, cell centres and edge midpoints are
+/// exact, and 4 or 8 points share most of them.
+std::vector<Vec2> shuffled_lattice(unsigned seed) {
   std::vector<Vec2> points;
   for (int j = 0; j < 30; ++j)
     for (int i = 0; i < 40; ++i) points.emplace_back(double(i), double(j));
-  std::mt19937 rng(7);
+  std::mt19937 rng(seed);
   std::shuffle(points.begin(), points.end(), rng);
+  return points;
+}
+
+TEST(KdTree2, MatchesBruteForceOnALatticeFullOfTies) {
+  const std::vector<Vec2> points = shuffled_lattice(7);
   const KdTree2 tree(points);
   for (const Vec2& q : {Vec2(0, 0), Vec2(39, 29), Vec2(20, 15), Vec2(5, 0), Vec2(0, 17), Vec2(13, 22)}) {
     check_query(tree, points, q);
@@ -165,14 +170,22 @@ TEST(CoherentNearest, MatchesBruteForceOnARasterOverRandomPoints) {
   for (const int k : {1, 2, 7, 32, 100}) EXPECT_EQ(check_coherent(points, queries, k), queries.size()) << "k=" << k;
 }
 
+// Queries far from many points: their tiles' candidate discs cover more buckets than a tile
+// gathers, so they search the tree, and their answers are put in the same order.
+TEST(CoherentNearest, MatchesBruteForceWhereFarTilesSearchTheTree) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> xy(0, 1);
+  std::vector<Vec2> points;
+  for (int i = 0; i < 20000; ++i) points.emplace_back(xy(rng), xy(rng));
+  std::vector<Vec2> queries = raster(4, 4, 0.2, 0.2, 0.8, 0.8);
+  queries.emplace_back(1e6, 0), queries.emplace_back(-3e5, 4e5), queries.emplace_back(0.5, -2e6);
+  for (const int k : {1, 4}) EXPECT_EQ(check_coherent(points, queries, k), queries.size()) << "k=" << k;
+}
+
 TEST(CoherentNearest, TiesAtTheKthGoToTheLowestIndicesOnALattice) {
   // A shuffled integer lattice, queried at lattice points, cell centres and edge midpoints:
   // most k-th distances are shared by 4 or 8 points.
-  std::vector<Vec2> points;
-  for (int j = 0; j < 30; ++j)
-    for (int i = 0; i < 40; ++i) points.emplace_back(double(i), double(j));
-  std::mt19937 rng(11);
-  std::shuffle(points.begin(), points.end(), rng);
+  const std::vector<Vec2> points = shuffled_lattice(11);
   std::vector<Vec2> queries;
   for (int j = -2; j < 62; ++j)
     for (int i = -2; i < 82; ++i) queries.emplace_back(0.5 * i, 0.5 * j);
