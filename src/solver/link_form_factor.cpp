@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <span>
 
 #include "solver/visibility.h"
 
@@ -22,22 +23,26 @@ LinkFormFactor measure_link(const LinkEnd& receiver, const LinkEnd& source, cons
   ConvexPolygon polygon;
   for (int k = 0; k < s.vertex_count(); ++k) polygon.push(s.corners[k]);
   double lo = std::numeric_limits<double>::infinity(), hi = 0;
-  const auto point_form_factor = [&](const Vec2& uv) {
-    const double f = visible_form_factor(receiver.surface->point(uv.x(), uv.y()), receiver.normal, polygon,
-                                         source.normal, occluders);
-    lo = std::min(lo, f);
-    hi = std::max(hi, f);
-    return f;
+  // The point form factors at (u, v) parameters of the receiver, four at a time
+  // (visible_form_factors()).
+  const auto point_form_factors = [&](std::span<const Vec2> uv, std::span<double> f) {
+    std::array<Vec3, kLinkQuadratureFine * kLinkQuadratureFine> points;
+    for (size_t k = 0; k < uv.size(); ++k) points[k] = receiver.surface->point(uv[k].x(), uv[k].y());
+    visible_form_factors({points.data(), uv.size()}, receiver.normal, polygon, source.normal, occluders, f);
+    for (const double v : f) {
+      lo = std::min(lo, v);
+      hi = std::max(hi, v);
+    }
   };
   constexpr int kCells = kLinkQuadrature * kLinkQuadrature;
+  static_assert(kLinkQuadratureFine >= kLinkQuadrature, "the points buffer holds the finer rule's");
   std::array<double, kCells> cell_f;
   std::array<Vec2, kCells> midpoint;  // the cells' centroids (ParamCell::for_each_subcell())
   int k = 0;
+  r.for_each_midpoint(kLinkQuadrature, [&](const Vec2& uv) { midpoint[static_cast<size_t>(k++)] = uv; });
+  point_form_factors(midpoint, cell_f);
   double sum = 0;
-  r.for_each_midpoint(kLinkQuadrature, [&](const Vec2& uv) {
-    midpoint[static_cast<size_t>(k)] = uv;
-    sum += cell_f[static_cast<size_t>(k++)] = point_form_factor(uv);
-  });
+  for (const double f : cell_f) sum += f;
   LinkFormFactor link{sum / kCells, hi - lo};
   // A discontinuity makes the coarse rule's error of order 1 / kLinkQuadrature of the jump:
   // refine the cells beside it, those whose value differs from a neighbour's by a share of the
@@ -62,9 +67,15 @@ LinkFormFactor measure_link(const LinkEnd& receiver, const LinkEnd& source, cons
       sum += cell_f[static_cast<size_t>(a)];
       continue;
     }
+    constexpr int kFine = kLinkQuadratureFine * kLinkQuadratureFine;
+    std::array<Vec2, kFine> uv;
+    std::array<double, kFine> f;
+    int m = 0;
+    cells[static_cast<size_t>(a)].for_each_midpoint(kLinkQuadratureFine, [&](const Vec2& p) { uv[static_cast<size_t>(m++)] = p; });
+    point_form_factors(uv, f);
     double fine = 0;
-    cells[static_cast<size_t>(a)].for_each_midpoint(kLinkQuadratureFine, [&](const Vec2& uv) { fine += point_form_factor(uv); });
-    sum += fine / (kLinkQuadratureFine * kLinkQuadratureFine);
+    for (const double v : f) fine += v;
+    sum += fine / kFine;
   }
   return {sum / kCells, hi - lo};
 }

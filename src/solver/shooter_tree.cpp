@@ -398,7 +398,15 @@ Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, cons
   if (midpoint) {
     out.mean = out.at_center;
   } else {
-    for (int k = 0; k < r.gauss_count; ++k) out.mean += at(r.gauss[k], k + 1, -1, nullptr);
+    // The Gauss points' form factors together: those that see all of the block in one
+    // vectorised integral.
+    std::array<std::span<const ShadowVolume>, 4> volumes;
+    std::array<double, 4> f;
+    const size_t count = static_cast<size_t>(r.gauss_count);
+    for (size_t k = 0; k < count; ++k) volumes[k] = shadows.at(static_cast<int>(k) + 1);
+    visible_form_factors_past({r.gauss.data(), count}, r.normal, poly, shooter_normal, {volumes.data(), count},
+                              {f.data(), count});
+    for (size_t k = 0; k < count; ++k) out.mean += at(r.gauss[k], static_cast<int>(k) + 1, f[k], nullptr);
     out.mean /= r.gauss_count;
   }
   return out;

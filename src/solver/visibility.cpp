@@ -337,6 +337,65 @@ double visible_form_factor_past(const Vec3& p, const Vec3& n, const ConvexPolygo
 
 namespace {
 
+/// Whether visible_form_factor_past() would find p seeing all of the polygon: p in front of its
+/// plane, the polygon wholly in front of p's (to clip()'s tolerance, as clip_to_horizon() decides
+/// it) and no shadow volume meeting it. Then the form factor is lambert_form_factor() of the
+/// polygon itself.
+bool sees_whole(const Vec3& p, const Vec3& n, const ConvexPolygon& shooter, const Vec3& shooter_normal,
+                std::span<const ShadowVolume> volumes) {
+  if (shooter.empty() || shooter_normal.dot(p - shooter.v[0]) <= tol::kPlaneDistance_m) return false;
+  const double offset = n.dot(p), on_plane = tol::kPlaneDistance_m * n.norm();
+  for (int i = 0; i < shooter.n; ++i)
+    if (n.dot(shooter.v[i]) - offset < -on_plane) return false;
+  for (const ShadowVolume& v : volumes)
+    if (meets(v, shooter)) return false;
+  return true;
+}
+
+}  // namespace
+
+void visible_form_factors_past(std::span<const Vec3> points, const Vec3& n, const ConvexPolygon& shooter,
+                               const Vec3& shooter_normal, std::span<const std::span<const ShadowVolume>> volumes,
+                               std::span<double> out) {
+  RR_CHECK(points.size() <= 4 && volumes.size() == points.size() && out.size() == points.size(),
+           "visible_form_factors_past: up to four points, each with its shadow volumes");
+  std::array<Vec3, 4> batch;
+  std::array<size_t, 4> slot{};
+  size_t whole = 0;
+  for (size_t k = 0; k < points.size(); ++k) {
+    if (sees_whole(points[k], n, shooter, shooter_normal, volumes[k])) {
+      batch[whole] = points[k];
+      slot[whole++] = k;
+    } else {
+      out[k] = visible_form_factor_past(points[k], n, shooter, shooter_normal, volumes[k]);
+    }
+  }
+  if (whole == 0) return;
+  for (size_t k = whole; k < 4; ++k) batch[k] = batch[0];
+  std::array<double, 4> f;
+  lambert_form_factors4(batch, n, shooter, f);
+  for (size_t k = 0; k < whole; ++k) out[slot[k]] = f[k];
+}
+
+void visible_form_factors(std::span<const Vec3> points, const Vec3& n, const ConvexPolygon& shooter,
+                          const Vec3& shooter_normal, const std::vector<const Occluder*>& occluders,
+                          std::span<double> out) {
+  RR_CHECK(out.size() == points.size(), "visible_form_factors: one value per point");
+  thread_local std::array<std::vector<ShadowVolume>, 4> volumes;
+  std::array<std::span<const ShadowVolume>, 4> spans;
+  for (size_t first = 0; first < points.size(); first += 4) {
+    const size_t count = std::min<size_t>(4, points.size() - first);
+    for (size_t k = 0; k < count; ++k) {
+      shadow_volumes(points[first + k], occluders, volumes[k]);
+      spans[k] = volumes[k];
+    }
+    visible_form_factors_past(points.subspan(first, count), n, shooter, shooter_normal, {spans.data(), count},
+                              out.subspan(first, count));
+  }
+}
+
+namespace {
+
 // Area-to-area form factors near the shooter (area_visible_form_factor()).
 
 /// The receiver as the bilinear patch x(s, t) = sum of its corners' weights, (s, t) in [0,1]^2.

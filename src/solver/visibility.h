@@ -77,6 +77,20 @@ double visible_form_factor(const Vec3& p, const Vec3& n, const ConvexPolygon& sh
 double visible_form_factor_past(const Vec3& p, const Vec3& n, const ConvexPolygon& shooter, const Vec3& shooter_normal,
                                 std::span<const ShadowVolume> volumes, bool* partly_seen = nullptr);
 
+/// visible_form_factor_past() at up to four points of one receiver (unit normal n), each with
+/// its own shadow volumes: out[k] for points[k]. The points that see all of the polygon (wholly
+/// in front of them, no shadow volume meeting it) share one vectorised contour integral
+/// (lambert_form_factors4()); the others go one by one. The same values to round-off.
+void visible_form_factors_past(std::span<const Vec3> points, const Vec3& n, const ConvexPolygon& shooter,
+                               const Vec3& shooter_normal, std::span<const std::span<const ShadowVolume>> volumes,
+                               std::span<double> out);
+
+/// visible_form_factor() at any number of points with the same normal: out[k] for points[k], four
+/// at a time through visible_form_factors_past(). The same values to round-off.
+void visible_form_factors(std::span<const Vec3> points, const Vec3& n, const ConvexPolygon& shooter,
+                          const Vec3& shooter_normal, const std::vector<const Occluder*>& occluders,
+                          std::span<double> out);
+
 /// F(R -> S) = (1 / A_R) * integral over R of F(x -> S) dA_x: the form factor from the planar
 /// quad R (corners in order around it; its points are the bilinear patch through them, so any
 /// element of a grid or quadtree; unit normal `receiver_normal`) to the part of the convex

@@ -31,5 +31,36 @@ TEST(Atan2NonNeg, SpecialAngles) {
   EXPECT_NEAR(atan2_nonneg(1e-300, 1), 1e-300, 1e-310);
 }
 
+#if defined(__AVX2__) && defined(__FMA__)
+TEST(Atan2NonNeg4, AgreesWithLibmInEveryLane) {
+  std::mt19937_64 rng(6);
+  std::uniform_real_distribution<double> angle(0, std::numbers::pi), log_r(-20, 20);
+  for (int k = 0; k < 50000; ++k) {
+    alignas(32) double y[4], x[4], a[4];
+    for (int l = 0; l < 4; ++l) {
+      const double t = angle(rng), r = std::exp(log_r(rng));
+      y[l] = std::max(0.0, r * std::sin(t)), x[l] = r * std::cos(t);
+    }
+    _mm256_store_pd(a, atan2_nonneg4(_mm256_load_pd(y), _mm256_load_pd(x)));
+    for (int l = 0; l < 4; ++l) ASSERT_NEAR(a[l], std::atan2(y[l], x[l]), kAbsolute) << "y=" << y[l] << " x=" << x[l];
+  }
+}
+
+TEST(Atan2NonNeg4, SpecialAngles) {
+  const double q = std::numbers::pi / 4;
+  alignas(32) double a[4];
+  _mm256_store_pd(a, atan2_nonneg4(_mm256_setr_pd(0, 0, 1, 0), _mm256_setr_pd(1, 0, 0, -1)));
+  EXPECT_EQ(a[0], 0.0);
+  EXPECT_EQ(a[1], 0.0);  // y == x == 0
+  EXPECT_NEAR(a[2], 2 * q, kAbsolute);
+  EXPECT_NEAR(a[3], 4 * q, kAbsolute);
+  _mm256_store_pd(a, atan2_nonneg4(_mm256_setr_pd(1, 1, 1e-300, std::tan(q / 2)), _mm256_setr_pd(1, -1, 1, 1)));
+  EXPECT_NEAR(a[0], q, kAbsolute);
+  EXPECT_NEAR(a[1], 3 * q, kAbsolute);
+  EXPECT_NEAR(a[2], 1e-300, 1e-310);
+  EXPECT_NEAR(a[3], q / 2, kAbsolute);  // the reduction's threshold
+}
+#endif
+
 }  // namespace math_test
 }  // namespace radrecon

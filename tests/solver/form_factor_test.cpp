@@ -56,6 +56,38 @@ TEST(LambertFormFactor, MatchesPerpendicularCornerClosedForm) {
   }
 }
 
+TEST(LambertFormFactors4, MatchFourCornerSumsUnderARectangle) {
+  // A point below the rectangle [0, A] x [0, B] at height c sees it as four rectangles with a
+  // corner above it: F is the sum of four corner closed forms.
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> len(0.1, 3.0), unit(0.01, 0.99);
+  for (int trial = 0; trial < 100; ++trial) {
+    const double A = len(rng), B = len(rng), c = len(rng);
+    const ConvexPolygon rect = quad({0, 0, c}, {0, B, c}, {A, B, c}, {A, 0, c});
+    std::array<Vec3, 4> points;
+    for (Vec3& p : points) p = Vec3(unit(rng) * A, unit(rng) * B, 0);
+    std::array<double, 4> f;
+    lambert_form_factors4(points, Vec3::UnitZ(), rect, f);
+    for (size_t k = 0; k < 4; ++k) {
+      const double x = points[k].x(), y = points[k].y();
+      const double expected = parallel_corner_form_factor(x, y, c) + parallel_corner_form_factor(A - x, y, c) +
+                              parallel_corner_form_factor(x, B - y, c) + parallel_corner_form_factor(A - x, B - y, c);
+      EXPECT_NEAR(f[k], expected, kClosedFormRelative * expected) << "trial " << trial << " point " << k;
+    }
+  }
+}
+
+TEST(LambertFormFactors4, PointOnAnEdgeLineAndEmptyPolygon) {
+  // A point on the line of one of the square's edges: that edge adds nothing (as for one point).
+  const ConvexPolygon square = quad({0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1});
+  const std::array<Vec3, 4> points = {Vec3(0, -1, 1), Vec3(0.5, 0.5, 0), Vec3(2, 2, 0), Vec3(0, 0, 1)};
+  std::array<double, 4> f;
+  lambert_form_factors4(points, Vec3::UnitZ(), square, f);
+  for (size_t k = 0; k < 4; ++k) EXPECT_NEAR(f[k], lambert_form_factor(points[k], Vec3::UnitZ(), square), 1e-15) << k;
+  lambert_form_factors4(points, Vec3::UnitZ(), ConvexPolygon{}, f);
+  for (const double v : f) EXPECT_EQ(v, 0.0);
+}
+
 TEST(LambertFormFactor, HemisphereCoveringPolygonGivesOne) {
   // A huge square just above the receiver covers nearly the whole hemisphere.
   const double L = 1e6;

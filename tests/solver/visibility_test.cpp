@@ -89,6 +89,39 @@ TEST(VisibleFormFactor, MatchesBruteForceWithRandomOccluders) {
   EXPECT_GE(occluded_cases, 12) << "the random cases should mostly be partly occluded";
 }
 
+TEST(VisibleFormFactors, FourPointsAtOnceMatchBruteForceAndOneByOne) {
+  // Points that see all of the light (one vectorised integral) and points partly or wholly in
+  // shadow (one by one) in the same batches.
+  std::mt19937 rng(77);
+  std::uniform_real_distribution<double> xy(-0.5, 1.5), occ_xy(0.0, 1.0), occ_z(0.5, 1.5);
+  int occluded = 0, open = 0;
+  for (int trial = 0; trial < 6; ++trial) {
+    Scene scene;
+    scene.surfaces.push_back(make_quad("floor", {-2, -2, 0}, {3, -2, 0}, {3, 3, 0}, {-2, 3, 0}));
+    scene.surfaces.push_back(make_quad("light", {0, 0, 2}, {0, 1, 2}, {1, 1, 2}, {1, 0, 2}));
+    scene.surfaces.push_back(random_occluder(rng, Vec3(occ_xy(rng), occ_xy(rng), occ_z(rng)), 0));
+    const std::vector<Occluder> occ = make_occluders(scene);
+    const std::vector<const Occluder*> others = {&occ[2]};
+    ConvexPolygon light;
+    for (const Vec3& c : scene.surfaces[1].corners) light.push(c);
+    const Vec3 n = Vec3::UnitZ(), down = scene.surfaces[1].normal();
+    std::vector<Vec3> points(5 + trial % 3);  // a batch of four and a partial one
+    for (Vec3& p : points) p = Vec3(xy(rng), xy(rng), 0);
+    std::vector<double> batch(points.size());
+    visible_form_factors(points, n, light, down, others, batch);
+    for (size_t k = 0; k < points.size(); ++k) {
+      const double one = visible_form_factor(points[k], n, light, down, others);
+      const double unoccluded = lambert_form_factor(points[k], n, light);
+      EXPECT_NEAR(batch[k], one, 1e-13 * unoccluded) << "trial " << trial << " point " << k;
+      EXPECT_NEAR(batch[k], brute_force(scene, 1, points[k], n, 0), kBruteForceRelative * unoccluded)
+          << "trial " << trial << " point " << k;
+      (one < 0.98 * unoccluded ? occluded : open) += 1;
+    }
+  }
+  EXPECT_GE(occluded, 5);
+  EXPECT_GE(open, 5);
+}
+
 TEST(VisibleFormFactor, FullyHiddenIsZeroAndUnrelatedOccluderChangesNothing) {
   Scene scene;
   scene.surfaces.push_back(make_quad("floor", {-2, -2, 0}, {3, -2, 0}, {3, 3, 0}, {-2, 3, 0}));
