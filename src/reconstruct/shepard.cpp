@@ -2,6 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+
+#if defined(__AVX2__) && defined(__FMA__)
+#include <immintrin.h>
+#endif
 #include <limits>
 
 #include <Eigen/Core>
@@ -118,6 +122,79 @@ void Shepard::local_value(const Vec2& p, std::span<const unsigned> nearest_idx, 
   }
 }
 
+bool Shepard::global_value_fused(const Vec2& p, Scratch& s, double* o) const {
+#if defined(__AVX2__) && defined(__FMA__)
+  const int C = samples_.channels;
+  if (!barriers_.empty() || radius_sq_ < std::numeric_limits<double>::infinity() || (mu_ != 4.0 && mu_ != 2.0) || C > 3)
+    return false;
+  const size_t n = px_.size();
+  s.dist_sq.resize(static_cast<Eigen::Index>(n));
+  double* d2 = s.dist_sq.data();
+  // Pass 1: the squared distances and the nearest.
+  const __m256d x = _mm256_set1_pd(p.x()), y = _mm256_set1_pd(p.y());
+  __m256d least = _mm256_set1_pd(std::numeric_limits<double>::infinity());
+  size_t i = 0;
+  for (; i + 4 <= n; i += 4) {
+    const __m256d dx = _mm256_sub_pd(x, _mm256_loadu_pd(&px_[i])), dy = _mm256_sub_pd(y, _mm256_loadu_pd(&py_[i]));
+    const __m256d d = _mm256_fmadd_pd(dx, dx, _mm256_mul_pd(dy, dy));
+    _mm256_storeu_pd(d2 + i, d);
+    least = _mm256_min_pd(least, d);
+  }
+  alignas(32) double lanes[4];
+  _mm256_store_pd(lanes, least);
+  double nearest_sq = std::min(std::min(lanes[0], lanes[1]), std::min(lanes[2], lanes[3]));
+  for (; i < n; ++i) {
+    const double dx = p.x() - px_[i], dy = p.y() - py_[i];
+    d2[i] = std::fma(dx, dx, dy * dy);
+    nearest_sq = std::min(nearest_sq, d2[i]);
+  }
+  if (!(nearest_sq < std::numeric_limits<double>::infinity())) {  // distances overflow: no value
+    for (int c = 0; c < C; ++c) o[c] = std::numeric_limits<double>::quiet_NaN();
+    return true;
+  }
+  if (nearest_sq == 0) {  // at a sample: its value, the first such sample's
+    const size_t first = static_cast<size_t>(std::find(d2, d2 + n, 0.0) - d2);
+    for (int c = 0; c < C; ++c) o[c] = samples_.values[first * C + c];
+    return true;
+  }
+  // Pass 2: weights relative to the nearest's, (d_min / d_i)^mu in (0, 1], and their sums.
+  const double* v0 = values_by_channel_.data();
+  const double* v1 = C > 1 ? v0 + n : v0;
+  const double* v2 = C > 2 ? v0 + 2 * n : v0;
+  const __m256d nearest = _mm256_set1_pd(nearest_sq);
+  __m256d total = _mm256_setzero_pd(), s0 = total, s1 = total, s2 = total;
+  const bool square = mu_ == 4.0;
+  for (i = 0; i + 4 <= n; i += 4) {
+    __m256d w = _mm256_div_pd(nearest, _mm256_loadu_pd(d2 + i));
+    if (square) w = _mm256_mul_pd(w, w);
+    total = _mm256_add_pd(total, w);
+    s0 = _mm256_fmadd_pd(w, _mm256_loadu_pd(v0 + i), s0);
+    if (C > 1) s1 = _mm256_fmadd_pd(w, _mm256_loadu_pd(v1 + i), s1);
+    if (C > 2) s2 = _mm256_fmadd_pd(w, _mm256_loadu_pd(v2 + i), s2);
+  }
+  const auto sum = [](__m256d v) {
+    const __m128d pair = _mm_add_pd(_mm256_castpd256_pd128(v), _mm256_extractf128_pd(v, 1));
+    return _mm_cvtsd_f64(_mm_add_sd(pair, _mm_unpackhi_pd(pair, pair)));
+  };
+  double t = sum(total), a0 = sum(s0), a1 = sum(s1), a2 = sum(s2);
+  for (; i < n; ++i) {
+    double w = nearest_sq / d2[i];
+    if (square) w *= w;
+    t += w;
+    a0 = std::fma(w, v0[i], a0);
+    a1 = std::fma(w, v1[i], a1);
+    a2 = std::fma(w, v2[i], a2);
+  }
+  o[0] = a0 / t;
+  if (C > 1) o[1] = a1 / t;
+  if (C > 2) o[2] = a2 / t;
+  return true;
+#else
+  (void)p, (void)s, (void)o;
+  return false;
+#endif
+}
+
 void Shepard::evaluate(std::span<const Vec2> points, std::span<double> out) const {
   const int C = samples_.channels;
   RR_CHECK(out.size() == points.size() * static_cast<size_t>(C), "output size does not match the query points");
@@ -144,6 +221,7 @@ void Shepard::evaluate(std::span<const Vec2> points, std::span<double> out) cons
       for (int c = 0; c < C; ++c) o[c] = std::numeric_limits<double>::quiet_NaN();
       return;
     }
+    if (global_value_fused(p, s, o)) return;
     // Global: all samples at once as Eigen arrays (SIMD, sums in a fixed packet order).
     using Array = Eigen::Map<const Eigen::ArrayXd>;
     const Eigen::Index N = static_cast<Eigen::Index>(n);

@@ -145,45 +145,47 @@ TEST(Shepard, SearchRadiusUsesExactlyTheSamplesWithinItAsBruteForce) {
 
 TEST(Shepard, FastPathsForMu4AndMu2MatchTheFormulaWithPow) {
   // mu = 4 and mu = 2 skip pow() (squares and quotients of d^2, relative to the nearest sample's);
-  // they must agree with sum d^-mu B / sum d^-mu, d^-mu by std::pow, on both paths (global and k
-  // nearest) and for 4 channels (the k-nearest path handles channels 0..2 and the rest apart).
-  // Positive values, so no cancellation: each side rounds every weight and sums <= 70 positive
-  // terms, a few ulps each, hence 1e-14 relative.
+  // they must agree with sum d^-mu B / sum d^-mu, d^-mu by std::pow, on every path: global (fused
+  // AVX2 passes for up to 3 channels, Eigen arrays beyond) and k nearest (channels 0..2 and the
+  // rest apart), with 70 samples (not a multiple of the vectors' 4 lanes). Positive values, so no
+  // cancellation: each side rounds every weight and sums <= 70 positive terms, a few ulps each,
+  // hence 1e-14 relative.
   constexpr double kRelative = 1e-14;
-  constexpr int kChannels = 4;
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<double> xy(0, 4), value(0.5, 2);
-  ScatteredSamples s;
-  s.channels = kChannels;
-  for (int i = 0; i < 70; ++i) {
-    s.points.emplace_back(xy(rng), xy(rng));
-    for (int c = 0; c < kChannels; ++c) s.values.push_back(value(rng));
-  }
-  std::uniform_real_distribution<double> around(-3, 7);  // inside and well outside the samples
   double worst = 0;
-  for (double mu : {4.0, 2.0}) {
-    for (int k : {0, 1, 9, 69}) {
-      const Shepard f(s, mu, k);
-      for (int t = 0; t < 200; ++t) {
-        const Vec2 q(around(rng), around(rng));
-        std::vector<size_t> order(s.points.size());
-        std::iota(order.begin(), order.end(), 0);
-        std::sort(order.begin(), order.end(),
-                  [&](size_t a, size_t b) { return (s.points[a] - q).norm() < (s.points[b] - q).norm(); });
-        const size_t used = k ? static_cast<size_t>(k) : s.points.size();
-        double got[kChannels];
-        f.evaluate(std::span(&q, 1), std::span(got, kChannels));
-        for (int c = 0; c < kChannels; ++c) {
-          double num = 0, den = 0;
-          for (size_t j = 0; j < used; ++j) {
-            const double w = std::pow((s.points[order[j]] - q).norm(), -mu);
-            num += w * s.values[order[j] * kChannels + c];
-            den += w;
+  for (const int channels : {1, 3, 4}) {
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> xy(0, 4), value(0.5, 2);
+    ScatteredSamples s;
+    s.channels = channels;
+    for (int i = 0; i < 70; ++i) {
+      s.points.emplace_back(xy(rng), xy(rng));
+      for (int c = 0; c < channels; ++c) s.values.push_back(value(rng));
+    }
+    std::uniform_real_distribution<double> around(-3, 7);  // inside and well outside the samples
+    for (double mu : {4.0, 2.0}) {
+      for (int k : {0, 1, 9, 69}) {
+        const Shepard f(s, mu, k);
+        for (int t = 0; t < 200; ++t) {
+          const Vec2 q(around(rng), around(rng));
+          std::vector<size_t> order(s.points.size());
+          std::iota(order.begin(), order.end(), 0);
+          std::sort(order.begin(), order.end(),
+                    [&](size_t a, size_t b) { return (s.points[a] - q).norm() < (s.points[b] - q).norm(); });
+          const size_t used = k ? static_cast<size_t>(k) : s.points.size();
+          std::vector<double> got(static_cast<size_t>(channels));
+          f.evaluate(std::span(&q, 1), std::span(got));
+          for (int c = 0; c < channels; ++c) {
+            double num = 0, den = 0;
+            for (size_t j = 0; j < used; ++j) {
+              const double w = std::pow((s.points[order[j]] - q).norm(), -mu);
+              num += w * s.values[order[j] * channels + c];
+              den += w;
+            }
+            const double expected = num / den, relative = std::abs(got[static_cast<size_t>(c)] - expected) / expected;
+            worst = std::max(worst, relative);
+            EXPECT_LE(relative, kRelative) << channels << " channels, mu=" << mu << " k=" << k << " channel " << c
+                                           << ": got " << got[static_cast<size_t>(c)] << ", formula " << expected;
           }
-          const double expected = num / den, relative = std::abs(got[c] - expected) / expected;
-          worst = std::max(worst, relative);
-          EXPECT_LE(relative, kRelative) << "mu=" << mu << " k=" << k << " channel " << c << ": got " << got[c]
-                                         << ", formula " << expected;
         }
       }
     }
