@@ -2,6 +2,8 @@
 
 #include <benchmark/benchmark.h>
 
+#include "core/allocator.h"
+
 #include <random>
 
 #include "mesh/grid_mesh.h"
@@ -13,6 +15,10 @@
 
 namespace radrecon {
 namespace {
+
+// Freed memory kept for reuse, as radrecon's main keeps it (core/allocator.h): else the solvers'
+// growing vectors are mapped and unmapped pass after pass, and the page faults are measured.
+[[maybe_unused]] const bool kAllocatorSet = (keep_freed_memory(), true);
 
 ConvexPolygon unit_light() {
   ConvexPolygon p;

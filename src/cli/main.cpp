@@ -1,35 +1,16 @@
 // radrecon: radiosity solutions and their reconstruction by scattered data interpolation.
 
-#include <malloc.h>
-
 #include <cstdio>
 #include <exception>
-#include <limits>
 
 #include <CLI/CLI.hpp>
 
 #include "cli/commands.h"
+#include "core/allocator.h"
 #include "core/error.h"
 
-namespace {
-
-/// glibc's allocator returns freed memory to the system eagerly: a block of 128 KiB or more is
-/// mapped for itself and unmapped when freed, and the heap's free top is trimmed beyond 128 KiB.
-/// The solvers free and grow vectors of links, waves and receivers pass after pass, and each
-/// page taken again costs a page fault, expensive under virtualisation: quadtree:1000 on the
-/// Cornell box spent a third of its time there (docs/benchmarks.md). Freed memory is kept for
-/// reuse instead, for a few percent more peak memory (92 MiB against 88 there). The Python
-/// module leaves its host's allocator alone.
-void keep_freed_memory() {
-  constexpr int kMmapThresholdBytes = 32 << 20;  // glibc's largest on 64-bit systems
-  mallopt(M_MMAP_THRESHOLD, kMmapThresholdBytes);
-  mallopt(M_TRIM_THRESHOLD, std::numeric_limits<int>::max());
-}
-
-}  // namespace
-
 int main(int argc, char** argv) {
-  keep_freed_memory();
+  radrecon::keep_freed_memory();
   CLI::App app{
       "radrecon: computes radiosity on a scene (progressive refinement on regular grids, hierarchical radiosity "
       "on quadtrees) and reconstructs a smooth radiosity function across each patch (bilinear, bicubic, "

@@ -24,6 +24,7 @@
 // multiplies alpha. The multiquadric's scale is its radii r_j.
 
 #include <cmath>
+#include <limits>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -71,10 +72,13 @@ inline double rbf_basis(double v, const RbfKernel& kernel) {
 
 /// The same basis over an array of v, in place, with Eigen's packet functions (SIMD): sqrt for
 /// mu = 1/2, rsqrt for -1/2, pow otherwise, log for the thin-plate spline. Its last bits may
-/// differ from the scalar form's (rsqrt is not 1 / sqrt in every lane); fit_rbf() builds its
-/// matrix and evaluate_rbf_fit() evaluates with this form (sqrt, the default, is exact in both).
+/// differ from the scalar form's (rsqrt is not 1 / sqrt in every lane, Eigen's log is not libm's);
+/// fit_rbf() builds its matrix and evaluate_rbf_fit() evaluates with this form (sqrt, the
+/// default, is exact in both).
 inline void rbf_basis_in_place(Eigen::ArrayXd& v, const RbfKernel& kernel) {
-  if (kernel.is_thin_plate()) v = (v > 0).select(0.5 * v * v.log(), 0.0);
+  // The thin-plate spline's phi(0) = 0 as 0 times the log of the least normal double (not of 0,
+  // -inf): no select(), which Eigen evaluates lane by lane with std::log.
+  if (kernel.is_thin_plate()) v = 0.5 * v * v.max(std::numeric_limits<double>::min()).log();
   else if (kernel.mu == 0.5) v = v.sqrt();
   else if (kernel.mu == -0.5) v = v.rsqrt();
   else v = v.pow(kernel.mu);
