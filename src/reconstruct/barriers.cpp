@@ -5,7 +5,10 @@
 #endif
 
 #include <algorithm>
+#include <array>
+#include <atomic>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -276,6 +279,91 @@ PointVisibility::PointVisibility(std::span<const Vec2> points, const Barriers& b
   px_.reserve(points.size());
   py_.reserve(points.size());
   for (const Vec2& p : points) px_.push_back(p.x()), py_.push_back(p.y());
+  // The verdicts' grid: a square over the points and the segments' ends.
+  static std::atomic<std::uint64_t> next_id{1};
+  id_ = next_id.fetch_add(1, std::memory_order_relaxed);
+  Vec2 lo = segs[0].a, hi = segs[0].a;
+  for (const BarrierSegment& sg : segs) lo = lo.cwiseMin(sg.a).cwiseMin(sg.b), hi = hi.cwiseMax(sg.a).cwiseMax(sg.b);
+  for (const Vec2& p : points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  const double side_m = (hi - lo).maxCoeff();
+  if (side_m > 0 && std::isfinite(side_m) && points.size() <= kMaxVerdictPoints &&
+      segs.size() * points.size() <= std::numeric_limits<std::uint32_t>::max()) {
+    grid_lo_ = lo;
+    cell_m_ = side_m / kVerdictCells;
+  }
+}
+
+/// What PointVisibility knows of the queries in one cell of its grid.
+struct PointVisibility::Verdicts {
+  std::uint64_t owner = 0;  ///< the PointVisibility's id_; 0: empty
+  int cell = -1;
+  std::vector<char> hidden;         ///< per point: hidden from every query in the cell
+  std::vector<std::uint32_t> open;  ///< pairs k * n + i whose verdict differs within the cell
+};
+
+namespace {
+
+/// The sign of orient(u, v, c) at every corner of a box when the filter is certain of each and
+/// they agree (orient is linear in c: then the same sign holds in the whole box); else 0.
+int box_sign(const Vec2& u, const Vec2& v, const std::array<Vec2, 4>& corners) {
+  int sign = 0;
+  for (const Vec2& c : corners) {
+    const double left = (v.x() - u.x()) * (c.y() - u.y()), right = (v.y() - u.y()) * (c.x() - u.x());
+    const double det = left - right, bound = kOrientationErrorBound * (std::abs(left) + std::abs(right));
+    const int s = det > bound ? 1 : det < -bound ? -1 : 0;
+    if (s == 0 || (sign != 0 && s != sign)) return 0;
+    sign = s;
+  }
+  return sign;
+}
+
+}  // namespace
+
+std::array<Vec2, 4> PointVisibility::cell_corners(int cell) const {
+  const int cx = cell % kVerdictCells, cy = cell / kVerdictCells;
+  const double x0 = grid_lo_.x() + cx * cell_m_, y0 = grid_lo_.y() + cy * cell_m_;
+  const double x1 = grid_lo_.x() + (cx + 1) * cell_m_, y1 = grid_lo_.y() + (cy + 1) * cell_m_;
+  return {Vec2(x0, y0), Vec2(x1, y0), Vec2(x1, y1), Vec2(x0, y1)};
+}
+
+void PointVisibility::classify(int cell, Verdicts& v) const {
+  const size_t n = points_.size();
+  const std::vector<BarrierSegment>& segs = barriers_->segments();
+  const std::array<Vec2, 4> corners = cell_corners(cell);
+  v.hidden.assign(n, 0);
+  v.open.clear();
+  for (size_t k = 0; k < segs.size(); ++k) {
+    const BarrierSegment& s = segs[k];
+    // The query's side of the segment's line, for the whole cell if certain.
+    const int cell_side = box_sign(s.a, s.b, corners);
+    for (size_t i = 0; i < n; ++i) {
+      if (v.hidden[i]) continue;
+      const int point_side = side_[k * n + i];
+      // A query on the point's side (or the point on the line while the query is not) sees it
+      // past this segment.
+      if (cell_side != 0 && point_side != -cell_side) continue;
+      // Across: hidden where orient(q, p, a) and orient(q, p, b) differ in sign, i.e.
+      // orient(p, a, q) and orient(p, b, q).
+      const int s1 = box_sign(points_[i], s.a, corners), s2 = box_sign(points_[i], s.b, corners);
+      if (s1 != 0 && s2 != 0) {
+        if (s1 == s2) continue;                 // the line (q, p) passes beside the segment
+        if (cell_side != 0) v.hidden[i] = 1;  // strictly across, and through the segment
+        else v.open.push_back(static_cast<std::uint32_t>(k * n + i));
+      } else {
+        v.open.push_back(static_cast<std::uint32_t>(k * n + i));
+      }
+    }
+  }
+  v.cell = cell;
+  v.owner = id_;
+}
+
+bool PointVisibility::pair_hides(const Vec2& q, size_t k, size_t i) const {
+  const BarrierSegment& s = barriers_->segments()[k];
+  const int point_side = side_[k * points_.size() + i];
+  const int oq = orientation(s.a, s.b, q);
+  if (oq == 0) return point_side == 0 && segment_blocked(q, points_[i], s);
+  return point_side == -oq && orientation(q, points_[i], s.a) * orientation(q, points_[i], s.b) <= 0;
 }
 
 void PointVisibility::hidden_from(const Vec2& q, std::vector<char>& hidden) const {
@@ -285,6 +373,28 @@ void PointVisibility::hidden_from(const Vec2& q, std::vector<char>& hidden) cons
   if (side_.empty()) {  // no barrier, or many: the grid
     for (size_t i = 0; i < n; ++i) hidden[i] = barriers_->blocks(q, points_[i]);
     return;
+  }
+  // In the verdicts' grid: the cell's verdicts, and the pairs it left open.
+  if (cell_m_ > 0) {
+    const double fx = (q.x() - grid_lo_.x()) / cell_m_, fy = (q.y() - grid_lo_.y()) / cell_m_;
+    if (fx >= 0 && fy >= 0 && fx < kVerdictCells && fy < kVerdictCells) {  // false for NaN
+      const int cell = static_cast<int>(fy) * kVerdictCells + static_cast<int>(fx);
+      // A thread's cells by their index: a raster's rows of cells fit side by side.
+      constexpr size_t kCachedCells = 2 * kVerdictCells;
+      thread_local std::array<Verdicts, kCachedCells> cache;
+      Verdicts& v = cache[static_cast<size_t>(cell) % kCachedCells];
+      if (v.owner != id_ || v.cell != cell) classify(cell, v);
+      // The verdicts hold in the cell's box as its corners are rounded: q must lie in it.
+      const std::array<Vec2, 4> box = cell_corners(cell);
+      if (q.x() >= box[0].x() && q.x() <= box[2].x() && q.y() >= box[0].y() && q.y() <= box[2].y()) {
+        std::copy(v.hidden.begin(), v.hidden.end(), hidden.begin());
+        for (const std::uint32_t pair : v.open) {
+          const size_t i = pair % n;
+          if (!hidden[i]) hidden[i] = pair_hides(q, pair / n, i);
+        }
+        return;
+      }
+    }
   }
   // The rule of segment_blocked(), with the points' sides known: a point across the segment's
   // line from q is hidden when the segment meets line (q, p) between its ends (o1 * o2 <= 0);

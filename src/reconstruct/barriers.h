@@ -10,6 +10,8 @@
 //   - light passes around a barrier's free end (a segment that misses the end point by any
 //     amount is not blocked).
 
+#include <array>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -67,6 +69,13 @@ class Barriers {
 /// query tests only the points across a segment's line from it (two orientations each). Exactly
 /// Barriers::blocks() point by point. With many segments (more than kMaxSidedSegments) it asks
 /// blocks(), whose grid then wins.
+///
+/// Queries come in runs of neighbours (a raster, a view's hits on a surface): a square grid of
+/// kVerdictCells x kVerdictCells cells over the points and segments holds, per cell, the
+/// verdicts that hold for the whole cell, for each pair of a segment and a point (the cell's
+/// corners all certainly on one side of each line that decides it; the lines' orientations are
+/// linear in the query), and the pairs left open; a query in a cell tests those alone. Each
+/// thread keeps the verdicts of its last cells. The same answers, bit for bit.
 class PointVisibility {
  public:
   /// Both must outlive this.
@@ -77,12 +86,28 @@ class PointVisibility {
   void visible_from(const Vec2& q, std::vector<unsigned>& out, std::vector<char>& hidden) const;
 
   static constexpr size_t kMaxSidedSegments = 64;
+  /// Cells of the verdicts' grid along each axis (see the class).
+  static constexpr int kVerdictCells = 64;
+  /// The most points for the verdicts' grid: a thread keeps a byte per point for each of its
+  /// 2 kVerdictCells cells (8 MiB here).
+  static constexpr size_t kMaxVerdictPoints = 1 << 16;
 
  private:
+  struct Verdicts;
+  /// The corners of the grid cell `cell` (row-major), counter-clockwise from the lower left.
+  std::array<Vec2, 4> cell_corners(int cell) const;
+  /// The verdicts of the grid cell `cell`, into v.
+  void classify(int cell, Verdicts& v) const;
+  /// Whether segment k hides point i from q (the rule of hidden_from()).
+  bool pair_hides(const Vec2& q, size_t k, size_t i) const;
+
   std::span<const Vec2> points_;
   const Barriers* barriers_;
   std::vector<signed char> side_;  ///< segment-major: side_[s * n + i], the sign of orient(a_s, b_s, p_i)
   std::vector<double> px_, py_;    ///< the points' coordinates, m, as arrays (vectorised tests)
+  std::uint64_t id_ = 0;           ///< tells this object's cells in the threads' caches from others'
+  Vec2 grid_lo_ = Vec2::Zero();    ///< the verdicts' grid: its lower corner and cell size, m
+  double cell_m_ = 0;              ///< 0: no grid (no segments, or a degenerate box)
 };
 
 class KdTree2;

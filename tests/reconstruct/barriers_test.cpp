@@ -235,6 +235,32 @@ TEST(PointVisibility, AgreesWithBlocksPointByPoint) {
   }
 }
 
+TEST(PointVisibility, RastersOfQueriesAgreeWithBlocksThroughTheCellsVerdicts) {
+  // Rows of neighbouring queries reuse their cells' verdicts (PointVisibility::kVerdictCells):
+  // a raster whose step is half a cell puts queries on the cells' edges and corners, on the
+  // barriers' lines and on lines through a point and a barrier's end.
+  std::mt19937 rng(405);
+  std::uniform_real_distribution<double> u(0, 10);
+  const std::vector<Polyline> lines = {{{2, 2}, {2, 8}}, {{3, 5}, {7, 5}}, {{6, 1}, {9, 4}}};
+  const Barriers barriers = Barriers::from_polylines(lines).value();
+  std::vector<Vec2> points = {{0, 0}, {10, 10}, {2, 1}, {2, 9}, {5, 5}, {8, 8}, {1, 5}};
+  for (int k = 0; k < 150; ++k) points.emplace_back(u(rng), u(rng));
+  const PointVisibility visibility(points, barriers);
+  std::vector<char> hidden;
+  constexpr int kSteps = 2 * PointVisibility::kVerdictCells;
+  size_t hidden_count = 0;
+  for (int j = 0; j <= kSteps; ++j)
+    for (int i = 0; i <= kSteps; ++i) {
+      const Vec2 q(10.0 * i / kSteps, 10.0 * j / kSteps);
+      visibility.hidden_from(q, hidden);
+      for (size_t p = 0; p < points.size(); ++p) {
+        ASSERT_EQ(hidden[p] != 0, barriers.blocks(q, points[p])) << "query " << q.transpose() << ", point " << p;
+        hidden_count += hidden[p] != 0;
+      }
+    }
+  EXPECT_GT(hidden_count, 0u);
+}
+
 TEST(NearestSampleWithBarriers, IsTheNearestVisibleSampleByBruteForce) {
   const ScatteredSamples s = two_sided_samples(1.0, 5.0);
   const Barriers barriers = wall_and_corner();
