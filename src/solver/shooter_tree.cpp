@@ -210,13 +210,22 @@ namespace {
 
 /// M = H + g g^T at p for the block's centroid: H the Hessian over the source point of ln k,
 /// k = (n_s . d)(-n . d) / (pi |d|^4), d = p - y: -n_s n_s^T / (n_s . d)^2 - n n^T / (n . d)^2 +
-/// 4 (2 d d^T / |d|^4 - I / |d|^2).
-Eigen::Matrix3d kernel_second_order(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal,
-                                    const Vec3& g) {
+/// 4 (2 d d^T / |d|^4 - I / |d|^2). Symmetric: its upper triangle, row by row (00 01 02 11 12 22).
+std::array<double, 6> kernel_second_order(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal,
+                                          const Vec3& g) {
   const Vec3 d = p - b.center;
   const double r2 = d.squaredNorm(), cos_y = shooter_normal.dot(d), cos_x = -n.dot(d);  // times |d|
-  return -shooter_normal * shooter_normal.transpose() / (cos_y * cos_y) - n * n.transpose() / (cos_x * cos_x) +
-         4.0 * (2.0 * d * d.transpose() / (r2 * r2) - Eigen::Matrix3d::Identity() / r2) + g * g.transpose();
+  const double wy = 1.0 / (cos_y * cos_y), wx = 1.0 / (cos_x * cos_x), wd = 8.0 / (r2 * r2), wi = 4.0 / r2;
+  const Vec3& s = shooter_normal;
+  const auto entry = [&](int i, int j) {
+    return -wy * s[i] * s[j] - wx * n[i] * n[j] + wd * d[i] * d[j] + g[i] * g[j] - (i == j ? wi : 0.0);
+  };
+  return {entry(0, 0), entry(0, 1), entry(0, 2), entry(1, 1), entry(1, 2), entry(2, 2)};
+}
+
+/// sum over i, j of M_ij S_ij for M as kernel_second_order() gives it and S symmetric.
+double contract(const std::array<double, 6>& m, const Eigen::Matrix3d& s) {
+  return m[0] * s(0, 0) + m[3] * s(1, 1) + m[5] * s(2, 2) + 2.0 * (m[1] * s(0, 1) + m[2] * s(0, 2) + m[4] * s(1, 2));
 }
 
 }  // namespace
@@ -253,14 +262,14 @@ Rgb far_field_radiosity(const Block& b, const Vec3& p, const Vec3& n, const Vec3
 Rgb far_field_radiosity(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal, const Vec3* gradient) {
   if (gradient == nullptr) return b.unshot_w_m2;
   const Vec3& g = *gradient;
-  const Eigen::Matrix3d m = kernel_second_order(b, p, n, shooter_normal, g);
-  const double shape = 1.0 + 0.5 * (m.cwiseProduct(b.area_moment)).sum();
+  const std::array<double, 6> m = kernel_second_order(b, p, n, shooter_normal, g);
+  const double shape = 1.0 + 0.5 * contract(m, b.area_moment);
   Rgb corrected = (g.transpose() * b.dipole).transpose().array();
   // Where the second-order term is not small (near grazing, or a block near the receiver that
   // shoots whole by the strict bound or the distance rule) the expansion is not to be trusted,
   // and 1 / shape could even change sign: first order only.
   if (std::abs(shape - 1.0) <= tol::kFarFieldCurvatureLimit) {
-    for (int c = 0; c < 3; ++c) corrected[c] += 0.5 * (m.cwiseProduct(b.quadrupole[static_cast<size_t>(c)])).sum();
+    for (int c = 0; c < 3; ++c) corrected[c] += 0.5 * contract(m, b.quadrupole[static_cast<size_t>(c)]);
     corrected /= shape;
   }
   corrected += b.unshot_w_m2;
