@@ -286,8 +286,7 @@ PointVisibility::PointVisibility(std::span<const Vec2> points, const Barriers& b
   for (const BarrierSegment& sg : segs) lo = lo.cwiseMin(sg.a).cwiseMin(sg.b), hi = hi.cwiseMax(sg.a).cwiseMax(sg.b);
   for (const Vec2& p : points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
   const double side_m = (hi - lo).maxCoeff();
-  if (side_m > 0 && std::isfinite(side_m) && points.size() <= kMaxVerdictPoints &&
-      segs.size() * points.size() <= std::numeric_limits<std::uint32_t>::max()) {
+  if (side_m > 0 && std::isfinite(side_m) && segs.size() * points.size() <= kMaxVerdictPairs) {
     grid_lo_ = lo;
     cell_m_ = side_m / kVerdictCells;
   }
@@ -299,6 +298,7 @@ struct PointVisibility::Verdicts {
   int cell = -1;
   std::vector<char> hidden;         ///< per point: hidden from every query in the cell
   std::vector<std::uint32_t> open;  ///< pairs k * n + i whose verdict differs within the cell
+  bool used = false;  ///< false: too many pairs left open (kMaxOpenShare); the queries ask each pair
 };
 
 namespace {
@@ -354,6 +354,8 @@ void PointVisibility::classify(int cell, Verdicts& v) const {
       }
     }
   }
+  v.used = static_cast<double>(v.open.size()) <= kMaxOpenShare * static_cast<double>(segs.size() * n);
+  if (!v.used) std::vector<std::uint32_t>().swap(v.open);
   v.cell = cell;
   v.owner = id_;
 }
@@ -386,7 +388,7 @@ void PointVisibility::hidden_from(const Vec2& q, std::vector<char>& hidden) cons
       if (v.owner != id_ || v.cell != cell) classify(cell, v);
       // The verdicts hold in the cell's box as its corners are rounded: q must lie in it.
       const std::array<Vec2, 4> box = cell_corners(cell);
-      if (q.x() >= box[0].x() && q.x() <= box[2].x() && q.y() >= box[0].y() && q.y() <= box[2].y()) {
+      if (v.used && q.x() >= box[0].x() && q.x() <= box[2].x() && q.y() >= box[0].y() && q.y() <= box[2].y()) {
         std::copy(v.hidden.begin(), v.hidden.end(), hidden.begin());
         for (const std::uint32_t pair : v.open) {
           const size_t i = pair % n;

@@ -88,9 +88,11 @@ class PointVisibility {
   static constexpr size_t kMaxSidedSegments = 64;
   /// Cells of the verdicts' grid along each axis (see the class).
   static constexpr int kVerdictCells = 64;
-  /// The most points for the verdicts' grid: a thread keeps a byte per point for each of its
-  /// 2 kVerdictCells cells (8 MiB here).
-  static constexpr size_t kMaxVerdictPoints = 1 << 16;
+  /// The most pairs of a segment and a point for the verdicts' grid: a thread keeps, for each of
+  /// its 2 kVerdictCells cells, a byte per point and at most kMaxOpenShare of the pairs, 4 bytes
+  /// each (a cell that leaves more open is not used): 26 MiB at most.
+  static constexpr size_t kMaxVerdictPairs = 1 << 18;
+  static constexpr double kMaxOpenShare = 1.0 / 8;
 
  private:
   struct Verdicts;
