@@ -41,8 +41,12 @@ struct ConvexPolygon {
 struct HalfSpace {
   Vec3 normal;
   double offset;
+  /// tol::kPlaneDistance_m times |normal|: clip()'s tolerance in eval()'s units, made once by
+  /// with_tolerance() for a plane that clips many polygons; negative: clip() makes it.
+  double on_plane = -1;
   double eval(const Vec3& x) const { return normal.dot(x) - offset; }
-  HalfSpace complement() const { return {-normal, -offset}; }
+  HalfSpace complement() const { return {-normal, -offset, on_plane}; }
+  HalfSpace with_tolerance() const { return {normal, offset, tol::kPlaneDistance_m * normal.norm()}; }
 };
 
 /// The part of `in` inside the half-space (Sutherland-Hodgman for one plane). Vertices within
@@ -53,7 +57,7 @@ inline ConvexPolygon clip(const ConvexPolygon& in, const HalfSpace& h) {
   if (in.n == 0) return out;
   std::array<double, ConvexPolygon::kCapacity> d;
   bool all_in = true, all_out = true;
-  const double on_plane = tol::kPlaneDistance_m * h.normal.norm();
+  const double on_plane = h.on_plane >= 0 ? h.on_plane : tol::kPlaneDistance_m * h.normal.norm();
   for (int i = 0; i < in.n; ++i) {
     d[i] = h.eval(in.v[i]);
     if (std::abs(d[i]) <= on_plane) d[i] = 0;
@@ -63,7 +67,7 @@ inline ConvexPolygon clip(const ConvexPolygon& in, const HalfSpace& h) {
   if (all_in) return in;
   if (all_out) return out;
   for (int i = 0; i < in.n; ++i) {
-    int k = (i + 1) % in.n;
+    const int k = i + 1 < in.n ? i + 1 : 0;
     if (d[i] >= 0) out.push(in.v[i]);
     if ((d[i] > 0 && d[k] < 0) || (d[i] < 0 && d[k] > 0)) {
       double t = d[i] / (d[i] - d[k]);

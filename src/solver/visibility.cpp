@@ -74,12 +74,12 @@ ShadowVolume shadow_volume(const Vec3& p, const Occluder& o) {
   const double side_p = o.plane.eval(p);
   if (std::abs(side_p) <= tol::kPlaneDistance_m) return volume;  // p in the occluder's plane
   // Beyond the occluder's plane, as seen from p.
-  volume.planes[0] = side_p > 0 ? o.plane.complement() : o.plane;
+  volume.planes[0] = (side_p > 0 ? o.plane.complement() : o.plane).with_tolerance();
   const int n = o.corner_count;
   for (int i = 0; i < n; ++i) {
     Vec3 m = (o.corners[i] - p).cross(o.corners[(i + 1) % n] - p);
     if (m.dot(o.centroid - p) < 0) m = -m;
-    volume.planes[i + 1] = HalfSpace{m, m.dot(p)};
+    volume.planes[i + 1] = HalfSpace{m, m.dot(p)}.with_tolerance();
   }
   if (n == 3) volume.planes[4] = volume.planes[3];  // a triangle's cone has three sides: clip by one twice
   volume.sides = n;
@@ -189,7 +189,7 @@ void subtract(const ConvexPolygon& q, const std::array<HalfSpace, 5>& volume,
   // keep it whole rather than cut it along the planes before that one (fewer, larger fragments;
   // the same visible polygon).
   for (const HalfSpace& h : volume) {
-    const double on_plane = tol::kPlaneDistance_m * h.normal.norm();
+    const double on_plane = h.on_plane >= 0 ? h.on_plane : tol::kPlaneDistance_m * h.normal.norm();
     bool outside = true;
     for (int i = 0; i < q.n && outside; ++i) outside = h.eval(q.v[i]) <= on_plane;
     if (outside) {
