@@ -40,6 +40,15 @@ bool any_nan(std::span<const double> v) {
   return false;
 }
 
+/// Whether every pixel of the interleaved image has all `channels` values equal (bitwise).
+bool grey(std::span<const double> image, int channels) {
+  if (channels < 2) return false;
+  for (size_t k = 0; k < image.size(); k += static_cast<size_t>(channels))
+    for (int c = 1; c < channels; ++c)
+      if (!(image[k + c] == image[k])) return false;
+  return true;
+}
+
 /// Per-thread buffers of ssim(): the five windowed column sums of one output row.
 struct SsimScratch {
   std::vector<double> a, r, aa, rr, ar;
@@ -54,15 +63,18 @@ std::optional<double> ssim(std::span<const double> a, std::span<const double> re
   if (shape.width < kSsimWindow || shape.height < kSsimWindow) return std::nullopt;
   if (any_nan(a) || any_nan(reference)) return kNaN;
   const std::array<double, kSsimWindow> w = ssim_weights();
-  const int W = shape.width, C = shape.channels;
+  const int W = shape.width;
+  // Grey images (every pixel's channels equal in both, as the paper scene's are): each channel
+  // has the same index, so channel 0's is the mean.
+  const int C = shape.channels, channels = grey(a, C) && grey(reference, C) ? 1 : C;
   const int out_w = W - kSsimWindow + 1, out_h = shape.height - kSsimWindow + 1;
   // One output row a task: the window's column sums (vertical pass) for all W columns, then the
   // horizontal pass; rows are independent, so each row's sum is the same on any thread, and
   // the rows are added in order afterwards.
-  std::vector<double> row_sum(static_cast<size_t>(out_h) * C);
+  std::vector<double> row_sum(static_cast<size_t>(out_h) * channels);
   parallel_for_with_scratch<SsimScratch>(0, out_h, [&](std::int64_t j, SsimScratch& s) {
     s.a.assign(W, 0), s.r.assign(W, 0), s.aa.assign(W, 0), s.rr.assign(W, 0), s.ar.assign(W, 0);
-    for (int c = 0; c < C; ++c) {
+    for (int c = 0; c < channels; ++c) {
       for (int i = 0; i < W; ++i) {
         double sa = 0, sr = 0, saa = 0, srr = 0, sar = 0;
         for (int k = 0; k < kSsimWindow; ++k) {
@@ -83,12 +95,12 @@ std::optional<double> ssim(std::span<const double> a, std::span<const double> re
         sum += (2 * mu_a * mu_r + kSsimC1) * (2 * cov + kSsimC2) /
                ((mu_a * mu_a + mu_r * mu_r + kSsimC1) * (var_a + var_r + kSsimC2));
       }
-      row_sum[static_cast<size_t>(j) * C + c] = sum;
+      row_sum[static_cast<size_t>(j) * channels + c] = sum;
     }
   });
   long double total = 0;
   for (const double v : row_sum) total += v;
-  return static_cast<double>(total / (static_cast<long double>(out_w) * out_h * C));
+  return static_cast<double>(total / (static_cast<long double>(out_w) * out_h * channels));
 }
 
 double gradient_l2(std::span<const double> a, std::span<const double> reference, ImageShape shape, double dx,

@@ -74,6 +74,18 @@ TEST(Ssim, MatchesTheTextbookFormulaOnSmallRandomImages) {
   }
 }
 
+TEST(Ssim, GreyImagesOfThreeChannelsMatchTheTextbookFormula) {
+  // Every pixel's three channels equal in both images (ssim() then computes one channel), and
+  // one pixel's channels differing (all three computed).
+  const ImageShape shape{15, 13, 3};
+  const std::vector<double> a1 = random_image(15 * 13, 31), r1 = random_image(15 * 13, 37);
+  std::vector<double> a(shape.size()), r(shape.size());
+  for (size_t k = 0; k < a.size(); ++k) a[k] = a1[k / 3], r[k] = r1[k / 3];
+  EXPECT_NEAR(*ssim(a, r, shape), textbook_ssim(a, r, shape.width, shape.height, shape.channels), kRoundOff);
+  a[100] += 0.25;
+  EXPECT_NEAR(*ssim(a, r, shape), textbook_ssim(a, r, shape.width, shape.height, shape.channels), kRoundOff);
+}
+
 TEST(Ssim, IsOneForIdenticalImages) {
   const ImageShape shape{15, 13, 3};
   const std::vector<double> a = random_image(shape.size(), 5);
