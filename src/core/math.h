@@ -54,8 +54,10 @@ inline __m256d atan2_nonneg4(__m256d y, __m256d x) {
   const __m256d nothing = _mm256_cmp_pd(den, zero, _CMP_EQ_OQ);  // y == x == 0
   // t = num / den in [0, 1], reduced to (t - 1) / (t + 1) above tan(pi/8): one division.
   const __m256d reduce = _mm256_cmp_pd(num, _mm256_mul_pd(_mm256_set1_pd(kTanPi8), den), _CMP_GT_OQ);
-  const __m256d top = _mm256_blendv_pd(num, _mm256_sub_pd(num, den), reduce);
-  const __m256d bottom = _mm256_blendv_pd(_mm256_blendv_pd(den, one, nothing), _mm256_add_pd(num, den), reduce);
+  // Halves in the reduced ratio, exact but for subnormals: num + den cannot overflow.
+  const __m256d half = _mm256_set1_pd(0.5), num_h = _mm256_mul_pd(half, num), den_h = _mm256_mul_pd(half, den);
+  const __m256d top = _mm256_blendv_pd(num, _mm256_sub_pd(num_h, den_h), reduce);
+  const __m256d bottom = _mm256_blendv_pd(_mm256_blendv_pd(den, one, nothing), _mm256_add_pd(num_h, den_h), reduce);
   const __m256d t = _mm256_div_pd(top, bottom);
   const __m256d base = _mm256_and_pd(reduce, _mm256_set1_pd(std::numbers::pi / 4));
   // P(s) by Estrin's scheme: four levels of dependent operations rather than nine.
@@ -67,6 +69,12 @@ inline __m256d atan2_nonneg4(__m256d y, __m256d x) {
   a = _mm256_blendv_pd(a, _mm256_sub_pd(_mm256_set1_pd(std::numbers::pi / 2), a), steep);
   a = _mm256_blendv_pd(a, _mm256_sub_pd(_mm256_set1_pd(std::numbers::pi), a), _mm256_cmp_pd(x, zero, _CMP_LT_OQ));
   return _mm256_andnot_pd(nothing, a);
+}
+
+/// The sum of the four lanes, in a fixed order: (0 + 2) + (1 + 3).
+inline double sum_lanes(__m256d v) {
+  const __m128d pair = _mm_add_pd(_mm256_castpd256_pd128(v), _mm256_extractf128_pd(v, 1));
+  return _mm_cvtsd_f64(_mm_add_sd(pair, _mm_unpackhi_pd(pair, pair)));
 }
 #endif
 

@@ -299,6 +299,10 @@ struct PointVisibility::Verdicts {
   std::vector<char> hidden;         ///< per point: hidden from every query in the cell
   std::vector<std::uint32_t> open;  ///< pairs k * n + i whose verdict differs within the cell
   bool used = false;  ///< false: too many pairs left open (kMaxOpenShare); the queries ask each pair
+  /// The cell of the last query that found this slot holding another: classified only when a
+  /// second query asks for it, so that scattered queries do not pay for cells they visit once.
+  std::uint64_t asked_owner = 0;
+  int asked_cell = -1;
 };
 
 namespace {
@@ -332,6 +336,10 @@ void PointVisibility::classify(int cell, Verdicts& v) const {
   const std::array<Vec2, 4> corners = cell_corners(cell);
   v.hidden.assign(n, 0);
   v.open.clear();
+  const size_t most_open = static_cast<size_t>(kMaxOpenShare * static_cast<double>(segs.size() * n));
+  v.cell = cell;
+  v.owner = id_;
+  v.used = false;
   for (size_t k = 0; k < segs.size(); ++k) {
     const BarrierSegment& s = segs[k];
     // The query's side of the segment's line, for the whole cell if certain.
@@ -347,17 +355,19 @@ void PointVisibility::classify(int cell, Verdicts& v) const {
       const int s1 = box_sign(points_[i], s.a, corners), s2 = box_sign(points_[i], s.b, corners);
       if (s1 != 0 && s2 != 0) {
         if (s1 == s2) continue;                 // the line (q, p) passes beside the segment
-        if (cell_side != 0) v.hidden[i] = 1;  // strictly across, and through the segment
-        else v.open.push_back(static_cast<std::uint32_t>(k * n + i));
-      } else {
-        v.open.push_back(static_cast<std::uint32_t>(k * n + i));
+        if (cell_side != 0) {
+          v.hidden[i] = 1;  // strictly across, and through the segment
+          continue;
+        }
+      }
+      v.open.push_back(static_cast<std::uint32_t>(k * n + i));
+      if (v.open.size() > most_open) {  // no use: the queries ask each pair
+        v.open.clear();
+        return;
       }
     }
   }
-  v.used = static_cast<double>(v.open.size()) <= kMaxOpenShare * static_cast<double>(segs.size() * n);
-  if (!v.used) std::vector<std::uint32_t>().swap(v.open);
-  v.cell = cell;
-  v.owner = id_;
+  v.used = true;
 }
 
 bool PointVisibility::pair_hides(const Vec2& q, size_t k, size_t i) const {
@@ -385,10 +395,17 @@ void PointVisibility::hidden_from(const Vec2& q, std::vector<char>& hidden) cons
       constexpr size_t kCachedCells = 2 * kVerdictCells;
       thread_local std::array<Verdicts, kCachedCells> cache;
       Verdicts& v = cache[static_cast<size_t>(cell) % kCachedCells];
-      if (v.owner != id_ || v.cell != cell) classify(cell, v);
+      if (v.owner != id_ || v.cell != cell) {
+        if (v.asked_owner == id_ && v.asked_cell == cell) {
+          classify(cell, v);
+        } else {
+          v.asked_owner = id_;
+          v.asked_cell = cell;
+        }
+      }
       // The verdicts hold in the cell's box as its corners are rounded: q must lie in it.
       const std::array<Vec2, 4> box = cell_corners(cell);
-      if (v.used && q.x() >= box[0].x() && q.x() <= box[2].x() && q.y() >= box[0].y() && q.y() <= box[2].y()) {
+      if (v.owner == id_ && v.cell == cell && v.used && q.x() >= box[0].x() && q.x() <= box[2].x() && q.y() >= box[0].y() && q.y() <= box[2].y()) {
         std::copy(v.hidden.begin(), v.hidden.end(), hidden.begin());
         for (const std::uint32_t pair : v.open) {
           const size_t i = pair % n;

@@ -75,7 +75,8 @@ class Barriers {
 /// verdicts that hold for the whole cell, for each pair of a segment and a point (the cell's
 /// corners all certainly on one side of each line that decides it; the lines' orientations are
 /// linear in the query), and the pairs left open; a query in a cell tests those alone. Each
-/// thread keeps the verdicts of its last cells. The same answers, bit for bit.
+/// thread keeps the verdicts of its last cells, made when a second query asks for the same cell
+/// (scattered queries keep the direct tests). The same answers, bit for bit.
 class PointVisibility {
  public:
   /// Both must outlive this.
@@ -90,8 +91,8 @@ class PointVisibility {
   static constexpr int kVerdictCells = 64;
   /// The most pairs of a segment and a point for the verdicts' grid: a thread keeps, for each of
   /// its 2 kVerdictCells cells, a byte per point and at most kMaxOpenShare of the pairs, 4 bytes
-  /// each (a cell that leaves more open is not used): 26 MiB at most.
-  static constexpr size_t kMaxVerdictPairs = 1 << 18;
+  /// each (a cell that leaves more open is not used): 96 KiB a cell, 12 MiB at most.
+  static constexpr size_t kMaxVerdictPairs = 1 << 16;
   static constexpr double kMaxOpenShare = 1.0 / 8;
 
  private:

@@ -10,6 +10,8 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 
+#include "core/math.h"
+
 #include "core/check.h"
 #include "core/parse.h"
 #include "core/tolerances.h"
@@ -173,11 +175,7 @@ void add_rbf_sum(const RbfFit& fit, const RbfKernel& kernel, int channels, const
       if (channels > 1) sum1 = _mm256_fmadd_pd(phi, _mm256_loadu_pd(a1 + i), sum1);
       if (channels > 2) sum2 = _mm256_fmadd_pd(phi, _mm256_loadu_pd(a2 + i), sum2);
     }
-    const auto total = [](__m256d v) {
-      const __m128d pair = _mm_add_pd(_mm256_castpd256_pd128(v), _mm256_extractf128_pd(v, 1));
-      return _mm_cvtsd_f64(_mm_add_sd(pair, _mm_unpackhi_pd(pair, pair)));
-    };
-    double t0 = total(sum0), t1 = total(sum1), t2 = total(sum2);
+    double t0 = sum_lanes(sum0), t1 = sum_lanes(sum1), t2 = sum_lanes(sum2);
     for (; i < m; ++i) {
       const double dx = p.x() - xs[i], dy = p.y() - ys[i];
       double v = dx * dx + dy * dy + rs[i];

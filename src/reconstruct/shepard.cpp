@@ -11,6 +11,7 @@
 #include <Eigen/Core>
 
 #include "core/check.h"
+#include "core/math.h"
 #include "core/tolerances.h"
 #include "reconstruct/kdtree.h"
 #include "core/parallel.h"
@@ -172,11 +173,7 @@ bool Shepard::global_value_fused(const Vec2& p, Scratch& s, double* o) const {
     if (C > 1) s1 = _mm256_fmadd_pd(w, _mm256_loadu_pd(v1 + i), s1);
     if (C > 2) s2 = _mm256_fmadd_pd(w, _mm256_loadu_pd(v2 + i), s2);
   }
-  const auto sum = [](__m256d v) {
-    const __m128d pair = _mm_add_pd(_mm256_castpd256_pd128(v), _mm256_extractf128_pd(v, 1));
-    return _mm_cvtsd_f64(_mm_add_sd(pair, _mm_unpackhi_pd(pair, pair)));
-  };
-  double t = sum(total), a0 = sum(s0), a1 = sum(s1), a2 = sum(s2);
+  double t = sum_lanes(total), a0 = sum_lanes(s0), a1 = sum_lanes(s1), a2 = sum_lanes(s2);
   for (; i < n; ++i) {
     double w = nearest_sq / d2[i];
     if (square) w *= w;

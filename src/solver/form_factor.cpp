@@ -7,6 +7,29 @@
 
 namespace radrecon {
 
+namespace {
+
+#if defined(__AVX2__) && defined(__FMA__)
+/// Lambert's term of four edges (lanes) from r0 to r1 (offsets of an edge's ends from the
+/// receiving point), angle(r0, r1) n . unit(r0 x r1); 0 where r0 x r1 = 0 (the point on the
+/// edge's line, or a lane holding no edge).
+__m256d edge_terms(__m256d x0, __m256d y0, __m256d z0, __m256d x1, __m256d y1, __m256d z1, __m256d nx, __m256d ny,
+                   __m256d nz) {
+  const __m256d zero = _mm256_setzero_pd();
+  const __m256d cx = _mm256_fmsub_pd(y0, z1, _mm256_mul_pd(z0, y1));
+  const __m256d cy = _mm256_fmsub_pd(z0, x1, _mm256_mul_pd(x0, z1));
+  const __m256d cz = _mm256_fmsub_pd(x0, y1, _mm256_mul_pd(y0, x1));
+  const __m256d c_norm = _mm256_sqrt_pd(_mm256_fmadd_pd(cx, cx, _mm256_fmadd_pd(cy, cy, _mm256_mul_pd(cz, cz))));
+  const __m256d dot = _mm256_fmadd_pd(x0, x1, _mm256_fmadd_pd(y0, y1, _mm256_mul_pd(z0, z1)));
+  const __m256d n_dot_c = _mm256_fmadd_pd(nx, cx, _mm256_fmadd_pd(ny, cy, _mm256_mul_pd(nz, cz)));
+  const __m256d some = _mm256_cmp_pd(c_norm, zero, _CMP_GT_OQ);
+  const __m256d ratio = _mm256_div_pd(n_dot_c, _mm256_blendv_pd(_mm256_set1_pd(1.0), c_norm, some));
+  return _mm256_and_pd(some, _mm256_mul_pd(atan2_nonneg4(c_norm, dot), ratio));
+}
+#endif
+
+}  // namespace
+
 double lambert_form_factor(const Vec3& p, const Vec3& n, const ConvexPolygon& polygon) {
   if (polygon.empty()) return 0.0;
 #if defined(__AVX2__) && defined(__FMA__)
@@ -24,25 +47,12 @@ double lambert_form_factor(const Vec3& p, const Vec3& n, const ConvexPolygon& po
   for (int k = count; k % 4 != 0; ++k)
     for (auto& row : r) row[k] = 0;
   const __m256d nx = _mm256_set1_pd(n.x()), ny = _mm256_set1_pd(n.y()), nz = _mm256_set1_pd(n.z());
-  const __m256d zero = _mm256_setzero_pd();
-  __m256d total = zero;
-  for (int k = 0; k < count; k += 4) {
-    const __m256d x0 = _mm256_load_pd(&r[0][k]), y0 = _mm256_load_pd(&r[1][k]), z0 = _mm256_load_pd(&r[2][k]);
-    const __m256d x1 = _mm256_load_pd(&r[3][k]), y1 = _mm256_load_pd(&r[4][k]), z1 = _mm256_load_pd(&r[5][k]);
-    const __m256d cx = _mm256_fmsub_pd(y0, z1, _mm256_mul_pd(z0, y1));
-    const __m256d cy = _mm256_fmsub_pd(z0, x1, _mm256_mul_pd(x0, z1));
-    const __m256d cz = _mm256_fmsub_pd(x0, y1, _mm256_mul_pd(y0, x1));
-    const __m256d c_norm = _mm256_sqrt_pd(_mm256_fmadd_pd(cx, cx, _mm256_fmadd_pd(cy, cy, _mm256_mul_pd(cz, cz))));
-    const __m256d dot = _mm256_fmadd_pd(x0, x1, _mm256_fmadd_pd(y0, y1, _mm256_mul_pd(z0, z1)));
-    const __m256d n_dot_c = _mm256_fmadd_pd(nx, cx, _mm256_fmadd_pd(ny, cy, _mm256_mul_pd(nz, cz)));
-    // c_norm == 0: p on the line of this edge (or a lane past the last edge): nothing.
-    const __m256d some = _mm256_cmp_pd(c_norm, zero, _CMP_GT_OQ);
-    const __m256d ratio = _mm256_div_pd(n_dot_c, _mm256_blendv_pd(_mm256_set1_pd(1.0), c_norm, some));
-    total = _mm256_add_pd(total, _mm256_and_pd(some, _mm256_mul_pd(atan2_nonneg4(c_norm, dot), ratio)));
-  }
-  const __m128d pair = _mm_add_pd(_mm256_castpd256_pd128(total), _mm256_extractf128_pd(total, 1));
-  const double sum = _mm_cvtsd_f64(_mm_add_sd(pair, _mm_unpackhi_pd(pair, pair)));
-  return std::abs(sum) / (2.0 * std::numbers::pi);
+  __m256d total = _mm256_setzero_pd();
+  for (int k = 0; k < count; k += 4)
+    total = _mm256_add_pd(total, edge_terms(_mm256_load_pd(&r[0][k]), _mm256_load_pd(&r[1][k]), _mm256_load_pd(&r[2][k]),
+                                            _mm256_load_pd(&r[3][k]), _mm256_load_pd(&r[4][k]), _mm256_load_pd(&r[5][k]),
+                                            nx, ny, nz));
+  return std::abs(sum_lanes(total)) / (2.0 * std::numbers::pi);
 #else
   double sum = 0.0;
   Vec3 r0 = polygon.v[polygon.n - 1] - p;
@@ -69,7 +79,6 @@ void lambert_form_factors4(const std::array<Vec3, 4>& points, const Vec3& n, con
   const __m256d py = _mm256_setr_pd(points[0].y(), points[1].y(), points[2].y(), points[3].y());
   const __m256d pz = _mm256_setr_pd(points[0].z(), points[1].z(), points[2].z(), points[3].z());
   const __m256d nx = _mm256_set1_pd(n.x()), ny = _mm256_set1_pd(n.y()), nz = _mm256_set1_pd(n.z());
-  const __m256d zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1.0);
   const auto offset = [&](const Vec3& v, __m256d& x, __m256d& y, __m256d& z) {
     x = _mm256_sub_pd(_mm256_set1_pd(v.x()), px);
     y = _mm256_sub_pd(_mm256_set1_pd(v.y()), py);
@@ -77,18 +86,10 @@ void lambert_form_factors4(const std::array<Vec3, 4>& points, const Vec3& n, con
   };
   __m256d x0, y0, z0, x1, y1, z1;
   offset(polygon.v[polygon.n - 1], x0, y0, z0);
-  __m256d total = zero;
+  __m256d total = _mm256_setzero_pd();
   for (int k = 0; k < polygon.n; ++k) {
     offset(polygon.v[k], x1, y1, z1);
-    const __m256d cx = _mm256_fmsub_pd(y0, z1, _mm256_mul_pd(z0, y1));
-    const __m256d cy = _mm256_fmsub_pd(z0, x1, _mm256_mul_pd(x0, z1));
-    const __m256d cz = _mm256_fmsub_pd(x0, y1, _mm256_mul_pd(y0, x1));
-    const __m256d c_norm = _mm256_sqrt_pd(_mm256_fmadd_pd(cx, cx, _mm256_fmadd_pd(cy, cy, _mm256_mul_pd(cz, cz))));
-    const __m256d dot = _mm256_fmadd_pd(x0, x1, _mm256_fmadd_pd(y0, y1, _mm256_mul_pd(z0, z1)));
-    const __m256d n_dot_c = _mm256_fmadd_pd(nx, cx, _mm256_fmadd_pd(ny, cy, _mm256_mul_pd(nz, cz)));
-    const __m256d some = _mm256_cmp_pd(c_norm, zero, _CMP_GT_OQ);  // else p on the edge's line: nothing
-    const __m256d ratio = _mm256_div_pd(n_dot_c, _mm256_blendv_pd(one, c_norm, some));
-    total = _mm256_add_pd(total, _mm256_and_pd(some, _mm256_mul_pd(atan2_nonneg4(c_norm, dot), ratio)));
+    total = _mm256_add_pd(total, edge_terms(x0, y0, z0, x1, y1, z1, nx, ny, nz));
     x0 = x1, y0 = y1, z0 = z1;
   }
   const __m256d magnitude = _mm256_andnot_pd(_mm256_set1_pd(-0.0), total);

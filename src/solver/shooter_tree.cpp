@@ -223,9 +223,11 @@ std::array<double, 6> kernel_second_order(const Block& b, const Vec3& p, const V
   return {entry(0, 0), entry(0, 1), entry(0, 2), entry(1, 1), entry(1, 2), entry(2, 2)};
 }
 
-/// sum over i, j of M_ij S_ij for M as kernel_second_order() gives it and S symmetric.
+/// sum over i, j of M_ij S_ij for M as kernel_second_order() gives it (symmetric) and the moment S
+/// (symmetric but for rounding: both of its off-diagonal entries are read).
 double contract(const std::array<double, 6>& m, const Eigen::Matrix3d& s) {
-  return m[0] * s(0, 0) + m[3] * s(1, 1) + m[5] * s(2, 2) + 2.0 * (m[1] * s(0, 1) + m[2] * s(0, 2) + m[4] * s(1, 2));
+  return m[0] * s(0, 0) + m[3] * s(1, 1) + m[5] * s(2, 2) +
+         (m[1] * (s(0, 1) + s(1, 0)) + m[2] * (s(0, 2) + s(2, 0)) + m[4] * (s(1, 2) + s(2, 1)));
 }
 
 }  // namespace

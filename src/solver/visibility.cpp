@@ -346,7 +346,7 @@ bool sees_whole(const Vec3& p, const Vec3& n, const ConvexPolygon& shooter, cons
   if (shooter.empty() || shooter_normal.dot(p - shooter.v[0]) <= tol::kPlaneDistance_m) return false;
   const double offset = n.dot(p), on_plane = tol::kPlaneDistance_m * n.norm();
   for (int i = 0; i < shooter.n; ++i)
-    if (n.dot(shooter.v[i]) - offset < -on_plane) return false;
+    if (!(n.dot(shooter.v[i]) - offset >= -on_plane)) return false;  // (NaN: as clip(), which empties it)
   for (const ShadowVolume& v : volumes)
     if (meets(v, shooter)) return false;
   return true;

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "solver/form_factor.h"
@@ -120,6 +121,15 @@ TEST(VisibleFormFactors, FourPointsAtOnceMatchBruteForceAndOneByOne) {
   }
   EXPECT_GE(occluded, 5);
   EXPECT_GE(open, 5);
+  // A point that is not a number sees nothing, in a batch as alone.
+  ConvexPolygon light;
+  for (const Vec3& c : {Vec3(0, 0, 2), Vec3(0, 1, 2), Vec3(1, 1, 2), Vec3(1, 0, 2)}) light.push(c);
+  const std::vector<Vec3> odd = {Vec3(0.5, 0.5, 0), Vec3(std::nan(""), 0.5, 0)};
+  std::vector<double> f(odd.size());
+  visible_form_factors(odd, Vec3::UnitZ(), light, -Vec3::UnitZ(), {}, f);
+  EXPECT_GT(f[0], 0.0);
+  EXPECT_EQ(f[1], visible_form_factor(odd[1], Vec3::UnitZ(), light, -Vec3::UnitZ(), {}));
+  EXPECT_EQ(f[1], 0.0);
 }
 
 TEST(VisibleFormFactor, FullyHiddenIsZeroAndUnrelatedOccluderChangesNothing) {
