@@ -405,7 +405,8 @@ void PointVisibility::hidden_from(const Vec2& q, std::vector<char>& hidden) cons
       }
       // The verdicts hold in the cell's box as its corners are rounded: q must lie in it.
       const std::array<Vec2, 4> box = cell_corners(cell);
-      if (v.owner == id_ && v.cell == cell && v.used && q.x() >= box[0].x() && q.x() <= box[2].x() && q.y() >= box[0].y() && q.y() <= box[2].y()) {
+      const bool inside = q.x() >= box[0].x() && q.x() <= box[2].x() && q.y() >= box[0].y() && q.y() <= box[2].y();
+      if (v.owner == id_ && v.cell == cell && v.used && inside) {
         std::copy(v.hidden.begin(), v.hidden.end(), hidden.begin());
         for (const std::uint32_t pair : v.open) {
           const size_t i = pair % n;
