@@ -133,21 +133,25 @@ bool Shepard::global_value_fused(const Vec2& p, Scratch& s, double* o) const {
   double* d2 = s.dist_sq.data();
   // Pass 1: the squared distances and the nearest.
   const __m256d x = _mm256_set1_pd(p.x()), y = _mm256_set1_pd(p.y());
-  __m256d least = _mm256_set1_pd(std::numeric_limits<double>::infinity());
+  __m256d least = _mm256_set1_pd(std::numeric_limits<double>::infinity()), most = _mm256_setzero_pd();
   size_t i = 0;
   for (; i + 4 <= n; i += 4) {
     const __m256d dx = _mm256_sub_pd(x, _mm256_loadu_pd(&px_[i])), dy = _mm256_sub_pd(y, _mm256_loadu_pd(&py_[i]));
     const __m256d d = _mm256_fmadd_pd(dx, dx, _mm256_mul_pd(dy, dy));
     _mm256_storeu_pd(d2 + i, d);
     least = _mm256_min_pd(least, d);
+    most = _mm256_max_pd(most, d);
   }
   alignas(32) double lanes[4];
   _mm256_store_pd(lanes, least);
   double nearest_sq = std::min(std::min(lanes[0], lanes[1]), std::min(lanes[2], lanes[3]));
+  _mm256_store_pd(lanes, most);
+  double farthest_sq = std::max(std::max(lanes[0], lanes[1]), std::max(lanes[2], lanes[3]));
   for (; i < n; ++i) {
     const double dx = p.x() - px_[i], dy = p.y() - py_[i];
     d2[i] = std::fma(dx, dx, dy * dy);
     nearest_sq = std::min(nearest_sq, d2[i]);
+    farthest_sq = std::max(farthest_sq, d2[i]);
   }
   if (!(nearest_sq < std::numeric_limits<double>::infinity())) {  // distances overflow: no value
     for (int c = 0; c < C; ++c) o[c] = std::numeric_limits<double>::quiet_NaN();
@@ -163,16 +167,34 @@ bool Shepard::global_value_fused(const Vec2& p, Scratch& s, double* o) const {
   const double* v1 = C > 1 ? v0 + n : v0;
   const double* v2 = C > 2 ? v0 + 2 * n : v0;
   const __m256d nearest = _mm256_set1_pd(nearest_sq);
-  __m256d total = _mm256_setzero_pd(), s0 = total, s1 = total, s2 = total;
   const bool square = mu_ == 4.0;
-  for (i = 0; i + 4 <= n; i += 4) {
-    __m256d w = _mm256_div_pd(nearest, _mm256_loadu_pd(d2 + i));
+  // Sums of weights and of weights times values, two sets (the even and the odd vectors of
+  // samples: two dependency chains), merged at the end.
+  struct Sums {
+    __m256d total = _mm256_setzero_pd(), s0 = total, s1 = total, s2 = total;
+  } even, odd;
+  const auto add = [&](Sums& sums, __m256d w, size_t at) {  // w = d_min^2 / d^2 of samples at..at+3
     if (square) w = _mm256_mul_pd(w, w);
-    total = _mm256_add_pd(total, w);
-    s0 = _mm256_fmadd_pd(w, _mm256_loadu_pd(v0 + i), s0);
-    if (C > 1) s1 = _mm256_fmadd_pd(w, _mm256_loadu_pd(v1 + i), s1);
-    if (C > 2) s2 = _mm256_fmadd_pd(w, _mm256_loadu_pd(v2 + i), s2);
-  }
+    sums.total = _mm256_add_pd(sums.total, w);
+    sums.s0 = _mm256_fmadd_pd(w, _mm256_loadu_pd(v0 + at), sums.s0);
+    if (C > 1) sums.s1 = _mm256_fmadd_pd(w, _mm256_loadu_pd(v1 + at), sums.s1);
+    if (C > 2) sums.s2 = _mm256_fmadd_pd(w, _mm256_loadu_pd(v2 + at), sums.s2);
+  };
+  i = 0;
+  // Two vectors of samples share one division (the divider is the bottleneck): with r =
+  // d_min^2 / (a b), d_min^2 / a = b r and d_min^2 / b = a r. Exact to a few ulps while a b and
+  // r stay normal numbers: squared distances within [kLeast, kMost] (else a division each).
+  constexpr double kLeast = 1e-100, kMost = 1e100;
+  if (nearest_sq >= kLeast && farthest_sq <= kMost)
+    for (; i + 8 <= n; i += 8) {
+      const __m256d a = _mm256_loadu_pd(d2 + i), b = _mm256_loadu_pd(d2 + i + 4);
+      const __m256d r = _mm256_div_pd(nearest, _mm256_mul_pd(a, b));
+      add(even, _mm256_mul_pd(b, r), i);
+      add(odd, _mm256_mul_pd(a, r), i + 4);
+    }
+  for (; i + 4 <= n; i += 4) add(even, _mm256_div_pd(nearest, _mm256_loadu_pd(d2 + i)), i);
+  const __m256d total = _mm256_add_pd(even.total, odd.total), s0 = _mm256_add_pd(even.s0, odd.s0),
+                s1 = _mm256_add_pd(even.s1, odd.s1), s2 = _mm256_add_pd(even.s2, odd.s2);
   double t = sum_lanes(total), a0 = sum_lanes(s0), a1 = sum_lanes(s1), a2 = sum_lanes(s2);
   for (; i < n; ++i) {
     double w = nearest_sq / d2[i];

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <random>
 
@@ -77,6 +78,41 @@ TEST(Shepard, MatchesTheFormulaAndItsKNearestRestriction) {
       EXPECT_NEAR(eval1(f, q), num / den, 1e-12) << "k=" << k;
     }
   }
+}
+
+// The global method's vector path (mu 2 and 4, up to 3 channels; pairs of sample vectors share a
+// division while the squared distances stay within [1e-100, 1e100], else one division each)
+// against the formula in long double, relative to the nearest sample's weight: at unit scale and
+// at scales whose squared distances leave that range either way, with sample counts that leave
+// a vector and single samples after the pairs.
+TEST(Shepard, GlobalVectorPathMatchesTheFormulaAtEveryScale) {
+  for (const double scale : {1.0, 1e-60, 1e60})
+    for (const int n : {61, 64, 7})
+      for (const int channels : {1, 3})
+        for (const double mu : {2.0, 4.0}) {
+          std::mt19937 rng(static_cast<unsigned>(n * 7 + channels));
+          ScatteredSamples s = random_samples(n, rng, channels);
+          for (Vec2& p : s.points) p *= scale;
+          const Shepard f(s, mu, 0);
+          std::uniform_real_distribution<double> xy(-0.5, 4.5);
+          for (int t = 0; t < 40; ++t) {
+            const Vec2 q = Vec2(xy(rng), xy(rng)) * scale;
+            long double nearest = std::numeric_limits<long double>::infinity();
+            for (const Vec2& p : s.points) nearest = std::min(nearest, static_cast<long double>((p - q).norm()));
+            std::vector<long double> num(static_cast<size_t>(channels), 0.0L);
+            long double den = 0;
+            for (size_t i = 0; i < s.points.size(); ++i) {
+              const long double w = std::pow(nearest / static_cast<long double>((s.points[i] - q).norm()), static_cast<long double>(mu));
+              den += w;
+              for (int c = 0; c < channels; ++c) num[static_cast<size_t>(c)] += w * s.values[i * static_cast<size_t>(channels) + c];
+            }
+            std::vector<double> got(static_cast<size_t>(channels));
+            f.evaluate(std::span(&q, 1), got);
+            for (int c = 0; c < channels; ++c)
+              EXPECT_NEAR(got[static_cast<size_t>(c)], static_cast<double>(num[static_cast<size_t>(c)] / den), 1e-13)
+                  << "scale " << scale << " n " << n << " channels " << channels << " mu " << mu;
+          }
+        }
 }
 
 // Local Shepard finds its k nearest for a batch of queries at once, by tiles (kdtree.h
