@@ -25,10 +25,7 @@
 
 #include <cmath>
 #include <limits>
-#include <map>
 #include <memory>
-#include <mutex>
-#include <shared_mutex>
 #include <span>
 #include <string>
 #include <vector>
@@ -37,6 +34,7 @@
 
 #include "core/vec.h"
 #include "reconstruct/convex_hull.h"
+#include "reconstruct/subset_cache.h"
 
 namespace radrecon {
 
@@ -140,29 +138,7 @@ void evaluate_rbf_fit(const RbfFit& fit, const RbfKernel& kernel, int channels, 
 void add_rbf_sum(const RbfFit& fit, const RbfKernel& kernel, int channels, const Vec2& p, double weight,
                  Eigen::ArrayXd& b, double* out);
 
-/// Fits over subsets of the samples, each solved once and shared: with barriers, a query's
-/// RBF is the one through the samples it sees, and neighbouring queries see the same.
-/// Thread-safe; a fit depends on its subset alone, so results do not depend on which thread
-/// solved it first.
-class RbfFitCache {
- public:
-  /// The fit through `subset` (sorted sample indices) under `key` (e.g. a patch), solved with
-  /// `solve` the first time.
-  template <typename Solve>
-  std::shared_ptr<const RbfFit> get(unsigned key, const std::vector<unsigned>& subset, Solve&& solve) const {
-    {
-      std::shared_lock lock(mutex_);
-      const auto it = fits_.find({key, subset});
-      if (it != fits_.end()) return it->second;
-    }
-    auto fit = std::make_shared<const RbfFit>(solve());
-    std::unique_lock lock(mutex_);
-    return fits_.try_emplace({key, subset}, std::move(fit)).first->second;
-  }
-
- private:
-  mutable std::shared_mutex mutex_;
-  mutable std::map<std::pair<unsigned, std::vector<unsigned>>, std::shared_ptr<const RbfFit>> fits_;
-};
+/// Fits over subsets of the samples, each solved once and shared (subset_cache.h).
+using RbfFitCache = SubsetCache<RbfFit>;
 
 }  // namespace radrecon

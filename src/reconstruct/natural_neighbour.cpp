@@ -11,6 +11,7 @@
 #include "reconstruct/kdtree.h"
 #include "reconstruct/nn_delaunay.h"
 #include "reconstruct/sibson_c1.h"
+#include "reconstruct/subset_cache.h"
 
 namespace radrecon {
 
@@ -30,6 +31,10 @@ struct NaturalNeighbour::Impl {
   std::vector<Delaunay::Vertex_handle> vertex_of;  ///< by sample index
   std::unique_ptr<KdTree2> tree;                   ///< to start walks near a query
   Barriers barriers;
+  /// With barriers and at most kMaxWholeVisibleSamples samples: which samples a query sees, and
+  /// the triangulations of the sets seen (whole_visible_coordinates()).
+  std::unique_ptr<PointVisibility> visibility;
+  SubsetCache<Delaunay> visible_triangulations{kMaxCachedTriangulationSamples};
 
   /// Buffers of coordinates(), reused from query to query.
   struct Scratch {
@@ -44,6 +49,13 @@ struct NaturalNeighbour::Impl {
     /// chunk of queries: evaluate()), which parallel_for_with_scratch's rule forbids, and safely
     /// so: a query gets the same bits from a reused zone as from its own (nn::ConflictZone).
     nn::ConflictZone zone;
+    // With barriers and few samples: the samples visible from the query, and the triangulation
+    // of those the last query saw (whole_visible_coordinates()).
+    std::vector<unsigned> visible_idx;
+    std::vector<char> hidden;
+    std::vector<unsigned> visible_key;
+    std::shared_ptr<const Delaunay> visible_dt;
+    Delaunay::Face_handle visible_hint;
   };
 
   /// Coordinates into `out`, normalised by their sum `norm`; false when that is not positive.
@@ -160,6 +172,25 @@ struct NaturalNeighbour::Impl {
     out.emplace_back(best_edge.second, best_t);
   }
 
+  /// The nearest point to q of the hull of a triangulation (of the samples visible from q) as
+  /// nearest_on_edges() gives it: a point, a segment, or the edges of the infinite faces.
+  void nearest_on_hull(const Delaunay& dt, const Vec2& q, std::vector<std::pair<unsigned, double>>& out) const {
+    std::vector<std::pair<unsigned, unsigned>> edges;
+    if (dt.dimension() < 2) {
+      if (dt.dimension() == 0) edges.emplace_back(dt.finite_vertices_begin()->info(), dt.finite_vertices_begin()->info());
+      for (auto e = dt.finite_edges_begin(); e != dt.finite_edges_end(); ++e)
+        edges.emplace_back(e->first->vertex(Delaunay::cw(e->second))->info(), e->first->vertex(Delaunay::ccw(e->second))->info());
+    } else {
+      const auto inf = dt.infinite_vertex();
+      auto fc = dt.incident_faces(inf), done = fc;
+      do {
+        const int i = fc->index(inf);
+        edges.emplace_back(fc->vertex(Delaunay::ccw(i))->info(), fc->vertex(Delaunay::cw(i))->info());
+      } while (++fc != done);
+    }
+    nearest_on_edges(q, edges, out);
+  }
+
   /// The interpolant from a point's coordinates, per channel, into o: the sum of coordinates
   /// times values, or (sibson-c1) Farin's C1 form.
   void combine(std::span<const std::pair<unsigned, double>> coords, double* o) const {
@@ -196,9 +227,62 @@ struct NaturalNeighbour::Impl {
     return visible_coordinates(q, s);
   }
 
+  /// With barriers and few samples (visibility set): what q gets over every sample visible from
+  /// it, in the Delaunay triangulation of exactly those, into s.coords. A triangulation is built
+  /// once per set of visible samples (neighbouring queries mostly see the same set), one point at
+  /// a time in sample order: it depends on the set alone, and a point on one of its edges is
+  /// taken in the face of the smaller sorted sample indices, so that the coordinates depend on
+  /// the point alone.
+  Kind whole_visible_coordinates(const Vec2& q, Scratch& s) const {
+    visibility->visible_from(q, s.visible_idx, s.hidden);
+    if (s.visible_idx.empty()) return Kind::nothing;
+    if (!s.visible_dt || s.visible_key != s.visible_idx) {
+      s.visible_dt = visible_triangulations.get(0, s.visible_idx, [&] {
+        auto dt = std::make_shared<Delaunay>();
+        Delaunay::Vertex_handle last;
+        for (const unsigned i : s.visible_idx) {
+          last = dt->insert(Point(points[i].x(), points[i].y()), last == Delaunay::Vertex_handle() ? Delaunay::Face_handle() : last->face());
+          last->info() = i;
+        }
+        return std::shared_ptr<const Delaunay>(std::move(dt));
+      });
+      s.visible_key = s.visible_idx;
+      s.visible_hint = Delaunay::Face_handle();
+    }
+    const Delaunay& dt = *s.visible_dt;
+    if (dt.dimension() < 2) {  // one point, or all on a line: q is outside their hull
+      nearest_on_hull(dt, q, s.coords);
+      return Kind::on_hull;
+    }
+    const Point p(q.x(), q.y());
+    Delaunay::Locate_type lt;
+    int li;
+    Delaunay::Face_handle f = dt.locate(p, lt, li, s.visible_hint);
+    s.visible_hint = f;
+    if (lt == Delaunay::VERTEX) {
+      s.coords.assign(1, {f->vertex(li)->info(), 1.0});
+      return Kind::coordinates;
+    }
+    const bool on_hull_edge = lt == Delaunay::EDGE && (dt.is_infinite(f) || dt.is_infinite(f->neighbor(li)));
+    if (lt == Delaunay::OUTSIDE_CONVEX_HULL || on_hull_edge) {
+      nearest_on_hull(dt, q, s.coords);
+      return on_hull_edge ? Kind::coordinates : Kind::on_hull;
+    }
+    if (lt == Delaunay::EDGE) {
+      const Delaunay::Face_handle other = f->neighbor(li);
+      if (face_key(other) < face_key(f)) f = other;
+    }
+    s.conflicts.clear();
+    s.hole.clear();
+    dt.get_conflicts_and_boundary(p, std::back_inserter(s.conflicts), std::back_inserter(s.hole), f);
+    s.coords.clear();
+    return normalise(nn::hole_coordinates(dt, p, s.hole, rule, s.coords), s.coords) ? Kind::coordinates : Kind::nothing;
+  }
+
   /// With barriers: what q gets over the samples visible from it (the rule of the header), into
   /// scratch.coords.
   Kind visible_coordinates(const Vec2& q, Scratch& s) const {
+    if (visibility) return whole_visible_coordinates(q, s);
     constexpr size_t kFirstRound = 16;
     const size_t n = points.size();
     const Point p(q.x(), q.y());
@@ -232,11 +316,7 @@ struct NaturalNeighbour::Impl {
       }
       if (dt.dimension() < 2) {  // one point, or all on a line: q is outside their hull
         if (!last) continue;
-        std::vector<std::pair<unsigned, unsigned>> edges;
-        if (dt.dimension() == 0) edges.emplace_back(dt.finite_vertices_begin()->info(), dt.finite_vertices_begin()->info());
-        for (auto e = dt.finite_edges_begin(); e != dt.finite_edges_end(); ++e)
-          edges.emplace_back(e->first->vertex(Delaunay::cw(e->second))->info(), e->first->vertex(Delaunay::ccw(e->second))->info());
-        nearest_on_edges(q, edges, s.coords);
+        nearest_on_hull(dt, q, s.coords);
         return Kind::on_hull;
       }
       Delaunay::Locate_type lt;
@@ -250,14 +330,7 @@ struct NaturalNeighbour::Impl {
       if (lt == Delaunay::OUTSIDE_CONVEX_HULL || on_hull_edge) {
         // Outside (or on) the hull of these samples: a farther visible sample may still close it.
         if (!last) continue;
-        std::vector<std::pair<unsigned, unsigned>> edges;
-        auto inf = dt.infinite_vertex();
-        auto fc = dt.incident_faces(inf), done = fc;
-        do {
-          const int i = fc->index(inf);
-          edges.emplace_back(fc->vertex(Delaunay::ccw(i))->info(), fc->vertex(Delaunay::cw(i))->info());
-        } while (++fc != done);
-        nearest_on_edges(q, edges, s.coords);
+        nearest_on_hull(dt, q, s.coords);
         return on_hull_edge ? Kind::coordinates : Kind::on_hull;
       }
       // Inside: the conflict zone, its boundary, and the certificate.
@@ -311,6 +384,9 @@ NaturalNeighbour::NaturalNeighbour(const ScatteredSamples& samples, OutsideHull 
   impl_->vertex_of.resize(n);
   for (auto v = impl_->dt.finite_vertices_begin(); v != impl_->dt.finite_vertices_end(); ++v) impl_->vertex_of[v->info()] = v;
   impl_->tree = std::make_unique<KdTree2>(impl_->points);
+  if (!impl_->barriers.empty() && n <= kMaxWholeVisibleSamples &&
+      impl_->barriers.segments().size() <= PointVisibility::kMaxSidedSegments)
+    impl_->visibility = std::make_unique<PointVisibility>(impl_->points, impl_->barriers);
   // Hull edges: the finite edges of the infinite faces.
   auto inf = impl_->dt.infinite_vertex();
   auto fc = impl_->dt.incident_faces(inf), done = fc;

@@ -10,6 +10,9 @@
 //   - Where every natural neighbour of q among all samples is visible, those coordinates are
 //     already the ones over the visible samples (q's Voronoi cell, and the part of it each
 //     neighbour loses, depend on the natural neighbours alone), so they are used as they are.
+//   - Otherwise, with few samples (kMaxWholeVisibleSamples), the coordinates of q in the
+//     Delaunay triangulation of every sample it sees: neighbouring queries mostly see the same
+//     set, whose triangulation is built once and shared (kMaxCachedTriangulationSamples).
 //   - Otherwise the Delaunay triangulation of q's k nearest visible samples is built, and its
 //     coordinates are taken when they are certified: no farther visible sample can cut q's cell
 //     nor be nearer than its sample to any point of it (the next visible sample farther than
@@ -63,6 +66,13 @@ class NaturalNeighbour final : public Interpolant {
 
   /// Visible samples a query's local triangulation may hold (with barriers).
   static constexpr size_t kMaxVisibleNeighbours = 512;
+  /// With barriers (at most PointVisibility::kMaxSidedSegments segments), up to this many
+  /// samples: a query's coordinates in the triangulation of every sample it sees, built once per
+  /// set of visible samples and shared (see the header).
+  static constexpr size_t kMaxWholeVisibleSamples = 1024;
+  /// The most samples the shared triangulations of the visible sets hold in all (some 200 bytes
+  /// each); past it they are built per thread and not kept.
+  static constexpr size_t kMaxCachedTriangulationSamples = size_t{1} << 18;
 
   /// The coordinates of q (Sibson's, or Laplace's for NeighbourRule::laplace): pairs (sample
   /// index, lambda), lambda summing to one; empty outside the convex hull (of the samples visible

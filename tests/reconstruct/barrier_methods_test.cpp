@@ -62,6 +62,67 @@ TEST(NaturalNeighbourWithBarriers, IsSibsonOverTheVisibleSamplesAlone) {
   EXPECT_GT(hidden_some, q.size() / 4);  // the barriers matter for many queries
 }
 
+// Past kMaxWholeVisibleSamples a query's coordinates come from the triangulation of its k
+// nearest visible samples, certified (natural_neighbour.h): the same independent answer, away
+// from the wall (hard against it, without barrier samples, a query's cell among the samples it
+// sees reaches past the kMaxVisibleNeighbours nearest: the header's documented limit).
+TEST(NaturalNeighbourWithBarriers, ManySamplesTakeTheirNearestVisibleAndAreSibsonOverTheVisible) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  ScatteredSamples s;
+  const size_t n = NaturalNeighbour::kMaxWholeVisibleSamples + 300;
+  while (s.points.size() < n) {
+    const Vec2 p(u(rng), u(rng));
+    if (std::abs(p.x() - 0.5) < 1e-4) continue;
+    s.points.push_back(p);
+    s.values.push_back(std::sin(5 * p.x()) + p.y());
+  }
+  const Barriers barriers = wall_and_corner();
+  const NaturalNeighbour f(s, OutsideHull::nearest, barriers);
+  std::vector<Vec2> q;
+  for (const Vec2& p : queries_with_margin(9, 200))
+    if (std::abs(p.x() - 0.5) > 0.03) q.push_back(p);
+  const std::vector<double> got = evaluate(f, q);
+  for (size_t k = 0; k < q.size(); ++k) {
+    const NaturalNeighbour alone(subset(s, visible_by_distance(s, barriers, q[k])), OutsideHull::nearest);
+    const double want = at(alone, q[k]);
+    ASSERT_NEAR(got[k], want, 1e-12 * std::max(1.0, std::abs(want))) << "query " << k << " at " << q[k].transpose();
+  }
+}
+
+// A lattice (the paper's grid data: co-circular samples everywhere) with barriers, on a raster:
+// each query the coordinates over exactly the samples it sees, and the same bits whether the
+// raster comes at once (neighbours sharing their visible sets' triangulations and their walks)
+// or one point at a time.
+TEST(NaturalNeighbourWithBarriers, OnALatticeARasterGivesSibsonOverTheVisibleAndEachPointsOwnBits) {
+  ScatteredSamples s;
+  for (int j = 0; j < 16; ++j)
+    for (int i = 0; i < 16; ++i) {
+      const Vec2 p((i + 0.5) / 16, (j + 0.5) / 16);
+      s.points.push_back(p);
+      s.values.push_back(p.x() < 0.5 ? 2 + p.y() : -1 + 3 * p.x() * p.y());
+    }
+  const Barriers barriers = wall_and_corner();
+  for (const NeighbourRule rule : {NeighbourRule::sibson, NeighbourRule::laplace}) {
+    const NaturalNeighbour f(s, OutsideHull::nearest, barriers, rule);
+    std::vector<Vec2> q;
+    for (int j = 0; j < 50; ++j)
+      for (int i = 0; i < 50; ++i) q.emplace_back((i + 0.5) / 50, (j + 0.5) / 50);
+    const std::vector<double> together = evaluate(f, q);
+    size_t hidden_some = 0;
+    for (size_t k = 0; k < q.size(); ++k) {
+      ASSERT_EQ(together[k], at(f, q[k])) << "query " << k << " at " << q[k].transpose();
+      const auto visible = visible_by_distance(s, barriers, q[k]);
+      hidden_some += visible.size() < s.points.size();
+      if (k % 7 != 0) continue;  // the independent answer for every 7th query
+      const NaturalNeighbour alone(subset(s, visible), OutsideHull::nearest, Barriers{}, rule);
+      const double want = at(alone, q[k]);
+      ASSERT_NEAR(together[k], want, 1e-12 * std::max(1.0, std::abs(want))) << "query " << k << " at " << q[k].transpose();
+    }
+    EXPECT_GT(hidden_some, q.size() / 4);
+  }
+}
+
 TEST(NaturalNeighbourWithBarriers, CoordinatesAreOverVisibleSamplesAndSumToOne) {
   const ScatteredSamples s = two_sided_samples(1.0, 5.0);
   const Barriers barriers = wall_and_corner();
