@@ -1,10 +1,13 @@
 #include "io/solution_json.h"
 
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <memory>
+#include <string>
+#include <system_error>
 
 #include <nlohmann/json.hpp>
 
@@ -19,6 +22,15 @@ namespace radrecon {
 namespace {
 
 std::string json_string(const std::string& s) { return nlohmann::json(s).dump(); }
+
+/// v as printf's "%.{precision}g" would write it, appended to out.
+void append_g(std::string& out, double v, int precision) {
+  char buf[32];
+  const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general, precision);
+  out.append(buf, ec == std::errc() ? end : buf);
+}
+
+constexpr size_t kFlushBytes = 1 << 16;  ///< the elements' text is written in pieces of about this size
 
 void put_rgb(std::FILE* f, const Rgb& c) { std::fprintf(f, "[%.9g, %.9g, %.9g]", c[0], c[1], c[2]); }
 
@@ -55,16 +67,42 @@ void write_solution_json(const std::filesystem::path& path, const Solution& sol)
       std::fprintf(f, "],\n     \"excluded\": [");
       put_polylines(f, surf.excluded);
       std::fprintf(f, "],\n     \"elements\": [");
+      // The elements (most of the file) through a buffer, their numbers by std::to_chars: the
+      // same text as printf's %.17g and %.9g, several times faster.
+      std::string text;
+      const auto flush = [&] {
+        if (std::fwrite(text.data(), 1, text.size(), f) != text.size()) throw UserError(path.string(), "write failed");
+        text.clear();
+      };
       for (size_t e = 0; e < surf.elements.size(); ++e) {
         const SolutionElement& el = surf.elements[e];
-        std::fprintf(f, "%s\n      {\"u0\": %.17g, \"v0\": %.17g, \"u1\": %.17g, \"v1\": %.17g, ", e ? "," : "", el.u0,
-                     el.v0, el.u1, el.v1);
-        if (el.is_triangle()) std::fprintf(f, "\"shape\": \"%s\", ", cell_shape_name(el.shape));
-        std::fprintf(f, "\"center\": [%.9g, %.9g, %.9g], \"area\": %.9g, \"radiosity\": ", el.center.x(), el.center.y(),
-                     el.center.z(), el.area_m2);
-        put_rgb(f, el.radiosity_w_m2);
-        std::fputc('}', f);
+        text += e ? ",\n      {\"u0\": " : "\n      {\"u0\": ";
+        append_g(text, el.u0, 17);
+        text += ", \"v0\": ";
+        append_g(text, el.v0, 17);
+        text += ", \"u1\": ";
+        append_g(text, el.u1, 17);
+        text += ", \"v1\": ";
+        append_g(text, el.v1, 17);
+        text += ", ";
+        if (el.is_triangle()) text.append("\"shape\": \"").append(cell_shape_name(el.shape)).append("\", ");
+        text += "\"center\": [";
+        append_g(text, el.center.x(), 9);
+        text += ", ";
+        append_g(text, el.center.y(), 9);
+        text += ", ";
+        append_g(text, el.center.z(), 9);
+        text += "], \"area\": ";
+        append_g(text, el.area_m2, 9);
+        text += ", \"radiosity\": [";
+        for (int c = 0; c < 3; ++c) {
+          if (c) text += ", ";
+          append_g(text, el.radiosity_w_m2[c], 9);
+        }
+        text += "]}";
+        if (text.size() > kFlushBytes) flush();
       }
+      flush();
       std::fprintf(f, "\n    ]}");
     }
     const SolveStats& st = sol.stats;
