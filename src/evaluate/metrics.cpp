@@ -2,7 +2,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <array>
+#include <bit>
+#include <cstdint>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -136,9 +139,18 @@ double gradient_l2(std::span<const double> a, std::span<const double> reference,
 
 std::vector<double> display_values(std::span<const double> values_w_m2, double white_w_m2) {
   RR_CHECK_GT(white_w_m2, 0.0, "display values need a positive white");
-  std::vector<double> out(values_w_m2.size());
-  parallel_for(0, static_cast<std::int64_t>(out.size()), [&](std::int64_t k) {
-    out[k] = std::isnan(values_w_m2[k]) ? kNaN : srgb_encode(tone_map(values_w_m2[k], white_w_m2));
+  // By runs of 3 (a pixel's channels): a value equal to the one before it in its run takes that
+  // one's display value (the same bits in, the same out; a grey image needs a third of the sRGB
+  // curve's pow()s).
+  const size_t n = values_w_m2.size();
+  std::vector<double> out(n);
+  parallel_for(0, static_cast<std::int64_t>((n + 2) / 3), [&](std::int64_t run) {
+    const size_t first = 3 * static_cast<size_t>(run), end = std::min(n, first + 3);
+    for (size_t k = first; k < end; ++k) {
+      const double v = values_w_m2[k];
+      const bool same = k > first && std::bit_cast<std::uint64_t>(v) == std::bit_cast<std::uint64_t>(values_w_m2[k - 1]);
+      out[k] = same ? out[k - 1] : std::isnan(v) ? kNaN : srgb_encode(tone_map(v, white_w_m2));
+    }
   });
   return out;
 }

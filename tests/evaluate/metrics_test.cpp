@@ -8,11 +8,14 @@
 #include <nlohmann/json.hpp>
 #include <omp.h>
 
+#include <bit>
+#include <cstdint>
 #include <cmath>
 #include <limits>
 #include <random>
 #include <vector>
 
+#include "core/image.h"
 #include "evaluate/metrics.h"
 
 namespace radrecon {
@@ -275,6 +278,23 @@ TEST(DisplayValues, AreTheSrgbEncodedToneMap) {
   EXPECT_NEAR(d[2], 1.0, 1e-15);  // 1.055 - 0.055 in double
   EXPECT_NEAR(d[3], 12.92 * 0.001, 1e-15);  // the curve's linear toe
   EXPECT_TRUE(std::isnan(d[4]));
+}
+
+// Equal neighbours (a grey pixel's channels) share their display value: every entry is still
+// the curve at its own value, bit for bit, whatever its neighbours (NaN, signed zeros, runs
+// across pixels, a size that is not a multiple of 3).
+TEST(DisplayValues, EachIsItsOwnValuesCurveWhateverItsNeighbours) {
+  const std::vector<double> v = {50, 50, 50, 20, 20, 30, kNaN, kNaN, 0.0, -0.0, 0.0, 7, 7, 7, 7, 300, 300};
+  const std::vector<double> d = display_values(v, 100);
+  ASSERT_EQ(d.size(), v.size());
+  for (size_t k = 0; k < v.size(); ++k) {
+    if (std::isnan(v[k])) {
+      EXPECT_TRUE(std::isnan(d[k])) << k;
+      continue;
+    }
+    const double want = srgb_encode(tone_map(v[k], 100));
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(d[k]), std::bit_cast<std::uint64_t>(want)) << k;
+  }
 }
 
 TEST(FiguresJson, HasEveryKeyAndNullWhereNotDefined) {
