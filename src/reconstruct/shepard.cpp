@@ -126,8 +126,7 @@ void Shepard::local_value(const Vec2& p, std::span<const unsigned> nearest_idx, 
 bool Shepard::global_value_fused(const Vec2& p, Scratch& s, double* o) const {
 #if defined(__AVX2__) && defined(__FMA__)
   const int C = samples_.channels;
-  if (!barriers_.empty() || radius_sq_ < std::numeric_limits<double>::infinity() || (mu_ != 4.0 && mu_ != 2.0) || C > 3)
-    return false;
+  if (radius_sq_ < std::numeric_limits<double>::infinity() || (mu_ != 4.0 && mu_ != 2.0) || C > 3) return false;
   const size_t n = px_.size();
   s.dist_sq.resize(static_cast<Eigen::Index>(n));
   double* d2 = s.dist_sq.data();
@@ -153,7 +152,23 @@ bool Shepard::global_value_fused(const Vec2& p, Scratch& s, double* o) const {
     nearest_sq = std::min(nearest_sq, d2[i]);
     farthest_sq = std::max(farthest_sq, d2[i]);
   }
-  if (!(nearest_sq < std::numeric_limits<double>::infinity())) {  // distances overflow: no value
+  // With barriers a hidden sample is infinitely far: its weight is exactly 0 below.
+  bool any_hidden = false;
+  if (!barriers_.empty()) {
+    visibility_->hidden_from(p, s.hidden);
+    nearest_sq = std::numeric_limits<double>::infinity();
+    farthest_sq = 0;
+    for (i = 0; i < n; ++i) {
+      if (s.hidden[i]) {
+        d2[i] = std::numeric_limits<double>::infinity();
+        any_hidden = true;
+      } else {
+        nearest_sq = std::min(nearest_sq, d2[i]);
+        farthest_sq = std::max(farthest_sq, d2[i]);
+      }
+    }
+  }
+  if (!(nearest_sq < std::numeric_limits<double>::infinity())) {  // sees no sample, or distances overflow: no value
     for (int c = 0; c < C; ++c) o[c] = std::numeric_limits<double>::quiet_NaN();
     return true;
   }
@@ -185,13 +200,26 @@ bool Shepard::global_value_fused(const Vec2& p, Scratch& s, double* o) const {
   // d_min^2 / (a b), d_min^2 / a = b r and d_min^2 / b = a r. Exact to a few ulps while a b and
   // r stay normal numbers: squared distances within [kLeast, kMost] (else a division each).
   constexpr double kLeast = 1e-100, kMost = 1e100;
-  if (nearest_sq >= kLeast && farthest_sq <= kMost)
+  if (nearest_sq >= kLeast && farthest_sq <= kMost && !any_hidden)
     for (; i + 8 <= n; i += 8) {
       const __m256d a = _mm256_loadu_pd(d2 + i), b = _mm256_loadu_pd(d2 + i + 4);
       const __m256d r = _mm256_div_pd(nearest, _mm256_mul_pd(a, b));
       add(even, _mm256_mul_pd(b, r), i);
       add(odd, _mm256_mul_pd(a, r), i + 4);
     }
+  if (nearest_sq >= kLeast && farthest_sq <= kMost && any_hidden) {
+    // A hidden sample's infinite distance stands in as kMost in the shared division, and its
+    // weight is then masked to exactly 0.
+    const __m256d most_sq = _mm256_set1_pd(kMost), infinite = _mm256_set1_pd(std::numeric_limits<double>::infinity());
+    for (; i + 8 <= n; i += 8) {
+      const __m256d a = _mm256_loadu_pd(d2 + i), b = _mm256_loadu_pd(d2 + i + 4);
+      const __m256d hidden_a = _mm256_cmp_pd(a, infinite, _CMP_EQ_OQ), hidden_b = _mm256_cmp_pd(b, infinite, _CMP_EQ_OQ);
+      const __m256d a_m = _mm256_min_pd(a, most_sq), b_m = _mm256_min_pd(b, most_sq);
+      const __m256d r = _mm256_div_pd(nearest, _mm256_mul_pd(a_m, b_m));
+      add(even, _mm256_andnot_pd(hidden_a, _mm256_mul_pd(b_m, r)), i);
+      add(odd, _mm256_andnot_pd(hidden_b, _mm256_mul_pd(a_m, r)), i + 4);
+    }
+  }
   for (; i + 4 <= n; i += 4) add(even, _mm256_div_pd(nearest, _mm256_loadu_pd(d2 + i)), i);
   const __m256d total = _mm256_add_pd(even.total, odd.total), s0 = _mm256_add_pd(even.s0, odd.s0),
                 s1 = _mm256_add_pd(even.s1, odd.s1), s2 = _mm256_add_pd(even.s2, odd.s2);

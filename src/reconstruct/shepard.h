@@ -48,8 +48,9 @@ class Shepard final : public Interpolant {
   struct Scratch;
   /// The local path's value at p (o: a value per channel) from its k nearest samples, in any
   /// order, `nearest` the position of the nearest among them.
-  /// The global weighted mean at p (finite, no barrier, no radius, mu 2 or 4, at most three
-  /// channels) in two fused AVX2 passes over the samples; false where it does not apply.
+  /// The global weighted mean at p (finite, no radius, mu 2 or 4, at most three channels; with
+  /// barriers the samples hidden from p weigh exactly 0) in two fused AVX2 passes over the
+  /// samples; false where it does not apply.
   bool global_value_fused(const Vec2& p, Scratch& s, double* o) const;
   void local_value(const Vec2& p, std::span<const unsigned> nearest_idx, std::span<const double> nearest_d2,
                    size_t nearest, Scratch& s, double* o) const;

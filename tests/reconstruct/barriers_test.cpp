@@ -158,6 +158,40 @@ TEST(ShepardWithBarriers, EachSideIsReconstructedAsIfTheOtherDidNotExist) {
   for (size_t k = 0; k < q.size(); ++k) ASSERT_NEAR(walled[k], alone[k], 1e-14 * std::abs(alone[k])) << "query " << k;
 }
 
+// The global method with barriers (the vector path: hidden samples' weights masked to 0) against
+// the formula in long double over the brute-force visible set, mu 2 and 4, three channels,
+// queries on both sides of the wall and around its free end and the corner.
+TEST(ShepardWithBarriers, GlobalIsTheFormulaOverTheVisibleSamples) {
+  ScatteredSamples s = two_sided_samples(1.0, 5.0);
+  s.channels = 3;
+  std::vector<double> values;
+  for (size_t k = 0; k < s.points.size(); ++k)
+    for (int c = 0; c < 3; ++c) values.push_back(s.values[k] * (c + 1) - c);
+  s.values = values;
+  const Barriers barriers = wall_and_corner();
+  for (const double mu : {2.0, 4.0}) {
+    const Shepard f(s, mu, 0, barriers);
+    size_t hidden_some = 0;
+    for (const Vec2& q : random_queries(31, 400)) {
+      const auto visible = visible_by_distance(s, barriers, q);
+      hidden_some += visible.size() < s.points.size();
+      ASSERT_FALSE(visible.empty());
+      const long double nearest = std::sqrt(static_cast<long double>(visible.front().first));
+      long double den = 0, num[3] = {0, 0, 0};
+      for (const auto& [d2, j] : visible) {
+        const long double w = std::pow(nearest / std::sqrt(static_cast<long double>(d2)), static_cast<long double>(mu));
+        den += w;
+        for (int c = 0; c < 3; ++c) num[c] += w * s.values[j * 3 + static_cast<size_t>(c)];
+      }
+      const std::vector<double> got = evaluate(f, {q});
+      for (int c = 0; c < 3; ++c)
+        ASSERT_NEAR(got[static_cast<size_t>(c)], static_cast<double>(num[c] / den), 1e-13 * (1 + std::abs(got[static_cast<size_t>(c)])))
+            << "mu " << mu << " at " << q.transpose() << " channel " << c;
+    }
+    EXPECT_GT(hidden_some, 100u);
+  }
+}
+
 TEST(ShepardWithBarriers, AQueryThatSeesNoSampleHasNoValue) {
   // Samples inside a closed square of barriers, a query outside it.
   ScatteredSamples s;
