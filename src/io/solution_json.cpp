@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/check.h"
 #include "core/error.h"
 #include "core/parse.h"
 #include "core/tolerances.h"
@@ -27,7 +28,8 @@ std::string json_string(const std::string& s) { return nlohmann::json(s).dump();
 void append_g(std::string& out, double v, int precision) {
   char buf[32];
   const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general, precision);
-  out.append(buf, ec == std::errc() ? end : buf);
+  RR_CHECK(ec == std::errc(), "a number does not fit its buffer");  // %.17g takes at most 24 characters
+  out.append(buf, end);
 }
 
 constexpr size_t kFlushBytes = 1 << 16;  ///< the elements' text is written in pieces of about this size

@@ -385,7 +385,7 @@ NaturalNeighbour::NaturalNeighbour(const ScatteredSamples& samples, OutsideHull 
   for (auto v = impl_->dt.finite_vertices_begin(); v != impl_->dt.finite_vertices_end(); ++v) impl_->vertex_of[v->info()] = v;
   impl_->tree = std::make_unique<KdTree2>(impl_->points);
   if (!impl_->barriers.empty() && n <= kMaxWholeVisibleSamples &&
-      impl_->barriers.segments().size() <= PointVisibility::kMaxSidedSegments)
+      n * impl_->barriers.segments().size() <= kMaxWholeVisiblePairs)
     impl_->visibility = std::make_unique<PointVisibility>(impl_->points, impl_->barriers);
   // Hull edges: the finite edges of the infinite faces.
   auto inf = impl_->dt.infinite_vertex();

@@ -10,7 +10,8 @@
 //   - Where every natural neighbour of q among all samples is visible, those coordinates are
 //     already the ones over the visible samples (q's Voronoi cell, and the part of it each
 //     neighbour loses, depend on the natural neighbours alone), so they are used as they are.
-//   - Otherwise, with few samples (kMaxWholeVisibleSamples), the coordinates of q in the
+//   - Otherwise, with few samples and segments (kMaxWholeVisibleSamples,
+//     kMaxWholeVisiblePairs), the coordinates of q in the
 //     Delaunay triangulation of every sample it sees: neighbouring queries mostly see the same
 //     set, whose triangulation is built once and shared (kMaxCachedTriangulationSamples).
 //   - Otherwise the Delaunay triangulation of q's k nearest visible samples is built, and its
@@ -66,10 +67,13 @@ class NaturalNeighbour final : public Interpolant {
 
   /// Visible samples a query's local triangulation may hold (with barriers).
   static constexpr size_t kMaxVisibleNeighbours = 512;
-  /// With barriers (at most PointVisibility::kMaxSidedSegments segments), up to this many
-  /// samples: a query's coordinates in the triangulation of every sample it sees, built once per
-  /// set of visible samples and shared (see the header).
+  /// With barriers, up to this many samples, and at most kMaxWholeVisiblePairs samples times
+  /// barrier segments: a query's coordinates in the triangulation of every sample it sees, built
+  /// once per set of visible samples and shared (see the header). The sets change where a query
+  /// crosses a line through a sample and a segment's end, so their number grows with that
+  /// product; past it the k-nearest path, whose cost does not, is taken.
   static constexpr size_t kMaxWholeVisibleSamples = 1024;
+  static constexpr size_t kMaxWholeVisiblePairs = size_t{1} << 14;
   /// The most samples the shared triangulations of the visible sets hold in all (some 200 bytes
   /// each); past it they are built per thread and not kept.
   static constexpr size_t kMaxCachedTriangulationSamples = size_t{1} << 18;

@@ -72,27 +72,33 @@ TEST_F(SolutionFiles, WhatIsWrittenReadsBack) {
 
 // The elements' numbers are printf's text, %.17g for the rectangle and %.9g for the rest
 // (std::to_chars writes them): element by element against snprintf, over magnitudes from
-// subnormal to huge, both signs, integers and fractions.
+// subnormal to huge, both signs, integers and fractions, across the buffer's flushes.
 TEST_F(SolutionFiles, ElementNumbersAreWrittenAsPrintfWritesThem) {
   Solution sol = two_element_grid();
   SurfaceSolution& s = sol.surfaces[0];
   s.elements.clear();
   const double values[] = {0.0, -0.0, 1.0, 0.1, 1.0 / 3, -2.5e-7, 123456789.0, 1e21, 4.9e-324, 2e-300, 6.02214076e23, -7.0 / 9};
-  for (const double a : values)
-    for (const double b : {values[4], values[9], values[11]})
-      s.elements.push_back({{a, b, -a, 1 / (1 + std::abs(a))}, Vec3(a, b, a * b), std::abs(b), Rgb(a, b, a - b)});
+  // Enough elements that the writer's buffer is flushed several times (64 KiB each), and a
+  // triangle's shape among them.
+  for (int repeat = 0; repeat < 30; ++repeat)
+    for (const double a : values)
+      for (const double b : {values[4], values[9], values[11]})
+        s.elements.push_back({{a, b, -a, 1 / (1 + std::abs(a)) + repeat}, Vec3(a, b, a * b), std::abs(b), Rgb(a, b, a - b)});
+  s.elements[5].shape = CellShape::lower;
   const fs::path path = dir_ / "text.json";
   write_solution_json(path, sol);
   std::ifstream in(path);
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   size_t at = 0;
+  ASSERT_GT(text.size(), size_t{3} << 16);
   for (const SolutionElement& el : s.elements) {
     char want[512];
     std::snprintf(want, sizeof want,
-                  "{\"u0\": %.17g, \"v0\": %.17g, \"u1\": %.17g, \"v1\": %.17g, \"center\": [%.9g, %.9g, %.9g], "
+                  "{\"u0\": %.17g, \"v0\": %.17g, \"u1\": %.17g, \"v1\": %.17g, %s\"center\": [%.9g, %.9g, %.9g], "
                   "\"area\": %.9g, \"radiosity\": [%.9g, %.9g, %.9g]}",
-                  el.u0, el.v0, el.u1, el.v1, el.center.x(), el.center.y(), el.center.z(), el.area_m2,
-                  el.radiosity_w_m2[0], el.radiosity_w_m2[1], el.radiosity_w_m2[2]);
+                  el.u0, el.v0, el.u1, el.v1, el.is_triangle() ? "\"shape\": \"lower\", " : "", el.center.x(),
+                  el.center.y(), el.center.z(), el.area_m2, el.radiosity_w_m2[0], el.radiosity_w_m2[1],
+                  el.radiosity_w_m2[2]);
     const size_t found = text.find(want, at);
     ASSERT_NE(found, std::string::npos) << "missing: " << want;
     at = found + 1;

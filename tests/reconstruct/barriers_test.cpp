@@ -136,8 +136,13 @@ TEST(ShepardWithBarriers, ASampleAcrossABarrierHasExactlyZeroInfluence) {
   const std::vector<Vec2> q = left_queries();
   const Shepard a(two_sided_samples(1.0, 5.0), 4.0, 0, wall());
   const Shepard b(two_sided_samples(1.0, -300.0), 4.0, 0, wall());
-  const std::vector<double> va = evaluate(a, q), vb = evaluate(b, q);
-  for (size_t k = 0; k < q.size(); ++k) ASSERT_EQ(va[k], vb[k]) << "query " << k;
+  // Values so large that any weight left on a hidden sample, however small, would show.
+  const Shepard c(two_sided_samples(1.0, 1e250), 4.0, 0, wall());
+  const std::vector<double> va = evaluate(a, q), vb = evaluate(b, q), vc = evaluate(c, q);
+  for (size_t k = 0; k < q.size(); ++k) {
+    ASSERT_EQ(va[k], vb[k]) << "query " << k;
+    ASSERT_EQ(va[k], vc[k]) << "query " << k;
+  }
   // Without the wall the right side's values do leak in.
   const Shepard leaky(two_sided_samples(1.0, 5.0), 4.0, 0);
   EXPECT_GT(evaluate(leaky, q)[q.size() / 2], evaluate(a, q)[q.size() / 2] + 1e-6);

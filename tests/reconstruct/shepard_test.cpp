@@ -82,11 +82,12 @@ TEST(Shepard, MatchesTheFormulaAndItsKNearestRestriction) {
 
 // The global method's vector path (mu 2 and 4, up to 3 channels; pairs of sample vectors share a
 // division while the squared distances stay within [1e-100, 1e100], else one division each)
-// against the formula in long double, relative to the nearest sample's weight: at unit scale and
-// at scales whose squared distances leave that range either way, with sample counts that leave
+// against the formula in long double, relative to the nearest sample's weight: at unit scale, at
+// scales whose squared distances lie near either end of that range (1e+-90: shared divisions of
+// products near 1e+-180) and at scales that leave it either way, with sample counts that leave
 // a vector and single samples after the pairs.
 TEST(Shepard, GlobalVectorPathMatchesTheFormulaAtEveryScale) {
-  for (const double scale : {1.0, 1e-60, 1e60})
+  for (const double scale : {1.0, 1e-45, 1e45, 1e-60, 1e60})
     for (const int n : {61, 64, 7})
       for (const int channels : {1, 3})
         for (const double mu : {2.0, 4.0}) {
