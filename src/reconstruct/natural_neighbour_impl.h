@@ -1,0 +1,248 @@
+#pragma once
+// NaturalNeighbour's implementation (natural_neighbour.h), shared by natural_neighbour.cpp (the
+// triangulation of all samples, the queries) and natural_neighbour_visible.cpp (the coordinates
+// over the samples a query sees past barriers). Internal to reconstruct/.
+
+#include <algorithm>
+#include <array>
+#include <limits>
+#include <memory>
+#include <vector>
+
+#include "core/check.h"
+#include "core/tolerances.h"
+#include "reconstruct/delaunay.h"
+#include "reconstruct/kdtree.h"
+#include "reconstruct/natural_neighbour.h"
+#include "reconstruct/nn_delaunay.h"
+#include "reconstruct/sibson_c1.h"
+#include "reconstruct/subset_cache.h"
+
+namespace radrecon {
+
+using nn::Delaunay;
+using nn::Point;
+
+struct NaturalNeighbour::Impl {
+  Delaunay dt;
+  std::vector<double> values;
+  int channels = 1;
+  OutsideHull outside = OutsideHull::nearest;
+  NeighbourRule rule = NeighbourRule::sibson;
+  std::vector<double> gradients;  ///< sibson-c1: per sample and channel, d/ds and d/dt (sibson_c1.h)
+  std::vector<std::pair<unsigned, unsigned>> hull_edges;  ///< sample indices
+  std::vector<std::array<int, 2>> hull_edges_at;          ///< by sample: its hull edges' indices, or -1
+  std::vector<Vec2> points;
+  std::vector<Delaunay::Vertex_handle> vertex_of;  ///< by sample index
+  std::unique_ptr<KdTree2> tree;                   ///< to start walks near a query
+  Barriers barriers;
+  /// With barriers and at most kMaxWholeVisibleSamples samples: which samples a query sees, and
+  /// the triangulations of the sets seen (whole_visible_coordinates()).
+  std::unique_ptr<PointVisibility> visibility;
+  SubsetCache<Delaunay> visible_triangulations{kMaxCachedTriangulationSamples};
+
+  /// Buffers of coordinates(), reused from query to query.
+  struct Scratch {
+    std::vector<std::pair<unsigned, double>> coords;
+    std::vector<Delaunay::Edge> hole;  ///< boundary of the conflict zone
+    // With barriers: the visible samples near the query and their triangulation.
+    VisibleNeighbours visible;
+    Delaunay local;
+    std::vector<std::pair<Point, unsigned>> local_input;
+    std::vector<Delaunay::Face_handle> conflicts;
+    /// The last query's conflict zone (Sibson's coordinates). It outlives its query (within a
+    /// chunk of queries: evaluate()), which parallel_for_with_scratch's rule forbids, and safely
+    /// so: a query gets the same bits from a reused zone as from its own (nn::ConflictZone).
+    nn::ConflictZone zone;
+    // With barriers and few samples: the samples visible from the query, and the triangulation
+    // of those the last query saw (whole_visible_coordinates()).
+    std::vector<unsigned> visible_idx;
+    std::vector<char> hidden;
+    std::vector<unsigned> visible_key;
+    std::shared_ptr<const Delaunay> visible_dt;
+    Delaunay::Face_handle visible_hint;
+  };
+
+  /// Coordinates into `out`, normalised by their sum `norm`; false when that is not positive.
+  static bool normalise(double norm, std::vector<std::pair<unsigned, double>>& out) {
+    if (!(norm > 0)) return false;
+    for (auto& [index, w] : out) w /= norm;
+    return true;
+  }
+
+  /// What a query gets: Sibson coordinates, the value of a point on a hull edge (outside the
+  /// hull), or nothing (NaN).
+  enum class Kind { coordinates, on_hull, nothing };
+
+  /// A finite face's sample indices, sorted: a canonical order of faces.
+  static std::array<unsigned, 3> face_key(const Delaunay::Face_handle& f) {
+    std::array<unsigned, 3> key = {f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()};
+    std::sort(key.begin(), key.end());
+    return key;
+  }
+
+  /// Coordinates of q into scratch.coords; `hint` is a face near q (updated), or a default handle.
+  /// Without regard to barriers.
+  bool coordinates(const Vec2& q, Delaunay::Face_handle& hint, Scratch& scratch) const {
+    std::vector<std::pair<unsigned, double>>& out = scratch.coords;
+    std::vector<Delaunay::Edge>& hole = scratch.hole;
+    out.clear();
+    // The last query's conflict zone, when q certainly has the same: no walk, no conflict search.
+    if (rule != NeighbourRule::laplace && scratch.zone.holds(q)) {
+      hint = scratch.zone.face();
+      return normalise(scratch.zone.sibson(q, out), out);
+    }
+    const Point p(q.x(), q.y());
+    Delaunay::Locate_type lt;
+    int li;
+    hint = dt.locate(p, lt, li, hint);
+    if (lt == Delaunay::OUTSIDE_AFFINE_HULL) return false;
+    if (lt == Delaunay::VERTEX) {
+      out.emplace_back(hint->vertex(li)->info(), 1.0);
+      return true;
+    }
+    // On a hull edge up to rounding (a point computed as a + t (b - a) may land a little inside
+    // or outside): linear along the edge, the limit of the coordinates from inside. Inside,
+    // within rounding of the edge, the conflict zone's circumcentres are far off and the
+    // coordinates' sums cancel catastrophically; outside, the point would get no value.
+    if (near_hull_edge(q, hint, out)) return true;
+    if (lt == Delaunay::OUTSIDE_CONVEX_HULL) return false;
+    // A point on an inner edge lies in both of its faces, and the walk may end in either (it
+    // depends on where it started). The conflict zone is the same from both, but the order of
+    // its boundary, and so the last bits of the sums, is not: start from the face with the
+    // smaller sorted sample indices, so that the result depends on the point alone (a batch
+    // gives what one point at a time gives).
+    if (lt == Delaunay::EDGE) {
+      const Delaunay::Face_handle other = hint->neighbor(li);
+      if (face_key(other) < face_key(hint)) hint = other;
+    }
+    // The conflict zone into reused buffers (CGAL's own entry point builds a std::list per
+    // query), then the coordinates over it.
+    hole.clear();
+    if (rule == NeighbourRule::laplace) {
+      dt.get_boundary_of_conflicts(p, std::back_inserter(hole), hint);
+      return normalise(nn::hole_coordinates(dt, p, hole, rule, out), out);
+    }
+    scratch.conflicts.clear();
+    dt.get_conflicts_and_boundary(p, std::back_inserter(scratch.conflicts), std::back_inserter(hole), hint);
+    const auto hull_vertex = [&](unsigned i) { return hull_edges_at[i][0] >= 0; };
+    if (scratch.zone.build(dt, scratch.conflicts, hole, hull_vertex))
+      return normalise(scratch.zone.sibson(q, out), out);
+    scratch.zone.forget();
+    return normalise(nn::hole_coordinates(dt, p, hole, rule, out), out);  // CGAL's areas
+  }
+
+  /// Whether q lies on a hull edge at a vertex of face f up to rounding (hull_edge_distance(),
+  /// delaunay.h): then the coordinates of its nearest point on the nearest such edge, into `out`
+  /// (ends in sample order).
+  bool near_hull_edge(const Vec2& q, const Delaunay::Face_handle& f, std::vector<std::pair<unsigned, double>>& out) const {
+    double best_excess = 0, best_t = 0;
+    int best = -1;
+    for (int k = 0; k < 3; ++k) {
+      const Delaunay::Vertex_handle v = f->vertex(k);
+      if (dt.is_infinite(v)) continue;
+      for (const int e : hull_edges_at[v->info()]) {
+        if (e < 0 || e == best) continue;
+        auto [ia, ib] = hull_edges[static_cast<size_t>(e)];
+        if (ib < ia) std::swap(ia, ib);
+        const HullEdgeDistance d = hull_edge_distance(points[ia], points[ib], q);
+        if (d.in_bands <= 1 && (best < 0 || d.in_bands < best_excess)) best = e, best_excess = d.in_bands, best_t = d.t;
+      }
+    }
+    if (best < 0) return false;
+    auto [ia, ib] = hull_edges[static_cast<size_t>(best)];
+    if (ib < ia) std::swap(ia, ib);
+    out.clear();
+    out.emplace_back(ia, 1 - best_t);
+    out.emplace_back(ib, best_t);
+    return true;
+  }
+
+  /// The point of `edges` (pairs of sample indices) nearest to q, as coordinates of its edge's
+  /// end points into `out` (pairs in sample order, as the plain hull rule).
+  void nearest_on_edges(const Vec2& q, std::span<const std::pair<unsigned, unsigned>> edges,
+                        std::vector<std::pair<unsigned, double>>& out) const {
+    double best = std::numeric_limits<double>::infinity(), best_t = 0;
+    std::pair<unsigned, unsigned> best_edge{0, 0};
+    for (auto e : edges) {
+      if (e.second < e.first) std::swap(e.first, e.second);
+      const Vec2 a = points[e.first], b = points[e.second];
+      const Vec2 ab = b - a;
+      const double t = ab.squaredNorm() > 0 ? std::clamp((q - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+      const double d = (a + t * ab - q).squaredNorm();
+      if (d < best || (d == best && e < best_edge)) best = d, best_t = t, best_edge = e;
+    }
+    out.clear();
+    out.emplace_back(best_edge.first, 1 - best_t);
+    out.emplace_back(best_edge.second, best_t);
+  }
+
+  /// The nearest point to q of the hull of a triangulation (of the samples visible from q) as
+  /// nearest_on_edges() gives it: a point, a segment, or the edges of the infinite faces.
+  void nearest_on_hull(const Delaunay& dt, const Vec2& q, std::vector<std::pair<unsigned, double>>& out) const {
+    std::vector<std::pair<unsigned, unsigned>> edges;
+    if (dt.dimension() < 2) {
+      if (dt.dimension() == 0) edges.emplace_back(dt.finite_vertices_begin()->info(), dt.finite_vertices_begin()->info());
+      for (auto e = dt.finite_edges_begin(); e != dt.finite_edges_end(); ++e)
+        edges.emplace_back(e->first->vertex(Delaunay::cw(e->second))->info(), e->first->vertex(Delaunay::ccw(e->second))->info());
+    } else {
+      const auto inf = dt.infinite_vertex();
+      auto fc = dt.incident_faces(inf), done = fc;
+      do {
+        const int i = fc->index(inf);
+        edges.emplace_back(fc->vertex(Delaunay::ccw(i))->info(), fc->vertex(Delaunay::cw(i))->info());
+      } while (++fc != done);
+    }
+    nearest_on_edges(q, edges, out);
+  }
+
+  /// The interpolant from a point's coordinates, per channel, into o: the sum of coordinates
+  /// times values, or (sibson-c1) Farin's C1 form.
+  void combine(std::span<const std::pair<unsigned, double>> coords, double* o) const {
+    if (rule == NeighbourRule::sibson_c1) return nn::farin_c1(coords, points, values, gradients, channels, o);
+    for (int c = 0; c < channels; ++c) o[c] = 0;
+    for (const auto& [index, w] : coords)
+      for (int c = 0; c < channels; ++c) o[c] += w * values[index * static_cast<size_t>(channels) + c];
+  }
+
+  bool all_visible(const Vec2& q, std::span<const std::pair<unsigned, double>> coords) const {
+    // No barrier within reach of the farthest neighbour: nothing to test.
+    double reach_sq = 0;
+    for (const auto& [index, w] : coords) reach_sq = std::max(reach_sq, (points[index] - q).squaredNorm());
+    if (barriers.none_within(q, std::sqrt(reach_sq))) return true;
+    for (const auto& [index, w] : coords)
+      if (barriers.blocks(q, points[index])) return false;
+    return true;
+  }
+
+  /// What q gets (the rules of the header), into scratch.coords; `hint` as in coordinates().
+  Kind query(const Vec2& q, Delaunay::Face_handle& hint, Scratch& s) const {
+    if (coordinates(q, hint, s)) {
+      if (barriers.empty() || all_visible(q, s.coords)) return Kind::coordinates;
+    } else {
+      nearest_on_edges(q, hull_edges, s.coords);
+      // Outside the hull: its nearest point, if nothing hides it (or its edge) from q.
+      if (barriers.empty()) return Kind::on_hull;
+      Vec2 nearest = Vec2::Zero();
+      for (const auto& [index, w] : s.coords) nearest += w * points[index];
+      if (all_visible(q, s.coords) && !barriers.blocks(q, nearest) &&
+          !barriers.blocks(points[s.coords[0].first], points[s.coords[1].first]))
+        return Kind::on_hull;
+    }
+    return visible_coordinates(q, s);
+  }
+
+  /// With barriers and few samples (visibility set): what q gets over every sample visible from
+  /// it, in the Delaunay triangulation of exactly those, into s.coords. A triangulation is built
+  /// once per set of visible samples (neighbouring queries mostly see the same set), one point at
+  /// a time in sample order: it depends on the set alone, and a point on one of its edges is
+  /// taken in the face of the smaller sorted sample indices, so that the coordinates depend on
+  /// the point alone.
+  Kind whole_visible_coordinates(const Vec2& q, Scratch& s) const;
+
+  /// With barriers: what q gets over the samples visible from it (the rule of the header), into
+  /// scratch.coords.
+  Kind visible_coordinates(const Vec2& q, Scratch& s) const;
+};
+
+}  // namespace radrecon
