@@ -200,24 +200,20 @@ bool Shepard::global_value_fused(const Vec2& p, Scratch& s, double* o) const {
   // d_min^2 / (a b), d_min^2 / a = b r and d_min^2 / b = a r. Exact to a few ulps while a b and
   // r stay normal numbers: squared distances within [kLeast, kMost] (else a division each).
   constexpr double kLeast = 1e-100, kMost = 1e100;
-  if (nearest_sq >= kLeast && farthest_sq <= kMost && !any_hidden)
-    for (; i + 8 <= n; i += 8) {
-      const __m256d a = _mm256_loadu_pd(d2 + i), b = _mm256_loadu_pd(d2 + i + 4);
-      const __m256d r = _mm256_div_pd(nearest, _mm256_mul_pd(a, b));
-      add(even, _mm256_mul_pd(b, r), i);
-      add(odd, _mm256_mul_pd(a, r), i + 4);
-    }
-  if (nearest_sq >= kLeast && farthest_sq <= kMost && any_hidden) {
-    // A hidden sample's infinite distance stands in as kMost in the shared division, and its
-    // weight is then masked to exactly 0.
+  // A hidden sample's infinite distance stands in as kMost in the shared division, and its weight
+  // is then masked to exactly 0 (without hidden samples the masks are empty: the same bits).
+  if (nearest_sq >= kLeast && farthest_sq <= kMost) {
     const __m256d most_sq = _mm256_set1_pd(kMost), infinite = _mm256_set1_pd(std::numeric_limits<double>::infinity());
     for (; i + 8 <= n; i += 8) {
-      const __m256d a = _mm256_loadu_pd(d2 + i), b = _mm256_loadu_pd(d2 + i + 4);
-      const __m256d hidden_a = _mm256_cmp_pd(a, infinite, _CMP_EQ_OQ), hidden_b = _mm256_cmp_pd(b, infinite, _CMP_EQ_OQ);
-      const __m256d a_m = _mm256_min_pd(a, most_sq), b_m = _mm256_min_pd(b, most_sq);
-      const __m256d r = _mm256_div_pd(nearest, _mm256_mul_pd(a_m, b_m));
-      add(even, _mm256_andnot_pd(hidden_a, _mm256_mul_pd(b_m, r)), i);
-      add(odd, _mm256_andnot_pd(hidden_b, _mm256_mul_pd(a_m, r)), i + 4);
+      __m256d a = _mm256_loadu_pd(d2 + i), b = _mm256_loadu_pd(d2 + i + 4);
+      __m256d hidden_a = _mm256_setzero_pd(), hidden_b = hidden_a;
+      if (any_hidden) {
+        hidden_a = _mm256_cmp_pd(a, infinite, _CMP_EQ_OQ), hidden_b = _mm256_cmp_pd(b, infinite, _CMP_EQ_OQ);
+        a = _mm256_min_pd(a, most_sq), b = _mm256_min_pd(b, most_sq);
+      }
+      const __m256d r = _mm256_div_pd(nearest, _mm256_mul_pd(a, b));
+      add(even, _mm256_andnot_pd(hidden_a, _mm256_mul_pd(b, r)), i);
+      add(odd, _mm256_andnot_pd(hidden_b, _mm256_mul_pd(a, r)), i + 4);
     }
   }
   for (; i + 4 <= n; i += 4) add(even, _mm256_div_pd(nearest, _mm256_loadu_pd(d2 + i)), i);
