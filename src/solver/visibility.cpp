@@ -12,6 +12,7 @@ namespace radrecon {
 
 std::vector<Occluder> make_occluders(const Scene& scene) {
   std::vector<Occluder> out;
+  const std::vector<std::shared_ptr<const ConvexSolid>> solids = find_convex_solids(scene);
   for (size_t k = 0; k < scene.surfaces.size(); ++k) {
     const Surface& s = scene.surfaces[k];
     Occluder o;
@@ -27,6 +28,7 @@ std::vector<Occluder> make_occluders(const Scene& scene) {
       o.bbox_max = o.bbox_max.cwiseMax(c);
     }
     o.scene_surface = k;
+    o.solid = solids[k];
     out.push_back(o);
   }
   return out;
@@ -73,6 +75,8 @@ ShadowVolume shadow_volume(const Vec3& p, const Occluder& o) {
   volume.occluder = &o;
   const double side_p = o.plane.eval(p);
   if (std::abs(side_p) <= tol::kPlaneDistance_m) return volume;  // p in the occluder's plane
+  // A solid's face seen from its back, from outside: the faces p sees from the front hide all it would.
+  if (side_p < 0 && o.solid && o.solid->sees_from_outside(p)) return volume;
   // Beyond the occluder's plane, as seen from p.
   volume.planes[0] = (side_p > 0 ? o.plane.complement() : o.plane).with_tolerance();
   const int n = o.corner_count;
@@ -86,9 +90,14 @@ ShadowVolume shadow_volume(const Vec3& p, const Occluder& o) {
   return volume;
 }
 
-void shadow_volumes(const Vec3& p, const std::vector<const Occluder*>& occluders, std::vector<ShadowVolume>& out) {
+void shadow_volumes(const Vec3& p, const Vec3& n, const std::vector<const Occluder*>& occluders,
+                    std::vector<ShadowVolume>& out) {
   out.clear();
-  for (const Occluder* o : occluders) out.push_back(shadow_volume(p, *o));
+  for (const Occluder* o : occluders) {
+    if (o->solid && o->solid->behind_horizon(p, n)) continue;
+    const ShadowVolume v = shadow_volume(p, *o);
+    if (v.sides > 0) out.push_back(v);
+  }
 }
 
 namespace {
@@ -230,7 +239,7 @@ double visible_form_factor(const Vec3& p, const Vec3& n, const ConvexPolygon& sh
                            const Vec3& shooter_normal,
                            const std::vector<const Occluder*>& occluders, bool* partly_seen) {
   thread_local std::vector<ShadowVolume> volumes;
-  shadow_volumes(p, occluders, volumes);
+  shadow_volumes(p, n, occluders, volumes);
   return visible_form_factor_past(p, n, shooter, shooter_normal, volumes, partly_seen);
 }
 
@@ -386,7 +395,7 @@ void visible_form_factors(std::span<const Vec3> points, const Vec3& n, const Con
   for (size_t first = 0; first < points.size(); first += 4) {
     const size_t count = std::min<size_t>(4, points.size() - first);
     for (size_t k = 0; k < count; ++k) {
-      shadow_volumes(points[first + k], occluders, volumes[k]);
+      shadow_volumes(points[first + k], n, occluders, volumes[k]);
       spans[k] = volumes[k];
     }
     visible_form_factors_past(points.subspan(first, count), n, shooter, shooter_normal, {spans.data(), count},

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "scene/scene.h"
+#include "solver/convex_solids.h"
 #include "solver/polygon.h"
 
 namespace radrecon {
@@ -24,6 +25,9 @@ struct Occluder {
   HalfSpace plane;  ///< the surface's plane, normal of unit length
   Vec3 bbox_min, bbox_max;
   size_t scene_surface;
+  /// The convex solid the surface bounds, with its plane's normal pointing out of it
+  /// (solver/convex_solids.h); null if none.
+  std::shared_ptr<const ConvexSolid> solid;
 };
 
 /// All surfaces of a scene as occluders.
@@ -51,14 +55,20 @@ std::vector<const Occluder*> occluders_in_box(const std::vector<Occluder>& occlu
 /// plane (planes[0]) and inside the planes through the point and its edges (planes[1..sides]; a
 /// triangle's third repeated as the fourth). It depends on the point and the occluder alone, so
 /// a point that looks at many polygons (the blocks of a shooting patch) makes it once.
+///
+/// An occluder hides nothing from p (sides = 0) when p lies in its plane, or when it is a face of
+/// a convex solid seen from its back by a point outside the solid (ConvexSolid).
 struct ShadowVolume {
   std::array<HalfSpace, 5> planes;
   int sides = 0;  ///< 0: the point lies in the occluder's plane, and it hides nothing from it
   const Occluder* occluder = nullptr;
 };
 ShadowVolume shadow_volume(const Vec3& p, const Occluder& o);
-/// The shadow volumes of `occluders` seen from p, in their order, into `out` (cleared first).
-void shadow_volumes(const Vec3& p, const std::vector<const Occluder*>& occluders, std::vector<ShadowVolume>& out);
+/// The shadow volumes of those of `occluders` that can hide anything from p (unit normal n) in
+/// front of p, in their order, into `out` (cleared first): not the faces of a solid behind p's
+/// horizon (ConvexSolid::behind_horizon()), nor those whose volume has no sides.
+void shadow_volumes(const Vec3& p, const Vec3& n, const std::vector<const Occluder*>& occluders,
+                    std::vector<ShadowVolume>& out);
 
 /// The form factor from a differential receiver area at `p` with unit normal `n` to the part of
 /// the convex polygon `shooter` that is in front of the receiver and not hidden by any of the

@@ -1,0 +1,204 @@
+// Convex solids among a scene's surfaces, and the faces of one left out of a point's shadows:
+// found where they are and nowhere else, and the visible form factor unchanged by leaving them
+// out (against every face kept, and against an independent ray caster).
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "solver/convex_solids.h"
+#include "solver/visibility.h"
+#include "support/ray_scene.h"
+
+namespace radrecon {
+namespace convex_solids_test {
+
+Surface quad(const std::string& name, std::array<Vec3, 4> c) {
+  Surface s;
+  s.name = name;
+  s.corners = c;
+  return s;
+}
+
+/// The axis-aligned box [lo, hi] as six quads with outward normals (counter-clockwise seen from
+/// outside), in the order -x, +x, -y, +y, -z, +z; `inward` reverses every one.
+std::vector<Surface> box(const Vec3& lo, const Vec3& hi, bool inward = false) {
+  const auto at = [&](int x, int y, int z) { return Vec3(x ? hi.x() : lo.x(), y ? hi.y() : lo.y(), z ? hi.z() : lo.z()); };
+  std::vector<Surface> faces = {
+      quad("-x", {at(0, 0, 0), at(0, 0, 1), at(0, 1, 1), at(0, 1, 0)}),
+      quad("+x", {at(1, 0, 0), at(1, 1, 0), at(1, 1, 1), at(1, 0, 1)}),
+      quad("-y", {at(0, 0, 0), at(1, 0, 0), at(1, 0, 1), at(0, 0, 1)}),
+      quad("+y", {at(0, 1, 0), at(0, 1, 1), at(1, 1, 1), at(1, 1, 0)}),
+      quad("-z", {at(0, 0, 0), at(0, 1, 0), at(1, 1, 0), at(1, 0, 0)}),
+      quad("+z", {at(0, 0, 1), at(1, 0, 1), at(1, 1, 1), at(0, 1, 1)}),
+  };
+  if (inward)
+    for (Surface& f : faces) std::swap(f.corners[1], f.corners[3]);
+  return faces;
+}
+
+Scene scene_of(std::vector<Surface> surfaces) {
+  Scene s;
+  s.surfaces = std::move(surfaces);
+  return s;
+}
+
+TEST(ConvexSolids, AClosedBoxIsOneSolidWithOutwardFaces) {
+  const Scene scene = scene_of(box(Vec3(0, 0, 0), Vec3(1, 2, 3)));
+  for (const Surface& f : scene.surfaces)  // the test's own box: outward as claimed
+    EXPECT_GT(f.normal().dot(f.corners[0] - Vec3(0.5, 1, 1.5)), 0) << f.name;
+  const auto solids = find_convex_solids(scene);
+  ASSERT_EQ(solids.size(), 6u);
+  ASSERT_TRUE(solids[0]);
+  for (const auto& s : solids) EXPECT_EQ(s, solids[0]);
+  EXPECT_FALSE(solids[0]->opening.has_value());
+  EXPECT_EQ(solids[0]->faces.size(), 6u);
+  EXPECT_TRUE(solids[0]->sees_from_outside(Vec3(2, 1, 1)));
+  EXPECT_FALSE(solids[0]->sees_from_outside(Vec3(0.5, 1, 1)));  // inside
+  EXPECT_FALSE(solids[0]->sees_from_outside(Vec3(1, 1, 1)));    // on a face
+}
+
+TEST(ConvexSolids, WhatBoundsNoConvexSolidIsNone) {
+  // A room: its walls face in.
+  EXPECT_FALSE(find_convex_solids(scene_of(box(Vec3(0, 0, 0), Vec3(1, 1, 1), true)))[0]);
+  // Open on three sides (+x, -z, +z), whose edges lie in no one plane.
+  std::vector<Surface> open3 = box(Vec3(0, 0, 0), Vec3(1, 1, 1));
+  open3.erase(open3.begin() + 4, open3.end());
+  open3.erase(open3.begin() + 1);
+  for (const auto& s : find_convex_solids(scene_of(open3))) EXPECT_FALSE(s);
+  // One face flipped: two edges run the same way.
+  std::vector<Surface> flipped = box(Vec3(0, 0, 0), Vec3(1, 1, 1));
+  std::swap(flipped[2].corners[1], flipped[2].corners[3]);
+  for (const auto& s : find_convex_solids(scene_of(flipped))) EXPECT_FALSE(s);
+  // Two boxes sharing a face (its edges run by four faces) are no solid, nor is a flat pair of
+  // triangles (no corner behind either's plane).
+  std::vector<Surface> two = box(Vec3(0, 0, 0), Vec3(1, 1, 1));
+  for (Surface& f : box(Vec3(1, 0, 0), Vec3(2, 1, 1))) two.push_back(f);
+  for (const auto& s : find_convex_solids(scene_of(two))) EXPECT_FALSE(s);
+  Surface a, b;
+  a.set_triangle(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0));
+  b.set_triangle(Vec3(0, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0));
+  for (const auto& s : find_convex_solids(scene_of({a, b}))) EXPECT_FALSE(s);
+}
+
+TEST(ConvexSolids, TheCornellBlocksStandOnTheirOpening) {
+  const Scene scene = cornell_scene();
+  const auto solids = find_convex_solids(scene);
+  int in_blocks = 0;
+  for (size_t k = 0; k < scene.surfaces.size(); ++k) {
+    const std::string& name = scene.surfaces[k].name;
+    const bool block = name.rfind("short_", 0) == 0 || name.rfind("tall_", 0) == 0;
+    EXPECT_EQ(bool(solids[k]), block) << name;
+    if (!block) continue;
+    ++in_blocks;
+    ASSERT_TRUE(solids[k]->opening.has_value());
+    // The floor's plane (y = 0), facing down: out of the block.
+    EXPECT_NEAR(solids[k]->opening->normal.y(), -1, 1e-12) << name;
+    EXPECT_NEAR(solids[k]->opening->offset, 0, 1e-12) << name;
+  }
+  EXPECT_EQ(in_blocks, 10);
+}
+
+/// The visible form factor from (p, n) to the shooter with the scene's occluders, with the
+/// solids found (`with_solids`) or every face kept.
+double form_factor(const Scene& scene, size_t shooter, size_t receiver, const Vec3& p, const Vec3& n, bool with_solids) {
+  std::vector<Occluder> occ = make_occluders(scene);
+  if (!with_solids)
+    for (Occluder& o : occ) o.solid = nullptr;
+  std::vector<const Occluder*> others;
+  for (const Occluder& o : occ)
+    if (o.scene_surface != shooter && o.scene_surface != receiver) others.push_back(&o);
+  const Surface& s = scene.surfaces[shooter];
+  ConvexPolygon poly;
+  for (const Vec3& c : s.polygon()) poly.push(c);
+  return visible_form_factor(p, n, poly, s.normal(), others);
+}
+
+TEST(ConvexSolids, LeavingBackFacesOutChangesNoShadow) {
+  // The Cornell box: points on the floor, on the walls and on the blocks' own faces (both
+  // sides), shot at by the light, the ceiling and the walls. Every face kept is the reference.
+  const Scene scene = cornell_scene();
+  const auto solids = find_convex_solids(scene);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> U(0.01, 0.99);
+  int compared = 0, nonzero = 0, culled_somewhere = 0;
+  for (size_t receiver = 0; receiver < scene.surfaces.size(); ++receiver) {
+    const Surface& r = scene.surfaces[receiver];
+    for (const bool back : {false, true}) {
+      const Vec3 n = back ? Vec3(-r.normal()) : r.normal();
+      for (int k = 0; k < 20; ++k) {
+        double u = U(rng), v = U(rng);
+        if (r.is_triangle() && u + v > 1) u = 1 - u, v = 1 - v;
+        const Vec3 p = r.point(u, v);
+        for (size_t shooter = 0; shooter < scene.surfaces.size(); ++shooter) {
+          if (shooter == receiver) continue;
+          const double with = form_factor(scene, shooter, receiver, p, n, true);
+          const double without = form_factor(scene, shooter, receiver, p, n, false);
+          ASSERT_NEAR(with, without, 1e-12 * std::max(1.0, without)) << r.name << " from " << scene.surfaces[shooter].name;
+          ++compared;
+          nonzero += without > 1e-6 ? 1 : 0;
+        }
+        // How many faces the solids leave out for this point: the test must exercise it.
+        std::vector<const Occluder*> all;
+        const std::vector<Occluder> occ = make_occluders(scene);
+        for (const Occluder& o : occ) all.push_back(&o);
+        std::vector<ShadowVolume> kept;
+        shadow_volumes(p, n, all, kept);
+        std::vector<ShadowVolume> plain;
+        std::vector<Occluder> bare = occ;
+        for (Occluder& o : bare) o.solid = nullptr;
+        std::vector<const Occluder*> all_bare;
+        for (const Occluder& o : bare) all_bare.push_back(&o);
+        shadow_volumes(p, n, all_bare, plain);
+        culled_somewhere += kept.size() < plain.size() ? 1 : 0;
+      }
+    }
+  }
+  EXPECT_GT(nonzero, compared / 4);
+  EXPECT_GT(culled_somewhere, 100);
+}
+
+TEST(ConvexSolids, AClosedBoxSeenPastItsFrontFacesAgainstRays) {
+  // A box on a floor under a light panel: points on the floor around it, inside its footprint,
+  // and on its faces. The form factor to the light against the midpoint rule with an
+  // independent ray caster.
+  std::vector<Surface> s = box(Vec3(0.3, 0, 0.3), Vec3(0.6, 0.4, 0.7));
+  s.push_back(quad("floor", {Vec3(0, 0, 0), Vec3(0, 0, 1), Vec3(1, 0, 1), Vec3(1, 0, 0)}));  // faces +y
+  s.push_back(quad("light", {Vec3(0.2, 1, 0.2), Vec3(0.8, 1, 0.2), Vec3(0.8, 1, 0.8), Vec3(0.2, 1, 0.8)}));  // faces -y
+  const Scene scene = scene_of(s);
+  const size_t floor = 6, light = 7;
+  ASSERT_TRUE(find_convex_solids(scene)[0]);
+  ASSERT_LT(scene.surfaces[light].normal().y(), -0.99);  // the light faces down, the floor up
+  ASSERT_GT(scene.surfaces[floor].normal().y(), 0.99);
+  const auto brute = [&](const Vec3& p, const Vec3& n, size_t receiver) {
+    constexpr int N = 300;
+    const Surface& l = scene.surfaces[light];
+    const Vec3 nl = l.normal();
+    const double dA = l.area_m2() / (N * N);
+    double f = 0;
+    for (int i = 0; i < N; ++i)
+      for (int j = 0; j < N; ++j) {
+        const Vec3 y = l.point((i + 0.5) / N, (j + 0.5) / N);
+        const Vec3 d = y - p;
+        const double r2 = d.squaredNorm(), cr = n.dot(d) / std::sqrt(r2), cs = -nl.dot(d) / std::sqrt(r2);
+        if (cr <= 0 || cs <= 0 || !testing_support::visible(scene, p, y, receiver, light)) continue;
+        f += cr * cs / (std::numbers::pi * r2) * dA;
+      }
+    return f;
+  };
+  const std::vector<std::pair<Vec3, size_t>> points = {
+      {Vec3(0.15, 0, 0.5), floor}, {Vec3(0.7, 0, 0.45), floor}, {Vec3(0.45, 0, 0.85), floor},
+      {Vec3(0.45, 0, 0.5), floor},  // under the box: dark
+      {Vec3(0.6, 0.2, 0.5), 1},      // on its +x face
+      {Vec3(0.45, 0.4, 0.5), 3},     // on its top
+  };
+  for (const auto& [p, receiver] : points) {
+    const Vec3 n = scene.surfaces[receiver].normal();
+    const double exact = form_factor(scene, light, receiver, p, n, true);
+    EXPECT_NEAR(exact, brute(p, n, receiver), 3e-3 * std::max(exact, 0.05)) << p.transpose();
+  }
+  EXPECT_EQ(form_factor(scene, light, floor, Vec3(0.45, 0, 0.5), Vec3::UnitY(), true), 0.0);
+}
+
+}  // namespace convex_solids_test
+}  // namespace radrecon
