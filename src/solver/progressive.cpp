@@ -182,22 +182,24 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
       const ReceiverShadows shadows(element, near);  // for the estimate and every gather below
       const double so_far_w_m2 = state[job->side].irradiance[e].sum();
       double budget_w_m2 = 0;  // the distance rule
+      SeenFromCentre seen{-1, false};  // the whole patch, as the root block's outline
       if (options.far_field_error > 0) {
         // A fraction of the element's irradiance: gathered so far, plus this shot's as the
         // whole patch would give it.
-        const double estimate =
-            visible_form_factor_past(element.center, element.normal, patch_outline, shooter_normal, shadows.at(0)) *
-            root.unshot_w_m2.sum();
+        seen.form_factor = visible_form_factor_past(element.center, element.normal, patch_outline, shooter_normal,
+                                                    shadows.at(0), &seen.partly);
+        const double estimate = seen.form_factor * root.unshot_w_m2.sum();
         budget_w_m2 = options.far_field_error * std::max(so_far_w_m2 + estimate, least_irradiance_w_m2);
       }
-      Gathered got = gather(tree, tree.root(), element, shooter_normal, shadows, budget_w_m2);
+      const SeenFromCentre* root_seen = seen.form_factor >= 0 ? &seen : nullptr;
+      Gathered got = gather(tree, tree.root(), element, shooter_normal, shadows, budget_w_m2, root_seen);
       if (budget_w_m2 > 0) {
         // The whole patch's estimate can exceed what the element gets many times over (a dark
         // element beside a bright one, a patch seen in part): then again, with the budget made
         // for what it got.
         const double irradiance = so_far_w_m2 + std::min(got.at_center.sum(), got.mean.sum());
         const double budget_got = options.far_field_error * std::max(irradiance, least_irradiance_w_m2);
-        if (budget_got < tol::kFarFieldRegatherRatio * budget_w_m2) got = gather(tree, tree.root(), element, shooter_normal, shadows, budget_got);
+        if (budget_got < tol::kFarFieldRegatherRatio * budget_w_m2) got = gather(tree, tree.root(), element, shooter_normal, shadows, budget_got, root_seen);
       }
       gain[static_cast<size_t>(i)] = got;
     });

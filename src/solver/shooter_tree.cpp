@@ -321,6 +321,7 @@ namespace {
 /// `expands`, else the angle is grazing).
 struct AtCentre {
   double f = -1;
+  bool partly_seen = false;  ///< with f: whether the centre sees the block in part
   bool gradient_known = false, expands = false;
   Vec3 g;
 };
@@ -353,8 +354,8 @@ bool shoots_whole(const Block& b, const ConvexPolygon& poly, const Receiver& r, 
                                                  : std::numeric_limits<double>::infinity();
   // Off the midpoint the bound's form factor stays: without the visible one, the block splits.
   if (!midpoint && !(form_factor * spread * error_per_spread <= budget_w_m2)) return false;
-  bool partly_seen = false;
-  f = visible_form_factor_past(p, n, poly, shooter_normal, shadows.at(0), &partly_seen);
+  if (f < 0) f = visible_form_factor_past(p, n, poly, shooter_normal, shadows.at(0), &centre.partly_seen);
+  const bool partly_seen = centre.partly_seen;
   // A block seen in part splits: it would shoot with the mean of all of it, an error within the
   // bound but of one sign for every element that sees the same part (the ground's blocks behind
   // a wall's horizon), which adds up over the shots: the paper's walls were 0.1% too dark.
@@ -382,10 +383,11 @@ std::span<const ShadowVolume> ReceiverShadows::at(int point) const {
 thread_local std::array<std::vector<ShadowVolume>, 5> ReceiverShadows::volumes_;
 
 Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, const Vec3& shooter_normal,
-                const ReceiverShadows& shadows, double budget_w_m2) {
+                const ReceiverShadows& shadows, double budget_w_m2, const SeenFromCentre* seen) {
   Gathered out;
   if ((b.highest_w_m2 == 0).all()) return out;
   AtCentre centre;
+  if (seen != nullptr) centre.f = seen->form_factor, centre.partly_seen = seen->partly;
   // The budget is shared among the blocks in proportion to their area: those that shoot as one
   // tile the patch, so their errors add up to at most budget_w_m2.
   const double share = budget_w_m2 * b.area_m2 / tree.root().area_m2;

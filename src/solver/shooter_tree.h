@@ -180,7 +180,14 @@ class ReceiverShadows {
 /// (size / distance)^2) unless the element is large against its distance to the block
 /// (tol::kMidpointReceiverRatio): then by the Gauss rule, so that no power is gained or lost by
 /// point collocation next to the shooter.
+///
+/// `seen`, if given, holds what visible_form_factor_past() gives for the block's outline at the
+/// element's centre with shadows.at(0): gather() then does not compute it again.
+struct SeenFromCentre {
+  double form_factor;
+  bool partly;
+};
 Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, const Vec3& shooter_normal,
-                const ReceiverShadows& shadows, double budget_w_m2);
+                const ReceiverShadows& shadows, double budget_w_m2, const SeenFromCentre* seen = nullptr);
 
 }  // namespace radrecon
