@@ -49,32 +49,71 @@ struct HalfSpace {
   HalfSpace with_tolerance() const { return {normal, offset, tol::kPlaneDistance_m * normal.norm()}; }
 };
 
-/// The part of `in` inside the half-space (Sutherland-Hodgman for one plane). Vertices within
-/// tol::kPlaneDistance_m of the plane count as on it, so nearly coincident planes (quads that
-/// share an edge) add no sliver vertices.
+/// Where a polygon lies against a half-space: wholly inside (clip() keeps it as it is), wholly
+/// outside, or across its plane.
+enum class Side { inside, outside, across };
+
+/// The signed distances of `in`'s vertices to h's plane (HalfSpace::eval(), zero within
+/// tol::kPlaneDistance_m of it, so nearly coincident planes (quads that share an edge) add no
+/// sliver vertices) into d, and where the polygon lies. A polygon in the plane counts as inside;
+/// a NaN distance as neither inside nor outside.
+inline Side distances(const ConvexPolygon& in, const HalfSpace& h, std::array<double, ConvexPolygon::kCapacity>& d) {
+  const double on_plane = h.on_plane >= 0 ? h.on_plane : tol::kPlaneDistance_m * h.normal.norm();
+  int inside = 0, outside = 0;  // counts, not a chain of && : no branch per vertex
+  for (int i = 0; i < in.n; ++i) {
+    const double e = h.eval(in.v[i]);
+    d[i] = std::abs(e) <= on_plane ? 0.0 : e;
+    inside += d[i] >= 0;
+    outside += d[i] <= 0;
+  }
+  return inside == in.n ? Side::inside : outside == in.n ? Side::outside : Side::across;
+}
+
+/// The part of a polygon across h's plane on one side of it, from distances(): `sign` +1 keeps
+/// d >= 0 (the half-space), -1 keeps d <= 0 (its complement, bit for bit what clip() by
+/// h.complement() gives: negating the distances is exact).
+inline void cut(const ConvexPolygon& in, const std::array<double, ConvexPolygon::kCapacity>& d, double sign,
+                ConvexPolygon& out) {
+  out.n = 0;
+  for (int i = 0; i < in.n; ++i) {
+    const int k = i + 1 < in.n ? i + 1 : 0;
+    const double di = sign * d[i], dk = sign * d[k];
+    if (di >= 0) out.push(in.v[i]);
+    if ((di > 0 && dk < 0) || (di < 0 && dk > 0)) {
+      const double t = di / (di - dk);
+      out.push(in.v[i] + t * (in.v[k] - in.v[i]));
+    }
+  }
+}
+
+/// The part of `in` inside the half-space (Sutherland-Hodgman for one plane), to distances()'
+/// tolerance.
 inline ConvexPolygon clip(const ConvexPolygon& in, const HalfSpace& h) {
   ConvexPolygon out;
   if (in.n == 0) return out;
   std::array<double, ConvexPolygon::kCapacity> d;
-  bool all_in = true, all_out = true;
-  const double on_plane = h.on_plane >= 0 ? h.on_plane : tol::kPlaneDistance_m * h.normal.norm();
-  for (int i = 0; i < in.n; ++i) {
-    d[i] = h.eval(in.v[i]);
-    if (std::abs(d[i]) <= on_plane) d[i] = 0;
-    all_in = all_in && d[i] >= 0;
-    all_out = all_out && d[i] <= 0;
-  }
-  if (all_in) return in;
-  if (all_out) return out;
-  for (int i = 0; i < in.n; ++i) {
-    const int k = i + 1 < in.n ? i + 1 : 0;
-    if (d[i] >= 0) out.push(in.v[i]);
-    if ((d[i] > 0 && d[k] < 0) || (d[i] < 0 && d[k] > 0)) {
-      double t = d[i] / (d[i] - d[k]);
-      out.push(in.v[i] + t * (in.v[k] - in.v[i]));
-    }
+  switch (distances(in, h, d)) {
+    case Side::inside: return in;
+    case Side::outside: return out;
+    case Side::across: cut(in, d, 1.0, out); return out;
   }
   return out;
+}
+
+/// `in` cut by h's plane: its part inside the half-space into `inside` and the rest into
+/// `outside`, each what clip() by h and by h.complement() gives, for one evaluation of the
+/// distances. A polygon in the plane goes to both.
+inline void split(const ConvexPolygon& in, const HalfSpace& h, ConvexPolygon& inside, ConvexPolygon& outside) {
+  inside.n = outside.n = 0;
+  if (in.n == 0) return;
+  std::array<double, ConvexPolygon::kCapacity> d;
+  const Side side = distances(in, h, d);
+  const bool in_plane = side == Side::inside && std::all_of(d.begin(), d.begin() + in.n, [](double x) { return x == 0; });
+  if (side == Side::inside) inside = in;
+  if (side == Side::outside || in_plane) outside = in;
+  if (side != Side::across) return;
+  cut(in, d, 1.0, inside);
+  cut(in, d, -1.0, outside);
 }
 
 }  // namespace radrecon

@@ -114,12 +114,26 @@ bool meets(const ShadowVolume& volume, const ConvexPolygon& polygon) {
   return true;
 }
 
-ConvexPolygon clip_all(ConvexPolygon poly, const std::array<HalfSpace, 5>& volume) {
-  for (const HalfSpace& h : volume) {
-    poly = clip(poly, h);
-    if (poly.empty()) break;
+/// The polygon clipped by every half-space, in turn; `whole` set to whether each kept all of it.
+ConvexPolygon clip_all(const ConvexPolygon& poly, const std::array<HalfSpace, 5>& volume, bool& whole) {
+  std::array<ConvexPolygon, 2> cuts;  // each cut into the one the last did not fill
+  const ConvexPolygon* now = &poly;
+  std::array<double, ConvexPolygon::kCapacity> d;
+  whole = true;
+  for (size_t k = 0; k < volume.size(); ++k) {
+    switch (distances(*now, volume[k], d)) {
+      case Side::inside: continue;
+      case Side::outside: whole = false; return {};
+      case Side::across: {
+        ConvexPolygon& next = now == &cuts[0] ? cuts[1] : cuts[0];
+        cut(*now, d, 1.0, next);
+        whole = false;
+        if (next.empty()) return {};
+        now = &next;
+      }
+    }
   }
-  return poly;
+  return *now;
 }
 
 /// A box in a plane's 2-D coordinates (PlaneBasis), m; empty when lo > hi, everything when
@@ -206,12 +220,16 @@ void subtract(const ConvexPolygon& q, const std::array<HalfSpace, 5>& volume,
       return;
     }
   }
-  ConvexPolygon rest = q;
-  for (const HalfSpace& h : volume) {
-    ConvexPolygon outside = clip(rest, h.complement());
+  // Peel off the part outside each half-space in turn; what is left inside all five is hidden.
+  std::array<ConvexPolygon, 2> rest;
+  ConvexPolygon outside;
+  const ConvexPolygon* left = &q;
+  for (size_t k = 0; k < volume.size(); ++k) {
+    ConvexPolygon& inside = rest[k % 2];
+    split(*left, volume[k], inside, outside);
     if (!outside.empty()) out.push_back(outside);
-    rest = clip(rest, h);
-    if (rest.empty()) break;
+    if (inside.empty()) break;
+    left = &inside;
   }
 }
 
@@ -260,10 +278,11 @@ double visible_form_factor_past(const Vec3& p, const Vec3& n, const ConvexPolygo
   size_t k = 0;
   for (; k < volumes.size(); ++k) {
     if (!meets(volumes[k], front)) continue;
-    ConvexPolygon shadow = clip_all(front, volumes[k].planes);
+    bool whole = false;
+    ConvexPolygon shadow = clip_all(front, volumes[k].planes, whole);
     if (shadow.empty()) continue;
     // Every clip left the polygon whole: the occluder hides all of it.
-    if (shadow.n == front.n && std::equal(front.v.begin(), front.v.begin() + front.n, shadow.v.begin())) {
+    if (whole) {
       partly = false;
       return 0.0;
     }

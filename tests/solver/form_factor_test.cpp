@@ -144,5 +144,53 @@ TEST(ClipToHorizon, KeepsOnlyThePartAboveTheReceiver) {
   EXPECT_NEAR(lambert_form_factor(p, n, upper), 2 * perpendicular_corner_form_factor(0.5, 1, 1), 1e-14);
 }
 
+/// A convex polygon's area (vector area of a fan), m^2.
+double area(const ConvexPolygon& p) {
+  Vec3 sum = Vec3::Zero();
+  for (int i = 1; i + 1 < p.n; ++i) sum += (p.v[i] - p.v[0]).cross(p.v[i + 1] - p.v[0]);
+  return 0.5 * sum.norm();
+}
+
+TEST(Split, ThePartsTileThePolygonOnEitherSideAndAreWhatClipGives) {
+  // Random convex polygons (points on a tilted circle) and random planes: the two parts' areas
+  // add up to the polygon's, each lies on its side of the plane, and each is bit for bit what
+  // clip() gives by the half-space and by its complement.
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> U(-1, 1), angle(0, 2 * std::numbers::pi);
+  int across = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const Vec3 centre(U(rng), U(rng), U(rng)), a = Vec3(U(rng), U(rng), U(rng)).normalized();
+    const Vec3 b = a.cross(Vec3(U(rng), U(rng), U(rng))).normalized();
+    std::vector<double> angles(3 + trial % 6);
+    for (double& t : angles) t = angle(rng);
+    std::sort(angles.begin(), angles.end());
+    ConvexPolygon poly;
+    for (const double t : angles) poly.push(centre + std::cos(t) * a + std::sin(t) * b);
+    const HalfSpace h{Vec3(U(rng), U(rng), U(rng)), U(rng) * 0.5};
+    ConvexPolygon inside, outside;
+    split(poly, h, inside, outside);
+    EXPECT_NEAR(area(inside) + area(outside), area(poly), 1e-12);
+    const double slack = tol::kPlaneDistance_m * h.normal.norm();
+    for (int i = 0; i < inside.n; ++i) EXPECT_GE(h.eval(inside.v[i]), -slack);
+    for (int i = 0; i < outside.n; ++i) EXPECT_LE(h.eval(outside.v[i]), slack);
+    across += !inside.empty() && !outside.empty();
+    const ConvexPolygon in_clip = clip(poly, h), out_clip = clip(poly, h.complement());
+    ASSERT_EQ(inside.n, in_clip.n);
+    ASSERT_EQ(outside.n, out_clip.n);
+    for (int i = 0; i < inside.n; ++i) EXPECT_EQ(inside.v[i], in_clip.v[i]);
+    for (int i = 0; i < outside.n; ++i) EXPECT_EQ(outside.v[i], out_clip.v[i]);
+  }
+  EXPECT_GT(across, 400);
+  // A polygon in the plane lies on both sides; one wholly inside, on one.
+  const ConvexPolygon flat = quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0});
+  ConvexPolygon inside, outside;
+  split(flat, HalfSpace{Vec3::UnitZ(), 0}, inside, outside);
+  EXPECT_EQ(inside.n, 4);
+  EXPECT_EQ(outside.n, 4);
+  split(flat, HalfSpace{Vec3::UnitZ(), -1}, inside, outside);
+  EXPECT_EQ(inside.n, 4);
+  EXPECT_EQ(outside.n, 0);
+}
+
 }  // namespace form_factor_test
 }  // namespace radrecon
