@@ -143,10 +143,7 @@ class Hierarchy {
     const QuadNode& s = trees_[static_cast<size_t>(st)].node(sn);
     const LinkFormFactorCache::End cr{rt, r}, cs{st, s};
     const LinkFormFactorCache::Value* known = cache_->find(cr, cs);
-    if (known == nullptr) {
-      cache_->insert(cr, cs, measure_link(end(rt, r), end(st, s), bvh_, !occluders(rt, st).empty()));
-      known = cache_->find(cr, cs);
-    }
+    if (known == nullptr) known = cache_->insert(cr, cs, measure_link(end(rt, r), end(st, s), bvh_, !occluders(rt, st).empty()));
     return {rt, rn, st, sn, known->f, known->f_spread};
   }
 
@@ -159,20 +156,28 @@ class Hierarchy {
   };
 
   /// Measures the requests not in the cache, in parallel, and adds them to it in their order
-  /// (so that the cache, and every solve that reads it, does not depend on the threads).
-  void measure_into_cache(const std::vector<Request>& requests) const {
-    std::vector<const Request*> missing;
-    for (const Request& q : requests)
-      if (cache_->find({q.receiver_tree, q.receiver}, {q.source_tree, q.source}) == nullptr) missing.push_back(&q);
+  /// (so that the cache, and every solve that reads it, does not depend on the threads). Returns
+  /// each request's form factor, as the cache holds it.
+  std::vector<const LinkFormFactor*> measure_into_cache(const std::vector<Request>& requests) const {
+    std::vector<const LinkFormFactor*> out(requests.size());
+    std::vector<size_t> missing;
+    for (size_t k = 0; k < requests.size(); ++k) {
+      const Request& q = requests[k];
+      out[k] = cache_->find({q.receiver_tree, q.receiver}, {q.source_tree, q.source});
+      if (out[k] == nullptr) missing.push_back(k);
+    }
     std::vector<LinkFormFactor> measured(missing.size());
     parallel_for_coarse(0, static_cast<std::int64_t>(missing.size()), [&](std::int64_t k) {
-      const Request& q = *missing[static_cast<size_t>(k)];
+      const Request& q = requests[missing[static_cast<size_t>(k)]];
       measured[static_cast<size_t>(k)] = measure_link(end(q.receiver_tree, q.receiver), end(q.source_tree, q.source), bvh_,
                                                       !occluders(q.receiver_tree, q.source_tree).empty());
     });
-    for (size_t k = 0; k < missing.size(); ++k)
-      cache_->insert({missing[k]->receiver_tree, missing[k]->receiver}, {missing[k]->source_tree, missing[k]->source},
-                     measured[k]);
+    for (size_t k = 0; k < missing.size(); ++k) {
+      const Request& q = requests[missing[k]];
+      // A request made twice is measured twice and kept once: the first, as the cache keeps it.
+      out[missing[k]] = cache_->insert({q.receiver_tree, q.receiver}, {q.source_tree, q.source}, measured[k]);
+    }
+    return out;
   }
 
   /// The refinement oracle: the power error (W, channel mean) of the link, from the variation
@@ -255,8 +260,9 @@ class Hierarchy {
       return out;
     };
     std::vector<Pending> wave;
-    for (const Link& l : links_)
-      wave.push_back({stored(l.receiver_tree, l.receiver_node), stored(l.source_tree, l.source_node), {l.f, l.f_spread}});
+    for (const Link& l : links_)  // a link within epsilon is kept (decide()): nothing to prefetch
+      if (error_estimate(l).total() > options_.epsilon_w)
+        wave.push_back({stored(l.receiver_tree, l.receiver_node), stored(l.source_tree, l.source_node), {l.f, l.f_spread}});
     size_t made = 0;
     while (!wave.empty() && made <= options_.max_links) {
       std::vector<Pending> next;
@@ -270,8 +276,8 @@ class Hierarchy {
       std::vector<Request> requests;
       requests.reserve(next.size());
       for (const Pending& p : next) requests.push_back({p.r.tree, p.r.node, p.s.tree, p.s.node});
-      measure_into_cache(requests);
-      for (Pending& p : next) p.f = *cache_->find({p.r.tree, p.r.node}, {p.s.tree, p.s.node});
+      const std::vector<const LinkFormFactor*> measured = measure_into_cache(requests);
+      for (size_t k = 0; k < next.size(); ++k) next[k].f = *measured[k];
       made += next.size();
       wave.swap(next);
     }
@@ -290,11 +296,19 @@ class Hierarchy {
       bool operator<(const Entry& o) const { return error < o.error || (error == o.error && sequence > o.sequence); }
     };
     prefetch_pass();
+    // A link within epsilon is kept whatever the order: its estimate depends on its own form
+    // factor and its source's state, which a pass does not change (split() gives new nodes only).
+    // Only the others need the queue's order.
     std::priority_queue<Entry> queue;
     size_t sequence = 0;
-    for (const Link& l : links_) queue.push({error_estimate(l).total(), sequence++, l});
     std::vector<Link> kept;
     kept.reserve(links_.size());
+    const auto enqueue = [&](const Link& l) {
+      const double error = error_estimate(l).total();
+      if (error <= options_.epsilon_w) kept.push_back(l);
+      else queue.push({error, sequence++, l});
+    };
+    for (const Link& l : links_) enqueue(l);
     bool changed = false;
     while (!queue.empty()) {
       const Entry top = queue.top();
@@ -315,7 +329,7 @@ class Hierarchy {
       for (int c = 0; c < 4; ++c) {
         const Link child = split_receiver ? make_link(l.receiver_tree, first + c, l.source_tree, l.source_node)
                                           : make_link(l.receiver_tree, l.receiver_node, l.source_tree, first + c);
-        queue.push({error_estimate(child).total(), sequence++, child});
+        enqueue(child);
       }
       if (kept.size() + queue.size() > options_.max_links) throw TooManyLinks{};
     }
@@ -346,17 +360,20 @@ class Hierarchy {
         requests.push_back({l.receiver_tree, R.node(k), l.source_tree, trees_[static_cast<size_t>(l.source_tree)].node(l.source_node)});
       if (count + requests.size() > options_.max_links) throw TooManyLinks{};
     }
-    measure_into_cache(requests);
+    const std::vector<const LinkFormFactor*> measured = measure_into_cache(requests);
     std::vector<Link> leaf_links;
     leaf_links.reserve(count + requests.size());
+    size_t next = 0;  // the requests in the order they were made
     for (const Link& l : links_) {
       const Tree& R = trees_[static_cast<size_t>(l.receiver_tree)];
       if (R.node(l.receiver_node).is_leaf()) {
         leaf_links.push_back(l);
         continue;
       }
-      for (const int k : R.quad.leaves(l.receiver_node))
-        leaf_links.push_back(make_link(l.receiver_tree, k, l.source_tree, l.source_node));
+      for (const int k : R.quad.leaves(l.receiver_node)) {
+        const LinkFormFactor& f = *measured[next++];
+        leaf_links.push_back({l.receiver_tree, k, l.source_tree, l.source_node, f.f, f.f_spread});
+      }
     }
     std::sort(leaf_links.begin(), leaf_links.end(), [](const Link& a, const Link& b) {
       return std::tie(a.receiver_tree, a.receiver_node, a.source_tree, a.source_node) <

@@ -58,7 +58,11 @@ class LinkFormFactorCache {
     const auto it = map_.find(Key{receiver, source});
     return it == map_.end() ? nullptr : &it->second;
   }
-  void insert(const End& receiver, const End& source, const Value& v) { map_.emplace(Key{receiver, source}, v); }
+  /// Adds the value unless the key is known; returns the value the cache holds for it (stable:
+  /// the cache never moves a value).
+  const Value* insert(const End& receiver, const End& source, const Value& v) {
+    return &map_.emplace(Key{receiver, source}, v).first->second;
+  }
   size_t size() const { return map_.size(); }
 
  private:
