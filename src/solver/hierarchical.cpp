@@ -309,6 +309,7 @@ class Hierarchy {
       else queue.push({error, sequence++, l});
     };
     for (const Link& l : links_) enqueue(l);
+    const size_t in_order = kept.size();  // a subsequence of links_: in canonical order already
     bool changed = false;
     while (!queue.empty()) {
       const Entry top = queue.top();
@@ -333,11 +334,15 @@ class Hierarchy {
       }
       if (kept.size() + queue.size() > options_.max_links) throw TooManyLinks{};
     }
-    // Keep the links in a canonical order (by receiver, then source) for a deterministic gather.
-    std::sort(kept.begin(), kept.end(), [](const Link& a, const Link& b) {
+    // Keep the links in a canonical order (by receiver, then source) for a deterministic gather:
+    // those kept at once are in it, the rest are sorted and merged in (no two links join the
+    // same pair of nodes, so there are no ties to order).
+    const auto canonical = [](const Link& a, const Link& b) {
       return std::tie(a.receiver_tree, a.receiver_node, a.source_tree, a.source_node) <
              std::tie(b.receiver_tree, b.receiver_node, b.source_tree, b.source_node);
-    });
+    };
+    std::sort(kept.begin() + static_cast<std::ptrdiff_t>(in_order), kept.end(), canonical);
+    std::inplace_merge(kept.begin(), kept.begin() + static_cast<std::ptrdiff_t>(in_order), kept.end(), canonical);
     links_.swap(kept);
     return changed;
   }

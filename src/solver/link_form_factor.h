@@ -2,6 +2,8 @@
 // The form factor of a link of hierarchical radiosity (solver/hierarchical.h) from the geometry of
 // its two ends, and a cache of them shared by solves of the same scene.
 
+#include <bit>
+#include <cstdint>
 #include <unordered_map>
 
 #include "mesh/quadtree.h"
@@ -77,15 +79,19 @@ class LinkFormFactorCache {
     }
   };
   struct Hash {
+    /// The bits of every field, multiplied and folded in turn (a coordinate's + 0.0 makes -0.0
+    /// hash as 0.0, which it equals).
     size_t operator()(const Key& k) const {
-      size_t h = 0;
-      const auto mix = [&h](size_t v) { h ^= v + 0x9e3779b97f4a7c15ULL + (h << 6) + (h >> 2); };
+      std::uint64_t h = 0x9e3779b97f4a7c15ULL;
+      const auto mix = [&h](std::uint64_t v) {
+        h = (h ^ v) * 0xff51afd7ed558ccdULL;
+        h ^= h >> 32;
+      };
       for (const End* e : {&k.r, &k.s}) {
-        mix(std::hash<int>()(e->tree));
-        for (const double x : {e->cell.u0, e->cell.v0, e->cell.u1, e->cell.v1}) mix(std::hash<double>()(x));
-        mix(static_cast<size_t>(e->cell.shape));
+        mix(static_cast<std::uint64_t>(e->tree) << 8 | static_cast<std::uint64_t>(e->cell.shape));
+        for (const double x : {e->cell.u0, e->cell.v0, e->cell.u1, e->cell.v1}) mix(std::bit_cast<std::uint64_t>(x + 0.0));
       }
-      return h;
+      return static_cast<size_t>(h);
     }
   };
   std::unordered_map<Key, Value, Hash> map_;
