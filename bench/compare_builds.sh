@@ -4,6 +4,8 @@
 # and interpolation workloads W1 (286 points -> 400 x 400) and W3 (100,000 points -> 2000 x 2000).
 # Prints the median wall time of each and the ratio NEW / OLD.
 # Usage: bench/compare_builds.sh OLD_RADRECON NEW_RADRECON [RUNS=5]
+# CORNELL=1 adds issue 11's Cornell box solves (grid:64, grid:128, quadtree:1000 on the floor):
+# minutes more.
 set -euo pipefail
 OLD=${1:?usage: compare_builds.sh OLD_RADRECON NEW_RADRECON [RUNS]}
 NEW=${2:?usage: compare_builds.sh OLD_RADRECON NEW_RADRECON [RUNS]}
@@ -67,3 +69,8 @@ compare "W1 multiquadric" interpolate --samples "$work/w1.csv" --method multiqua
 compare "W3 natural-neighbour" interpolate --samples "$work/w3.csv" --method natural-neighbour --raster 2000x2000 --domain 0,0,1,1 --out OUT.pfm --quiet
 compare "W3 shepard k=32" interpolate --samples "$work/w3.csv" --method shepard --param k=32 --raster 2000x2000 --domain 0,0,1,1 --out OUT.pfm --quiet
 compare "W3 multiquadric k=32" interpolate --samples "$work/w3.csv" --method multiquadric --param k=32 --raster 2000x2000 --domain 0,0,1,1 --out OUT.pfm --quiet
+if [ "${CORNELL:-0}" = 1 ]; then
+  compare "Cornell quadtree:1000 on the floor" solve --scene cornell --mesh quadtree:1000 --leaves-on floor --out OUT.json --quiet
+  compare "Cornell grid:64" solve --scene cornell --mesh grid:64 --out OUT.json --quiet
+  compare "Cornell grid:128" solve --scene cornell --mesh grid:128 --out OUT.json --quiet
+fi

@@ -67,7 +67,7 @@ class Hierarchy {
           continue;
         pair_occluders_[r * trees_.size() + s] =
             bvh_.between(R.node(0).corners, S.node(0).corners, R.scene_surface, S.scene_surface);
-        roots.push_back({static_cast<int>(r), R.node(0), static_cast<int>(s), S.node(0)});
+        roots.push_back({static_cast<int>(r), &R.node(0), static_cast<int>(s), &S.node(0)});
       }
     measure_into_cache(roots);
     for (const Request& q : roots) links_.push_back(make_link(q.receiver_tree, 0, q.source_tree, 0));
@@ -147,12 +147,13 @@ class Hierarchy {
     return {rt, rn, st, sn, known->f, known->f_spread};
   }
 
-  /// A link to measure: its ends' trees and nodes (which need not be stored yet).
+  /// A link to measure: its ends' trees and nodes (a tree's, or one the caller holds for a node not
+  /// stored yet).
   struct Request {
     int receiver_tree;
-    QuadNode receiver;
+    const QuadNode* receiver;  ///< the caller's, alive until measure_into_cache() returns
     int source_tree;
-    QuadNode source;
+    const QuadNode* source;
   };
 
   /// Measures the requests not in the cache, in parallel, and adds them to it in their order
@@ -163,19 +164,19 @@ class Hierarchy {
     std::vector<size_t> missing;
     for (size_t k = 0; k < requests.size(); ++k) {
       const Request& q = requests[k];
-      out[k] = cache_->find({q.receiver_tree, q.receiver}, {q.source_tree, q.source});
+      out[k] = cache_->find({q.receiver_tree, *q.receiver}, {q.source_tree, *q.source});
       if (out[k] == nullptr) missing.push_back(k);
     }
     std::vector<LinkFormFactor> measured(missing.size());
     parallel_for_coarse(0, static_cast<std::int64_t>(missing.size()), [&](std::int64_t k) {
       const Request& q = requests[missing[static_cast<size_t>(k)]];
-      measured[static_cast<size_t>(k)] = measure_link(end(q.receiver_tree, q.receiver), end(q.source_tree, q.source), bvh_,
+      measured[static_cast<size_t>(k)] = measure_link(end(q.receiver_tree, *q.receiver), end(q.source_tree, *q.source), bvh_,
                                                       !occluders(q.receiver_tree, q.source_tree).empty());
     });
     for (size_t k = 0; k < missing.size(); ++k) {
       const Request& q = requests[missing[k]];
       // A request made twice is measured twice and kept once: the first, as the cache keeps it.
-      out[missing[k]] = cache_->insert({q.receiver_tree, q.receiver}, {q.source_tree, q.source}, measured[k]);
+      out[missing[k]] = cache_->insert({q.receiver_tree, *q.receiver}, {q.source_tree, *q.source}, measured[k]);
     }
     return out;
   }
@@ -275,7 +276,7 @@ class Hierarchy {
       }
       std::vector<Request> requests;
       requests.reserve(next.size());
-      for (const Pending& p : next) requests.push_back({p.r.tree, p.r.node, p.s.tree, p.s.node});
+      for (const Pending& p : next) requests.push_back({p.r.tree, &p.r.node, p.s.tree, &p.s.node});
       const std::vector<const LinkFormFactor*> measured = measure_into_cache(requests);
       for (size_t k = 0; k < next.size(); ++k) next[k].f = *measured[k];
       made += next.size();
@@ -362,7 +363,7 @@ class Hierarchy {
         continue;
       }
       for (const int k : R.quad.leaves(l.receiver_node))
-        requests.push_back({l.receiver_tree, R.node(k), l.source_tree, trees_[static_cast<size_t>(l.source_tree)].node(l.source_node)});
+        requests.push_back({l.receiver_tree, &R.node(k), l.source_tree, &trees_[static_cast<size_t>(l.source_tree)].node(l.source_node)});
       if (count + requests.size() > options_.max_links) throw TooManyLinks{};
     }
     const std::vector<const LinkFormFactor*> measured = measure_into_cache(requests);
