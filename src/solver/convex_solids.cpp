@@ -86,9 +86,13 @@ std::shared_ptr<const ConvexSolid> convex_solid(const Scene& scene, const std::v
     const Vec3 n = s.normal();
     const HalfSpace plane{n, n.dot(s.corners[0])};
     // Convex with outward normals: every corner on or behind each face's plane, some strictly.
-    double highest = -std::numeric_limits<double>::infinity(), lowest = -highest;
-    for (const Vec3& c : corners) highest = std::max(highest, plane.eval(c)), lowest = std::min(lowest, plane.eval(c));
-    if (!(highest <= tolerance && lowest < -tolerance)) return nullptr;
+    double lowest = 0;
+    for (const Vec3& c : corners) {
+      const double d = plane.eval(c);
+      if (!(d <= tolerance)) return nullptr;  // a corner in front (or NaN): not convex, or facing in
+      lowest = std::min(lowest, d);
+    }
+    if (!(lowest < -tolerance)) return nullptr;  // flat: no corner behind
     solid->faces.push_back(plane);
   }
   if (!open_edges.empty()) {
@@ -145,7 +149,7 @@ std::vector<std::shared_ptr<const ConvexSolid>> find_convex_solids(const Scene& 
   std::vector<std::shared_ptr<const ConvexSolid>> out(n);
   for (size_t root = 0; root < n; ++root) {
     const std::vector<size_t>& faces = members[root];
-    if (faces.size() < 3) continue;  // no solid has fewer faces, an opening included
+    if (faces.size() < 3 || faces.size() > kMaxSolidFaces) continue;  // a solid has 3 faces or more, an opening included
     if (std::any_of(faces.begin(), faces.end(), [&](size_t k) { return spoiled[k]; })) continue;
     const std::shared_ptr<const ConvexSolid> solid = convex_solid(scene, faces, open_of[root]);
     if (solid)

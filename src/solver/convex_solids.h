@@ -45,10 +45,16 @@ struct ConvexSolid {
   bool behind_horizon(const Vec3& p, const Vec3& n) const;
 };
 
+/// The most faces a solid is looked for with: each point that a solid's face could shade tests
+/// the solid's planes (ConvexSolid::sees_from_outside() and behind_horizon()), which pays for
+/// boxes, prisms and furniture, not for a finely tessellated sphere.
+inline constexpr size_t kMaxSolidFaces = 64;
+
 /// The convex solids found among the scene's surfaces: for each surface, the solid it bounds,
 /// or null. A surface bounds at most one. Corners are matched exactly (bit for bit), as a model
 /// with shared vertices or a scene built from the same numbers gives them; a solid whose
-/// corners differ by round-off is not found, which costs time, never accuracy.
+/// corners differ by round-off, or with more than kMaxSolidFaces faces, is not found, which costs
+/// time, never accuracy.
 std::vector<std::shared_ptr<const ConvexSolid>> find_convex_solids(const Scene& scene);
 
 }  // namespace radrecon

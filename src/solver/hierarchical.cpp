@@ -36,6 +36,11 @@ using hierarchy::gather_over_links;
 /// Thrown when a hierarchy would exceed HierarchicalOptions::max_links.
 struct TooManyLinks {};
 
+/// The links' canonical order, by receiver then source: the gather's, for determinism.
+bool canonical(const Link& a, const Link& b) {
+  return std::tie(a.receiver_tree, a.receiver_node, a.source_tree, a.source_node) <
+         std::tie(b.receiver_tree, b.receiver_node, b.source_tree, b.source_node);
+}
 
 class Hierarchy {
  public:
@@ -143,12 +148,12 @@ class Hierarchy {
     const QuadNode& s = trees_[static_cast<size_t>(st)].node(sn);
     const LinkFormFactorCache::End cr{rt, r}, cs{st, s};
     const LinkFormFactorCache::Value* known = cache_->find(cr, cs);
-    if (known == nullptr) known = cache_->insert(cr, cs, measure_link(end(rt, r), end(st, s), bvh_, !occluders(rt, st).empty()));
+    if (known == nullptr)
+      known = cache_->insert(cr, cs, measure_link(end(rt, r), end(st, s), bvh_, !occluders(rt, st).empty()));
     return {rt, rn, st, sn, known->f, known->f_spread};
   }
 
-  /// A link to measure: its ends' trees and nodes (a tree's, or one the caller holds for a node not
-  /// stored yet).
+  /// A link to measure: its ends' trees and nodes (a tree's, or a node not stored yet).
   struct Request {
     int receiver_tree;
     const QuadNode* receiver;  ///< the caller's, alive until measure_into_cache() returns
@@ -338,10 +343,6 @@ class Hierarchy {
     // Keep the links in a canonical order (by receiver, then source) for a deterministic gather:
     // those kept at once are in it, the rest are sorted and merged in (no two links join the
     // same pair of nodes, so there are no ties to order).
-    const auto canonical = [](const Link& a, const Link& b) {
-      return std::tie(a.receiver_tree, a.receiver_node, a.source_tree, a.source_node) <
-             std::tie(b.receiver_tree, b.receiver_node, b.source_tree, b.source_node);
-    };
     std::sort(kept.begin() + static_cast<std::ptrdiff_t>(in_order), kept.end(), canonical);
     std::inplace_merge(kept.begin(), kept.begin() + static_cast<std::ptrdiff_t>(in_order), kept.end(), canonical);
     links_.swap(kept);
@@ -381,10 +382,7 @@ class Hierarchy {
         leaf_links.push_back({l.receiver_tree, k, l.source_tree, l.source_node, f.f, f.f_spread});
       }
     }
-    std::sort(leaf_links.begin(), leaf_links.end(), [](const Link& a, const Link& b) {
-      return std::tie(a.receiver_tree, a.receiver_node, a.source_tree, a.source_node) <
-             std::tie(b.receiver_tree, b.receiver_node, b.source_tree, b.source_node);
-    });
+    std::sort(leaf_links.begin(), leaf_links.end(), canonical);
     links_.swap(leaf_links);
   }
 

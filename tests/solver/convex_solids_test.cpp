@@ -81,6 +81,39 @@ TEST(ConvexSolids, WhatBoundsNoConvexSolidIsNone) {
   for (const auto& s : find_convex_solids(scene_of({a, b}))) EXPECT_FALSE(s);
 }
 
+/// A closed prism over a regular n-gon (radius 1, z in [0, 1]): n quads around, a fan of n
+/// triangles on each end; 3n faces, outward.
+std::vector<Surface> prism(int n) {
+  std::vector<Vec3> bottom, top;
+  for (int k = 0; k < n; ++k) {
+    const double a = 2 * std::numbers::pi * k / n;
+    bottom.emplace_back(std::cos(a), std::sin(a), 0.0);
+    top.emplace_back(std::cos(a), std::sin(a), 1.0);
+  }
+  std::vector<Surface> faces;
+  for (int k = 0; k < n; ++k) {
+    const int j = (k + 1) % n;
+    faces.push_back(quad("side", {bottom[k], bottom[j], top[j], top[k]}));
+    Surface t, b;
+    t.set_triangle(Vec3(0, 0, 1), top[k], top[j]);
+    b.set_triangle(Vec3(0, 0, 0), bottom[j], bottom[k]);
+    faces.push_back(t);
+    faces.push_back(b);
+  }
+  return faces;
+}
+
+TEST(ConvexSolids, PrismsOfTrianglesAndQuadsUpToTheFaceLimit) {
+  const auto small = find_convex_solids(scene_of(prism(8)));  // 24 faces
+  ASSERT_TRUE(small[0]);
+  for (const auto& s : small) EXPECT_EQ(s, small[0]);
+  EXPECT_FALSE(small[0]->opening.has_value());
+  EXPECT_TRUE(small[0]->sees_from_outside(Vec3(2, 0, 0.5)));
+  EXPECT_FALSE(small[0]->sees_from_outside(Vec3(0, 0, 0.5)));
+  static_assert(3 * 30 > kMaxSolidFaces);
+  for (const auto& s : find_convex_solids(scene_of(prism(30)))) EXPECT_FALSE(s);
+}
+
 TEST(ConvexSolids, TheCornellBlocksStandOnTheirOpening) {
   const Scene scene = cornell_scene();
   const auto solids = find_convex_solids(scene);
