@@ -204,20 +204,7 @@ TEST(ConvexSolids, AClosedBoxSeenPastItsFrontFacesAgainstRays) {
   ASSERT_LT(scene.surfaces[light].normal().y(), -0.99);  // the light faces down, the floor up
   ASSERT_GT(scene.surfaces[floor].normal().y(), 0.99);
   const auto brute = [&](const Vec3& p, const Vec3& n, size_t receiver) {
-    constexpr int N = 300;
-    const Surface& l = scene.surfaces[light];
-    const Vec3 nl = l.normal();
-    const double dA = l.area_m2() / (N * N);
-    double f = 0;
-    for (int i = 0; i < N; ++i)
-      for (int j = 0; j < N; ++j) {
-        const Vec3 y = l.point((i + 0.5) / N, (j + 0.5) / N);
-        const Vec3 d = y - p;
-        const double r2 = d.squaredNorm(), cr = n.dot(d) / std::sqrt(r2), cs = -nl.dot(d) / std::sqrt(r2);
-        if (cr <= 0 || cs <= 0 || !testing_support::visible(scene, p, y, receiver, light)) continue;
-        f += cr * cs / (std::numbers::pi * r2) * dA;
-      }
-    return f;
+    return testing_support::brute_force_form_factor(scene, light, p, n, receiver, 300);
   };
   const std::vector<std::pair<Vec3, size_t>> points = {
       {Vec3(0.15, 0, 0.5), floor}, {Vec3(0.7, 0, 0.45), floor}, {Vec3(0.45, 0, 0.85), floor},

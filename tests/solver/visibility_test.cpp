@@ -28,21 +28,7 @@ Surface make_quad(const std::string& name, const Vec3& c0, const Vec3& c1, const
 
 /// F(dA -> visible part of `shooter`) by the midpoint rule over the shooter, with the ray caster.
 double brute_force(const Scene& scene, size_t shooter, const Vec3& p, const Vec3& n, size_t receiver) {
-  const Surface& s = scene.surfaces[shooter];
-  const Vec3 ns = s.normal();
-  const double dA = s.area_m2() / (kQuadratureN * kQuadratureN);
-  double f = 0;
-  for (int i = 0; i < kQuadratureN; ++i)
-    for (int j = 0; j < kQuadratureN; ++j) {
-      const Vec3 y = s.point((i + 0.5) / kQuadratureN, (j + 0.5) / kQuadratureN);
-      const Vec3 r = y - p;
-      const double d2 = r.squaredNorm();
-      const double cos_r = n.dot(r) / std::sqrt(d2), cos_s = -ns.dot(r) / std::sqrt(d2);
-      if (cos_r <= 0 || cos_s <= 0) continue;
-      if (!visible(scene, p, y, receiver, shooter)) continue;
-      f += cos_r * cos_s / (std::numbers::pi * d2) * dA;
-    }
-  return f;
+  return testing_support::brute_force_form_factor(scene, shooter, p, n, receiver, kQuadratureN);
 }
 
 double exact(const Scene& scene, size_t shooter, const Vec3& p, const Vec3& n, size_t receiver) {
