@@ -1,15 +1,13 @@
 // radrecon's global operator new: malloc's memory, with the large allocations advised onto
 // transparent huge pages (core/allocator.h). Every other form of new (arrays, nothrow) reaches
-// this one through the standard library's defaults, and every delete is the library's free():
-// memory may pass between the program and its plugins either way. Left out of sanitized builds,
-// whose own operator new tracks allocations.
+// this one through the standard library's defaults, and the library's delete is free(): memory
+// may pass between the program and its plugins either way. Left out of sanitized builds
+// (CMakeLists.txt), whose runtime pairs its own operator new with its own delete.
 
 #include <cstdlib>
 #include <new>
 
 #include "core/allocator.h"
-
-#if !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)
 
 void* operator new(std::size_t bytes) {
   if (bytes == 0) bytes = 1;
@@ -24,4 +22,3 @@ void* operator new(std::size_t bytes) {
   }
 }
 
-#endif
