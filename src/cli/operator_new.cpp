@@ -21,4 +21,3 @@ void* operator new(std::size_t bytes) {
     handler();
   }
 }
-
