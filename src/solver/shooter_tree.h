@@ -161,6 +161,13 @@ class ReceiverShadows {
   static thread_local std::array<std::vector<ShadowVolume>, 5> volumes_;
 };
 
+/// A polygon's visible form factor at a receiving element's centre, and whether the centre sees
+/// it in part (visible_form_factor_past()'s value and `partly_seen`).
+struct SeenFromCentre {
+  double form_factor;
+  bool partly;
+};
+
 /// Irradiance on the receiving element from the shooter's unshot radiosity: the block as a whole
 /// when it is uniform or a single element, or when it may shoot as one; else the sum over its
 /// children. With `budget_w_m2` <= 0 a block may shoot as one beyond tol::kFarFieldDiagonals of
@@ -183,10 +190,6 @@ class ReceiverShadows {
 ///
 /// `seen`, if given, holds what visible_form_factor_past() gives for the block's outline at the
 /// element's centre with shadows.at(0): gather() then does not compute it again.
-struct SeenFromCentre {
-  double form_factor;
-  bool partly;
-};
 Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, const Vec3& shooter_normal,
                 const ReceiverShadows& shadows, double budget_w_m2, const SeenFromCentre* seen = nullptr);
 
