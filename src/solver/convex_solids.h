@@ -22,6 +22,7 @@
 #include <optional>
 #include <vector>
 
+#include "core/tolerances.h"
 #include "scene/scene.h"
 #include "solver/polygon.h"
 
@@ -43,6 +44,12 @@ struct ConvexSolid {
   /// face has it) and p lies on or in front of that plane (to tol::kPlaneDistance_m). Then
   /// none of its faces hides anything from p in front of p's plane.
   bool behind_horizon(const Vec3& p, const Vec3& n) const;
+  /// Whether the face whose plane is `face` (one of `faces`) can hide nothing from a receiver at
+  /// p with unit normal n that the solid's other faces do not: the solid is behind p's horizon,
+  /// or p sees the face from its back (beyond tol::kPlaneDistance_m) from outside the solid.
+  bool face_hides_nothing(const HalfSpace& face, const Vec3& p, const Vec3& n) const {
+    return behind_horizon(p, n) || (face.eval(p) < -tol::kPlaneDistance_m && sees_from_outside(p));
+  }
 };
 
 /// The most faces a solid is looked for with: each point that a solid's face could shade tests

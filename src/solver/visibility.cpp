@@ -75,8 +75,6 @@ ShadowVolume shadow_volume(const Vec3& p, const Occluder& o) {
   volume.occluder = &o;
   const double side_p = o.plane.eval(p);
   if (std::abs(side_p) <= tol::kPlaneDistance_m) return volume;  // p in the occluder's plane
-  // A solid's face seen from its back, from outside: the faces p sees from the front hide all it would.
-  if (side_p < 0 && o.solid && o.solid->sees_from_outside(p)) return volume;
   // Beyond the occluder's plane, as seen from p.
   volume.planes[0] = (side_p > 0 ? o.plane.complement() : o.plane).with_tolerance();
   const int n = o.corner_count;
@@ -94,7 +92,7 @@ void shadow_volumes(const Vec3& p, const Vec3& n, const std::vector<const Occlud
                     std::vector<ShadowVolume>& out) {
   out.clear();
   for (const Occluder* o : occluders) {
-    if (o->solid && o->solid->behind_horizon(p, n)) continue;
+    if (o->solid && o->solid->face_hides_nothing(o->plane, p, n)) continue;
     const ShadowVolume v = shadow_volume(p, *o);
     if (v.sides > 0) out.push_back(v);
   }

@@ -55,9 +55,7 @@ std::vector<const Occluder*> occluders_in_box(const std::vector<Occluder>& occlu
 /// plane (planes[0]) and inside the planes through the point and its edges (planes[1..sides]; a
 /// triangle's third repeated as the fourth). It depends on the point and the occluder alone, so
 /// a point that looks at many polygons (the blocks of a shooting patch) makes it once.
-///
-/// An occluder hides nothing from p (sides = 0) when p lies in its plane, or when it is a face of
-/// a convex solid seen from its back by a point outside the solid (ConvexSolid).
+/// An occluder hides nothing from p (sides = 0) when p lies in its plane.
 struct ShadowVolume {
   std::array<HalfSpace, 5> planes;
   int sides = 0;  ///< 0: the point lies in the occluder's plane, and it hides nothing from it
@@ -65,8 +63,9 @@ struct ShadowVolume {
 };
 ShadowVolume shadow_volume(const Vec3& p, const Occluder& o);
 /// The shadow volumes of those of `occluders` that can hide anything from p (unit normal n) in
-/// front of p, in their order, into `out` (cleared first): not the faces of a solid behind p's
-/// horizon (ConvexSolid::behind_horizon()), nor those whose volume has no sides.
+/// front of p, in their order, into `out` (cleared first): not the faces of a convex solid that
+/// its other faces stand in for (ConvexSolid::face_hides_nothing()), nor those whose volume has
+/// no sides.
 void shadow_volumes(const Vec3& p, const Vec3& n, const std::vector<const Occluder*>& occluders,
                     std::vector<ShadowVolume>& out);
 
