@@ -132,26 +132,37 @@ TEST(ConvexSolids, TheCornellBlocksStandOnTheirOpening) {
   EXPECT_EQ(in_blocks, 10);
 }
 
-/// The visible form factor from (p, n) to the shooter with the scene's occluders, with the
-/// solids found (`with_solids`) or every face kept.
-double form_factor(const Scene& scene, size_t shooter, size_t receiver, const Vec3& p, const Vec3& n, bool with_solids) {
+/// The scene's occluders, with the solids found (`with_solids`) or without (every face kept).
+std::vector<Occluder> occluders_of(const Scene& scene, bool with_solids) {
   std::vector<Occluder> occ = make_occluders(scene);
   if (!with_solids)
     for (Occluder& o : occ) o.solid = nullptr;
-  std::vector<const Occluder*> others;
+  return occ;
+}
+
+std::vector<const Occluder*> pointers(const std::vector<Occluder>& occ, size_t skip_a, size_t skip_b) {
+  std::vector<const Occluder*> out;
   for (const Occluder& o : occ)
-    if (o.scene_surface != shooter && o.scene_surface != receiver) others.push_back(&o);
+    if (o.scene_surface != skip_a && o.scene_surface != skip_b) out.push_back(&o);
+  return out;
+}
+
+/// The visible form factor from (p, n) on `receiver` to `shooter` past the occluders.
+double form_factor(const Scene& scene, const std::vector<Occluder>& occ, size_t shooter, size_t receiver, const Vec3& p,
+                   const Vec3& n) {
   const Surface& s = scene.surfaces[shooter];
   ConvexPolygon poly;
   for (const Vec3& c : s.polygon()) poly.push(c);
-  return visible_form_factor(p, n, poly, s.normal(), others);
+  return visible_form_factor(p, n, poly, s.normal(), pointers(occ, shooter, receiver));
 }
 
 TEST(ConvexSolids, LeavingBackFacesOutChangesNoShadow) {
   // The Cornell box: points on the floor, on the walls and on the blocks' own faces (both
   // sides), shot at by the light, the ceiling and the walls. Every face kept is the reference.
   const Scene scene = cornell_scene();
-  const auto solids = find_convex_solids(scene);
+  const std::vector<Occluder> solid = occluders_of(scene, true), bare = occluders_of(scene, false);
+  constexpr size_t kNone = ~size_t{0};
+  const std::vector<const Occluder*> all_solid = pointers(solid, kNone, kNone), all_bare = pointers(bare, kNone, kNone);
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> U(0.01, 0.99);
   int compared = 0, nonzero = 0, culled_somewhere = 0;
@@ -165,23 +176,15 @@ TEST(ConvexSolids, LeavingBackFacesOutChangesNoShadow) {
         const Vec3 p = r.point(u, v);
         for (size_t shooter = 0; shooter < scene.surfaces.size(); ++shooter) {
           if (shooter == receiver) continue;
-          const double with = form_factor(scene, shooter, receiver, p, n, true);
-          const double without = form_factor(scene, shooter, receiver, p, n, false);
+          const double with = form_factor(scene, solid, shooter, receiver, p, n);
+          const double without = form_factor(scene, bare, shooter, receiver, p, n);
           ASSERT_NEAR(with, without, 1e-12 * std::max(1.0, without)) << r.name << " from " << scene.surfaces[shooter].name;
           ++compared;
           nonzero += without > 1e-6 ? 1 : 0;
         }
         // How many faces the solids leave out for this point: the test must exercise it.
-        std::vector<const Occluder*> all;
-        const std::vector<Occluder> occ = make_occluders(scene);
-        for (const Occluder& o : occ) all.push_back(&o);
-        std::vector<ShadowVolume> kept;
-        shadow_volumes(p, n, all, kept);
-        std::vector<ShadowVolume> plain;
-        std::vector<Occluder> bare = occ;
-        for (Occluder& o : bare) o.solid = nullptr;
-        std::vector<const Occluder*> all_bare;
-        for (const Occluder& o : bare) all_bare.push_back(&o);
+        std::vector<ShadowVolume> kept, plain;
+        shadow_volumes(p, n, all_solid, kept);
         shadow_volumes(p, n, all_bare, plain);
         culled_somewhere += kept.size() < plain.size() ? 1 : 0;
       }
@@ -201,6 +204,7 @@ TEST(ConvexSolids, AClosedBoxSeenPastItsFrontFacesAgainstRays) {
   const Scene scene = scene_of(s);
   const size_t floor = 6, light = 7;
   ASSERT_TRUE(find_convex_solids(scene)[0]);
+  const std::vector<Occluder> occ = make_occluders(scene);
   ASSERT_LT(scene.surfaces[light].normal().y(), -0.99);  // the light faces down, the floor up
   ASSERT_GT(scene.surfaces[floor].normal().y(), 0.99);
   const auto brute = [&](const Vec3& p, const Vec3& n, size_t receiver) {
@@ -214,10 +218,10 @@ TEST(ConvexSolids, AClosedBoxSeenPastItsFrontFacesAgainstRays) {
   };
   for (const auto& [p, receiver] : points) {
     const Vec3 n = scene.surfaces[receiver].normal();
-    const double exact = form_factor(scene, light, receiver, p, n, true);
+    const double exact = form_factor(scene, occ, light, receiver, p, n);
     EXPECT_NEAR(exact, brute(p, n, receiver), 3e-3 * std::max(exact, 0.05)) << p.transpose();
   }
-  EXPECT_EQ(form_factor(scene, light, floor, Vec3(0.45, 0, 0.5), Vec3::UnitY(), true), 0.0);
+  EXPECT_EQ(form_factor(scene, occ, light, floor, Vec3(0.45, 0, 0.5), Vec3::UnitY()), 0.0);
 }
 
 }  // namespace convex_solids_test
