@@ -10,6 +10,7 @@
 #include "solver/bvh.h"
 #include "solver/form_factor.h"
 #include "solver/visibility.h"
+#include "support/occluder_lists.h"
 #include "support/ray_scene.h"
 
 namespace radrecon {
@@ -48,18 +49,8 @@ Vec3 random_point(std::mt19937& rng, const Surface& s) {
   return s.point(a, b);
 }
 
-ConvexPolygon polygon_of(const Surface& s) {
-  ConvexPolygon poly;
-  for (const Vec3& c : s.polygon()) poly.push(c);
-  return poly;
-}
-
-std::vector<const Occluder*> all_but(const std::vector<Occluder>& occ, size_t a, size_t b) {
-  std::vector<const Occluder*> out;
-  for (const Occluder& o : occ)
-    if (o.scene_surface != a && o.scene_surface != b) out.push_back(&o);
-  return out;
-}
+using testing_support::all_but;
+using testing_support::polygon_of;
 
 struct Case {
   size_t receiver, shooter;

@@ -8,6 +8,7 @@
 
 #include "solver/convex_solids.h"
 #include "solver/visibility.h"
+#include "support/occluder_lists.h"
 #include "support/ray_scene.h"
 
 namespace radrecon {
@@ -140,20 +141,12 @@ std::vector<Occluder> occluders_of(const Scene& scene, bool with_solids) {
   return occ;
 }
 
-std::vector<const Occluder*> pointers(const std::vector<Occluder>& occ, size_t skip_a, size_t skip_b) {
-  std::vector<const Occluder*> out;
-  for (const Occluder& o : occ)
-    if (o.scene_surface != skip_a && o.scene_surface != skip_b) out.push_back(&o);
-  return out;
-}
-
 /// The visible form factor from (p, n) on `receiver` to `shooter` past the occluders.
 double form_factor(const Scene& scene, const std::vector<Occluder>& occ, size_t shooter, size_t receiver, const Vec3& p,
                    const Vec3& n) {
   const Surface& s = scene.surfaces[shooter];
-  ConvexPolygon poly;
-  for (const Vec3& c : s.polygon()) poly.push(c);
-  return visible_form_factor(p, n, poly, s.normal(), pointers(occ, shooter, receiver));
+  return visible_form_factor(p, n, testing_support::polygon_of(s), s.normal(),
+                             testing_support::all_but(occ, shooter, receiver));
 }
 
 TEST(ConvexSolids, LeavingBackFacesOutChangesNoShadow) {
@@ -162,7 +155,8 @@ TEST(ConvexSolids, LeavingBackFacesOutChangesNoShadow) {
   const Scene scene = cornell_scene();
   const std::vector<Occluder> solid = occluders_of(scene, true), bare = occluders_of(scene, false);
   constexpr size_t kNone = ~size_t{0};
-  const std::vector<const Occluder*> all_solid = pointers(solid, kNone, kNone), all_bare = pointers(bare, kNone, kNone);
+  const std::vector<const Occluder*> all_solid = testing_support::all_but(solid, kNone, kNone),
+                                    all_bare = testing_support::all_but(bare, kNone, kNone);
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> U(0.01, 0.99);
   int compared = 0, nonzero = 0, culled_somewhere = 0;
