@@ -190,42 +190,61 @@ void run_interpolate(const InterpolateArgs& args) {
   // with a progress line between them.
   const auto query_start = use_queries ? Clock::now() : raster_start;
   const size_t channels = static_cast<size_t>(interpolant.value()->channels());
-  // Not zeroed: every value is written by the evaluation, whose threads then take the pages
-  // (a page fault costs some 10 us on this virtual machine: 300 of them for W1's values).
-  const std::unique_ptr<double[]> value_storage(new double[point_count * channels]);
-  const std::span<double> values(value_storage.get(), point_count * channels);
   Progress progress("interpolate", args.quiet);
   std::vector<Vec2> batch;
-  for (size_t first = 0; first < point_count; first += kEvaluateBatch) {
-    const size_t count = std::min(kEvaluateBatch, point_count - first);
+  double querying_s = 0;  // the batches' time
+  // The values of points [first, first + out.size() / channels) into `out`.
+  const auto evaluate_batch = [&](size_t first, std::span<double> out) {
+    const auto batch_start = Clock::now();
+    const size_t count = out.size() / channels;
     if (raster_batches) raster_points(raster, first, count, batch);
     interpolant.value()->evaluate(raster_batches ? std::span<const Vec2>(batch) : std::span(points).subspan(first, count),
-                                  values.subspan(first * channels, count * channels));
+                                  out);
     progress.update(static_cast<double>(first + count) / point_count, "the query points");
-  }
-  progress.done();
-  const double querying_s = seconds_since(query_start);
+    querying_s += seconds_since(batch_start);
+  };
+  // A PFM raster is written batch by batch as it is made; the other outputs take every value.
+  const bool streamed = raster_batches && !geo_raster && format == FileFormat::pfm;
+  double writing_s = 0;
+  if (streamed) {
+    const auto stream_start = Clock::now();
+    write_raster_pfm(args.out, raster, samples.channels, kEvaluateBatch,
+                     [&](size_t first_value, std::span<double> out) { evaluate_batch(first_value / channels, out); });
+    progress.done();
+    querying_s += std::chrono::duration<double>(stream_start - query_start).count();  // the raster's set-up
+    writing_s = seconds_since(query_start) - querying_s;
+  } else {
+    // Not zeroed: every value is written by the evaluation, whose threads then take the pages.
+    const std::unique_ptr<double[]> value_storage(new double[point_count * channels]);
+    const std::span<double> values(value_storage.get(), point_count * channels);
+    for (size_t first = 0; first < point_count; first += kEvaluateBatch) {
+      const size_t count = std::min(kEvaluateBatch, point_count - first);
+      evaluate_batch(first, values.subspan(first * channels, count * channels));
+    }
+    progress.done();
+    querying_s = seconds_since(query_start);
 
-  const auto write_start = Clock::now();
-  if (geo_raster) refuse_nodata_clash(values, args.nodata, geo_options.float64);
-  if (geotiff) {
-    write_file_atomically(args.out, [&](const std::filesystem::path& tmp) {
-      geotiff_functions("--out").write(tmp, args.out, raster, values, samples.channels, geo_options, geotiff_crs);
-    });
-  } else if (geo_raster) {
-    gdal_functions("--out").write_raster(args.out, raster, values, samples.channels, geo_options);
-  } else switch (format) {
-    case FileFormat::csv: write_values_csv(args.out, points, values, value_names); break;
-    case FileFormat::pfm: write_raster_pfm(args.out, raster, values, samples.channels); break;
-    case FileFormat::png: write_raster_png(args.out, raster, values, samples.channels); break;
-    case FileFormat::exr: break;  // refused by file_format() above
+    const auto write_start = Clock::now();
+    if (geo_raster) refuse_nodata_clash(values, args.nodata, geo_options.float64);
+    if (geotiff) {
+      write_file_atomically(args.out, [&](const std::filesystem::path& tmp) {
+        geotiff_functions("--out").write(tmp, args.out, raster, values, samples.channels, geo_options, geotiff_crs);
+      });
+    } else if (geo_raster) {
+      gdal_functions("--out").write_raster(args.out, raster, values, samples.channels, geo_options);
+    } else switch (format) {
+      case FileFormat::csv: write_values_csv(args.out, points, values, value_names); break;
+      case FileFormat::pfm: write_raster_pfm(args.out, raster, values, samples.channels); break;
+      case FileFormat::png: write_raster_png(args.out, raster, values, samples.channels); break;
+      case FileFormat::exr: break;  // refused by file_format() above
+    }
+    writing_s = seconds_since(write_start);
   }
   if (!args.quiet)
     std::fprintf(stderr,
                  "interpolate: wrote %s (%zu points) in %.3f s (reading and checking %.3f s, building %.3f s, "
                  "interpolating %.3f s, writing %.3f s)\n",
-                 args.out.c_str(), point_count, seconds_since(start), reading_s, building_s, querying_s,
-                 seconds_since(write_start));
+                 args.out.c_str(), point_count, seconds_since(start), reading_s, building_s, querying_s, writing_s);
 }
 
 }  // namespace

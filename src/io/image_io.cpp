@@ -185,26 +185,37 @@ std::vector<std::uint8_t> encode_png(const Image& image, bool srgb_encode_values
 
 void write_pfm(const std::filesystem::path& path, int width, int height, int channels,
                std::span<const double> values) {
-  RR_CHECK(channels == 1 || channels == 3, "PFM holds 1 or 3 channels");
   RR_CHECK_EQ(values.size(), static_cast<size_t>(width) * height * channels, "PFM values do not match the size");
-  for (const double v : values)
-    if (std::isfinite(v) && std::abs(v) > std::numeric_limits<float>::max())
-      throw UserError(path.string(), "a value, " + format_number(v) +
-                                         ", is beyond the range of PFM's 32-bit floats (3.4e38); write .csv instead");
+  write_pfm(path, width, height, channels, values.size(), [&](size_t first, std::span<double> out) {
+    std::copy_n(values.begin() + static_cast<std::ptrdiff_t>(first), out.size(), out.begin());
+  });
+}
+
+void write_pfm(const std::filesystem::path& path, int width, int height, int channels, size_t batch_values,
+               const PfmValues& produce) {
+  RR_CHECK(channels == 1 || channels == 3, "PFM holds 1 or 3 channels");
+  RR_CHECK(width > 0 && height > 0 && batch_values > 0, "a PFM needs pixels, made in batches of some");
+  const size_t total = static_cast<size_t>(width) * height * channels;
   write_file_atomically(path, [&](const std::filesystem::path& tmp) {
     std::ofstream out(tmp, std::ios::binary);
     // The scale -1.0 declares little-endian floats; they are swapped on a big-endian machine.
     out << (channels == 1 ? "Pf" : "PF") << "\n" << width << " " << height << "\n-1.0\n";
-    const size_t row_len = static_cast<size_t>(width) * channels;
-    std::vector<std::uint32_t> row(row_len);
-    for (int j = 0; j < height; ++j) {
-      for (size_t k = 0; k < row_len; ++k) {
-        std::uint32_t bits = std::bit_cast<std::uint32_t>(static_cast<float>(values[j * row_len + k]));
+    std::vector<double> values(std::min(batch_values, total));
+    std::vector<std::uint32_t> bits(values.size());
+    for (size_t first = 0; first < total; first += values.size()) {
+      const size_t count = std::min(values.size(), total - first);
+      produce(first, std::span(values.data(), count));
+      for (size_t k = 0; k < count; ++k) {
+        const double v = values[k];
+        if (std::isfinite(v) && std::abs(v) > std::numeric_limits<float>::max())
+          throw UserError(path.string(), "a value, " + format_number(v) +
+                                             ", is beyond the range of PFM's 32-bit floats (3.4e38); write .csv instead");
+        std::uint32_t b = std::bit_cast<std::uint32_t>(static_cast<float>(v));
         if constexpr (std::endian::native == std::endian::big)
-          bits = (bits >> 24) | ((bits >> 8) & 0xff00u) | ((bits << 8) & 0xff0000u) | (bits << 24);
-        row[k] = bits;
+          b = (b >> 24) | ((b >> 8) & 0xff00u) | ((b << 8) & 0xff0000u) | (b << 24);
+        bits[k] = b;
       }
-      out.write(reinterpret_cast<const char*>(row.data()), static_cast<std::streamsize>(row_len * sizeof(std::uint32_t)));
+      out.write(reinterpret_cast<const char*>(bits.data()), static_cast<std::streamsize>(count * sizeof(std::uint32_t)));
     }
     out.close();
     if (!out) throw UserError(path.string(), "cannot write PFM");

@@ -4,6 +4,7 @@
 // atomic (atomic_file.h): the file appears whole or not at all.
 
 #include <filesystem>
+#include <functional>
 #include <cstdint>
 #include <initializer_list>
 #include <span>
@@ -40,6 +41,16 @@ void write_pfm(const std::filesystem::path& path, const Image& image);
 /// bottom row of the picture first, width * height * channels values.
 void write_pfm(const std::filesystem::path& path, int width, int height, int channels,
                std::span<const double> values_bottom_up);
+
+/// Produces values [first, first + out.size()) of a PFM in write_pfm()'s order into `out`.
+using PfmValues = std::function<void(size_t first, std::span<double> out)>;
+
+/// write_pfm() with the values made batch by batch, at most `batch_values` at a time, by
+/// `produce`, and written as they come: a large raster never held whole (W3's 4,000,000 values
+/// would take 32 MB, and each of their pages a fault). `produce` may throw; the file is then
+/// not written (write_file_atomically()).
+void write_pfm(const std::filesystem::path& path, int width, int height, int channels, size_t batch_values,
+               const PfmValues& produce);
 
 /// Writes an image's linear values as OpenEXR (RGB, 16-bit half floats).
 void write_exr(const std::filesystem::path& path, const Image& image);

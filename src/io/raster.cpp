@@ -66,6 +66,11 @@ void write_raster_pfm(const std::string& path, const Raster& raster, std::span<c
   write_pfm(path, raster.width, raster.height, channels, values);
 }
 
+void write_raster_pfm(const std::string& path, const Raster& raster, int channels, size_t batch_points,
+                      const PfmValues& produce) {
+  write_pfm(path, raster.width, raster.height, channels, batch_points * static_cast<size_t>(channels), produce);
+}
+
 void write_raster_png(const std::string& path, const Raster& raster, std::span<const double> values, int channels) {
   check_raster_values(raster, values, channels);
   const bool rgb = channels == 3;

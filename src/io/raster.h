@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/vec.h"
+#include "io/image_io.h"
 #include "reconstruct/samples.h"
 
 namespace radrecon {
@@ -39,6 +40,10 @@ void raster_points(const Raster& raster, size_t first, size_t count, std::vector
 /// The caller checks the channel count first (a broken check otherwise).
 void write_raster_pfm(const std::string& path, const Raster& raster, std::span<const double> values,
                       int channels);
+/// The same with the values made batch by batch, at most `batch_points` points at a time, by
+/// `produce(first_value, out)` (image_io.h's write_pfm()), and written as they come.
+void write_raster_pfm(const std::string& path, const Raster& raster, int channels, size_t batch_points,
+                      const PfmValues& produce);
 
 /// Writes raster values as an 8-bit RGB PNG for looking at, y upward (the picture's top row is
 /// the raster's last row, largest y). With exactly 3 channels the pixels are RGB, mapped with

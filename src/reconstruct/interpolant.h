@@ -23,7 +23,7 @@ class ReconstructionError : public std::runtime_error {
 /// its working set stays in cache and that a slow method (global shepard on 10^6 samples)
 /// reports progress often.
 /// Each point is evaluated on its own, so values do not depend on the batches.
-inline constexpr size_t kEvaluateBatch = size_t{1} << 16;
+inline constexpr size_t kEvaluateBatch = size_t{1} << 14;
 
 class Interpolant {
  public:

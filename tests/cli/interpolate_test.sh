@@ -214,11 +214,19 @@ expect_stderr_has out_is_folder "is a folder"
 # Out of memory: exit code 3, a message, nothing written. Not under AddressSanitizer (linked as
 # libasan by gcc, into the binary by clang), whose shadow memory cannot be mapped under ulimit -v.
 if ! { ldd "$RADRECON" 2>/dev/null | grep -q libasan || nm -D "$RADRECON" 2>/dev/null | grep -q __asan_init; }; then
-  (ulimit -v 600000; "$RADRECON" interpolate --samples "$TMP/scattered1.csv" --method shepard --raster 20000x5000 \
-     --domain 0,0,1,1 --out "$TMP/oom.pfm" >"$TMP/oom.stdout" 2>"$TMP/oom.stderr"; echo $? >"$TMP/oom.rc")
+  # A PNG takes every value at once: 16,000,000 doubles (128 MB) do not fit in 100 MB.
+  (ulimit -v 100000; "$RADRECON" interpolate --samples "$TMP/scattered1.csv" --method shepard --raster 4000x4000 \
+     --domain 0,0,1,1 --out "$TMP/oom.png" >"$TMP/oom.stdout" 2>"$TMP/oom.stderr"; echo $? >"$TMP/oom.rc")
   expect_rc oom 3
   expect_stderr_has oom "out of memory"
-  expect_no_output oom "$TMP/oom.pfm"
+  expect_no_output oom "$TMP/oom.png"
+  # A PFM is written batch by batch as it is made: the same raster fits, whole.
+  (ulimit -v 100000; "$RADRECON" interpolate --samples "$TMP/scattered1.csv" --method shepard --raster 4000x4000 \
+     --domain 0,0,1,1 --out "$TMP/streamed.pfm" --quiet >"$TMP/streamed.stdout" 2>"$TMP/streamed.stderr"; echo $? >"$TMP/streamed.rc")
+  expect_rc streamed 0
+  [ "$(stat -c %s "$TMP/streamed.pfm" 2>/dev/null)" = $((18 + 4000 * 4000 * 4)) ] ||
+    fail "streamed: the PFM is not 18 + 4000 x 4000 x 4 bytes"
+  rm -f "$TMP/streamed.pfm"
 fi
 
 # An output that existed before a refused run is left as it was.

@@ -10,6 +10,8 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <span>
+#include <string>
 #include <vector>
 
 #include "core/error.h"
@@ -133,6 +135,61 @@ TEST(Pfm, WritesLittleEndianFloatsBottomRowFirst) {
   // Second stored row = top row: pixel (0, 0).
   EXPECT_EQ(float_at(6), 1.0f);
   EXPECT_EQ(float_at(8), 3.0f);
+}
+
+/// The floats of a little-endian PFM after its header, decoded by hand.
+std::vector<float> pfm_floats(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string magic, scale;
+  int w = 0, h = 0;
+  in >> magic >> w >> h >> scale;
+  in.get();
+  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::vector<float> floats(bytes.size() / 4);
+  for (size_t k = 0; k < floats.size(); ++k) {
+    const std::uint32_t bits = std::uint32_t(bytes[k * 4]) | std::uint32_t(bytes[k * 4 + 1]) << 8 |
+                               std::uint32_t(bytes[k * 4 + 2]) << 16 | std::uint32_t(bytes[k * 4 + 3]) << 24;
+    std::memcpy(&floats[k], &bits, 4);
+  }
+  return floats;
+}
+
+TEST(Pfm, StreamedValuesComeInOrderWhateverTheBatch) {
+  // 7 x 5 x 3 = 105 values, value k = k / 8 (exact in floats), asked for in batches of 1, 16
+  // (not dividing 105), 105 and more: every value once, in order.
+  for (const size_t batch : {size_t{1}, size_t{16}, size_t{105}, size_t{1000}}) {
+    const fs::path path = temp_file("streamed.pfm");
+    std::vector<size_t> firsts;
+    write_pfm(path, 7, 5, 3, batch, [&](size_t first, std::span<double> out) {
+      firsts.push_back(first);
+      EXPECT_LE(out.size(), batch);
+      for (size_t k = 0; k < out.size(); ++k) out[k] = static_cast<double>(first + k) / 8;
+    });
+    const std::vector<float> floats = pfm_floats(path);
+    ASSERT_EQ(floats.size(), 105u) << "batch " << batch;
+    for (size_t k = 0; k < floats.size(); ++k) EXPECT_EQ(floats[k], static_cast<float>(k) / 8) << "value " << k;
+    EXPECT_EQ(firsts.size(), (105 + batch - 1) / batch);
+  }
+}
+
+TEST(Pfm, AFailedOrOutOfRangeBatchLeavesNoFile) {
+  const fs::path path = temp_file("failed.pfm");
+  fs::remove(path);
+  const auto fill_until = [](size_t failing_first, double bad) {
+    return [=](size_t first, std::span<double> out) {
+      for (double& v : out) v = 1;
+      if (first == failing_first) {
+        if (std::isnan(bad)) throw UserError("test", "a failed batch");
+        out[0] = bad;
+      }
+    };
+  };
+  EXPECT_THROW(write_pfm(path, 4, 4, 1, 4, fill_until(8, std::numeric_limits<double>::quiet_NaN())), UserError);
+  EXPECT_FALSE(fs::exists(path));
+  EXPECT_THROW(write_pfm(path, 4, 4, 1, 4, fill_until(12, 1e39)), UserError);  // beyond float's range
+  EXPECT_FALSE(fs::exists(path));
+  for (const fs::directory_entry& e : fs::directory_iterator(files().path()))
+    EXPECT_EQ(e.path().filename().string().find("failed.pfm.tmp"), std::string::npos) << e.path();
 }
 
 TEST(FileFormat, ChoosesByExtensionInAnyCaseAndRefusesOthers) {
