@@ -63,6 +63,17 @@ size_t KdTree2::nearest(const Vec2& q, int k, std::span<unsigned> indices, std::
   return found;
 }
 
+void KdTree2::within(const Vec2& q, double radius_sq, std::vector<std::pair<unsigned, double>>& found) const {
+  const double query[2] = {q.x(), q.y()};
+  found.clear();
+  nanoflann::SearchParams unsorted;
+  unsorted.sorted = false;  // sorted below, ties by index
+  impl_->tree.radiusSearch(query, radius_sq, found, unsorted);
+  std::sort(found.begin(), found.end(), [](const std::pair<unsigned, double>& a, const std::pair<unsigned, double>& b) {
+    return a.second < b.second || (a.second == b.second && a.first < b.first);
+  });
+}
+
 namespace {
 
 /// A tile of queries (and a bucket of points) is made to hold about this fraction of k points:

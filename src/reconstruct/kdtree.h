@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "core/vec.h"
@@ -29,6 +30,11 @@ class KdTree2 {
   /// up to the tree (deterministic for a given tree and query, but not necessarily the lowest
   /// indices).
   size_t nearest(const Vec2& q, int k, std::span<unsigned> indices, std::span<double> dist_sq) const;
+  /// Every point whose squared distance to q (computed as nearest() computes it) is below
+  /// radius_sq (m^2), into `found` as (index, squared distance) by (dist_sq, index), nearest
+  /// first: the same points, in the same order, as a nearest() call whose k-th distance is the
+  /// first to reach radius_sq. `found` is cleared first; its capacity is reused.
+  void within(const Vec2& q, double radius_sq, std::vector<std::pair<unsigned, double>>& found) const;
   size_t size() const;
 
  private:

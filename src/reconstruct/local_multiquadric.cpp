@@ -1,6 +1,7 @@
 #include "reconstruct/local_multiquadric.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -27,6 +28,12 @@ constexpr double kSampleMargin = 1.5;
 /// rounds), as computed.
 constexpr double kSupportSlack = 1e-12;
 
+/// The grid columns and rows searched for a query's patches reach this far (in units of h)
+/// beyond its support, against the rounding of its grid coordinates and of the patch centres
+/// (coordinates 10^6 times h round by ~10^-10 h): a patch passed over lies farther than
+/// h (1 + 1e-6) from the query, where its weight is 0.
+constexpr double kCandidateSlack = 1e-6;
+
 /// Wendland's C2 function of t = d / h, zero for t >= 1.
 inline double wendland(double t) {
   if (t >= 1) return 0;
@@ -34,8 +41,9 @@ inline double wendland(double t) {
   return a2 * a2 * (4 * t + 1);
 }
 
-/// Per-thread buffers of the patch loop: the nearest samples to a patch centre.
+/// Per-thread buffers of the patch loop: the samples near a patch centre.
 struct NearestScratch {
+  std::vector<std::pair<unsigned, double>> within;
   std::vector<unsigned> indices;
   std::vector<double> dist_sq;
 };
@@ -79,24 +87,24 @@ LocalMultiquadric::LocalMultiquadric(const ScatteredSamples& samples, const RbfK
     const int i = static_cast<int>(pk % nx_), j = static_cast<int>(pk / nx_);
     patch.center = origin_ + Vec2(i * h_, j * h_);
     const double reach_sq = kSampleMargin * kSampleMargin * h_ * h_;
-    int want = std::max(kk, 2 * k);
-    size_t found = 0;
-    while (true) {
-      want = std::min<int>(want, static_cast<int>(n));
-      if (s.indices.size() < static_cast<size_t>(want)) {  // grows with the largest query so far
-        s.indices.resize(static_cast<size_t>(want));
-        s.dist_sq.resize(static_cast<size_t>(want));
-      }
-      found = tree.nearest(patch.center, want, s.indices, s.dist_sq);
-      if (want == static_cast<int>(n) || s.dist_sq[found - 1] > reach_sq) break;
-      want *= 2;
+    tree.within(patch.center, reach_sq, s.within);
+    double farthest_sq = 0;
+    if (s.within.size() >= static_cast<size_t>(kk)) {
+      patch.samples.resize(s.within.size());
+      for (size_t a = 0; a < s.within.size(); ++a) patch.samples[a] = s.within[a].first;
+      farthest_sq = s.within.back().second;
+    } else {  // too few in the disc: the kk nearest
+      const int want = std::min<int>(std::max(kk, 2 * k), static_cast<int>(n));
+      s.indices.resize(static_cast<size_t>(want));
+      s.dist_sq.resize(static_cast<size_t>(want));
+      tree.nearest(patch.center, want, s.indices, s.dist_sq);
+      patch.samples.assign(s.indices.begin(), s.indices.begin() + kk);
+      farthest_sq = s.dist_sq[static_cast<size_t>(kk) - 1];
     }
-    size_t m = 0;
-    while (m < found && (s.dist_sq[m] < reach_sq || m < static_cast<size_t>(kk))) ++m;
-    patch.samples.assign(s.indices.begin(), s.indices.begin() + static_cast<std::ptrdiff_t>(m));
+    const size_t m = patch.samples.size();
     // From any point of its support (within h of its centre) to its farthest sample: no barrier
     // that near, no sample of the patch hidden.
-    patch.reach_m = h_ + std::sqrt(s.dist_sq[m - 1]);
+    patch.reach_m = h_ + std::sqrt(farthest_sq);
     if (m > kMaxPatchSamples) return;  // refused below, outside the parallel loop
     patch.fit = fit_rbf(points_, r_sq_, samples.values, channels_, kernel_, patch.samples, true);
     patch.fit.hull = ConvexHull2(points_, patch.samples);
@@ -152,17 +160,34 @@ void LocalMultiquadric::evaluate(std::span<const Vec2> points, std::span<double>
     // is evaluated at the nearest point of its samples' hull, plus its polynomial's change from
     // there (the header says why).
     const Vec2 x = p.cwiseMax(origin_).cwiseMin(box_max_);
-    const int ci = static_cast<int>(std::floor((x.x() - origin_.x()) / h_)), cj = static_cast<int>(std::floor((x.y() - origin_.y()) / h_));
-    double total = 0, flat_total = 0;
+    // The patches whose centre may lie within h of x: those of the grid columns and rows within
+    // h of it (two of each, three where x is within kCandidateSlack of a grid line).
+    const double gx = (x.x() - origin_.x()) / h_, gy = (x.y() - origin_.y()) / h_;
+    const int i0 = std::max(0, static_cast<int>(std::ceil(gx - 1 - kCandidateSlack)));
+    const int i1 = std::min(nx_ - 1, static_cast<int>(std::floor(gx + 1 + kCandidateSlack)));
+    const int j0 = std::max(0, static_cast<int>(std::ceil(gy - 1 - kCandidateSlack)));
+    const int j1 = std::min(ny_ - 1, static_cast<int>(std::floor(gy + 1 + kCandidateSlack)));
+    // Their weights first, each on its own (no chain of square roots and divisions from one
+    // patch to the next), then their sums in grid order.
     const double support_sq = h_ * h_ * (1 + kSupportSlack);
-    for (int j = std::max(0, cj - 1); j <= std::min(ny_ - 1, cj + 2); ++j)
-      for (int i = std::max(0, ci - 1); i <= std::min(nx_ - 1, ci + 2); ++i) {
+    std::array<size_t, 9> near_index;
+    std::array<double, 9> near_weight;
+    size_t near = 0;
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) {
         const size_t index = static_cast<size_t>(j) * nx_ + i;
-        const Patch& patch = patches_[index];
-        // Most of the 16 patches are beyond their support: passed over without a square root.
-        const double dist_sq = (x - patch.center).squaredNorm();
+        // A patch beyond its support is passed over without a square root.
+        const double dist_sq = (x - patches_[index].center).squaredNorm();
         if (dist_sq > support_sq) continue;
-        const double w = wendland(std::sqrt(dist_sq) / h_);
+        near_index[near] = index;
+        near_weight[near++] = dist_sq;
+      }
+    for (size_t a = 0; a < near; ++a) near_weight[a] = wendland(std::sqrt(near_weight[a]) / h_);
+    double total = 0, flat_total = 0;
+    for (size_t a = 0; a < near; ++a) {
+        const size_t index = near_index[a];
+        const Patch& patch = patches_[index];
+        const double w = near_weight[a];
         if (w == 0) continue;
         // The patch's fit, or with barriers the fit through its samples x sees.
         const RbfFit* fit = &patch.fit;

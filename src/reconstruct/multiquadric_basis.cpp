@@ -13,6 +13,7 @@
 #include "core/math.h"
 
 #include "core/check.h"
+#include "core/parallel.h"
 #include "core/parse.h"
 #include "core/tolerances.h"
 #include "reconstruct/interpolant.h"
@@ -24,14 +25,18 @@ std::vector<double> eck_radii_sq(std::span<const Vec2> points, const KdTree2& tr
   RR_CHECK_EQ(tree.size(), points.size(), "the tree must be built over the points");
   RR_CHECK_GE(points.size(), size_t{2}, "Eck's radii need at least 2 points");
   std::vector<double> r_sq(points.size());
-  unsigned idx[2];
-  double d2[2];
-  for (size_t i = 0; i < points.size(); ++i) {
+  parallel_for(0, static_cast<std::int64_t>(points.size()), [&](std::int64_t k) {
+    const size_t i = static_cast<size_t>(k);
+    unsigned idx[2];
+    double d2[2];
     tree.nearest(points[i], 2, idx, d2);  // the point itself (or a duplicate of it) and the next
-    if (d2[1] == 0)
-      throw ReconstructionError("two samples at the same point (" + format_number(points[i].x()) + ", " +
-                                format_number(points[i].y()) + ")");
     r_sq[i] = d2[1];
+  });
+  // The first duplicate named, whatever the threads.
+  const auto duplicate = std::find(r_sq.begin(), r_sq.end(), 0.0);
+  if (duplicate != r_sq.end()) {
+    const Vec2& p = points[static_cast<size_t>(duplicate - r_sq.begin())];
+    throw ReconstructionError("two samples at the same point (" + format_number(p.x()) + ", " + format_number(p.y()) + ")");
   }
   return r_sq;
 }
@@ -121,7 +126,7 @@ RbfFit fit_rbf(std::span<const Vec2> points, std::span<const double> r_sq, std::
   }
   A.bottomRightCorner(t, t).setZero();
   B.bottomRows(t).setZero();
-  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(A);
+  const Eigen::PartialPivLU<Eigen::Ref<Eigen::MatrixXd>> lu(A);  // in place: A becomes its LU
   fit.rcond = lu.rcond();
   if (!(fit.rcond > 0) || !std::isfinite(fit.rcond))
     throw ReconstructionError("the " + kernel.name() + " system is singular (duplicate samples?)");

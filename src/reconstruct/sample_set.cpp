@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <utility>
 #include <string>
 #include <cmath>
 
@@ -50,14 +51,14 @@ std::size_t merge_duplicate_points(ScatteredSamples& s) {
   Vec2 lo = s.points[0], hi = lo;
   for (const Vec2& p : s.points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
   const double eps = tol::kNearDuplicateRelative * (hi - lo).maxCoeff();
-  // Sorted by x: the points within eps of a point follow it within eps in x.
+  // Sorted by x: the points within eps of a point follow it within eps in x. (The groups below
+  // are the components of "within eps", whatever the order among equal x; the pairs sort
+  // without reaching back into the points.)
+  std::vector<std::pair<double, size_t>> by_x(n);
+  for (size_t k = 0; k < n; ++k) by_x[k] = {s.points[k].x(), k};
+  std::sort(by_x.begin(), by_x.end());
   std::vector<size_t> order(n);
-  std::iota(order.begin(), order.end(), size_t{0});
-  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-    if (s.points[a].x() != s.points[b].x()) return s.points[a].x() < s.points[b].x();
-    if (s.points[a].y() != s.points[b].y()) return s.points[a].y() < s.points[b].y();
-    return a < b;
-  });
+  for (size_t k = 0; k < n; ++k) order[k] = by_x[k].second;
   // Union-find, the root of a group its first sample.
   std::vector<size_t> root(n);
   std::iota(root.begin(), root.end(), size_t{0});

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "reconstruct/kdtree.h"
@@ -96,6 +97,40 @@ TEST(KdTree2, MatchesBruteForceOnALatticeFullOfTies) {
   }
   check_query(tree, points, Vec2(-3, -3));     // outside, beyond a corner
   check_query(tree, points, Vec2(19.5, -2));   // outside, equidistant from two columns
+}
+
+/// within(): exactly the points with dist_sq < radius_sq, by (dist_sq, index), against brute force.
+void check_within(const KdTree2& tree, const std::vector<Vec2>& points, const Vec2& q, double radius_sq) {
+  std::vector<std::pair<unsigned, double>> expected;
+  for (size_t i = 0; i < points.size(); ++i)
+    if (dist_sq(points[i], q) < radius_sq) expected.emplace_back(static_cast<unsigned>(i), dist_sq(points[i], q));
+  std::sort(expected.begin(), expected.end(), [](const auto& a, const auto& b) {
+    return a.second < b.second || (a.second == b.second && a.first < b.first);
+  });
+  std::vector<std::pair<unsigned, double>> found = {{7u, -1.0}};  // cleared by within()
+  tree.within(q, radius_sq, found);
+  EXPECT_EQ(found, expected) << "q = (" << q.x() << ", " << q.y() << "), radius_sq " << radius_sq;
+}
+
+TEST(KdTree2, WithinMatchesBruteForceOnRandomPointsAndOnALattice) {
+  std::mt19937 rng(20261203);
+  std::uniform_real_distribution<double> xy(-2, 3), radius(0, 0.4);
+  std::vector<Vec2> points;
+  for (int i = 0; i < 5000; ++i) points.emplace_back(xy(rng), xy(rng));
+  const KdTree2 tree(points);
+  for (int t = 0; t < 100; ++t) {
+    const double r = radius(rng);
+    check_within(tree, points, Vec2(xy(rng), xy(rng)), r * r);
+  }
+  check_within(tree, points, Vec2(0, 0), 0);    // nothing below 0
+  check_within(tree, points, Vec2(0, 0), 100);  // everything
+  // On the lattice squared distances are integers or quarters: a radius_sq equal to one of them
+  // leaves those points out (strictly below), and many are tied.
+  const std::vector<Vec2> lattice = shuffled_lattice(11);
+  const KdTree2 lattice_tree(lattice);
+  for (const Vec2& q : {Vec2(20, 15), Vec2(0, 0), Vec2(7.5, 3.5), Vec2(-1, 12)})
+    for (const double r2 : {1.0, 2.0, 4.5, 25.0, 25.5})
+      check_within(lattice_tree, lattice, q, r2);
 }
 
 TEST(KdTree2, FindsAllPointsWhenKIsTheirNumber) {
