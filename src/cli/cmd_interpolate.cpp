@@ -192,7 +192,7 @@ void run_interpolate(const InterpolateArgs& args) {
   const size_t channels = static_cast<size_t>(interpolant.value()->channels());
   Progress progress("interpolate", args.quiet);
   std::vector<Vec2> batch;
-  double querying_s = 0;  // the batches' time
+  double querying_s = 0;  // the batches' time (the streamed PFM's share of its run)
   // The values of points [first, first + out.size() / channels) into `out`.
   const auto evaluate_batch = [&](size_t first, std::span<double> out) {
     const auto batch_start = Clock::now();
@@ -208,7 +208,7 @@ void run_interpolate(const InterpolateArgs& args) {
   double writing_s = 0;
   if (streamed) {
     const auto stream_start = Clock::now();
-    write_raster_pfm(args.out, raster, samples.channels, kEvaluateBatch,
+    write_raster_pfm(args.out, raster, static_cast<int>(channels), kEvaluateBatch,
                      [&](size_t first_value, std::span<double> out) { evaluate_batch(first_value / channels, out); });
     progress.done();
     querying_s += std::chrono::duration<double>(stream_start - query_start).count();  // the raster's set-up
@@ -234,8 +234,8 @@ void run_interpolate(const InterpolateArgs& args) {
       gdal_functions("--out").write_raster(args.out, raster, values, samples.channels, geo_options);
     } else switch (format) {
       case FileFormat::csv: write_values_csv(args.out, points, values, value_names); break;
-      case FileFormat::pfm: write_raster_pfm(args.out, raster, values, samples.channels); break;
       case FileFormat::png: write_raster_png(args.out, raster, values, samples.channels); break;
+      case FileFormat::pfm: break;  // streamed above
       case FileFormat::exr: break;  // refused by file_format() above
     }
     writing_s = seconds_since(write_start);

@@ -133,9 +133,9 @@ void run_render(const RenderArgs& args) {
   options.width = width;
   options.height = height;
   options.samples_per_axis = args.samples;
-  // Beside the linear image: PNG its bytes (3) and the default white's values (8); PFM its 32-bit
-  // copy as doubles (24); EXR its half floats (8) and the library's buffers.
-  check_render_size(options, format == FileFormat::png ? 11 : format == FileFormat::pfm ? 24 : 12);
+  // Beside the linear image: PNG its bytes (3) and the default white's values (8); PFM nothing
+  // (written from the image in batches); EXR its half floats (8) and the library's buffers.
+  check_render_size(options, format == FileFormat::png ? 11 : format == FileFormat::pfm ? 0 : 12);
   std::vector<std::string> inputs = {args.solution};
   if (args.scene != "paper" && args.scene != "cornell") inputs.push_back(args.scene);
   refuse_overwriting_inputs(args.out, "--out", inputs);

@@ -183,10 +183,15 @@ std::vector<std::uint8_t> encode_png(const Image& image, bool srgb_encode_values
   return encoded;
 }
 
+namespace {
+/// Values converted and written at a time by the PFM writers that hold their values already.
+constexpr size_t kPfmBatchValues = size_t{1} << 16;
+}  // namespace
+
 void write_pfm(const std::filesystem::path& path, int width, int height, int channels,
                std::span<const double> values) {
   RR_CHECK_EQ(values.size(), static_cast<size_t>(width) * height * channels, "PFM values do not match the size");
-  write_pfm(path, width, height, channels, values.size(), [&](size_t first, std::span<double> out) {
+  write_pfm(path, width, height, channels, std::min(values.size(), kPfmBatchValues), [&](size_t first, std::span<double> out) {
     std::copy_n(values.begin() + static_cast<std::ptrdiff_t>(first), out.size(), out.begin());
   });
 }
@@ -200,6 +205,7 @@ void write_pfm(const std::filesystem::path& path, int width, int height, int cha
     std::ofstream out(tmp, std::ios::binary);
     // The scale -1.0 declares little-endian floats; they are swapped on a big-endian machine.
     out << (channels == 1 ? "Pf" : "PF") << "\n" << width << " " << height << "\n-1.0\n";
+    if (!out) throw UserError(path.string(), "cannot write PFM");  // before any value is made
     std::vector<double> values(std::min(batch_values, total));
     std::vector<std::uint32_t> bits(values.size());
     for (size_t first = 0; first < total; first += values.size()) {
@@ -216,6 +222,7 @@ void write_pfm(const std::filesystem::path& path, int width, int height, int cha
         bits[k] = b;
       }
       out.write(reinterpret_cast<const char*>(bits.data()), static_cast<std::streamsize>(count * sizeof(std::uint32_t)));
+      if (!out) throw UserError(path.string(), "cannot write PFM (disk full?)");  // not after all the rest
     }
     out.close();
     if (!out) throw UserError(path.string(), "cannot write PFM");
@@ -224,11 +231,15 @@ void write_pfm(const std::filesystem::path& path, int width, int height, int cha
 
 void write_pfm(const std::filesystem::path& path, const Image& image) {
   const int W = image.width(), H = image.height();
-  std::vector<double> values(static_cast<size_t>(W) * H * 3);
-  for (int j = 0; j < H; ++j)  // PFM's row j is the picture's row H - 1 - j
-    for (int x = 0; x < W; ++x)
-      for (int c = 0; c < 3; ++c) values[(static_cast<size_t>(j) * W + x) * 3 + c] = image.at(x, H - 1 - j)[c];
-  write_pfm(path, W, H, 3, values);
+  // Straight from the image, batch by batch: no copy of it. PFM's row j is the picture's row
+  // H - 1 - j.
+  write_pfm(path, W, H, 3, std::min(static_cast<size_t>(W) * H * 3, kPfmBatchValues), [&](size_t first, std::span<double> out) {
+    for (size_t k = 0; k < out.size(); ++k) {
+      const size_t value = first + k, pixel = value / 3;
+      const int j = static_cast<int>(pixel / static_cast<size_t>(W)), x = static_cast<int>(pixel % static_cast<size_t>(W));
+      out[k] = image.at(x, H - 1 - j)[static_cast<int>(value % 3)];
+    }
+  });
 }
 
 const OpenExrFunctions& openexr_functions(const std::string& what) {

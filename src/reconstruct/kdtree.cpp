@@ -63,12 +63,20 @@ size_t KdTree2::nearest(const Vec2& q, int k, std::span<unsigned> indices, std::
   return found;
 }
 
+namespace {
+/// within() searches this much (relative) beyond its radius before cutting at it (below).
+constexpr double kRadiusSlack = 1e-12;
+}  // namespace
+
 void KdTree2::within(const Vec2& q, double radius_sq, std::vector<std::pair<unsigned, double>>& found) const {
   const double query[2] = {q.x(), q.y()};
   found.clear();
   nanoflann::SearchParams unsorted;
   unsorted.sorted = false;  // sorted below, ties by index
-  impl_->tree.radiusSearch(query, radius_sq, found, unsorted);
+  // The tree prunes a cell by a distance to it that it sums step by step, which may round above
+  // the distance of a point inside: searched a little wider, then cut at radius_sq exactly.
+  impl_->tree.radiusSearch(query, radius_sq * (1 + kRadiusSlack), found, unsorted);
+  std::erase_if(found, [&](const std::pair<unsigned, double>& f) { return !(f.second < radius_sq); });
   std::sort(found.begin(), found.end(), [](const std::pair<unsigned, double>& a, const std::pair<unsigned, double>& b) {
     return a.second < b.second || (a.second == b.second && a.first < b.first);
   });

@@ -32,8 +32,8 @@ class KdTree2 {
   size_t nearest(const Vec2& q, int k, std::span<unsigned> indices, std::span<double> dist_sq) const;
   /// Every point whose squared distance to q (computed as nearest() computes it) is below
   /// radius_sq (m^2), into `found` as (index, squared distance) by (dist_sq, index), nearest
-  /// first: the same points, in the same order, as a nearest() call whose k-th distance is the
-  /// first to reach radius_sq. `found` is cleared first; its capacity is reused.
+  /// first: the first k - 1 points, in the same order, of a nearest() call whose k-th distance
+  /// is the first to reach radius_sq. `found` is cleared first; its capacity is reused.
   void within(const Vec2& q, double radius_sq, std::vector<std::pair<unsigned, double>>& found) const;
   size_t size() const;
 

@@ -29,9 +29,10 @@ constexpr double kSampleMargin = 1.5;
 constexpr double kSupportSlack = 1e-12;
 
 /// The grid columns and rows searched for a query's patches reach this far (in units of h)
-/// beyond its support, against the rounding of its grid coordinates and of the patch centres
-/// (coordinates 10^6 times h round by ~10^-10 h): a patch passed over lies farther than
-/// h (1 + 1e-6) from the query, where its weight is 0.
+/// beyond its support, against the rounding of its grid coordinates; the patch centres' own
+/// rounding (origin + i h, a few ulps of the coordinates' magnitude) is added to it
+/// (LocalMultiquadric::candidate_slack_). A patch passed over then lies farther than h from
+/// the query, where its weight is 0.
 constexpr double kCandidateSlack = 1e-6;
 
 /// Wendland's C2 function of t = d / h, zero for t >= 1.
@@ -73,6 +74,8 @@ LocalMultiquadric::LocalMultiquadric(const ScatteredSamples& samples, const RbfK
   h_ = std::sqrt(std::min<double>(k, n) * area / (std::numbers::pi * n)) / kSampleMargin;
   origin_ = lo;
   box_max_ = hi;
+  candidate_slack_ = kCandidateSlack + 4 * std::numeric_limits<double>::epsilon() *
+                                          std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff()) / h_;
   nx_ = static_cast<int>(std::ceil(extent.x() / h_)) + 1;
   ny_ = static_cast<int>(std::ceil(extent.y() / h_)) + 1;
   patches_.resize(static_cast<size_t>(nx_) * ny_);
@@ -80,8 +83,9 @@ LocalMultiquadric::LocalMultiquadric(const ScatteredSamples& samples, const RbfK
   // patch of a few samples near a wall (or the domain's edge) may see fewer than a plane needs:
   // it then holds at least k.
   const int kk = std::min<int>(barriers_.empty() ? kMinPatchSamples : k, static_cast<int>(n));
-  // Each patch: the samples in its disc (found among the nearest ones, growing the query until
-  // the farthest found lies outside the disc), at least kk.
+  // Each patch: the samples in its disc (one radius search), or the kk nearest when the disc
+  // holds fewer. (The kk nearest are taken from a search of 2k, where ties at the kk-th distance
+  // go to the lowest indices, kdtree.h.)
   parallel_for_with_scratch<NearestScratch>(0, static_cast<std::int64_t>(patches_.size()), [&](std::int64_t pk, NearestScratch& s) {
     Patch& patch = patches_[static_cast<size_t>(pk)];
     const int i = static_cast<int>(pk % nx_), j = static_cast<int>(pk / nx_);
@@ -161,17 +165,17 @@ void LocalMultiquadric::evaluate(std::span<const Vec2> points, std::span<double>
     // there (the header says why).
     const Vec2 x = p.cwiseMax(origin_).cwiseMin(box_max_);
     // The patches whose centre may lie within h of x: those of the grid columns and rows within
-    // h of it (two of each, three where x is within kCandidateSlack of a grid line).
+    // h of it (two of each, three where x is within candidate_slack_ of a grid line).
     const double gx = (x.x() - origin_.x()) / h_, gy = (x.y() - origin_.y()) / h_;
-    const int i0 = std::max(0, static_cast<int>(std::ceil(gx - 1 - kCandidateSlack)));
-    const int i1 = std::min(nx_ - 1, static_cast<int>(std::floor(gx + 1 + kCandidateSlack)));
-    const int j0 = std::max(0, static_cast<int>(std::ceil(gy - 1 - kCandidateSlack)));
-    const int j1 = std::min(ny_ - 1, static_cast<int>(std::floor(gy + 1 + kCandidateSlack)));
+    const int i0 = std::max(0, static_cast<int>(std::ceil(gx - 1 - candidate_slack_)));
+    const int i1 = std::min(nx_ - 1, static_cast<int>(std::floor(gx + 1 + candidate_slack_)));
+    const int j0 = std::max(0, static_cast<int>(std::ceil(gy - 1 - candidate_slack_)));
+    const int j1 = std::min(ny_ - 1, static_cast<int>(std::floor(gy + 1 + candidate_slack_)));
     // Their weights first, each on its own (no chain of square roots and divisions from one
     // patch to the next), then their sums in grid order.
     const double support_sq = h_ * h_ * (1 + kSupportSlack);
     std::array<size_t, 9> near_index;
-    std::array<double, 9> near_weight;
+    std::array<double, 9> near_dist_sq, near_weight;
     size_t near = 0;
     for (int j = j0; j <= j1; ++j)
       for (int i = i0; i <= i1; ++i) {
@@ -180,41 +184,41 @@ void LocalMultiquadric::evaluate(std::span<const Vec2> points, std::span<double>
         const double dist_sq = (x - patches_[index].center).squaredNorm();
         if (dist_sq > support_sq) continue;
         near_index[near] = index;
-        near_weight[near++] = dist_sq;
+        near_dist_sq[near++] = dist_sq;
       }
-    for (size_t a = 0; a < near; ++a) near_weight[a] = wendland(std::sqrt(near_weight[a]) / h_);
+    for (size_t a = 0; a < near; ++a) near_weight[a] = wendland(std::sqrt(near_dist_sq[a]) / h_);
     double total = 0, flat_total = 0;
     for (size_t a = 0; a < near; ++a) {
-        const size_t index = near_index[a];
-        const Patch& patch = patches_[index];
-        const double w = near_weight[a];
-        if (w == 0) continue;
-        // The patch's fit, or with barriers the fit through its samples x sees.
-        const RbfFit* fit = &patch.fit;
-        std::shared_ptr<const RbfFit> visible_fit;
-        if (!barriers_.none_within(x, patch.reach_m)) {
-          visible.clear();
-          for (unsigned s : patch.samples)
-            if (!barriers_.blocks(x, points_[s])) visible.push_back(s);
-          if (visible.empty()) continue;  // the patch sees nothing of x: no weight
-          if (visible.size() < patch.samples.size()) {
-            visible_fit = fits_.get(static_cast<unsigned>(index), visible, [&] {
-              RbfFit f = fit_rbf(points_, r_sq_, values_, channels_, kernel_, visible, true);
-              f.hull = ConvexHull2(points_, visible);
-              return f;
-            });
-            fit = visible_fit.get();
-          }
+      const size_t index = near_index[a];
+      const Patch& patch = patches_[index];
+      const double w = near_weight[a];
+      if (w == 0) continue;
+      // The patch's fit, or with barriers the fit through its samples x sees.
+      const RbfFit* fit = &patch.fit;
+      std::shared_ptr<const RbfFit> visible_fit;
+      if (!barriers_.none_within(x, patch.reach_m)) {
+        visible.clear();
+        for (unsigned s : patch.samples)
+          if (!barriers_.blocks(x, points_[s])) visible.push_back(s);
+        if (visible.empty()) continue;  // the patch sees nothing of x: no weight
+        if (visible.size() < patch.samples.size()) {
+          visible_fit = fits_.get(static_cast<unsigned>(index), visible, [&] {
+            RbfFit f = fit_rbf(points_, r_sq_, values_, channels_, kernel_, visible, true);
+            f.hull = ConvexHull2(points_, visible);
+            return f;
+          });
+          fit = visible_fit.get();
         }
-        const Vec2 e = fit == &patch.fit && (p - patch.center).squaredNorm() < patch.inside_sq ? p : fit->hull.nearest(p);
-        // With a polynomial, a patch whose visible samples span no plane (its polynomial lacks a
-        // term) gives way to those that span one, and counts only where none does.
-        const bool lacks = fit->terms > 0 && fit->terms < 3;
-        double* acc = lacks ? flat.data() : o;
-        (lacks ? flat_total : total) += w;
-        add_rbf_sum(*fit, kernel_, C, e, w, scratch.basis, acc);
-        // RBF(e) + poly(e) + (poly(p) - poly(e)): the polynomial (or offset) continues past the hull.
-        for (int c = 0; c < C; ++c) acc[c] += w * fit->polynomial(p, c);
+      }
+      const Vec2 e = fit == &patch.fit && (p - patch.center).squaredNorm() < patch.inside_sq ? p : fit->hull.nearest(p);
+      // With a polynomial, a patch whose visible samples span no plane (its polynomial lacks a
+      // term) gives way to those that span one, and counts only where none does.
+      const bool lacks = fit->terms > 0 && fit->terms < 3;
+      double* acc = lacks ? flat.data() : o;
+      (lacks ? flat_total : total) += w;
+      add_rbf_sum(*fit, kernel_, C, e, w, scratch.basis, acc);
+      // RBF(e) + poly(e) + (poly(p) - poly(e)): the polynomial (or offset) continues past the hull.
+      for (int c = 0; c < C; ++c) acc[c] += w * fit->polynomial(p, c);
       }
     if (total == 0 && flat_total > 0) {
       total = flat_total;

@@ -79,6 +79,7 @@ class LocalMultiquadric final : public Interpolant {
   int channels_;
   RbfKernel kernel_;
   double h_ = 1;
+  double candidate_slack_ = 0;  ///< kCandidateSlack plus the patch centres' rounding, in units of h
   Vec2 origin_, box_max_;  ///< the samples' bounding box
   int nx_ = 1, ny_ = 1;
   std::vector<Patch> patches_;  ///< row by row over the grid

@@ -115,6 +115,26 @@ if expect_rc pfm3 0; then
   size=$(stat -c %s "$TMP/r3.PFM")
   [ "$size" = $((12 + 4 * 3 * 12)) ] || fail "pfm3: $size bytes, expected $((12 + 4 * 3 * 12))"
 fi
+# A colour PFM of several batches (200 x 100 = 20,000 points; a batch is 16,384) against the
+# closed form: linear interpolation reproduces the three linear functions exactly (to float).
+printf 'x,y,r,g,b\n0,0,1,-2,0.5\n4,0,9,-2,4.5\n0,2,-1,4,1.5\n4,2,7,4,5.5\n1,0.5,2.5,-0.5,1.75\n' >"$TMP/linear3.csv"
+run pfm_batches --samples "$TMP/linear3.csv" --method linear --raster 200x100 --domain 0,0,4,2 --out "$TMP/batches.pfm" --quiet
+if expect_rc pfm_batches 0; then
+  python3 - "$TMP/batches.pfm" <<'PY' || fail "pfm_batches: the values are not the three linear functions at the cell centres"
+import struct, sys
+data = open(sys.argv[1], "rb").read()
+header = b"PF\n200 100\n-1.0\n"
+assert data.startswith(header), data[:20]
+values = struct.unpack("<60000f", data[len(header):])
+for j in range(100):
+    for i in range(200):
+        x, y = (i + 0.5) * 4 / 200, (j + 0.5) * 2 / 100
+        want = (1 + 2 * x - y, -2 + 3 * y, 0.5 + x + 0.5 * y)
+        got = values[(j * 200 + i) * 3:(j * 200 + i) * 3 + 3]
+        for g, w in zip(got, want):
+            assert abs(g - w) <= 1e-6 * (1 + abs(w)), (i, j, got, want)
+PY
+fi
 for spec in "png1 scattered1.csv 37x23" "png3 scattered3.csv 16x9"; do
   read -r name file size <<<"$spec"
   run "$name" --samples "$TMP/$file" --method multiquadric --raster "$size" --domain 0,0,1,1 --out "$TMP/$name.png" --quiet
@@ -215,13 +235,14 @@ expect_stderr_has out_is_folder "is a folder"
 # libasan by gcc, into the binary by clang), whose shadow memory cannot be mapped under ulimit -v.
 if ! { ldd "$RADRECON" 2>/dev/null | grep -q libasan || nm -D "$RADRECON" 2>/dev/null | grep -q __asan_init; }; then
   # A PNG takes every value at once: 16,000,000 doubles (128 MB) do not fit in 100 MB.
-  (ulimit -v 100000; "$RADRECON" interpolate --samples "$TMP/scattered1.csv" --method shepard --raster 4000x4000 \
+  # Two threads, whatever the machine: each thread's stack counts against the limit.
+  (ulimit -v 100000; OMP_NUM_THREADS=2 "$RADRECON" interpolate --samples "$TMP/scattered1.csv" --method shepard --raster 4000x4000 \
      --domain 0,0,1,1 --out "$TMP/oom.png" >"$TMP/oom.stdout" 2>"$TMP/oom.stderr"; echo $? >"$TMP/oom.rc")
   expect_rc oom 3
   expect_stderr_has oom "out of memory"
   expect_no_output oom "$TMP/oom.png"
   # A PFM is written batch by batch as it is made: the same raster fits, whole.
-  (ulimit -v 100000; "$RADRECON" interpolate --samples "$TMP/scattered1.csv" --method shepard --raster 4000x4000 \
+  (ulimit -v 100000; OMP_NUM_THREADS=2 "$RADRECON" interpolate --samples "$TMP/scattered1.csv" --method shepard --raster 4000x4000 \
      --domain 0,0,1,1 --out "$TMP/streamed.pfm" --quiet >"$TMP/streamed.stdout" 2>"$TMP/streamed.stderr"; echo $? >"$TMP/streamed.rc")
   expect_rc streamed 0
   [ "$(stat -c %s "$TMP/streamed.pfm" 2>/dev/null)" = $((18 + 4000 * 4000 * 4)) ] ||

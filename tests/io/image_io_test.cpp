@@ -137,13 +137,18 @@ TEST(Pfm, WritesLittleEndianFloatsBottomRowFirst) {
   EXPECT_EQ(float_at(8), 3.0f);
 }
 
-/// The floats of a little-endian PFM after its header, decoded by hand.
-std::vector<float> pfm_floats(const fs::path& path) {
+/// The floats of a little-endian PFM after its header (checked: magic, size, scale), decoded by
+/// hand.
+std::vector<float> pfm_floats(const fs::path& path, const std::string& magic_expected, int width, int height) {
   std::ifstream in(path, std::ios::binary);
   std::string magic, scale;
   int w = 0, h = 0;
   in >> magic >> w >> h >> scale;
   in.get();
+  EXPECT_EQ(magic, magic_expected);
+  EXPECT_EQ(w, width);
+  EXPECT_EQ(h, height);
+  EXPECT_EQ(scale, "-1.0");
   std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   std::vector<float> floats(bytes.size() / 4);
   for (size_t k = 0; k < floats.size(); ++k) {
@@ -165,7 +170,7 @@ TEST(Pfm, StreamedValuesComeInOrderWhateverTheBatch) {
       EXPECT_LE(out.size(), batch);
       for (size_t k = 0; k < out.size(); ++k) out[k] = static_cast<double>(first + k) / 8;
     });
-    const std::vector<float> floats = pfm_floats(path);
+    const std::vector<float> floats = pfm_floats(path, "PF", 7, 5);
     ASSERT_EQ(floats.size(), 105u) << "batch " << batch;
     for (size_t k = 0; k < floats.size(); ++k) EXPECT_EQ(floats[k], static_cast<float>(k) / 8) << "value " << k;
     EXPECT_EQ(firsts.size(), (105 + batch - 1) / batch);
@@ -175,21 +180,39 @@ TEST(Pfm, StreamedValuesComeInOrderWhateverTheBatch) {
 TEST(Pfm, AFailedOrOutOfRangeBatchLeavesNoFile) {
   const fs::path path = temp_file("failed.pfm");
   fs::remove(path);
-  const auto fill_until = [](size_t failing_first, double bad) {
+  // Ones, but the batch starting at value `at` throws (`fail`) or holds `bad` first.
+  const auto ones_but = [](size_t at, bool fail, double bad) {
     return [=](size_t first, std::span<double> out) {
       for (double& v : out) v = 1;
-      if (first == failing_first) {
-        if (std::isnan(bad)) throw UserError("test", "a failed batch");
-        out[0] = bad;
-      }
+      if (first != at) return;
+      if (fail) throw UserError("test", "a failed batch");
+      out[0] = bad;
     };
   };
-  EXPECT_THROW(write_pfm(path, 4, 4, 1, 4, fill_until(8, std::numeric_limits<double>::quiet_NaN())), UserError);
+  EXPECT_THROW(write_pfm(path, 4, 4, 1, 4, ones_but(8, true, 0)), UserError);
   EXPECT_FALSE(fs::exists(path));
-  EXPECT_THROW(write_pfm(path, 4, 4, 1, 4, fill_until(12, 1e39)), UserError);  // beyond float's range
+  EXPECT_THROW(write_pfm(path, 4, 4, 1, 4, ones_but(12, false, 1e39)), UserError);  // beyond float's range
   EXPECT_FALSE(fs::exists(path));
   for (const fs::directory_entry& e : fs::directory_iterator(files().path()))
     EXPECT_EQ(e.path().filename().string().find("failed.pfm.tmp"), std::string::npos) << e.path();
+}
+
+TEST(Pfm, AnImageOfSeveralBatchesIsWrittenBottomRowFirst) {
+  // 200 x 120 x 3 = 72,000 values: more than one of the writer's batches (65,536).
+  Image img(200, 120);
+  for (int y = 0; y < 120; ++y)
+    for (int x = 0; x < 200; ++x) img.at(x, y) = Rgb(x, y, 0.5 * (x + y));  // exact in floats
+  const fs::path path = temp_file("big_image.pfm");
+  write_pfm(path, img);
+  const std::vector<float> floats = pfm_floats(path, "PF", 200, 120);
+  ASSERT_EQ(floats.size(), 72000u);
+  for (int j = 0; j < 120; ++j)  // stored row j is the picture's row 119 - j
+    for (int x = 0; x < 200; ++x) {
+      const size_t k = (static_cast<size_t>(j) * 200 + x) * 3;
+      ASSERT_EQ(floats[k], static_cast<float>(x));
+      ASSERT_EQ(floats[k + 1], static_cast<float>(119 - j));
+      ASSERT_EQ(floats[k + 2], static_cast<float>(0.5 * (x + 119 - j)));
+    }
 }
 
 TEST(FileFormat, ChoosesByExtensionInAnyCaseAndRefusesOthers) {

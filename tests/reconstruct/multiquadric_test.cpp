@@ -5,6 +5,7 @@
 
 #include <Eigen/Dense>
 #include <random>
+#include <string>
 
 #include "core/error.h"
 #include "reconstruct/local_multiquadric.h"
@@ -120,6 +121,28 @@ TEST(Multiquadric, ExactAtTheSamplesAndAgreesWithAnIndependentSolve) {
       f.evaluate(std::span(&q, 1), std::span(&got, 1));
       EXPECT_NEAR(got, expected, 1e-7 * (1 + std::abs(expected))) << "mu=" << mu;
     }
+  }
+}
+
+TEST(Multiquadric, EckRadiiOnBothThreadsAndTheFirstDuplicateNamed) {
+  // 600 samples: the radii are found in parallel (from 512 on).
+  std::mt19937 rng(9);
+  ScatteredSamples s = random_samples(600, rng);
+  const Multiquadric f(s, 0.5, std::nullopt);
+  for (size_t i = 0; i < s.points.size(); i += 7) {
+    double best = std::numeric_limits<double>::infinity();
+    for (size_t j = 0; j < s.points.size(); ++j)
+      if (j != i) best = std::min(best, (s.points[i] - s.points[j]).squaredNorm());
+    EXPECT_EQ(f.r_sq()[i], best) << "sample " << i;
+  }
+  // Two pairs of duplicates: the one of lowest index is named, whatever the threads.
+  s.points[500] = s.points[100] = Vec2(3.5, 0.75);
+  s.points[550] = s.points[50] = Vec2(1.25, 2.5);
+  try {
+    const Multiquadric g(s, 0.5, std::nullopt);
+    ADD_FAILURE() << "duplicates accepted";
+  } catch (const ReconstructionError& e) {
+    EXPECT_NE(std::string(e.what()).find("(1.25, 2.5)"), std::string::npos) << e.what();
   }
 }
 
