@@ -8,9 +8,11 @@
 #include "cli/commands.h"
 #include "core/allocator.h"
 #include "core/error.h"
+#include "io/atomic_file.h"
 
 int main(int argc, char** argv) {
   radrecon::keep_freed_memory();
+  radrecon::remove_temporary_files_on_signals();
   CLI::App app{
       "radrecon: computes radiosity on a scene (progressive refinement on regular grids, hierarchical radiosity "
       "on quadtrees) and reconstructs a smooth radiosity function across each patch (bilinear, bicubic, "

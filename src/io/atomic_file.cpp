@@ -1,12 +1,73 @@
 #include "io/atomic_file.h"
 
+#include <atomic>
+#include <csignal>
+#include <cstring>
 #include <fstream>
+#include <string>
 #include <system_error>
 #include <unistd.h>
 
 #include "core/error.h"
 
 namespace radrecon {
+
+namespace {
+
+/// The temporary files being written: a slot holds its path's characters while in use (the
+/// handler reads them, so they are copied into storage that no thread frees).
+struct PendingSlot {
+  std::atomic<bool> in_use{false};
+  std::atomic<bool> ready{false};
+  char path[4096] = {};
+};
+PendingSlot g_pending[kMaxPendingFiles];
+
+void remove_pending_then_raise(int signal_number) {
+  for (PendingSlot& slot : g_pending)
+    if (slot.ready.load()) ::unlink(slot.path);
+  std::signal(signal_number, SIG_DFL);
+  std::raise(signal_number);
+}
+
+/// Tracks `tmp` for the handler while alive (if a slot is free and the path fits).
+class PendingFile {
+ public:
+  explicit PendingFile(const std::filesystem::path& tmp) {
+    const std::string& text = tmp.native();
+    if (text.size() >= sizeof(PendingSlot::path)) return;
+    for (PendingSlot& candidate : g_pending) {
+      bool expected = false;
+      if (candidate.in_use.compare_exchange_strong(expected, true)) {
+        std::memcpy(candidate.path, text.c_str(), text.size() + 1);
+        candidate.ready.store(true);
+        slot_ = &candidate;
+        return;
+      }
+    }
+  }
+  ~PendingFile() {
+    if (!slot_) return;
+    slot_->ready.store(false);
+    slot_->in_use.store(false);
+  }
+  PendingFile(const PendingFile&) = delete;
+  PendingFile& operator=(const PendingFile&) = delete;
+
+ private:
+  PendingSlot* slot_ = nullptr;
+};
+
+}  // namespace
+
+void remove_temporary_files_on_signals() {
+  for (const int signal_number : {SIGINT, SIGTERM, SIGHUP}) {
+    struct sigaction action = {};
+    action.sa_handler = remove_pending_then_raise;
+    sigemptyset(&action.sa_mask);
+    ::sigaction(signal_number, &action, nullptr);
+  }
+}
 
 void write_file_atomically(const std::filesystem::path& requested,
                            const std::function<void(const std::filesystem::path&)>& write) {
@@ -30,6 +91,7 @@ void write_file_atomically(const std::filesystem::path& requested,
   }
   fs::path tmp = path;
   tmp += ".tmp" + std::to_string(::getpid());
+  const PendingFile pending(tmp);  // removed by a signal until renamed or removed below
   try {
     write(tmp);
   } catch (...) {

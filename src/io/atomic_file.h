@@ -16,6 +16,17 @@ namespace radrecon {
 void write_file_atomically(const std::filesystem::path& path,
                            const std::function<void(const std::filesystem::path&)>& write);
 
+/// From the call on, SIGINT, SIGTERM and SIGHUP first remove the temporary files that
+/// write_file_atomically() has open (at most kMaxPendingFiles at a time), then end the process
+/// as the signal would have: an interrupted long write (a streamed raster, a render) leaves no
+/// `.tmpPID` file behind. For programs that own their signals (radrecon's command line), not
+/// for a library loaded into another (the Python module).
+void remove_temporary_files_on_signals();
+
+/// Temporary files write_file_atomically() tracks for the signal handler at once; more are
+/// written as usual, untracked.
+inline constexpr int kMaxPendingFiles = 16;
+
 /// Writes `text` to `path` atomically.
 void write_text_file(const std::filesystem::path& path, const std::string& text);
 
