@@ -57,8 +57,6 @@ std::size_t merge_duplicate_points(ScatteredSamples& s) {
   std::vector<std::pair<double, size_t>> by_x(n);
   for (size_t k = 0; k < n; ++k) by_x[k] = {s.points[k].x(), k};
   std::sort(by_x.begin(), by_x.end());
-  std::vector<size_t> order(n);
-  for (size_t k = 0; k < n; ++k) order[k] = by_x[k].second;
   // Union-find, the root of a group its first sample.
   std::vector<size_t> root(n);
   std::iota(root.begin(), root.end(), size_t{0});
@@ -67,9 +65,9 @@ std::size_t merge_duplicate_points(ScatteredSamples& s) {
     return k;
   };
   for (size_t a = 0; a < n; ++a)
-    for (size_t b = a + 1; b < n && s.points[order[b]].x() - s.points[order[a]].x() <= eps; ++b)
-      if ((s.points[order[b]] - s.points[order[a]]).norm() <= eps) {
-        const size_t ra = find(order[a]), rb = find(order[b]);
+    for (size_t b = a + 1; b < n && by_x[b].first - by_x[a].first <= eps; ++b)
+      if ((s.points[by_x[b].second] - s.points[by_x[a].second]).norm() <= eps) {
+        const size_t ra = find(by_x[a].second), rb = find(by_x[b].second);
         if (ra != rb) root[std::max(ra, rb)] = std::min(ra, rb);
       }
   std::vector<size_t> rep(n);
