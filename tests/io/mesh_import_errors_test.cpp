@@ -168,6 +168,40 @@ TEST(MeshImportErrors, PlyTruncatedOrWithIndicesOutOfRange) {
   EXPECT_TRUE(Refused(dir, "binary.ply", binary, {"truncated", "face 0"}));
 }
 
+TEST(MeshImportErrors, PlyDataThatAssimpWouldReadOutOfStep) {
+  // Each of these once made assimp allocate for billions of list items or loop for minutes.
+  TempDir dir("mesh_bad");
+  const std::string ply = testing_support::coloured_square_ply();
+  const auto with = [&](const std::string& from, const std::string& to) {
+    std::string out = ply;
+    const size_t at = out.find(from);
+    if (at != std::string::npos) out.replace(at, from.size(), to);
+    return out;
+  };
+  // A NUL ends a line for assimp but not for a reader of words: the next value became a count.
+  std::string nul = ply;
+  nul.insert(nul.find("0 1 0 0 0 0") + 11, std::string(1, '\0') + "4444444444");
+  EXPECT_TRUE(Refused(dir, "nul.ply", nul,
+                      {"line 16", "byte 0x0 is not text"}));
+  EXPECT_TRUE(Refused(dir, "split.ply", with("4 0 1 2 3", "4 0 1\n2 3"), {"line 17 (face 0)", "fewer values"}));
+  EXPECT_TRUE(Refused(dir, "joined.ply", with("0 0 0 204 0 0\n", "0 0 0 204 0 0 "), {"line 13 (vertex 0)", "more values"}));
+  EXPECT_TRUE(Refused(dir, "count.ply", with("4 0 1 2 3", "300 0 1 2 3"), {"list count '300'"}));
+  EXPECT_TRUE(Refused(dir, "colour.ply", with("0 0 0 204 0 0", "0 0 0 256 0 0"), {"(vertex 0)", "'256' is not an integer"}));
+  EXPECT_TRUE(Refused(dir, "plus.ply", with("0 0 0 204 0 0", "0 0 0 +204 0 0"), {"'+204' is not an integer"}));
+  EXPECT_TRUE(Refused(dir, "word.ply", with("1 0 0 0 102 0", "1 0 x 0 102 0"), {"(vertex 1)", "'x' is not a number"}));
+  EXPECT_TRUE(Refused(dir, "realcount.ply", with("list uchar int", "list float int"), {"count type must be an integer"}));
+  // Records of no properties take no bytes: a count of 10^11 of them is refused, not walked.
+  EXPECT_TRUE(Refused(dir, "empty_records.ply", with("element face 1", "element junk 99999999999\nelement face 1"),
+                      {"element 'junk' declares 99999999999 records but no properties"}));
+  // A binary count of a signed type that is negative: assimp reads char -1 as 2^32 - 1 items.
+  std::string binary = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                       "property float z\nelement face 1\nproperty list char int vertex_indices\nend_header\n";
+  for (float f : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 1.f, 1.f, 0.f}) testing_support::append_le(binary, f);
+  binary += char(-1);
+  for (int32_t i = 0; i < 255; ++i) testing_support::append_le(binary, i % 3);
+  EXPECT_TRUE(Refused(dir, "negative.ply", binary, {"face 0 has a negative list count"}));
+}
+
 TEST(MeshImportErrors, SceneJsonNamesTheEntryAndTheModelFile) {
   TempDir dir("mesh_bad");
   write_file(dir / "broken.obj", std::string(kTriangle) + "f 1 2 7\n");

@@ -254,6 +254,24 @@ TEST(MeshImport, PlyVertexColoursAreAveragedPerFace) {
   EXPECT_TRUE(m.warnings.empty());
 }
 
+TEST(MeshImport, AsciiPlyNumbersInEveryWrittenForm) {
+  // The coloured square with CRLF line ends, tabs, signs, exponents and a bare fraction: the
+  // same face, read value for value.
+  TempDir dir("mesh_ply");
+  std::string ply = testing_support::coloured_square_ply();
+  ply.replace(ply.find("0 0 0 204 0 0"), 13, "+0.0\t-0e5 .0 204 0 0");
+  ply.replace(ply.find("1 1 0 0 0 51"), 12, "1.E0 10e-1 0. 0 0 51");
+  ply.replace(ply.find("4 0 1 2 3"), 9, "4 +0 1 2\t3");  // a signed index may carry a sign
+  std::string crlf;
+  for (const char c : ply) crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
+  write_file(dir / "forms.ply", crlf);
+  const MeshImport m = import_mesh((dir / "forms.ply").string());
+  ASSERT_EQ(m.surfaces.size(), 1u);
+  expect_near(m.surfaces[0].reflectance, Rgb(0.2, 0.1, 0.05));
+  expect_near(m.surfaces[0].corners[0], Vec3(0, 0, 0));
+  expect_near(m.surfaces[0].corners[2], Vec3(1, 1, 0));
+}
+
 TEST(MeshImport, WhiteVertexColoursAreClampedWithOneWarning) {
   TempDir dir("mesh_ply");
   std::string ply = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
