@@ -7,8 +7,12 @@
 #include <atomic>
 #include <cstdint>
 #include <exception>
+#include <mutex>
 #include <optional>
+#include <type_traits>
 #include <utility>
+
+#include "core/thread_pool.h"
 
 namespace radrecon {
 
@@ -17,8 +21,8 @@ inline constexpr std::int64_t kParallelMinIterations = 512;
 /// Iterations handed out to a thread at a time.
 inline constexpr std::int64_t kParallelChunk = 256;
 
-/// An exception thrown by an iteration (std::bad_alloc, a ReconstructionError) must not leave an
-/// OpenMP region, which would terminate the program: the first one is kept, the remaining
+/// An exception thrown by an iteration (std::bad_alloc, a ReconstructionError) must not leave a
+/// worker thread, which would terminate the program: the first one is kept, the remaining
 /// iterations are skipped, and it is rethrown on the calling thread after the loop.
 class LoopException {
  public:
@@ -28,7 +32,7 @@ class LoopException {
     try {
       f();
     } catch (...) {
-#pragma omp critical(radrecon_loop_exception)
+      std::lock_guard<std::mutex> lock(mutex_);
       if (!error_) error_ = std::current_exception();
       failed_.store(true, std::memory_order_relaxed);
     }
@@ -38,23 +42,44 @@ class LoopException {
   }
 
  private:
+  std::mutex mutex_;
   std::exception_ptr error_;
   std::atomic<bool> failed_{false};  // a hint to skip work; error_ is the truth
 };
 
-/// Calls body(i) for every i in [begin, end), on all threads (OpenMP, chunks of kParallelChunk
-/// handed out dynamically). An exception from body is rethrown after the loop (LoopException).
+/// Runs chunk(c) for every c in [0, chunks), each once, on up to `threads` threads (the pool's,
+/// core/thread_pool.h) that claim chunks one at a time; with a Scratch type, each participating
+/// thread default-constructs one before its first chunk and passes it to each: chunk(c, scratch).
+/// An exception from chunk is rethrown after the loop (LoopException).
+template <typename Scratch = void, typename Chunk>
+void run_chunks(std::int64_t chunks, int threads, Chunk&& chunk) {
+  LoopException error;
+  std::atomic<std::int64_t> next{0};
+  const auto claim = [&] { return next.fetch_add(1, std::memory_order_relaxed); };
+  auto job = [&](int) {
+    if constexpr (std::is_void_v<Scratch>) {
+      for (std::int64_t c = claim(); c < chunks; c = claim()) error.run([&] { chunk(c); });
+    } else {
+      std::optional<Scratch> scratch;
+      error.run([&] { scratch.emplace(); });
+      if (!scratch) return;
+      for (std::int64_t c = claim(); c < chunks; c = claim()) error.run([&] { chunk(c, *scratch); });
+    }
+  };
+  run_on_threads(static_cast<int>(std::min<std::int64_t>(threads, std::max<std::int64_t>(chunks, 1))), ThreadJob(job));
+  error.rethrow();
+}
+
+/// Calls body(i) for every i in [begin, end), on all threads (chunks of kParallelChunk handed out
+/// dynamically). An exception from body is rethrown after the loop (LoopException).
 template <typename Body>
 void parallel_for(std::int64_t begin, std::int64_t end, Body&& body) {
-  LoopException error;
   const std::int64_t chunks = end > begin ? (end - begin + kParallelChunk - 1) / kParallelChunk : 0;
-#pragma omp parallel for schedule(dynamic, 1) if (end - begin >= kParallelMinIterations)
-  for (std::int64_t c = 0; c < chunks; ++c)
-    error.run([&] {  // one exception guard a chunk: the iterations inside run as a plain loop
-      const std::int64_t lo = begin + c * kParallelChunk, hi = std::min(end, lo + kParallelChunk);
-      for (std::int64_t i = lo; i < hi; ++i) body(i);
-    });
-  error.rethrow();
+  run_chunks(chunks, end - begin >= kParallelMinIterations ? worker_thread_count() : 1, [&](std::int64_t c) {
+    // one exception guard a chunk: the iterations inside run as a plain loop
+    const std::int64_t lo = begin + c * kParallelChunk, hi = std::min(end, lo + kParallelChunk);
+    for (std::int64_t i = lo; i < hi; ++i) body(i);
+  });
 }
 
 /// parallel_for for iterations of widely varying cost, each far more than handing it out (a
@@ -63,25 +88,18 @@ void parallel_for(std::int64_t begin, std::int64_t end, Body&& body) {
 template <typename Body>
 void parallel_for_grained(std::int64_t begin, std::int64_t end, std::int64_t grain, Body&& body) {
   grain = std::max<std::int64_t>(grain, 1);
-  LoopException error;
   const std::int64_t chunks = end > begin ? (end - begin + grain - 1) / grain : 0;
-#pragma omp parallel for schedule(dynamic, 1) if (chunks >= 2)
-  for (std::int64_t c = 0; c < chunks; ++c)
-    error.run([&] {
-      const std::int64_t lo = begin + c * grain, hi = std::min(end, lo + grain);
-      for (std::int64_t i = lo; i < hi; ++i) body(i);
-    });
-  error.rethrow();
+  run_chunks(chunks, worker_thread_count(), [&](std::int64_t c) {
+    const std::int64_t lo = begin + c * grain, hi = std::min(end, lo + grain);
+    for (std::int64_t i = lo; i < hi; ++i) body(i);
+  });
 }
 
 /// parallel_for for iterations that each cost far more than waking the team (a link's form
 /// factor by cubature, a block of receivers): handed out one at a time, in parallel from two on.
 template <typename Body>
 void parallel_for_coarse(std::int64_t begin, std::int64_t end, Body&& body) {
-  LoopException error;
-#pragma omp parallel for schedule(dynamic, 1) if (end - begin >= 2)
-  for (std::int64_t i = begin; i < end; ++i) error.run([&] { body(i); });
-  error.rethrow();
+  run_chunks(std::max<std::int64_t>(end - begin, 0), worker_thread_count(), [&](std::int64_t c) { body(begin + c); });
 }
 
 /// parallel_for_with_scratch (below) with chunks of `grain` iterations, in parallel from `least`
@@ -91,21 +109,11 @@ template <typename Scratch, typename Body>
 void parallel_for_with_scratch(std::int64_t begin, std::int64_t end, std::int64_t grain, std::int64_t least,
                                Body&& body) {
   grain = std::max<std::int64_t>(grain, 1);
-  LoopException error;
   const std::int64_t chunks = end > begin ? (end - begin + grain - 1) / grain : 0;
-#pragma omp parallel if (end - begin >= least)
-  {
-    std::optional<Scratch> scratch;
-    error.run([&] { scratch.emplace(); });
-#pragma omp for schedule(dynamic, 1)
-    for (std::int64_t c = 0; c < chunks; ++c)
-      error.run([&] {
-        if (!scratch) return;
-        const std::int64_t lo = begin + c * grain, hi = std::min(end, lo + grain);
-        for (std::int64_t i = lo; i < hi; ++i) body(i, *scratch);
-      });
-  }
-  error.rethrow();
+  run_chunks<Scratch>(chunks, end - begin >= least ? worker_thread_count() : 1, [&](std::int64_t c, Scratch& scratch) {
+    const std::int64_t lo = begin + c * grain, hi = std::min(end, lo + grain);
+    for (std::int64_t i = lo; i < hi; ++i) body(i, scratch);
+  });
 }
 
 /// parallel_for with one Scratch object per thread, default-constructed when the thread joins

@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
-#include <omp.h>
 
 #include <bit>
 #include <cstdint>
@@ -15,6 +14,7 @@
 #include <random>
 #include <vector>
 
+#include "core/thread_pool.h"
 #include "core/image.h"
 #include "evaluate/metrics.h"
 
@@ -132,12 +132,12 @@ TEST(Ssim, SameResultOnOneAndTwoThreads) {
   // 600 output rows: enough for the parallel loop to share them out.
   const ImageShape shape{30, 610, 1};
   const std::vector<double> a = random_image(shape.size(), 8), r = random_image(shape.size(), 9);
-  const int threads = omp_get_max_threads();
-  omp_set_num_threads(1);
+  const int threads = worker_thread_count();
+  set_worker_thread_count(1);
   const double one = *ssim(a, r, shape);
-  omp_set_num_threads(2);
+  set_worker_thread_count(2);
   const double two = *ssim(a, r, shape);
-  omp_set_num_threads(threads);
+  set_worker_thread_count(threads);
   EXPECT_EQ(one, two);
 }
 

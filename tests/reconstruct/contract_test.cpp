@@ -8,7 +8,6 @@
 //   run with barriers.
 
 #include <gtest/gtest.h>
-#include <omp.h>
 
 #include <algorithm>
 #include <bit>
@@ -21,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "core/thread_pool.h"
 #include "reconstruct/methods.h"
 #include "reconstruct/local_multiquadric.h"
 #include "reconstruct/multiquadric.h"
@@ -370,16 +370,16 @@ TEST(InterpolantContract, SlowBatchEqualsOnePointAtATime) {
 }
 
 TEST(InterpolantContract, SlowOneAndTwoThreadsGiveIdenticalResults) {
-  const int threads = omp_get_max_threads();
+  const int threads = worker_thread_count();
   for_each_case([&](const Case& c, const DataSet& d) {
     const std::vector<Vec2> q = queries(d);
-    omp_set_num_threads(1);
+    set_worker_thread_count(1);
     const auto f1 = d.build(c).value();  // built on one thread too (local multiquadric patches)
     const std::vector<double> one = evaluate(*f1, q);
-    omp_set_num_threads(2);
+    set_worker_thread_count(2);
     const auto f2 = d.build(c).value();
     const std::vector<double> two = evaluate(*f2, q), two_by_f1 = evaluate(*f1, q);
-    omp_set_num_threads(threads);
+    set_worker_thread_count(threads);
     for (size_t k = 0; k < one.size(); ++k) {
       ASSERT_TRUE(same(one[k], two[k])) << "value " << k << ": " << one[k] << " on 1 thread, " << two[k] << " on 2";
       ASSERT_TRUE(same(one[k], two_by_f1[k])) << "value " << k;

@@ -5,7 +5,6 @@
 // its border).
 
 #include <gtest/gtest.h>
-#include <omp.h>
 
 #include <algorithm>
 #include <cmath>
@@ -16,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "core/thread_pool.h"
 #include "reconstruct/gouraud.h"
 #include "reconstruct/methods.h"
 
@@ -358,12 +358,12 @@ TEST(Gouraud, OneAndTwoThreadsAgreeBitForBit) {
   std::uniform_real_distribution<double> x(-0.1, 2.1), y(-0.1, 1.1);
   std::vector<Vec2> pts;
   for (int k = 0; k < 20000; ++k) pts.emplace_back(x(rng), y(rng));
-  const int threads = omp_get_max_threads();
-  omp_set_num_threads(1);
+  const int threads = worker_thread_count();
+  set_worker_thread_count(1);
   const std::vector<double> one = Eval(g, pts);
-  omp_set_num_threads(2);
+  set_worker_thread_count(2);
   const std::vector<double> two = Eval(g, pts);
-  omp_set_num_threads(threads);
+  set_worker_thread_count(threads);
   ASSERT_EQ(0, std::memcmp(one.data(), two.data(), one.size() * sizeof(double)));
 }
 

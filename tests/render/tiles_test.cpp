@@ -4,13 +4,13 @@
 
 #include <gtest/gtest.h>
 
-#include <omp.h>
 
 #include <atomic>
 #include <cstdio>
 #include <cstdlib>
 #include <new>
 
+#include "core/thread_pool.h"
 #include "reconstruct/constant.h"
 #include "reconstruct/methods.h"
 #include "render/renderer.h"
@@ -124,10 +124,10 @@ TEST(Tiles, SamePixelsBitForBitForAnyTileAndThreads) {
   ASSERT_GT(other, 100);
   // The whole image traced at once (the paper's views) is the same.
   const Image whole = shade(t.scene, trace_camera(t.scene, t.camera, options), t.reconstruction());
-  const int threads = omp_get_max_threads();
+  const int threads = worker_thread_count();
   for (int n_threads : {1, 2})
     for (int tile : {1, 5, 16, 64, 0, 500}) {
-      omp_set_num_threads(n_threads);
+      set_worker_thread_count(n_threads);
       options.tile_size = tile;
       const Rendering got = render(t.scene, t.camera, t.reconstruction(), options);
       ASSERT_EQ(got.reflecting, expected.reflecting) << "tile " << tile << ", threads " << n_threads;
@@ -139,7 +139,7 @@ TEST(Tiles, SamePixelsBitForBitForAnyTileAndThreads) {
             ASSERT_EQ(whole.at(x, y)[c], expected.image.at(x, y)[c]) << x << "," << y;
           }
     }
-  omp_set_num_threads(threads);
+  set_worker_thread_count(threads);
 }
 
 TEST(Tiles, AutomaticTilesHoldAtMostTheirRaysWhateverTheRaysPerPixel) {

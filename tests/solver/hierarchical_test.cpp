@@ -2,11 +2,11 @@
 
 #include <gtest/gtest.h>
 
-#include <omp.h>
 
 #include <algorithm>
 #include <cmath>
 
+#include "core/thread_pool.h"
 #include "core/error.h"
 #include "solver/hierarchical.h"
 #include "support/closed_forms.h"
@@ -153,17 +153,17 @@ TEST(Hierarchical, RefinementIsDeterministic) {
 TEST(Hierarchical, SameForAnyThreadCountAndWithACacheOfAnotherSolve) {
   HierarchicalOptions options;
   options.epsilon_w = 0.005;
-  const int threads = omp_get_max_threads();
-  omp_set_num_threads(1);
+  const int threads = worker_thread_count();
+  set_worker_thread_count(1);
   const Solution alone = solve_hierarchical(paper_scene(), options, "alone");
-  omp_set_num_threads(std::max(2, threads));
+  set_worker_thread_count(std::max(2, threads));
   LinkFormFactorCache cache;
   HierarchicalOptions finer = options;
   finer.epsilon_w = 0.002;
   solve_hierarchical(paper_scene(), finer, "finer", &cache);
   const size_t cached = cache.size();
   const Solution shared = solve_hierarchical(paper_scene(), options, "shared", &cache);
-  omp_set_num_threads(threads);
+  set_worker_thread_count(threads);
   EXPECT_GT(cached, shared.stats.links) << "the cache was filled by the finer solve";
   ASSERT_EQ(alone.surfaces.size(), shared.surfaces.size());
   EXPECT_EQ(alone.stats.links, shared.stats.links);

@@ -4,8 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
-#include <omp.h>
 
+#include "core/thread_pool.h"
 #include "mesh/grid_mesh.h"
 #include "support/closed_forms.h"
 #include "support/scenes.h"
@@ -173,13 +173,13 @@ TEST(Progressive, ShotLimitIsReportedNotConverged) {
 
 TEST(Progressive, ResultDoesNotDependOnThreadCount) {
   const Scene scene = paper_scene();
-  const int threads = omp_get_max_threads();
+  const int threads = worker_thread_count();
   for (const double far_field_error : {0.0, 1e-2}) {
-    omp_set_num_threads(1);
+    set_worker_thread_count(1);
     const Solution one = solve(scene, 32, 1e-4, 0, far_field_error);
-    omp_set_num_threads(std::max(2, threads));
+    set_worker_thread_count(std::max(2, threads));
     const Solution many = solve(scene, 32, 1e-4, 0, far_field_error);
-    omp_set_num_threads(threads);
+    set_worker_thread_count(threads);
     ASSERT_EQ(one.surfaces.size(), many.surfaces.size());
     for (size_t s = 0; s < one.surfaces.size(); ++s)
       for (size_t e = 0; e < one.surfaces[s].elements.size(); ++e)
