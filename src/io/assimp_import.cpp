@@ -384,8 +384,8 @@ MeshImport import_mesh_assimp(const std::string& path, const MeshPlacement& plac
   if (ec || !std::filesystem::is_regular_file(path, ec)) throw UserError(path, "cannot open mesh file");
   if (size == 0) throw UserError(path, "empty mesh file");
   check_input_file_size(path);
-  std::optional<size_t> ply_faces;
-  if (*format == Format::kPly) ply_faces = check_ply_size(path);
+  std::optional<CheckedPly> ply;  // assimp reads its canonical copy, not the file
+  if (*format == Format::kPly) ply = check_ply(path);
   // glTF: its JSON first, for messages with a line or field, and for what assimp 5.2 drops.
   GltfExtras gltf;
   if (*format == Format::kGltf) gltf = read_gltf_extras(path);
@@ -401,7 +401,9 @@ MeshImport import_mesh_assimp(const std::string& path, const MeshPlacement& plac
   const aiScene* scene = nullptr;
   try {
     // No aiProcess_Triangulate: quads stay quads; larger polygons are cut here.
-    scene = importer.ReadFile(path, aiProcess_JoinIdenticalVertices | aiProcess_ValidateDataStructure);
+    const unsigned flags = aiProcess_JoinIdenticalVertices | aiProcess_ValidateDataStructure;
+    scene = ply ? importer.ReadFileFromMemory(ply->bytes.data(), ply->bytes.size(), flags, "ply")
+                : importer.ReadFile(path, flags);
   } catch (const std::bad_alloc&) {
     throw;
   } catch (const std::exception& e) {
@@ -414,8 +416,8 @@ MeshImport import_mesh_assimp(const std::string& path, const MeshPlacement& plac
   if (scene->mRootNode == nullptr) throw UserError(path, "model has no node tree");
   size_t read = 0;
   for (unsigned i = 0; i < scene->mNumMeshes; ++i) read += scene->mMeshes[i] ? scene->mMeshes[i]->mNumFaces : 0;
-  if (ply_faces && read < *ply_faces)
-    throw UserError(path, "truncated: its header declares " + std::to_string(*ply_faces) + " faces, " + std::to_string(read) + " were read");
+  if (ply && read < ply->faces)
+    throw UserError(path, "truncated: its header declares " + std::to_string(ply->faces) + " faces, " + std::to_string(read) + " were read");
   // assimp 5.2 drops a glTF face with a vertex index out of range, without a word.
   if (*format == Format::kGltf && read < gltf.faces)
     throw UserError(path, "vertex indices out of range: its primitives declare " + std::to_string(gltf.faces) + " faces, " +

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <sstream>
@@ -38,18 +39,26 @@ std::optional<ScalarType> scalar_type(const std::string& t) {
 struct Property {
   ScalarType item;                   ///< a scalar, or a list's items
   std::optional<ScalarType> count;   ///< a list's count; none for a scalar
+  std::string line;                  ///< its header line, rewritten with single spaces
 };
 
 struct Element {
   std::string name;
   size_t count = 0;
   std::vector<Property> properties;
+  /// Whether assimp 5.2 reads it: it takes any other name's first digits for its count (none:
+  /// 0 records) and returns early from `TextureFile`, reading later elements out of step.
+  bool kept() const { return name == "vertex" || name == "face" || name == "tristrips" || name == "edge" || name == "material"; }
 };
 
 /// The integer an ASCII token spells in type `t` (decimal; a sign only for a signed type, as
 /// assimp reads an unsigned '+1' as 0), or none if it is not one or is out of the type's range.
 std::optional<long long> integer_of(std::string_view token, const ScalarType& t) {
-  if (t.is_signed && !token.empty() && token[0] == '+') token.remove_prefix(1);
+  // A digit first, after one sign of a signed type (assimp reads '+-1' and an unsigned '-0' as
+  // 0 without moving on).
+  const size_t first_digit = t.is_signed && !token.empty() && (token[0] == '-' || token[0] == '+') ? 1 : 0;
+  if (token.size() <= first_digit || !std::isdigit(static_cast<unsigned char>(token[first_digit]))) return std::nullopt;
+  if (token[0] == '+') token.remove_prefix(1);
   long long value = 0;
   const auto [end, error] = std::from_chars(token.data(), token.data() + token.size(), value);
   if (token.empty() || error != std::errc() || end != token.data() + token.size()) return std::nullopt;
@@ -60,14 +69,12 @@ std::optional<long long> integer_of(std::string_view token, const ScalarType& t)
   return value;
 }
 
-/// Whether an ASCII token is a real number: decimal with an optional fraction and exponent, or
-/// inf / infinity / nan (which the mesh's validation then refuses by name).
-bool is_real(std::string_view token) {
-  if (!token.empty() && (token[0] == '+' || token[0] == '-')) token.remove_prefix(1);
-  std::string lower(token);
-  for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  if (lower == "inf" || lower == "infinity" || lower == "nan") return true;
-  size_t i = 0, digits = 0;
+/// The finite real number an ASCII token spells: decimal, an optional sign, fraction and exponent;
+/// none if it is not one or is beyond a double's range (inf and nan are refused here, as every
+/// coordinate and colour must be finite).
+std::optional<double> real_of(std::string_view token) {
+  if (!token.empty() && token[0] == '+') token.remove_prefix(1);
+  size_t i = token.empty() || token[0] != '-' ? 0 : 1, digits = 0;
   const auto run = [&] {
     size_t n = 0;
     while (i < token.size() && std::isdigit(static_cast<unsigned char>(token[i]))) ++i, ++n;
@@ -75,18 +82,31 @@ bool is_real(std::string_view token) {
   };
   digits += run();
   if (i < token.size() && token[i] == '.') ++i, digits += run();
-  if (digits == 0) return false;
+  if (digits == 0) return std::nullopt;
   if (i < token.size() && (token[i] == 'e' || token[i] == 'E')) {
     ++i;
     if (i < token.size() && (token[i] == '+' || token[i] == '-')) ++i;
-    if (run() == 0) return false;
+    if (run() == 0) return std::nullopt;
   }
-  return i == token.size();
+  if (i != token.size()) return std::nullopt;
+  double value = 0;
+  const auto [end, error] = std::from_chars(token.data(), token.data() + token.size(), value);
+  if (error != std::errc() || end != token.data() + token.size() || !std::isfinite(value)) return std::nullopt;
+  return value;
+}
+
+/// A value as the canonical copy writes it: decimal integers; reals in their shortest form that
+/// reads back to the same double.
+void append_value(std::string& out, double real, long long integer, bool is_real) {
+  char text[32];
+  const auto [end, error] = is_real ? std::to_chars(text, text + sizeof text, real) : std::to_chars(text, text + sizeof text, integer);
+  (void)error;  // 32 characters hold any double's and any long long's shortest form
+  out.append(text, end);
 }
 
 }  // namespace
 
-size_t check_ply_size(const std::string& path) {
+CheckedPly check_ply(const std::string& path) {
   const std::string bytes = read_text_file(path, "mesh file");
   const auto bad = [&](const std::string& what) { return UserError(path, what); };
   // Every header and ASCII data line is text: assimp's reader ends a line at '\0', '\r' and '\f'
@@ -118,9 +138,7 @@ size_t check_ply_size(const std::string& path) {
     return std::string(line);
   };
   if (header_line() != "ply") throw bad("not a PLY file (its first line is not 'ply')");
-  // The header is read as strictly as the format's definition says: assimp's reader takes
-  // liberties with malformed headers (a second format line, counts like '1.0', trailing words)
-  // that it should refuse, and the fuzzers found its heap corrupted after such inputs.
+  // The header is read as strictly as the format's definition says.
   std::string format;
   std::vector<Element> elements;
   const auto words_of = [](const std::string& line) {
@@ -129,9 +147,8 @@ size_t check_ply_size(const std::string& path) {
     for (std::string w; in >> w;) words.push_back(w);
     return words;
   };
-  // Element names are identifiers: assimp reads an element named '111...vertex' as a count of
-  // 10^44 vertices and allocates for them.
-  // (Property names are any word: custom attributes use '-', '.' and ':'.)
+  // Element names are identifiers. (Property names are any word: custom attributes use '-',
+  // '.' and ':'.)
   const auto is_name = [](const std::string& word) {
     return !word.empty() && (std::isalpha(static_cast<unsigned char>(word[0])) || word[0] == '_') &&
            std::all_of(word.begin(), word.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
@@ -148,11 +165,16 @@ size_t check_ply_size(const std::string& path) {
       if (line_no != 2) throw bad(where + "the format line must be the second line");
       if (words.size() != 3 || words[2] != "1.0") throw bad(where + "malformed format line (expected 'format TYPE 1.0')");
       format = words[1];
+      if (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian")
+        throw bad(where + "unknown format '" + format + "'");
     } else if (word == "element") {
       const std::optional<size_t> count = words.size() == 3 ? count_of(words[2]) : std::nullopt;
       if (!count || !is_name(words[1])) throw bad(where + "malformed element line (expected 'element NAME COUNT')");
       for (const Element& e : elements)
         if (e.name == words[1]) throw bad(where + "element '" + words[1] + "' declared twice");
+      if (!elements.empty() && elements.back().count > 0 && elements.back().properties.empty())
+        throw bad(where + "element '" + elements.back().name + "' declares " + std::to_string(elements.back().count) +
+                  " records but no properties");
       elements.push_back({words[1], *count, {}});
     } else if (word == "property") {
       if (elements.empty()) throw bad(where + "property before any element");
@@ -170,27 +192,38 @@ size_t check_ply_size(const std::string& path) {
         if (!type) throw bad(where + "unknown property type '" + words[1] + "'");
         p.item = *type;
       }
+      for (const std::string& w : words) p.line += (p.line.empty() ? "" : " ") + w;
       elements.back().properties.push_back(p);
     } else if (word != "comment" && word != "obj_info" && !word.empty()) {
       throw bad(where + "unknown keyword '" + word + "'");
     }
   }
-  if (format.empty()) throw bad("PLY header has no format line");
-  if (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian")
-    throw bad("PLY header: unknown format '" + format + "'");
+  if (format.empty()) throw bad("PLY header has no format line (line 2: 'format ascii 1.0' or 'format binary_little_endian 1.0')");
   // A record of no properties takes no bytes, so nothing in the file would bound their number.
+  if (!elements.empty() && elements.back().count > 0 && elements.back().properties.empty())
+    throw bad("PLY header: element '" + elements.back().name + "' declares " + std::to_string(elements.back().count) +
+              " records but no properties");
+
+  CheckedPly out;
   for (const Element& e : elements)
-    if (e.count > 0 && e.properties.empty())
-      throw bad("PLY header: element '" + e.name + "' declares " + std::to_string(e.count) + " records but no properties");
-  size_t faces = 0;
-  for (const Element& e : elements)
-    if (e.name == "face") faces += e.count;
+    if (e.name == "face") out.faces += e.count;
+  // The canonical header. A binary one ends in "\r\n": after a bare '\n', assimp 5.2 takes a
+  // first data byte of 0x0A for the '\n' of a "\r\n" and drops it.
+  const bool binary = format != "ascii";
+  out.bytes = "ply\nformat " + format + " 1.0\n";
+  for (const Element& e : elements) {
+    if (!e.kept()) continue;
+    out.bytes += "element " + e.name + " " + std::to_string(e.count) + "\n";
+    for (const Property& p : e.properties) out.bytes += p.line + "\n";
+  }
+  out.bytes += binary ? "end_header\r\n" : "end_header\n";
+
   const auto truncated = [&](const Element& e, size_t record) {
-    return bad("truncated: the data ends in " + e.name + " " + std::to_string(record) + " of the " +
-               std::to_string(e.count) + " its header declares");
+    return bad("truncated: the data ends " + (binary ? std::string() : "at line " + std::to_string(line_no + 1) + " ") + "in " +
+               e.name + " " + std::to_string(record) + " of the " + std::to_string(e.count) + " its header declares");
   };
-  if (format == "ascii") {
-    // One record a line, each value a number of its property's type (assimp reads it so).
+  if (!binary) {
+    // One record a line, each value a number of its property's type, written anew.
     std::vector<std::string_view> tokens;
     for (const Element& e : elements)
       for (size_t r = 0; r < e.count; ++r) {
@@ -215,6 +248,7 @@ size_t check_ply_size(const std::string& path) {
         const auto quoted = [](std::string_view token) {
           return "'" + std::string(token.substr(0, 24)) + (token.size() > 24 ? "...'" : "'");
         };
+        const size_t record_start = out.bytes.size();
         for (const Property& p : e.properties) {
           long long items = 1;
           if (p.count) {
@@ -222,20 +256,36 @@ size_t check_ply_size(const std::string& path) {
             const std::optional<long long> n = integer_of(token, *p.count);
             if (!n || *n < 0) throw bad(where + "list count " + quoted(token) + " is not a count of its type");
             items = *n;
+            append_value(out.bytes, 0, *n, false);
+            out.bytes += ' ';
           }
           for (long long k = 0; k < items; ++k) {
             const std::string_view token = next_token();
-            if (p.item.is_real ? !is_real(token) : !integer_of(token, p.item))
-              throw bad(where + quoted(token) + " is not " + (p.item.is_real ? "a number" : "an integer of its property's type"));
+            if (p.item.is_real) {
+              const std::optional<double> value = real_of(token);
+              if (!value) throw bad(where + quoted(token) + " is not a finite number");
+              append_value(out.bytes, *value, 0, true);
+            } else {
+              const std::optional<long long> value = integer_of(token, p.item);
+              if (!value) throw bad(where + quoted(token) + " is not an integer of its property's type");
+              append_value(out.bytes, 0, *value, false);
+            }
+            out.bytes += ' ';
           }
         }
         if (t != tokens.size()) throw bad(where + "has more values than its properties take");
+        if (!e.kept()) {
+          out.bytes.resize(record_start);
+        } else {
+          out.bytes.back() = '\n';  // every record has a value: an element of no properties has none
+        }
       }
-    return faces;
+    return out;
   }
   const bool big = format == "binary_big_endian";
   for (const Element& e : elements)
-    for (size_t r = 0; r < e.count; ++r)
+    for (size_t r = 0; r < e.count; ++r) {
+      const size_t record_start = pos;
       for (const Property& p : e.properties) {
         if (!p.count) {
           if (bytes.size() - pos < p.item.bytes) throw truncated(e, r);
@@ -256,7 +306,9 @@ size_t check_ply_size(const std::string& path) {
         if (n > (bytes.size() - pos) / p.item.bytes) throw truncated(e, r);
         pos += n * p.item.bytes;
       }
-  return faces;
+      if (e.kept()) out.bytes.append(bytes, record_start, pos - record_start);
+    }
+  return out;
 }
 
 }  // namespace radrecon

@@ -187,8 +187,13 @@ TEST(MeshImportErrors, PlyDataThatAssimpWouldReadOutOfStep) {
   EXPECT_TRUE(Refused(dir, "joined.ply", with("0 0 0 204 0 0\n", "0 0 0 204 0 0 "), {"line 13 (vertex 0)", "more values"}));
   EXPECT_TRUE(Refused(dir, "count.ply", with("4 0 1 2 3", "300 0 1 2 3"), {"list count '300'"}));
   EXPECT_TRUE(Refused(dir, "colour.ply", with("0 0 0 204 0 0", "0 0 0 256 0 0"), {"(vertex 0)", "'256' is not an integer"}));
+  EXPECT_TRUE(Refused(dir, "plus_minus.ply", with("4 0 1 2 3", "4 +-0 1 2 3"), {"(face 0)", "'+-0' is not an integer"}));
+  EXPECT_TRUE(Refused(dir, "minus_zero.ply", with("0 0 0 204 0 0", "0 0 0 -0 0 0"), {"'-0' is not an integer"}));
+  EXPECT_TRUE(Refused(dir, "huge.ply", with("1 0 0 0 102 0", "1e99999999999999999999 0 0 0 102 0"),
+                      {"(vertex 1)", "is not a finite number"}));
+  EXPECT_TRUE(Refused(dir, "inf.ply", with("1 0 0 0 102 0", "inf 0 0 0 102 0"), {"'inf' is not a finite number"}));
   EXPECT_TRUE(Refused(dir, "plus.ply", with("0 0 0 204 0 0", "0 0 0 +204 0 0"), {"'+204' is not an integer"}));
-  EXPECT_TRUE(Refused(dir, "word.ply", with("1 0 0 0 102 0", "1 0 x 0 102 0"), {"(vertex 1)", "'x' is not a number"}));
+  EXPECT_TRUE(Refused(dir, "word.ply", with("1 0 0 0 102 0", "1 0 x 0 102 0"), {"(vertex 1)", "'x' is not a finite number"}));
   EXPECT_TRUE(Refused(dir, "realcount.ply", with("list uchar int", "list float int"), {"count type must be an integer"}));
   // Records of no properties take no bytes: a count of 10^11 of them is refused, not walked.
   EXPECT_TRUE(Refused(dir, "empty_records.ply", with("element face 1", "element junk 99999999999\nelement face 1"),

@@ -6,9 +6,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <filesystem>
 #include <numeric>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "io/mesh_import.h"
 #include "io/scene_json.h"
@@ -272,6 +276,46 @@ TEST(MeshImport, AsciiPlyNumbersInEveryWrittenForm) {
   expect_near(m.surfaces[0].corners[2], Vec3(1, 1, 0));
 }
 
+TEST(MeshImport, PlyIsReadAsWrittenWhereAssimpAloneMisreadsIt) {
+  // Each of these files made assimp 5.2, reading the file itself, take the wrong values, read
+  // out of step or allocate for billions of list items; radrecon gives it a canonical copy
+  // (io/ply_header.h), and each reads as the coloured square.
+  TempDir dir("mesh_ply");
+  const std::string ply = testing_support::coloured_square_ply();
+  const auto with = [&](const std::string& from, const std::string& to) {
+    std::string out = ply;
+    const size_t at = out.find(from);
+    if (at != std::string::npos) out.replace(at, from.size(), to);
+    return out;
+  };
+  // `content` with `line` as the first line of its data.
+  const auto data_first = [](std::string content, const std::string& line) {
+    return content.insert(content.find("end_header\n") + 11, line + "\n");
+  };
+  const std::string digits = with("1 1 0 0 0 51", "10000000000000000000e-19 1 0 0 0 51");
+  const std::vector<std::pair<std::string, std::string>> variants = {
+      // an element assimp does not know (it takes the name's digits for the count: 0 records)
+      {"unknown.ply", data_first(with("element vertex 4", "element foo 1\nproperty uint a\nelement vertex 4"), "4000000000")},
+      {"texture.ply", data_first(with("element vertex 4", "element TextureFile 1\nproperty uint a\nelement vertex 4"), "7")},
+      // a comment and a blank line among an element's properties (assimp ended the list there)
+      {"comment.ply", with("property float y\n", "property float y\ncomment between\n\n")},
+      // header words inside an obj_info line, which assimp read back as header lines
+      {"obj_info.ply", with("format ascii 1.0\n", "format ascii 1.0\nobj_info Aelement vertex 99999999999\ncomment x\n")},
+      // a twenty-digit mantissa (assimp's integer part overflows), and no line end at the end
+      {"digits.ply", digits.substr(0, digits.size() - 1)},
+  };
+  for (const auto& [name, content] : variants) {
+    write_file(dir / name, content);
+    const MeshImport m = import_mesh((dir / name).string());
+    ASSERT_EQ(m.surfaces.size(), 1u) << name;
+    const Surface& s = m.surfaces[0];
+    EXPECT_EQ(s.corner_count, 4) << name;
+    expect_near(s.reflectance, Rgb(0.2, 0.1, 0.05));
+    expect_near(s.corners[0], Vec3(0, 0, 0));
+    expect_near(s.corners[2], Vec3(1, 1, 0));
+  }
+}
+
 TEST(MeshImport, WhiteVertexColoursAreClampedWithOneWarning) {
   TempDir dir("mesh_ply");
   std::string ply = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
@@ -330,6 +374,25 @@ TEST(MeshImport, BinaryPlyInEitherByteOrder) {
     expect_near(m.surfaces[0].corners[2], Vec3(1, 1, 0));
     expect_near(m.surfaces[0].reflectance, Rgb::Constant(0.5));  // no colours: the default
   }
+}
+
+TEST(MeshImport, BinaryPlyWhoseDataBeginsWithALineFeedByte) {
+  // assimp 5.2, reading the file itself, dropped a first data byte of 0x0A after "end_header\n"
+  // and read every value one byte late. x = 1.0000012f is stored as 0A 00 80 3F.
+  TempDir dir("mesh_ply");
+  const float x = std::bit_cast<float>(std::uint32_t{0x3F80000A});
+  std::string ply = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                    "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  for (float f : {x, 0.f, 0.f, x, 1.f, 0.f, 0.f, 1.f, 0.f}) testing_support::append_le(ply, f);
+  ply += char(3);
+  for (int32_t i : {0, 1, 2}) testing_support::append_le(ply, i);
+  ASSERT_EQ(ply[ply.find("end_header\n") + 11], '\n');
+  write_file(dir / "line_feed.ply", ply);
+  const MeshImport m = import_mesh((dir / "line_feed.ply").string());
+  ASSERT_EQ(m.surfaces.size(), 1u);
+  EXPECT_EQ(m.surfaces[0].corner_count, 3);
+  EXPECT_NEAR(m.surfaces[0].area_m2(), 0.5 * x, kFloat);
+  for (const Vec3& c : m.surfaces[0].polygon()) EXPECT_TRUE(c.x() == 0 || c.x() == double(x)) << c.transpose();
 }
 
 TEST(MeshImport, PlacementScalesRotatesAndTranslates) {
