@@ -1,7 +1,7 @@
 #include "core/thread_pool.h"
 
-#include <pthread.h>
 #include <sched.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
@@ -9,7 +9,6 @@
 #include <condition_variable>
 #include <cstdlib>
 #include <mutex>
-#include <system_error>
 #include <thread>
 
 namespace radrecon {
@@ -48,16 +47,19 @@ bool spin_until(Done&& done) {
 
 class Pool {
  public:
+  pid_t pid() const { return pid_; }
+
   /// False, without running anything, if another thread's job holds the pool.
   bool try_run(int threads, const ThreadJob& job) {
     std::unique_lock<std::mutex> hold(run_mutex_, std::try_to_lock);
     if (!hold.owns_lock()) return false;
     // Workers are made as jobs first need them; a new one has seen every job so far. A thread
     // the system refuses leaves the job to fewer.
-    for (; workers_ < threads - 1; ++workers_) {
+    for (; workers_ < threads - 1 && !spawn_failed_; ++workers_) {
       try {
         std::thread([this, w = workers_ + 1, seen = generation_.load()] { work(w, seen); }).detach();
-      } catch (const std::system_error&) {
+      } catch (...) {  // std::system_error, std::bad_alloc: not tried again
+        spawn_failed_ = true;
         break;
       }
     }
@@ -70,23 +72,30 @@ class Pool {
       generation_.fetch_add(1, std::memory_order_release);
     }
     wake_.notify_all();
+    // The helpers are waited for however job(0) ends: they may be using the caller's frame.
+    struct WaitForHelpers {
+      Pool& pool;
+      ~WaitForHelpers() {
+        t_in_job = false;
+        const auto finished = [&] { return pool.pending_.load(std::memory_order_acquire) == 0; };
+        if (!spin_until(finished)) {
+          std::unique_lock<std::mutex> lock(pool.mutex_);
+          pool.done_.wait(lock, finished);
+        }
+      }
+    } wait{*this};
     t_in_job = true;
     job(0);
-    t_in_job = false;
-    const auto finished = [&] { return pending_.load(std::memory_order_acquire) == 0; };
-    if (!spin_until(finished)) {
-      std::unique_lock<std::mutex> lock(mutex_);
-      done_.wait(lock, finished);
-    }
     return true;
   }
 
  private:
   void work(int index, std::uint64_t seen) {
     t_in_job = true;
+    bool spin = true;  // not after a job without this worker: it would spin for every small loop
     for (;;) {
       const auto published = [&] { return generation_.load(std::memory_order_acquire) != seen; };
-      spin_until(published);
+      if (spin) spin_until(published);
       const ThreadJob* job = nullptr;
       {
         std::unique_lock<std::mutex> lock(mutex_);
@@ -94,6 +103,7 @@ class Pool {
         seen = generation_.load(std::memory_order_relaxed);
         if (index <= helpers_) job = job_;
       }
+      spin = job != nullptr;
       if (!job) continue;  // a job of fewer threads
       (*job)(index);
       if (pending_.fetch_sub(1, std::memory_order_acq_rel) == 1) {
@@ -103,6 +113,8 @@ class Pool {
     }
   }
 
+  const pid_t pid_ = getpid();
+  bool spawn_failed_ = false;
   int workers_ = 0;  // detached threads: the pool lives as long as the process, its workers asleep when idle
   std::mutex run_mutex_;              // one job at a time
   std::mutex mutex_;                  // guards job_ and helpers_, and orders the waits
@@ -125,25 +137,17 @@ int read_thread_count() {
 }
 
 // The pool, made on first use and never destroyed (its workers sleep until the process ends).
-// A child of fork() has none of its parent's threads: it makes its own pool on first use.
-std::mutex g_pool_mutex;
-Pool* g_pool = nullptr;
+// A child of fork() has none of its parent's threads: it makes a pool of its own (the parent's
+// is left as it is, its mutexes perhaps held by threads the child does not have).
+std::atomic<Pool*> g_pool{nullptr};
 
 Pool* pool() {
-  std::lock_guard<std::mutex> lock(g_pool_mutex);
-  if (!g_pool) {
-    static const bool registered = [] {
-      pthread_atfork([] { g_pool_mutex.lock(); }, [] { g_pool_mutex.unlock(); },
-                     [] {
-                       g_pool = nullptr;  // the parent's, leaked: its threads are not in this process
-                       g_pool_mutex.unlock();
-                     });
-      return true;
-    }();
-    (void)registered;
-    g_pool = new Pool;
-  }
-  return g_pool;
+  Pool* p = g_pool.load(std::memory_order_acquire);
+  if (p && p->pid() == getpid()) return p;
+  Pool* fresh = new Pool;  // no thread yet: workers are made by the first job that needs them
+  if (g_pool.compare_exchange_strong(p, fresh, std::memory_order_acq_rel)) return fresh;
+  delete fresh;  // another thread of this process made one first: `p` is now it
+  return p;
 }
 
 }  // namespace
@@ -153,8 +157,9 @@ std::atomic<int> g_thread_count{0};  // 0: not yet read
 int worker_thread_count() {
   int n = g_thread_count.load(std::memory_order_relaxed);
   if (n == 0) {
-    n = read_thread_count();
-    g_thread_count.store(n, std::memory_order_relaxed);
+    const int read = read_thread_count();
+    // From 0 only: a set_worker_thread_count() meanwhile wins.
+    return g_thread_count.compare_exchange_strong(n, read, std::memory_order_relaxed) ? read : n;
   }
   return n;
 }

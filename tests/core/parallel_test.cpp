@@ -4,7 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
+#include <chrono>
+#include <mutex>
 #include <new>
 #include <stdexcept>
 #include <thread>
@@ -16,10 +19,62 @@
 namespace radrecon {
 namespace parallel_test {
 
-TEST(ParallelFor, VisitsEveryIndexOnceOnOneAndTwoThreads) {
-  const int threads = worker_thread_count();
+/// Sets the loops' thread count for a scope, restoring it however the scope ends.
+class Threads {
+ public:
+  explicit Threads(int n) : before_(worker_thread_count()) { set_worker_thread_count(n); }
+  ~Threads() { set_worker_thread_count(before_); }
+  void set(int n) { set_worker_thread_count(n); }
+
+ private:
+  int before_;
+};
+
+TEST(ThreadPool, EveryParticipantRunsOnceEachOnItsOwnThread) {
+  Threads threads(1);
+  for (int t : {1, 2, 3, 5}) {
+    threads.set(t);
+    for (int round = 0; round < 50; ++round) {
+      std::mutex mutex;
+      std::vector<int> calls(static_cast<size_t>(t), 0);
+      std::vector<std::thread::id> ids;
+      auto job = [&](int participant) {
+        std::lock_guard<std::mutex> lock(mutex);
+        ++calls.at(static_cast<size_t>(participant));
+        ids.push_back(std::this_thread::get_id());
+      };
+      run_on_threads(t, ThreadJob(job));
+      for (int p = 0; p < t; ++p) ASSERT_EQ(calls[static_cast<size_t>(p)], 1) << t << " threads, participant " << p;
+      std::sort(ids.begin(), ids.end());
+      EXPECT_EQ(std::unique(ids.begin(), ids.end()), ids.end()) << "two participants on one thread";
+    }
+  }
+}
+
+TEST(ParallelFor, ChunksRunOnSeveralThreadsAtOnce) {
+  // The first chunk waits until a chunk has started on another thread: it can only end if two
+  // threads take part (bounded: a failure, not a hang, if they never do).
+  Threads threads(2);
+  std::atomic<bool> second_started{false};
+  std::atomic<bool> waited_out{false};
+  const std::thread::id caller = std::this_thread::get_id();
+  std::atomic<int> on_workers{0};
+  parallel_for(0, 4 * kParallelChunk, [&](std::int64_t i) {
+    if (std::this_thread::get_id() != caller) ++on_workers;
+    if (i >= kParallelChunk) second_started = true;
+    if (i != 0) return;
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (!second_started && std::chrono::steady_clock::now() < deadline) std::this_thread::yield();
+    waited_out = !second_started;
+  });
+  EXPECT_FALSE(waited_out.load());
+  EXPECT_GT(on_workers.load(), 0);
+}
+
+TEST(ParallelFor, VisitsEveryIndexOnceOnOneTwoAndFiveThreads) {
+  Threads threads(1);
   for (int t : {1, 2, 5}) {
-    set_worker_thread_count(t);
+    threads.set(t);
     for (std::int64_t n : {0, 1, 511, 512, 513, 100'000}) {
       std::vector<int> seen(static_cast<size_t>(n), 0);
       parallel_for(0, n, [&](std::int64_t i) { ++seen[static_cast<size_t>(i)]; });
@@ -32,12 +87,24 @@ TEST(ParallelFor, VisitsEveryIndexOnceOnOneAndTwoThreads) {
       for (std::int64_t i = 0; i < n; ++i) ASSERT_EQ(with_scratch[static_cast<size_t>(i)], 1);
     }
   }
-  set_worker_thread_count(threads);
 }
 
 TEST(ParallelFor, AnExceptionFromAnIterationIsRethrownToTheCaller) {
-  const int threads = worker_thread_count();
-  set_worker_thread_count(2);
+  Threads threads(2);
+  // Thrown on a worker: the caller's iterations wait (bounded) until a worker has started one.
+  const std::thread::id caller = std::this_thread::get_id();
+  std::atomic<bool> worker_started{false};
+  EXPECT_THROW(parallel_for(0, 100'000,
+                            [&](std::int64_t) {
+                              if (std::this_thread::get_id() == caller) {
+                                const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+                                while (!worker_started && std::chrono::steady_clock::now() < deadline) std::this_thread::yield();
+                                return;
+                              }
+                              worker_started = true;
+                              throw std::range_error("on a worker");
+                            }),
+               std::range_error);
   EXPECT_THROW(parallel_for(0, 100'000,
                             [](std::int64_t i) {
                               if (i == 77'777) throw std::bad_alloc();
@@ -48,17 +115,21 @@ TEST(ParallelFor, AnExceptionFromAnIterationIsRethrownToTheCaller) {
                                                 if (i == 5) throw std::runtime_error("iteration 5");
                                               }),
                std::runtime_error);
-  set_worker_thread_count(threads);
 }
 
 TEST(ParallelFor, NestedLoopsAndSeveralCallersEachVisitEveryIndexOnce) {
-  const int threads = worker_thread_count();
-  set_worker_thread_count(3);
+  Threads threads(3);
   // A loop inside a loop's iteration runs on that iteration's thread.
   std::vector<std::atomic<int>> seen(64 * 1000);
+  std::atomic<int> elsewhere{0};
   parallel_for_coarse(0, 64, [&](std::int64_t outer) {
-    parallel_for(0, 1000, [&](std::int64_t inner) { ++seen[static_cast<size_t>(outer * 1000 + inner)]; });
+    const std::thread::id outer_thread = std::this_thread::get_id();
+    parallel_for(0, 1000, [&](std::int64_t inner) {
+      ++seen[static_cast<size_t>(outer * 1000 + inner)];
+      if (std::this_thread::get_id() != outer_thread) ++elsewhere;
+    });
   });
+  EXPECT_EQ(elsewhere.load(), 0);
   for (size_t i = 0; i < seen.size(); ++i) ASSERT_EQ(seen[i].load(), 1) << i;
   // Four threads calling loops at once (the Python module's callers): one holds the pool, the
   // others run theirs alone, and every loop is whole.
@@ -72,7 +143,6 @@ TEST(ParallelFor, NestedLoopsAndSeveralCallersEachVisitEveryIndexOnce) {
   for (std::thread& t : callers) t.join();
   for (const std::vector<int>& count : counts)
     for (size_t i = 0; i < count.size(); ++i) ASSERT_EQ(count[i], 20) << i;
-  set_worker_thread_count(threads);
 }
 
 }  // namespace parallel_test
