@@ -172,12 +172,7 @@ TEST(MeshImportErrors, PlyDataThatAssimpWouldReadOutOfStep) {
   // Each of these once made assimp allocate for billions of list items or loop for minutes.
   TempDir dir("mesh_bad");
   const std::string ply = testing_support::coloured_square_ply();
-  const auto with = [&](const std::string& from, const std::string& to) {
-    std::string out = ply;
-    const size_t at = out.find(from);
-    if (at != std::string::npos) out.replace(at, from.size(), to);
-    return out;
-  };
+  const auto with = testing_support::coloured_square_ply_with;
   // A NUL ends a line for assimp but not for a reader of words: the next value became a count.
   std::string nul = ply;
   nul.insert(nul.find("0 1 0 0 0 0") + 11, std::string(1, '\0') + "4444444444");

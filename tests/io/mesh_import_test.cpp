@@ -282,12 +282,7 @@ TEST(MeshImport, PlyIsReadAsWrittenWhereAssimpAloneMisreadsIt) {
   // (io/ply_header.h), and each reads as the coloured square.
   TempDir dir("mesh_ply");
   const std::string ply = testing_support::coloured_square_ply();
-  const auto with = [&](const std::string& from, const std::string& to) {
-    std::string out = ply;
-    const size_t at = out.find(from);
-    if (at != std::string::npos) out.replace(at, from.size(), to);
-    return out;
-  };
+  const auto with = testing_support::coloured_square_ply_with;
   // `content` with `line` as the first line of its data.
   const auto data_first = [](std::string content, const std::string& line) {
     return content.insert(content.find("end_header\n") + 11, line + "\n");

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -105,6 +106,15 @@ inline std::string coloured_square_ply() {
          "property uchar red\nproperty uchar green\nproperty uchar blue\nelement face 1\n"
          "property list uchar int vertex_indices\nend_header\n"
          "0 0 0 204 0 0\n1 0 0 0 102 0\n1 1 0 0 0 51\n0 1 0 0 0 0\n4 0 1 2 3\n";
+}
+
+/// coloured_square_ply() with the first `from` in it replaced by `to` (std::logic_error if it
+/// holds none: a test's typo).
+inline std::string coloured_square_ply_with(const std::string& from, const std::string& to) {
+  std::string out = coloured_square_ply();
+  const size_t at = out.find(from);
+  if (at == std::string::npos) throw std::logic_error("the coloured square PLY has no '" + from + "'");
+  return out.replace(at, from.size(), to);
 }
 
 }  // namespace radrecon::testing_support
