@@ -117,7 +117,8 @@ CheckedPly check_ply(const std::string& path) {
       if (c != '\t' && (c < 0x20 || c > 0x7e)) {
         std::ostringstream byte;
         byte << "0x" << std::hex << static_cast<int>(static_cast<unsigned char>(c));
-        throw bad("line " + std::to_string(line_no) + ": byte " + byte.str() + " is not text (a PLY header and ASCII data are printable ASCII)");
+        throw bad("line " + std::to_string(line_no) + ": byte " + byte.str() +
+                  " is not text (a PLY header and ASCII data are printable ASCII)");
       }
   };
   size_t pos = 0, line_no = 0;
