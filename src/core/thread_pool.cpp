@@ -150,9 +150,9 @@ Pool* pool() {
   return p;
 }
 
-}  // namespace
-
 std::atomic<int> g_thread_count{0};  // 0: not yet read
+
+}  // namespace
 
 int worker_thread_count() {
   int n = g_thread_count.load(std::memory_order_relaxed);
@@ -171,10 +171,12 @@ void set_worker_thread_count(int threads) {
 void run_on_threads(int threads, const ThreadJob& job) {
   threads = std::min(threads, worker_thread_count());
   if (threads <= 1 || t_in_job || !pool()->try_run(threads, job)) {
-    const bool was = t_in_job;
+    struct Restore {
+      bool was;
+      ~Restore() { t_in_job = was; }
+    } restore{t_in_job};
     t_in_job = true;
     job(0);
-    t_in_job = was;
   }
 }
 
