@@ -21,7 +21,7 @@
 #include "core/tolerances.h"
 #include "io/gltf_extras.h"
 #include "io/mesh_polygons.h"
-#include "io/ply_header.h"
+#include "io/ply_check.h"
 
 namespace radrecon {
 

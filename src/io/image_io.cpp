@@ -234,10 +234,17 @@ void write_pfm(const std::filesystem::path& path, const Image& image) {
   // Straight from the image, batch by batch: no copy of it. PFM's row j is the picture's row
   // H - 1 - j.
   write_pfm(path, W, H, 3, std::min(static_cast<size_t>(W) * H * 3, kPfmBatchValues), [&](size_t first, std::span<double> out) {
-    for (size_t k = 0; k < out.size(); ++k) {
-      const size_t value = first + k, pixel = value / 3;
-      const int j = static_cast<int>(pixel / static_cast<size_t>(W)), x = static_cast<int>(pixel % static_cast<size_t>(W));
-      out[k] = image.at(x, H - 1 - j)[static_cast<int>(value % 3)];
+    // The batch's first value's pixel and channel, then stepped along (a batch may begin
+    // inside a pixel).
+    const size_t pixel = first / 3;
+    int c = static_cast<int>(first % 3), x = static_cast<int>(pixel % static_cast<size_t>(W));
+    int j = static_cast<int>(pixel / static_cast<size_t>(W));
+    for (double& value : out) {
+      value = image.at(x, H - 1 - j)[c];
+      if (++c == 3) {
+        c = 0;
+        if (++x == W) x = 0, ++j;
+      }
     }
   });
 }

@@ -219,7 +219,7 @@ void LocalMultiquadric::evaluate(std::span<const Vec2> points, std::span<double>
       add_rbf_sum(*fit, kernel_, C, e, w, scratch.basis, acc);
       // RBF(e) + poly(e) + (poly(p) - poly(e)): the polynomial (or offset) continues past the hull.
       for (int c = 0; c < C; ++c) acc[c] += w * fit->polynomial(p, c);
-      }
+    }
     if (total == 0 && flat_total > 0) {
       total = flat_total;
       for (int c = 0; c < C; ++c) o[c] = flat[static_cast<size_t>(c)];

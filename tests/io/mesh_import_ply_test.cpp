@@ -1,6 +1,6 @@
 // Mesh import (io/mesh_import.h) of PLY files the test writes itself, ASCII and binary: vertex
 // colours averaged per face, numbers in every written form, and the files assimp 5.2 misread
-// when it read them itself (radrecon gives it a canonical copy: io/ply_header.h). Expected
+// when it read them itself (radrecon gives it a canonical copy: io/ply_check.h). Expected
 // values are the numbers written into the files.
 
 #include <gtest/gtest.h>
@@ -67,7 +67,7 @@ TEST(MeshImport, AsciiPlyNumbersInEveryWrittenForm) {
 TEST(MeshImport, PlyIsReadAsWrittenWhereAssimpAloneMisreadsIt) {
   // Each of these files made assimp 5.2, reading the file itself, take the wrong values, read
   // out of step or allocate for billions of list items; radrecon gives it a canonical copy
-  // (io/ply_header.h), and each reads as the coloured square.
+  // (io/ply_check.h), and each reads as the coloured square.
   TempDir dir("mesh_ply");
   const std::string ply = testing_support::coloured_square_ply();
   const auto with = testing_support::coloured_square_ply_with;

@@ -1,4 +1,4 @@
-#include "io/ply_header.h"
+#include "io/ply_check.h"
 
 #include <algorithm>
 #include <cctype>
@@ -95,13 +95,13 @@ std::optional<double> real_of(std::string_view token) {
   return value;
 }
 
-/// A value as the canonical copy writes it: decimal integers; reals in their shortest form that
-/// reads back to the same double.
-void append_value(std::string& out, double real, long long integer, bool is_real) {
+/// A value as the canonical copy writes it, and a space: a decimal integer, or a real in its
+/// shortest form that reads back to the same double (32 characters hold either).
+template <typename Number>
+void append_value(std::string& out, Number value) {
   char text[32];
-  const auto [end, error] = is_real ? std::to_chars(text, text + sizeof text, real) : std::to_chars(text, text + sizeof text, integer);
-  (void)error;  // 32 characters hold any double's and any long long's shortest form
-  out.append(text, end);
+  out.append(text, std::to_chars(text, text + sizeof text, value).ptr);
+  out += ' ';
 }
 
 }  // namespace
@@ -173,9 +173,6 @@ CheckedPly check_ply(const std::string& path) {
       if (!count || !is_name(words[1])) throw bad(where + "malformed element line (expected 'element NAME COUNT')");
       for (const Element& e : elements)
         if (e.name == words[1]) throw bad(where + "element '" + words[1] + "' declared twice");
-      if (!elements.empty() && elements.back().count > 0 && elements.back().properties.empty())
-        throw bad(where + "element '" + elements.back().name + "' declares " + std::to_string(elements.back().count) +
-                  " records but no properties");
       elements.push_back({words[1], *count, {}});
     } else if (word == "property") {
       if (elements.empty()) throw bad(where + "property before any element");
@@ -201,9 +198,9 @@ CheckedPly check_ply(const std::string& path) {
   }
   if (format.empty()) throw bad("PLY header has no format line (line 2: 'format ascii 1.0' or 'format binary_little_endian 1.0')");
   // A record of no properties takes no bytes, so nothing in the file would bound their number.
-  if (!elements.empty() && elements.back().count > 0 && elements.back().properties.empty())
-    throw bad("PLY header: element '" + elements.back().name + "' declares " + std::to_string(elements.back().count) +
-              " records but no properties");
+  for (const Element& e : elements)
+    if (e.count > 0 && e.properties.empty())
+      throw bad("PLY header: element '" + e.name + "' declares " + std::to_string(e.count) + " records but no properties");
 
   CheckedPly out;
   for (const Element& e : elements)
@@ -257,21 +254,19 @@ CheckedPly check_ply(const std::string& path) {
             const std::optional<long long> n = integer_of(token, *p.count);
             if (!n || *n < 0) throw bad(where + "list count " + quoted(token) + " is not a count of its type");
             items = *n;
-            append_value(out.bytes, 0, *n, false);
-            out.bytes += ' ';
+            append_value(out.bytes, *n);
           }
           for (long long k = 0; k < items; ++k) {
             const std::string_view token = next_token();
             if (p.item.is_real) {
               const std::optional<double> value = real_of(token);
               if (!value) throw bad(where + quoted(token) + " is not a finite number");
-              append_value(out.bytes, *value, 0, true);
+              append_value(out.bytes, *value);
             } else {
               const std::optional<long long> value = integer_of(token, p.item);
               if (!value) throw bad(where + quoted(token) + " is not an integer of its property's type");
-              append_value(out.bytes, 0, *value, false);
+              append_value(out.bytes, *value);
             }
-            out.bytes += ' ';
           }
         }
         if (t != tokens.size()) throw bad(where + "has more values than its properties take");
