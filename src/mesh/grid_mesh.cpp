@@ -80,10 +80,14 @@ MeshSurface mesh_side(const Surface& s, size_t index, bool back, int nu, int nv,
 
 }  // namespace
 
-std::pair<int, int> grid_divisions(const Scene& scene, const Surface& s, const GridMeshOptions& options) {
-  RR_CHECK(options.divisions >= 1, "mesh divisions must be positive");
+double longest_edge_m(const Scene& scene) {
   double longest_m = 0;
   for (const Surface& t : scene.surfaces) longest_m = std::max({longest_m, t.length_u_m(), t.length_v_m()});
+  return longest_m;
+}
+
+std::pair<int, int> grid_divisions(double longest_m, const Surface& s, const GridMeshOptions& options) {
+  RR_CHECK(options.divisions >= 1, "mesh divisions must be positive");
   const double element_m = longest_m / options.divisions;
   // In double first: a tiny element on a long edge must not overflow an int.
   auto count = [&](double length) { return std::clamp(std::round(length / element_m), 1.0, 1e9); };
@@ -103,8 +107,9 @@ std::pair<int, int> grid_divisions(const Scene& scene, const Surface& s, const G
 
 size_t grid_element_count(const Scene& scene, const GridMeshOptions& options) {
   double total = 0;
+  const double longest_m = longest_edge_m(scene);
   for (const Surface& s : scene.surfaces) {
-    const auto [nu, nv] = grid_divisions(scene, s, options);
+    const auto [nu, nv] = grid_divisions(longest_m, s, options);
     total += double(nu) * nv * (s.two_sided ? 2 : 1);
   }
   return static_cast<size_t>(std::min(total, 1e18));
@@ -115,9 +120,10 @@ Mesh make_grid_mesh(const Scene& scene, const GridMeshOptions& options) {
   const int patch_size = (options.divisions + options.max_patches - 1) / options.max_patches;
 
   Mesh mesh;
+  const double longest_m = longest_edge_m(scene);
   for (size_t k = 0; k < scene.surfaces.size(); ++k) {
     const Surface& s = scene.surfaces[k];
-    const auto [nu, nv] = grid_divisions(scene, s, options);
+    const auto [nu, nv] = grid_divisions(longest_m, s, options);
     mesh.surfaces.push_back(mesh_side(s, k, false, nu, nv, patch_size));
     if (s.two_sided) mesh.surfaces.push_back(mesh_side(s, k, true, nu, nv, patch_size));
   }

@@ -70,8 +70,13 @@ struct GridMeshOptions {
   int max_patches = 2;
 };
 
-/// Elements along u and v of one surface under `options` (the rule of GridMeshOptions).
-std::pair<int, int> grid_divisions(const Scene& scene, const Surface& surface, const GridMeshOptions& options);
+/// The longest edge of the scene's surfaces (their length_u_m() and length_v_m()), metres:
+/// grid:N's elements are 1/N of it.
+double longest_edge_m(const Scene& scene);
+
+/// Elements along u and v of one surface under `options` (the rule of GridMeshOptions), given
+/// longest_m = longest_edge_m() of its scene (found once for all its surfaces).
+std::pair<int, int> grid_divisions(double longest_m, const Surface& surface, const GridMeshOptions& options);
 
 /// Elements of the whole mesh (both sides of two-sided surfaces), without building it.
 size_t grid_element_count(const Scene& scene, const GridMeshOptions& options);

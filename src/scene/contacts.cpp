@@ -4,6 +4,7 @@
 #include <cmath>
 #include <optional>
 #include <set>
+#include <span>
 #include <tuple>
 #include <utility>
 
@@ -144,7 +145,7 @@ struct SideContacts {
   std::vector<Polyline> covered;  ///< regions under the surfaces lying on the side, surface order
 };
 
-SideContacts side_contacts(const Scene& scene, SideRef side) {
+SideContacts side_contacts(const Scene& scene, SideRef side, std::span<const size_t> candidates) {
   const Surface& s = scene.surfaces[side.surface];
   const Vec3 n = side_normal(s, side.back_side);
   const double offset = n.dot(s.corners[0]);
@@ -168,7 +169,7 @@ SideContacts side_contacts(const Scene& scene, SideRef side) {
         return;
     out.lines.push_back({pa, pb});
   };
-  for (size_t k = 0; k < scene.surfaces.size(); ++k) {
+  for (const size_t k : candidates) {
     if (k == side.surface) continue;
     const Surface& t = scene.surfaces[k];
     if (lies_on(t, s)) {
@@ -281,21 +282,51 @@ bool lies_on(const Surface& other, const Surface& base) {
   return other.area_m2() < (1 - tol::kLyingSmallerRelative) * base.area_m2();
 }
 
-std::vector<Segment2> contact_lines(const Scene& scene, SideRef side) { return side_contacts(scene, side).lines; }
+namespace {
 
-std::vector<Polyline> excluded_regions(const Scene& scene, SideRef side) {
-  const Surface& s = scene.surfaces[side.surface];
+/// A surface's bounding box, widened by twice its contact tolerance (tol::kContactRelative of its
+/// size) and tol::kPlaneDistance_m: a surface that touches a side (side_contacts()) meets the
+/// side within its tolerance, so their widened boxes meet.
+std::array<Vec3, 2> contact_box(const Surface& t) {
+  Vec3 lo = t.corners[0], hi = t.corners[0];
+  for (const Vec3& c : t.corners) lo = lo.cwiseMin(c), hi = hi.cwiseMax(c);
+  const double margin_m =
+      2 * tol::kContactRelative * std::max(t.length_u_m(), t.length_v_m()) + tol::kPlaneDistance_m;
+  return {lo.array() - margin_m, hi.array() + margin_m};
+}
+
+}  // namespace
+
+ContactFinder::ContactFinder(const Scene& scene) : scene_(scene) {
+  boxes_.reserve(scene.surfaces.size());
+  for (const Surface& t : scene.surfaces) boxes_.push_back(contact_box(t));
+}
+
+SideContactSet ContactFinder::at(SideRef side) const {
+  const std::array<Vec3, 2>& box = boxes_[side.surface];
+  std::vector<size_t> near;  // the surfaces whose box meets the side's, in surface order
+  for (size_t k = 0; k < boxes_.size(); ++k)
+    if ((boxes_[k][0].array() <= box[1].array()).all() && (box[0].array() <= boxes_[k][1].array()).all())
+      near.push_back(k);
+  SideContacts contacts = side_contacts(scene_, side, near);
+  const Surface& s = scene_.surfaces[side.surface];
   const double join_m = tol::kContactJoinRelative * std::max(s.length_u_m(), s.length_v_m());
-  SideContacts contacts = side_contacts(scene, side);
-  std::vector<Polyline> out;
+  SideContactSet out;
   const auto add = [&](Polyline region) {
-    for (const Polyline& r : out)
+    for (const Polyline& r : out.excluded)
       if (same_region(r, region, join_m)) return;
-    out.push_back(std::move(region));
+    out.excluded.push_back(std::move(region));
   };
   for (Polyline& r : contacts.covered) add(std::move(r));
   for (Polyline& r : enclosed_regions(contacts.lines, join_m)) add(std::move(r));
+  out.lines = std::move(contacts.lines);
   return out;
+}
+
+std::vector<Segment2> contact_lines(const Scene& scene, SideRef side) { return ContactFinder(scene).at(side).lines; }
+
+std::vector<Polyline> excluded_regions(const Scene& scene, SideRef side) {
+  return ContactFinder(scene).at(side).excluded;
 }
 
 }  // namespace radrecon

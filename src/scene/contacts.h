@@ -5,6 +5,7 @@
 // And the parts of a side that nothing sees: under a surface lying flat on it, or enclosed by
 // surfaces standing on it.
 
+#include <array>
 #include <vector>
 
 #include "core/vec.h"
@@ -59,5 +60,26 @@ bool lies_on(const Surface& other, const Surface& base);
 /// than that (a coplanar neighbour touching the side along its border). A quad side that is not a
 /// parallelogram maps the vertices exactly and joins them by straight lines in (s, t).
 std::vector<Polyline> excluded_regions(const Scene& scene, SideRef side);
+
+/// A side's contact_lines() and excluded_regions() together.
+struct SideContactSet {
+  std::vector<Segment2> lines;
+  std::vector<Polyline> excluded;
+};
+
+/// The contacts of many sides of one scene: the surfaces' bounding boxes are made once, and a
+/// side looks only at the surfaces whose box meets its own (within the contact tolerances), so
+/// a scene of n surfaces costs n^2 box tests rather than n^2 plane sections (a model of 11,000
+/// triangles: 0.1 s instead of 27 s). The same values as the functions above. The scene must
+/// outlive it and not change.
+class ContactFinder {
+ public:
+  explicit ContactFinder(const Scene& scene);
+  SideContactSet at(SideRef side) const;
+
+ private:
+  const Scene& scene_;
+  std::vector<std::array<Vec3, 2>> boxes_;  ///< per surface: its widened bounding box, low and high
+};
 
 }  // namespace radrecon

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <unordered_map>
 
 #include "core/error.h"
 #include "core/limits.h"
@@ -90,13 +91,19 @@ Solution solve_by_spec(const Scene& scene, const std::string& spec, const SolveS
 /// Every side's contact lines (scene/contacts.h) as its barriers, its shadow lines
 /// (scene/shadow_lines.h) too if asked, and its excluded regions.
 Solution with_barriers(const Scene& scene, Solution sol, bool shadow_lines_too) {
+  std::unordered_map<std::string, SideRef> sides;  // by name: one look-up a side, not a scan
+  for (size_t k = 0; k < scene.surfaces.size(); ++k)
+    for (bool back : {false, true})
+      if (!back || scene.surfaces[k].two_sided) sides.emplace(side_name(scene.surfaces[k], back), SideRef{k, back});
+  const ContactFinder contacts(scene);
   for (SurfaceSolution& side : sol.surfaces) {
-    const std::optional<SideRef> ref = find_side(scene, side.name);
-    if (!ref) continue;
-    for (const Segment2& c : contact_lines(scene, *ref)) side.barriers.push_back({c.a, c.b});
+    const auto ref = sides.find(side.name);
+    if (ref == sides.end()) continue;
+    SideContactSet found = contacts.at(ref->second);
+    for (const Segment2& c : found.lines) side.barriers.push_back({c.a, c.b});
     if (shadow_lines_too)
-      for (const Segment2& c : shadow_lines(scene, *ref)) side.barriers.push_back({c.a, c.b});
-    side.excluded = excluded_regions(scene, *ref);
+      for (const Segment2& c : shadow_lines(scene, ref->second)) side.barriers.push_back({c.a, c.b});
+    side.excluded = std::move(found.excluded);
   }
   return sol;
 }

@@ -233,5 +233,41 @@ TEST(ContactLines, AStandingSurfaceIsClippedToTheSide) {
   expect_segment(lines[0], {0, 2}, {4, 2});
 }
 
+TEST(ContactFinder, ManyBoxesOnAFloorEachGiveTheirBaseAndSquareAndWallFeetWithinToleranceCount) {
+  // 10 x 10 boxes of 0.2 m at a 0.4 m pitch on the 4 m floor; the walls of every other box stand
+  // 1.5e-7 m above it, within the contact tolerance (1e-6 of a wall's 0.2 m is 2e-7), so each of
+  // its surfaces' boxes misses the floor's unwidened one: the finder's widened boxes must meet.
+  Scene scene;
+  scene.surfaces.push_back(floor4());
+  constexpr int kBoxes = 10;
+  constexpr double kSize = 0.2, kPitch = 0.4, kLift = 1.5e-7;
+  for (int j = 0; j < kBoxes; ++j)
+    for (int i = 0; i < kBoxes; ++i) {
+      const double x0 = 0.1 + kPitch * i, y0 = 0.1 + kPitch * j, x1 = x0 + kSize, y1 = y0 + kSize;
+      const double z = (i + j) % 2 == 0 ? 0.0 : kLift, h = z + kSize;
+      const auto raised = [&](const char* name, double ax, double ay, double bx, double by) {
+        return quad(name, {ax, ay, z}, {bx, by, z}, {bx, by, h}, {ax, ay, h}, 0.5);
+      };
+      scene.surfaces.push_back(raised("south", x0, y0, x1, y0));
+      scene.surfaces.push_back(raised("east", x1, y0, x1, y1));
+      scene.surfaces.push_back(raised("north", x1, y1, x0, y1));
+      scene.surfaces.push_back(raised("west", x0, y1, x0, y0));
+      scene.surfaces.push_back(quad("top", {x0, y0, h}, {x1, y0, h}, {x1, y1, h}, {x0, y1, h}, 0.5));
+    }
+  const ContactFinder finder(scene);
+  const SideContactSet floor = finder.at(SideRef{0, false});
+  ASSERT_EQ(floor.lines.size(), 4u * kBoxes * kBoxes);
+  ASSERT_EQ(floor.excluded.size(), static_cast<size_t>(kBoxes * kBoxes));
+  double area_m2 = 0;  // the squares' total, by the shoelace formula
+  for (const Polyline& r : floor.excluded)
+    for (size_t k = 0; k < r.size(); ++k) area_m2 += 0.5 * (r[k].x() * r[(k + 1) % r.size()].y() - r[(k + 1) % r.size()].x() * r[k].y());
+  EXPECT_NEAR(area_m2, kBoxes * kBoxes * kSize * kSize, 1e-9);
+  // A box's faces touch only their own neighbours, along their borders: nothing.
+  for (size_t k = 1; k < scene.surfaces.size(); ++k) {
+    const SideContactSet face = finder.at(SideRef{k, false});
+    EXPECT_TRUE(face.lines.empty() && face.excluded.empty()) << k;
+  }
+}
+
 }  // namespace contacts_test
 }  // namespace radrecon
