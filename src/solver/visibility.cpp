@@ -315,38 +315,57 @@ double visible_form_factor_past(const Vec3& p, const Vec3& n, const ConvexPolygo
   // whose projection's box misses that one's misses the shadow, and is kept whole without
   // subtract()'s plane tests. With a few there are
   // few fragments, and the boxes would cost more than they save.
-  thread_local std::vector<Box2> traces, boxes, next_boxes;
+  thread_local std::vector<Box2> traces, boxes;
   std::optional<PlaneBasis> plane;
   traces.clear();
   if (shadows.size() >= kBoxedShadows) {
     plane.emplace(p, shooter_normal, shooter_normal.dot(shooter.v[0]));
     for (const Shadow& shadow : shadows) traces.push_back(plane->trace(*shadow.volume->occluder));
   }
-  thread_local std::vector<ConvexPolygon> fragments, next;
-  // The fragments left after each shadow, with their boxes when `Boxed`.
+  thread_local std::vector<ConvexPolygon> fragments, pieces;
+  // The fragments left after each shadow, with their boxes when `Boxed`. A fragment the shadow
+  // misses stays where it is (no copy: there are hundreds of shadows); one it cuts is replaced
+  // by its first piece, and its other pieces go to the end, past the fragments still to cut.
   const auto subtract_shadows = [&]<bool Boxed>() {
     fragments.assign(1, front);
     if constexpr (Boxed) boxes.assign(1, plane->box(front));
     for (size_t k_shadow = 0; k_shadow < shadows.size(); ++k_shadow) {
-      next.clear();
-      if constexpr (Boxed) next_boxes.clear();
-      for (size_t f = 0; f < fragments.size(); ++f) {
-        const ConvexPolygon& q = fragments[f];
+      const size_t count = fragments.size();
+      size_t kept = 0;  // fragments [0, kept) survive; the rest of [0, f) are gone
+      for (size_t f = 0; f < count; ++f) {
+        const auto keep = [&](size_t from) {
+          if (from != kept) {
+            fragments[kept] = fragments[from];
+            if constexpr (Boxed) boxes[kept] = boxes[from];
+          }
+          ++kept;
+        };
         if constexpr (Boxed) {
           if (!boxes[f].meets(traces[k_shadow])) {
-            next.push_back(q);
-            next_boxes.push_back(boxes[f]);
+            keep(f);
             continue;
           }
         }
-        [[maybe_unused]] const size_t before = next.size();
-        if (q.n <= kMaxSubtractVertices) subtract(q, shadows[k_shadow].volume->planes, next);
-        else subtract_large(q, shadows[k_shadow].volume->planes, next);
-        if constexpr (Boxed)
-          for (size_t i = before; i < next.size(); ++i) next_boxes.push_back(plane->box(next[i]));
+        pieces.clear();
+        const ConvexPolygon& q = fragments[f];
+        if (q.n <= kMaxSubtractVertices) subtract(q, shadows[k_shadow].volume->planes, pieces);
+        else subtract_large(q, shadows[k_shadow].volume->planes, pieces);
+        if (pieces.empty()) continue;
+        fragments[kept] = pieces[0];
+        if constexpr (Boxed) boxes[kept] = plane->box(pieces[0]);
+        ++kept;
+        for (size_t i = 1; i < pieces.size(); ++i) {
+          fragments.push_back(pieces[i]);
+          if constexpr (Boxed) boxes.push_back(plane->box(pieces[i]));
+        }
       }
-      fragments.swap(next);
-      if constexpr (Boxed) boxes.swap(next_boxes);
+      // Close the gap between the survivors and the pieces appended after them.
+      if (kept < count) {
+        fragments.erase(fragments.begin() + static_cast<std::ptrdiff_t>(kept),
+                        fragments.begin() + static_cast<std::ptrdiff_t>(count));
+        if constexpr (Boxed)
+          boxes.erase(boxes.begin() + static_cast<std::ptrdiff_t>(kept), boxes.begin() + static_cast<std::ptrdiff_t>(count));
+      }
       if (fragments.empty()) return;
     }
   };
