@@ -184,6 +184,11 @@ inline constexpr double kNielsonResidualRelative = 1e-13;
 /// 1e-6 covers both and is far below any intended offset (a micrometre in a scene a metre
 /// across); a light that little behind a surface is drawn in front of it.
 inline constexpr double kEmitterTieRelative = 1e-6;
+/// The renderer's surface hierarchy (render/surface_bvh.h) widens every surface's box by this
+/// fraction of (1 m + the scene's size and coordinates): far above the round-off of a ray's hit
+/// on an edge (Surface::parameters() accepts one within tol::kOnBorderParameter), so no hit the
+/// brute-force search finds is missed.
+inline constexpr double kRayBoxSlackRelative = 1e-7;
 
 /// A quad corner within this fraction of the quad's longest edge of the next corner repeats it:
 /// the quad is read as the triangle of the other three (scene/scene.h regularise_surfaces()).

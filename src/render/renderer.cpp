@@ -4,10 +4,12 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 
 #include "core/check.h"
 #include "core/parallel.h"
 #include "core/tolerances.h"
+#include "render/surface_bvh.h"
 
 namespace radrecon {
 
@@ -17,12 +19,16 @@ bool emits(const Surface& s, bool back_side) { return (side_emission(s, back_sid
 
 }  // namespace
 
-std::optional<SurfaceHit> intersect_scene(const Scene& scene, const Vec3& o, const Vec3& d) {
+namespace {
+
+/// The nearest hit among `surfaces` (ascending indices), by intersect_scene()'s rules.
+template <class Surfaces>
+std::optional<SurfaceHit> nearest_hit(const Scene& scene, const Surfaces& surfaces, const Vec3& o, const Vec3& d) {
   std::optional<SurfaceHit> best;
   bool best_emits = false;
   double t_best = std::numeric_limits<double>::infinity();
   const double o_norm = o.norm();
-  for (size_t k = 0; k < scene.surfaces.size(); ++k) {
+  for (const size_t k : surfaces) {
     const Surface& s = scene.surfaces[k];
     const Vec3 n = s.normal();
     const double denom = n.dot(d);
@@ -46,6 +52,52 @@ std::optional<SurfaceHit> intersect_scene(const Scene& scene, const Vec3& o, con
     best_emits = emits(s, back_side);
   }
   return best;
+}
+
+/// Surfaces from which a scene is searched through its hierarchy rather than one by one.
+constexpr size_t kBvhLeastSurfaces = 16;
+
+}  // namespace
+
+std::optional<SurfaceHit> intersect_scene(const Scene& scene, const Vec3& o, const Vec3& d) {
+  struct All {
+    size_t n;
+    struct It {
+      size_t k;
+      size_t operator*() const { return k; }
+      It& operator++() { return ++k, *this; }
+      bool operator!=(const It& o) const { return k != o.k; }
+    };
+    It begin() const { return {0}; }
+    It end() const { return {n}; }
+  };
+  return nearest_hit(scene, All{scene.surfaces.size()}, o, d);
+}
+
+std::optional<SurfaceHit> intersect_scene(const Scene& scene, const SurfaceBvh& bvh, const Vec3& o, const Vec3& d) {
+  // The surfaces whose boxes the ray meets before the nearest hit found so far plus four tie
+  // distances: one beyond can neither be the nearest nor tie with it, so the one-by-one search
+  // over these, in surface order, finds what it finds over all of them.
+  thread_local std::vector<size_t> candidates;
+  candidates.clear();
+  const double o_norm = o.norm();
+  double t_hit = std::numeric_limits<double>::infinity(), t_cut = t_hit;
+  size_t seen = 0;  // candidates whose hit has lowered the cut
+  bvh.collect(o, d.cwiseInverse(), [&] {
+    for (; seen < candidates.size(); ++seen) {
+      const Surface& s = scene.surfaces[candidates[seen]];
+      const Vec3 n = s.normal();
+      const double denom = n.dot(d);
+      if (denom == 0) continue;
+      const double t = n.dot(s.corners[0] - o) / denom;
+      if (!(t > 0 && t < t_hit) || !s.parameters(o + t * d)) continue;
+      t_hit = t;
+      t_cut = t + 4 * tol::kEmitterTieRelative * (o_norm + t);
+    }
+    return t_cut;
+  }, candidates);
+  std::sort(candidates.begin(), candidates.end());
+  return nearest_hit(scene, candidates, o, d);
 }
 
 std::pair<Vec3, Vec3> camera_ray(const Camera& c, int width, int height, double x, double y) {
@@ -77,7 +129,11 @@ CameraHits trace_camera(const Scene& scene, const Camera& camera, const RenderOp
   return trace_camera(scene, camera, options, PixelRect{0, 0, options.width, options.height});
 }
 
-CameraHits trace_camera(const Scene& scene, const Camera& camera, const RenderOptions& options, const PixelRect& rect) {
+namespace {
+
+/// trace_camera() with the scene's hierarchy, if it has one made (a scene of many surfaces).
+CameraHits trace_rect(const Scene& scene, const SurfaceBvh* bvh, const Camera& camera, const RenderOptions& options,
+                      const PixelRect& rect) {
   RR_CHECK(options.width > 0 && options.height > 0 && options.samples_per_axis > 0, "render options out of range");
   RR_CHECK(0 <= rect.x_begin && rect.x_begin < rect.x_end && rect.x_end <= options.width, "camera columns out of range");
   RR_CHECK(0 <= rect.y_begin && rect.y_begin < rect.y_end && rect.y_end <= options.height, "camera rows out of range");
@@ -97,9 +153,21 @@ CameraHits trace_camera(const Scene& scene, const Camera& camera, const RenderOp
     const double x = static_cast<double>(rect.x_begin + pixel % rect_w) + (static_cast<double>(sub % S) + 0.5) / S;
     const double y = static_cast<double>(rect.y_begin + pixel / rect_w) + (static_cast<double>(sub / S) + 0.5) / S;
     const auto [o, d] = camera_ray(camera, W, H, x, y);
-    hits[k] = intersect_scene(scene, o, d);
+    hits[k] = bvh != nullptr ? intersect_scene(scene, *bvh, o, d) : intersect_scene(scene, o, d);
   });
   return out;
+}
+
+std::optional<SurfaceBvh> hierarchy_for(const Scene& scene) {
+  if (scene.surfaces.size() < kBvhLeastSurfaces) return std::nullopt;
+  return SurfaceBvh(scene);
+}
+
+}  // namespace
+
+CameraHits trace_camera(const Scene& scene, const Camera& camera, const RenderOptions& options, const PixelRect& rect) {
+  const std::optional<SurfaceBvh> bvh = hierarchy_for(scene);
+  return trace_rect(scene, bvh ? &*bvh : nullptr, camera, options, rect);
 }
 
 Rendering render(const Scene& scene, const Camera& camera, const SideReconstruction& reconstruction,
@@ -109,10 +177,11 @@ Rendering render(const Scene& scene, const Camera& camera, const SideReconstruct
                 std::vector<std::uint8_t>(static_cast<size_t>(options.width) * options.height, 0)};
   const double pixels = static_cast<double>(options.width) * options.height;
   size_t done = 0;
+  const std::optional<SurfaceBvh> bvh = hierarchy_for(scene);  // once for all tiles
   for (int y = 0; y < options.height; y += tile)
     for (int x = 0; x < options.width; x += tile) {
       const PixelRect rect{x, y, std::min(options.width, x + tile), std::min(options.height, y + tile)};
-      shade(scene, trace_camera(scene, camera, options, rect), reconstruction, out);
+      shade(scene, trace_rect(scene, bvh ? &*bvh : nullptr, camera, options, rect), reconstruction, out);
       done += rect.pixels();
       if (progress) progress(static_cast<double>(done) / pixels);
     }

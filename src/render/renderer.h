@@ -31,6 +31,9 @@ struct SurfaceHit {
 /// tol::kEmitterTieRelative (|o| + t)) is seen, not the ceiling. Other ties go to the nearer
 /// hit, then to the surface listed first.
 std::optional<SurfaceHit> intersect_scene(const Scene& scene, const Vec3& o, const Vec3& d);
+class SurfaceBvh;
+/// The same through the scene's surface hierarchy (render/surface_bvh.h): the same hit.
+std::optional<SurfaceHit> intersect_scene(const Scene& scene, const SurfaceBvh& bvh, const Vec3& o, const Vec3& d);
 
 struct RenderOptions {
   int width = 640, height = 480;
