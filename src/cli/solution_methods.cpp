@@ -1,10 +1,18 @@
 #include "cli/solution_methods.h"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "core/error.h"
 
 namespace radrecon::cli {
+
+namespace {
+
+/// Sides whose fallback to piecewise constant is named one by one; the rest are counted.
+constexpr size_t kNamedFallbacks = 3;
+
+}  // namespace
 
 Method method_option(const std::string& name) { return method_by_name(name, "--method"); }
 
@@ -27,9 +35,14 @@ std::unique_ptr<SolutionReconstruction> reconstruct_solution(const Scene& scene,
                              "across them\n", method_name_text.c_str(), side.name.c_str());
         break;
       }
-  for (const Fallback& f : recon->fallbacks())
+  // A model of thousands of triangles may have thousands such sides: the first few by name.
+  const std::vector<Fallback>& fallbacks = recon->fallbacks();
+  for (size_t k = 0; k < std::min(fallbacks.size(), kNamedFallbacks); ++k)
     std::fprintf(stderr, "radrecon: warning: %s: %s cannot reconstruct side %s (%s); drawn piecewise constant\n",
-                 solution_path.c_str(), method_name_text.c_str(), f.side.c_str(), f.reason.c_str());
+                 solution_path.c_str(), method_name_text.c_str(), fallbacks[k].side.c_str(), fallbacks[k].reason.c_str());
+  if (fallbacks.size() > kNamedFallbacks)
+    std::fprintf(stderr, "radrecon: warning: %s: and %zu more sides of the %zu drawn piecewise constant\n",
+                 solution_path.c_str(), fallbacks.size() - kNamedFallbacks, solution.surfaces.size());
   return recon;
 }
 
