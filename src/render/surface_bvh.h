@@ -6,6 +6,7 @@
 #include <array>
 #include <vector>
 
+#include "core/box_hierarchy.h"
 #include "scene/scene.h"
 
 namespace radrecon {
@@ -27,17 +28,11 @@ class SurfaceBvh {
   size_t node_count() const { return nodes_.size(); }
 
  private:
-  struct Node {
-    Vec3 lo, hi;
-    int first = 0;  ///< leaf: first index into order_; inner: index of the first child
-    int count = 0;  ///< leaf: number of surfaces; inner: 0 (children at first, first + 1)
-  };
-  void build(size_t index, int begin, int end, const std::vector<std::array<Vec3, 3>>& boxes);
   /// The entry of the ray into the node's box, or a negative value if it misses it.
-  static double enter(const Node& node, const Vec3& o, const Vec3& inverse, double t_max);
+  static double enter(const BoxNode& node, const Vec3& o, const Vec3& inverse, double t_max);
 
-  std::vector<size_t> order_;  ///< surfaces, leaf by leaf
-  std::vector<Node> nodes_;
+  std::vector<int> order_;       ///< surfaces, leaf by leaf
+  std::vector<BoxNode> nodes_;  ///< core/box_hierarchy.h
 };
 
 template <class TMax>
@@ -47,9 +42,9 @@ void SurfaceBvh::collect(const Vec3& o, const Vec3& inverse, TMax&& t_max, std::
   int top = 0;
   if (enter(nodes_[0], o, inverse, t_max()) >= 0) stack[top++] = 0;
   while (top > 0) {
-    const Node& node = nodes_[static_cast<size_t>(stack[--top])];
+    const BoxNode& node = nodes_[static_cast<size_t>(stack[--top])];
     if (node.count > 0) {
-      for (int k = 0; k < node.count; ++k) out.push_back(order_[static_cast<size_t>(node.first + k)]);
+      for (int k = 0; k < node.count; ++k) out.push_back(static_cast<size_t>(order_[static_cast<size_t>(node.first + k)]));
       continue;
     }
     // The nearer child on top, so that its hits lower t_max before the farther one is entered.

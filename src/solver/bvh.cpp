@@ -119,42 +119,13 @@ bool Shaft::may_meet(const Occluder& o) const {
 }
 
 OccluderBvh::OccluderBvh(const std::vector<Occluder>& occluders) {
-  order_.reserve(occluders.size());
-  for (const Occluder& o : occluders) order_.push_back(&o);
-  if (order_.empty()) return;
-  nodes_.reserve(2 * order_.size() / kLeafSize + 2);
-  nodes_.emplace_back();
-  build_node(0, 0, static_cast<int>(order_.size()));
-}
-
-void OccluderBvh::build_node(size_t index, int begin, int end) {
-  Vec3 lo = order_[begin]->bbox_min, hi = order_[begin]->bbox_max;
-  Vec3 clo = order_[begin]->centroid, chi = clo;
-  for (int k = begin + 1; k < end; ++k) {
-    lo = lo.cwiseMin(order_[k]->bbox_min);
-    hi = hi.cwiseMax(order_[k]->bbox_max);
-    clo = clo.cwiseMin(order_[k]->centroid);
-    chi = chi.cwiseMax(order_[k]->centroid);
-  }
-  nodes_[index].lo = lo;
-  nodes_[index].hi = hi;
-  if (end - begin <= kLeafSize) {
-    nodes_[index].first = begin;
-    nodes_[index].count = end - begin;
-    return;
-  }
-  int axis = 0;
-  (chi - clo).maxCoeff(&axis);
-  const int mid = begin + (end - begin) / 2;
-  std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
-                   [axis](const Occluder* x, const Occluder* y) { return x->centroid[axis] < y->centroid[axis]; });
-  const size_t left = nodes_.size();
-  nodes_.emplace_back();
-  nodes_.emplace_back();
-  nodes_[index].first = static_cast<int>(left);
-  nodes_[index].count = 0;
-  build_node(left, begin, mid);
-  build_node(left + 1, mid, end);
+  std::vector<BoxItem> items;
+  items.reserve(occluders.size());
+  for (const Occluder& o : occluders) items.push_back({o.bbox_min, o.bbox_max, o.centroid});
+  std::vector<int> order;
+  build_box_hierarchy(items, kLeafSize, nodes_, order);
+  order_.reserve(order.size());
+  for (const int k : order) order_.push_back(&occluders[static_cast<size_t>(k)]);
 }
 
 void OccluderBvh::collect(const Shaft& shaft, size_t skip_a, size_t skip_b,
@@ -164,7 +135,7 @@ void OccluderBvh::collect(const Shaft& shaft, size_t skip_a, size_t skip_b,
   int top = 0;
   stack[top++] = 0;
   while (top > 0) {
-    const Node& node = nodes_[static_cast<size_t>(stack[--top])];
+    const BoxNode& node = nodes_[static_cast<size_t>(stack[--top])];
     if (!shaft.may_meet_box(node.lo, node.hi)) continue;
     if (node.count > 0) {
       for (int k = node.first; k < node.first + node.count; ++k) {

@@ -23,6 +23,7 @@
 #include <span>
 #include <vector>
 
+#include "core/box_hierarchy.h"
 #include "solver/visibility.h"
 
 namespace radrecon {
@@ -91,15 +92,8 @@ class OccluderBvh {
   size_t node_count() const { return nodes_.size(); }
 
  private:
-  struct Node {
-    Vec3 lo, hi;
-    int first = 0;   ///< leaf: first index into order_; inner: index of the first child
-    int count = 0;   ///< leaf: number of occluders; inner: 0 (children at first, first + 1)
-  };
-  void build_node(size_t index, int begin, int end);
-
   std::vector<const Occluder*> order_;  ///< the occluders, leaf by leaf
-  std::vector<Node> nodes_;
+  std::vector<BoxNode> nodes_;  ///< core/box_hierarchy.h
 };
 
 }  // namespace radrecon
