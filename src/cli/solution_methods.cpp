@@ -41,8 +41,8 @@ std::unique_ptr<SolutionReconstruction> reconstruct_solution(const Scene& scene,
     std::fprintf(stderr, "radrecon: warning: %s: %s cannot reconstruct side %s (%s); drawn piecewise constant\n",
                  solution_path.c_str(), method_name_text.c_str(), fallbacks[k].side.c_str(), fallbacks[k].reason.c_str());
   if (fallbacks.size() > kNamedFallbacks)
-    std::fprintf(stderr, "radrecon: warning: %s: and %zu more sides of the %zu drawn piecewise constant\n",
-                 solution_path.c_str(), fallbacks.size() - kNamedFallbacks, solution.surfaces.size());
+    std::fprintf(stderr, "radrecon: warning: %s: %zu more sides drawn piecewise constant (%zu of the %zu in all)\n",
+                 solution_path.c_str(), fallbacks.size() - kNamedFallbacks, fallbacks.size(), solution.surfaces.size());
   return recon;
 }
 

@@ -1,5 +1,7 @@
 #include "core/box_hierarchy.h"
 
+#include <algorithm>
+
 #include "core/check.h"
 
 namespace radrecon {

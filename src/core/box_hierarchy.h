@@ -4,7 +4,6 @@
 // axis-aligned boxes, split at the median of their centres along the longest axis of the
 // centres' box, at most a given number of items a leaf.
 
-#include <algorithm>
 #include <span>
 #include <vector>
 

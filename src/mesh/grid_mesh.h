@@ -70,8 +70,8 @@ struct GridMeshOptions {
   int max_patches = 2;
 };
 
-/// The longest edge of the scene's surfaces (their length_u_m() and length_v_m()), metres:
-/// grid:N's elements are 1/N of it.
+/// The largest length_u_m() or length_v_m() of the scene's surfaces (a quad's mean of opposite
+/// edges, a triangle's base or height), metres: grid:N's elements are 1/N of it.
 double longest_edge_m(const Scene& scene);
 
 /// Elements along u and v of one surface under `options` (the rule of GridMeshOptions), given

@@ -17,10 +17,6 @@ namespace {
 
 bool emits(const Surface& s, bool back_side) { return (side_emission(s, back_side) > 0).any(); }
 
-}  // namespace
-
-namespace {
-
 /// The nearest hit among `surfaces` (ascending indices), by intersect_scene()'s rules.
 template <class Surfaces>
 std::optional<SurfaceHit> nearest_hit(const Scene& scene, const Surfaces& surfaces, const Vec3& o, const Vec3& d) {

@@ -20,8 +20,9 @@ class SurfaceBvh {
 
   /// Appends to `out` every surface whose box the ray o + t d meets at some t in [0, t_max()]
   /// (boxes widened by tol::kRayBoxSlackRelative of the scene's size: a hit that
-  /// Surface::parameters() accepts on an edge is never missed), where `t_max` is re-read
-  /// after each leaf, so a caller may lower it as hits are found. `inverse`: 1 / d per axis.
+  /// Surface::parameters() accepts on an edge is never missed), and possibly some beyond it.
+  /// `t_max` is called again before each node is entered, so a caller may lower it as hits are
+  /// found. `inverse`: 1 / d per axis.
   template <class TMax>
   void collect(const Vec3& o, const Vec3& inverse, TMax&& t_max, std::vector<size_t>& out) const;
 
@@ -38,11 +39,19 @@ class SurfaceBvh {
 template <class TMax>
 void SurfaceBvh::collect(const Vec3& o, const Vec3& inverse, TMax&& t_max, std::vector<size_t>& out) const {
   if (nodes_.empty()) return;
-  std::array<int, 64> stack;
+  // Nodes with the ray's entry into their box; depth <= log2(surfaces) + 1 for a median split,
+  // and the stack holds at most one node more than that.
+  struct Entry {
+    int node;
+    double t;
+  };
+  std::array<Entry, 64> stack;
   int top = 0;
-  if (enter(nodes_[0], o, inverse, t_max()) >= 0) stack[top++] = 0;
+  if (const double t = enter(nodes_[0], o, inverse, t_max()); t >= 0) stack[top++] = {0, t};
   while (top > 0) {
-    const BoxNode& node = nodes_[static_cast<size_t>(stack[--top])];
+    const Entry entry = stack[--top];
+    if (entry.t > t_max()) continue;  // hits found since it was pushed lie nearer
+    const BoxNode& node = nodes_[static_cast<size_t>(entry.node)];
     if (node.count > 0) {
       for (int k = 0; k < node.count; ++k) out.push_back(static_cast<size_t>(order_[static_cast<size_t>(node.first + k)]));
       continue;
@@ -52,12 +61,12 @@ void SurfaceBvh::collect(const Vec3& o, const Vec3& inverse, TMax&& t_max, std::
     const double ta = enter(nodes_[static_cast<size_t>(a)], o, inverse, t_max());
     const double tb = enter(nodes_[static_cast<size_t>(b)], o, inverse, t_max());
     if (ta >= 0 && tb >= 0) {
-      stack[top++] = ta <= tb ? b : a;
-      stack[top++] = ta <= tb ? a : b;
+      stack[top++] = ta <= tb ? Entry{b, tb} : Entry{a, ta};
+      stack[top++] = ta <= tb ? Entry{a, ta} : Entry{b, tb};
     } else if (ta >= 0) {
-      stack[top++] = a;
+      stack[top++] = {a, ta};
     } else if (tb >= 0) {
-      stack[top++] = b;
+      stack[top++] = {b, tb};
     }
   }
 }

@@ -285,13 +285,18 @@ bool lies_on(const Surface& other, const Surface& base) {
 namespace {
 
 /// A surface's bounding box, widened by twice its contact tolerance (tol::kContactRelative of its
-/// size) and tol::kPlaneDistance_m: a surface that touches a side (side_contacts()) meets the
-/// side within its tolerance, so their widened boxes meet.
+/// size), twice the planarity tolerance of its size (the plane side_contacts() cuts with,
+/// through corner 0, may leave the corners' box by that much) and tol::kPlaneDistance_m: a
+/// surface that touches a side meets the side within these, so their widened boxes meet.
 std::array<Vec3, 2> contact_box(const Surface& t) {
   Vec3 lo = t.corners[0], hi = t.corners[0];
-  for (const Vec3& c : t.corners) lo = lo.cwiseMin(c), hi = hi.cwiseMax(c);
-  const double margin_m =
-      2 * tol::kContactRelative * std::max(t.length_u_m(), t.length_v_m()) + tol::kPlaneDistance_m;
+  double size_m = 0;  // the largest distance between two corners
+  for (const Vec3& c : t.corners) {
+    lo = lo.cwiseMin(c), hi = hi.cwiseMax(c);
+    for (const Vec3& d : t.corners) size_m = std::max(size_m, (c - d).norm());
+  }
+  const double margin_m = 2 * tol::kContactRelative * std::max(t.length_u_m(), t.length_v_m()) +
+                          2 * tol::kPlanarityRelative * size_m + tol::kPlaneDistance_m;
   return {lo.array() - margin_m, hi.array() + margin_m};
 }
 

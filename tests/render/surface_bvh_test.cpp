@@ -69,5 +69,31 @@ TEST(SurfaceBvh, FindsTheBruteForceHitForRandomRaysAndRaysAtCornersAndTiedLights
   EXPECT_GT(lights, 40u);  // and many end on a light tied with the ceiling or just below it
 }
 
+TEST(SurfaceBvh, FindsTheHitsOfAQuadOffItsPlaneWithinThePlanarityTolerance) {
+  // A 5 m floor quad whose corner 1 is lifted 2e-5 m (corners 5e-6 m off their mean plane, within
+  // tol::kPlanarityRelative of 5 m): the plane a ray hits, through corner 0, passes 1e-5 m below
+  // corner 3, outside the corners' own box. Rays graze in over the edge there.
+  constexpr double kL = 5, kWarp = 2e-5;
+  Scene scene;
+  scene.surfaces.push_back(quad("floor", {0, 0, 0}, {kL, 0, kWarp}, {kL, kL, 0}, {0, kL, 0}, 0.5));
+  for (int k = 0; k < 20; ++k)  // enough surfaces for a hierarchy of several levels
+    scene.surfaces.push_back(quad("post" + std::to_string(k), {0.2 * k, 6, 0}, {0.2 * k + 0.1, 6, 0},
+                                  {0.2 * k + 0.1, 6, 1}, {0.2 * k, 6, 1}, 0.5));
+  const SurfaceBvh bvh(scene);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> along(0.0, 0.5), lift(1e-4, 0.05);
+  size_t on_floor = 0;
+  for (int k = 0; k < 4000; ++k) {
+    // From outside the floor's corner 3 (x < 0, y > L), nearly level, at a point near that corner.
+    const Vec3 target(along(rng), kL - along(rng), -5e-6);
+    const Vec3 o(-1.0, kL + 1.0, lift(rng));
+    const Vec3 d = (target - o).normalized();
+    const auto brute = intersect_scene(scene, o, d);
+    ASSERT_TRUE(same_hit(brute, intersect_scene(scene, bvh, o, d))) << "ray from " << o.transpose();
+    on_floor += brute && brute->surface == 0;
+  }
+  EXPECT_GT(on_floor, 1000u);
+}
+
 }  // namespace surface_bvh_test
 }  // namespace radrecon
