@@ -5,6 +5,7 @@
 #include <limits>
 #include <numbers>
 #include <optional>
+#include <ranges>
 
 #include "core/check.h"
 #include "core/parallel.h"
@@ -17,6 +18,16 @@ namespace {
 
 bool emits(const Surface& s, bool back_side) { return (side_emission(s, back_side) > 0).any(); }
 
+/// Where the ray o + t d meets the plane of `s` (through its corner 0): t, or none when the ray
+/// runs parallel to it; `back_side` when the ray comes from behind.
+std::optional<double> plane_hit(const Surface& s, const Vec3& o, const Vec3& d, bool& back_side) {
+  const Vec3 n = s.normal();
+  const double denom = n.dot(d);
+  if (denom == 0) return std::nullopt;
+  back_side = denom > 0;
+  return n.dot(s.corners[0] - o) / denom;
+}
+
 /// The nearest hit among `surfaces` (ascending indices), by intersect_scene()'s rules.
 template <class Surfaces>
 std::optional<SurfaceHit> nearest_hit(const Scene& scene, const Surfaces& surfaces, const Vec3& o, const Vec3& d) {
@@ -26,12 +37,10 @@ std::optional<SurfaceHit> nearest_hit(const Scene& scene, const Surfaces& surfac
   const double o_norm = o.norm();
   for (const size_t k : surfaces) {
     const Surface& s = scene.surfaces[k];
-    const Vec3 n = s.normal();
-    const double denom = n.dot(d);
-    if (denom == 0) continue;
-    const double t = n.dot(s.corners[0] - o) / denom;
-    if (!(t > 0)) continue;
-    const bool back_side = denom > 0;
+    bool back_side = false;
+    const std::optional<double> hit = plane_hit(s, o, d, back_side);
+    if (!hit || !(*hit > 0)) continue;
+    const double t = *hit;
     // Within the tie distance (relative to the magnitude of the coordinates there, |o| + t, whose
     // round-off it covers) the emitting side wins; otherwise, or between equals, the nearer.
     const bool tie = best && std::abs(t - t_best) <= tol::kEmitterTieRelative * (o_norm + t_best);
@@ -56,18 +65,7 @@ constexpr size_t kBvhLeastSurfaces = 16;
 }  // namespace
 
 std::optional<SurfaceHit> intersect_scene(const Scene& scene, const Vec3& o, const Vec3& d) {
-  struct All {
-    size_t n;
-    struct It {
-      size_t k;
-      size_t operator*() const { return k; }
-      It& operator++() { return ++k, *this; }
-      bool operator!=(const It& o) const { return k != o.k; }
-    };
-    It begin() const { return {0}; }
-    It end() const { return {n}; }
-  };
-  return nearest_hit(scene, All{scene.surfaces.size()}, o, d);
+  return nearest_hit(scene, std::views::iota(size_t{0}, scene.surfaces.size()), o, d);
 }
 
 std::optional<SurfaceHit> intersect_scene(const Scene& scene, const SurfaceBvh& bvh, const Vec3& o, const Vec3& d) {
@@ -82,13 +80,11 @@ std::optional<SurfaceHit> intersect_scene(const Scene& scene, const SurfaceBvh& 
   bvh.collect(o, d.cwiseInverse(), [&] {
     for (; seen < candidates.size(); ++seen) {
       const Surface& s = scene.surfaces[candidates[seen]];
-      const Vec3 n = s.normal();
-      const double denom = n.dot(d);
-      if (denom == 0) continue;
-      const double t = n.dot(s.corners[0] - o) / denom;
-      if (!(t > 0 && t < t_hit) || !s.parameters(o + t * d)) continue;
-      t_hit = t;
-      t_cut = t + 4 * tol::kEmitterTieRelative * (o_norm + t);
+      bool back_side = false;
+      const std::optional<double> t = plane_hit(s, o, d, back_side);
+      if (!t || !(*t > 0 && *t < t_hit) || !s.parameters(o + *t * d)) continue;
+      t_hit = *t;
+      t_cut = *t + 4 * tol::kEmitterTieRelative * (o_norm + *t);
     }
     return t_cut;
   }, candidates);
