@@ -5,7 +5,6 @@
 #include <limits>
 #include <numbers>
 #include <optional>
-#include <ranges>
 
 #include "core/check.h"
 #include "core/parallel.h"
@@ -65,7 +64,20 @@ constexpr size_t kBvhLeastSurfaces = 16;
 }  // namespace
 
 std::optional<SurfaceHit> intersect_scene(const Scene& scene, const Vec3& o, const Vec3& d) {
-  return nearest_hit(scene, std::views::iota(size_t{0}, scene.surfaces.size()), o, d);
+  // Every surface's index, in order (std::views::iota does not build with clang on libstdc++ 12,
+  // the sanitizer build's pairing).
+  struct All {
+    size_t n;
+    struct It {
+      size_t k;
+      size_t operator*() const { return k; }
+      It& operator++() { return ++k, *this; }
+      bool operator!=(const It& o) const { return k != o.k; }
+    };
+    It begin() const { return {0}; }
+    It end() const { return {n}; }
+  };
+  return nearest_hit(scene, All{scene.surfaces.size()}, o, d);
 }
 
 std::optional<SurfaceHit> intersect_scene(const Scene& scene, const SurfaceBvh& bvh, const Vec3& o, const Vec3& d) {
