@@ -85,7 +85,7 @@ void run_cornell(const CornellArgs& args) {
   using clock = std::chrono::steady_clock;
   const auto start = clock::now();
   const auto seconds_since = [](clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); };
-  if (args.scene != "paper" && args.scene != "cornell") refuse_overwriting_inputs(args.out, "--out", {args.scene});
+  refuse_overwriting_inputs(args.out, "--out", scene_input_files(args.scene));
   check_output_folder(args.out, "--out");
   const Scene scene = load_scene(args.scene);
   const Camera* camera = scene.cameras.empty() ? nullptr : &scene.cameras.front();

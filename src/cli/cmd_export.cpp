@@ -60,7 +60,7 @@ void run_export(const ExportArgs& args) {
   if (ext != ".glb") throw UserError("--out", "writes binary glTF: give a .glb file (got '" + args.out + "')");
   if (!args.exr.empty()) file_format(args.exr, {FileFormat::exr}, "--exr");
   std::vector<std::string> inputs = {args.solution};
-  if (args.scene != "paper" && args.scene != "cornell") inputs.push_back(args.scene);
+  for (std::string& file : scene_input_files(args.scene)) inputs.push_back(std::move(file));
   refuse_overwriting_inputs(args.out, "--out", inputs);
   check_output_file(args.out, "--out");
   if (!args.exr.empty()) {

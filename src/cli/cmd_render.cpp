@@ -137,7 +137,7 @@ void run_render(const RenderArgs& args) {
   // (written from the image in batches); EXR its half floats (8) and the library's buffers.
   check_render_size(options, format == FileFormat::png ? 11 : format == FileFormat::pfm ? 0 : 12);
   std::vector<std::string> inputs = {args.solution};
-  if (args.scene != "paper" && args.scene != "cornell") inputs.push_back(args.scene);
+  for (std::string& file : scene_input_files(args.scene)) inputs.push_back(std::move(file));
   refuse_overwriting_inputs(args.out, "--out", inputs);
   check_output_file(args.out, "--out");
   const Scene scene = load_scene(args.scene);

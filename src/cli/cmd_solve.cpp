@@ -35,7 +35,7 @@ void run_solve(const SolveArgs& args, const CLI::App& cmd) {
   if (!std::isfinite(args.far_field_error))
     throw UserError("--far-field-error", "must be 0 or a number in [1e-6, 0.5]");
   if (!leaves && cmd.count("--leaves-on")) throw UserError("--leaves-on", "applies to quadtree:LEAVES meshes only");
-  if (args.scene != "paper" && args.scene != "cornell") refuse_overwriting_inputs(args.out, "--out", {args.scene});
+  refuse_overwriting_inputs(args.out, "--out", scene_input_files(args.scene));
   check_output_file(args.out, "--out");
   const Scene scene = load_scene(args.scene);
   SolveSettings settings;

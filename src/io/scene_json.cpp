@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <optional>
 #include <set>
+#include <sstream>
 
 #include "core/error.h"
 #include "io/json_reader.h"
@@ -157,6 +158,79 @@ Scene load_scene(const std::string& file_or_builtin) {
   if (file_or_builtin == "cornell") return cornell_scene();
   if (is_mesh_file(file_or_builtin)) return load_mesh_scene(file_or_builtin);
   return parse_scene_json(read_text_file(file_or_builtin, "scene file"), file_or_builtin);
+}
+
+namespace {
+
+/// The files a model file names that its reader opens too, resolved beside it: an OBJ's
+/// "mtllib" files, a .gltf's buffers other than data URIs. Unreadable or malformed: none.
+std::vector<std::string> model_companion_files(const std::filesystem::path& model) {
+  std::vector<std::string> out;
+  const std::string ext = lower_extension(model.string());
+  if (ext != ".obj" && ext != ".gltf") return out;
+  std::string text;
+  try {
+    text = read_text_file(model.string(), "model file");
+  } catch (const UserError&) {
+    return out;
+  }
+  const std::filesystem::path dir = model.parent_path();
+  if (ext == ".obj") {
+    std::istringstream lines(text);
+    std::string line;
+    while (std::getline(lines, line)) {
+      std::istringstream words(line);
+      std::string keyword, name, all;
+      if (!(words >> keyword) || keyword != "mtllib") continue;
+      // Each name, and all of them as one (a name with spaces): refusing one too many is harmless.
+      while (words >> name) {
+        out.push_back((dir / name).string());
+        all += (all.empty() ? "" : " ") + name;
+      }
+      if (all.find(' ') != std::string::npos) out.push_back((dir / all).string());
+    }
+    return out;
+  }
+  const nlohmann::json gltf = nlohmann::json::parse(text, nullptr, false);
+  if (!gltf.is_object() || !gltf.contains("buffers") || !gltf["buffers"].is_array()) return out;
+  for (const auto& buffer : gltf["buffers"])
+    if (buffer.is_object() && buffer.contains("uri") && buffer["uri"].is_string()) {
+      const std::string uri = buffer["uri"].get<std::string>();
+      if (!uri.empty() && uri.rfind("data:", 0) != 0) out.push_back((dir / uri).string());
+    }
+  return out;
+}
+
+}  // namespace
+
+std::vector<std::string> scene_input_files(const std::string& file_or_builtin) {
+  if (file_or_builtin == "paper" || file_or_builtin == "cornell") return {};
+  std::vector<std::string> out = {file_or_builtin};
+  std::vector<std::filesystem::path> models;
+  if (is_mesh_file(file_or_builtin)) {
+    models.emplace_back(file_or_builtin);
+  } else {
+    std::string text;
+    try {
+      text = read_text_file(file_or_builtin, "scene file");
+    } catch (const UserError&) {
+      return out;
+    }
+    const nlohmann::json scene = nlohmann::json::parse(text, nullptr, false);
+    if (scene.is_object() && scene.contains("meshes") && scene["meshes"].is_array()) {
+      const std::filesystem::path base = std::filesystem::path(file_or_builtin).parent_path();
+      for (const auto& entry : scene["meshes"])
+        if (entry.is_object() && entry.contains("file") && entry["file"].is_string()) {
+          const std::filesystem::path file(entry["file"].get<std::string>());
+          models.push_back(file.is_absolute() ? file : base / file);
+        }
+    }
+  }
+  for (const std::filesystem::path& model : models) {
+    if (model.string() != file_or_builtin) out.push_back(model.string());
+    for (std::string& companion : model_companion_files(model)) out.push_back(std::move(companion));
+  }
+  return out;
 }
 
 }  // namespace radrecon

@@ -7,6 +7,7 @@
 //    "cameras": [{"name", "eye", "target", "up", "fov_deg"}]}
 
 #include <string>
+#include <vector>
 
 #include "scene/scene.h"
 
@@ -25,5 +26,11 @@ Scene load_mesh_scene(const std::string& path);
 /// Reads and validates a scene: a built-in scene's name ("paper", "cornell") gives it, a model file's
 /// extension load_mesh_scene(), anything else is read as a JSON scene file.
 Scene load_scene(const std::string& file_or_builtin);
+
+/// The files load_scene(file_or_builtin) reads, for commands to refuse overwriting them before
+/// any work (io/paths.h): none for a built-in scene; the file itself; a JSON scene's "meshes"
+/// files; and beside each model file those it names: an OBJ's "mtllib" files, a .gltf's external
+/// buffers. Best effort on files that do not parse (load_scene() then refuses them anyway).
+std::vector<std::string> scene_input_files(const std::string& file_or_builtin);
 
 }  // namespace radrecon

@@ -110,6 +110,35 @@ run solve_over solve --scene "$TMP/scene_in.json" --mesh grid:2 --out "$TMP/./sc
 expect_rc solve_over 2
 expect_stderr_has solve_over "refusing to overwrite"
 cmp -s "$TMP/scene_in.json" "$TMP/scene_keep.json" || fail "solve_over: the scene was changed"
+# Nor a file the scene reads through it: a model's MTL, a glTF's external buffer, the model itself.
+mkdir -p "$TMP/models"
+cat >"$TMP/models/lamp.obj" <<'EOF'
+mtllib lamp.mtl
+v 0 0 1
+v 0 1 1
+v 1 1 1
+v 1 0 1
+usemtl glow
+f 1 2 3 4
+EOF
+printf 'newmtl glow\nKd 0 0 0\nKe 1 1 1\n' >"$TMP/models/lamp.mtl"
+cat >"$TMP/models/floor.gltf" <<'EOF'
+{"asset": {"version": "2.0"}, "buffers": [{"uri": "floor.bin", "byteLength": 48}]}
+EOF
+printf 'not read here' >"$TMP/models/floor.bin"
+cat >"$TMP/models/scene.json" <<'EOF'
+{"meshes": [{"file": "lamp.obj"}, {"file": "floor.gltf"}],
+ "surfaces": [{"name": "floor", "corners": [[0,0,0],[1,0,0],[1,1,0],[0,1,0]], "reflectance": 0.5}]}
+EOF
+cp -r "$TMP/models" "$TMP/models_keep"
+for target in lamp.mtl lamp.obj floor.bin floor.gltf; do
+  run "solve_over_$target" solve --scene "$TMP/models/scene.json" --mesh grid:2 --out "$TMP/models/$target" --quiet
+  expect_rc "solve_over_$target" 2
+  expect_stderr_has "solve_over_$target" "refusing to overwrite"
+done
+run solve_over_mtl solve --scene "$TMP/models/lamp.obj" --mesh grid:2 --out "$TMP/models/lamp.mtl" --quiet
+expect_rc solve_over_mtl 2
+diff -r "$TMP/models" "$TMP/models_keep" >/dev/null || fail "solve_over: a model file was changed"
 echo "a file" >"$TMP/afile"
 start=$(date +%s%N)
 run paper_file paper --out "$TMP/afile" --quiet
