@@ -169,7 +169,7 @@ void add_cornell_command(CLI::App& app) {
       "reconstruction method, one white point for all, to OUT/index.html with the pictures OUT/SCENE_CAMERA_METHOD.png "
       "and the solution OUT/solution.json. The grid methods draw the red wall's triangles piecewise constant. "
       "The scene: docs/cornell.md.");
-  cmd->add_option("--scene", args->scene, "Scene JSON file, or a built-in scene: 'cornell' or 'paper'")->capture_default_str();
+  cmd->add_option("--scene", args->scene, "Scene JSON file, model file (.obj .gltf .glb .ply with an emitting face), or a built-in scene: 'cornell' or 'paper'")->capture_default_str();
   cmd->add_option("--mesh", args->mesh, "grid:N (progressive refinement; see 'solve --help')")->capture_default_str();
   cmd->add_option("--camera", args->camera, "Camera of the scene (default: its first; cornell: published, blocks, corner)");
   cmd->add_option("--width", args->width, "Picture width, pixels")->check(CLI::Range(8, 4096))->capture_default_str();

@@ -180,7 +180,7 @@ void add_render_command(CLI::App& app) {
       "render",
       "Render a solution seen through one of the scene's cameras, every surface reconstructed by one method. "
       "PNG: tone-mapped, display = clamp(B / white, 0, 1) with the sRGB curve; PFM, EXR: linear radiosity, W/m^2.");
-  cmd->add_option("--scene", args->scene, "Scene JSON file, or a built-in scene: 'paper' or 'cornell' (docs/cornell.md)")->capture_default_str();
+  cmd->add_option("--scene", args->scene, "Scene JSON file, model file (.obj .gltf .glb .ply with an emitting face), or a built-in scene: 'paper' or 'cornell' (docs/cornell.md)")->capture_default_str();
   cmd->add_option("--solution", args->solution, "Solution JSON written by 'radrecon solve'")->required();
   cmd->add_option("--method", args->method,
                   "constant, gouraud (cells); bilinear, bicubic, hermite (grid solutions); shepard, multiquadric, "

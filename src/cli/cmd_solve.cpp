@@ -61,7 +61,7 @@ void add_solve_command(CLI::App& app) {
       "radiosity on quadtrees (quadtree:LEAVES, quadtree-eps:E), and write the solution as JSON (per surface "
       "side: elements with their (u,v) rectangle, centre, area and radiosity in W/m^2). Missing output folders "
       "are created.");
-  cmd->add_option("--scene", args->scene, "Scene JSON file, or a built-in scene: 'paper' (the paper experiment) or 'cornell' (the Cornell box, docs/cornell.md)")
+  cmd->add_option("--scene", args->scene, "Scene JSON file, model file (.obj .gltf .glb .ply with an emitting face; docs/formats.md, Meshes), or a built-in scene: 'paper' (the paper experiment) or 'cornell' (the Cornell box, docs/cornell.md)")
       ->capture_default_str();
   cmd->add_option("--mesh", args->mesh,
                   "grid:N: progressive refinement, N elements along the longest surface edge of the scene, the "
