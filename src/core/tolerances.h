@@ -20,6 +20,12 @@ inline constexpr double kDegenerateAreaRelative = 1e-9;
 /// Scenes are metre-scale; 1e-9 m is far below any feature and far above double round-off.
 inline constexpr double kPlaneDistance_m = 1e-9;
 
+/// Smallest extent (the diagonal of the box around every corner) of a scene, metres. The
+/// geometric tolerances of visibility (kPlaneDistance_m, kShaftSlack_m) are absolute, for
+/// metre-scale scenes: a scene a millimetre across keeps them a million times below its size.
+/// (A box scene reads identically down to 1e-7 m and loses its shadows below 3e-8 m.)
+inline constexpr double kMinSceneExtent_m = 1e-3;
+
 /// Two directions whose angle has a sine below this count as parallel (a camera's up vector and
 /// view direction): 1e-6 rad is far below any intended tilt.
 inline constexpr double kParallelSine = 1e-6;
@@ -84,6 +90,12 @@ inline constexpr double kFlatBoxAreaRelative = 1e-6;
 /// both come from the same corners (solution files hold 17 digits), so a larger difference
 /// means another scene.
 inline constexpr double kSolutionLengthRelative = 1e-9;
+
+/// A solution's element lies on its scene surface when its stored centre is within this fraction
+/// of the surface's size plus its distance from the origin of the point the surface puts at the
+/// element's (u, v) centroid: solution files hold centres to 9 digits (5e-9 of a coordinate), so
+/// a larger distance means the surface has moved.
+inline constexpr double kSolutionCentreRelative = 1e-7;
 
 /// A surface touches another's plane (a wall standing on the ground) when its corners lie within
 /// this fraction of its own size of that plane: scenes written by hand or exported in single

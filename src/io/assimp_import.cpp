@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <numbers>
 #include <set>
 #include <sstream>
@@ -21,6 +22,7 @@
 #include "core/tolerances.h"
 #include "io/gltf_extras.h"
 #include "io/mesh_polygons.h"
+#include "io/obj_check.h"
 #include "io/ply_check.h"
 
 namespace radrecon {
@@ -56,7 +58,8 @@ Rgb reflectance_from(const Rgb& c, const std::string& path, const std::string& w
 }
 
 Rgb emission_from(const Rgb& c, const std::string& path, const std::string& what) {
-  if (!c.allFinite() || (c < 0).any()) throw UserError(path, what + " must be finite and >= 0, got " + rgb_text(c));
+  if (!c.allFinite() || (c < 0).any() || (c > tol::kMaxEmission_w_m2).any())
+    throw UserError(path, what + " must be finite, >= 0 and at most " + format_number(tol::kMaxEmission_w_m2) + " W/m^2, got " + rgb_text(c));
   return c;
 }
 
@@ -69,7 +72,7 @@ std::optional<Rgb> colour_key(const aiMaterial* m, const char* key, unsigned typ
 bool near(const Rgb& a, const Rgb& b) { return ((a - b).abs() <= 1e-6 * (1.0 + a.abs().max(b.abs()))).all(); }
 
 std::vector<Material> read_materials(const aiScene& scene, Format format, const std::string& path,
-                                     const std::vector<GltfMaterialFactors>& gltf, const std::set<std::string>& obj_defined,
+                                     const std::vector<GltfMaterialFactors>& gltf, const ObjMaterials& obj,
                                      std::vector<std::string>& warnings) {
   std::vector<Material> out(scene.mNumMaterials);
   for (unsigned i = 0; i < scene.mNumMaterials; ++i) {
@@ -81,9 +84,12 @@ std::vector<Material> read_materials(const aiScene& scene, Format format, const 
     const std::string what = "material '" + name + "'";
     Material& mat = out[i];
     if (format == Format::kObj) {
-      if (!obj_defined.count(name)) continue;  // faces before any usemtl, or of an undefined one: the default
-      if (auto kd = colour_key(m, AI_MATKEY_COLOR_DIFFUSE)) mat.reflectance = reflectance_from(*kd, path, what + " Kd", warnings);
-      if (auto ke = colour_key(m, AI_MATKEY_COLOR_EMISSIVE)) mat.emission_w_m2 = emission_from(*ke, path, what + " Ke");
+      if (!obj.defined.count(name)) continue;  // faces before any usemtl, or of an undefined one: the default
+      std::optional<Rgb> kd = colour_key(m, AI_MATKEY_COLOR_DIFFUSE), ke = colour_key(m, AI_MATKEY_COLOR_EMISSIVE);
+      if (const auto grey = obj.grey_kd.find(name); grey != obj.grey_kd.end()) kd = grey->second;
+      if (const auto grey = obj.grey_ke.find(name); grey != obj.grey_ke.end()) ke = grey->second;
+      if (kd) mat.reflectance = reflectance_from(*kd, path, what + " Kd", warnings);
+      if (ke) mat.emission_w_m2 = emission_from(*ke, path, what + " Ke");
     } else if (format == Format::kGltf) {
       auto base = colour_key(m, AI_MATKEY_BASE_COLOR);
       if (!base) base = colour_key(m, AI_MATKEY_COLOR_DIFFUSE);
@@ -149,98 +155,13 @@ std::string clean_name(const std::string& raw) {
   return out;
 }
 
-/// The materials an OBJ's MTL files (`mtllib`) define (`newmtl`), and a warning for each MTL
-/// file not beside it. assimp reads on without it, giving a material named by `usemtl` but
-/// defined nowhere Kd 0.6: radrecon gives such faces the default instead.
-struct ObjMaterials {
-  std::set<std::string> defined;
-  std::vector<std::string> warnings;
-};
-
-/// The words after `keyword` on each line of the file that starts with it.
-std::vector<std::string> keyword_arguments(const std::filesystem::path& file, const std::string& keyword) {
-  std::vector<std::string> out;
-  std::ifstream in(file, std::ios::binary);
-  std::string line;
-  while (std::getline(in, line)) {
-    const size_t start = line.find_first_not_of(" \t");
-    if (start == std::string::npos || line.compare(start, keyword.size(), keyword) != 0) continue;
-    const size_t after = start + keyword.size();
-    if (after >= line.size() || !std::isspace(static_cast<unsigned char>(line[after]))) continue;
-    std::string rest = line.substr(after);
-    while (!rest.empty() && std::isspace(static_cast<unsigned char>(rest.back()))) rest.pop_back();
-    rest.erase(0, rest.find_first_not_of(" \t"));
-    out.push_back(rest);
-  }
-  return out;
-}
-
-/// Refuses an OBJ face (or line, or point) whose vertex index is 0 or names a vertex the file
-/// does not have (a negative one counting back from the vertices before it), naming the line:
-/// assimp 5.2 refuses it too, without the line, and leaks memory doing so (LeakSanitizer, found
-/// by fuzzing).
-void check_obj_indices(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::string line;
-  long long vertices = 0, line_no = 0;
-  std::vector<std::pair<long long, long long>> positive;  // (index, line) checked at the end
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (line.size() < 2 || !std::isspace(static_cast<unsigned char>(line[1]))) continue;
-    if (line[0] == 'v') {
-      ++vertices;
-      continue;
-    }
-    if (line[0] != 'f' && line[0] != 'l' && line[0] != 'p') continue;
-    std::istringstream words(line.substr(1));
-    std::string word;
-    while (words >> word) {
-      long long index = 0;
-      try {
-        size_t used = 0;
-        index = std::stoll(word, &used);
-        if (used < word.size() && word[used] != '/') continue;
-      } catch (const std::exception&) {
-        continue;  // not a number: assimp's to refuse
-      }
-      const long long absolute = index < 0 ? vertices + 1 + index : index;
-      if (index == 0 || absolute < 1)
-        throw UserError(path + ":" + std::to_string(line_no), "vertex index " + std::to_string(index) + " out of range (" +
-                                                                    std::to_string(vertices) + " vertices before it)");
-      if (index > 0) positive.push_back({index, line_no});
-    }
-  }
-  for (const auto& [index, at] : positive)
-    if (index > vertices)
-      throw UserError(path + ":" + std::to_string(at),
-                      "vertex index " + std::to_string(index) + " out of range (" + std::to_string(vertices) + " vertices)");
-}
-
-ObjMaterials obj_materials(const std::string& path) {
-  ObjMaterials out;
-  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
-  for (const std::string& files : keyword_arguments(path, "mtllib")) {
-    std::istringstream words(files);
-    std::string file;
-    while (words >> file) {
-      std::error_code ec;
-      if (!std::filesystem::is_regular_file(folder / file, ec)) {
-        out.warnings.push_back(path + ": mtllib '" + file + "' not found beside it: faces of its materials are 0.5 grey, without emission");
-        continue;
-      }
-      for (const std::string& name : keyword_arguments(folder / file, "newmtl")) out.defined.insert(name);
-    }
-  }
-  return out;
-}
-
 class Builder {
  public:
   Builder(const aiScene& scene, Format format, std::string path, const std::vector<GltfMaterialFactors>& gltf,
-          const std::set<std::string>& obj_defined, const MeshPlacement& placement, MeshImport& out)
+          const ObjMaterials& obj, const MeshPlacement& placement, MeshImport& out)
       : scene_(scene), format_(format), path_(std::move(path)), placement_(placement), out_(out) {
     stem_ = std::filesystem::path(path_).stem().string();
-    materials_ = read_materials(scene, format, path_, gltf, obj_defined, out.warnings);
+    materials_ = read_materials(scene, format, path_, gltf, obj, out.warnings);
     const double a = placement.rotate_x_deg * std::numbers::pi / 180.0;
     Eigen::Matrix3d rx;
     rx << 1, 0, 0, 0, std::cos(a), -std::sin(a), 0, std::sin(a), std::cos(a);
@@ -259,11 +180,15 @@ class Builder {
     for (unsigned c = 0; c < n->mNumChildren; ++c) node(n->mChildren[c], m, depth + 1);
   }
 
-  /// One warning for the faces whose mean vertex colour was clamped (a white PLY has them all).
+  /// One warning for the faces whose mean vertex colour was clamped (a white PLY has them all),
+  /// and one for the polygons of 5 or more corners off their plane.
   void finish() {
     if (colours_clamped_ > 0)
       out_.warnings.push_back(path_ + ": the mean vertex colour of " + std::to_string(colours_clamped_) +
                               " face(s) clamped into [0, 0.999] (a reflectance must lie in [0, 1))");
+    if (polygons_warped_ > 0)
+      out_.warnings.push_back(path_ + ": " + std::to_string(polygons_warped_) + " polygon(s) of 5 or more corners not planar (up to " +
+                              format_number(most_warped_) + " of their longest edge off their plane): cut into triangles through their corners");
   }
 
  private:
@@ -314,6 +239,11 @@ class Builder {
         }
       }
       if (mirrored) std::reverse(corners.begin(), corners.end());
+      drop_repeated_corners(corners);
+      if (corners.size() < 3) {
+        ++out_.degenerate_skipped;
+        continue;
+      }
       Surface s;
       s.reflectance = material.reflectance;
       if (vertex_colours) {
@@ -338,6 +268,11 @@ class Builder {
         continue;
       }
       ++out_.polygons_triangulated;
+      const double off_plane = polygon_off_plane(corners);
+      if (off_plane > tol::kPlanarityRelative) {
+        ++polygons_warped_;
+        most_warped_ = std::max(most_warped_, off_plane);
+      }
       for (size_t t = 0; t < triangles.size(); ++t) {
         const std::array<Vec3, 3> tri = {corners[triangles[t][0]], corners[triangles[t][1]], corners[triangles[t][2]]};
         add(s, name + ".t" + std::to_string(t), tri);
@@ -369,6 +304,8 @@ class Builder {
   Eigen::Matrix3d placement_linear_;
   std::set<std::string> bases_;  ///< the mesh names given so far
   size_t colours_clamped_ = 0;
+  size_t polygons_warped_ = 0;  ///< polygons of 5+ corners off their plane
+  double most_warped_ = 0;      ///< the largest distance off its plane, in units of its longest edge
 };
 
 }  // namespace
@@ -393,7 +330,7 @@ MeshImport import_mesh_assimp(const std::string& path, const MeshPlacement& plac
   MeshImport out;
   ObjMaterials obj;
   if (*format == Format::kObj) {
-    check_obj_indices(path);
+    check_obj_lines(path);
     obj = obj_materials(path);
     out.warnings = obj.warnings;
   }
@@ -422,7 +359,7 @@ MeshImport import_mesh_assimp(const std::string& path, const MeshPlacement& plac
   if (*format == Format::kGltf && read < gltf.faces)
     throw UserError(path, "vertex indices out of range: its primitives declare " + std::to_string(gltf.faces) + " faces, " +
                               std::to_string(gltf.faces - read) + " of them with an index past their vertices");
-  Builder builder(*scene, *format, path, gltf.materials, obj.defined, placement, out);
+  Builder builder(*scene, *format, path, gltf.materials, obj, placement, out);
   builder.node(scene->mRootNode, aiMatrix4x4(), 0);
   builder.finish();
   if (out.degenerate_skipped > 0)

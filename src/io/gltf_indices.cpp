@@ -156,6 +156,15 @@ void check_gltf_indices(const json& doc, const std::string& bin, const std::stri
       if (!primitive.is_object() || !primitive.contains("attributes") || !primitive["attributes"].is_object()) continue;
       const json* positions = element(doc, "accessors", count_of(primitive["attributes"], "POSITION"));
       const json* indices = element(doc, "accessors", count_of(primitive, "indices"));
+      // Triangles (mode 4, the default) take their corners three at a time: the glTF 2.0 spec
+      // requires a count divisible by 3, and assimp 5.2 drops the rest without a word.
+      const bool triangles = !primitive.contains("mode") || (primitive["mode"].is_number_unsigned() && primitive["mode"] == 4);
+      const json* corners = primitive.contains("indices") ? indices : positions;
+      if (triangles && corners != nullptr && corners->is_object())
+        if (const std::optional<size_t> count = count_of(*corners, "count"); count && *count % 3 != 0)
+          throw UserError(path, "meshes[" + std::to_string(m) + "].primitives[" + std::to_string(p) + "]: " + std::to_string(*count) +
+                                    (indices != nullptr ? " indices" : " vertices without indices") +
+                                    " for triangles (mode 4), not a multiple of 3");
       if (positions == nullptr || indices == nullptr || !indices->is_object() || indices->contains("sparse")) continue;
       const std::optional<size_t> vertices = count_of(*positions, "count"), count = count_of(*indices, "count");
       // A line loop of one index: assimp 5.2 reads a second one past its end (an assertion ends

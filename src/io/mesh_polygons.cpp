@@ -28,6 +28,31 @@ bool in_triangle(const Vec2& p, const Vec2& a, const Vec2& b, const Vec2& c) {
 
 }  // namespace
 
+void drop_repeated_corners(std::vector<Vec3>& corners) {
+  double longest = 0;
+  for (size_t i = 0; i < corners.size(); ++i) longest = std::max(longest, (corners[(i + 1) % corners.size()] - corners[i]).norm());
+  const double same = tol::kRepeatedCornerRelative * longest;
+  std::vector<Vec3> kept;
+  for (const Vec3& c : corners)
+    if (kept.empty() || (c - kept.back()).norm() > same) kept.push_back(c);
+  while (kept.size() > 1 && (kept.back() - kept.front()).norm() <= same) kept.pop_back();
+  corners = std::move(kept);
+}
+
+double polygon_off_plane(std::span<const Vec3> c) {
+  Vec3 n = newell_normal(c), mean = Vec3::Zero();
+  double longest = 0;
+  for (size_t i = 0; i < c.size(); ++i) {
+    mean += c[i] / static_cast<double>(c.size());
+    longest = std::max(longest, (c[(i + 1) % c.size()] - c[i]).norm());
+  }
+  if (n.norm() == 0 || longest == 0) return 0;
+  n.normalize();
+  double off = 0;
+  for (const Vec3& p : c) off = std::max(off, std::abs((p - mean).dot(n)));
+  return off / longest;
+}
+
 std::vector<std::array<int, 3>> triangulate_polygon(std::span<const Vec3> corners) {
   const int n = static_cast<int>(corners.size());
   std::vector<std::array<int, 3>> out;

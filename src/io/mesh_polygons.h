@@ -11,6 +11,15 @@
 
 namespace radrecon {
 
+/// Drops each corner that repeats the one before it, cyclically (within
+/// tol::kRepeatedCornerRelative of the longest edge, as regularise_surfaces() reads a hand-written
+/// quad): `f 1 2 3 1` is a triangle, and a pentagon closed on its first corner a quad.
+void drop_repeated_corners(std::vector<Vec3>& corners);
+
+/// The largest distance of a polygon's corner from the plane of its Newell normal through the
+/// corners' mean, in units of its longest edge (0 for a planar polygon, and for one of no area).
+double polygon_off_plane(std::span<const Vec3> corners);
+
 /// Triangles (index triples into `corners`, counter-clockwise like the polygon) covering a simple
 /// planar polygon of 3 or more corners, by ear clipping in the plane of its Newell normal; convex
 /// or not. Empty if the polygon has no area or no ear can be cut (self-intersecting).

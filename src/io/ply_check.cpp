@@ -216,6 +216,12 @@ CheckedPly check_ply(const std::string& path) {
   }
   out.bytes += binary ? "end_header\r\n" : "end_header\n";
 
+  // What the header declares, for a message: "8 vertex, 6 face".
+  const auto declared = [&]() {
+    std::string text;
+    for (const Element& e : elements) text += (text.empty() ? "" : ", ") + std::to_string(e.count) + " " + e.name;
+    return text;
+  };
   const auto truncated = [&](const Element& e, size_t record) {
     return bad("truncated: the data ends " + (binary ? std::string() : "at line " + std::to_string(line_no + 1) + " ") + "in " +
                e.name + " " + std::to_string(record) + " of the " + std::to_string(e.count) + " its header declares");
@@ -276,6 +282,13 @@ CheckedPly check_ply(const std::string& path) {
           out.bytes.back() = '\n';  // every record has a value: an element of no properties has none
         }
       }
+    // Records past those the header declares: a header out of step with its data.
+    while (pos < bytes.size()) {
+      bool last = false;
+      const std::string_view line = next_line(&last);
+      if (line.find_first_not_of(" \t") != std::string_view::npos)
+        throw bad("line " + std::to_string(line_no) + ": data after the last record its header declares (" + declared() + ")");
+    }
     return out;
   }
   const bool big = format == "binary_big_endian";
@@ -304,6 +317,10 @@ CheckedPly check_ply(const std::string& path) {
       }
       if (e.kept()) out.bytes.append(bytes, record_start, pos - record_start);
     }
+  // Bytes past the records the header declares, other than line ends and blanks: a header out of
+  // step with its data.
+  if (bytes.find_first_not_of(" \t\r\n", pos) != std::string::npos)
+    throw bad(std::to_string(bytes.size() - pos) + " bytes after the last record its header declares (" + declared() + ")");
   return out;
 }
 

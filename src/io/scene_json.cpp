@@ -71,8 +71,14 @@ MeshImport read_mesh_entry(const JsonReader& r, const json& j, const std::string
   }
   if (j.contains("translate")) placement.translate_m = r.vec3(j["translate"], path + ".translate");
   if (j.contains("rotate_x_deg")) placement.rotate_x_deg = r.number(j["rotate_x_deg"], path + ".rotate_x_deg");
-  if (j.contains("reflectance")) placement.reflectance = r.colour(j["reflectance"], path + ".reflectance");
-  if (j.contains("emission")) placement.emission_w_m2 = r.colour(j["emission"], path + ".emission");
+  if (j.contains("reflectance")) {
+    placement.reflectance = r.colour(j["reflectance"], path + ".reflectance");
+    if (const std::string problem = reflectance_problem(*placement.reflectance); !problem.empty()) r.fail(path + ".reflectance", problem);
+  }
+  if (j.contains("emission")) {
+    placement.emission_w_m2 = r.colour(j["emission"], path + ".emission");
+    if (const std::string problem = emission_problem(*placement.emission_w_m2); !problem.empty()) r.fail(path + ".emission", problem);
+  }
   if (j.contains("two_sided")) placement.two_sided = r.boolean(j["two_sided"], path + ".two_sided");
   if (j.contains("merge_triangles")) placement.merge_triangles = r.boolean(j["merge_triangles"], path + ".merge_triangles");
   if (j.contains("mesh")) placement.max_divisions = read_mesh_settings(r, j["mesh"], path + ".mesh");
@@ -142,6 +148,7 @@ Scene load_mesh_scene(const std::string& path) {
   scene.surfaces = std::move(model.surfaces);
   bool emits = false;
   for (const Surface& s : scene.surfaces) emits = emits || (s.emission_w_m2 > 0).any();
+  if (!emits) print_warnings(model.warnings, 20);  // they may say why: an MTL file not found
   if (!emits)
     throw UserError(path, "the model has no emitting face (no OBJ Ke, no glTF emissiveFactor): write a scene JSON "
                           "with \"meshes\": [{\"file\": \"" + std::filesystem::path(path).filename().string() +

@@ -112,6 +112,23 @@ InterpolantResult reconstruct_unmasked(const SurfaceSolution& s, Method method, 
   return make_scattered_interpolant(method, outside_regions(element_centres(s), s.excluded), params);
 }
 
+/// Refuses a solution side whose elements' centres are not where the scene's surface puts their
+/// (u, v) centroids: a surface moved (or turned) since the solve, keeping its edge lengths.
+void check_in_place(const SurfaceSolution& side, const Surface& surface, const std::string& source) {
+  double size_m = 0;
+  for (int i = 0; i < surface.corner_count; ++i) size_m = std::max(size_m, surface.corners[i].cwiseAbs().maxCoeff());
+  size_m += std::max(surface.length_u_m(), surface.length_v_m());
+  for (const SolutionElement& e : side.elements) {
+    const Vec2 uv = e.centroid();
+    const Vec3 want = surface.point(uv.x(), uv.y());
+    if ((e.center - want).norm() > tol::kSolutionCentreRelative * size_m)
+      throw UserError(source, "surface '" + side.name + "' has an element centred at (" + format_number(e.center.x()) + ", " +
+                                  format_number(e.center.y()) + ", " + format_number(e.center.z()) + ") in the solution but at (" +
+                                  format_number(want.x()) + ", " + format_number(want.y()) + ", " + format_number(want.z()) +
+                                  ") in the scene: the surface has moved since the solve (solve again)");
+  }
+}
+
 }  // namespace
 
 InterpolantResult reconstruct_side(const SurfaceSolution& s, Method method, const MethodParams& params,
@@ -142,6 +159,7 @@ SolutionReconstruction::SolutionReconstruction(const Scene& scene, const Solutio
       throw UserError(source, "surface '" + side.name + "' is a " + (side.triangle ? "triangle" : "quad") +
                                   " in the solution but a " + (surface.is_triangle() ? "triangle" : "quad") +
                                   " in the scene: the solution belongs to another scene");
+    check_in_place(side, surface, source);
     SurfaceSolution s = side;
     s.length_u_m = surface.length_u_m();
     s.length_v_m = surface.length_v_m();

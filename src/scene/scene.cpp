@@ -7,6 +7,7 @@
 #include <set>
 
 #include "core/error.h"
+#include "core/parse.h"
 #include "core/tolerances.h"
 
 namespace radrecon {
@@ -118,7 +119,7 @@ void validate_surface(const Surface& s, const std::string& where) {
   for (int i = 0; i < n_corners; ++i)
     if (!finite(s.corners[i]) || s.corners[i].cwiseAbs().maxCoeff() > tol::kMaxCoordinate_m)
       throw UserError(where + ".corners[" + std::to_string(i) + "]",
-                      "must be finite numbers of magnitude at most " + std::to_string(tol::kMaxCoordinate_m) + " m");
+                      "must be finite numbers of magnitude at most " + format_number(tol::kMaxCoordinate_m) + " m");
   double longest_sq = 0;
   for (int i = 0; i < n_corners; ++i)
     longest_sq = std::max(longest_sq, (s.corners[(i + 1) % n_corners] - s.corners[i]).squaredNorm());
@@ -133,7 +134,7 @@ void validate_surface(const Surface& s, const std::string& where) {
     if (off_plane > tol::kPlanarityRelative * longest)
       throw UserError(where + ".corners",
                       "quad is not planar (corner " + std::to_string(i) + " is " +
-                          std::to_string(off_plane) + " m off the plane)");
+                          format_number(off_plane) + " m off the plane)");
   }
   for (int i = 0; i < n_corners; ++i) {
     Vec3 e0 = s.corners[(i + 1) % n_corners] - s.corners[i];
@@ -143,14 +144,8 @@ void validate_surface(const Surface& s, const std::string& where) {
                       kind + " is not convex or its corners are not in order (at corner " +
                           std::to_string((i + 1) % n_corners) + ")");
   }
-  for (int c = 0; c < 3; ++c) {
-    double r = s.reflectance[c];
-    if (!(r >= 0.0 && r < 1.0))
-      throw UserError(where + ".reflectance", "must be in [0,1), got " + std::to_string(r));
-    double e = s.emission_w_m2[c];
-    if (!(e >= 0.0 && e <= tol::kMaxEmission_w_m2))
-      throw UserError(where + ".emission", "must be in [0, 1e12] W/m^2, got " + std::to_string(e));
-  }
+  if (const std::string problem = reflectance_problem(s.reflectance); !problem.empty()) throw UserError(where + ".reflectance", problem);
+  if (const std::string problem = emission_problem(s.emission_w_m2); !problem.empty()) throw UserError(where + ".emission", problem);
   if (s.max_divisions && *s.max_divisions < 1)
     throw UserError(where + ".mesh.max_divisions", "must be at least 1");
 }
@@ -169,6 +164,19 @@ void validate_camera(const Camera& c, const std::string& where) {
 }
 
 }  // namespace
+
+std::string reflectance_problem(const Rgb& reflectance) {
+  for (int c = 0; c < 3; ++c)
+    if (!(reflectance[c] >= 0.0 && reflectance[c] < 1.0)) return "must be in [0,1), got " + format_number(reflectance[c]);
+  return {};
+}
+
+std::string emission_problem(const Rgb& emission_w_m2) {
+  for (int c = 0; c < 3; ++c)
+    if (!(emission_w_m2[c] >= 0.0 && emission_w_m2[c] <= tol::kMaxEmission_w_m2))
+      return "must be in [0, " + format_number(tol::kMaxEmission_w_m2) + "] W/m^2, got " + format_number(emission_w_m2[c]);
+  return {};
+}
 
 void validate_scene(const Scene& scene, const std::string& source) {
   if (scene.surfaces.empty()) throw UserError(source + ": surfaces", "the scene has no surface");
@@ -194,6 +202,16 @@ void validate_scene(const Scene& scene, const std::string& source) {
   for (const Surface& s : scene.surfaces)
     emits = emits || (s.area_m2() * s.emission_w_m2 >= std::numeric_limits<double>::min()).any();
   if (!emits) throw UserError(source + ": surfaces", "no surface emits light (every emitted power is 0 or underflows)");
+  Vec3 lo = scene.surfaces[0].corners[0], hi = lo;
+  for (const Surface& s : scene.surfaces)
+    for (int i = 0; i < s.corner_count; ++i) {
+      lo = lo.cwiseMin(s.corners[i]);
+      hi = hi.cwiseMax(s.corners[i]);
+    }
+  if (const double extent = (hi - lo).norm(); extent < tol::kMinSceneExtent_m)
+    throw UserError(source + ": surfaces", "the scene is " + format_number(extent) + " m across, less than the " +
+                                               format_number(tol::kMinSceneExtent_m) +
+                                               " m its visibility tolerances need (metres are the unit: scale the model up)");
 }
 
 namespace {

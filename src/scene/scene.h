@@ -93,9 +93,17 @@ struct Scene {
 };
 
 /// Checks the geometric and radiometric invariants (planar, convex, non-degenerate polygons;
-/// reflectance in [0,1); finite non-negative emission; unique names; sane cameras).
-/// Throws UserError naming `source` and the offending field.
+/// reflectance in [0,1); finite non-negative emission; unique names; sane cameras; a scene at
+/// least tol::kMinSceneExtent_m across). Throws UserError naming `source` and the offending field.
 void validate_scene(const Scene& scene, const std::string& source);
+
+/// Why `reflectance` cannot be a surface's (each channel in [0, 1)), e.g. "must be in [0,1), got
+/// 1.5"; empty if it can.
+std::string reflectance_problem(const Rgb& reflectance);
+
+/// Why `emission_w_m2` cannot be a surface's (each channel in [0, tol::kMaxEmission_w_m2]); empty
+/// if it can.
+std::string emission_problem(const Rgb& emission_w_m2);
 
 /// The built-in scene of the paper experiment (design brief): a 4 m x 4 m ground, a 1 m x 1 m
 /// light of 40 W/m^2 at 2.5 m, and two perpendicular two-sided walls meeting at (2.6, 2.6).

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # `--scene model.obj` and "meshes" in a scene JSON, end to end: a model without an emitter is
-# refused (exit 2, saying so and what to write instead); a closed box of quads with a Ke lamp
+# refused (exit 2, saying so and what to write instead, after the import's warnings); a closed box of quads with a Ke lamp
 # solves, to the same radiosities as the same box typed into a scene JSON by hand; a malformed
-# model is refused naming the file, with no output left.
+# model is refused naming the file, with no output left; a solution whose surface has moved since
+# is refused by render and export.
 # Usage: mesh_import_test.sh /path/to/radrecon
 set -u
 
@@ -37,6 +38,13 @@ expect_stderr_has dark "dark.obj"
 expect_stderr_has dark "no emitting face"
 expect_stderr_has dark '"meshes"'
 expect_no_output dark "$TMP/dark_out.json"
+
+# The import's warnings come first: they may say why there is no emitter (its MTL file missing).
+{ printf 'mtllib absent.mtl\n'; box_geometry; printf 'o lamp\nusemtl lamp\nf 9 12 11 10\n'; } >"$TMP/nomtl.obj"
+run nomtl solve --scene "$TMP/nomtl.obj" --mesh grid:2 --out "$TMP/nomtl_out.json" --quiet
+expect_rc nomtl 2
+expect_stderr_has nomtl "mtllib 'absent.mtl' not found"
+expect_stderr_has nomtl "no emitting face"
 
 # --- with its lamp: solved, as the hand-typed box is ---------------------------------------
 # Both with a far-field bound far below the default: the far field's decisions (a block shot
@@ -92,6 +100,20 @@ expect_rc lit 0
 run lit_render render --scene "$TMP/lit.json" --solution "$TMP/lit_out.json" --method constant --camera default \
   --size 16x12 --out "$TMP/lit.png" --quiet
 expect_rc lit_render 0
+# The light moved 0.1 m since the solve, its size kept: its solution is no longer its own.
+sed 's/\[0.8,0.8,1.98\],\[0.8,1.2,1.98\],\[1.2,1.2,1.98\],\[1.2,0.8,1.98\]/[0.9,0.8,1.98],[0.9,1.2,1.98],[1.3,1.2,1.98],[1.3,0.8,1.98]/' \
+  "$TMP/lit.json" >"$TMP/moved.json"
+grep -q '0.9,0.8,1.98' "$TMP/moved.json" || fail "moved: the light was not moved"
+run moved_render render --scene "$TMP/moved.json" --solution "$TMP/lit_out.json" --method constant --camera default \
+  --size 16x12 --out "$TMP/moved.png" --quiet
+expect_rc moved_render 2
+expect_stderr_has moved_render "surface 'light' has an element centred at"
+expect_stderr_has moved_render "has moved since the solve"
+expect_no_output moved_render "$TMP/moved.png"
+run moved_export export --scene "$TMP/moved.json" --solution "$TMP/lit_out.json" --out "$TMP/moved.glb" --quiet
+expect_rc moved_export 2
+expect_stderr_has moved_export "has moved since the solve"
+expect_no_output moved_export "$TMP/moved.glb"
 
 # --- a malformed model: refused, naming it ----------------------------------------------------
 printf 'v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 9\n' >"$TMP/broken.obj"

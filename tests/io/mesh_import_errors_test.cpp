@@ -6,6 +6,7 @@
 #include <initializer_list>
 #include <string>
 
+#include "core/limits.h"
 #include "io/mesh_import.h"
 #include "io/scene_json.h"
 #include "support/model_files.h"
@@ -63,6 +64,13 @@ TEST(MeshImportErrors, ObjIndicesOutOfRangeAndNonFiniteCoordinates) {
   EXPECT_TRUE(Refused(dir, "nan.obj", "v 0 0 0\nv nan 0 0\nv 1 1 0\nf 1 2 3\n", {"not finite"}));
   EXPECT_TRUE(Refused(dir, "inf.obj", "v 0 0 0\nv 1 0 0\nv 1 inf 0\nf 1 2 3\n", {"not finite"}));
   EXPECT_TRUE(Refused(dir, "junk.obj", "hello\n", {"cannot be read"}));
+  // assimp 5.2 reads a word it cannot parse as the end of the vertex, which a face then misses.
+  EXPECT_TRUE(Refused(dir, "word.obj", "v 0 0 0\nv 2 abc 0\nv 1 1 0\nf 1 2 3\n", {"word.obj:2", "'abc' is not a number"}));
+  EXPECT_TRUE(Refused(dir, "short.obj", "v 0 0 0\nv 2 0\nv 1 1 0\nf 1 2 3\n", {"short.obj:2", "needs 3 coordinates"}));
+  EXPECT_TRUE(Refused(dir, "big.obj", "v 0 0 0\nv 1e999 0 0\nv 1 1 0\nf 1 2 3\n", {"big.obj:2", "out of a double's range"}));
+  // A coordinate too small for a double is 0, as any reader takes it.
+  write_file(dir / "tiny.obj", "v 0 0 1e-999\nv 1 0 0\nv 1 1 0\nf 1 2 3\n");
+  EXPECT_EQ(import_mesh((dir / "tiny.obj").string()).surfaces.size(), 1u);
   EXPECT_TRUE(Refused(dir, "nofaces.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 2 2 2\n", {}));
 }
 
@@ -72,6 +80,20 @@ TEST(MeshImportErrors, ObjNegativeEmissionOrNonFiniteColourIsRefused) {
   EXPECT_TRUE(Refused(dir, "neg.obj", std::string("mtllib neg.mtl\n") + kTriangle + "usemtl m\nf 1 2 3\n", {"'m' Ke", ">= 0"}));
   write_file(dir / "nan.mtl", "newmtl m\nKd nan 0.5 0.5\n");
   EXPECT_TRUE(Refused(dir, "nankd.obj", std::string("mtllib nan.mtl\n") + kTriangle + "usemtl m\nf 1 2 3\n", {"'m' Kd", "not finite"}));
+  write_file(dir / "hot.mtl", "newmtl m\nKe 1e300\n");  // one value: grey, and beyond 1e12 W/m^2
+  EXPECT_TRUE(Refused(dir, "hot.obj", std::string("mtllib hot.mtl\n") + kTriangle + "usemtl m\nf 1 2 3\n", {"'m' Ke", "at most 1e+12"}));
+}
+
+TEST(MeshImportErrors, MtlFileOverTheInputSizeLimit) {
+  TempDir dir("mesh_bad");
+  write_file(dir / "big.mtl", "newmtl m\nKd 0.5 0.5 0.5\n" + std::string(4096, '#') + "\n");
+  write_file(dir / "small.obj", std::string("mtllib big.mtl\n") + kTriangle + "usemtl m\nf 1 2 3\n");
+  const long long saved = limit_value(Limit::file_bytes);
+  set_limit(Limit::file_bytes, 1000);  // the OBJ is within it, its MTL is not
+  const std::string message = testing_support::user_error_message([&] { import_mesh((dir / "small.obj").string()); });
+  set_limit(Limit::file_bytes, saved);
+  EXPECT_NE(message.find("big.mtl"), std::string::npos) << message;
+  EXPECT_NE(message.find("--max-file-bytes"), std::string::npos) << message;
 }
 
 TEST(MeshImportErrors, PlacementBeyondTheSceneOrNotFinite) {
@@ -144,6 +166,19 @@ TEST(MeshImportErrors, GltfMissingBufferBadAccessorSchemaAndTruncation) {
   negative["materials"][1]["extensions"]["KHR_materials_emissive_strength"]["emissiveStrength"] = -2;
   EXPECT_TRUE(Refused(dir, "strength.gltf", negative.dump(), {"materials[1]", "emissiveStrength", ">= 0"}));
 
+  nlohmann::json huge = nlohmann::json::parse(good);  // the message once printed 309 digits
+  huge["materials"][1]["extensions"]["KHR_materials_emissive_strength"]["emissiveStrength"] = 1e308;
+  EXPECT_TRUE(Refused(dir, "huge.gltf", huge.dump(), {"emissiveFactor x emissiveStrength", "at most 1e+12", "e+308"}));
+
+  // Triangles take their corners three at a time (glTF 2.0, 3.7.2.1); assimp 5.2 dropped the rest.
+  nlohmann::json unindexed = g;
+  unindexed["meshes"][0]["primitives"][0].erase("indices");  // 4 vertices
+  EXPECT_TRUE(Refused(dir, "unindexed.gltf", testing_support::gltf_text(unindexed, buffer),
+                      {"meshes[0].primitives[0]", "4 vertices without indices", "not a multiple of 3"}));
+  nlohmann::json five = g;
+  five["accessors"][1]["count"] = 5;
+  EXPECT_TRUE(Refused(dir, "five.gltf", testing_support::gltf_text(five, buffer), {"5 indices", "not a multiple of 3"}));
+
   nlohmann::json nan_buffer = nlohmann::json::parse(good);
   std::string nan_bytes = buffer;
   const float nan = std::numeric_limits<float>::quiet_NaN();
@@ -166,6 +201,25 @@ TEST(MeshImportErrors, PlyTruncatedOrWithIndicesOutOfRange) {
   binary += char(3);
   for (int32_t i : {0, 1}) testing_support::append_le(binary, i);  // the third index is missing
   EXPECT_TRUE(Refused(dir, "binary.ply", binary, {"truncated", "face 0"}));
+}
+
+TEST(MeshImportErrors, PlyRecordsPastThoseItsHeaderDeclares) {
+  // assimp 5.2 reads the declared records and drops the rest without a word.
+  TempDir dir("mesh_bad");
+  const std::string ply = testing_support::coloured_square_ply();
+  EXPECT_TRUE(Refused(dir, "extra.ply", ply + "3 0 1 2\n", {"line 18", "data after the last record", "1 face"}));
+  write_file(dir / "blank.ply", ply + "\n  \n");  // blank lines at the end are no data
+  EXPECT_EQ(import_mesh((dir / "blank.ply").string()).surfaces.size(), 1u);
+  std::string binary = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                       "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  for (float f : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 1.f, 1.f, 0.f}) testing_support::append_le(binary, f);
+  binary += char(3);
+  for (int32_t i : {0, 1, 2}) testing_support::append_le(binary, i);
+  write_file(dir / "binary.ply", binary);
+  EXPECT_EQ(import_mesh((dir / "binary.ply").string()).surfaces.size(), 1u);
+  binary += char(3);
+  for (int32_t i : {2, 1, 0}) testing_support::append_le(binary, i);  // a second face the header does not declare
+  EXPECT_TRUE(Refused(dir, "binary_extra.ply", binary, {"13 bytes after the last record", "3 vertex, 1 face"}));
 }
 
 TEST(MeshImportErrors, PlyDataThatAssimpWouldReadOutOfStep) {
@@ -216,6 +270,14 @@ TEST(MeshImportErrors, SceneJsonNamesTheEntryAndTheModelFile) {
   const std::string unknown = testing_support::user_error_message(
       [&] { parse_scene_json(R"({"meshes": [{"file": "broken.obj", "rotate": 1}]})", scene); });
   EXPECT_NE(unknown.find("meshes[0]"), std::string::npos) << unknown;
+  // Overrides out of range are the entry's, not a surface's of the scene it makes.
+  write_file(dir / "tri.obj", std::string(kTriangle) + "f 1 2 3\n");
+  const std::string bright = testing_support::user_error_message(
+      [&] { parse_scene_json(R"({"meshes": [{"file": "tri.obj", "reflectance": [1.5, 0.2, 0.2]}]})", scene); });
+  EXPECT_NE(bright.find("meshes[0].reflectance: must be in [0,1), got 1.5"), std::string::npos) << bright;
+  const std::string dark = testing_support::user_error_message(
+      [&] { parse_scene_json(R"({"meshes": [{"file": "tri.obj", "emission": [0, -1, 0]}]})", scene); });
+  EXPECT_NE(dark.find("meshes[0].emission: must be in [0, 1e+12] W/m^2, got -1"), std::string::npos) << dark;
 }
 
 }  // namespace mesh_import_errors_test

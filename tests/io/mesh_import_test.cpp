@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <numeric>
 #include <string>
@@ -132,6 +133,49 @@ TEST(MeshImport, ObjFacesBeforeAnyMaterialAreHalfGreyAndDegenerateFacesAreCounte
   EXPECT_EQ(std::count_if(m.warnings.begin(), m.warnings.end(),
                           [](const std::string& w) { return w.find("2 face(s)") != std::string::npos; }),
             1);
+}
+
+TEST(MeshImport, ObjFaceClosedOnItsFirstCornerKeepsItsAreaAndOneValueColoursAreGrey) {
+  // The pentagon of write_obj() closed on its first corner (`f 1 2 3 4 5 1`, as some exporters
+  // write), a quad with a corner twice (a triangle), and MTL colours of one value (grey).
+  TempDir dir("mesh_obj");
+  write_file(dir / "grey.mtl", "newmtl wall\nKd 0.25\nnewmtl lamp\nKd 0\nKe 40\n");
+  write_file(dir / "closed.obj",
+             "mtllib grey.mtl\n"
+             "v 0 0 0\nv 2 0 0\nv 2 1 0\nv 1 1.5 0\nv 0 1 0\n"
+             "v 0 0 2\nv 0 1 2\nv 1 1 2\n"
+             "o roof\nusemtl wall\nf 1 2 3 4 5 1\n"
+             "o lamp\nusemtl lamp\nf 6 7 8 8\n");
+  const MeshImport m = import_mesh((dir / "closed.obj").string());
+  EXPECT_EQ(m.degenerate_skipped, 0u);
+  std::vector<Surface> roof;
+  for (const Surface& s : m.surfaces)
+    if (s.name.rfind("roof:0", 0) == 0) roof.push_back(s);
+  EXPECT_NEAR(total_area(roof), 2.5, kFloat);  // the shoelace area of the pentagon
+  for (const Surface& s : roof) expect_near(s.reflectance, Rgb::Constant(0.25));
+  const Surface& lamp = named(m.surfaces, "lamp:0");
+  EXPECT_TRUE(lamp.is_triangle());
+  EXPECT_NEAR(lamp.area_m2(), 0.5, kFloat);
+  expect_near(lamp.emission_w_m2, Rgb::Constant(40));
+  expect_near(lamp.reflectance, Rgb::Zero());
+}
+
+TEST(MeshImport, ObjPolygonOffItsPlaneIsCutThroughItsCornersWithAWarning) {
+  // A hexagon whose corners rise and fall by 0.01 m in turn (1% of its 1 m sides off its plane):
+  // its triangles run through its corners, and one warning says so.
+  TempDir dir("mesh_obj");
+  std::string obj;
+  for (int k = 0; k < 6; ++k)
+    obj += "v " + std::to_string(std::cos(k * M_PI / 3)) + " " + std::to_string(std::sin(k * M_PI / 3)) + " " +
+           (k % 2 == 0 ? "0.01" : "-0.01") + "\n";
+  write_file(dir / "crown.obj", obj + "f 1 2 3 4 5 6\n");
+  const MeshImport m = import_mesh((dir / "crown.obj").string());
+  EXPECT_EQ(m.polygons_triangulated, 1u);
+  for (const Surface& s : m.surfaces)
+    for (int i = 0; i < s.corner_count; ++i) EXPECT_NEAR(std::abs(s.corners[i].z()), 0.01, kFloat);
+  const auto warned = std::count_if(m.warnings.begin(), m.warnings.end(),
+                                    [](const std::string& w) { return w.find("1 polygon(s) of 5 or more corners not planar") != std::string::npos; });
+  EXPECT_EQ(warned, 1);
 }
 
 TEST(MeshImport, NamesLoseSlashesControlCharactersAndInvalidUtf8AndStayUnique) {

@@ -1,9 +1,11 @@
-// Polygon work of mesh import (io/mesh_polygons.h): ear clipping against the shoelace area, and
-// the merging of coplanar triangle pairs into quads (a cube of 12 triangles becomes 6 quads).
+// Polygon work of mesh import (io/mesh_polygons.h): ear clipping against the shoelace area, the
+// merging of coplanar triangle pairs into quads (a cube of 12 triangles becomes 6 quads), repeated
+// corners dropped, and the distance off the plane of a warped polygon against its closed form.
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <numeric>
 #include <vector>
 
@@ -133,6 +135,46 @@ TEST(TriangulatePolygon, ConcaveLShapeIsCoveredByCounterClockwiseTrianglesOfItsA
     tilted_area += 0.5 * (tilted[t[1]] - tilted[t[0]]).cross(tilted[t[2]] - tilted[t[0]]).norm();
   EXPECT_NEAR(tilted_area, 3.0, kExact);
   EXPECT_TRUE(triangulate_polygon(std::vector<Vec3>{{0, 0, 0}, {1, 0, 0}, {2, 0, 0}}).empty());
+}
+
+TEST(DropRepeatedCorners, APolygonClosedOnItsFirstCornerOrWithACornerTwiceLosesTheRepeats) {
+  const Vec3 a(0, 0, 0), b(2, 0, 0), c(2, 1, 0), d(1, 1.5, 0), e(0, 1, 0);
+  std::vector<Vec3> closed = {a, b, c, d, e, a};  // `f 1 2 3 4 5 1`
+  drop_repeated_corners(closed);
+  EXPECT_EQ(closed, (std::vector<Vec3>{a, b, c, d, e}));
+  std::vector<Vec3> twice = {a, b, b, c, a};  // a quad written with its corner b twice, closed
+  drop_repeated_corners(twice);
+  EXPECT_EQ(twice, (std::vector<Vec3>{a, b, c}));
+  // Within 1e-9 of the longest edge (2 m) is the same corner; 1e-6 m is not.
+  std::vector<Vec3> near = {a, b, b + Vec3(1e-10, 0, 0), c};
+  drop_repeated_corners(near);
+  EXPECT_EQ(near.size(), 3u);
+  std::vector<Vec3> apart = {a, b, b + Vec3(0, 1e-6, 0), c};
+  drop_repeated_corners(apart);
+  EXPECT_EQ(apart.size(), 4u);
+  std::vector<Vec3> point = {a, a, a};
+  drop_repeated_corners(point);
+  EXPECT_EQ(point.size(), 1u);
+}
+
+TEST(PolygonOffPlane, ACrownOfAlternatingHeightsIsItsHeightOverItsSideOffItsPlane) {
+  // A regular hexagon of circumradius R (side R in plan) whose corners rise and fall by h in turn:
+  // each edge's z-sum is 0, so Newell's normal is the z axis, the corners' mean lies in z = 0, and
+  // every corner is h off that plane; each edge is hypot(R, 2h) long.
+  const double kR = 1.5, kH = 0.003;
+  std::vector<Vec3> crown, flat;
+  for (int k = 0; k < 6; ++k) {
+    const double phi = k * std::numbers::pi / 3;
+    crown.emplace_back(kR * std::cos(phi), kR * std::sin(phi), k % 2 == 0 ? kH : -kH);
+    flat.emplace_back(kR * std::cos(phi), kR * std::sin(phi), 0.0);
+  }
+  const double want = kH / std::hypot(kR, 2 * kH);
+  EXPECT_NEAR(polygon_off_plane(crown), want, kExact);
+  EXPECT_NEAR(polygon_off_plane(flat), 0.0, kExact);
+  // Turned and moved, the same.
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+  for (Vec3& p : crown) p = turn * p + Vec3(10, -4, 2);
+  EXPECT_NEAR(polygon_off_plane(crown), want, kExact);
 }
 
 }  // namespace mesh_polygons_test

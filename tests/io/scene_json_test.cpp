@@ -276,6 +276,25 @@ TEST(SceneJson, RefusesASceneWithoutEmitter) {
   EXPECT_TRUE(RefusedMentioning(doc.dump(), {kSource, "emit"}));
 }
 
+/// ValidScene() with every coordinate (and the camera) times `scale`.
+json ScaledScene(double scale) {
+  json doc = ValidScene();
+  for (json& surface : doc["surfaces"])
+    for (json& corner : surface["corners"])
+      for (json& x : corner) x = x.get<double>() * scale;
+  for (const char* key : {"eye", "target"})
+    for (json& x : doc["cameras"][0][key]) x = x.get<double>() * scale;
+  return doc;
+}
+
+TEST(SceneJson, RefusesASceneSmallerThanItsVisibilityTolerancesNeed) {
+  // Visibility's plane distance is 1e-9 m: a box scene lost its shadows below 3e-8 m. ValidScene()
+  // spans the box [0, 2] x [0, 1] x [0, 1], sqrt(6) = 2.449 m across.
+  EXPECT_TRUE(RefusedMentioning(ScaledScene(1e-4).dump(), {kSource, "0.000244948", "m across", "scale the model up"}));
+  EXPECT_TRUE(RefusedMentioning(ScaledScene(1e-9).dump(), {kSource, "m across"}));
+  EXPECT_NO_THROW(parse_scene_json(ScaledScene(1e-3).dump(), kSource));  // 2.4 mm
+}
+
 TEST(SceneJson, RefusesACoordinateThatOverflowsToInfinity) {
   // 1e999 is valid JSON syntax but not a finite double.
   // nlohmann reports it as json::out_of_range (406), which must become a UserError too.
