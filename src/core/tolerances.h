@@ -174,6 +174,10 @@ inline constexpr double kGradientFitSingularRelative = 1e-12;
 /// the values' noise by the inverse of the ratio, and sit at the round-off of the coordinates
 /// (1e-16 of them) for samples on an exact line. 1e-8 keeps every subset with a real width.
 inline constexpr double kRbfFlatSubsetRelative = 1e-8;
+/// RBF fits derived from a nearby subset's factorisation (fit_rbf_near()): the largest backward
+/// error accepted, each equation's residual over the sum of its terms' magnitudes. A dense LU
+/// with partial pivoting gives some 1e-15 here; a derived fit past 1e-10 is solved directly.
+inline constexpr double kRbfNearFitBackwardError = 1e-10;
 
 /// Gouraud (reconstruct/gouraud.h): cell corners within this fraction of the cells' extent
 /// count as one point, and a balanced leaf's midpoints snap onto known corners within it. Far

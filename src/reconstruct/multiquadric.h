@@ -14,7 +14,12 @@
 //
 // With barriers (barriers.h): a query's value is the RBF through the samples it sees (the same
 // radii r_j; its own polynomial), each such subset's system solved once and shared by every
-// query that sees it. Exact at the samples, continuous except across barriers and the sight
+// query that sees it: the distinct subsets of a call's queries are found first, and most are
+// derived from the factorisation of a nearby one (fit_rbf_near(): a few samples added or
+// dropped) instead of being factorised afresh. A derived fit is the same interpolant to the
+// solves' rounding (checked by its backward error, tol::kRbfNearFitBackwardError), so a value may
+// differ in its last ~1e-11 with the other queries of the call (which subset is its root); never
+// with the threads or the other channels. Exact at the samples, continuous except across barriers and the sight
 // lines grazing a barrier's free end; a query that sees no sample gets NaN. With a polynomial,
 // linear functions are reproduced everywhere, barriers or not.
 
@@ -62,16 +67,10 @@ class Multiquadric final : public Interpolant {
   std::vector<double> values_;
   RbfFitCache fits_;
   std::unique_ptr<PointVisibility> visibility_;
-  /// Per-thread buffers of evaluate_visible(), and the fit it used last.
-  struct VisibleScratch {
-    std::vector<unsigned> visible;
-    std::vector<char> hidden;
-    std::shared_ptr<const RbfFit> last;
-    Eigen::ArrayXd b;
-  };
-  /// The value at p from the samples visible from it, into out; false (nothing written) when p
-  /// sees every sample.
-  bool evaluate_visible(const Vec2& p, VisibleScratch& s, double* out) const;
+  /// With barriers: the fits through the subsets the queries see, those not kept yet made at
+  /// once (fits_); per query, the index of its fit in the result, or kSeesAll / kSeesNone.
+  static constexpr int kSeesAll = -1, kSeesNone = -2;
+  std::vector<std::shared_ptr<const RbfFit>> visible_fits(std::span<const Vec2> points, std::vector<int>& fit_of) const;
 };
 
 }  // namespace radrecon

@@ -5,6 +5,8 @@
 #endif
 
 #include <algorithm>
+#include <cstdint>
+#include <optional>
 #include <string>
 
 #include <Eigen/Eigenvalues>
@@ -77,8 +79,44 @@ void polynomial_frame(std::span<const Vec2> points, const std::vector<unsigned>&
 
 }  // namespace
 
-RbfFit fit_rbf(std::span<const Vec2> points, std::span<const double> r_sq, std::span<const double> values,
-               int channels, const RbfKernel& kernel, std::vector<unsigned> subset, bool centre_values) {
+namespace {
+
+/// The interpolation system of `fit` (its frame and kernel scale set) through its subset, centred
+/// by `mean` (per channel): A = [phi P; P^T 0] and the right-hand sides B = [f - mean; 0].
+void fill_system(std::span<const double> r_sq, std::span<const double> values, int channels,
+                 const RbfKernel& kernel, const RbfFit& fit, const std::vector<double>& mean, Eigen::MatrixXd& A,
+                 Eigen::MatrixXd& B) {
+  const std::vector<unsigned>& subset = fit.subset;
+  const Eigen::Index m = static_cast<Eigen::Index>(subset.size()), t = fit.terms;
+  A.resize(m + t, m + t);
+  B.resize(m + t, channels);
+  // The kernel column by column in packets (SIMD), by the basis evaluate_rbf_fit() uses too:
+  // A(a, b) = phi(s (|p_a - p_b|^2 + r_b^2)).
+  using Array = Eigen::Map<const Eigen::ArrayXd>;
+  const Array sx(fit.px.data(), m), sy(fit.py.data(), m);
+  Eigen::ArrayXd v(m);
+  for (Eigen::Index b = 0; b < m; ++b) {
+    const size_t sb = subset[static_cast<size_t>(b)];
+    v = (sx - fit.px[static_cast<size_t>(b)]).square() + (sy - fit.py[static_cast<size_t>(b)]).square() + r_sq[sb];
+    if (fit.kernel_scale != 1) v *= fit.kernel_scale;
+    rbf_basis_in_place(v, kernel);
+    A.col(b).head(m) = v.matrix();
+  }
+  for (Eigen::Index a = 0; a < m; ++a) {
+    const unsigned sa = subset[static_cast<size_t>(a)];
+    for (int c = 0; c < channels; ++c) B(a, c) = values[sa * static_cast<size_t>(channels) + c] - mean[static_cast<size_t>(c)];
+    if (t > 0) {
+      const Vec2 d{fit.px[static_cast<size_t>(a)] - fit.centre.x(), fit.py[static_cast<size_t>(a)] - fit.centre.y()};
+      const double u[3] = {1, fit.axis1.dot(d), fit.axis2.dot(d)};
+      for (Eigen::Index k = 0; k < t; ++k) A(a, m + k) = A(m + k, a) = u[k];
+    }
+  }
+  A.bottomRightCorner(t, t).setZero();
+  B.bottomRows(t).setZero();
+}
+
+/// The subset's frame (polynomial and kernel scale) and coordinates into a new fit.
+RbfFit frame_fit(std::span<const Vec2> points, const RbfKernel& kernel, std::vector<unsigned> subset) {
   RR_CHECK(!subset.empty(), "an RBF fit needs samples");
   RbfFit fit;
   if (kernel.poly) polynomial_frame(points, subset, fit);
@@ -87,57 +125,37 @@ RbfFit fit_rbf(std::span<const Vec2> points, std::span<const double> r_sq, std::
     for (unsigned s : subset) size_sq = std::max(size_sq, (points[s] - fit.centre).squaredNorm());
     if (size_sq > 0) fit.kernel_scale = 1 / size_sq;
   }
-  const Eigen::Index m = static_cast<Eigen::Index>(subset.size()), t = fit.terms;
-  // The values' mean per channel, taken out of the system into c_0 (with a polynomial), or into
-  // the offset.
+  fit.px.resize(subset.size());
+  fit.py.resize(subset.size());
+  for (size_t a = 0; a < subset.size(); ++a) fit.px[a] = points[subset[a]].x(), fit.py[a] = points[subset[a]].y();
+  fit.subset = std::move(subset);
+  return fit;
+}
+
+/// The values' mean per channel over the subset, taken out of the system into c_0 (with a
+/// polynomial) or into the offset; zeros otherwise.
+std::vector<double> subset_mean(std::span<const double> values, int channels, const std::vector<unsigned>& subset,
+                                bool centre) {
   std::vector<double> mean(static_cast<size_t>(channels), 0.0);
-  if (t > 0 || centre_values) {
-    for (unsigned s : subset)
-      for (int c = 0; c < channels; ++c) mean[static_cast<size_t>(c)] += values[s * static_cast<size_t>(channels) + c];
-    for (double& v : mean) v /= static_cast<double>(m);
-  }
-  const size_t count = subset.size();
-  fit.px.resize(count);
-  fit.py.resize(count);
-  for (size_t a = 0; a < count; ++a) fit.px[a] = points[subset[a]].x(), fit.py[a] = points[subset[a]].y();
-  // The kernel column by column in packets (SIMD), by the basis evaluate_rbf_fit() uses too:
-  // A(a, b) = phi(s (|p_a - p_b|^2 + r_b^2)).
-  Eigen::MatrixXd A(m + t, m + t), B(m + t, channels);
-  {
-    using Array = Eigen::Map<const Eigen::ArrayXd>;
-    const Array sx(fit.px.data(), m), sy(fit.py.data(), m);
-    Eigen::ArrayXd v(m);
-    for (Eigen::Index b = 0; b < m; ++b) {
-      const size_t sb = subset[static_cast<size_t>(b)];
-      v = (sx - fit.px[static_cast<size_t>(b)]).square() + (sy - fit.py[static_cast<size_t>(b)]).square() + r_sq[sb];
-      if (fit.kernel_scale != 1) v *= fit.kernel_scale;
-      rbf_basis_in_place(v, kernel);
-      A.col(b).head(m) = v.matrix();
-    }
-  }
-  for (Eigen::Index a = 0; a < m; ++a) {
-    const unsigned sa = subset[static_cast<size_t>(a)];
-    for (int c = 0; c < channels; ++c) B(a, c) = values[sa * static_cast<size_t>(channels) + c] - mean[static_cast<size_t>(c)];
-    if (t > 0) {
-      const Vec2 d = points[sa] - fit.centre;
-      const double u[3] = {1, fit.axis1.dot(d), fit.axis2.dot(d)};
-      for (Eigen::Index k = 0; k < t; ++k) A(a, m + k) = A(m + k, a) = u[k];
-    }
-  }
-  A.bottomRightCorner(t, t).setZero();
-  B.bottomRows(t).setZero();
-  const Eigen::PartialPivLU<Eigen::Ref<Eigen::MatrixXd>> lu(A);  // in place: A becomes its LU
-  fit.rcond = lu.rcond();
-  if (!(fit.rcond > 0) || !std::isfinite(fit.rcond))
-    throw ReconstructionError("the " + kernel.name() + " system is singular (duplicate samples?)");
-  const Eigen::MatrixXd x = lu.solve(B);
+  if (!centre) return mean;
+  for (unsigned s : subset)
+    for (int c = 0; c < channels; ++c) mean[static_cast<size_t>(c)] += values[s * static_cast<size_t>(channels) + c];
+  for (double& v : mean) v /= static_cast<double>(subset.size());
+  return mean;
+}
+
+/// The coefficients x (alpha of the subset's samples, then the polynomial's) into the fit.
+void set_coefficients(std::span<const double> r_sq, int channels, const RbfKernel& kernel, bool centre_values,
+                      const std::vector<double>& mean, const Eigen::MatrixXd& x, RbfFit& fit) {
   if (!x.allFinite())
     throw ReconstructionError("the " + kernel.name() + " coefficients overflow: the sample values are too large "
                               "for the system (scale them down)");
+  const size_t count = fit.subset.size();
+  const Eigen::Index m = static_cast<Eigen::Index>(count), t = fit.terms;
   fit.r_sq.resize(count);
   fit.alpha_by_channel.resize(count * static_cast<size_t>(channels));
   for (size_t a = 0; a < count; ++a) {
-    fit.r_sq[a] = r_sq[subset[a]];
+    fit.r_sq[a] = r_sq[fit.subset[a]];
     for (int c = 0; c < channels; ++c) fit.alpha_by_channel[static_cast<size_t>(c) * count + a] = x(static_cast<Eigen::Index>(a), c);
   }
   fit.poly.resize(static_cast<size_t>(t) * channels);
@@ -145,7 +163,206 @@ RbfFit fit_rbf(std::span<const Vec2> points, std::span<const double> r_sq, std::
     for (Eigen::Index k = 0; k < t; ++k)
       fit.poly[static_cast<size_t>(c * t + k)] = x(m + k, c) + (k == 0 ? mean[static_cast<size_t>(c)] : 0.0);
   if (t == 0 && centre_values) fit.offset = mean;
+}
+
+void check_factorisation(double rcond, const RbfKernel& kernel) {
+  if (!(rcond > 0) || !std::isfinite(rcond))
+    throw ReconstructionError("the " + kernel.name() + " system is singular (duplicate samples?)");
+}
+
+}  // namespace
+
+RbfFit fit_rbf(std::span<const Vec2> points, std::span<const double> r_sq, std::span<const double> values,
+               int channels, const RbfKernel& kernel, std::vector<unsigned> subset, bool centre_values) {
+  RbfFit fit = frame_fit(points, kernel, std::move(subset));
+  const std::vector<double> mean = subset_mean(values, channels, fit.subset, fit.terms > 0 || centre_values);
+  Eigen::MatrixXd A, B;
+  fill_system(r_sq, values, channels, kernel, fit, mean, A, B);
+  const Eigen::PartialPivLU<Eigen::Ref<Eigen::MatrixXd>> lu(A);  // in place: A becomes its LU
+  fit.rcond = lu.rcond();
+  check_factorisation(fit.rcond, kernel);
+  set_coefficients(r_sq, channels, kernel, centre_values, mean, lu.solve(B), fit);
+  return fit;
+}
+
+RbfRootFit fit_rbf_root(std::span<const Vec2> points, std::span<const double> r_sq, std::span<const double> values,
+                        int channels, const RbfKernel& kernel, std::vector<unsigned> subset) {
+  RbfRootFit root;
+  root.fit = frame_fit(points, kernel, std::move(subset));
+  const std::vector<double> mean = subset_mean(values, channels, root.fit.subset, root.fit.terms > 0);
+  Eigen::MatrixXd A, B;
+  fill_system(r_sq, values, channels, kernel, root.fit, mean, A, B);
+  root.lu.compute(A);
+  root.fit.rcond = root.lu.rcond();
+  check_factorisation(root.fit.rcond, kernel);
+  set_coefficients(r_sq, channels, kernel, false, mean, root.lu.solve(B), root.fit);
+  return root;
+}
+
+std::optional<RbfFit> fit_rbf_near(const RbfRootFit& root, std::span<const Vec2> points, std::span<const double> r_sq,
+                                   std::span<const double> values, int channels, const RbfKernel& kernel,
+                                   std::vector<unsigned> subset) {
+  RR_CHECK(!subset.empty(), "an RBF fit needs samples");
+  using Eigen::Index, Eigen::MatrixXd, Eigen::VectorXd;
+  const RbfFit& base = root.fit;
+  const std::vector<unsigned>& from = base.subset;
+  const Index mb = static_cast<Index>(from.size()), t = base.terms, n_root = mb + t;
+  // The subset's own frame must have the root's terms (a subset on one line has fewer).
+  if (kernel.poly) {
+    RbfFit own;
+    polynomial_frame(points, subset, own);
+    if (own.terms != t) return std::nullopt;
+  }
+  // R: the root's samples the subset drops (their positions in the root); D: those it adds.
+  std::vector<Index> dropped;
+  std::vector<unsigned> added;
+  {
+    size_t a = 0, b = 0;
+    while (a < from.size() || b < subset.size()) {
+      if (b == subset.size() || (a < from.size() && from[a] < subset[b])) dropped.push_back(static_cast<Index>(a++));
+      else if (a == from.size() || subset[b] < from[a]) added.push_back(subset[b++]);
+      else ++a, ++b;
+    }
+  }
+  const Index nd = static_cast<Index>(added.size()), nr = static_cast<Index>(dropped.size());
+  const double s = base.kernel_scale;
+  const auto phi = [&](double dx, double dy, double rr) { return rbf_basis(s * (dx * dx + dy * dy + rr), kernel); };
+  const auto poly_terms = [&](const Vec2& p, double* u) {
+    const Vec2 d = p - base.centre;
+    u[0] = 1, u[1] = base.axis1.dot(d), u[2] = base.axis2.dot(d);
+  };
+
+  // The operator, whatever the values. With K the root's system, the system on root + added is
+  // [K cols; rows corner] by blocks: W = K^-1 cols, and the Schur complement S = corner - rows W.
+  // The dropped rows' equations then give way to their unknowns being 0, through the unit
+  // columns e_r: their solutions U (and U_added) and the constraint matrix U at the dropped rows.
+  MatrixXd cols = MatrixXd::Zero(n_root, nd + nr);
+  double u[3];
+  for (Index j = 0; j < nd; ++j) {
+    const Vec2& p = points[added[static_cast<size_t>(j)]];
+    const double rr = r_sq[added[static_cast<size_t>(j)]];
+    for (Index a = 0; a < mb; ++a) cols(a, j) = phi(base.px[static_cast<size_t>(a)] - p.x(), base.py[static_cast<size_t>(a)] - p.y(), rr);
+    poly_terms(p, u);
+    for (Index k = 0; k < t; ++k) cols(mb + k, j) = u[k];
+  }
+  for (Index j = 0; j < nr; ++j) cols(dropped[static_cast<size_t>(j)], nd + j) = 1;
+  const MatrixXd x = root.lu.solve(cols);
+  const auto W = x.leftCols(nd);
+  MatrixXd rows(nd, n_root), corner(nd, nd);
+  for (Index i = 0; i < nd; ++i) {
+    const Vec2& p = points[added[static_cast<size_t>(i)]];
+    for (Index a = 0; a < mb; ++a)
+      rows(i, a) = phi(p.x() - base.px[static_cast<size_t>(a)], p.y() - base.py[static_cast<size_t>(a)], base.r_sq[static_cast<size_t>(a)]);
+    poly_terms(p, u);
+    for (Index k = 0; k < t; ++k) rows(i, mb + k) = u[k];
+    for (Index j = 0; j < nd; ++j) {
+      const Vec2& q = points[added[static_cast<size_t>(j)]];
+      corner(i, j) = phi(p.x() - q.x(), p.y() - q.y(), r_sq[added[static_cast<size_t>(j)]]);
+    }
+  }
+  Eigen::PartialPivLU<MatrixXd> schur;
+  MatrixXd units = x.rightCols(nr), units_added(nd, nr);
+  if (nd > 0) {
+    schur.compute(corner - rows * W);
+    if (!(schur.rcond() > 0)) return std::nullopt;  // singular: the direct fit says why
+    units_added = schur.solve(-rows * x.rightCols(nr));
+    units -= W * units_added;
+  }
+  Eigen::PartialPivLU<MatrixXd> constraint;
+  if (nr > 0) {
+    MatrixXd at_dropped(nr, nr);
+    for (Index i = 0; i < nr; ++i) at_dropped.row(i) = units.row(dropped[static_cast<size_t>(i)]);
+    constraint.compute(at_dropped);
+    if (!(constraint.rcond() > 0)) return std::nullopt;
+  }
+
+  // One right-hand side: the subset's values (centred) at the root's kept rows and the added
+  // ones; the root's dropped samples get 0, so that their values never enter. Vector by vector,
+  // so that a channel's arithmetic does not depend on how many there are.
+  const Index m = static_cast<Index>(subset.size());
+  RbfFit fit;
+  fit.rcond = base.rcond;
+  fit.kernel_scale = s;
+  fit.terms = base.terms;
+  fit.centre = base.centre, fit.axis1 = base.axis1, fit.axis2 = base.axis2;
+  fit.px.resize(static_cast<size_t>(m));
+  fit.py.resize(static_cast<size_t>(m));
+  for (Index k = 0; k < m; ++k) {
+    fit.px[static_cast<size_t>(k)] = points[subset[static_cast<size_t>(k)]].x();
+    fit.py[static_cast<size_t>(k)] = points[subset[static_cast<size_t>(k)]].y();
+  }
   fit.subset = std::move(subset);
+  const std::vector<unsigned>& order = fit.subset;
+  const auto solve = [&](const auto& value_of) {
+    VectorXd v = VectorXd::Zero(n_root), v_added(nd);
+    {
+      size_t at = 0;  // the next dropped position
+      for (Index a = 0; a < mb; ++a) {
+        if (at < dropped.size() && dropped[at] == a) ++at;
+        else v(a) = value_of(from[static_cast<size_t>(a)]);
+      }
+    }
+    for (Index i = 0; i < nd; ++i) v_added(i) = value_of(added[static_cast<size_t>(i)]);
+    VectorXd y = root.lu.solve(v), y_added(nd);
+    if (nd > 0) {
+      y_added = schur.solve(v_added - rows * y);
+      y -= W * y_added;
+    }
+    if (nr > 0) {
+      VectorXd at_dropped(nr);
+      for (Index i = 0; i < nr; ++i) at_dropped(i) = y(dropped[static_cast<size_t>(i)]);
+      const VectorXd l = constraint.solve(-at_dropped);
+      y += units * l;
+      if (nd > 0) y_added += units_added * l;
+    }
+    // In the subset's order: the root's kept samples and the added, merged.
+    VectorXd out(m + t);
+    size_t a = 0, j = 0;
+    for (Index k = 0; k < m; ++k) {
+      if (j < added.size() && added[j] == order[static_cast<size_t>(k)]) {
+        out(k) = y_added(static_cast<Index>(j++));
+      } else {
+        while (from[a] != order[static_cast<size_t>(k)]) ++a;  // past the dropped ones
+        out(k) = y(static_cast<Index>(a++));
+      }
+    }
+    out.tail(t) = y.tail(t);
+    return out;
+  };
+
+  // The update is checked, not trusted: its backward error on the subset's own system (each
+  // row's residual against the size of its terms) must be at round-off's. Checked on a probe,
+  // fixed pseudo-random values (not the data's), so that whether a fit is derived does not depend
+  // on the values or on their channels.
+  MatrixXd A, B;
+  const std::vector<double> no_mean(1, 0.0);
+  std::vector<double> probe(points.size());
+  {
+    std::uint64_t state = 0x9e3779b97f4a7c15ULL;  // splitmix64, for values in [-1, 1)
+    for (double& p : probe) {
+      std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
+      z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+      z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+      p = static_cast<double>((z ^ (z >> 31)) >> 11) * 0x1p-52 - 1.0;
+    }
+  }
+  fill_system(r_sq, probe, 1, kernel, fit, no_mean, A, B);
+  const VectorXd y = solve([&](unsigned sample) { return probe[sample]; });
+  if (!y.allFinite()) return std::nullopt;
+  const VectorXd residual = A * y - B.col(0);
+  const VectorXd size = A.cwiseAbs() * y.cwiseAbs() + B.col(0).cwiseAbs();
+  for (Index r = 0; r < m + t; ++r)
+    if (!(std::abs(residual(r)) <= tol::kRbfNearFitBackwardError * size(r))) return std::nullopt;
+
+  const int C = channels;
+  const std::vector<double> mean = subset_mean(values, C, fit.subset, t > 0);
+  MatrixXd coefficients(m + t, C);
+  for (int c = 0; c < C; ++c)
+    coefficients.col(c) = solve([&](unsigned sample) {
+      return values[sample * static_cast<size_t>(C) + c] - mean[static_cast<size_t>(c)];
+    });
+  if (!coefficients.allFinite()) return std::nullopt;
+  set_coefficients(r_sq, C, kernel, false, mean, coefficients, fit);
   return fit;
 }
 

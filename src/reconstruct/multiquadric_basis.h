@@ -26,11 +26,13 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/LU>
 
 #include "core/vec.h"
 #include "reconstruct/convex_hull.h"
@@ -127,6 +129,32 @@ struct RbfFit {
 /// coefficients overflow.
 RbfFit fit_rbf(std::span<const Vec2> points, std::span<const double> r_sq, std::span<const double> values,
                int channels, const RbfKernel& kernel, std::vector<unsigned> subset, bool centre_values = false);
+
+/// A fit kept with the LU factorisation of its system, from which fits through subsets that
+/// differ from its own by a few samples are derived (fit_rbf_near()). The fit's values are
+/// centred by its subset's mean where it has a polynomial, else not (fit_rbf()'s default).
+struct RbfRootFit {
+  RbfFit fit;
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu;
+};
+RbfRootFit fit_rbf_root(std::span<const Vec2> points, std::span<const double> r_sq, std::span<const double> values,
+                        int channels, const RbfKernel& kernel, std::vector<unsigned> subset);
+
+/// The fit through `subset` (sorted, as the root's) from the root's factorisation: the system
+/// on the root's samples and the subset's added ones by blocks (a Schur complement of the added
+/// samples' size), with the root's samples that the subset drops released from their equations
+/// and held at 0 (a system of their number). Costs solves with the root's LU for each sample
+/// added or dropped, instead of a factorisation. The same interpolant as fit_rbf() through the
+/// subset, in the root's frame (polynomial axes, the thin-plate kernel's scale: the interpolant
+/// does not depend on them), centred by the subset's own mean; the values of the dropped
+/// samples never enter; each channel solved as a vector of its own, as if alone. Checked:
+/// nullopt unless the backward error of the same update on the subset's own system, for a fixed
+/// pseudo-random right-hand side (so that the outcome depends on neither the values nor their
+/// channels), is within tol::kRbfNearFitBackwardError (then fit_rbf() it), or when the subset's
+/// polynomial has fewer terms than the root's (a subset on one line).
+std::optional<RbfFit> fit_rbf_near(const RbfRootFit& root, std::span<const Vec2> points, std::span<const double> r_sq,
+                                   std::span<const double> values, int channels, const RbfKernel& kernel,
+                                   std::vector<unsigned> subset);
 
 /// The fit's value at p into out[0, channels): the basis over its samples as Eigen arrays (SIMD,
 /// sums in a fixed packet order, so results do not depend on threads), plus the polynomial.

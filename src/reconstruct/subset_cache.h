@@ -24,6 +24,13 @@ class SubsetCache {
  public:
   explicit SubsetCache(size_t budget = std::numeric_limits<size_t>::max()) : budget_(budget) {}
 
+  /// The object kept over `subset` under `key`, or null.
+  std::shared_ptr<const T> find(unsigned key, const std::vector<unsigned>& subset) const {
+    std::shared_lock lock(mutex_);
+    const auto it = objects_.find({key, subset});
+    return it != objects_.end() ? it->second : nullptr;
+  }
+
   /// The object over `subset` (sorted sample indices) under `key` (e.g. a patch), made by
   /// `build()` the first time (a T, or a std::shared_ptr to one).
   template <typename Build>
