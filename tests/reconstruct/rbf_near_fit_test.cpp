@@ -149,9 +149,10 @@ TEST(RbfNearFit, TheDroppedSamplesValuesNeverEnter) {
     std::mt19937 rng(6);
     const std::vector<unsigned> root_subset = random_subset(n, 70, rng);
     const std::vector<unsigned> subset = nearby(root_subset, n, 4, 2, rng);
+    const auto& basis = kernel;  // a structured binding cannot be captured before C++20's P1091 (clang 14)
     const auto fit = [&] {
-      const RbfRootFit root = fit_rbf_root(d.points, d.r_sq, d.values, 1, kernel, root_subset);
-      return fit_rbf_near(root, d.points, d.r_sq, d.values, 1, kernel, subset).value();
+      const RbfRootFit root = fit_rbf_root(d.points, d.r_sq, d.values, 1, basis, root_subset);
+      return fit_rbf_near(root, d.points, d.r_sq, d.values, 1, basis, subset).value();
     };
     const RbfFit a = fit();
     for (unsigned s = 0; s < n; ++s)
