@@ -192,12 +192,24 @@ RbfRootFit fit_rbf_root(std::span<const Vec2> points, std::span<const double> r_
   const std::vector<double> mean = subset_mean(values, channels, root.fit.subset, root.fit.terms > 0);
   Eigen::MatrixXd A, B;
   fill_system(r_sq, values, channels, kernel, root.fit, mean, A, B);
+  root.system = A;
   root.lu.compute(A);
   root.fit.rcond = root.lu.rcond();
   check_factorisation(root.fit.rcond, kernel);
   set_coefficients(r_sq, channels, kernel, false, mean, root.lu.solve(B), root.fit);
   return root;
 }
+
+namespace {
+
+/// lu⁻¹ rhs, or rhs's own empty shape when it has no columns: Eigen's solve of an empty
+/// right-hand side offsets a null pointer (undefined behaviour the sanitizers report).
+Eigen::MatrixXd solve_columns(const Eigen::PartialPivLU<Eigen::MatrixXd>& lu, const Eigen::MatrixXd& rhs) {
+  if (rhs.cols() == 0) return Eigen::MatrixXd(lu.rows(), 0);
+  return lu.solve(rhs);
+}
+
+}  // namespace
 
 std::optional<RbfFit> fit_rbf_near(const RbfRootFit& root, std::span<const Vec2> points, std::span<const double> r_sq,
                                    std::span<const double> values, int channels, const RbfKernel& kernel,
@@ -246,7 +258,7 @@ std::optional<RbfFit> fit_rbf_near(const RbfRootFit& root, std::span<const Vec2>
     for (Index k = 0; k < t; ++k) cols(mb + k, j) = u[k];
   }
   for (Index j = 0; j < nr; ++j) cols(dropped[static_cast<size_t>(j)], nd + j) = 1;
-  const MatrixXd x = root.lu.solve(cols);
+  const MatrixXd x = solve_columns(root.lu, cols);
   const auto W = x.leftCols(nd);
   MatrixXd rows(nd, n_root), corner(nd, nd);
   for (Index i = 0; i < nd; ++i) {
@@ -265,7 +277,7 @@ std::optional<RbfFit> fit_rbf_near(const RbfRootFit& root, std::span<const Vec2>
   if (nd > 0) {
     schur.compute(corner - rows * W);
     if (!(schur.rcond() > 0)) return std::nullopt;  // singular: the direct fit says why
-    units_added = schur.solve(-rows * x.rightCols(nr));
+    units_added = solve_columns(schur, -rows * x.rightCols(nr));
     units -= W * units_added;
   }
   Eigen::PartialPivLU<MatrixXd> constraint;
@@ -293,7 +305,9 @@ std::optional<RbfFit> fit_rbf_near(const RbfRootFit& root, std::span<const Vec2>
   }
   fit.subset = std::move(subset);
   const std::vector<unsigned>& order = fit.subset;
-  const auto solve = [&](const auto& value_of) {
+  // The solution for one right-hand side in the root's order (y, zero at the dropped samples) and
+  // the added samples' (y_added).
+  const auto solve_parts = [&](const auto& value_of, VectorXd& y, VectorXd& y_added) {
     VectorXd v = VectorXd::Zero(n_root), v_added(nd);
     {
       size_t at = 0;  // the next dropped position
@@ -303,7 +317,8 @@ std::optional<RbfFit> fit_rbf_near(const RbfRootFit& root, std::span<const Vec2>
       }
     }
     for (Index i = 0; i < nd; ++i) v_added(i) = value_of(added[static_cast<size_t>(i)]);
-    VectorXd y = root.lu.solve(v), y_added(nd);
+    y = root.lu.solve(v);
+    y_added.resize(nd);
     if (nd > 0) {
       y_added = schur.solve(v_added - rows * y);
       y -= W * y_added;
@@ -314,8 +329,11 @@ std::optional<RbfFit> fit_rbf_near(const RbfRootFit& root, std::span<const Vec2>
       const VectorXd l = constraint.solve(-at_dropped);
       y += units * l;
       if (nd > 0) y_added += units_added * l;
+      for (Index i : dropped) y(i) = 0;  // to rounding already; the fit leaves them out
     }
-    // In the subset's order: the root's kept samples and the added, merged.
+  };
+  // In the subset's order: the root's kept samples and the added, merged.
+  const auto merge = [&](const VectorXd& y, const VectorXd& y_added) {
     VectorXd out(m + t);
     size_t a = 0, j = 0;
     for (Index k = 0; k < m; ++k) {
@@ -331,11 +349,11 @@ std::optional<RbfFit> fit_rbf_near(const RbfRootFit& root, std::span<const Vec2>
   };
 
   // The update is checked, not trusted: its backward error on the subset's own system (each
-  // row's residual against the size of its terms) must be at round-off's. Checked on a probe,
-  // fixed pseudo-random values (not the data's), so that whether a fit is derived does not depend
-  // on the values or on their channels.
-  MatrixXd A, B;
-  const std::vector<double> no_mean(1, 0.0);
+  // row's residual against the size of its terms) must be at round-off's. The system by blocks,
+  // [K_kept cols_kept; rows corner] (the root's matrix, kept with its LU, for the root's rows and
+  // columns; the rows of the dropped samples left out). Checked on a probe, fixed pseudo-random
+  // values (not the data's), so that whether a fit is derived does not depend on the values or
+  // on their channels.
   std::vector<double> probe(points.size());
   {
     std::uint64_t state = 0x9e3779b97f4a7c15ULL;  // splitmix64, for values in [-1, 1)
@@ -346,21 +364,44 @@ std::optional<RbfFit> fit_rbf_near(const RbfRootFit& root, std::span<const Vec2>
       p = static_cast<double>((z ^ (z >> 31)) >> 11) * 0x1p-52 - 1.0;
     }
   }
-  fill_system(r_sq, probe, 1, kernel, fit, no_mean, A, B);
-  const VectorXd y = solve([&](unsigned sample) { return probe[sample]; });
-  if (!y.allFinite()) return std::nullopt;
-  const VectorXd residual = A * y - B.col(0);
-  const VectorXd size = A.cwiseAbs() * y.cwiseAbs() + B.col(0).cwiseAbs();
-  for (Index r = 0; r < m + t; ++r)
-    if (!(std::abs(residual(r)) <= tol::kRbfNearFitBackwardError * size(r))) return std::nullopt;
+  {
+    VectorXd y, y_added;
+    solve_parts([&](unsigned sample) { return probe[sample]; }, y, y_added);
+    if (!y.allFinite() || !y_added.allFinite()) return std::nullopt;
+    const auto added_cols = cols.leftCols(nd);
+    VectorXd residual = root.system * y, size = root.system.cwiseAbs() * y.cwiseAbs();
+    VectorXd residual_added = rows * y, size_added = rows.cwiseAbs() * y.cwiseAbs();
+    if (nd > 0) {
+      residual += added_cols * y_added, size += added_cols.cwiseAbs() * y_added.cwiseAbs();
+      residual_added += corner * y_added, size_added += corner.cwiseAbs() * y_added.cwiseAbs();
+    }
+    const auto within = [](double r, double of) { return std::abs(r) <= tol::kRbfNearFitBackwardError * of; };
+    size_t at = 0;  // the next dropped position
+    for (Index a = 0; a < n_root; ++a) {
+      if (at < dropped.size() && dropped[at] == a) {
+        ++at;
+        continue;
+      }
+      const double f = a < mb ? probe[from[static_cast<size_t>(a)]] : 0.0;
+      if (!within(residual(a) - f, size(a) + std::abs(f))) return std::nullopt;
+    }
+    for (Index i = 0; i < nd; ++i) {
+      const double f = probe[added[static_cast<size_t>(i)]];
+      if (!within(residual_added(i) - f, size_added(i) + std::abs(f))) return std::nullopt;
+    }
+  }
 
   const int C = channels;
   const std::vector<double> mean = subset_mean(values, C, fit.subset, t > 0);
   MatrixXd coefficients(m + t, C);
-  for (int c = 0; c < C; ++c)
-    coefficients.col(c) = solve([&](unsigned sample) {
+  for (int c = 0; c < C; ++c) {
+    VectorXd y, y_added;
+    const auto value_of = [&](unsigned sample) {
       return values[sample * static_cast<size_t>(C) + c] - mean[static_cast<size_t>(c)];
-    });
+    };
+    solve_parts(value_of, y, y_added);
+    coefficients.col(c) = merge(y, y_added);
+  }
   if (!coefficients.allFinite()) return std::nullopt;
   set_coefficients(r_sq, C, kernel, false, mean, coefficients, fit);
   return fit;

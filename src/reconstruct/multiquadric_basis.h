@@ -135,6 +135,7 @@ RbfFit fit_rbf(std::span<const Vec2> points, std::span<const double> r_sq, std::
 /// centred by its subset's mean where it has a polynomial, else not (fit_rbf()'s default).
 struct RbfRootFit {
   RbfFit fit;
+  Eigen::MatrixXd system;  ///< its system's matrix, [phi P; P^T 0] (to check derived fits)
   Eigen::PartialPivLU<Eigen::MatrixXd> lu;
 };
 RbfRootFit fit_rbf_root(std::span<const Vec2> points, std::span<const double> r_sq, std::span<const double> values,
