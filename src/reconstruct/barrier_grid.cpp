@@ -1,6 +1,7 @@
 #include "reconstruct/barrier_grid.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -12,6 +13,7 @@
 #include "reconstruct/bilinear.h"
 #include "reconstruct/keys_cubic.h"
 #include "reconstruct/nodal.h"
+#include "reconstruct/orientation.h"
 
 namespace radrecon {
 
@@ -35,6 +37,58 @@ constexpr double kMarkStep = 0.5;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
+/// The cells whose stencil values a thread keeps (direct-mapped by cell index): a view's
+/// scanline crosses a few dozen cells near a barrier before the next line comes back to them.
+constexpr size_t kMemoCells = 64;
+/// A cell's stencil values are kept only when at most this many barrier segments come near its
+/// consulted sites: beyond, proving the visible set the same costs more than it spares.
+constexpr size_t kMemoMostSegments = 32;
+/// With more barrier segments than this in all, no cell is memoised (finding a cell's segments
+/// scans them all).
+constexpr size_t kMemoMostBarrierSegments = 1024;
+/// The cell's box is widened by this fraction of the grid's extent plus a spacing, far above the
+/// round-off that places a query in its cell (a few ulps of the coordinates), so that every
+/// query the cell gets lies inside the box the proof covers.
+constexpr double kMemoBoxMargin = 1e-9;
+
+/// The common sign of orientation(x, y, c) over the corners c, when all are strictly that sign;
+/// else 0.
+int strict_side(const Vec2& x, const Vec2& y, const std::array<Vec2, 4>& corners) {
+  const int first = orientation(x, y, corners[0]);
+  if (first == 0) return 0;
+  for (size_t k = 1; k < corners.size(); ++k)
+    if (orientation(x, y, corners[k]) != first) return 0;
+  return first;
+}
+
+/// Whether segment g blocks the sight line from every point q of the convex box (corners) to the
+/// site p alike, or from none of them, by orientations (exact) that are linear in q: each holds
+/// for the whole box when it holds strictly at its corners. The rule (barriers.h) decides the
+/// open segment (q, p) against the closed [a, b] from the signs of orient(a, b, q), orient(a, b,
+/// p), orient(p, a, q) and orient(p, b, q), so the answer is the same wherever none of the signs
+/// that matter changes:
+///   - the queries strictly on one side of line(a, b), p on that side or on the line: never
+///     blocked;
+///   - the box and p strictly on opposite sides, orient(p, a, .) and orient(p, b, .) strictly
+///     constant: where (q, p) crosses the line is on the same side of a and of b for all q;
+///   - p off line(a, b) and the box strictly outside the cone at p spanned by a and b (the
+///     cone holds [a, b], and every sight line from p to a point of it): never blocked.
+/// `line`: the common strict sign of orient(a, b, .) over the queries concerned (strict_side() of
+/// the box, or the side of the box's part that the memo's key holds), 0 when there is none.
+bool blocks_alike(const std::array<Vec2, 4>& corners, const Vec2& p, const BarrierSegment& g, int line) {
+  const int site = orientation(g.a, g.b, p);
+  if (line != 0 && (site == line || site == 0)) return true;
+  const int by_a = strict_side(p, g.a, corners), by_b = strict_side(p, g.b, corners);
+  if (line != 0 && site == -line && by_a != 0 && by_b != 0) return true;
+  if (site == 0) return false;
+  return (by_a != 0 && by_a == -orientation(p, g.a, g.b)) || (by_b != 0 && by_b == -orientation(p, g.b, g.a));
+}
+
+/// Whether the boxes [lo0, hi0] and [lo1, hi1] meet (closed).
+bool boxes_meet(const Vec2& lo0, const Vec2& hi0, const Vec2& lo1, const Vec2& hi1) {
+  return lo0.x() <= hi1.x() && lo1.x() <= hi0.x() && lo0.y() <= hi1.y() && lo1.y() <= hi0.y();
+}
+
 }  // namespace
 
 /// One query near a barrier: where it is on the grid and which nodes it interpolates.
@@ -54,6 +108,27 @@ struct BarrierGrid::Scratch {
   std::vector<double> values;          ///< stencil node values, ((b - b0) * 4 + (a - a0)) * C + c
   std::vector<double> sums;            ///< plane fits: sum f, u f, v f per channel
   std::vector<double> plain_values;    ///< bicubic: the plain spline's values at q, per channel
+  bool left_window = false;            ///< the query tested a site outside the window (rule (e))
+  /// A cell's stencil values as seen from any point of it, once they are shown to be the same
+  /// for all (BarrierGrid::cell_sees_alike): then the cell's later queries skip the visibility
+  /// tests and the rules, and compute what they would have computed.
+  struct CellMemo {
+    long cell = -1;           ///< row-major cell index, -1: none
+    int queries = 0;          ///< queries in the cell since it came in
+    bool checked = false;     ///< cell_sees_alike() was asked (once a cell)
+    bool stored = false;      ///< values below hold
+    bool no_value = false;    ///< q sees no site at all
+    bool all_plain = false;   ///< rule (a) for every stencil node
+    std::vector<double> values;  ///< as Scratch::values
+  };
+  std::array<CellMemo, kMemoCells> memo;
+  /// Per cell, the one barrier segment whose line crosses its box, if it has exactly one: the
+  /// cell's queries are memoised by their side of it (each side's part of the cell sees alike).
+  struct CellCut {
+    long cell = -1;
+    int segment = -1;  ///< the segment's index; -1: none (or several)
+  };
+  std::array<CellCut, kMemoCells> cuts;
 };
 
 BarrierGrid::BarrierGrid(const GridCells& cells, Kind kind, Barriers barriers)
@@ -190,7 +265,10 @@ void BarrierGrid::evaluate(std::span<const Vec2> points, std::span<double> out) 
 
 bool BarrierGrid::visible(int si, int sj, const Stencil& st, Scratch& s) const {
   const int wi = si - s.wi0, wj = sj - s.wj0;
-  if (wi < 0 || wi >= kWindow || wj < 0 || wj >= kWindow) return !barriers_.blocks(st.p, site(si, sj));
+  if (wi < 0 || wi >= kWindow || wj < 0 || wj >= kWindow) {
+    s.left_window = true;
+    return !barriers_.blocks(st.p, site(si, sj));
+  }
   signed char& cached = s.vis[wj * kWindow + wi];
   if (cached < 0) cached = barriers_.blocks(st.p, site(si, sj)) ? 0 : 1;
   return cached == 1;
@@ -251,38 +329,49 @@ void BarrierGrid::evaluate_near(const Vec2& q, double* out, Scratch& s) const {
     return;
   }
 
-  // Rule (a) for every stencil node: are all the sites it shares visible?
-  bool all_plain = true;
-  for (int b = st.b0; b <= st.b1; ++b)
-    for (int a = st.a0; a <= st.a1; ++a) {
-      bool seen = true;
-      if (cell_sites_) {
-        for (int cj = std::max(0, b - 1); cj <= std::min(sites_y_ - 1, b) && seen; ++cj)
-          for (int ci = std::max(0, a - 1); ci <= std::min(sites_x_ - 1, a) && seen; ++ci) seen = visible(ci, cj, st, s);
-      } else {
-        seen = visible(a, b, st, s);
-      }
-      s.plain[(b - st.b0) * kStencil + (a - st.a0)] = seen;
-      all_plain = all_plain && seen;
+  // The stencil's values as seen from q: kept from an earlier query of the cell when they are
+  // shown to be the same from all of it, else by the rules.
+  // The memo's key: the cell, and q's side of the one segment whose line crosses it (if any).
+  const long cell = static_cast<long>(st.j) * (nx - 1) + st.i;
+  const bool memoised = barriers_.segments().size() <= kMemoMostBarrierSegments;
+  int cut = -1, side = 0;
+  if (memoised) {
+    Scratch::CellCut& c = s.cuts[static_cast<size_t>(cell) % kMemoCells];
+    if (c.cell != cell) c = {cell, line_crossing(st)};
+    cut = c.segment;
+    if (cut >= 0) {
+      const BarrierSegment& g = barriers_.segments()[static_cast<size_t>(cut)];
+      side = orientation(g.a, g.b, st.p);
     }
+  }
+  const long key = 3 * cell + side + 1;
+  Scratch::CellMemo& memo = s.memo[static_cast<size_t>(key) % kMemoCells];
+  if (memo.cell != key) memo.cell = key, memo.queries = 0, memo.checked = memo.stored = false;
+  // A query on the cutting line has no side: it is computed alone.
+  if (!memoised || (cut >= 0 && side == 0)) memo.checked = true;
+  bool no_value = false, all_plain = true;
+  if (memo.stored) {
+    no_value = memo.no_value, all_plain = memo.all_plain;
+    std::copy(memo.values.begin(), memo.values.end(), s.values.begin());
+  } else {
+    s.left_window = false;
+    no_value = !stencil_values_seen(st, s, all_plain);
+    if (++memo.queries >= 2 && !memo.checked) {  // a second query: the cell may get many
+      memo.checked = true;
+      if (!s.left_window && cell_sees_alike(st, s, cut, side)) {
+        memo.stored = true, memo.no_value = no_value, memo.all_plain = all_plain;
+        memo.values.assign(s.values.begin(), s.values.end());
+      }
+    }
+  }
+  if (no_value) {
+    std::fill(out, out + C, kNaN);  // q sees no site at all
+    return;
+  }
   if (all_plain && kind_ == Kind::bilinear) {  // nothing hidden: the plain method, the same arithmetic
     plain_->evaluate(std::span(&q, 1), std::span(out, static_cast<size_t>(C)));
     return;
   }
-
-  s.sums.resize(3 * static_cast<size_t>(C));
-  for (int b = st.b0; b <= st.b1; ++b)
-    for (int a = st.a0; a <= st.a1; ++a) {
-      const int slot = (b - st.b0) * kStencil + (a - st.a0);
-      double* value = &s.values[static_cast<size_t>(slot) * C];
-      if (s.plain[slot]) {
-        const double* node = &nodes_.values[(static_cast<size_t>(b) * nx + a) * C];
-        std::copy(node, node + C, value);
-      } else if (!hidden_node_value(a, b, st, s, value)) {
-        std::fill(out, out + C, kNaN);  // q sees no site at all
-        return;
-      }
-    }
 
   if (kind_ == Kind::bilinear) {
     const double u = st.u, v = st.v;
@@ -295,6 +384,99 @@ void BarrierGrid::evaluate_near(const Vec2& q, double* out, Scratch& s) const {
     return;
   }
   keys_blend(st, w, s, q, out);
+}
+
+bool BarrierGrid::stencil_values_seen(const Stencil& st, Scratch& s, bool& all_plain) const {
+  const int C = channels(), nx = nodes_.nx;
+  // Rule (a) for every stencil node: are all the sites it shares visible?
+  all_plain = true;
+  for (int b = st.b0; b <= st.b1; ++b)
+    for (int a = st.a0; a <= st.a1; ++a) {
+      bool seen = true;
+      if (cell_sites_) {
+        for (int cj = std::max(0, b - 1); cj <= std::min(sites_y_ - 1, b) && seen; ++cj)
+          for (int ci = std::max(0, a - 1); ci <= std::min(sites_x_ - 1, a) && seen; ++ci) seen = visible(ci, cj, st, s);
+      } else {
+        seen = visible(a, b, st, s);
+      }
+      s.plain[(b - st.b0) * kStencil + (a - st.a0)] = seen;
+      all_plain = all_plain && seen;
+    }
+  if (all_plain && kind_ == Kind::bilinear) return true;  // the plain method needs no values
+  s.sums.resize(3 * static_cast<size_t>(C));
+  for (int b = st.b0; b <= st.b1; ++b)
+    for (int a = st.a0; a <= st.a1; ++a) {
+      const int slot = (b - st.b0) * kStencil + (a - st.a0);
+      double* value = &s.values[static_cast<size_t>(slot) * C];
+      if (s.plain[slot]) {
+        const double* node = &nodes_.values[(static_cast<size_t>(b) * nx + a) * C];
+        std::copy(node, node + C, value);
+      } else if (!hidden_node_value(a, b, st, s, value)) {
+        return false;
+      }
+    }
+  return true;
+}
+
+std::array<Vec2, 4> BarrierGrid::cell_box(const Stencil& st) const {
+  const double ex = nodes_.dx * (nodes_.nx - 1), ey = nodes_.dy * (nodes_.ny - 1);
+  const double mx = kMemoBoxMargin * (ex + nodes_.dx + std::abs(nodes_.x0)),
+               my = kMemoBoxMargin * (ey + nodes_.dy + std::abs(nodes_.y0));
+  const Vec2 lo(nodes_.x0 + st.i * nodes_.dx - mx, nodes_.y0 + st.j * nodes_.dy - my),
+      hi(nodes_.x0 + (st.i + 1) * nodes_.dx + mx, nodes_.y0 + (st.j + 1) * nodes_.dy + my);
+  return {lo, Vec2(hi.x(), lo.y()), hi, Vec2(lo.x(), hi.y())};
+}
+
+int BarrierGrid::line_crossing(const Stencil& st) const {
+  const std::array<Vec2, 4> corners = cell_box(st);
+  int found = -1;
+  const std::vector<BarrierSegment>& segments = barriers_.segments();
+  for (size_t k = 0; k < segments.size(); ++k) {
+    const BarrierSegment& g = segments[k];
+    if (!boxes_meet(corners[0], corners[2], g.a.cwiseMin(g.b), g.a.cwiseMax(g.b))) continue;
+    if (strict_side(g.a, g.b, corners) != 0) continue;
+    if (found >= 0) return -1;  // a second: the cell's parts are not one side of one line
+    found = static_cast<int>(k);
+  }
+  return found;
+}
+
+bool BarrierGrid::cell_sees_alike(const Stencil& st, const Scratch& s, int cut, int side) const {
+  const std::array<Vec2, 4> corners = cell_box(st);
+  const Vec2& lo = corners[0];
+  const Vec2& hi = corners[2];
+  // The sites this query tested (every other is never consulted by a query of the cell that
+  // sees these alike: the rules go on the answers alone), and the segments that come near them.
+  Vec2 all_lo = lo, all_hi = hi;
+  for (int k = 0; k < kWindow * kWindow; ++k)
+    if (s.vis[k] >= 0) {
+      const Vec2 p = site(s.wi0 + k % kWindow, s.wj0 + k / kWindow);
+      all_lo = all_lo.cwiseMin(p), all_hi = all_hi.cwiseMax(p);
+    }
+  struct Near {
+    const BarrierSegment* g;
+    int line;  // the common strict sign of orient(a, b, q) over the key's queries, or 0
+  };
+  std::array<Near, kMemoMostSegments> near{};
+  size_t count = 0;
+  const std::vector<BarrierSegment>& segments = barriers_.segments();
+  for (size_t k = 0; k < segments.size(); ++k) {
+    const BarrierSegment& g = segments[k];
+    if (!boxes_meet(all_lo, all_hi, g.a.cwiseMin(g.b), g.a.cwiseMax(g.b))) continue;
+    if (count == near.size()) return false;
+    near[count++] = {&g, static_cast<int>(k) == cut ? side : strict_side(g.a, g.b, corners)};
+  }
+  for (int k = 0; k < kWindow * kWindow; ++k) {
+    if (s.vis[k] < 0) continue;
+    const Vec2 p = site(s.wi0 + k % kWindow, s.wj0 + k / kWindow);
+    const Vec2 site_lo = lo.cwiseMin(p), site_hi = hi.cwiseMax(p);
+    for (size_t m = 0; m < count; ++m) {
+      const BarrierSegment& g = *near[m].g;
+      if (boxes_meet(site_lo, site_hi, g.a.cwiseMin(g.b), g.a.cwiseMax(g.b)) && !blocks_alike(corners, p, g, near[m].line))
+        return false;
+    }
+  }
+  return true;
 }
 
 double BarrierGrid::stencil_reach(const Stencil& st) const {

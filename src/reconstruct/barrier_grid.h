@@ -75,6 +75,7 @@
 // it then has no value). Thread-safe; every point is computed on its own, so results never
 // depend on the batch or the number of threads.
 
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -125,6 +126,21 @@ class BarrierGrid final : public Interpolant {
   bool near_barrier(const Vec2& q) const;
   /// One query near a barrier: its values into out[0, channels).
   void evaluate_near(const Vec2& q, double* out, Scratch& s) const;
+  /// The stencil's node values as seen from its query into s.values (rules (a) to (e));
+  /// all_plain: rule (a) held for every node (bilinear then leaves the values unset); false when
+  /// q sees no site.
+  bool stencil_values_seen(const Stencil& st, Scratch& s, bool& all_plain) const;
+  /// The stencil's cell's box, widened a little (counter-clockwise from the lower left): every
+  /// query placed in the cell lies inside it.
+  std::array<Vec2, 4> cell_box(const Stencil& st) const;
+  /// The index of the one barrier segment whose line crosses the cell's box (not strictly on
+  /// one side of it), or -1 when none or several do.
+  int line_crossing(const Stencil& st) const;
+  /// Whether every site the query tested (in s's window) is seen, or hidden, alike from every
+  /// point of the stencil's cell (with `cut` >= 0: every point strictly on `side` of segment
+  /// cut's line): then every such query tests the same sites with the same answers and computes
+  /// the same stencil values (the rules depend on q only through them).
+  bool cell_sees_alike(const Stencil& st, const Scratch& s, int cut, int side) const;
   /// The value of a node not seen whole (rules (b) to (e)); false when q sees no site.
   bool hidden_node_value(int a, int b, const Stencil& st, Scratch& s, double* out) const;
   /// Rule (b)/(d): the least-squares plane through the visible sites of [si0, si1] x [sj0, sj1]
