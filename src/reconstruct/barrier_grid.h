@@ -72,8 +72,13 @@
 // nodes), and of more sites only when one is hidden. Barrier-path queries run in parallel
 // (core/parallel.h). Rule (e) searches rings of sites outward from the node, so a query that
 // sees nothing (enclosed by barriers with no site inside) tests every site of the grid (once:
-// it then has no value). Thread-safe; every point is computed on its own, so results never
-// depend on the batch or the number of threads.
+// it then has no value). A thread keeps, for the cells its queries come back to, the stencil's
+// values as seen from the cell, once it has proven (exact orientations at the cell's corners,
+// linear in q) that every site they consult is seen, or hidden, alike from all of the cell, or
+// from all of its part on one side of the one barrier line crossing it: the rules then give
+// every such query the same values, which it takes instead of the tests. Thread-safe; every
+// point gets what it would get on its own, bit for bit, so results never depend on the batch or
+// the number of threads.
 
 #include <array>
 #include <memory>
