@@ -5,6 +5,8 @@
 #include <limits>
 #include <numbers>
 #include <optional>
+#include <span>
+#include <vector>
 
 #include "core/check.h"
 #include "core/parallel.h"
@@ -17,10 +19,10 @@ namespace {
 
 bool emits(const Surface& s, bool back_side) { return (side_emission(s, back_side) > 0).any(); }
 
-/// Where the ray o + t d meets the plane of `s` (through its corner 0): t, or none when the ray
-/// runs parallel to it; `back_side` when the ray comes from behind.
-std::optional<double> plane_hit(const Surface& s, const Vec3& o, const Vec3& d, bool& back_side) {
-  const Vec3 n = s.normal();
+/// Where the ray o + t d meets the plane of `s` (through its corner 0, unit normal n =
+/// s.normal()): t, or none when the ray runs parallel to it; `back_side` when the ray comes from
+/// behind.
+std::optional<double> plane_hit(const Surface& s, const Vec3& n, const Vec3& o, const Vec3& d, bool& back_side) {
   const double denom = n.dot(d);
   if (denom == 0) return std::nullopt;
   back_side = denom > 0;
@@ -28,16 +30,32 @@ std::optional<double> plane_hit(const Surface& s, const Vec3& o, const Vec3& d, 
 }
 
 /// The nearest hit among `surfaces` (ascending indices), by intersect_scene()'s rules.
+/// The surfaces' normal() by index, made once for many rays; an empty one: each made as needed.
+using SurfaceNormals = std::span<const Vec3>;
+
+Vec3 normal_of(const Scene& scene, SurfaceNormals normals, size_t k) {
+  return normals.empty() ? scene.surfaces[k].normal() : normals[k];
+}
+
+std::vector<Vec3> surface_normals(const Scene& scene) {
+  std::vector<Vec3> out;
+  out.reserve(scene.surfaces.size());
+  for (const Surface& s : scene.surfaces) out.push_back(s.normal());
+  return out;
+}
+
 template <class Surfaces>
-std::optional<SurfaceHit> nearest_hit(const Scene& scene, const Surfaces& surfaces, const Vec3& o, const Vec3& d) {
+std::optional<SurfaceHit> nearest_hit(const Scene& scene, SurfaceNormals normals, const Surfaces& surfaces,
+                                      const Vec3& o, const Vec3& d) {
   std::optional<SurfaceHit> best;
   bool best_emits = false;
   double t_best = std::numeric_limits<double>::infinity();
   const double o_norm = o.norm();
   for (const size_t k : surfaces) {
     const Surface& s = scene.surfaces[k];
+    const Vec3 n = normal_of(scene, normals, k);
     bool back_side = false;
-    const std::optional<double> hit = plane_hit(s, o, d, back_side);
+    const std::optional<double> hit = plane_hit(s, n, o, d, back_side);
     if (!hit || !(*hit > 0)) continue;
     const double t = *hit;
     // Within the tie distance (relative to the magnitude of the coordinates there, |o| + t, whose
@@ -49,7 +67,7 @@ std::optional<SurfaceHit> nearest_hit(const Scene& scene, const Surfaces& surfac
       if (e != best_emits) wins = e;
     }
     if (!wins) continue;
-    const auto uv = s.parameters(o + t * d);
+    const auto uv = s.parameters(o + t * d, n);
     if (!uv) continue;
     t_best = t;
     best = SurfaceHit{k, back_side, uv->x(), uv->y(), t};
@@ -63,7 +81,9 @@ constexpr size_t kBvhLeastSurfaces = 16;
 
 }  // namespace
 
-std::optional<SurfaceHit> intersect_scene(const Scene& scene, const Vec3& o, const Vec3& d) {
+namespace {
+
+std::optional<SurfaceHit> intersect_all(const Scene& scene, SurfaceNormals normals, const Vec3& o, const Vec3& d) {
   // Every surface's index, in order (std::views::iota does not build with clang on libstdc++ 12,
   // the sanitizer build's pairing).
   struct All {
@@ -77,10 +97,11 @@ std::optional<SurfaceHit> intersect_scene(const Scene& scene, const Vec3& o, con
     It begin() const { return {0}; }
     It end() const { return {n}; }
   };
-  return nearest_hit(scene, All{scene.surfaces.size()}, o, d);
+  return nearest_hit(scene, normals, All{scene.surfaces.size()}, o, d);
 }
 
-std::optional<SurfaceHit> intersect_scene(const Scene& scene, const SurfaceBvh& bvh, const Vec3& o, const Vec3& d) {
+std::optional<SurfaceHit> intersect_through(const Scene& scene, SurfaceNormals normals, const SurfaceBvh& bvh,
+                                            const Vec3& o, const Vec3& d) {
   // The surfaces whose boxes the ray meets before the nearest hit found so far plus four tie
   // distances: one beyond can neither be the nearest nor tie with it, so the one-by-one search
   // over these, in surface order, finds what it finds over all of them.
@@ -92,16 +113,27 @@ std::optional<SurfaceHit> intersect_scene(const Scene& scene, const SurfaceBvh& 
   bvh.collect(o, d.cwiseInverse(), [&] {
     for (; seen < candidates.size(); ++seen) {
       const Surface& s = scene.surfaces[candidates[seen]];
+      const Vec3 n = normal_of(scene, normals, candidates[seen]);
       bool back_side = false;
-      const std::optional<double> t = plane_hit(s, o, d, back_side);
-      if (!t || !(*t > 0 && *t < t_hit) || !s.parameters(o + *t * d)) continue;
+      const std::optional<double> t = plane_hit(s, n, o, d, back_side);
+      if (!t || !(*t > 0 && *t < t_hit) || !s.parameters(o + *t * d, n)) continue;
       t_hit = *t;
       t_cut = *t + 4 * tol::kEmitterTieRelative * (o_norm + *t);
     }
     return t_cut;
   }, candidates);
   std::sort(candidates.begin(), candidates.end());
-  return nearest_hit(scene, candidates, o, d);
+  return nearest_hit(scene, normals, candidates, o, d);
+}
+
+}  // namespace
+
+std::optional<SurfaceHit> intersect_scene(const Scene& scene, const Vec3& o, const Vec3& d) {
+  return intersect_all(scene, {}, o, d);
+}
+
+std::optional<SurfaceHit> intersect_scene(const Scene& scene, const SurfaceBvh& bvh, const Vec3& o, const Vec3& d) {
+  return intersect_through(scene, {}, bvh, o, d);
 }
 
 std::pair<Vec3, Vec3> camera_ray(const Camera& c, int width, int height, double x, double y) {
@@ -150,6 +182,7 @@ CameraHits trace_rect(const Scene& scene, const SurfaceBvh* bvh, const Camera& c
   out.pixels = rect;
   out.hits.resize(rays);
   auto& hits = out.hits;
+  const std::vector<Vec3> normals = surface_normals(scene);  // once, not per ray and surface
   // The hit of every ray (stratified, at the strata centres: deterministic).
   parallel_for(0, static_cast<std::int64_t>(rays), [&](std::int64_t r) {
     const size_t k = static_cast<size_t>(r);
@@ -157,7 +190,7 @@ CameraHits trace_rect(const Scene& scene, const SurfaceBvh* bvh, const Camera& c
     const double x = static_cast<double>(rect.x_begin + pixel % rect_w) + (static_cast<double>(sub % S) + 0.5) / S;
     const double y = static_cast<double>(rect.y_begin + pixel / rect_w) + (static_cast<double>(sub / S) + 0.5) / S;
     const auto [o, d] = camera_ray(camera, W, H, x, y);
-    hits[k] = bvh != nullptr ? intersect_scene(scene, *bvh, o, d) : intersect_scene(scene, o, d);
+    hits[k] = bvh != nullptr ? intersect_through(scene, normals, *bvh, o, d) : intersect_all(scene, normals, o, d);
   });
   return out;
 }

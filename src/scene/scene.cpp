@@ -56,11 +56,12 @@ bool Surface::in_domain(double u, double v) const {
   return is_triangle() ? u + v <= 1 + kEdge : u <= 1 + kEdge && v <= 1 + kEdge;
 }
 
-std::optional<Vec2> Surface::parameters(const Vec3& p) const {
+std::optional<Vec2> Surface::parameters(const Vec3& p) const { return parameters(p, normal()); }
+
+std::optional<Vec2> Surface::parameters(const Vec3& p, const Vec3& n) const {
   const Surface& s = *this;
   // Solve p = point(u, v) in the surface's plane, projected to the two axes where the surface is
   // largest: linear for a triangle, a quadratic in v for a quad (linear for a parallelogram).
-  const Vec3 n = s.normal();
   int drop = 0;
   n.cwiseAbs().maxCoeff(&drop);
   const int a = (drop + 1) % 3, b = (drop + 2) % 3;

@@ -58,6 +58,8 @@ struct Surface {
   /// the point lies outside the surface (points on its border, up to tol::kQuadEdgeParameter, are
   /// inside and clamped into the parameter domain).
   std::optional<Vec2> parameters(const Vec3& p) const;
+  /// The same with the surface's normal() given (computed once for many points).
+  std::optional<Vec2> parameters(const Vec3& p, const Vec3& unit_normal) const;
   /// Whether (u, v) lies in the parameter domain (up to tol::kQuadEdgeParameter).
   bool in_domain(double u, double v) const;
   /// Unit normal of the front side.
