@@ -10,6 +10,7 @@
 #include "core/parallel.h"
 #include "reconstruct/bicubic.h"
 #include "reconstruct/hermite.h"
+#include "reconstruct/barrier_grid_scratch.h"
 #include "reconstruct/bilinear.h"
 #include "reconstruct/keys_cubic.h"
 #include "reconstruct/nodal.h"
@@ -19,117 +20,20 @@ namespace radrecon {
 
 namespace {
 
-/// The visibility cache of a query covers sites i-5..i+6 x j-5..j+6 around its cell (i, j):
-/// every N(n), N3(n) and N4(n) of its stencil (nodes i-1..i+2), for cell and node sites.
-constexpr int kWindowBefore = 5;
-constexpr int kWindow = 12;
-/// At most 4 x 4 stencil nodes.
-constexpr int kStencil = 4;
+using barrier_grid_detail::kMemoCells;
+using barrier_grid_detail::kMemoMostBarrierSegments;
+using barrier_grid_detail::kStencil;
+using barrier_grid_detail::kWindow;
+using barrier_grid_detail::kWindowBefore;
+
 /// Bicubic skips the visibility tests of a query nearer a barrier than d1 when the barrier is
 /// farther than the stencil's farthest site by this many cell diagonals: the distances' round-off
 /// is some 1e-16 of the coordinates and of the barrier segments' lengths, far below it unless
 /// those exceed 1e12 cells.
 constexpr double kSeenMarginDiagonals = 1e-3;
-/// Barrier marking: points along each barrier segment at most this fraction of the smaller grid
-/// spacing apart; each marks its cell and the cells around it, so that every cell the segment
-/// touches is marked.
-constexpr double kMarkStep = 0.5;
-
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-/// The cells whose stencil values a thread keeps (direct-mapped by cell index): a view's
-/// scanline crosses a few dozen cells near a barrier before the next line comes back to them.
-constexpr size_t kMemoCells = 64;
-/// A cell's stencil values are kept only when at most this many barrier segments come near its
-/// consulted sites: beyond, proving the visible set the same costs more than it spares.
-constexpr size_t kMemoMostSegments = 32;
-/// With more barrier segments than this in all, no cell is memoised (finding a cell's segments
-/// scans them all).
-constexpr size_t kMemoMostBarrierSegments = 1024;
-/// The cell's box is widened by this fraction of the grid's extent plus a spacing, far above the
-/// round-off that places a query in its cell (a few ulps of the coordinates), so that every
-/// query the cell gets lies inside the box the proof covers.
-constexpr double kMemoBoxMargin = 1e-9;
-
-/// The common sign of orientation(x, y, c) over the corners c, when all are strictly that sign;
-/// else 0.
-int strict_side(const Vec2& x, const Vec2& y, const std::array<Vec2, 4>& corners) {
-  const int first = orientation(x, y, corners[0]);
-  if (first == 0) return 0;
-  for (size_t k = 1; k < corners.size(); ++k)
-    if (orientation(x, y, corners[k]) != first) return 0;
-  return first;
-}
-
-/// Whether segment g blocks the sight line from every point q of the convex box (corners) to the
-/// site p alike, or from none of them, by orientations (exact) that are linear in q: each holds
-/// for the whole box when it holds strictly at its corners. The rule (barriers.h) decides the
-/// open segment (q, p) against the closed [a, b] from the signs of orient(a, b, q), orient(a, b,
-/// p), orient(p, a, q) and orient(p, b, q), so the answer is the same wherever none of the signs
-/// that matter changes:
-///   - the queries strictly on one side of line(a, b), p on that side or on the line: never
-///     blocked;
-///   - the box and p strictly on opposite sides, orient(p, a, .) and orient(p, b, .) strictly
-///     constant: where (q, p) crosses the line is on the same side of a and of b for all q;
-///   - p off line(a, b) and the box strictly outside the cone at p spanned by a and b (the
-///     cone holds [a, b], and every sight line from p to a point of it): never blocked.
-/// `line`: the common strict sign of orient(a, b, .) over the queries concerned (strict_side() of
-/// the box, or the side of the box's part that the memo's key holds), 0 when there is none.
-bool blocks_alike(const std::array<Vec2, 4>& corners, const Vec2& p, const BarrierSegment& g, int line) {
-  const int site = orientation(g.a, g.b, p);
-  if (line != 0 && (site == line || site == 0)) return true;
-  const int by_a = strict_side(p, g.a, corners), by_b = strict_side(p, g.b, corners);
-  if (line != 0 && site == -line && by_a != 0 && by_b != 0) return true;
-  if (site == 0) return false;
-  return (by_a != 0 && by_a == -orientation(p, g.a, g.b)) || (by_b != 0 && by_b == -orientation(p, g.b, g.a));
-}
-
-/// Whether the boxes [lo0, hi0] and [lo1, hi1] meet (closed).
-bool boxes_meet(const Vec2& lo0, const Vec2& hi0, const Vec2& lo1, const Vec2& hi1) {
-  return lo0.x() <= hi1.x() && lo1.x() <= hi0.x() && lo0.y() <= hi1.y() && lo1.y() <= hi0.y();
-}
-
 }  // namespace
-
-/// One query near a barrier: where it is on the grid and which nodes it interpolates.
-struct BarrierGrid::Stencil {
-  Vec2 p;             ///< the query clamped onto the grid: visibility is judged from it
-  int i, j;           ///< its grid cell
-  double u, v;        ///< its position in the cell, [0, 1]
-  int a0, a1, b0, b1; ///< the stencil's nodes a0..a1 x b0..b1
-};
-
-/// Per-thread buffers of evaluate(); overwritten per query before use.
-struct BarrierGrid::Scratch {
-  signed char vis[kWindow * kWindow];  ///< -1 not tested yet, 0 hidden, 1 visible
-  int wi0 = 0, wj0 = 0;                ///< the cache's first site
-  bool sees_nothing = false;           ///< rule (e) found no visible site: q sees none
-  bool plain[kStencil * kStencil];     ///< per stencil node: rule (a)
-  std::vector<double> values;          ///< stencil node values, ((b - b0) * 4 + (a - a0)) * C + c
-  std::vector<double> sums;            ///< plane fits: sum f, u f, v f per channel
-  std::vector<double> plain_values;    ///< bicubic: the plain spline's values at q, per channel
-  bool left_window = false;            ///< the query tested a site outside the window (rule (e))
-  /// A cell's stencil values as seen from any point of it, once they are shown to be the same
-  /// for all (BarrierGrid::cell_sees_alike): then the cell's later queries skip the visibility
-  /// tests and the rules, and compute what they would have computed.
-  struct CellMemo {
-    long cell = -1;           ///< row-major cell index, -1: none
-    int queries = 0;          ///< queries in the cell since it came in
-    bool checked = false;     ///< cell_sees_alike() was asked (once a cell)
-    bool stored = false;      ///< values below hold
-    bool no_value = false;    ///< q sees no site at all
-    bool all_plain = false;   ///< rule (a) for every stencil node
-    std::vector<double> values;  ///< as Scratch::values
-  };
-  std::array<CellMemo, kMemoCells> memo;
-  /// Per cell, the one barrier segment whose line crosses its box, if it has exactly one: the
-  /// cell's queries are memoised by their side of it (each side's part of the cell sees alike).
-  struct CellCut {
-    long cell = -1;
-    int segment = -1;  ///< the segment's index; -1: none (or several)
-  };
-  std::array<CellCut, kMemoCells> cuts;
-};
 
 BarrierGrid::BarrierGrid(const GridCells& cells, Kind kind, Barriers barriers)
     : BarrierGrid(nodal_average(cells), cells.values, true, cells.nx, cells.ny, kind, std::move(barriers)) {}
@@ -164,78 +68,6 @@ BarrierGrid::~BarrierGrid() = default;
 Vec2 BarrierGrid::site(int si, int sj) const {
   const double half = cell_sites_ ? 0.5 : 0.0;
   return {nodes_.x0 + (si + half) * nodes_.dx, nodes_.y0 + (sj + half) * nodes_.dy};
-}
-
-void BarrierGrid::mark_cells_near_barriers() {
-  const int cx = nodes_.nx - 1, cy = nodes_.ny - 1;
-  near_.assign(static_cast<size_t>(cx) * cy, 0);
-  if (barriers_.empty()) return;
-  const double dx = nodes_.dx, dy = nodes_.dy;
-  const double step = kMarkStep * std::min(dx, dy);
-  // The cells to mark around each sample point of a barrier (rx, ry along x, y), and how far
-  // beyond the grid a barrier can matter (margin).
-  int rx, ry;
-  double margin;
-  if (kind_ == Kind::bilinear) {
-    // A query in cell (i, j) tests segments from it to sites whose segments stay within the
-    // cells up to `reach` away (the 3 x 3 cells whose centres the corners share, or the cell
-    // itself for nodes). A barrier can only block them if it touches one of those cells. Every
-    // sample point marks its cell and those around it: one more than reach.
-    const int reach = cell_sites_ ? 1 : 0;
-    rx = ry = reach + 1;
-    margin = 0;  // all sites and clamped queries lie in the grid's closed box
-  } else {
-    // Bicubic: every cell with a point nearer a barrier than plain_distance_. Such a point is
-    // within plain_distance_ of a point of the barrier, which lies within step / 2 of a sample
-    // point; so within plain_distance_ + step of a sample point along each axis, hence at most
-    // ceil(that / spacing) + 1 cells from the sample point's cell (clamping onto the grid only
-    // brings them closer).
-    margin = plain_distance_ + step;
-    rx = static_cast<int>(std::ceil(margin / dx)) + 1;
-    ry = static_cast<int>(std::ceil(margin / dy)) + 1;
-  }
-  // The grid's box, one cell wider and widened by the margin: the part of a barrier that can matter.
-  const Vec2 lo(nodes_.x0 - margin - dx, nodes_.y0 - margin - dy),
-      hi(nodes_.x0 + cx * dx + margin + dx, nodes_.y0 + cy * dy + margin + dy);
-  for (const BarrierSegment& seg : barriers_.segments()) {
-    const Vec2 d = seg.b - seg.a;
-    double t0 = 0, t1 = 1;
-    bool outside = false;
-    for (int axis = 0; axis < 2 && !outside; ++axis) {
-      if (d[axis] == 0) {
-        outside = seg.a[axis] < lo[axis] || seg.a[axis] > hi[axis];
-        continue;
-      }
-      double ta = (lo[axis] - seg.a[axis]) / d[axis], tb = (hi[axis] - seg.a[axis]) / d[axis];
-      if (ta > tb) std::swap(ta, tb);
-      t0 = std::max(t0, ta);
-      t1 = std::min(t1, tb);
-      outside = t0 > t1;
-    }
-    if (outside) continue;
-    const double length = d.norm() * (t1 - t0);
-    const long n = static_cast<long>(std::ceil(length / step));
-    int last_i = -1, last_j = -1;
-    for (long k = 0; k <= n; ++k) {
-      const double t = n == 0 ? t0 : t0 + (t1 - t0) * static_cast<double>(k) / static_cast<double>(n);
-      const Vec2 p = seg.a + t * d;
-      const int ci = std::clamp(static_cast<int>(std::floor((p.x() - nodes_.x0) / dx)), 0, cx - 1);
-      const int cj = std::clamp(static_cast<int>(std::floor((p.y() - nodes_.y0) / dy)), 0, cy - 1);
-      if (ci == last_i && cj == last_j) continue;
-      last_i = ci, last_j = cj;
-      for (int j = std::max(0, cj - ry); j <= std::min(cy - 1, cj + ry); ++j)
-        for (int i = std::max(0, ci - rx); i <= std::min(cx - 1, ci + rx); ++i) near_[static_cast<size_t>(j) * cx + i] = 1;
-    }
-  }
-}
-
-bool BarrierGrid::near_barrier(const Vec2& q) const {
-  if (near_.empty() || barriers_.empty()) return false;
-  const int nx = nodes_.nx, ny = nodes_.ny;
-  const double gx = std::clamp((q.x() - nodes_.x0) / nodes_.dx, 0.0, double(nx - 1));
-  const double gy = std::clamp((q.y() - nodes_.y0) / nodes_.dy, 0.0, double(ny - 1));
-  const int i = std::min(static_cast<int>(gx), nx - 2), j = std::min(static_cast<int>(gy), ny - 2);
-  return near_[static_cast<size_t>(j) * (nx - 1) + i] != 0;
 }
 
 void BarrierGrid::evaluate(std::span<const Vec2> points, std::span<double> out) const {
@@ -415,67 +247,6 @@ bool BarrierGrid::stencil_values_seen(const Stencil& st, Scratch& s, bool& all_p
         return false;
       }
     }
-  return true;
-}
-
-std::array<Vec2, 4> BarrierGrid::cell_box(const Stencil& st) const {
-  const double ex = nodes_.dx * (nodes_.nx - 1), ey = nodes_.dy * (nodes_.ny - 1);
-  const double mx = kMemoBoxMargin * (ex + nodes_.dx + std::abs(nodes_.x0)),
-               my = kMemoBoxMargin * (ey + nodes_.dy + std::abs(nodes_.y0));
-  const Vec2 lo(nodes_.x0 + st.i * nodes_.dx - mx, nodes_.y0 + st.j * nodes_.dy - my),
-      hi(nodes_.x0 + (st.i + 1) * nodes_.dx + mx, nodes_.y0 + (st.j + 1) * nodes_.dy + my);
-  return {lo, Vec2(hi.x(), lo.y()), hi, Vec2(lo.x(), hi.y())};
-}
-
-int BarrierGrid::line_crossing(const Stencil& st) const {
-  const std::array<Vec2, 4> corners = cell_box(st);
-  int found = -1;
-  const std::vector<BarrierSegment>& segments = barriers_.segments();
-  for (size_t k = 0; k < segments.size(); ++k) {
-    const BarrierSegment& g = segments[k];
-    if (!boxes_meet(corners[0], corners[2], g.a.cwiseMin(g.b), g.a.cwiseMax(g.b))) continue;
-    if (strict_side(g.a, g.b, corners) != 0) continue;
-    if (found >= 0) return -1;  // a second: the cell's parts are not one side of one line
-    found = static_cast<int>(k);
-  }
-  return found;
-}
-
-bool BarrierGrid::cell_sees_alike(const Stencil& st, const Scratch& s, int cut, int side) const {
-  const std::array<Vec2, 4> corners = cell_box(st);
-  const Vec2& lo = corners[0];
-  const Vec2& hi = corners[2];
-  // The sites this query tested (every other is never consulted by a query of the cell that
-  // sees these alike: the rules go on the answers alone), and the segments that come near them.
-  Vec2 all_lo = lo, all_hi = hi;
-  for (int k = 0; k < kWindow * kWindow; ++k)
-    if (s.vis[k] >= 0) {
-      const Vec2 p = site(s.wi0 + k % kWindow, s.wj0 + k / kWindow);
-      all_lo = all_lo.cwiseMin(p), all_hi = all_hi.cwiseMax(p);
-    }
-  struct Near {
-    const BarrierSegment* g;
-    int line;  // the common strict sign of orient(a, b, q) over the key's queries, or 0
-  };
-  std::array<Near, kMemoMostSegments> near{};
-  size_t count = 0;
-  const std::vector<BarrierSegment>& segments = barriers_.segments();
-  for (size_t k = 0; k < segments.size(); ++k) {
-    const BarrierSegment& g = segments[k];
-    if (!boxes_meet(all_lo, all_hi, g.a.cwiseMin(g.b), g.a.cwiseMax(g.b))) continue;
-    if (count == near.size()) return false;
-    near[count++] = {&g, static_cast<int>(k) == cut ? side : strict_side(g.a, g.b, corners)};
-  }
-  for (int k = 0; k < kWindow * kWindow; ++k) {
-    if (s.vis[k] < 0) continue;
-    const Vec2 p = site(s.wi0 + k % kWindow, s.wj0 + k / kWindow);
-    const Vec2 site_lo = lo.cwiseMin(p), site_hi = hi.cwiseMax(p);
-    for (size_t m = 0; m < count; ++m) {
-      const BarrierSegment& g = *near[m].g;
-      if (boxes_meet(site_lo, site_hi, g.a.cwiseMin(g.b), g.a.cwiseMax(g.b)) && !blocks_alike(corners, p, g, near[m].line))
-        return false;
-    }
-  }
   return true;
 }
 
