@@ -150,12 +150,12 @@ py::array interpolate(const Doubles& points, const Doubles& values, const std::o
     py::gil_scoped_release release;
     const InterpolantResult interpolant = make_point_interpolant(method, samples, params);
     if (!interpolant) throw UserError("points", interpolant.reason());
-    if (raster) at = raster_points(grid);
     const std::span<double> results(result, count * static_cast<size_t>(channels));
     for (size_t first = 0; first < count; first += kEvaluateBatch) {
       const size_t batch = std::min(kEvaluateBatch, count - first);
-      interpolant.value()->evaluate(std::span<const Vec2>(at).subspan(first, batch),
-                                    results.subspan(first * channels, batch * channels));
+      const std::span<double> out_batch = results.subspan(first * channels, batch * channels);
+      if (raster) interpolant.value()->evaluate_raster(grid, first, batch, out_batch);
+      else interpolant.value()->evaluate(std::span<const Vec2>(at).subspan(first, batch), out_batch);
     }
   }
   return out;

@@ -191,15 +191,13 @@ void run_interpolate(const InterpolateArgs& args) {
   const auto query_start = use_queries ? Clock::now() : raster_start;
   const size_t channels = static_cast<size_t>(interpolant.value()->channels());
   Progress progress("interpolate", args.quiet);
-  std::vector<Vec2> batch;
   double querying_s = 0;  // the batches' time (the streamed PFM's share of its run)
   // The values of points [first, first + out.size() / channels) into `out`.
   const auto evaluate_batch = [&](size_t first, std::span<double> out) {
     const auto batch_start = Clock::now();
     const size_t count = out.size() / channels;
-    if (raster_batches) raster_points(raster, first, count, batch);
-    interpolant.value()->evaluate(raster_batches ? std::span<const Vec2>(batch) : std::span(points).subspan(first, count),
-                                  out);
+    if (raster_batches) interpolant.value()->evaluate_raster(raster, first, count, out);
+    else interpolant.value()->evaluate(std::span(points).subspan(first, count), out);
     progress.update(static_cast<double>(first + count) / point_count, "the query points");
     querying_s += seconds_since(batch_start);
   };

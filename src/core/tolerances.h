@@ -136,6 +136,18 @@ inline constexpr double kSibsonCertificateRelative = 1e-9;
 /// that a reused zone is the zone CGAL's exact conflict search finds; closer calls take that
 /// search.
 inline constexpr double kConflictZoneTestRelative = 1e-12;
+/// Natural neighbours over a raster, face by face (reconstruct/sibson_raster.h): a point is left
+/// to the query-by-query path when it lies within this fraction of the samples' extent of their
+/// hull's boundary (there the hull rules apply, and the zone's slivers have huge circles)...
+inline constexpr double kSibsonRasterHullMarginRelative = 1e-9;
+/// ...or when a bound on the magnitudes that its sums round (their terms, the powers and cross
+/// products inside them) exceeds its weight by more than this factor: the sums then cancel,
+/// next to a sample or under a sliver's circle, and the rounding could reach 1e-10 of the value.
+inline constexpr double kSibsonRasterCancellation = 1e5;
+/// A face's circle and its chords along a raster row are widened by this fraction of its squared
+/// radius (of its radius, for the circle): far above the in-circle test's rounding (a few units
+/// of 2^-53 of the squared radius), so that every point the test finds inside is visited.
+inline constexpr double kSibsonRasterChordSlack = 1e-12;
 /// A query's visibility tests are skipped when no barrier comes within its farthest neighbour's
 /// distance enlarged by this fraction of that distance plus the coordinates' magnitude
 /// (Barriers::none_within()): far above the distance's round-off (some 1e-15 of those), so that

@@ -41,25 +41,6 @@ Rect parse_domain(const std::string& text, const std::string& where) {
   return Rect{v[0], v[1], v[2], v[3]};
 }
 
-std::vector<Vec2> raster_points(const Raster& r) {
-  std::vector<Vec2> points;
-  raster_points(r, 0, static_cast<size_t>(r.width) * r.height, points);
-  return points;
-}
-
-void raster_points(const Raster& r, size_t first, size_t count, std::vector<Vec2>& out) {
-  RR_CHECK(r.width > 0 && r.height > 0, "raster size must be positive");
-  RR_CHECK(first + count <= static_cast<size_t>(r.width) * r.height, "raster points out of range");
-  out.resize(count);
-  const double sx = (r.domain.x1 - r.domain.x0) / r.width, sy = (r.domain.y1 - r.domain.y0) / r.height;
-  const size_t w = static_cast<size_t>(r.width);
-  size_t i = first % w, j = first / w;  // the cell of point `first`, then row by row
-  for (size_t k = 0; k < count; ++k) {
-    out[k] = Vec2(r.domain.x0 + (static_cast<double>(i) + 0.5) * sx, r.domain.y0 + (static_cast<double>(j) + 0.5) * sy);
-    if (++i == w) i = 0, ++j;
-  }
-}
-
 void write_raster_pfm(const std::string& path, const Raster& raster, std::span<const double> values, int channels) {
   // PFM's rows go bottom to top, raster rows y0 upward: the same order (write_pfm checks the
   // channels and the size).

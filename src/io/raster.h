@@ -12,27 +12,12 @@
 
 namespace radrecon {
 
-/// A raster of query points: width x height cell centres of `domain`,
-/// point (i, j) = (x0 + (i + 0.5) (x1 - x0) / width, y0 + (j + 0.5) (y1 - y0) / height),
-/// in the order row by row, the y0 row first (index j * width + i).
-struct Raster {
-  int width = 0, height = 0;
-  Rect domain{0, 0, 1, 1};
-};
-
 /// Largest width or height of a raster (parse_size(), core/parse.h).
 inline constexpr int kMaxRasterSide = 20000;
 /// The raster's points (W x H) are bounded by Limit::raster_points (core/limits.h).
 
 /// Parses "x0,y0,x1,y1" (finite, x1 > x0, y1 > y0); throws UserError naming `where`.
 Rect parse_domain(const std::string& text, const std::string& where);
-/// The query points of a raster, in raster order.
-std::vector<Vec2> raster_points(const Raster& raster);
-
-/// Points [first, first + count) of raster_points(raster), into `out` (resized): a batch of a
-/// large raster without the whole raster's points in memory.
-void raster_points(const Raster& raster, size_t first, size_t count, std::vector<Vec2>& out);
-
 /// Writes raster values (raster order, `channels` per point, channels 1 or 3) as a little-endian
 /// PFM: "Pf" (greyscale) for 1 channel, "PF" (colour) for 3. PFM stores the
 /// bottom row of the picture first, and the picture shows y upward, so the file's first row is

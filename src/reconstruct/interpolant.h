@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "core/vec.h"
+#include "reconstruct/samples.h"
 
 namespace radrecon {
 
@@ -36,6 +37,13 @@ class Interpolant {
   /// out[k * channels() + c]. `out.size()` must be points.size() * channels(). A point where the
   /// method has no value (see each method's outside-the-domain rule) gets NaN.
   virtual void evaluate(std::span<const Vec2> points, std::span<double> out) const = 0;
+
+  /// evaluate() at the raster's points [first, first + count) (raster order, Raster::point()),
+  /// into `out` (count * channels() values). By default it makes those points and calls
+  /// evaluate(); a method with a faster way over a raster's rows overrides it, giving the same
+  /// values up to round-off (natural-neighbour: sibson_raster.h). Values do not depend on how a
+  /// raster is cut into calls, nor on the number of threads.
+  virtual void evaluate_raster(const Raster& raster, size_t first, size_t count, std::span<double> out) const;
 };
 
 }  // namespace radrecon

@@ -111,6 +111,25 @@ void NaturalNeighbour::evaluate(std::span<const Vec2> points, std::span<double> 
   });
 }
 
+void NaturalNeighbour::evaluate_raster(const Raster& raster, size_t first, size_t count, std::span<double> out) const {
+  if (impl_->rule != NeighbourRule::sibson || !impl_->barriers.empty())
+    return Interpolant::evaluate_raster(raster, first, count, out);
+  std::call_once(impl_->raster_made, [&] {
+    impl_->raster = std::make_unique<SibsonRaster>(impl_->dt, impl_->points, impl_->values, impl_->channels, impl_->hull_edges);
+  });
+  std::vector<size_t> unserved;
+  impl_->raster->evaluate(raster, first, count, out, unserved);
+  if (unserved.empty()) return;
+  const size_t C = static_cast<size_t>(impl_->channels), width = static_cast<size_t>(raster.width);
+  std::vector<Vec2> points;
+  points.reserve(unserved.size());
+  for (const size_t k : unserved) points.push_back(raster.point((first + k) % width, (first + k) / width));
+  std::vector<double> values(points.size() * C);
+  evaluate(points, values);
+  for (size_t u = 0; u < unserved.size(); ++u)
+    std::copy_n(values.begin() + static_cast<std::ptrdiff_t>(u * C), C, out.begin() + static_cast<std::ptrdiff_t>(unserved[u] * C));
+}
+
 void NaturalNeighbour::visit_coordinates(
     std::span<const Vec2> points,
     const std::function<void(size_t, std::span<const std::pair<unsigned, double>>)>& visit) const {

@@ -64,6 +64,9 @@ class NaturalNeighbour final : public Interpolant {
   ~NaturalNeighbour() override;
   int channels() const override;
   void evaluate(std::span<const Vec2> points, std::span<double> out) const override;
+  /// Sibson's rule without barriers: face by face over the raster's rows (sibson_raster.h), the
+  /// points it leaves (by the hull, next to a sample) query by query; else as Interpolant's.
+  void evaluate_raster(const Raster& raster, size_t first, size_t count, std::span<double> out) const override;
 
   /// Visible samples a query's local triangulation may hold (with barriers).
   static constexpr size_t kMaxVisibleNeighbours = 512;

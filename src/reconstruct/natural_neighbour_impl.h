@@ -7,6 +7,7 @@
 #include <array>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <vector>
 
 #include "core/check.h"
@@ -16,6 +17,7 @@
 #include "reconstruct/natural_neighbour.h"
 #include "reconstruct/nn_delaunay.h"
 #include "reconstruct/sibson_c1.h"
+#include "reconstruct/sibson_raster.h"
 #include "reconstruct/subset_cache.h"
 
 namespace radrecon {
@@ -40,6 +42,9 @@ struct NaturalNeighbour::Impl {
   /// the triangulations of the sets seen (whole_visible_coordinates()).
   std::unique_ptr<PointVisibility> visibility;
   SubsetCache<Delaunay> visible_triangulations{kMaxCachedTriangulationSamples};
+  /// Sibson's rule over rasters (evaluate_raster()), made on first use.
+  std::unique_ptr<SibsonRaster> raster;
+  std::once_flag raster_made;
 
   /// Buffers of coordinates(), reused from query to query.
   struct Scratch {

@@ -18,6 +18,25 @@ struct Rect {
   Vec2 center() const { return {0.5 * (x0 + x1), 0.5 * (y0 + y1)}; }
 };
 
+/// A raster of query points: width x height cell centres of `domain`,
+/// point (i, j) = (x0 + (i + 0.5) (x1 - x0) / width, y0 + (j + 0.5) (y1 - y0) / height),
+/// in the order row by row, the y0 row first (index j * width + i).
+struct Raster {
+  int width = 0, height = 0;
+  Rect domain{0, 0, 1, 1};
+  /// Point (i, j), metres: the formula above, to the bit.
+  Vec2 point(size_t i, size_t j) const {
+    const double sx = (domain.x1 - domain.x0) / width, sy = (domain.y1 - domain.y0) / height;
+    return {domain.x0 + (static_cast<double>(i) + 0.5) * sx, domain.y0 + (static_cast<double>(j) + 0.5) * sy};
+  }
+};
+
+/// The query points of a raster, in raster order.
+std::vector<Vec2> raster_points(const Raster& raster);
+/// Points [first, first + count) of raster_points(raster), into `out` (resized): a batch of a
+/// large raster without the whole raster's points in memory.
+void raster_points(const Raster& raster, size_t first, size_t count, std::vector<Vec2>& out);
+
 /// A piecewise-constant function: disjoint cells, one value (per channel) on each.
 struct CellSamples {
   std::vector<Rect> cells;

@@ -1,0 +1,253 @@
+#include "reconstruct/sibson_raster.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/check.h"
+#include "core/parallel.h"
+#include "core/tolerances.h"
+
+namespace radrecon {
+
+namespace {
+
+using nn::Delaunay;
+
+using tol::kSibsonRasterChordSlack;
+
+double cross(const Vec2& u, const Vec2& v) { return u.x() * v.y() - u.y() * v.x(); }
+
+/// D(q) = r2 - |q - o|^2, positive inside the circle: the one formula of every in-circle
+/// decision, so that a face and its neighbour decide alike (fma: no contraction can differ).
+template <typename Circle>
+double power(const Circle& c, double qx, double qy) {
+  const double dx = qx - c.o.x(), dy = qy - c.o.y();
+  return c.r2 - std::fma(dx, dx, dy * dy);
+}
+
+/// Buffers of one raster row.
+struct RowScratch {
+  std::vector<double> weight, error, numerator;
+  std::vector<double> x;  ///< the row's points' x, shifted
+};
+
+}  // namespace
+
+SibsonRaster::SibsonRaster(const Delaunay& dt, std::span<const Vec2> points, std::span<const double> values,
+                           int channels, std::span<const std::pair<unsigned, unsigned>> hull)
+    : values_(values), channels_(channels) {
+  Vec2 lo = points.front(), hi = points.front();
+  for (const Vec2& p : points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  origin_ = 0.5 * (lo + hi);
+  hull_margin_m_ = tol::kSibsonRasterHullMarginRelative * (hi - lo).maxCoeff();
+  p_.reserve(points.size());
+  for (const Vec2& p : points) p_.push_back(p - origin_);
+  for (const auto& [a, b] : hull) hull_.emplace_back(p_[a], p_[b]);
+
+  std::vector<nn::Delaunay::Face_handle> handles;
+  handles.reserve(dt.number_of_faces());
+  for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) handles.push_back(f);
+  faces_.resize(handles.size());
+  parallel_for(0, static_cast<std::int64_t>(handles.size()), [&](std::int64_t k) {
+    const nn::Delaunay::Face_handle f = handles[static_cast<size_t>(k)];
+    Face& face = faces_[static_cast<size_t>(k)];
+    for (int k = 0; k < 3; ++k) face.v[static_cast<size_t>(k)] = f->vertex(k)->info();
+    face.circle = circumcircle(f);
+    const double r = std::sqrt(face.circle.r2);
+    face.y_lo = face.circle.o.y() - r * (1 + kSibsonRasterChordSlack);
+    face.y_hi = face.circle.o.y() + r * (1 + kSibsonRasterChordSlack);
+    for (size_t e = 0; e < 3; ++e) {
+      // CGAL's neighbour i lies across the edge opposite vertex i: edge (v[e], v[e+1]) is
+      // opposite vertex e + 2.
+      const nn::Delaunay::Face_handle n = f->neighbor(static_cast<int>(e + 2) % 3);
+      if (dt.is_infinite(n)) {
+        face.across[e] = Circle{};
+        continue;
+      }
+      const Circle c = circumcircle(n);
+      face.across[e] = c;
+      const Vec2 w = p_[face.v[e]] - p_[face.v[(e + 1) % 3]];
+      const Vec2 g(w.y(), -w.x());
+      face.half_c[e] = (face.circle.o - c.o).dot(g) / g.squaredNorm();
+      face.c_error[e] = std::abs(face.half_c[e]) +
+                        (r + std::sqrt(c.r2) + face.circle.o.norm() + c.o.norm()) / g.norm();
+    }
+  });
+
+  // The fixed order: buckets of y_lo a typical circle's diameter wide; circles far taller than
+  // typical (slivers by the hull) apart, so that the buckets searched stay few.
+  std::vector<double> diameters;
+  diameters.reserve(faces_.size());
+  for (const Face& f : faces_) diameters.push_back(f.y_hi - f.y_lo);
+  std::nth_element(diameters.begin(), diameters.begin() + static_cast<std::ptrdiff_t>(diameters.size() / 2), diameters.end());
+  const double typical = diameters[diameters.size() / 2];
+  bucket_m_ = typical > 0 ? typical : 1.0;
+  tall_m_ = 8 * bucket_m_;
+  y_lo_min_ = std::numeric_limits<double>::infinity();
+  double y_lo_max = -y_lo_min_;
+  for (const Face& f : faces_)
+    if (f.y_hi - f.y_lo <= tall_m_) y_lo_min_ = std::min(y_lo_min_, f.y_lo), y_lo_max = std::max(y_lo_max, f.y_lo);
+  const size_t buckets = std::isfinite(y_lo_min_) ? static_cast<size_t>((y_lo_max - y_lo_min_) / bucket_m_) + 1 : 0;
+  bucket_first_.assign(buckets + 1, 0);
+  const auto bucket_of = [&](const Face& f) { return static_cast<size_t>((f.y_lo - y_lo_min_) / bucket_m_); };
+  for (const Face& f : faces_)
+    if (f.y_hi - f.y_lo <= tall_m_) ++bucket_first_[bucket_of(f) + 1];
+  for (size_t b = 0; b < buckets; ++b) bucket_first_[b + 1] += bucket_first_[b];
+  by_bucket_.resize(bucket_first_.back());
+  std::vector<size_t> fill(bucket_first_.begin(), bucket_first_.end() - 1);
+  for (size_t i = 0; i < faces_.size(); ++i) {
+    const Face& f = faces_[i];
+    if (f.y_hi - f.y_lo <= tall_m_) by_bucket_[fill[bucket_of(f)]++] = static_cast<int>(i);
+    else tall_.push_back(static_cast<int>(i));
+  }
+}
+
+SibsonRaster::Circle SibsonRaster::circumcircle(const nn::Delaunay::Face_handle& f) const {
+  const Vec2 a = p_[f->vertex(0)->info()], b = p_[f->vertex(1)->info()], c = p_[f->vertex(2)->info()];
+  Circle out;
+  out.o = a + nn::circumcentre_from(a, b, c);
+  out.r2 = std::max({(a - out.o).squaredNorm(), (b - out.o).squaredNorm(), (c - out.o).squaredNorm()});
+  return out;
+}
+
+std::pair<double, double> SibsonRaster::hull_span(double y) const {
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (const auto& [a, b] : hull_) {
+    if ((a.y() - y) * (b.y() - y) > 0) continue;  // wholly above or below
+    if (a.y() == b.y()) {
+      lo = std::min({lo, a.x(), b.x()}), hi = std::max({hi, a.x(), b.x()});
+      continue;
+    }
+    const double x = a.x() + (y - a.y()) / (b.y() - a.y()) * (b.x() - a.x());
+    lo = std::min(lo, x), hi = std::max(hi, x);
+  }
+  return {lo, hi};
+}
+
+void SibsonRaster::faces_near(double y0, double y1, std::vector<int>& out) const {
+  out.clear();
+  if (!bucket_first_.empty()) {
+    const size_t buckets = bucket_first_.size() - 1;
+    // A face of the buckets whose circle reaches y0 starts at most tall_m_ below it.
+    const double from = std::floor((y0 - tall_m_ - y_lo_min_) / bucket_m_), to = std::floor((y1 - y_lo_min_) / bucket_m_);
+    const size_t b0 = from <= 0 ? 0 : static_cast<size_t>(std::min(from, static_cast<double>(buckets)));
+    const size_t b1 = to < 0 ? 0 : static_cast<size_t>(std::min(to + 1, static_cast<double>(buckets)));
+    for (size_t i = bucket_first_[b0]; i < bucket_first_[std::max(b0, b1)]; ++i) {
+      const Face& f = faces_[static_cast<size_t>(by_bucket_[i])];
+      if (f.y_hi >= y0 && f.y_lo <= y1) out.push_back(by_bucket_[i]);
+    }
+  }
+  for (const int i : tall_) {
+    const Face& f = faces_[static_cast<size_t>(i)];
+    if (f.y_hi >= y0 && f.y_lo <= y1) out.push_back(i);
+  }
+}
+
+void SibsonRaster::evaluate(const Raster& raster, size_t first, size_t count, std::span<double> out,
+                            std::vector<size_t>& unserved) const {
+  const size_t C = static_cast<size_t>(channels_);
+  RR_CHECK(out.size() == count * C, "output size does not match the raster points");
+  unserved.clear();
+  if (count == 0) return;
+  const size_t width = static_cast<size_t>(raster.width);
+  const size_t row0 = first / width, row1 = (first + count - 1) / width;  // rows [row0, row1]
+  const double y0 = raster.point(0, row0).y() - origin_.y(), y1 = raster.point(0, row1).y() - origin_.y();
+  std::vector<int> near;
+  faces_near(std::min(y0, y1), std::max(y0, y1), near);
+  const size_t rows = row1 - row0 + 1;
+  std::vector<std::vector<size_t>> left(rows);
+  const double m = hull_margin_m_;
+  const double sx = (raster.domain.x1 - raster.domain.x0) / raster.width, sy = (raster.domain.y1 - raster.domain.y0) / raster.height;
+  // Each row's faces, in the fixed order: those whose circles may reach it (a row more either
+  // side; the power test decides).
+  std::vector<std::vector<int>> row_faces(rows);
+  for (const int fi : near) {
+    const Face& f = faces_[static_cast<size_t>(fi)];
+    const double a = std::floor((f.y_lo - y0) / sy) - 1, b = std::ceil((f.y_hi - y0) / sy) + 1;
+    const size_t ra = a <= 0 ? 0 : static_cast<size_t>(std::min(a, static_cast<double>(rows)));
+    const size_t rb = b < 0 ? 0 : static_cast<size_t>(std::min(b + 1, static_cast<double>(rows)));
+    for (size_t r = ra; r < rb; ++r) row_faces[r].push_back(fi);
+  }
+
+  parallel_for_with_scratch<RowScratch>(0, static_cast<std::int64_t>(row1 - row0 + 1), 1, 2, [&](std::int64_t r, RowScratch& s) {
+    const size_t j = row0 + static_cast<size_t>(r);
+    const size_t i0 = j == row0 ? first % width : 0;
+    const size_t i1 = j == row1 ? (first + count - 1) % width + 1 : width;  // points [i0, i1) of row j
+    const size_t n = i1 - i0, offset = j * width + i0 - first;  // the row's first point in `out`
+    const double qy = raster.point(0, j).y() - origin_.y();
+    s.x.resize(n);
+    for (size_t i = 0; i < n; ++i) s.x[i] = raster.point(i0 + i, j).x() - origin_.x();
+    s.weight.assign(n, 0.0);
+    s.error.assign(n, 0.0);
+    s.numerator.assign(n * C, 0.0);
+    // The points whose square of half-side m lies inside the hull: served, the rest left.
+    const auto [lo_a, hi_a] = hull_span(qy - m);
+    const auto [lo_b, hi_b] = hull_span(qy + m);
+    const double inside_lo = std::max(lo_a, lo_b) + m, inside_hi = std::min(hi_a, hi_b) - m;
+    size_t s0 = n, s1 = n;  // the served points [s0, s1)
+    if (inside_lo < inside_hi) {
+      s0 = static_cast<size_t>(std::upper_bound(s.x.begin(), s.x.end(), inside_lo) - s.x.begin());
+      s1 = static_cast<size_t>(std::lower_bound(s.x.begin(), s.x.end(), inside_hi) - s.x.begin());
+      s1 = std::max(s0, s1);
+    }
+    for (const int fi : row_faces[static_cast<size_t>(r)]) {
+      const Face& f = faces_[static_cast<size_t>(fi)];
+      const double dy = qy - f.circle.o.y();
+      // The row's points within the circle's chord, widened beyond the power test's rounding
+      // (a few units of 2^-53 of r2): that test decides, as it does for the faces around.
+      const double h2 = f.circle.r2 - dy * dy;
+      if (h2 < -kSibsonRasterChordSlack * f.circle.r2) continue;
+      const double h = std::sqrt(std::max(h2, 0.0) + kSibsonRasterChordSlack * f.circle.r2);
+      const double from_x = f.circle.o.x() - h, to_x = f.circle.o.x() + h;
+      const double guess = std::floor((from_x - s.x[0]) / sx) - 1;  // the first point's index, about
+      size_t i = guess <= static_cast<double>(s0) ? s0 : static_cast<size_t>(std::min(guess, static_cast<double>(s1)));
+      while (i < s1 && s.x[i] < from_x) ++i;
+      while (i > s0 && s.x[i - 1] >= from_x) --i;
+      for (; i < s1 && s.x[i] <= to_x; ++i) {
+        const double qx = s.x[i];
+        const double d = power(f.circle, qx, qy);
+        if (!(d > 0)) continue;
+        const Vec2 q(qx, qy);
+        const double far2 = f.circle.r2 + (q - f.circle.o).squaredNorm();
+        double weight = 0, error = 0;
+        for (size_t e = 0; e < 3; ++e) {
+          const unsigned vx = f.v[e], vy = f.v[(e + 1) % 3];
+          const Vec2 x = p_[vx] - q, y = p_[vy] - q, xy = p_[vy] - p_[vx];
+          const double px = y.dot(xy), py = -x.dot(xy);  // (y - q).(y - x), (x - q).(x - y)
+          const double scale = 0.5 * (x.squaredNorm() + y.squaredNorm()) + xy.squaredNorm();  // >= |px|, |py|
+          double tx, ty;
+          if (f.across[e].r2 >= 0 && power(f.across[e], qx, qy) > 0) {
+            tx = f.half_c[e] * px, ty = f.half_c[e] * py;
+            error += f.c_error[e] * scale;
+          } else {
+            const double k = cross(x, y);
+            const double ratio = d / k;
+            tx = ratio * px, ty = ratio * py;
+            error += (far2 + std::abs(ratio) * 0.5 * (x.squaredNorm() + y.squaredNorm())) * scale / std::abs(k);
+          }
+          weight += tx + ty;
+          const double* zx = &values_[vx * C];
+          const double* zy = &values_[vy * C];
+          for (size_t c = 0; c < C; ++c) s.numerator[i * C + c] += tx * zx[c] + ty * zy[c];
+        }
+        s.weight[i] += weight;
+        s.error[i] += error;
+      }
+    }
+    std::vector<size_t>& row_left = left[static_cast<size_t>(r)];
+    row_left.clear();
+    for (size_t i = 0; i < n; ++i) {
+      const double w = s.weight[i];
+      // Served: inside, a positive weight, and rounding far below it (NaN fails every test).
+      if (i < s0 || i >= s1 || !(w > 0) || !(s.error[i] <= tol::kSibsonRasterCancellation * w)) {
+        row_left.push_back(offset + i);
+        continue;
+      }
+      for (size_t c = 0; c < C; ++c) out[(offset + i) * C + c] = s.numerator[i * C + c] / w;
+    }
+  });
+  for (const auto& row_left : left) unserved.insert(unserved.end(), row_left.begin(), row_left.end());
+}
+
+}  // namespace radrecon
