@@ -200,6 +200,11 @@ void SibsonRaster::evaluate(const Raster& raster, size_t first, size_t count, st
       if (h2 < -kSibsonRasterChordSlack * f.circle.r2) continue;
       const double h = std::sqrt(std::max(h2, 0.0) + kSibsonRasterChordSlack * f.circle.r2);
       const double from_x = f.circle.o.x() - h, to_x = f.circle.o.x() + h;
+      // The face's corners, edges (v[e] to v[e+1]) and values, for each of its points below.
+      const std::array<Vec2, 3> corner = {p_[f.v[0]], p_[f.v[1]], p_[f.v[2]]};
+      const std::array<Vec2, 3> edge = {corner[1] - corner[0], corner[2] - corner[1], corner[0] - corner[2]};
+      const std::array<double, 3> edge2 = {edge[0].squaredNorm(), edge[1].squaredNorm(), edge[2].squaredNorm()};
+      const std::array<const double*, 3> value = {&values_[f.v[0] * C], &values_[f.v[1] * C], &values_[f.v[2] * C]};
       const double guess = std::floor((from_x - s.x[0]) / sx) - 1;  // the first point's index, about
       size_t i = guess <= static_cast<double>(s0) ? s0 : static_cast<size_t>(std::min(guess, static_cast<double>(s1)));
       while (i < s1 && s.x[i] < from_x) ++i;
@@ -210,27 +215,29 @@ void SibsonRaster::evaluate(const Raster& raster, size_t first, size_t count, st
         if (!(d > 0)) continue;
         const Vec2 q(qx, qy);
         const double far2 = f.circle.r2 + (q - f.circle.o).squaredNorm();
-        double weight = 0, error = 0;
+        const std::array<Vec2, 3> to = {corner[0] - q, corner[1] - q, corner[2] - q};  // corners less q
+        const std::array<double, 3> to2 = {to[0].squaredNorm(), to[1].squaredNorm(), to[2].squaredNorm()};
+        std::array<double, 3> share{0, 0, 0};  // per corner: its stolen area's terms from this face
+        double error = 0;
         for (size_t e = 0; e < 3; ++e) {
-          const unsigned vx = f.v[e], vy = f.v[(e + 1) % 3];
-          const Vec2 x = p_[vx] - q, y = p_[vy] - q, xy = p_[vy] - p_[vx];
-          const double px = y.dot(xy), py = -x.dot(xy);  // (y - q).(y - x), (x - q).(x - y)
-          const double scale = 0.5 * (x.squaredNorm() + y.squaredNorm()) + xy.squaredNorm();  // >= |px|, |py|
-          double tx, ty;
+          const size_t ex = e, ey = e == 2 ? 0 : e + 1;
+          const Vec2 &x = to[ex], &y = to[ey];
+          const double px = y.dot(edge[e]), py = -x.dot(edge[e]);  // (y - q).(y - x), (x - q).(x - y)
+          const double half_sum2 = 0.5 * (to2[ex] + to2[ey]);
+          const double scale = half_sum2 + edge2[e];  // >= |px|, |py|
           if (f.across[e].r2 >= 0 && power(f.across[e], qx, qy) > 0) {
-            tx = f.half_c[e] * px, ty = f.half_c[e] * py;
+            share[ex] += f.half_c[e] * px, share[ey] += f.half_c[e] * py;
             error += f.c_error[e] * scale;
           } else {
-            const double k = cross(x, y);
-            const double ratio = d / k;
-            tx = ratio * px, ty = ratio * py;
-            error += (far2 + std::abs(ratio) * 0.5 * (x.squaredNorm() + y.squaredNorm())) * scale / std::abs(k);
+            const double inverse = 1 / cross(x, y);
+            const double ratio = d * inverse;
+            share[ex] += ratio * px, share[ey] += ratio * py;
+            error += (far2 + std::abs(ratio) * half_sum2) * scale * std::abs(inverse);
           }
-          weight += tx + ty;
-          const double* zx = &values_[vx * C];
-          const double* zy = &values_[vy * C];
-          for (size_t c = 0; c < C; ++c) s.numerator[i * C + c] += tx * zx[c] + ty * zy[c];
         }
+        const double weight = share[0] + share[1] + share[2];
+        for (size_t c = 0; c < C; ++c)
+          s.numerator[i * C + c] += share[0] * value[0][c] + share[1] * value[1][c] + share[2] * value[2][c];
         s.weight[i] += weight;
         s.error[i] += error;
       }
