@@ -196,7 +196,7 @@ void run_interpolate(const InterpolateArgs& args) {
   const auto evaluate_batch = [&](size_t first, std::span<double> out) {
     const auto batch_start = Clock::now();
     const size_t count = out.size() / channels;
-    if (raster_batches) interpolant.value()->evaluate_raster(raster, first, count, out);
+    if (!use_queries) interpolant.value()->evaluate_raster(raster, first, count, out);  // every output alike
     else interpolant.value()->evaluate(std::span(points).subspan(first, count), out);
     progress.update(static_cast<double>(first + count) / point_count, "the query points");
     querying_s += seconds_since(batch_start);

@@ -8,6 +8,7 @@
 
 #include "core/vec.h"
 #include "io/image_io.h"
+#include "reconstruct/interpolant.h"  // Raster, raster_points()
 #include "reconstruct/samples.h"
 
 namespace radrecon {

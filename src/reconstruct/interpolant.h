@@ -4,6 +4,7 @@
 
 #include <span>
 #include <stdexcept>
+#include <vector>
 
 #include "core/vec.h"
 #include "reconstruct/samples.h"
@@ -26,6 +27,12 @@ class ReconstructionError : public std::runtime_error {
 /// Each point is evaluated on its own, so values do not depend on the batches.
 inline constexpr size_t kEvaluateBatch = size_t{1} << 14;
 
+/// The query points of a raster, in raster order.
+std::vector<Vec2> raster_points(const Raster& raster);
+/// Points [first, first + count) of raster_points(raster), into `out` (resized): a batch of a
+/// large raster without the whole raster's points in memory.
+void raster_points(const Raster& raster, size_t first, size_t count, std::vector<Vec2>& out);
+
 class Interpolant {
  public:
   virtual ~Interpolant() = default;
@@ -41,8 +48,9 @@ class Interpolant {
   /// evaluate() at the raster's points [first, first + count) (raster order, Raster::point()),
   /// into `out` (count * channels() values). By default it makes those points and calls
   /// evaluate(); a method with a faster way over a raster's rows overrides it, giving the same
-  /// values up to round-off (natural-neighbour: sibson_raster.h). Values do not depend on how a
-  /// raster is cut into calls, nor on the number of threads.
+  /// values up to round-off (natural-neighbour: sibson_raster.h). Values do not depend on the
+  /// number of threads; a point on a Delaunay edge may take other last bits when the raster is
+  /// cut into other calls (as with evaluate()'s batches).
   virtual void evaluate_raster(const Raster& raster, size_t first, size_t count, std::span<double> out) const;
 };
 

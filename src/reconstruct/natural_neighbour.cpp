@@ -117,6 +117,7 @@ void NaturalNeighbour::evaluate_raster(const Raster& raster, size_t first, size_
   std::call_once(impl_->raster_made, [&] {
     impl_->raster = std::make_unique<SibsonRaster>(impl_->dt, impl_->points, impl_->values, impl_->channels, impl_->hull_edges);
   });
+  if (!impl_->raster->usable()) return Interpolant::evaluate_raster(raster, first, count, out);
   std::vector<size_t> unserved;
   impl_->raster->evaluate(raster, first, count, out, unserved);
   if (unserved.empty()) return;

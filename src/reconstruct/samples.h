@@ -31,12 +31,6 @@ struct Raster {
   }
 };
 
-/// The query points of a raster, in raster order.
-std::vector<Vec2> raster_points(const Raster& raster);
-/// Points [first, first + count) of raster_points(raster), into `out` (resized): a batch of a
-/// large raster without the whole raster's points in memory.
-void raster_points(const Raster& raster, size_t first, size_t count, std::vector<Vec2>& out);
-
 /// A piecewise-constant function: disjoint cells, one value (per channel) on each.
 struct CellSamples {
   std::vector<Rect> cells;

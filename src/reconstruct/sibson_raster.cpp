@@ -1,6 +1,7 @@
 #include "reconstruct/sibson_raster.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 
@@ -15,6 +16,10 @@ namespace {
 using nn::Delaunay;
 
 using tol::kSibsonRasterChordSlack;
+
+/// Faces whose circles are more than this many typical diameters tall are searched apart from
+/// the buckets (slivers by the hull); the buckets are searched this far below a row.
+constexpr double kTallDiameters = 8;
 
 double cross(const Vec2& u, const Vec2& v) { return u.x() * v.y() - u.y() * v.x(); }
 
@@ -49,11 +54,13 @@ SibsonRaster::SibsonRaster(const Delaunay& dt, std::span<const Vec2> points, std
   handles.reserve(dt.number_of_faces());
   for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) handles.push_back(f);
   faces_.resize(handles.size());
+  std::atomic<bool> unusable{false};
   parallel_for(0, static_cast<std::int64_t>(handles.size()), [&](std::int64_t k) {
     const nn::Delaunay::Face_handle f = handles[static_cast<size_t>(k)];
     Face& face = faces_[static_cast<size_t>(k)];
     for (int k = 0; k < 3; ++k) face.v[static_cast<size_t>(k)] = f->vertex(k)->info();
     face.circle = circumcircle(f);
+    if (!std::isfinite(face.circle.r2) || !face.circle.o.allFinite()) unusable = true;
     const double r = std::sqrt(face.circle.r2);
     face.y_lo = face.circle.o.y() - r * (1 + kSibsonRasterChordSlack);
     face.y_hi = face.circle.o.y() + r * (1 + kSibsonRasterChordSlack);
@@ -70,11 +77,16 @@ SibsonRaster::SibsonRaster(const Delaunay& dt, std::span<const Vec2> points, std
       const Vec2 w = p_[face.v[e]] - p_[face.v[(e + 1) % 3]];
       const Vec2 g(w.y(), -w.x());
       face.half_c[e] = (face.circle.o - c.o).dot(g) / g.squaredNorm();
+      // half_c's rounding: the circumcentres' (some 2^-53 of R^2 / |edge| for a sliver) over |g|.
       face.c_error[e] = std::abs(face.half_c[e]) +
-                        (r + std::sqrt(c.r2) + face.circle.o.norm() + c.o.norm()) / g.norm();
+                        (r + std::sqrt(c.r2) + face.circle.o.norm() + c.o.norm()) / g.norm() +
+                        (face.circle.r2 + c.r2) / g.squaredNorm();
     }
   });
 
+  // A face whose circle rounds to infinity (nearly flat): no point is served at all.
+  usable_ = !unusable;
+  if (!usable_) return;
   // The fixed order: buckets of y_lo a typical circle's diameter wide; circles far taller than
   // typical (slivers by the hull) apart, so that the buckets searched stay few.
   std::vector<double> diameters;
@@ -83,11 +95,13 @@ SibsonRaster::SibsonRaster(const Delaunay& dt, std::span<const Vec2> points, std
   std::nth_element(diameters.begin(), diameters.begin() + static_cast<std::ptrdiff_t>(diameters.size() / 2), diameters.end());
   const double typical = diameters[diameters.size() / 2];
   bucket_m_ = typical > 0 ? typical : 1.0;
-  tall_m_ = 8 * bucket_m_;
+  tall_m_ = kTallDiameters * bucket_m_;
   y_lo_min_ = std::numeric_limits<double>::infinity();
   double y_lo_max = -y_lo_min_;
   for (const Face& f : faces_)
     if (f.y_hi - f.y_lo <= tall_m_) y_lo_min_ = std::min(y_lo_min_, f.y_lo), y_lo_max = std::max(y_lo_max, f.y_lo);
+  // At most one bucket a face: far-apart clusters of samples spread few faces over a long span.
+  if (std::isfinite(y_lo_min_)) bucket_m_ = std::max(bucket_m_, (y_lo_max - y_lo_min_) / static_cast<double>(faces_.size()));
   const size_t buckets = std::isfinite(y_lo_min_) ? static_cast<size_t>((y_lo_max - y_lo_min_) / bucket_m_) + 1 : 0;
   bucket_first_.assign(buckets + 1, 0);
   const auto bucket_of = [&](const Face& f) { return static_cast<size_t>((f.y_lo - y_lo_min_) / bucket_m_); };
@@ -130,7 +144,7 @@ void SibsonRaster::faces_near(double y0, double y1, std::vector<int>& out) const
   if (!bucket_first_.empty()) {
     const size_t buckets = bucket_first_.size() - 1;
     // A face of the buckets whose circle reaches y0 starts at most tall_m_ below it.
-    const double from = std::floor((y0 - tall_m_ - y_lo_min_) / bucket_m_), to = std::floor((y1 - y_lo_min_) / bucket_m_);
+    const double from = std::floor((y0 - tall_m_ - y_lo_min_) / bucket_m_) - 1, to = std::floor((y1 - y_lo_min_) / bucket_m_);
     const size_t b0 = from <= 0 ? 0 : static_cast<size_t>(std::min(from, static_cast<double>(buckets)));
     const size_t b1 = to < 0 ? 0 : static_cast<size_t>(std::min(to + 1, static_cast<double>(buckets)));
     for (size_t i = bucket_first_[b0]; i < bucket_first_[std::max(b0, b1)]; ++i) {
@@ -148,6 +162,9 @@ void SibsonRaster::evaluate(const Raster& raster, size_t first, size_t count, st
                             std::vector<size_t>& unserved) const {
   const size_t C = static_cast<size_t>(channels_);
   RR_CHECK(out.size() == count * C, "output size does not match the raster points");
+  RR_CHECK(raster.width > 0 && raster.height > 0, "raster size must be positive");
+  RR_CHECK(first + count <= static_cast<size_t>(raster.width) * static_cast<size_t>(raster.height),
+           "raster points out of range");
   unserved.clear();
   if (count == 0) return;
   const size_t width = static_cast<size_t>(raster.width);

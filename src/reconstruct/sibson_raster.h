@@ -23,10 +23,12 @@
 //
 // The points the faces do not serve are left to the query-by-query path: those not inside the
 // samples' hull by a margin (tol::kSibsonRasterHullMarginRelative), and those whose sum cancels
-// (tol::kSibsonRasterCancellation: next to a sample, or under a sliver's huge circle by the
-// hull).
+// (tol::kSibsonRasterCancellation: on or next to a sample, where the sums vanish, or under a
+// sliver's huge circle by the hull).
 
+#include <array>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "reconstruct/nn_delaunay.h"
@@ -46,8 +48,12 @@ class SibsonRaster {
   /// channels values, raster order). The indices k (0-based within the range) of the points it
   /// leaves unset go to `unserved`, in increasing order. A point's value depends on the point
   /// alone (the faces are summed in one fixed order), not on the range nor on the threads.
+  /// Rows are shared among the threads: a call of one or two rows runs on one.
   void evaluate(const Raster& raster, size_t first, size_t count, std::span<double> out,
                 std::vector<size_t>& unserved) const;
+  /// False when some face's circumcircle is not finite (a face nearly flat in floating point):
+  /// then evaluate() must not be used.
+  bool usable() const { return usable_; }
 
  private:
   /// A circle: centre (shifted coordinates) and squared radius.
@@ -84,6 +90,7 @@ class SibsonRaster {
   std::vector<size_t> bucket_first_;  ///< faces of bucket b: by_bucket_[bucket_first_[b], [b + 1])
   std::vector<int> tall_;
   double y_lo_min_ = 0, bucket_m_ = 1, tall_m_ = 1;
+  bool usable_ = true;
 };
 
 }  // namespace radrecon

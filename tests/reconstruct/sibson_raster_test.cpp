@@ -114,6 +114,35 @@ TEST(SibsonRaster, ReproducesLinearFunctionsAndTheSamplesThroughNaturalNeighbour
   EXPECT_DOUBLE_EQ(got[70 * 160 + 80], s.values.back());
 }
 
+TEST(SibsonRaster, ThreeChannelsAndBothHullRulesAgreeWithTheQueryByQueryPath) {
+  // A raster reaching past the hull, colour values: the same NaN pattern (outside=none) and the
+  // same values to round-off as evaluate() at the same points, the points left by the faces
+  // included (by the hull, outside it).
+  std::mt19937 rng(9);
+  ScatteredSamples s = random_samples(300, rng, 0, 1);
+  s.channels = 3;
+  s.values.clear();
+  for (const Vec2& p : s.points) s.values.insert(s.values.end(), {std::sin(5 * p.x()), p.y() * p.y(), 1 + p.x() * p.y()});
+  const Raster raster{123, 77, Rect{-0.1, -0.2, 1.1, 1.05}};
+  const std::vector<Vec2> points = raster_points(raster);
+  for (const OutsideHull outside : {OutsideHull::none, OutsideHull::nearest}) {
+    const NaturalNeighbour nn(s, outside);
+    std::vector<double> by_faces(points.size() * 3), by_queries(points.size() * 3);
+    nn.evaluate_raster(raster, 0, points.size(), by_faces);
+    nn.evaluate(points, by_queries);
+    size_t nan = 0;
+    for (size_t k = 0; k < by_faces.size(); ++k) {
+      ASSERT_EQ(std::isnan(by_faces[k]), std::isnan(by_queries[k])) << "value " << k;
+      if (std::isnan(by_faces[k])) {
+        ++nan;
+        continue;
+      }
+      ASSERT_NEAR(by_faces[k], by_queries[k], 1e-12) << "value " << k;
+    }
+    EXPECT_EQ(nan > 0, outside == OutsideHull::none);
+  }
+}
+
 TEST(SibsonRaster, ValuesDependNeitherOnTheThreadsNorOnTheCuts) {
   std::mt19937 rng(77);
   const ScatteredSamples s = random_samples(2000, rng, 0, 1);
