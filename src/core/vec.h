@@ -16,4 +16,8 @@ using Rgb = Eigen::Array3d;
 /// A polyline in a plane: consecutive points joined by segments, metres.
 using Polyline = std::vector<Vec2>;
 
+/// The plane's cross product a x b = ax by - ay bx: twice the signed area of the triangle
+/// (0, a, b), positive when b lies counter-clockwise of a.
+inline double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
 }  // namespace radrecon

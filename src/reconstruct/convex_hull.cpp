@@ -24,8 +24,6 @@ Vec2 nearest_on_segment(const Vec2& a, const Vec2& b, const Vec2& q) {
   return a + t * d;
 }
 
-double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
-
 }  // namespace
 
 ConvexHull2::ConvexHull2(std::span<const Vec2> points, std::span<const unsigned> subset) {

@@ -24,11 +24,11 @@ struct Rect {
 struct Raster {
   int width = 0, height = 0;
   Rect domain{0, 0, 1, 1};
-  /// Point (i, j), metres: the formula above, to the bit.
-  Vec2 point(size_t i, size_t j) const {
-    const double sx = (domain.x1 - domain.x0) / width, sy = (domain.y1 - domain.y0) / height;
-    return {domain.x0 + (static_cast<double>(i) + 0.5) * sx, domain.y0 + (static_cast<double>(j) + 0.5) * sy};
-  }
+  /// Column i's x and row j's y, metres: the formula above, to the bit.
+  double x(size_t i) const { return domain.x0 + (static_cast<double>(i) + 0.5) * ((domain.x1 - domain.x0) / width); }
+  double y(size_t j) const { return domain.y0 + (static_cast<double>(j) + 0.5) * ((domain.y1 - domain.y0) / height); }
+  /// Point (i, j), metres.
+  Vec2 point(size_t i, size_t j) const { return {x(i), y(j)}; }
 };
 
 /// A piecewise-constant function: disjoint cells, one value (per channel) on each.

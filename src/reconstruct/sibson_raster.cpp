@@ -13,15 +13,11 @@ namespace radrecon {
 
 namespace {
 
-using nn::Delaunay;
-
 using tol::kSibsonRasterChordSlack;
 
-/// Faces whose circles are more than this many typical diameters tall are searched apart from
-/// the buckets (slivers by the hull); the buckets are searched this far below a row.
+/// Faces whose circles are more than this many typical (median) diameters tall are searched
+/// apart from the order by y (slivers by the hull), which is searched that far below a row.
 constexpr double kTallDiameters = 8;
-
-double cross(const Vec2& u, const Vec2& v) { return u.x() * v.y() - u.y() * v.x(); }
 
 /// D(q) = r2 - |q - o|^2, positive inside the circle: the one formula of every in-circle
 /// decision, so that a face and its neighbour decide alike (fma: no contraction can differ).
@@ -39,7 +35,7 @@ struct RowScratch {
 
 }  // namespace
 
-SibsonRaster::SibsonRaster(const Delaunay& dt, std::span<const Vec2> points, std::span<const double> values,
+SibsonRaster::SibsonRaster(const nn::Delaunay& dt, std::span<const Vec2> points, std::span<const double> values,
                            int channels, std::span<const std::pair<unsigned, unsigned>> hull)
     : values_(values), channels_(channels) {
   Vec2 lo = points.front(), hi = points.front();
@@ -55,9 +51,9 @@ SibsonRaster::SibsonRaster(const Delaunay& dt, std::span<const Vec2> points, std
   for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) handles.push_back(f);
   faces_.resize(handles.size());
   std::atomic<bool> unusable{false};
-  parallel_for(0, static_cast<std::int64_t>(handles.size()), [&](std::int64_t k) {
-    const nn::Delaunay::Face_handle f = handles[static_cast<size_t>(k)];
-    Face& face = faces_[static_cast<size_t>(k)];
+  parallel_for(0, static_cast<std::int64_t>(handles.size()), [&](std::int64_t index) {
+    const nn::Delaunay::Face_handle f = handles[static_cast<size_t>(index)];
+    Face& face = faces_[static_cast<size_t>(index)];
     for (int k = 0; k < 3; ++k) face.v[static_cast<size_t>(k)] = f->vertex(k)->info();
     face.circle = circumcircle(f);
     if (!std::isfinite(face.circle.r2) || !face.circle.o.allFinite()) unusable = true;
@@ -72,6 +68,8 @@ SibsonRaster::SibsonRaster(const Delaunay& dt, std::span<const Vec2> points, std
         face.across[e] = Circle{};
         continue;
       }
+      // Made again rather than looked up (a face's index from its handle would need a map of
+      // them all): the same corners in the same order give the neighbour's own circle, bit for bit.
       const Circle c = circumcircle(n);
       face.across[e] = c;
       const Vec2 w = p_[face.v[e]] - p_[face.v[(e + 1) % 3]];
@@ -87,34 +85,21 @@ SibsonRaster::SibsonRaster(const Delaunay& dt, std::span<const Vec2> points, std
   // A face whose circle rounds to infinity (nearly flat): no point is served at all.
   usable_ = !unusable;
   if (!usable_) return;
-  // The fixed order: buckets of y_lo a typical circle's diameter wide; circles far taller than
-  // typical (slivers by the hull) apart, so that the buckets searched stay few.
+  // The fixed order: by the circles' lowest y (then index), circles far taller than typical
+  // (slivers by the hull) apart, so that a row's search is a short range of the order.
   std::vector<double> diameters;
   diameters.reserve(faces_.size());
   for (const Face& f : faces_) diameters.push_back(f.y_hi - f.y_lo);
   std::nth_element(diameters.begin(), diameters.begin() + static_cast<std::ptrdiff_t>(diameters.size() / 2), diameters.end());
-  const double typical = diameters[diameters.size() / 2];
-  bucket_m_ = typical > 0 ? typical : 1.0;
-  tall_m_ = kTallDiameters * bucket_m_;
-  y_lo_min_ = std::numeric_limits<double>::infinity();
-  double y_lo_max = -y_lo_min_;
-  for (const Face& f : faces_)
-    if (f.y_hi - f.y_lo <= tall_m_) y_lo_min_ = std::min(y_lo_min_, f.y_lo), y_lo_max = std::max(y_lo_max, f.y_lo);
-  // At most one bucket a face: far-apart clusters of samples spread few faces over a long span.
-  if (std::isfinite(y_lo_min_)) bucket_m_ = std::max(bucket_m_, (y_lo_max - y_lo_min_) / static_cast<double>(faces_.size()));
-  const size_t buckets = std::isfinite(y_lo_min_) ? static_cast<size_t>((y_lo_max - y_lo_min_) / bucket_m_) + 1 : 0;
-  bucket_first_.assign(buckets + 1, 0);
-  const auto bucket_of = [&](const Face& f) { return static_cast<size_t>((f.y_lo - y_lo_min_) / bucket_m_); };
-  for (const Face& f : faces_)
-    if (f.y_hi - f.y_lo <= tall_m_) ++bucket_first_[bucket_of(f) + 1];
-  for (size_t b = 0; b < buckets; ++b) bucket_first_[b + 1] += bucket_first_[b];
-  by_bucket_.resize(bucket_first_.back());
-  std::vector<size_t> fill(bucket_first_.begin(), bucket_first_.end() - 1);
-  for (size_t i = 0; i < faces_.size(); ++i) {
-    const Face& f = faces_[i];
-    if (f.y_hi - f.y_lo <= tall_m_) by_bucket_[fill[bucket_of(f)]++] = static_cast<int>(i);
-    else tall_.push_back(static_cast<int>(i));
-  }
+  tall_m_ = kTallDiameters * diameters[diameters.size() / 2];
+  for (size_t i = 0; i < faces_.size(); ++i)
+    (faces_[i].y_hi - faces_[i].y_lo <= tall_m_ ? by_y_lo_ : tall_).push_back(static_cast<int>(i));
+  std::sort(by_y_lo_.begin(), by_y_lo_.end(), [&](int a, int b) {
+    const double ya = faces_[static_cast<size_t>(a)].y_lo, yb = faces_[static_cast<size_t>(b)].y_lo;
+    return ya < yb || (ya == yb && a < b);
+  });
+  y_lo_.reserve(by_y_lo_.size());
+  for (const int i : by_y_lo_) y_lo_.push_back(faces_[static_cast<size_t>(i)].y_lo);
 }
 
 SibsonRaster::Circle SibsonRaster::circumcircle(const nn::Delaunay::Face_handle& f) const {
@@ -141,16 +126,13 @@ std::pair<double, double> SibsonRaster::hull_span(double y) const {
 
 void SibsonRaster::faces_near(double y0, double y1, std::vector<int>& out) const {
   out.clear();
-  if (!bucket_first_.empty()) {
-    const size_t buckets = bucket_first_.size() - 1;
-    // A face of the buckets whose circle reaches y0 starts at most tall_m_ below it.
-    const double from = std::floor((y0 - tall_m_ - y_lo_min_) / bucket_m_) - 1, to = std::floor((y1 - y_lo_min_) / bucket_m_);
-    const size_t b0 = from <= 0 ? 0 : static_cast<size_t>(std::min(from, static_cast<double>(buckets)));
-    const size_t b1 = to < 0 ? 0 : static_cast<size_t>(std::min(to + 1, static_cast<double>(buckets)));
-    for (size_t i = bucket_first_[b0]; i < bucket_first_[std::max(b0, b1)]; ++i) {
-      const Face& f = faces_[static_cast<size_t>(by_bucket_[i])];
-      if (f.y_hi >= y0 && f.y_lo <= y1) out.push_back(by_bucket_[i]);
-    }
+  // A face of the order whose circle reaches y0 starts at most tall_m_ below it (twice that:
+  // clear of the rounding of its diameter).
+  const auto from = std::lower_bound(y_lo_.begin(), y_lo_.end(), y0 - 2 * tall_m_);
+  const auto to = std::upper_bound(from, y_lo_.end(), y1);
+  for (auto it = from; it != to; ++it) {
+    const int i = by_y_lo_[static_cast<size_t>(it - y_lo_.begin())];
+    if (faces_[static_cast<size_t>(i)].y_hi >= y0) out.push_back(i);
   }
   for (const int i : tall_) {
     const Face& f = faces_[static_cast<size_t>(i)];
@@ -169,7 +151,7 @@ void SibsonRaster::evaluate(const Raster& raster, size_t first, size_t count, st
   if (count == 0) return;
   const size_t width = static_cast<size_t>(raster.width);
   const size_t row0 = first / width, row1 = (first + count - 1) / width;  // rows [row0, row1]
-  const double y0 = raster.point(0, row0).y() - origin_.y(), y1 = raster.point(0, row1).y() - origin_.y();
+  const double y0 = raster.y(row0) - origin_.y(), y1 = raster.y(row1) - origin_.y();
   std::vector<int> near;
   faces_near(std::min(y0, y1), std::max(y0, y1), near);
   const size_t rows = row1 - row0 + 1;
@@ -192,9 +174,9 @@ void SibsonRaster::evaluate(const Raster& raster, size_t first, size_t count, st
     const size_t i0 = j == row0 ? first % width : 0;
     const size_t i1 = j == row1 ? (first + count - 1) % width + 1 : width;  // points [i0, i1) of row j
     const size_t n = i1 - i0, offset = j * width + i0 - first;  // the row's first point in `out`
-    const double qy = raster.point(0, j).y() - origin_.y();
+    const double qy = raster.y(j) - origin_.y();
     s.x.resize(n);
-    for (size_t i = 0; i < n; ++i) s.x[i] = raster.point(i0 + i, j).x() - origin_.x();
+    for (size_t i = 0; i < n; ++i) s.x[i] = raster.x(i0 + i) - origin_.x();
     s.weight.assign(n, 0.0);
     s.error.assign(n, 0.0);
     s.numerator.assign(n * C, 0.0);

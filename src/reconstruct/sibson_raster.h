@@ -84,12 +84,12 @@ class SibsonRaster {
   Vec2 origin_;            ///< the samples' box centre: coordinates relative to it
   double hull_margin_m_;   ///< points nearer the hull's boundary are left unserved
   std::vector<std::pair<Vec2, Vec2>> hull_;  ///< hull edges (shifted coordinates)
-  // The faces in their fixed order: by the bucket of y_lo (buckets of bucket_m_ from
-  // y_lo_min_), then index; faces taller than tall_m_ after them, by index.
-  std::vector<int> by_bucket_;
-  std::vector<size_t> bucket_first_;  ///< faces of bucket b: by_bucket_[bucket_first_[b], [b + 1])
+  // The faces in their fixed order: those no taller than tall_m_ by their circles' lowest y
+  // (y_lo_, ascending), then index; the taller ones after them, by index.
+  std::vector<int> by_y_lo_;
+  std::vector<double> y_lo_;
   std::vector<int> tall_;
-  double y_lo_min_ = 0, bucket_m_ = 1, tall_m_ = 1;
+  double tall_m_ = 0;
   bool usable_ = true;
 };
 

@@ -85,12 +85,10 @@ std::vector<Vec3> clip_polygon_to_quad(const Surface& quad, std::vector<Vec3> po
   return poly;
 }
 
-double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
-
 /// Twice the signed area of a closed polygon (positive counter-clockwise).
 double twice_signed_area(const Polyline& p) {
   double a = 0;
-  for (size_t i = 0; i < p.size(); ++i) a += cross2(p[i], p[(i + 1) % p.size()]);
+  for (size_t i = 0; i < p.size(); ++i) a += cross(p[i], p[(i + 1) % p.size()]);
   return a;
 }
 
@@ -109,7 +107,7 @@ std::optional<Polyline> as_region(Polyline p, double join_m) {
       const double base = (next - prev).norm();
       // A repeated point, the tip of a spike, or a vertex on the line through its neighbours.
       const bool drop = (p[i] - prev).norm() <= join_m || base <= join_m ||
-                        std::abs(cross2(next - prev, p[i] - prev)) <= join_m * base;
+                        std::abs(cross(next - prev, p[i] - prev)) <= join_m * base;
       if (drop) {
         p.erase(p.begin() + static_cast<std::ptrdiff_t>(i));
         changed = true;

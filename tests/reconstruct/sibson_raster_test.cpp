@@ -21,19 +21,14 @@ namespace sibson_raster_test {
 
 using testing::random_samples;
 
-/// The samples' triangulation and hull edges, as NaturalNeighbour makes them.
+/// The samples' triangulation, as NaturalNeighbour makes it, and their hull's edges.
 struct Triangulated {
   nn::Delaunay dt;
   std::vector<std::pair<unsigned, unsigned>> hull;
-  explicit Triangulated(const ScatteredSamples& s) {
-    for (size_t i = 0; i < s.points.size(); ++i)
-      dt.insert(nn::Point(s.points[i].x(), s.points[i].y()))->info() = static_cast<unsigned>(i);
-    auto inf = dt.infinite_vertex();
-    auto fc = dt.incident_faces(inf), done = fc;
-    do {
-      const int i = fc->index(inf);
-      hull.emplace_back(fc->vertex(nn::Delaunay::ccw(i))->info(), fc->vertex(nn::Delaunay::cw(i))->info());
-    } while (++fc != done);
+  explicit Triangulated(const ScatteredSamples& s) : hull(NaturalNeighbour(s, OutsideHull::none).hull_edges()) {
+    std::vector<std::pair<nn::Point, unsigned>> input;
+    for (size_t i = 0; i < s.points.size(); ++i) input.emplace_back(nn::Point(s.points[i].x(), s.points[i].y()), static_cast<unsigned>(i));
+    dt.insert(input.begin(), input.end());
   }
 };
 
