@@ -3,7 +3,12 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstring>
 #include <limits>
+
+#if defined(__FMA__)
+#include <immintrin.h>
+#endif
 
 #include "core/check.h"
 #include "core/parallel.h"
@@ -19,18 +24,47 @@ using tol::kSibsonRasterChordSlack;
 /// apart from the order by y (slivers by the hull), which is searched that far below a row.
 constexpr double kTallDiameters = 8;
 
-/// D(q) = r2 - |q - o|^2, positive inside the circle: the one formula of every in-circle
-/// decision, so that a face and its neighbour decide alike (fma: no contraction can differ).
+/// Four doubles, and four lanes' masks (all bits set where true), as GCC and Clang's vector
+/// extensions make them: the chord's points go through the kernel four at a time, every point
+/// (the last ones padded) by the same instructions, so that its value does not depend on where
+/// its chord starts.
+// (Internal functions: the ABI note GCC gives for them without AVX concerns no caller outside.)
+#pragma GCC diagnostic ignored "-Wpsabi"
+using D4 = double __attribute__((vector_size(32)));
+using M4 = long long __attribute__((vector_size(32)));
+constexpr size_t kLanes = 4;
+
+D4 select(M4 mask, D4 a, D4 b) { return reinterpret_cast<D4>((reinterpret_cast<M4>(a) & mask) | (reinterpret_cast<M4>(b) & ~mask)); }
+D4 abs4(D4 a) { return reinterpret_cast<D4>(reinterpret_cast<M4>(a) & 0x7fffffffffffffffLL); }
+D4 fma4(D4 a, D4 b, D4 c) {
+#if defined(__FMA__)
+  return _mm256_fmadd_pd(a, b, c);
+#else
+  return D4{std::fma(a[0], b[0], c[0]), std::fma(a[1], b[1], c[1]), std::fma(a[2], b[2], c[2]), std::fma(a[3], b[3], c[3])};
+#endif
+}
+D4 load4(const double* p) {
+  D4 v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+void store4(double* p, D4 v) { std::memcpy(p, &v, sizeof v); }
+
+/// D(q) = r2 - |q - o|^2 at four points of one row, positive inside the circle: the one formula
+/// of every in-circle decision, so that a face and its neighbour decide alike (fused explicitly:
+/// no contraction can differ).
 template <typename Circle>
-double power(const Circle& c, double qx, double qy) {
-  const double dx = qx - c.o.x(), dy = qy - c.o.y();
-  return c.r2 - std::fma(dx, dx, dy * dy);
+D4 power4(const Circle& c, D4 qx, double qy) {
+  const D4 dx = qx - c.o.x();
+  const double dy = qy - c.o.y();
+  return c.r2 - fma4(dx, dx, D4{} + dy * dy);
 }
 
-/// Buffers of one raster row.
+/// Buffers of one raster row, each padded by a vector's lanes past the row's end.
 struct RowScratch {
-  std::vector<double> weight, error, numerator;
-  std::vector<double> x;  ///< the row's points' x, shifted
+  std::vector<double> weight, error;
+  std::vector<double> numerator;  ///< channel c's sums at [c * stride, c * stride + n)
+  std::vector<double> x;          ///< the row's points' x, shifted
 };
 
 }  // namespace
@@ -49,17 +83,50 @@ SibsonRaster::SibsonRaster(const nn::Delaunay& dt, std::span<const Vec2> points,
   std::vector<nn::Delaunay::Face_handle> handles;
   handles.reserve(dt.number_of_faces());
   for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) handles.push_back(f);
-  faces_.resize(handles.size());
+  // Each face's circle and its extent in y, in CGAL's order.
+  const size_t count = handles.size();
+  std::vector<Circle> circles(count);
+  std::vector<double> y_lo(count), y_hi(count);
   std::atomic<bool> unusable{false};
-  parallel_for(0, static_cast<std::int64_t>(handles.size()), [&](std::int64_t index) {
-    const nn::Delaunay::Face_handle f = handles[static_cast<size_t>(index)];
-    Face& face = faces_[static_cast<size_t>(index)];
-    for (int k = 0; k < 3; ++k) face.v[static_cast<size_t>(k)] = f->vertex(k)->info();
-    face.circle = circumcircle(f);
-    if (!std::isfinite(face.circle.r2) || !face.circle.o.allFinite()) unusable = true;
+  parallel_for(0, static_cast<std::int64_t>(count), [&](std::int64_t index) {
+    const size_t i = static_cast<size_t>(index);
+    circles[i] = circumcircle(handles[i]);
+    if (!std::isfinite(circles[i].r2) || !circles[i].o.allFinite()) unusable = true;
+    const double r = std::sqrt(circles[i].r2);
+    y_lo[i] = circles[i].o.y() - r * (1 + kSibsonRasterChordSlack);
+    y_hi[i] = circles[i].o.y() + r * (1 + kSibsonRasterChordSlack);
+  });
+  // A face whose circle rounds to infinity (nearly flat): no point is served at all.
+  usable_ = !unusable;
+  if (!usable_) return;
+
+  // The fixed order: by the circles' lowest y (then CGAL's order), circles far taller than
+  // typical (slivers by the hull) apart, so that a row's search is a short range of the order.
+  {
+    std::vector<double> diameters(count);
+    for (size_t i = 0; i < count; ++i) diameters[i] = y_hi[i] - y_lo[i];
+    std::nth_element(diameters.begin(), diameters.begin() + static_cast<std::ptrdiff_t>(count / 2), diameters.end());
+    tall_m_ = kTallDiameters * diameters[count / 2];
+  }
+  std::vector<size_t> order, tall;
+  for (size_t i = 0; i < count; ++i) (y_hi[i] - y_lo[i] <= tall_m_ ? order : tall).push_back(i);
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return y_lo[a] < y_lo[b] || (y_lo[a] == y_lo[b] && a < b); });
+  ordinary_ = order.size();
+  order.insert(order.end(), tall.begin(), tall.end());
+  y_lo_.reserve(ordinary_);
+  for (size_t k = 0; k < ordinary_; ++k) y_lo_.push_back(y_lo[order[k]]);
+
+  // The faces stored in that order, so that a row's faces are read in the order of memory
+  // (made in CGAL's order, in which a face's neighbours lie near it).
+  faces_.resize(count);
+  parallel_for(0, static_cast<std::int64_t>(count), [&](std::int64_t k) {
+    const size_t index = order[static_cast<size_t>(k)];
+    const nn::Delaunay::Face_handle f = handles[index];
+    Face& face = faces_[static_cast<size_t>(k)];
+    for (int v = 0; v < 3; ++v) face.v[static_cast<size_t>(v)] = f->vertex(v)->info();
+    face.circle = circles[index];
+    face.y_lo = y_lo[index], face.y_hi = y_hi[index];
     const double r = std::sqrt(face.circle.r2);
-    face.y_lo = face.circle.o.y() - r * (1 + kSibsonRasterChordSlack);
-    face.y_hi = face.circle.o.y() + r * (1 + kSibsonRasterChordSlack);
     for (size_t e = 0; e < 3; ++e) {
       // CGAL's neighbour i lies across the edge opposite vertex i: edge (v[e], v[e+1]) is
       // opposite vertex e + 2.
@@ -81,25 +148,6 @@ SibsonRaster::SibsonRaster(const nn::Delaunay& dt, std::span<const Vec2> points,
                         (face.circle.r2 + c.r2) / g.squaredNorm();
     }
   });
-
-  // A face whose circle rounds to infinity (nearly flat): no point is served at all.
-  usable_ = !unusable;
-  if (!usable_) return;
-  // The fixed order: by the circles' lowest y (then index), circles far taller than typical
-  // (slivers by the hull) apart, so that a row's search is a short range of the order.
-  std::vector<double> diameters;
-  diameters.reserve(faces_.size());
-  for (const Face& f : faces_) diameters.push_back(f.y_hi - f.y_lo);
-  std::nth_element(diameters.begin(), diameters.begin() + static_cast<std::ptrdiff_t>(diameters.size() / 2), diameters.end());
-  tall_m_ = kTallDiameters * diameters[diameters.size() / 2];
-  for (size_t i = 0; i < faces_.size(); ++i)
-    (faces_[i].y_hi - faces_[i].y_lo <= tall_m_ ? by_y_lo_ : tall_).push_back(static_cast<int>(i));
-  std::sort(by_y_lo_.begin(), by_y_lo_.end(), [&](int a, int b) {
-    const double ya = faces_[static_cast<size_t>(a)].y_lo, yb = faces_[static_cast<size_t>(b)].y_lo;
-    return ya < yb || (ya == yb && a < b);
-  });
-  y_lo_.reserve(by_y_lo_.size());
-  for (const int i : by_y_lo_) y_lo_.push_back(faces_[static_cast<size_t>(i)].y_lo);
 }
 
 SibsonRaster::Circle SibsonRaster::circumcircle(const nn::Delaunay::Face_handle& f) const {
@@ -131,13 +179,11 @@ void SibsonRaster::faces_near(double y0, double y1, std::vector<int>& out) const
   const auto from = std::lower_bound(y_lo_.begin(), y_lo_.end(), y0 - 2 * tall_m_);
   const auto to = std::upper_bound(from, y_lo_.end(), y1);
   for (auto it = from; it != to; ++it) {
-    const int i = by_y_lo_[static_cast<size_t>(it - y_lo_.begin())];
-    if (faces_[static_cast<size_t>(i)].y_hi >= y0) out.push_back(i);
+    const size_t i = static_cast<size_t>(it - y_lo_.begin());
+    if (faces_[i].y_hi >= y0) out.push_back(static_cast<int>(i));
   }
-  for (const int i : tall_) {
-    const Face& f = faces_[static_cast<size_t>(i)];
-    if (f.y_hi >= y0 && f.y_lo <= y1) out.push_back(i);
-  }
+  for (size_t i = ordinary_; i < faces_.size(); ++i)
+    if (faces_[i].y_hi >= y0 && faces_[i].y_lo <= y1) out.push_back(static_cast<int>(i));
 }
 
 void SibsonRaster::evaluate(const Raster& raster, size_t first, size_t count, std::span<double> out,
@@ -175,21 +221,24 @@ void SibsonRaster::evaluate(const Raster& raster, size_t first, size_t count, st
     const size_t i1 = j == row1 ? (first + count - 1) % width + 1 : width;  // points [i0, i1) of row j
     const size_t n = i1 - i0, offset = j * width + i0 - first;  // the row's first point in `out`
     const double qy = raster.y(j) - origin_.y();
-    s.x.resize(n);
+    const size_t stride = n + kLanes;  // padded: a chord's last four points may pass the row's end
+    s.x.resize(stride);
     for (size_t i = 0; i < n; ++i) s.x[i] = raster.x(i0 + i) - origin_.x();
-    s.weight.assign(n, 0.0);
-    s.error.assign(n, 0.0);
-    s.numerator.assign(n * C, 0.0);
+    std::fill(s.x.begin() + static_cast<std::ptrdiff_t>(n), s.x.end(), s.x[n - 1]);
+    s.weight.assign(stride, 0.0);
+    s.error.assign(stride, 0.0);
+    s.numerator.assign(stride * C, 0.0);
     // The points whose square of half-side m lies inside the hull: served, the rest left.
     const auto [lo_a, hi_a] = hull_span(qy - m);
     const auto [lo_b, hi_b] = hull_span(qy + m);
     const double inside_lo = std::max(lo_a, lo_b) + m, inside_hi = std::min(hi_a, hi_b) - m;
     size_t s0 = n, s1 = n;  // the served points [s0, s1)
     if (inside_lo < inside_hi) {
-      s0 = static_cast<size_t>(std::upper_bound(s.x.begin(), s.x.end(), inside_lo) - s.x.begin());
-      s1 = static_cast<size_t>(std::lower_bound(s.x.begin(), s.x.end(), inside_hi) - s.x.begin());
+      s0 = static_cast<size_t>(std::upper_bound(s.x.begin(), s.x.begin() + static_cast<std::ptrdiff_t>(n), inside_lo) - s.x.begin());
+      s1 = static_cast<size_t>(std::lower_bound(s.x.begin(), s.x.begin() + static_cast<std::ptrdiff_t>(n), inside_hi) - s.x.begin());
       s1 = std::max(s0, s1);
     }
+    const D4 lane{0, 1, 2, 3};
     for (const int fi : row_faces[static_cast<size_t>(r)]) {
       const Face& f = faces_[static_cast<size_t>(fi)];
       const double dy = qy - f.circle.o.y();
@@ -199,46 +248,54 @@ void SibsonRaster::evaluate(const Raster& raster, size_t first, size_t count, st
       if (h2 < -kSibsonRasterChordSlack * f.circle.r2) continue;
       const double h = std::sqrt(std::max(h2, 0.0) + kSibsonRasterChordSlack * f.circle.r2);
       const double from_x = f.circle.o.x() - h, to_x = f.circle.o.x() + h;
+      const double guess = std::floor((from_x - s.x[0]) / sx) - 1;  // the first point's index, about
+      size_t begin = guess <= static_cast<double>(s0) ? s0 : static_cast<size_t>(std::min(guess, static_cast<double>(s1)));
+      while (begin < s1 && s.x[begin] < from_x) ++begin;
+      while (begin > s0 && s.x[begin - 1] >= from_x) --begin;
+      size_t end = begin;  // the chord's served points [begin, end)
+      while (end < s1 && s.x[end] <= to_x) ++end;
+      if (begin == end) continue;
       // The face's corners, edges (v[e] to v[e+1]) and values, for each of its points below.
       const std::array<Vec2, 3> corner = {p_[f.v[0]], p_[f.v[1]], p_[f.v[2]]};
       const std::array<Vec2, 3> edge = {corner[1] - corner[0], corner[2] - corner[1], corner[0] - corner[2]};
       const std::array<double, 3> edge2 = {edge[0].squaredNorm(), edge[1].squaredNorm(), edge[2].squaredNorm()};
       const std::array<const double*, 3> value = {&values_[f.v[0] * C], &values_[f.v[1] * C], &values_[f.v[2] * C]};
-      const double guess = std::floor((from_x - s.x[0]) / sx) - 1;  // the first point's index, about
-      size_t i = guess <= static_cast<double>(s0) ? s0 : static_cast<size_t>(std::min(guess, static_cast<double>(s1)));
-      while (i < s1 && s.x[i] < from_x) ++i;
-      while (i > s0 && s.x[i - 1] >= from_x) --i;
-      for (; i < s1 && s.x[i] <= to_x; ++i) {
-        const double qx = s.x[i];
-        const double d = power(f.circle, qx, qy);
-        if (!(d > 0)) continue;
-        const Vec2 q(qx, qy);
-        const double far2 = f.circle.r2 + (q - f.circle.o).squaredNorm();
-        const std::array<Vec2, 3> to = {corner[0] - q, corner[1] - q, corner[2] - q};  // corners less q
-        const std::array<double, 3> to2 = {to[0].squaredNorm(), to[1].squaredNorm(), to[2].squaredNorm()};
-        std::array<double, 3> share{0, 0, 0};  // per corner: its stolen area's terms from this face
-        double error = 0;
+      const double far_y2 = dy * dy;
+      for (size_t i = begin; i < end; i += kLanes) {
+        const D4 qx = load4(&s.x[i]);
+        const D4 d = power4(f.circle, qx, qy);
+        // Inside the circle and the chord (a face across without a circle has r2 < 0: never in).
+        const M4 in = (d > 0) & (static_cast<double>(i) + lane < static_cast<double>(end));
+        const D4 dx = qx - f.circle.o.x();
+        const D4 far2 = f.circle.r2 + (dx * dx + far_y2);
+        std::array<D4, 3> tx, ty, to2;  // corners less q, and their squared lengths
+        for (size_t k = 0; k < 3; ++k) {
+          tx[k] = corner[k].x() - qx;
+          ty[k] = D4{} + (corner[k].y() - qy);
+          to2[k] = tx[k] * tx[k] + ty[k] * ty[k];
+        }
+        std::array<D4, 3> share{};  // per corner: its stolen area's terms from this face
+        D4 error{};
         for (size_t e = 0; e < 3; ++e) {
           const size_t ex = e, ey = e == 2 ? 0 : e + 1;
-          const Vec2 &x = to[ex], &y = to[ey];
-          const double px = y.dot(edge[e]), py = -x.dot(edge[e]);  // (y - q).(y - x), (x - q).(x - y)
-          const double half_sum2 = 0.5 * (to2[ex] + to2[ey]);
-          const double scale = half_sum2 + edge2[e];  // >= |px|, |py|
-          if (f.across[e].r2 >= 0 && power(f.across[e], qx, qy) > 0) {
-            share[ex] += f.half_c[e] * px, share[ey] += f.half_c[e] * py;
-            error += f.c_error[e] * scale;
-          } else {
-            const double inverse = 1 / cross(x, y);
-            const double ratio = d * inverse;
-            share[ex] += ratio * px, share[ey] += ratio * py;
-            error += (far2 + std::abs(ratio) * half_sum2) * scale * std::abs(inverse);
-          }
+          const D4 px = tx[ey] * edge[e].x() + ty[ey] * edge[e].y();     // (y - q).(y - x)
+          const D4 py = -(tx[ex] * edge[e].x() + ty[ex] * edge[e].y());  // (x - q).(x - y)
+          const D4 half_sum2 = 0.5 * (to2[ex] + to2[ey]);
+          const D4 scale = half_sum2 + edge2[e];  // >= |px|, |py|
+          const M4 across = power4(f.across[e], qx, qy) > 0;
+          // Across the edge inside the zone: the constant; on the zone's boundary: D_T / k_xy.
+          const D4 inverse = 1 / (tx[ex] * ty[ey] - ty[ex] * tx[ey]);
+          const D4 ratio = d * inverse;
+          const D4 coefficient = select(across, D4{} + f.half_c[e], ratio);
+          share[ex] += coefficient * px, share[ey] += coefficient * py;
+          error += select(across, f.c_error[e] * scale, (far2 + abs4(ratio) * half_sum2) * scale * abs4(inverse));
         }
-        const double weight = share[0] + share[1] + share[2];
-        for (size_t c = 0; c < C; ++c)
-          s.numerator[i * C + c] += share[0] * value[0][c] + share[1] * value[1][c] + share[2] * value[2][c];
-        s.weight[i] += weight;
-        s.error[i] += error;
+        store4(&s.weight[i], load4(&s.weight[i]) + select(in, share[0] + share[1] + share[2], D4{}));
+        store4(&s.error[i], load4(&s.error[i]) + select(in, error, D4{}));
+        for (size_t c = 0; c < C; ++c) {
+          double* sum = &s.numerator[c * stride + i];
+          store4(sum, load4(sum) + select(in, share[0] * value[0][c] + share[1] * value[1][c] + share[2] * value[2][c], D4{}));
+        }
       }
     }
     std::vector<size_t>& row_left = left[static_cast<size_t>(r)];
@@ -250,7 +307,7 @@ void SibsonRaster::evaluate(const Raster& raster, size_t first, size_t count, st
         row_left.push_back(offset + i);
         continue;
       }
-      for (size_t c = 0; c < C; ++c) out[(offset + i) * C + c] = s.numerator[i * C + c] / w;
+      for (size_t c = 0; c < C; ++c) out[(offset + i) * C + c] = s.numerator[c * stride + i] / w;
     }
   });
   for (const auto& row_left : left) unserved.insert(unserved.end(), row_left.begin(), row_left.end());

@@ -84,11 +84,11 @@ class SibsonRaster {
   Vec2 origin_;            ///< the samples' box centre: coordinates relative to it
   double hull_margin_m_;   ///< points nearer the hull's boundary are left unserved
   std::vector<std::pair<Vec2, Vec2>> hull_;  ///< hull edges (shifted coordinates)
-  // The faces in their fixed order: those no taller than tall_m_ by their circles' lowest y
-  // (y_lo_, ascending), then index; the taller ones after them, by index.
-  std::vector<int> by_y_lo_;
+  // faces_ is stored in the fixed order of summation: the first ordinary_ faces, no taller than
+  // tall_m_, by their circles' lowest y (y_lo_, ascending), then by CGAL's order; the taller
+  // ones after them, in CGAL's order.
+  size_t ordinary_ = 0;
   std::vector<double> y_lo_;
-  std::vector<int> tall_;
   double tall_m_ = 0;
   bool usable_ = true;
 };
