@@ -34,6 +34,9 @@ using D4 = double __attribute__((vector_size(32)));
 using M4 = long long __attribute__((vector_size(32)));
 constexpr size_t kLanes = 4;
 
+/// The fewest points of a row that evaluate() hands a thread as a piece of their own.
+constexpr size_t kLeastPiecePoints = 1024;
+
 D4 select(M4 mask, D4 a, D4 b) { return reinterpret_cast<D4>((reinterpret_cast<M4>(a) & mask) | (reinterpret_cast<M4>(b) & ~mask)); }
 D4 abs4(D4 a) { return reinterpret_cast<D4>(reinterpret_cast<M4>(a) & 0x7fffffffffffffffLL); }
 D4 fma4(D4 a, D4 b, D4 c) {
@@ -60,11 +63,11 @@ D4 power4(const Circle& c, D4 qx, double qy) {
   return c.r2 - fma4(dx, dx, D4{} + dy * dy);
 }
 
-/// Buffers of one raster row, each padded by a vector's lanes past the row's end.
+/// Buffers of one piece of a raster row, each padded by a vector's lanes past its end.
 struct RowScratch {
   std::vector<double> weight, error;
   std::vector<double> numerator;  ///< channel c's sums at [c * stride, c * stride + n)
-  std::vector<double> x;          ///< the row's points' x, shifted
+  std::vector<double> x;          ///< the piece's points' x, shifted
 };
 
 }  // namespace
@@ -109,7 +112,11 @@ SibsonRaster::SibsonRaster(const nn::Delaunay& dt, std::span<const Vec2> points,
     tall_m_ = kTallDiameters * diameters[count / 2];
   }
   std::vector<size_t> order, tall;
-  for (size_t i = 0; i < count; ++i) (y_hi[i] - y_lo[i] <= tall_m_ ? order : tall).push_back(i);
+  for (size_t i = 0; i < count; ++i) {
+    const double diameter = y_hi[i] - y_lo[i];
+    if (diameter <= tall_m_) order.push_back(i), reach_m_ = std::max(reach_m_, diameter);
+    else tall.push_back(i);
+  }
   std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return y_lo[a] < y_lo[b] || (y_lo[a] == y_lo[b] && a < b); });
   ordinary_ = order.size();
   order.insert(order.end(), tall.begin(), tall.end());
@@ -174,9 +181,9 @@ std::pair<double, double> SibsonRaster::hull_span(double y) const {
 
 void SibsonRaster::faces_near(double y0, double y1, std::vector<int>& out) const {
   out.clear();
-  // A face of the order whose circle reaches y0 starts at most tall_m_ below it (twice that:
+  // A face of the order whose circle reaches y0 starts at most reach_m_ below it (twice that:
   // clear of the rounding of its diameter).
-  const auto from = std::lower_bound(y_lo_.begin(), y_lo_.end(), y0 - 2 * tall_m_);
+  const auto from = std::lower_bound(y_lo_.begin(), y_lo_.end(), y0 - 2 * reach_m_);
   const auto to = std::upper_bound(from, y_lo_.end(), y1);
   for (auto it = from; it != to; ++it) {
     const size_t i = static_cast<size_t>(it - y_lo_.begin());
@@ -201,7 +208,6 @@ void SibsonRaster::evaluate(const Raster& raster, size_t first, size_t count, st
   std::vector<int> near;
   faces_near(std::min(y0, y1), std::max(y0, y1), near);
   const size_t rows = row1 - row0 + 1;
-  std::vector<std::vector<size_t>> left(rows);
   const double m = hull_margin_m_;
   const double sx = (raster.domain.x1 - raster.domain.x0) / raster.width, sy = (raster.domain.y1 - raster.domain.y0) / raster.height;
   // Each row's faces, in the fixed order: those whose circles may reach it (a row more either
@@ -214,14 +220,30 @@ void SibsonRaster::evaluate(const Raster& raster, size_t first, size_t count, st
     const size_t rb = b < 0 ? 0 : static_cast<size_t>(std::min(b + 1, static_cast<double>(rows)));
     for (size_t r = ra; r < rb; ++r) row_faces[r].push_back(fi);
   }
-
-  parallel_for_with_scratch<RowScratch>(0, static_cast<std::int64_t>(row1 - row0 + 1), 1, 2, [&](std::int64_t r, RowScratch& s) {
-    const size_t j = row0 + static_cast<size_t>(r);
+  // The work in pieces of rows: whole rows, or, when there are fewer rows than the threads can
+  // share (a raster wider than a call's points), pieces of at least kLeastPiecePoints points.
+  struct Piece {
+    size_t row;     ///< 0-based within the call
+    size_t i0, i1;  ///< the row's points [i0, i1)
+  };
+  std::vector<Piece> pieces;
+  const size_t wanted = 2 * static_cast<size_t>(worker_thread_count());
+  for (size_t r = 0; r < rows; ++r) {
+    const size_t j = row0 + r;
     const size_t i0 = j == row0 ? first % width : 0;
     const size_t i1 = j == row1 ? (first + count - 1) % width + 1 : width;  // points [i0, i1) of row j
-    const size_t n = i1 - i0, offset = j * width + i0 - first;  // the row's first point in `out`
+    const size_t split = std::clamp<size_t>((wanted + rows - 1) / rows, 1, std::max<size_t>((i1 - i0) / kLeastPiecePoints, 1));
+    const size_t length = (i1 - i0 + split - 1) / split;
+    for (size_t a = i0; a < i1; a += length) pieces.push_back({r, a, std::min(i1, a + length)});
+  }
+  std::vector<std::vector<size_t>> left(pieces.size());
+
+  parallel_for_with_scratch<RowScratch>(0, static_cast<std::int64_t>(pieces.size()), 1, 2, [&](std::int64_t k, RowScratch& s) {
+    const Piece& piece = pieces[static_cast<size_t>(k)];
+    const size_t r = piece.row, j = row0 + r, i0 = piece.i0;
+    const size_t n = piece.i1 - i0, offset = j * width + i0 - first;  // the piece's first point in `out`
     const double qy = raster.y(j) - origin_.y();
-    const size_t stride = n + kLanes;  // padded: a chord's last four points may pass the row's end
+    const size_t stride = n + kLanes;  // padded: a chord's last four points may pass the piece's end
     s.x.resize(stride);
     for (size_t i = 0; i < n; ++i) s.x[i] = raster.x(i0 + i) - origin_.x();
     std::fill(s.x.begin() + static_cast<std::ptrdiff_t>(n), s.x.end(), s.x[n - 1]);
@@ -239,7 +261,7 @@ void SibsonRaster::evaluate(const Raster& raster, size_t first, size_t count, st
       s1 = std::max(s0, s1);
     }
     const D4 lane{0, 1, 2, 3};
-    for (const int fi : row_faces[static_cast<size_t>(r)]) {
+    for (const int fi : row_faces[r]) {
       const Face& f = faces_[static_cast<size_t>(fi)];
       const double dy = qy - f.circle.o.y();
       // The row's points within the circle's chord, widened beyond the power test's rounding
@@ -298,7 +320,7 @@ void SibsonRaster::evaluate(const Raster& raster, size_t first, size_t count, st
         }
       }
     }
-    std::vector<size_t>& row_left = left[static_cast<size_t>(r)];
+    std::vector<size_t>& row_left = left[static_cast<size_t>(k)];
     row_left.clear();
     for (size_t i = 0; i < n; ++i) {
       const double w = s.weight[i];

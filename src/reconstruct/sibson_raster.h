@@ -90,6 +90,7 @@ class SibsonRaster {
   size_t ordinary_ = 0;
   std::vector<double> y_lo_;
   double tall_m_ = 0;
+  double reach_m_ = 0;  ///< the tallest of the first ordinary_ faces' circles (<= tall_m_)
   bool usable_ = true;
 };
 

@@ -46,7 +46,7 @@ TEST(SibsonRaster, GivesCgalsCoordinatesWhereItServesAndServesMostOfTheHull) {
   std::mt19937 rng(31);
   ScatteredSamples s = random_samples(60, rng, 0, 1);
   const Raster raster{97, 83, Rect{-0.05, -0.02, 1.03, 1.01}};
-  for (const auto [i, j] : {std::pair<size_t, size_t>{40, 41}, {20, 60}, {71, 12}}) s.points.push_back(raster.point(i, j));
+  for (const auto& [i, j] : {std::pair<size_t, size_t>{40, 41}, {20, 60}, {71, 12}}) s.points.push_back(raster.point(i, j));
   const size_t n = s.points.size();
   const Triangulated t(s);
   const std::vector<double> values = one_hot(n);
@@ -142,23 +142,27 @@ TEST(SibsonRaster, ValuesDependNeitherOnTheThreadsNorOnTheCuts) {
   std::mt19937 rng(77);
   const ScatteredSamples s = random_samples(2000, rng, 0, 1);
   const NaturalNeighbour nn(s, OutsideHull::nearest);
-  const Raster raster{301, 257, Rect{0, 0, 1, 1}};
-  const size_t count = static_cast<size_t>(raster.width) * raster.height;
-  const int threads = worker_thread_count();
-  std::vector<double> one(count), many(count), cut(count);
-  set_worker_thread_count(1);
-  nn.evaluate_raster(raster, 0, count, one);
-  set_worker_thread_count(std::max(2, threads));
-  nn.evaluate_raster(raster, 0, count, many);
-  set_worker_thread_count(threads);
-  // Cut at odd places, mid-row.
-  for (size_t first = 0, step = 977; first < count; first += step, step = step * 7 % 5003 + 1) {
-    const size_t m = std::min(step, count - first);
-    nn.evaluate_raster(raster, first, m, std::span(cut).subspan(first, m));
-  }
-  for (size_t k = 0; k < count; ++k) {
-    ASSERT_EQ(one[k], many[k]) << "point " << k;
-    ASSERT_EQ(one[k], cut[k]) << "point " << k;
+  // A raster of many rows (a call's rows shared among the threads), and one of a few wide rows
+  // (each row cut into pieces that the threads share, as many as the threads want).
+  for (const Raster& raster : {Raster{301, 257, Rect{0, 0, 1, 1}}, Raster{5003, 3, Rect{0, 0.2, 1, 0.21}}}) {
+    SCOPED_TRACE(std::to_string(raster.width) + " x " + std::to_string(raster.height));
+    const size_t count = static_cast<size_t>(raster.width) * raster.height;
+    const int threads = worker_thread_count();
+    std::vector<double> one(count), many(count), cut(count);
+    set_worker_thread_count(1);
+    nn.evaluate_raster(raster, 0, count, one);
+    set_worker_thread_count(std::max(2, threads));
+    nn.evaluate_raster(raster, 0, count, many);
+    // Cut at odd places, mid-row.
+    for (size_t first = 0, step = 977; first < count; first += step, step = step * 7 % 5003 + 1) {
+      const size_t m = std::min(step, count - first);
+      nn.evaluate_raster(raster, first, m, std::span(cut).subspan(first, m));
+    }
+    set_worker_thread_count(threads);
+    for (size_t k = 0; k < count; ++k) {
+      ASSERT_EQ(one[k], many[k]) << "point " << k;
+      ASSERT_EQ(one[k], cut[k]) << "point " << k;
+    }
   }
 }
 
