@@ -27,7 +27,6 @@ NaturalNeighbour::NaturalNeighbour(const ScatteredSamples& samples, OutsideHull 
   if (impl_->dt.dimension() < 2) throw ReconstructionError("all samples lie on one line; " + name + " needs a 2-D spread");
   impl_->vertex_of.resize(n);
   for (auto v = impl_->dt.finite_vertices_begin(); v != impl_->dt.finite_vertices_end(); ++v) impl_->vertex_of[v->info()] = v;
-  impl_->tree = std::make_unique<KdTree2>(impl_->points);
   if (!impl_->barriers.empty() && n <= kMaxWholeVisibleSamples &&
       n * impl_->barriers.segments().size() <= kMaxWholeVisiblePairs)
     impl_->visibility = std::make_unique<PointVisibility>(impl_->points, impl_->barriers);
@@ -85,7 +84,7 @@ void for_each_query(const Impl& impl, std::span<const Vec2> points, Body&& body)
     if (points[first].allFinite()) {
       unsigned nearest[1];
       double nearest_d2[1];
-      impl.tree->nearest(points[first], 1, nearest, nearest_d2);
+      impl.tree().nearest(points[first], 1, nearest, nearest_d2);
       hint = impl.vertex_of[nearest[0]]->face();
     }
     for (std::int64_t k = chunk * kChunk; k < std::min(n, (chunk + 1) * kChunk); ++k) {

@@ -36,7 +36,12 @@ struct NaturalNeighbour::Impl {
   std::vector<std::array<int, 2>> hull_edges_at;          ///< by sample: its hull edges' indices, or -1
   std::vector<Vec2> points;
   std::vector<Delaunay::Vertex_handle> vertex_of;  ///< by sample index
-  std::unique_ptr<KdTree2> tree;                   ///< to start walks near a query
+  /// The samples' k-d tree, to start walks near a query and to find the samples one sees past
+  /// barriers: made on first use (a raster served face by face needs none).
+  const KdTree2& tree() const {
+    std::call_once(tree_made_, [&] { tree_ = std::make_unique<KdTree2>(points); });
+    return *tree_;
+  }
   Barriers barriers;
   /// With barriers and at most kMaxWholeVisibleSamples samples: which samples a query sees, and
   /// the triangulations of the sets seen (whole_visible_coordinates()).
@@ -45,6 +50,8 @@ struct NaturalNeighbour::Impl {
   /// Sibson's rule over rasters (evaluate_raster()), made on first use.
   std::unique_ptr<SibsonRaster> raster;
   std::once_flag raster_made;
+  mutable std::unique_ptr<KdTree2> tree_;
+  mutable std::once_flag tree_made_;
 
   /// Buffers of coordinates(), reused from query to query.
   struct Scratch {

@@ -62,7 +62,7 @@ NaturalNeighbour::Impl::Kind NaturalNeighbour::Impl::visible_coordinates(const V
     // The k nearest visible samples, and a lower bound on the next one's distance (the
     // certificate's): its distance when found, infinity when every sample was tried, else the
     // distance of the farthest candidate tried.
-    const size_t found = nearest_visible(*tree, points, barriers, q, std::min(k + 1, n), s.visible);
+    const size_t found = nearest_visible(tree(), points, barriers, q, std::min(k + 1, n), s.visible);
     const size_t m = std::min(found, k);
     const bool all_tried = n <= std::max(kMaxVisibleCandidates, 2 * (k + 1));  // nearest_visible's limit
     const double next_visible_m = found > k ? std::sqrt(s.visible.dist_sq[k])
