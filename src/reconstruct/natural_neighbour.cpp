@@ -69,9 +69,11 @@ namespace {
 /// coherent). A query on a Delaunay edge may be located in either face, and the coordinates' last
 /// bits depend on which; fixed chunks with deterministic starts make that independent of the
 /// number of threads. Runs of 4 chunks are handed out to the threads, in parallel from 2 runs on:
-/// a chunk costs some 10 us, far more than handing it out.
+/// a chunk costs some 10 us, far more than handing it out. Without `tree_hints` a chunk's walk
+/// starts where CGAL starts it (O(sqrt n) steps, but no k-d tree to build: for the few points a
+/// raster served face by face leaves).
 template <typename Impl, typename Body>
-void for_each_query(const Impl& impl, std::span<const Vec2> points, Body&& body) {
+void for_each_query(const Impl& impl, std::span<const Vec2> points, Body&& body, bool tree_hints = true) {
   constexpr std::int64_t kChunk = 64, kChunksPerRun = 4;
   const std::int64_t n = static_cast<std::int64_t>(points.size());
   using Scratch = typename Impl::Scratch;
@@ -81,7 +83,7 @@ void for_each_query(const Impl& impl, std::span<const Vec2> points, Body&& body)
     scratch.zone.forget();
     Delaunay::Face_handle hint;
     const size_t first = static_cast<size_t>(chunk * kChunk);
-    if (points[first].allFinite()) {
+    if (tree_hints && points[first].allFinite()) {
       unsigned nearest[1];
       double nearest_d2[1];
       impl.tree().nearest(points[first], 1, nearest, nearest_d2);
@@ -95,19 +97,25 @@ void for_each_query(const Impl& impl, std::span<const Vec2> points, Body&& body)
   });
 }
 
-}  // namespace
-
-void NaturalNeighbour::evaluate(std::span<const Vec2> points, std::span<double> out) const {
-  const int C = impl_->channels;
+/// The interpolant's values at the points (NaturalNeighbour::evaluate()).
+template <typename Impl>
+void evaluate_points(const Impl& impl, std::span<const Vec2> points, std::span<double> out, bool tree_hints) {
+  const int C = impl.channels;
   RR_CHECK(out.size() == points.size() * static_cast<size_t>(C), "output size does not match the query points");
-  for_each_query(*impl_, points, [&](size_t q, Impl::Kind kind, const Impl::Scratch& scratch) {
+  for_each_query(impl, points, [&](size_t q, typename Impl::Kind kind, const typename Impl::Scratch& scratch) {
     double* o = &out[q * C];
-    if (kind == Impl::Kind::coordinates || (kind == Impl::Kind::on_hull && impl_->outside == OutsideHull::nearest)) {
-      impl_->combine(scratch.coords, o);
+    if (kind == Impl::Kind::coordinates || (kind == Impl::Kind::on_hull && impl.outside == OutsideHull::nearest)) {
+      impl.combine(scratch.coords, o);
     } else {
       for (int c = 0; c < C; ++c) o[c] = std::numeric_limits<double>::quiet_NaN();
     }
-  });
+  }, tree_hints);
+}
+
+}  // namespace
+
+void NaturalNeighbour::evaluate(std::span<const Vec2> points, std::span<double> out) const {
+  evaluate_points(*impl_, points, out, true);
 }
 
 void NaturalNeighbour::evaluate_raster(const Raster& raster, size_t first, size_t count, std::span<double> out) const {
@@ -125,7 +133,10 @@ void NaturalNeighbour::evaluate_raster(const Raster& raster, size_t first, size_
   points.reserve(unserved.size());
   for (const size_t k : unserved) points.push_back(raster.point((first + k) % width, (first + k) / width));
   std::vector<double> values(points.size() * C);
-  evaluate(points, values);
+  // Few points (those by the hull or on samples) walk from CGAL's start rather than have a k-d
+  // tree built for them; many (a raster reaching far past the hull) are worth one.
+  constexpr size_t kLeastForTreeHints = 4096;
+  evaluate_points(*impl_, points, values, points.size() >= kLeastForTreeHints);
   for (size_t u = 0; u < unserved.size(); ++u)
     std::copy_n(values.begin() + static_cast<std::ptrdiff_t>(u * C), C, out.begin() + static_cast<std::ptrdiff_t>(unserved[u] * C));
 }
