@@ -25,13 +25,10 @@
 #include <CGAL/natural_neighbor_coordinates_2.h>
 #include <CGAL/sibson_gradient_fitting.h>
 
-#include "core/allocator.h"
+#include "keep_freed_memory.h"
 #include "reconstruct/methods.h"
 
 namespace {
-
-// The allocator as radrecon's programs set it (core/allocator.h), for both peers alike.
-[[maybe_unused]] const bool kAllocatorSet = (radrecon::keep_freed_memory(), true);
 
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Vb = CGAL::Triangulation_vertex_base_with_info_2<unsigned, K>;

@@ -2,22 +2,17 @@
 
 #include <benchmark/benchmark.h>
 
-#include "core/allocator.h"
-
 #include <cmath>
 #include <map>
 #include <random>
 
+#include "keep_freed_memory.h"
 #include "reconstruct/kdtree.h"
 #include "reconstruct/methods.h"
 #include "reconstruct/multiquadric_basis.h"
 
 namespace radrecon {
 namespace {
-
-// Freed memory kept for reuse, as radrecon's main keeps it (core/allocator.h): else a fit's
-// matrices are mapped and unmapped each time, and the page faults are what is measured.
-[[maybe_unused]] const bool kAllocatorSet = (keep_freed_memory(), true);
 
 void BM_GridReconstruct(benchmark::State& state) {
   const Method method = static_cast<Method>(state.range(0));

@@ -2,10 +2,9 @@
 
 #include <benchmark/benchmark.h>
 
-#include "core/allocator.h"
-
 #include <random>
 
+#include "keep_freed_memory.h"
 #include "mesh/grid_mesh.h"
 #include "solver/bvh.h"
 #include "solver/form_factor.h"
@@ -15,10 +14,6 @@
 
 namespace radrecon {
 namespace {
-
-// Freed memory kept for reuse, as radrecon's main keeps it (core/allocator.h): else the solvers'
-// growing vectors are mapped and unmapped pass after pass, and the page faults are measured.
-[[maybe_unused]] const bool kAllocatorSet = (keep_freed_memory(), true);
 
 ConvexPolygon unit_light() {
   ConvexPolygon p;

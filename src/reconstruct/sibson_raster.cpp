@@ -21,7 +21,8 @@ namespace {
 using tol::kSibsonRasterChordSlack;
 
 /// Faces whose circles are more than this many typical (median) diameters tall are searched
-/// apart from the order by y (slivers by the hull), which is searched that far below a row.
+/// apart from the order by y (slivers by the hull): the order is searched below a row by the
+/// tallest of the others.
 constexpr double kTallDiameters = 8;
 
 /// Four doubles, and four lanes' masks (all bits set where true), as GCC and Clang's vector
@@ -29,6 +30,7 @@ constexpr double kTallDiameters = 8;
 /// (the last ones padded) by the same instructions, so that its value does not depend on where
 /// its chord starts.
 // (Internal functions: the ABI note GCC gives for them without AVX concerns no caller outside.)
+#pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wpsabi"
 using D4 = double __attribute__((vector_size(32)));
 using M4 = long long __attribute__((vector_size(32)));
@@ -37,7 +39,7 @@ constexpr size_t kLanes = 4;
 /// The fewest points of a row that evaluate() hands a thread as a piece of their own.
 constexpr size_t kLeastPiecePoints = 1024;
 
-D4 select(M4 mask, D4 a, D4 b) { return reinterpret_cast<D4>((reinterpret_cast<M4>(a) & mask) | (reinterpret_cast<M4>(b) & ~mask)); }
+D4 blend4(M4 mask, D4 a, D4 b) { return reinterpret_cast<D4>((reinterpret_cast<M4>(a) & mask) | (reinterpret_cast<M4>(b) & ~mask)); }
 D4 abs4(D4 a) { return reinterpret_cast<D4>(reinterpret_cast<M4>(a) & 0x7fffffffffffffffLL); }
 D4 fma4(D4 a, D4 b, D4 c) {
 #if defined(__FMA__)
@@ -64,7 +66,7 @@ D4 power4(const Circle& c, D4 qx, double qy) {
 }
 
 /// Buffers of one piece of a raster row, each padded by a vector's lanes past its end.
-struct RowScratch {
+struct PieceScratch {
   std::vector<double> weight, error;
   std::vector<double> numerator;  ///< channel c's sums at [c * stride, c * stride + n)
   std::vector<double> x;          ///< the piece's points' x, shifted
@@ -105,16 +107,17 @@ SibsonRaster::SibsonRaster(const nn::Delaunay& dt, std::span<const Vec2> points,
 
   // The fixed order: by the circles' lowest y (then CGAL's order), circles far taller than
   // typical (slivers by the hull) apart, so that a row's search is a short range of the order.
+  double tall_m = 0;
   {
     std::vector<double> diameters(count);
     for (size_t i = 0; i < count; ++i) diameters[i] = y_hi[i] - y_lo[i];
     std::nth_element(diameters.begin(), diameters.begin() + static_cast<std::ptrdiff_t>(count / 2), diameters.end());
-    tall_m_ = kTallDiameters * diameters[count / 2];
+    tall_m = kTallDiameters * diameters[count / 2];
   }
   std::vector<size_t> order, tall;
   for (size_t i = 0; i < count; ++i) {
     const double diameter = y_hi[i] - y_lo[i];
-    if (diameter <= tall_m_) order.push_back(i), reach_m_ = std::max(reach_m_, diameter);
+    if (diameter <= tall_m) order.push_back(i), reach_m_ = std::max(reach_m_, diameter);
     else tall.push_back(i);
   }
   std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return y_lo[a] < y_lo[b] || (y_lo[a] == y_lo[b] && a < b); });
@@ -227,7 +230,8 @@ void SibsonRaster::evaluate(const Raster& raster, size_t first, size_t count, st
     size_t i0, i1;  ///< the row's points [i0, i1)
   };
   std::vector<Piece> pieces;
-  const size_t wanted = 2 * static_cast<size_t>(worker_thread_count());
+  const size_t threads = static_cast<size_t>(worker_thread_count());
+  const size_t wanted = threads > 1 ? 2 * threads : 1;
   for (size_t r = 0; r < rows; ++r) {
     const size_t j = row0 + r;
     const size_t i0 = j == row0 ? first % width : 0;
@@ -238,7 +242,7 @@ void SibsonRaster::evaluate(const Raster& raster, size_t first, size_t count, st
   }
   std::vector<std::vector<size_t>> left(pieces.size());
 
-  parallel_for_with_scratch<RowScratch>(0, static_cast<std::int64_t>(pieces.size()), 1, 2, [&](std::int64_t k, RowScratch& s) {
+  parallel_for_with_scratch<PieceScratch>(0, static_cast<std::int64_t>(pieces.size()), 1, 2, [&](std::int64_t k, PieceScratch& s) {
     const Piece& piece = pieces[static_cast<size_t>(k)];
     const size_t r = piece.row, j = row0 + r, i0 = piece.i0;
     const size_t n = piece.i1 - i0, offset = j * width + i0 - first;  // the piece's first point in `out`
@@ -264,7 +268,7 @@ void SibsonRaster::evaluate(const Raster& raster, size_t first, size_t count, st
     for (const int fi : row_faces[r]) {
       const Face& f = faces_[static_cast<size_t>(fi)];
       const double dy = qy - f.circle.o.y();
-      // The row's points within the circle's chord, widened beyond the power test's rounding
+      // The piece's points within the circle's chord, widened beyond the power test's rounding
       // (a few units of 2^-53 of r2): that test decides, as it does for the faces around.
       const double h2 = f.circle.r2 - dy * dy;
       if (h2 < -kSibsonRasterChordSlack * f.circle.r2) continue;
@@ -286,7 +290,7 @@ void SibsonRaster::evaluate(const Raster& raster, size_t first, size_t count, st
       for (size_t i = begin; i < end; i += kLanes) {
         const D4 qx = load4(&s.x[i]);
         const D4 d = power4(f.circle, qx, qy);
-        // Inside the circle and the chord (a face across without a circle has r2 < 0: never in).
+        // Inside the circle and the chord.
         const M4 in = (d > 0) & (static_cast<double>(i) + lane < static_cast<double>(end));
         const D4 dx = qx - f.circle.o.x();
         const D4 far2 = f.circle.r2 + (dx * dx + far_y2);
@@ -304,35 +308,38 @@ void SibsonRaster::evaluate(const Raster& raster, size_t first, size_t count, st
           const D4 py = -(tx[ex] * edge[e].x() + ty[ex] * edge[e].y());  // (x - q).(x - y)
           const D4 half_sum2 = 0.5 * (to2[ex] + to2[ey]);
           const D4 scale = half_sum2 + edge2[e];  // >= |px|, |py|
+          // (A face across that is infinite has no circle: r2 < 0, never inside.)
           const M4 across = power4(f.across[e], qx, qy) > 0;
           // Across the edge inside the zone: the constant; on the zone's boundary: D_T / k_xy.
           const D4 inverse = 1 / (tx[ex] * ty[ey] - ty[ex] * tx[ey]);
           const D4 ratio = d * inverse;
-          const D4 coefficient = select(across, D4{} + f.half_c[e], ratio);
+          const D4 coefficient = blend4(across, D4{} + f.half_c[e], ratio);
           share[ex] += coefficient * px, share[ey] += coefficient * py;
-          error += select(across, f.c_error[e] * scale, (far2 + abs4(ratio) * half_sum2) * scale * abs4(inverse));
+          error += blend4(across, f.c_error[e] * scale, (far2 + abs4(ratio) * half_sum2) * scale * abs4(inverse));
         }
-        store4(&s.weight[i], load4(&s.weight[i]) + select(in, share[0] + share[1] + share[2], D4{}));
-        store4(&s.error[i], load4(&s.error[i]) + select(in, error, D4{}));
+        store4(&s.weight[i], load4(&s.weight[i]) + blend4(in, share[0] + share[1] + share[2], D4{}));
+        store4(&s.error[i], load4(&s.error[i]) + blend4(in, error, D4{}));
         for (size_t c = 0; c < C; ++c) {
           double* sum = &s.numerator[c * stride + i];
-          store4(sum, load4(sum) + select(in, share[0] * value[0][c] + share[1] * value[1][c] + share[2] * value[2][c], D4{}));
+          store4(sum, load4(sum) + blend4(in, share[0] * value[0][c] + share[1] * value[1][c] + share[2] * value[2][c], D4{}));
         }
       }
     }
-    std::vector<size_t>& row_left = left[static_cast<size_t>(k)];
-    row_left.clear();
+    std::vector<size_t>& piece_left = left[static_cast<size_t>(k)];
+    piece_left.clear();
     for (size_t i = 0; i < n; ++i) {
       const double w = s.weight[i];
       // Served: inside, a positive weight, and rounding far below it (NaN fails every test).
       if (i < s0 || i >= s1 || !(w > 0) || !(s.error[i] <= tol::kSibsonRasterCancellation * w)) {
-        row_left.push_back(offset + i);
+        piece_left.push_back(offset + i);
         continue;
       }
       for (size_t c = 0; c < C; ++c) out[(offset + i) * C + c] = s.numerator[c * stride + i] / w;
     }
   });
-  for (const auto& row_left : left) unserved.insert(unserved.end(), row_left.begin(), row_left.end());
+  for (const auto& piece_left : left) unserved.insert(unserved.end(), piece_left.begin(), piece_left.end());
 }
 
 }  // namespace radrecon
+
+#pragma GCC diagnostic pop

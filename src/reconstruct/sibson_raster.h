@@ -48,7 +48,8 @@ class SibsonRaster {
   /// channels values, raster order). The indices k (0-based within the range) of the points it
   /// leaves unset go to `unserved`, in increasing order. A point's value depends on the point
   /// alone (the faces are summed in one fixed order), not on the range nor on the threads.
-  /// Rows are shared among the threads: a call of one or two rows runs on one.
+  /// Rows are shared among the threads, and a call of fewer rows than they want is cut into
+  /// pieces of rows.
   void evaluate(const Raster& raster, size_t first, size_t count, std::span<double> out,
                 std::vector<size_t>& unserved) const;
   /// False when some face's circumcircle is not finite (a face nearly flat in floating point):
@@ -84,13 +85,12 @@ class SibsonRaster {
   Vec2 origin_;            ///< the samples' box centre: coordinates relative to it
   double hull_margin_m_;   ///< points nearer the hull's boundary are left unserved
   std::vector<std::pair<Vec2, Vec2>> hull_;  ///< hull edges (shifted coordinates)
-  // faces_ is stored in the fixed order of summation: the first ordinary_ faces, no taller than
-  // tall_m_, by their circles' lowest y (y_lo_, ascending), then by CGAL's order; the taller
-  // ones after them, in CGAL's order.
+  // faces_ is stored in the fixed order of summation: the first ordinary_ faces (circles no
+  // taller than kTallDiameters median diameters) by their circles' lowest y (y_lo_, ascending),
+  // then by CGAL's order; the taller ones after them, in CGAL's order.
   size_t ordinary_ = 0;
   std::vector<double> y_lo_;
-  double tall_m_ = 0;
-  double reach_m_ = 0;  ///< the tallest of the first ordinary_ faces' circles (<= tall_m_)
+  double reach_m_ = 0;  ///< the tallest of the first ordinary_ faces' circles
   bool usable_ = true;
 };
 

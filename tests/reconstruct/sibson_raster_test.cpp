@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -163,6 +164,35 @@ TEST(SibsonRaster, ValuesDependNeitherOnTheThreadsNorOnTheCuts) {
       ASSERT_EQ(one[k], many[k]) << "point " << k;
       ASSERT_EQ(one[k], cut[k]) << "point " << k;
     }
+  }
+}
+
+TEST(SibsonRaster, WideRowsCutIntoPiecesLeaveTheSamePointsInOrder) {
+  // Rows of 5,003 points reaching past the hull: on 2 or more threads each row is cut into
+  // pieces; the values and the points left must be those of one thread (whole rows), the points
+  // left in increasing order.
+  std::mt19937 rng(41);
+  const ScatteredSamples s = random_samples(500, rng, 0, 1);
+  const Triangulated t(s);
+  const SibsonRaster sibson(t.dt, s.points, s.values, 1, t.hull);
+  const Raster raster{5003, 3, Rect{-0.1, 0.4, 1.1, 0.41}};
+  const size_t count = static_cast<size_t>(raster.width) * raster.height;
+  const int threads = worker_thread_count();
+  std::vector<double> one(count, -1.0), many(count, -1.0);
+  std::vector<size_t> left_one, left_many;
+  set_worker_thread_count(1);
+  sibson.evaluate(raster, 0, count, one, left_one);
+  set_worker_thread_count(std::max(2, threads));
+  sibson.evaluate(raster, 0, count, many, left_many);
+  set_worker_thread_count(threads);
+  ASSERT_FALSE(left_one.empty());  // the points past the hull
+  EXPECT_TRUE(std::is_sorted(left_many.begin(), left_many.end()));
+  ASSERT_EQ(left_one, left_many);
+  std::vector<char> left(count, 0);
+  for (const size_t k : left_one) left[k] = 1;
+  for (size_t k = 0; k < count; ++k) {
+    if (left[k]) continue;
+    ASSERT_EQ(one[k], many[k]) << "point " << k;
   }
 }
 
