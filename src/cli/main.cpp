@@ -1,7 +1,10 @@
 // radrecon: radiosity solutions and their reconstruction by scattered data interpolation.
 
+#include <algorithm>
+#include <array>
 #include <cstdio>
 #include <exception>
+#include <string_view>
 
 #include <CLI/CLI.hpp>
 
@@ -20,13 +23,26 @@ int main(int argc, char** argv) {
       "(after Hinkenjann & Pietrek, \"Reconstructing Radiosity by Scattered Data Interpolation\")."};
   app.require_subcommand(1);
   app.set_version_flag("--version", "radrecon 0.1.0");
-  radrecon::cli::add_solve_command(app);
-  radrecon::cli::add_paper_command(app);
-  radrecon::cli::add_interpolate_command(app);
-  radrecon::cli::add_render_command(app);
-  radrecon::cli::add_compare_command(app);
-  radrecon::cli::add_cornell_command(app);
-  radrecon::cli::add_export_command(app);
+  // A run that names its command first builds that one alone: building every command's options,
+  // validators and help texts is a millisecond of start-up (docs/benchmarks.md). Anything else
+  // (--help, --version, no command, a misspelt one) gets them all.
+  struct Command {
+    std::string_view name;
+    void (*add)(CLI::App&);
+  };
+  namespace cli = radrecon::cli;
+  constexpr std::array<Command, 7> kCommands = {{{"solve", cli::add_solve_command},
+                                                 {"paper", cli::add_paper_command},
+                                                 {"interpolate", cli::add_interpolate_command},
+                                                 {"render", cli::add_render_command},
+                                                 {"compare", cli::add_compare_command},
+                                                 {"cornell", cli::add_cornell_command},
+                                                 {"export", cli::add_export_command}}};
+  const std::string_view first = argc > 1 ? argv[1] : "";
+  const auto named = std::find_if(kCommands.begin(), kCommands.end(), [&](const Command& c) { return c.name == first; });
+  if (named != kCommands.end()) named->add(app);
+  else
+    for (const Command& c : kCommands) c.add(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
