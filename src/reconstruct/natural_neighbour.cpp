@@ -120,8 +120,8 @@ void NaturalNeighbour::evaluate(std::span<const Vec2> points, std::span<double> 
 
 /// The face-by-face raster (SibsonRaster) pays for its faces (some 180 bytes each, twice as many
 /// as the samples) with its points: a raster of fewer points than this many a face goes query by
-/// query (1,000,000 samples onto 500 x 500 took 3.7 s and 781 MB face by face, 3.9 s and 271 MB
-/// query by query; docs/scaling.md).
+/// query (1,000,000 samples onto 500 x 500 took 3.65 s and 781 MiB face by face, 2.80 s and 263
+/// MiB query by query; docs/benchmarks.md).
 constexpr double kFaceRasterLeastPointsPerFace = 1;
 
 void NaturalNeighbour::evaluate_raster(const Raster& raster, size_t first, size_t count, std::span<double> out) const {
