@@ -25,6 +25,9 @@ using tol::kSibsonRasterChordSlack;
 /// tallest of the others.
 constexpr double kTallDiameters = 8;
 
+/// The fewest points of a row that evaluate() hands a thread as a piece of their own.
+constexpr size_t kLeastPiecePoints = 1024;
+
 /// Four doubles, and four lanes' masks (all bits set where true), as GCC and Clang's vector
 /// extensions make them: the chord's points go through the kernel four at a time, every point
 /// (the last ones padded) by the same instructions, so that its value does not depend on where
@@ -35,9 +38,6 @@ constexpr double kTallDiameters = 8;
 using D4 = double __attribute__((vector_size(32)));
 using M4 = long long __attribute__((vector_size(32)));
 constexpr size_t kLanes = 4;
-
-/// The fewest points of a row that evaluate() hands a thread as a piece of their own.
-constexpr size_t kLeastPiecePoints = 1024;
 
 D4 blend4(M4 mask, D4 a, D4 b) { return reinterpret_cast<D4>((reinterpret_cast<M4>(a) & mask) | (reinterpret_cast<M4>(b) & ~mask)); }
 D4 abs4(D4 a) { return reinterpret_cast<D4>(reinterpret_cast<M4>(a) & 0x7fffffffffffffffLL); }
