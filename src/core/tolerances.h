@@ -261,12 +261,19 @@ inline constexpr double kShaftSlack_m = 1e-6;
 inline constexpr double kQuadMergeTurnRelative = 1e-6;
 
 /// Natural-neighbour interpolation (and laplace, sibson-c1): a query within this fraction of a
-/// hull edge's length of the edge, plus kHullEdgeRounding times its coordinates' magnitude, is
-/// on the edge, and gets the linear interpolation along it (the limit of Sibson's coordinates
-/// from inside). Points computed on a hull edge land within rounding of it, inside or outside;
-/// inside, the Voronoi computation cancels catastrophically there (tests/reconstruct).
+/// hull edge's length of the edge (or of the height of the hull triangle on it, if smaller: a
+/// thin strip of samples, whose coordinates change fast across it), plus kHullEdgeRounding times
+/// its coordinates' magnitude, is on the edge, and gets the linear interpolation along it (the
+/// limit of Sibson's coordinates from inside). Points computed on a hull edge land within
+/// rounding of it, inside or outside; inside, the Voronoi computation cancels catastrophically
+/// there (tests/reconstruct).
 inline constexpr double kHullEdgeBandRelative = 1e-9;
 inline constexpr double kHullEdgeRounding = 64 * 2.220446049250313e-16;
+
+/// A PNG of a raster (io/raster.h) maps [min, max] of its finite values to black and white; when
+/// max - min is no more than this fraction of their magnitude the values are taken as one (the
+/// rounding of an interpolant of constant data) and shown at display 0.5, not as speckle.
+inline constexpr double kPngFlatRangeRelative = 1e-9;
 
 /// Samples closer than this fraction of their extent (the larger side of their bounding box) to
 /// an earlier one are merged with it (reconstruct/sample_set.h): at 1e-12 apart natural

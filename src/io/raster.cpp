@@ -66,7 +66,7 @@ void write_raster_png(const std::string& path, const Raster& raster, std::span<c
   const auto display = [&](double v) -> double {
     if (std::isnan(v)) return 0.0;
     if (std::isinf(v)) return v > 0 ? 1.0 : 0.0;
-    if (!(hi > lo)) return 0.5;
+    if (!(hi - lo > tol::kPngFlatRangeRelative * std::max(std::abs(lo), std::abs(hi)))) return 0.5;
     return tone_map(v - lo, hi - lo);
   };
   Image img(raster.width, raster.height);

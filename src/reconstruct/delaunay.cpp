@@ -122,10 +122,10 @@ void on_edge(std::span<const Vec2> points, const std::array<unsigned, 3>& vertic
 
 }  // namespace
 
-HullEdgeDistance hull_edge_distance(const Vec2& a, const Vec2& b, const Vec2& q) {
+HullEdgeDistance hull_edge_distance(const Vec2& a, const Vec2& b, const Vec2& q, double height_m) {
   const Vec2 ab = b - a;
   const double t = std::clamp((q - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
-  const double band = tol::kHullEdgeBandRelative * ab.norm() +
+  const double band = tol::kHullEdgeBandRelative * std::min(ab.norm(), height_m) +
                       tol::kHullEdgeRounding * std::max({a.cwiseAbs().maxCoeff(), b.cwiseAbs().maxCoeff(), q.cwiseAbs().maxCoeff()});
   return {(a + t * ab - q).norm() / band, t};
 }

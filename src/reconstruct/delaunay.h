@@ -24,7 +24,8 @@
 namespace radrecon {
 
 /// Whether q lies on the hull edge ab up to rounding: within tol::kHullEdgeBandRelative of the
-/// edge's length, plus tol::kHullEdgeRounding of the coordinates' magnitude. A point computed on a
+/// edge's length (or of `height_m`, the height over ab of the hull triangle on it, if smaller),
+/// plus tol::kHullEdgeRounding of the coordinates' magnitude. A point computed on a
 /// hull edge as a + t (b - a) lands within that of it, a little inside or outside the hull; the
 /// triangulation methods give it the value on the edge (never NaN, never a far-off value from
 /// catastrophic cancellation). Returns the distance in units of that band (<= 1: on the edge) and
@@ -33,7 +34,8 @@ struct HullEdgeDistance {
   double in_bands = 0;
   double t = 0;
 };
-HullEdgeDistance hull_edge_distance(const Vec2& a, const Vec2& b, const Vec2& q);
+HullEdgeDistance hull_edge_distance(const Vec2& a, const Vec2& b, const Vec2& q,
+                                    double height_m = std::numeric_limits<double>::infinity());
 
 class DelaunayMesh {
  public:

@@ -36,6 +36,10 @@ NaturalNeighbour::NaturalNeighbour(const ScatteredSamples& samples, OutsideHull 
   do {
     const int i = fc->index(inf);
     impl_->hull_edges.emplace_back(fc->vertex(Delaunay::ccw(i))->info(), fc->vertex(Delaunay::cw(i))->info());
+    // The height over the edge of the finite triangle on it (its vertex across the edge).
+    const Vec2 a = impl_->points[impl_->hull_edges.back().first], b = impl_->points[impl_->hull_edges.back().second];
+    const Vec2 c = impl_->points[fc->neighbor(i)->vertex(impl_->dt.mirror_index(fc, i))->info()];
+    impl_->hull_edge_height_m.push_back(std::abs(cross(b - a, c - a)) / (b - a).norm());
   } while (++fc != done);
   impl_->hull_edges_at.assign(n, {-1, -1});
   for (size_t e = 0; e < impl_->hull_edges.size(); ++e)

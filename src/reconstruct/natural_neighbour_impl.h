@@ -34,6 +34,7 @@ struct NaturalNeighbour::Impl {
   std::vector<double> gradients;  ///< sibson-c1: per sample and channel, d/ds and d/dt (sibson_c1.h)
   std::vector<std::pair<unsigned, unsigned>> hull_edges;  ///< sample indices
   std::vector<std::array<int, 2>> hull_edges_at;          ///< by sample: its hull edges' indices, or -1
+  std::vector<double> hull_edge_height_m;                 ///< by hull edge: its triangle's height over it
   std::vector<Vec2> points;
   std::vector<Delaunay::Vertex_handle> vertex_of;  ///< by sample index
   /// The samples' k-d tree, to start walks near a query and to find the samples one sees past
@@ -157,7 +158,7 @@ struct NaturalNeighbour::Impl {
         if (e < 0 || e == best) continue;
         auto [ia, ib] = hull_edges[static_cast<size_t>(e)];
         if (ib < ia) std::swap(ia, ib);
-        const HullEdgeDistance d = hull_edge_distance(points[ia], points[ib], q);
+        const HullEdgeDistance d = hull_edge_distance(points[ia], points[ib], q, hull_edge_height_m[static_cast<size_t>(e)]);
         if (d.in_bands <= 1 && (best < 0 || d.in_bands < best_excess)) best = e, best_excess = d.in_bands, best_t = d.t;
       }
     }

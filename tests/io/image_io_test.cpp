@@ -104,6 +104,24 @@ TEST(RasterPng, ShowsYUpwardAndMapsMinToBlackMaxToWhiteNanBlack) {
   EXPECT_EQ(p.at(1, 1), (std::array<int, 3>{137, 137, 137}));
 }
 
+TEST(RasterPng, ValuesThatDifferByRoundingOnlyAreShownFlat) {
+  // An interpolant of constant data rounds to within a few units in the last place of it: one
+  // grey (display 0.5, sRGB 188), not black-and-white speckle; a difference of 1e-6 of the
+  // values is still stretched from black to white.
+  Raster r;
+  r.width = 3;
+  r.height = 1;
+  r.domain = {0, 0, 3, 1};
+  const fs::path path = temp_file("flat.png");
+  write_raster_png(path.string(), r, std::vector<double>{5, std::nextafter(5.0, 0.0), std::nextafter(5.0, 6.0)}, 1);
+  const Png flat = read_png(path);
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(flat.at(i, 0), (std::array<int, 3>{188, 188, 188})) << "pixel " << i;
+  write_raster_png(path.string(), r, std::vector<double>{5, 5 * (1 - 1e-6), 5 * (1 + 1e-6)}, 1);
+  const Png varied = read_png(path);
+  EXPECT_EQ(varied.at(1, 0), (std::array<int, 3>{0, 0, 0}));
+  EXPECT_EQ(varied.at(2, 0), (std::array<int, 3>{255, 255, 255}));
+}
+
 /// The floats of a little-endian PFM after its header (checked: magic, size, scale), decoded by
 /// hand.
 std::vector<float> pfm_floats(const fs::path& path, const std::string& magic_expected, int width, int height) {

@@ -5,8 +5,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <random>
 
+#include <CGAL/Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/natural_neighbor_coordinates_2.h>
 
 #include "core/error.h"
@@ -110,6 +113,53 @@ TEST(NaturalNeighbour, OutsideTheHull) {
   EXPECT_NEAR(eval1(nearest, Vec2(-1, 0.25)), 0.75, 1e-14);
   // Beyond a corner: the corner's value.
   EXPECT_NEAR(eval1(nearest, Vec2(2, 2)), 2.0, 1e-14);
+}
+
+TEST(NaturalNeighbour, AThinStripIsInterpolatedUpToItsHullEdges) {
+  // 200 samples in a strip 1e-7 tall and 1 long: its long hull edges' triangles are flat, and
+  // the coordinates change fast across the strip. A point 2e-10 inside a hull edge is no point
+  // on it (within 1e-9 of the edge's length, but not of its triangle's height): its value is
+  // Sibson's, against CGAL's coordinates over exact constructions (Epeck), not the linear
+  // interpolation along the edge (which erred by 0.9 there).
+  using Epeck = CGAL::Exact_predicates_exact_constructions_kernel;
+  using ExactDt = CGAL::Delaunay_triangulation_2<Epeck>;
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<double> along(0, 1), across(0, 1e-7);
+  ScatteredSamples s;
+  for (int i = 0; i < 200; ++i) {
+    s.points.emplace_back(along(rng), across(rng));
+    s.values.push_back(std::sin(5 * s.points.back().x()));
+  }
+  const NaturalNeighbour nn(s, OutsideHull::none);
+  ExactDt exact;
+  std::map<std::pair<double, double>, double> value_at;
+  for (size_t i = 0; i < s.points.size(); ++i) {
+    exact.insert(Epeck::Point_2(s.points[i].x(), s.points[i].y()));
+    value_at[{s.points[i].x(), s.points[i].y()}] = s.values[i];
+  }
+  // The lower hull edge under x = 0.35 and 0.6, and points 2e-10 to 2e-8 above it.
+  size_t compared = 0;
+  for (const double x : {0.35, 0.6}) {
+    double edge_y = -1;
+    for (const auto& [ia, ib] : nn.hull_edges()) {
+      const Vec2 a = s.points[ia], b = s.points[ib];
+      if ((a.x() - x) * (b.x() - x) >= 0 || a.x() < b.x()) continue;  // the lower chain runs to -x (clockwise)
+      edge_y = a.y() + (x - a.x()) / (b.x() - a.x()) * (b.y() - a.y());
+    }
+    ASSERT_GE(edge_y, 0) << "no lower hull edge under x = " << x;
+    for (const double above : {2e-10, 5e-10, 2e-9, 2e-8}) {
+      const Vec2 q(x, edge_y + above);
+      std::vector<std::pair<Epeck::Point_2, Epeck::FT>> coords;
+      const auto result = CGAL::natural_neighbor_coordinates_2(exact, Epeck::Point_2(q.x(), q.y()), std::back_inserter(coords));
+      ASSERT_TRUE(result.third) << "x " << x << ", " << above << " above the edge";
+      double want = 0;
+      for (const auto& [p, w] : coords)
+        want += CGAL::to_double(w / result.second) * value_at.at({CGAL::to_double(p.x()), CGAL::to_double(p.y())});
+      EXPECT_NEAR(eval1(nn, q), want, 1e-12) << "x " << x << ", " << above << " above the edge";
+      ++compared;
+    }
+  }
+  EXPECT_EQ(compared, 8u);
 }
 
 /// Every sample's coordinate at every query of a batch: the samples' values one-hot, one
