@@ -56,7 +56,9 @@ struct InterpolateArgs {
 void run_interpolate(const InterpolateArgs& args) {
   const auto start = std::chrono::steady_clock::now();
 
-  // The command line first: cheap checks before any file is read.
+  // The command line first: cheap checks before any file is read; an output that is a folder
+  // before its extension is looked at ('.' has none).
+  check_output_file(args.out, "--out");
   // .csv, .pfm and .png are radrecon's own; any other extension (or --format) is a georeferenced
   // raster: a GeoTIFF by libtiff when its CRS is none or an EPSG code, else by GDAL.
   const std::string ext = lower_extension(args.out);
@@ -111,7 +113,6 @@ void run_interpolate(const InterpolateArgs& args) {
   if (use_queries) inputs.push_back(args.queries);
   if (!args.barriers.empty()) inputs.push_back(args.barriers);
   refuse_overwriting_inputs(args.out, "--out", inputs);
-  check_output_file(args.out, "--out");
 
   // Barriers, samples, interpolant, queries.
   if (!args.barriers.empty()) params.barriers = read_barriers_file(args.barriers, "--barriers");
