@@ -230,6 +230,11 @@ mkdir -p "$TMP/folder.csv"
 run out_is_folder --samples "$S" --method constant --queries "$Q" --out "$TMP/folder.csv" --quiet
 expect_rc out_is_folder 2
 expect_stderr_has out_is_folder "is a folder"
+# A folder without an extension ('.') is refused as a folder, not for its extension.
+(cd "$TMP" && "$RADRECON" interpolate --samples "$S" --method constant --raster 4x4 --domain 0,0,1,1 --out . \
+  >"$TMP/dot.out" 2>"$TMP/dot.err"; echo $? >"$TMP/dot.rc")
+[ "$(cat "$TMP/dot.rc")" = 2 ] || fail "out_is_dot: exit $(cat "$TMP/dot.rc"), expected 2"
+grep -q "'.' is a folder" "$TMP/dot.err" || fail "out_is_dot: stderr: $(cat "$TMP/dot.err")"
 
 # Out of memory: exit code 3, a message, nothing written. Not under AddressSanitizer (linked as
 # libasan by gcc, into the binary by clang), whose shadow memory cannot be mapped under ulimit -v.
