@@ -52,7 +52,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    app.exit(e);
+    // As every refusal is worded (docs/cli.md): "radrecon: error: WHERE: WHAT".
+    std::fprintf(stderr, "radrecon: error: %s\nRun with --help for more information.\n", e.what());
     return radrecon::kUserErrorExitCode;
   } catch (const radrecon::cli::ExitStatus& e) {
     return e.code;

@@ -149,6 +149,13 @@ expect_stderr_has paper_file "not a folder"
 run solve_dir solve --scene paper --mesh grid:4 --out "$TMP" --quiet
 expect_rc solve_dir 2
 expect_stderr_has solve_dir "is a folder"
+# Command-line errors the parser finds are worded as every other refusal (docs/cli.md).
+run option_twice solve --scene paper --scene paper --mesh grid:4 --out "$TMP/twice.json" --quiet
+expect_rc option_twice 2
+expect_stderr_has option_twice "radrecon: error: --scene: "
+run no_command
+expect_rc no_command 2
+expect_stderr_has no_command "radrecon: error: A subcommand is required"
 
 # A solution of another scene (same side names, other lengths) is refused, not drawn wrongly;
 # so is a method that fits no side of the solution.
