@@ -106,7 +106,7 @@ void write_raster_gdal(const std::string& path, const Raster& raster, std::span<
   std::unique_ptr<GDALDataset> image(mem->Create("", raster.width, raster.height, channels, type, nullptr));
   if (!image) throw UserError(path, "GDAL cannot hold the raster in memory: " + QuietGdal::last_error());
   const Rect& d = raster.domain;
-  double transform[6] = {d.x0, (d.x1 - d.x0) / raster.width, 0, d.y1, 0, -(d.y1 - d.y0) / raster.height};
+  double transform[6] = {d.x0, raster.dx(), 0, d.y1, 0, -raster.dy()};
   image->SetGeoTransform(transform);
   if (!options.crs.empty()) {
     OGRSpatialReference srs;

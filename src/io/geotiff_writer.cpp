@@ -161,7 +161,7 @@ void write(const std::filesystem::path& file, const std::string& shown_as, const
 
   // Georeferencing: the top-left corner (x0, y1) is the tie point of pixel (0, 0), north-up.
   const Rect& d = raster.domain;
-  const double scale[3] = {(d.x1 - d.x0) / raster.width, (d.y1 - d.y0) / raster.height, 0};
+  const double scale[3] = {raster.dx(), raster.dy(), 0};
   const double tie[6] = {0, 0, 0, d.x0, d.y1, 0};
   require(TIFFSetField(t, TIFFTAG_GEOPIXELSCALE, 3, scale), "the pixel scale");
   require(TIFFSetField(t, TIFFTAG_GEOTIEPOINTS, 6, tie), "the tie point");

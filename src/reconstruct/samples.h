@@ -24,9 +24,12 @@ struct Rect {
 struct Raster {
   int width = 0, height = 0;
   Rect domain{0, 0, 1, 1};
+  /// The spacing of the columns and of the rows, metres.
+  double dx() const { return (domain.x1 - domain.x0) / width; }
+  double dy() const { return (domain.y1 - domain.y0) / height; }
   /// Column i's x and row j's y, metres: the formula above, to the bit.
-  double x(size_t i) const { return domain.x0 + (static_cast<double>(i) + 0.5) * ((domain.x1 - domain.x0) / width); }
-  double y(size_t j) const { return domain.y0 + (static_cast<double>(j) + 0.5) * ((domain.y1 - domain.y0) / height); }
+  double x(size_t i) const { return domain.x0 + (static_cast<double>(i) + 0.5) * dx(); }
+  double y(size_t j) const { return domain.y0 + (static_cast<double>(j) + 0.5) * dy(); }
   /// Point (i, j), metres.
   Vec2 point(size_t i, size_t j) const { return {x(i), y(j)}; }
 };

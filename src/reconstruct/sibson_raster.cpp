@@ -211,8 +211,7 @@ void SibsonRaster::evaluate(const Raster& raster, size_t first, size_t count, st
   std::vector<int> near;
   faces_near(std::min(y0, y1), std::max(y0, y1), near);
   const size_t rows = row1 - row0 + 1;
-  const double m = hull_margin_m_;
-  const double sx = (raster.domain.x1 - raster.domain.x0) / raster.width, sy = (raster.domain.y1 - raster.domain.y0) / raster.height;
+  const double sx = raster.dx(), sy = raster.dy();
   // Each row's faces, in the fixed order: those whose circles may reach it (a row more either
   // side; the power test decides).
   std::vector<std::vector<int>> row_faces(rows);
@@ -241,6 +240,15 @@ void SibsonRaster::evaluate(const Raster& raster, size_t first, size_t count, st
     for (size_t a = i0; a < i1; a += length) pieces.push_back({r, a, std::min(i1, a + length)});
   }
   std::vector<std::vector<size_t>> left(pieces.size());
+  // Each row's points whose square of half-side hull_margin_m_ lies inside the hull: served, the
+  // rest left; one x-interval (shifted coordinates), empty when lo >= hi.
+  std::vector<std::pair<double, double>> inside(rows);
+  for (size_t r = 0; r < rows; ++r) {
+    const double qy = raster.y(row0 + r) - origin_.y(), m = hull_margin_m_;
+    const auto [lo_a, hi_a] = hull_span(qy - m);
+    const auto [lo_b, hi_b] = hull_span(qy + m);
+    inside[r] = {std::max(lo_a, lo_b) + m, std::min(hi_a, hi_b) - m};
+  }
 
   parallel_for_with_scratch<PieceScratch>(0, static_cast<std::int64_t>(pieces.size()), 1, 2, [&](std::int64_t k, PieceScratch& s) {
     const Piece& piece = pieces[static_cast<size_t>(k)];
@@ -254,10 +262,7 @@ void SibsonRaster::evaluate(const Raster& raster, size_t first, size_t count, st
     s.weight.assign(stride, 0.0);
     s.error.assign(stride, 0.0);
     s.numerator.assign(stride * C, 0.0);
-    // The points whose square of half-side m lies inside the hull: served, the rest left.
-    const auto [lo_a, hi_a] = hull_span(qy - m);
-    const auto [lo_b, hi_b] = hull_span(qy + m);
-    const double inside_lo = std::max(lo_a, lo_b) + m, inside_hi = std::min(hi_a, hi_b) - m;
+    const auto [inside_lo, inside_hi] = inside[r];
     size_t s0 = n, s1 = n;  // the served points [s0, s1)
     if (inside_lo < inside_hi) {
       s0 = static_cast<size_t>(std::upper_bound(s.x.begin(), s.x.begin() + static_cast<std::ptrdiff_t>(n), inside_lo) - s.x.begin());
