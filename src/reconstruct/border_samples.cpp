@@ -119,7 +119,7 @@ bool fit_value(const Vec2& p, const ScatteredSamples& interior, const KdTree2& t
   double width = 0;
   for (size_t j = 1; j < found; ++j) {
     const Vec2 d = interior.points[idx[j]] - x0;
-    width = std::max(width, std::abs(u.x() * d.y() - u.y() * d.x()));
+    width = std::max(width, std::abs(cross(u, d)));
   }
   if (width <= tol::kFitCollinearRelative * extent) return true;
   // Weighted least squares, rows scaled by sqrt(w_j) = d_0 / d_j (in (0, 1]) and coordinates

@@ -70,7 +70,6 @@ long PiecewiseConstant::locate_triangle(const Vec2& q, const std::vector<unsigne
   double best_min = -std::numeric_limits<double>::infinity();
   for (unsigned k : bucket) {
     const auto& t = samples_.triangles[k];
-    const auto cross = [](const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); };
     const double area2 = cross(t[1] - t[0], t[2] - t[0]);
     const double b0 = cross(t[1] - q, t[2] - q) / area2, b1 = cross(t[2] - q, t[0] - q) / area2;
     const double lowest = std::min({b0, b1, 1 - b0 - b1});

@@ -344,8 +344,8 @@ void Gouraud::evaluate(std::span<const Vec2> points, std::span<double> out) cons
       const auto& tri = triangles_[static_cast<size_t>(t)];
       const Vec2 a = vertices_[static_cast<size_t>(tri[0])], ab = vertices_[static_cast<size_t>(tri[1])] - a,
                  ac = vertices_[static_cast<size_t>(tri[2])] - a, ap = p - a;
-      const double area = ab.x() * ac.y() - ab.y() * ac.x();
-      const double wb = (ap.x() * ac.y() - ap.y() * ac.x()) / area, wc = (ab.x() * ap.y() - ab.y() * ap.x()) / area;
+      const double area = cross(ab, ac);
+      const double wb = cross(ap, ac) / area, wc = cross(ab, ap) / area;
       const double wa = 1 - wb - wc, least = std::min({wa, wb, wc});
       if (least > best) best = least, best_triangle = t, weights[0] = wa, weights[1] = wb, weights[2] = wc;
     }

@@ -77,7 +77,6 @@ double ConflictZone::sibson(const Vec2& q, std::vector<std::pair<unsigned, doubl
   thread_local std::vector<Vec2> g;
   g.resize(m);
   for (size_t k = 0; k < m; ++k) g[k] = circumcentre_from(r, at_[k], at_[(k + 1) % m]);
-  const auto cross = [](const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); };
   double sum = 0;
   for (size_t k = 0; k < m; ++k) {
     const Vec2& g_in = g[(k + m - 1) % m];

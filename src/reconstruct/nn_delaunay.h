@@ -14,6 +14,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
+#include "core/vec.h"
 #include "reconstruct/natural_neighbour.h"
 
 namespace radrecon::nn {
@@ -35,7 +36,7 @@ struct VertexIndex {
 /// The circumcentre of the triangle (p, a, b), relative to p (in the points' unit).
 inline Vec2 circumcentre_from(const Vec2& p, const Vec2& a, const Vec2& b) {
   const Vec2 u = a - p, v = b - p;
-  const double d = 2 * (u.x() * v.y() - u.y() * v.x());
+  const double d = 2 * cross(u, v);
   const double uu = u.squaredNorm(), vv = v.squaredNorm();
   return Vec2((v.y() * uu - u.y() * vv) / d, (u.x() * vv - v.x() * uu) / d);
 }

@@ -66,7 +66,6 @@ std::optional<Vec2> Surface::parameters(const Vec3& p, const Vec3& n) const {
   n.cwiseAbs().maxCoeff(&drop);
   const int a = (drop + 1) % 3, b = (drop + 2) % 3;
   auto xy = [&](const Vec3& q) { return Vec2(q[a], q[b]); };
-  auto cross = [](const Vec2& x, const Vec2& y) { return x.x() * y.y() - x.y() * y.x(); };
   const Vec2 c0 = xy(s.corners[0]), c1 = xy(s.corners[1]), c2 = xy(s.corners[2]), c3 = xy(s.corners[3]);
   const Vec2 q = xy(p) - c0, e = c1 - c0;
   if (is_triangle()) {
