@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/check.h"
+#include "core/parallel.h"
 #include "core/tolerances.h"
 
 namespace radrecon {
@@ -84,12 +85,13 @@ long PiecewiseConstant::locate_triangle(const Vec2& q, const std::vector<unsigne
 void PiecewiseConstant::evaluate(std::span<const Vec2> points, std::span<double> out) const {
   const int C = samples_.channels;
   RR_CHECK(out.size() == points.size() * C, "output size does not match the query points");
-  for (size_t k = 0; k < points.size(); ++k) {
-    long cell = locate(points[k]);
+  parallel_for(0, static_cast<std::int64_t>(points.size()), [&](std::int64_t q) {
+    const size_t k = static_cast<size_t>(q);
+    const long cell = locate(points[k]);
     for (int c = 0; c < C; ++c)
       out[k * C + c] = cell < 0 ? std::numeric_limits<double>::quiet_NaN()
                                 : samples_.values[static_cast<size_t>(cell) * C + c];
-  }
+  });
 }
 
 }  // namespace radrecon

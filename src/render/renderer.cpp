@@ -177,21 +177,44 @@ CameraHits trace_rect(const Scene& scene, const SurfaceBvh* bvh, const Camera& c
   const size_t rect_w = static_cast<size_t>(rect.x_end - rect.x_begin);
   const size_t per_pixel = static_cast<size_t>(S) * S;
   const size_t rays = rect.pixels() * per_pixel;
+  RR_CHECK(rays <= std::numeric_limits<std::uint32_t>::max(), "too many rays for one camera trace");
   CameraHits out;
   out.options = options;
   out.pixels = rect;
-  out.hits.resize(rays);
-  auto& hits = out.hits;
+  out.rays = rays;
   const std::vector<Vec3> normals = surface_normals(scene);  // once, not per ray and surface
-  // The hit of every ray (stratified, at the strata centres: deterministic).
+  std::vector<SurfaceFrame> frames;
+  for (const Surface& s : scene.surfaces) frames.push_back(s.frame());
+  // The hit of every ray (stratified, at the strata centres: deterministic): its side's slot
+  // (kNone: none) and the point in the side's (s, t).
+  constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::uint32_t> slot(rays);
+  std::vector<Vec2> st(rays);
   parallel_for(0, static_cast<std::int64_t>(rays), [&](std::int64_t r) {
     const size_t k = static_cast<size_t>(r);
     const size_t pixel = k / per_pixel, sub = k % per_pixel;
     const double x = static_cast<double>(rect.x_begin + pixel % rect_w) + (static_cast<double>(sub % S) + 0.5) / S;
     const double y = static_cast<double>(rect.y_begin + pixel / rect_w) + (static_cast<double>(sub / S) + 0.5) / S;
     const auto [o, d] = camera_ray(camera, W, H, x, y);
-    hits[k] = bvh != nullptr ? intersect_through(scene, normals, *bvh, o, d) : intersect_all(scene, normals, o, d);
+    const std::optional<SurfaceHit> hit =
+        bvh != nullptr ? intersect_through(scene, normals, *bvh, o, d) : intersect_all(scene, normals, o, d);
+    slot[k] = hit ? static_cast<std::uint32_t>(SideRef{hit->surface, hit->back_side}.slot()) : kNone;
+    if (hit) st[k] = frames[hit->surface].st(Vec2(hit->u, hit->v));
   });
+  // Side by side, each in ray order.
+  out.sides.resize(side_slots(scene));
+  std::vector<size_t> count(out.sides.size(), 0);
+  for (const std::uint32_t s : slot)
+    if (s != kNone) ++count[s];
+  for (size_t s = 0; s < out.sides.size(); ++s) {
+    out.sides[s].rays.reserve(count[s]);
+    out.sides[s].st.reserve(count[s]);
+  }
+  for (size_t k = 0; k < rays; ++k)
+    if (slot[k] != kNone) {
+      out.sides[slot[k]].rays.push_back(static_cast<std::uint32_t>(k));
+      out.sides[slot[k]].st.push_back(st[k]);
+    }
   return out;
 }
 
@@ -241,56 +264,52 @@ void shade(const Scene& scene, const CameraHits& traced, const SideReconstructio
   Image& img = out.image;
   RR_CHECK(img.width() == W && img.height() == options.height, "image size does not match the camera's");
   RR_CHECK_EQ(out.reflecting.size(), static_cast<size_t>(W) * options.height, "mask size does not match the camera's");
-  const size_t rays = traced.hits.size();
-  const auto& hits = traced.hits;
-  // Radiosity per ray, one batch per surface side; and whether the ray met a reflecting side.
-  std::vector<double> radiosity(rays * 3, 0.0);
+  RR_CHECK_EQ(traced.sides.size(), side_slots(scene), "camera traced for another scene");
+  const size_t rays = traced.rays;
+  // Radiosity per ray (the background where a ray met nothing, black on a side without a
+  // reconstruction); and whether the ray met a reflecting side.
+  std::vector<double> radiosity(rays * 3);
   std::vector<std::uint8_t> reflecting(rays, 0);
-  for (size_t k = 0; k < rays; ++k)
-    if (!hits[k])
-      for (int c = 0; c < 3; ++c) radiosity[k * 3 + c] = options.background_w_m2[c];
-  // The rays of each side in one pass, not one scan per side.
-  std::vector<std::vector<size_t>> rays_of(side_slots(scene));
-  for (size_t k = 0; k < rays; ++k)
-    if (hits[k]) rays_of[SideRef{hits[k]->surface, hits[k]->back_side}.slot()].push_back(k);
-  for (size_t slot = 0; slot < rays_of.size(); ++slot) {
-    const std::vector<size_t>& which = rays_of[slot];
-    if (which.empty()) continue;
+  parallel_for(0, static_cast<std::int64_t>(rays), [&](std::int64_t k) {
+    for (int c = 0; c < 3; ++c) radiosity[static_cast<size_t>(k) * 3 + c] = options.background_w_m2[c];
+  });
+  std::vector<double> values;
+  for (size_t slot = 0; slot < traced.sides.size(); ++slot) {
+    const CameraHits::SideRays& hits = traced.sides[slot];
+    if (hits.rays.empty()) continue;
     const SideRef side = SideRef::from_slot(slot);
     const Interpolant* f = reconstruction(side);
-    if (!f) continue;  // black
-    RR_CHECK_EQ(f->channels(), 3, "renderer needs 3-channel reconstructions");
-    const Surface& s = scene.surfaces[side.surface];
-    std::vector<Vec2> at;
-    at.reserve(which.size());
-    const SurfaceFrame frame = s.frame();
-    for (size_t k : which) at.push_back(frame.st(Vec2(hits[k]->u, hits[k]->v)));
-    std::vector<double> values(which.size() * 3);
-    f->evaluate(at, values);
-    const bool reflects = !(side_emission(s, side.back_side) > 0).any();
-    for (size_t j = 0; j < which.size(); ++j) {
-      for (int c = 0; c < 3; ++c) {
-        const double v = values[j * 3 + c];
-        radiosity[which[j] * 3 + c] = std::isfinite(v) ? v : 0.0;
-      }
-      reflecting[which[j]] = reflects;
+    const bool reflects = f != nullptr && !(side_emission(scene.surfaces[side.surface], side.back_side) > 0).any();
+    if (f != nullptr) {
+      RR_CHECK_EQ(f->channels(), 3, "renderer needs 3-channel reconstructions");
+      values.resize(hits.rays.size() * 3);
+      f->evaluate(hits.st, values);
     }
+    parallel_for(0, static_cast<std::int64_t>(hits.rays.size()), [&](std::int64_t j) {
+      const size_t k = hits.rays[static_cast<size_t>(j)];
+      for (int c = 0; c < 3; ++c) {
+        const double v = f != nullptr ? values[static_cast<size_t>(j) * 3 + c] : 0.0;  // no reconstruction: black
+        radiosity[k * 3 + c] = std::isfinite(v) ? v : 0.0;
+      }
+      reflecting[k] = reflects;
+    });
   }
   // Box filter over each pixel's rays.
   const PixelRect& rect = traced.pixels;
+  const int rect_w = rect.x_end - rect.x_begin;
   const size_t per_pixel = static_cast<size_t>(S) * S;
-  size_t first = 0;  // the pixel's first ray
-  for (int y = rect.y_begin; y < rect.y_end; ++y)
-    for (int x = rect.x_begin; x < rect.x_end; ++x, first += per_pixel) {
-      Rgb sum = Rgb::Zero();
-      bool all_reflecting = true;
-      for (size_t k = first; k < first + per_pixel; ++k) {
-        for (int c = 0; c < 3; ++c) sum[c] += radiosity[k * 3 + c];
-        all_reflecting = all_reflecting && reflecting[k];
-      }
-      img.at(x, y) = sum / (S * S);
-      out.reflecting[static_cast<size_t>(y) * W + x] = all_reflecting;
+  parallel_for(0, static_cast<std::int64_t>(rect.pixels()), [&](std::int64_t p) {
+    const int x = rect.x_begin + static_cast<int>(p % rect_w), y = rect.y_begin + static_cast<int>(p / rect_w);
+    const size_t first = static_cast<size_t>(p) * per_pixel;  // the pixel's first ray
+    Rgb sum = Rgb::Zero();
+    bool all_reflecting = true;
+    for (size_t k = first; k < first + per_pixel; ++k) {
+      for (int c = 0; c < 3; ++c) sum[c] += radiosity[k * 3 + c];
+      all_reflecting = all_reflecting && reflecting[k];
     }
+    img.at(x, y) = sum / (S * S);
+    out.reflecting[static_cast<size_t>(y) * W + x] = all_reflecting;
+  });
 }
 
 }  // namespace radrecon

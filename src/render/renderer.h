@@ -67,12 +67,20 @@ struct PixelRect {
 /// solution does not have (drawn black).
 using SideReconstruction = std::function<const Interpolant*(SideRef side)>;
 
-/// The primary rays of a camera (all its pixels, or a rectangle of them) and what they hit:
-/// computed once, shaded for any solution and method (the views of a figure share them).
+/// The primary rays of a camera (all its pixels, or a rectangle of them) and what they hit, side
+/// by side: computed once, shaded for any solution and method (the views of a figure share
+/// them), each side's points in one batch for its reconstruction.
 struct CameraHits {
   RenderOptions options;
-  PixelRect pixels;                             ///< the pixels traced
-  std::vector<std::optional<SurfaceHit>> hits;  ///< per ray: pixels row by row, samples_per_axis^2 each
+  PixelRect pixels;  ///< the pixels traced
+  size_t rays = 0;   ///< pixels row by row, samples_per_axis^2 rays each
+  /// The rays that met one side (the nearest hit), in increasing order, and where: the side's
+  /// metric coordinates (s, t) (SurfaceFrame), what its reconstruction is evaluated at.
+  struct SideRays {
+    std::vector<std::uint32_t> rays;
+    std::vector<Vec2> st;
+  };
+  std::vector<SideRays> sides;  ///< by SideRef::slot(); rays in none of them met nothing
 };
 CameraHits trace_camera(const Scene& scene, const Camera& camera, const RenderOptions& options);
 CameraHits trace_camera(const Scene& scene, const Camera& camera, const RenderOptions& options, const PixelRect& pixels);
