@@ -2,6 +2,8 @@
 
 #include <chrono>
 #include <cstdio>
+#include <future>
+#include <mutex>
 
 #include "core/progress.h"
 #include "io/image_io.h"
@@ -40,11 +42,15 @@ void run_paper(const PaperOptions& opt, const std::string& out_where) {
   const PaperDataSets data = solve_data_sets(scene, opt);
   clock.lap();
 
-  const fs::path solutions = opt.out_dir / "solutions";
-  write_solution_json(solutions / "reference.json", data.reference);
-  write_solution_json(solutions / "grid16.json", data.grid);
-  write_solution_json(solutions / "quadtree.json", data.quadtree);
-  const double t_write = clock.lap();
+  // The solutions are written beside all that follows (formatting them is serial work).
+  std::future<double> write_seconds = std::async(std::launch::async, [&] {
+    Stopwatch write_clock;
+    const fs::path solutions = opt.out_dir / "solutions";
+    write_solution_json(solutions / "reference.json", data.reference);
+    write_solution_json(solutions / "grid16.json", data.grid);
+    write_solution_json(solutions / "quadtree.json", data.quadtree);
+    return write_clock.lap();
+  });
 
   // Tables 1 and 2 with the ground figures (Fig. 1-4).
   const fs::path figures = opt.out_dir / "figures";
@@ -80,7 +86,9 @@ void run_paper(const PaperOptions& opt, const std::string& out_where) {
     total_steps += taking_barriers(grid_methods, true).size() + taking_barriers(quadtree_methods, true).size();
   Progress progress("paper", !opt.progress);
   size_t steps_done = 0;
+  std::mutex step_mutex;  // the views run beside the reconstructions (below)
   auto step = [&](size_t steps, const std::string& what) {
+    const std::lock_guard<std::mutex> lock(step_mutex);
     steps_done += steps;
     progress.update(static_cast<double>(steps_done) / static_cast<double>(total_steps),
                     "the reconstructions and views (done: " + what + ")");
@@ -91,6 +99,41 @@ void run_paper(const PaperOptions& opt, const std::string& out_where) {
     step(methods.size(), stem);
     return results;
   };
+  // Views into the scene (Fig. 2-4), every surface reconstructed by the method of the row, on a
+  // thread of their own beside the reconstructions: each stage's serial parts (fits, PNG
+  // compression) leave a core idle that the other fills. The loops of the stage that finds the
+  // worker threads busy run on its own thread (core/thread_pool.h); either way every result is
+  // the same.
+  std::vector<std::string> notes;
+  std::future<double> views_seconds = std::async(std::launch::async, [&] {
+    Stopwatch views_clock;
+    RenderOptions view;
+    view.width = opt.view_width;
+    view.height = opt.view_height;
+    view.samples_per_axis = opt.view_samples;
+    std::vector<CameraHits> cameras;
+    for (const Camera& c : scene.cameras) cameras.push_back(trace_camera(scene, c, view));
+    auto views = [&](const Solution& sol, Method m, const SideSampling& sampling, const std::string& stem,
+                     const std::string& only_camera = "") {
+      for (const Fallback& f :
+           render_paper_views(scene, cameras, sol, m, params, sampling, at.white_w_m2, figures, stem, only_camera))
+        notes.push_back(stem + ": " + f.side + " drawn piecewise constant, as " + method_name(m) + " cannot serve it: " + f.reason);
+      step(1, stem);
+    };
+    // Views for the paper's own methods (its Fig. 2-4); the others have their ground figures.
+    views(data.reference, Method::constant, plain, "fig2_reference");
+    for (Method m : of_paper(grid_methods)) views(data.grid, m, plain, "fig3_" + method_name(m));
+    for (Method m : of_paper(quadtree_methods)) views(data.quadtree, m, plain, "fig4_" + method_name(m));
+    // With barriers: the close-up of the wall's foot, where they matter (border samples: the
+    // ground figures only).
+    if (opt.barriers) {
+      for (Method m : of_paper(taking_barriers(grid_methods, false)))
+        views(data.grid, m, walled, "fig5_" + method_name(m), "closeup");
+      for (Method m : of_paper(taking_barriers(quadtree_methods, false)))
+        views(data.quadtree, m, walled, "fig6_" + method_name(m), "closeup");
+    }
+    return views_clock.lap();
+  });
   PaperRun run{opt, data, at, params, evaluate(data.grid, grid_methods, plain, "fig3"),
                evaluate(data.quadtree, quadtree_methods, plain, "fig4"), {}, {}, {}, {}};
   write_quadtree_figure(data.quadtree, at, figures);
@@ -106,39 +149,13 @@ void run_paper(const PaperOptions& opt, const std::string& out_where) {
     run.quadtree_border = evaluate(data.quadtree, taking_barriers(quadtree_methods, true), bordered, "fig8");
   }
   const double t_reconstruct = clock.lap();
-
-  // Views into the scene (Fig. 2-4), every surface reconstructed by the method of the row.
-  RenderOptions view;
-  view.width = opt.view_width;
-  view.height = opt.view_height;
-  view.samples_per_axis = opt.view_samples;
-  std::vector<CameraHits> cameras;
-  for (const Camera& c : scene.cameras) cameras.push_back(trace_camera(scene, c, view));
-  std::vector<std::string> notes;
-  auto views = [&](const Solution& sol, Method m, const SideSampling& sampling, const std::string& stem,
-                   const std::string& only_camera = "") {
-    for (const Fallback& f :
-         render_paper_views(scene, cameras, sol, m, params, sampling, at.white_w_m2, figures, stem, only_camera))
-      notes.push_back(stem + ": " + f.side + " drawn piecewise constant, as " + method_name(m) + " cannot serve it: " + f.reason);
-    step(1, stem);
-  };
-  // Views for the paper's own methods (its Fig. 2-4); the others have their ground figures.
-  views(data.reference, Method::constant, plain, "fig2_reference");
-  for (Method m : of_paper(grid_methods)) views(data.grid, m, plain, "fig3_" + method_name(m));
-  for (Method m : of_paper(quadtree_methods)) views(data.quadtree, m, plain, "fig4_" + method_name(m));
-  // With barriers: the close-up of the wall's foot, where they matter (border samples: the
-  // ground figures only).
-  if (opt.barriers) {
-    for (Method m : of_paper(taking_barriers(grid_methods, false)))
-      views(data.grid, m, walled, "fig5_" + method_name(m), "closeup");
-    for (Method m : of_paper(taking_barriers(quadtree_methods, false)))
-      views(data.quadtree, m, walled, "fig6_" + method_name(m), "closeup");
-  }
-  const double t_views = clock.lap();
+  const double t_views = views_seconds.get();
+  const double t_write = write_seconds.get();
+  clock.lap();
   progress.done();
 
   write_tables(opt.out_dir, run);
-  ReportContent report = report_content(run, view.samples_per_axis * view.samples_per_axis);
+  ReportContent report = report_content(run, opt.view_samples * opt.view_samples);
   report.notes = notes;
   write_report(opt.out_dir, report);
   const double t_tables = clock.lap();
