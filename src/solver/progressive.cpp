@@ -43,6 +43,37 @@ struct ReceivingSide {
 /// occluder) to milliseconds (a near one behind many occluders).
 constexpr std::int64_t kReceiverGrain = 16;
 
+/// A patch's visible form factor at each of its receiving elements' centres, shadows included,
+/// and whether the centre sees it in part: what each shot of the patch needs for the elements'
+/// budgets and gather() for the patch shooting whole. Geometry alone, so the values of its first
+/// shot serve its later ones, bit for bit; later shots, whose budgets let the patch shoot whole,
+/// then need neither the occluders nor their shadows.
+struct PatchViews {
+  std::vector<double> form_factor;  ///< by receiving element, in the shot's order; NaN: not yet
+  std::vector<std::uint8_t> partly;
+};
+/// The most views kept over all patches (9 bytes each: 72 MB); the patches that shoot after
+/// they are spent compute theirs every shot. The Cornell box at grid:128 keeps 2.6 million.
+constexpr size_t kMostPatchViews = size_t{8} << 20;
+
+/// What a receiving element's occluders are searched with, when its shadows are first needed.
+struct OccluderSearch {
+  const OccluderBvh& bvh;
+  const Receiver& element;
+  std::span<const Vec3> shooter_outline;
+  size_t receiver_surface, shooter_surface;
+  std::vector<const Occluder*>& found;
+  static void find(void* context) {
+    const OccluderSearch& s = *static_cast<const OccluderSearch*>(context);
+    // gather() looks from the centre and the Gauss points: the shaft from the centre, widened
+    // by their farthest distance from it, holds every segment it follows.
+    double reach_m = 0;
+    for (int k = 0; k < s.element.gauss_count; ++k) reach_m = std::max(reach_m, (s.element.gauss[k] - s.element.center).norm());
+    s.bvh.collect(Shaft({&s.element.center, 1}, s.shooter_outline, reach_m), s.receiver_surface, s.shooter_surface,
+                  s.found);
+  }
+};
+
 }  // namespace
 
 Solution solve_progressive(const Scene& scene, const Mesh& mesh, const ProgressiveOptions& options,
@@ -100,6 +131,8 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
   std::vector<Block> tree_storage;  // the shooter trees' blocks, reused from shot to shot
   double residual = 1.0;
   bool converged = false;  // the residual, not the shot limit, ended the loop
+  std::vector<PatchViews> patch_views(patches.size());  // with a far-field budget only
+  size_t patch_views_kept = 0;
 
   while (true) {
     size_t best = 0;
@@ -163,31 +196,45 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
                                  receiver.scene_surface, shooter_side.scene_surface);
     });
     gain.assign(receiving, Gathered{});
+    PatchViews* views = nullptr;
+    if (options.far_field_error > 0) {
+      PatchViews& v = patch_views[best];
+      if (v.form_factor.empty() && receiving > 0 && patch_views_kept + receiving <= kMostPatchViews) {
+        v.form_factor.assign(receiving, std::numeric_limits<double>::quiet_NaN());
+        v.partly.assign(receiving, 0);
+        patch_views_kept += receiving;
+      }
+      if (!v.form_factor.empty()) {
+        RR_CHECK_EQ(v.form_factor.size(), receiving, "a patch's receivers changed between its shots");
+        views = &v;
+      }
+    }
     parallel_for_grained(0, static_cast<std::int64_t>(receiving), kReceiverGrain, [&](std::int64_t i) {
       const auto job = std::prev(std::upper_bound(jobs.begin(), jobs.end(), static_cast<size_t>(i),
                                                   [](size_t k, const ReceivingSide& s) { return k < s.first; }));
       const size_t e = static_cast<size_t>(i) - job->first;
       const MeshSurface& receiver = mesh.surfaces[job->side];
       const Receiver element = make_receiver(scene.surfaces[receiver.scene_surface], receiver.elements[e], receiver.normal);
-      // gather() looks from the centre and the Gauss points: the shaft from the centre, widened
-      // by their farthest distance from it, holds every segment it follows.
+      // The occluders in the shaft between the element and the patch, searched when a shadow is
+      // first needed (for the estimate and every gather below).
       thread_local std::vector<const Occluder*> near;
       near.clear();
-      if (!job->blockers.empty()) {
-        double reach_m = 0;
-        for (int k = 0; k < element.gauss_count; ++k) reach_m = std::max(reach_m, (element.gauss[k] - element.center).norm());
-        bvh.collect(Shaft({&element.center, 1}, shooter_outline, reach_m), receiver.scene_surface,
-                    shooter_side.scene_surface, near);
-      }
-      const ReceiverShadows shadows(element, near);  // for the estimate and every gather below
+      OccluderSearch search{bvh, element, shooter_outline, receiver.scene_surface, shooter_side.scene_surface, near};
+      const ReceiverShadows shadows(element, near, job->blockers.empty() ? nullptr : &OccluderSearch::find, &search);
       const double so_far_w_m2 = state[job->side].irradiance[e].sum();
       double budget_w_m2 = 0;  // the distance rule
       SeenFromCentre seen{-1, false};  // the whole patch, as the root block's outline
       if (options.far_field_error > 0) {
         // A fraction of the element's irradiance: gathered so far, plus this shot's as the
         // whole patch would give it.
-        seen.form_factor = visible_form_factor_past(element.center, element.normal, patch_outline, shooter_normal,
-                                                    shadows.at(0), &seen.partly);
+        const size_t k = static_cast<size_t>(i);
+        if (views != nullptr && !std::isnan(views->form_factor[k])) {
+          seen = {views->form_factor[k], views->partly[k] != 0};
+        } else {
+          seen.form_factor = visible_form_factor_past(element.center, element.normal, patch_outline, shooter_normal,
+                                                      shadows.at(0), &seen.partly);
+          if (views != nullptr) views->form_factor[k] = seen.form_factor, views->partly[k] = seen.partly;
+        }
         const double estimate = seen.form_factor * root.unshot_w_m2.sum();
         budget_w_m2 = options.far_field_error * std::max(so_far_w_m2 + estimate, least_irradiance_w_m2);
       }

@@ -374,6 +374,10 @@ std::span<const ShadowVolume> ReceiverShadows::at(int point) const {
   RR_CHECK(point >= 0 && point <= r_.gauss_count, "receiver point out of range");
   const size_t k = static_cast<size_t>(point);
   if (!made_[k]) {
+    if (find_ != nullptr && !found_) {
+      find_(find_context_);
+      found_ = true;
+    }
     shadow_volumes(point == 0 ? r_.center : r_.gauss[k - 1], r_.normal, occluders_, volumes_[k]);
     made_[k] = true;
   }

@@ -152,11 +152,20 @@ struct Gathered {
 class ReceiverShadows {
  public:
   ReceiverShadows(const Receiver& r, const std::vector<const Occluder*>& occluders) : r_(r), occluders_(occluders) {}
+  /// The occluders found on first need: find(context) fills `occluders` before the first volume
+  /// is made (a gather that needs no shadow, such as a late shot's patch shooting whole with its
+  /// form factor known, then never searches for them).
+  ReceiverShadows(const Receiver& r, std::vector<const Occluder*>& occluders, void (*find)(void* context),
+                  void* context)
+      : r_(r), occluders_(occluders), find_(find), find_context_(context) {}
   std::span<const ShadowVolume> at(int point) const;
 
  private:
   const Receiver& r_;
   const std::vector<const Occluder*>& occluders_;
+  void (*find_)(void*) = nullptr;  ///< null: the occluders are given
+  void* find_context_ = nullptr;
+  mutable bool found_ = false;
   mutable std::array<bool, 5> made_{};
   static thread_local std::array<std::vector<ShadowVolume>, 5> volumes_;
 };

@@ -14,6 +14,7 @@
 #include "mesh/grid_mesh.h"
 #include "solver/form_factor.h"
 #include "solver/shooter_tree.h"
+#include "solver/visibility.h"
 #include "support/scenes.h"
 
 namespace radrecon {
@@ -273,6 +274,55 @@ TEST(ShooterTree, GatherAtTheCentreIsWithinItsBudgetOfTheSumOverElements) {
     EXPECT_GT(near, 30);
     std::printf("%s: largest error %.3g of its budget\n", step ? "step" : "random", worst);
   }
+}
+
+TEST(ReceiverShadows, OccludersFoundOnFirstNeedGiveTheSameVolumes) {
+  // The receiving element's occluders searched when a shadow is first needed: the search runs
+  // once, and only then, and every point's shadow volumes are those of the occluders given at
+  // construction (one ReceiverShadows alive at a time: they share the thread's buffers).
+  Scene scene;
+  scene.surfaces.push_back(quad("floor", Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(2, 2, 0), Vec3(0, 2, 0), 0.5, 0));
+  scene.surfaces.push_back(quad("box_top", Vec3(0.5, 0.5, 0.5), Vec3(1.2, 0.5, 0.5), Vec3(1.2, 1.1, 0.5), Vec3(0.5, 1.1, 0.5), 0.5, 0));
+  scene.surfaces.push_back(quad("slab", Vec3(0.8, 0.2, 0.3), Vec3(1.6, 0.2, 0.3), Vec3(1.6, 1.4, 0.9), Vec3(0.8, 1.4, 0.9), 0.5, 0));
+  const std::vector<Occluder> occluders = make_occluders(scene);
+  std::vector<const Occluder*> given;
+  for (const Occluder& o : occluders) given.push_back(&o);
+  Receiver r;
+  r.center = Vec3(1.0, 0.9, 1.5);
+  r.normal = Vec3(0, 0, -1);
+  r.size_m = 0.1;
+  for (int k = 0; k < 4; ++k) r.gauss[static_cast<size_t>(k)] = r.center + Vec3(k % 2 ? 0.02 : -0.02, k / 2 ? 0.02 : -0.02, 0);
+  r.gauss_count = 4;
+  std::vector<std::vector<std::pair<const Occluder*, int>>> eager(5), lazy(5);
+  {
+    const ReceiverShadows shadows(r, given);
+    for (int p = 0; p < 5; ++p)
+      for (const ShadowVolume& v : shadows.at(p)) eager[static_cast<size_t>(p)].emplace_back(v.occluder, v.sides);
+  }
+  struct Search {
+    const std::vector<const Occluder*>& all;
+    std::vector<const Occluder*>& found;
+    int calls = 0;
+    static void find(void* context) {
+      Search& s = *static_cast<Search*>(context);
+      ++s.calls;
+      s.found = s.all;
+    }
+  };
+  std::vector<const Occluder*> found;
+  Search search{given, found};
+  {
+    const ReceiverShadows shadows(r, found, &Search::find, &search);
+    EXPECT_EQ(search.calls, 0) << "no shadow asked for yet";
+    for (int p = 4; p >= 0; --p)
+      for (const ShadowVolume& v : shadows.at(p)) lazy[static_cast<size_t>(p)].emplace_back(v.occluder, v.sides);
+    (void)shadows.at(0);
+  }
+  EXPECT_EQ(search.calls, 1);
+  EXPECT_EQ(lazy, eager);
+  size_t volumes = 0;
+  for (const auto& v : eager) volumes += v.size();
+  EXPECT_GE(volumes, 5u) << "the occluders should cast shadows toward the floor";
 }
 
 }  // namespace shooter_tree_test
