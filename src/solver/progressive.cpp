@@ -44,17 +44,27 @@ struct ReceivingSide {
 constexpr std::int64_t kReceiverGrain = 16;
 
 /// A patch's visible form factor at each of its receiving elements' centres, shadows included,
-/// and whether the centre sees it in part: what each shot of the patch needs for the elements'
-/// budgets and gather() for the patch shooting whole. Geometry alone, so the values of its first
-/// shot serve its later ones, bit for bit; later shots, whose budgets let the patch shoot whole,
-/// then need neither the occluders nor their shadows.
+/// whether the centre sees it in part, and its visible form factors at the Gauss points of the
+/// elements that gather from it by their Gauss points: what each shot of the patch needs for the
+/// elements' budgets, and gather() for the patch shooting whole. Geometry alone, so the values of
+/// its first shot serve its later ones, bit for bit; later shots, whose budgets let the patch
+/// shoot whole, then need neither the occluders nor their shadows.
 struct PatchViews {
   std::vector<double> form_factor;  ///< by receiving element, in the shot's order; NaN: not yet
   std::vector<std::uint8_t> partly;
+  /// By receiving element: where its Gauss points' form factors start in `gauss`, or kAtCentre
+  /// (it gathers from the whole patch at its centre alone: gathers_at_centre()).
+  std::vector<std::uint32_t> gauss_at;
+  std::vector<double> gauss;  ///< 4 a slot (Receiver::gauss); NaN: not yet
+  static constexpr std::uint32_t kAtCentre = std::numeric_limits<std::uint32_t>::max();
+  size_t bytes() const {
+    return form_factor.size() * sizeof(double) + partly.size() + gauss_at.size() * sizeof(std::uint32_t) +
+           gauss.size() * sizeof(double);
+  }
 };
-/// The most views kept over all patches (9 bytes each: 72 MB); the patches that shoot after
-/// they are spent compute theirs every shot. The Cornell box at grid:128 keeps 2.6 million.
-constexpr size_t kMostPatchViews = size_t{8} << 20;
+/// The most bytes of views kept over all patches; the patches that shoot after they are spent
+/// compute theirs every shot. The Cornell box at grid:128 keeps some 50 MB.
+constexpr size_t kMostPatchViewBytes = size_t{128} << 20;
 
 /// What a receiving element's occluders are searched with, when its shadows are first needed.
 struct OccluderSearch {
@@ -132,7 +142,7 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
   double residual = 1.0;
   bool converged = false;  // the residual, not the shot limit, ended the loop
   std::vector<PatchViews> patch_views(patches.size());  // with a far-field budget only
-  size_t patch_views_kept = 0;
+  size_t patch_view_bytes = 0;
 
   while (true) {
     size_t best = 0;
@@ -196,13 +206,35 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
                                  receiver.scene_surface, shooter_side.scene_surface);
     });
     gain.assign(receiving, Gathered{});
+    // The receiving element of index i: its side's job and its index on that side.
+    const auto receiving_element = [&](std::int64_t i) {
+      const auto job = std::prev(std::upper_bound(jobs.begin(), jobs.end(), static_cast<size_t>(i),
+                                                  [](size_t k, const ReceivingSide& s) { return k < s.first; }));
+      const size_t e = static_cast<size_t>(i) - job->first;
+      const MeshSurface& receiver = mesh.surfaces[job->side];
+      return std::pair{job, make_receiver(scene.surfaces[receiver.scene_surface], receiver.elements[e], receiver.normal)};
+    };
     PatchViews* views = nullptr;
     if (options.far_field_error > 0) {
       PatchViews& v = patch_views[best];
-      if (v.form_factor.empty() && receiving > 0 && patch_views_kept + receiving <= kMostPatchViews) {
-        v.form_factor.assign(receiving, std::numeric_limits<double>::quiet_NaN());
-        v.partly.assign(receiving, 0);
-        patch_views_kept += receiving;
+      if (v.form_factor.empty() && receiving > 0) {
+        // The patch's first shot: a slot for each element off the midpoint rule.
+        std::vector<std::uint8_t> at_centre(receiving);
+        parallel_for(0, static_cast<std::int64_t>(receiving), [&](std::int64_t i) {
+          at_centre[static_cast<size_t>(i)] = gathers_at_centre(root, receiving_element(i).second);
+        });
+        const size_t slots = receiving - static_cast<size_t>(std::count(at_centre.begin(), at_centre.end(), 1));
+        const size_t bytes = receiving * (sizeof(double) + 1 + sizeof(std::uint32_t)) + slots * 4 * sizeof(double);
+        if (patch_view_bytes + bytes <= kMostPatchViewBytes) {
+          v.form_factor.assign(receiving, std::numeric_limits<double>::quiet_NaN());
+          v.partly.assign(receiving, 0);
+          v.gauss_at.assign(receiving, PatchViews::kAtCentre);
+          std::uint32_t slot = 0;
+          for (size_t k = 0; k < receiving; ++k)
+            if (!at_centre[k]) v.gauss_at[k] = 4 * slot++;
+          v.gauss.assign(4 * slots, std::numeric_limits<double>::quiet_NaN());
+          patch_view_bytes += v.bytes();
+        }
       }
       if (!v.form_factor.empty()) {
         RR_CHECK_EQ(v.form_factor.size(), receiving, "a patch's receivers changed between its shots");
@@ -210,11 +242,11 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
       }
     }
     parallel_for_grained(0, static_cast<std::int64_t>(receiving), kReceiverGrain, [&](std::int64_t i) {
-      const auto job = std::prev(std::upper_bound(jobs.begin(), jobs.end(), static_cast<size_t>(i),
-                                                  [](size_t k, const ReceivingSide& s) { return k < s.first; }));
+      const auto found = receiving_element(i);
+      const auto job = found.first;
+      const Receiver& element = found.second;
       const size_t e = static_cast<size_t>(i) - job->first;
       const MeshSurface& receiver = mesh.surfaces[job->side];
-      const Receiver element = make_receiver(scene.surfaces[receiver.scene_surface], receiver.elements[e], receiver.normal);
       // The occluders in the shaft between the element and the patch, searched when a shadow is
       // first needed (for the estimate and every gather below).
       thread_local std::vector<const Occluder*> near;
@@ -235,6 +267,7 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
                                                       shadows.at(0), &seen.partly);
           if (views != nullptr) views->form_factor[k] = seen.form_factor, views->partly[k] = seen.partly;
         }
+        if (views != nullptr && views->gauss_at[k] != PatchViews::kAtCentre) seen.gauss = &views->gauss[views->gauss_at[k]];
         const double estimate = seen.form_factor * root.unshot_w_m2.sum();
         budget_w_m2 = options.far_field_error * std::max(so_far_w_m2 + estimate, least_irradiance_w_m2);
       }

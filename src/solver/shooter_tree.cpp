@@ -314,6 +314,11 @@ double form_factor_bound(const Block& b, const Vec3& p, const Vec3& n, const Vec
   return b.area_m2 * std::min(1.0, lift / d) * std::min(1.0, h / d) / (std::numbers::pi * d * d);
 }
 
+bool gathers_at_centre(const Block& b, const Receiver& r) {
+  const double gap_m = (r.center - b.center).norm() - 0.5 * b.diagonal_m;
+  return r.size_m <= tol::kMidpointReceiverRatio * gap_m;
+}
+
 namespace {
 
 /// What shoots_whole() found at the receiving element's centre, for gather() to reuse: the
@@ -395,8 +400,7 @@ Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, cons
   // The budget is shared among the blocks in proportion to their area: those that shoot as one
   // tile the patch, so their errors add up to at most budget_w_m2.
   const double share = budget_w_m2 * b.area_m2 / tree.root().area_m2;
-  const double gap_m = (r.center - b.center).norm() - 0.5 * b.diagonal_m;
-  const bool midpoint = r.size_m <= tol::kMidpointReceiverRatio * gap_m;
+  const bool midpoint = gathers_at_centre(b, r);
   ConvexPolygon poly;  // the block's outline, for its form factors
   for (int k = 0; k < b.corner_count; ++k) poly.push(b.corners[k]);
   if (!shoots_whole(b, poly, r, shooter_normal, shadows, share, midpoint, centre)) {
@@ -417,12 +421,18 @@ Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, cons
   } else {
     // The Gauss points' form factors together: those that see all of the block in one
     // vectorised integral.
-    std::array<std::span<const ShadowVolume>, 4> volumes;
     std::array<double, 4> f;
     const size_t count = static_cast<size_t>(r.gauss_count);
-    for (size_t k = 0; k < count; ++k) volumes[k] = shadows.at(static_cast<int>(k) + 1);
-    visible_form_factors_past({r.gauss.data(), count}, r.normal, poly, shooter_normal, {volumes.data(), count},
-                              {f.data(), count});
+    double* kept = seen != nullptr ? seen->gauss : nullptr;  // the block's, from an earlier gather
+    if (kept != nullptr && !std::isnan(kept[0])) {
+      std::copy(kept, kept + count, f.begin());
+    } else {
+      std::array<std::span<const ShadowVolume>, 4> volumes;
+      for (size_t k = 0; k < count; ++k) volumes[k] = shadows.at(static_cast<int>(k) + 1);
+      visible_form_factors_past({r.gauss.data(), count}, r.normal, poly, shooter_normal, {volumes.data(), count},
+                                {f.data(), count});
+      if (kept != nullptr) std::copy(f.begin(), f.begin() + static_cast<std::ptrdiff_t>(count), kept);
+    }
     for (size_t k = 0; k < count; ++k) out.mean += at(r.gauss[k], static_cast<int>(k) + 1, f[k], nullptr);
     out.mean /= r.gauss_count;
   }

@@ -134,6 +134,11 @@ Receiver make_receiver(const Surface& surface, const MeshElement& e, const Vec3&
 /// the bounding sphere; 0 when p cannot see the block's front.
 double form_factor_bound(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal);
 
+/// Whether the receiving element gathers from the block at its centre alone (the midpoint rule):
+/// its size is small against its distance to the block (tol::kMidpointReceiverRatio); else its
+/// mean is gathered at its Gauss points. See gather().
+bool gathers_at_centre(const Block& b, const Receiver& r);
+
 /// What a receiving element gathers from one shot, W/m^2 per channel.
 struct Gathered {
   Rgb at_center = Rgb::Zero();  ///< the irradiance at its centre: its radiosity's
@@ -171,10 +176,13 @@ class ReceiverShadows {
 };
 
 /// A polygon's visible form factor at a receiving element's centre, and whether the centre sees
-/// it in part (visible_form_factor_past()'s value and `partly_seen`).
+/// it in part (visible_form_factor_past()'s value and `partly_seen`); and, if `gauss` is given,
+/// its visible form factors at the element's Gauss points: NaN in gauss[0] until gather()
+/// computes them (it then stores them there), else used as they are.
 struct SeenFromCentre {
   double form_factor;
   bool partly;
+  double* gauss = nullptr;  ///< Receiver::gauss_count values
 };
 
 /// Irradiance on the receiving element from the shooter's unshot radiosity: the block as a whole
