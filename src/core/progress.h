@@ -1,7 +1,8 @@
 #pragma once
 // Progress of a long stage on stderr: on a terminal one line rewritten in place, elsewhere (a
-// log file, a pipe) a plain line at most every kProgressInterval; nothing when quiet. Only the
-// thread that owns it reports (the loops report between their parallel batches).
+// log file, a pipe) a plain line at most every kProgressInterval; nothing when quiet. Not
+// thread-safe: one thread reports at a time (the loops report between their parallel batches;
+// `radrecon paper`'s two concurrent stages under a mutex).
 
 #include <chrono>
 #include <string>

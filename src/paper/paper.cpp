@@ -1,5 +1,6 @@
 #include "paper/paper.h"
 
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <future>
@@ -43,7 +44,8 @@ void run_paper(const PaperOptions& opt, const std::string& out_where) {
   clock.lap();
 
   // The solutions are written beside all that follows (formatting them is serial work).
-  std::future<double> write_seconds = std::async(std::launch::async, [&] {
+  // (Deferred to get() if no thread can be made.)
+  std::future<double> write_seconds = std::async(std::launch::async | std::launch::deferred, [&] {
     Stopwatch write_clock;
     const fs::path solutions = opt.out_dir / "solutions";
     write_solution_json(solutions / "reference.json", data.reference);
@@ -105,7 +107,8 @@ void run_paper(const PaperOptions& opt, const std::string& out_where) {
   // worker threads busy run on its own thread (core/thread_pool.h); either way every result is
   // the same.
   std::vector<std::string> notes;
-  std::future<double> views_seconds = std::async(std::launch::async, [&] {
+  std::atomic<bool> stop_views{false};  // the reconstructions failed: no more views
+  std::future<double> views_seconds = std::async(std::launch::async | std::launch::deferred, [&] {
     Stopwatch views_clock;
     RenderOptions view;
     view.width = opt.view_width;
@@ -115,6 +118,7 @@ void run_paper(const PaperOptions& opt, const std::string& out_where) {
     for (const Camera& c : scene.cameras) cameras.push_back(trace_camera(scene, c, view));
     auto views = [&](const Solution& sol, Method m, const SideSampling& sampling, const std::string& stem,
                      const std::string& only_camera = "") {
+      if (stop_views.load()) return;
       for (const Fallback& f :
            render_paper_views(scene, cameras, sol, m, params, sampling, at.white_w_m2, figures, stem, only_camera))
         notes.push_back(stem + ": " + f.side + " drawn piecewise constant, as " + method_name(m) + " cannot serve it: " + f.reason);
@@ -134,6 +138,12 @@ void run_paper(const PaperOptions& opt, const std::string& out_where) {
     }
     return views_clock.lap();
   });
+  // An exception from the reconstructions stops the views at their next figure (the futures'
+  // destructors then wait for their threads, which use what is declared above).
+  struct StopViewsOnExit {
+    std::atomic<bool>& stop;
+    ~StopViewsOnExit() { stop.store(true); }
+  } stop_views_on_exit{stop_views};
   PaperRun run{opt, data, at, params, evaluate(data.grid, grid_methods, plain, "fig3"),
                evaluate(data.quadtree, quadtree_methods, plain, "fig4"), {}, {}, {}, {}};
   write_quadtree_figure(data.quadtree, at, figures);

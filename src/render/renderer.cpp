@@ -167,9 +167,20 @@ CameraHits trace_camera(const Scene& scene, const Camera& camera, const RenderOp
 
 namespace {
 
-/// trace_camera() with the scene's hierarchy, if it has one made (a scene of many surfaces).
-CameraHits trace_rect(const Scene& scene, const SurfaceBvh* bvh, const Camera& camera, const RenderOptions& options,
-                      const PixelRect& rect) {
+/// What tracing needs of the scene, made once per camera or render() rather than per tile: each
+/// surface's unit normal and frame, and the scene's hierarchy if it has one (many surfaces).
+struct TraceContext {
+  explicit TraceContext(const Scene& scene) : normals(surface_normals(scene)) {
+    for (const Surface& s : scene.surfaces) frames.push_back(s.frame());
+    if (scene.surfaces.size() >= kBvhLeastSurfaces) bvh.emplace(scene);
+  }
+  std::vector<Vec3> normals;
+  std::vector<SurfaceFrame> frames;
+  std::optional<SurfaceBvh> bvh;
+};
+
+CameraHits trace_rect(const Scene& scene, const TraceContext& context, const Camera& camera,
+                      const RenderOptions& options, const PixelRect& rect) {
   RR_CHECK(options.width > 0 && options.height > 0 && options.samples_per_axis > 0, "render options out of range");
   RR_CHECK(0 <= rect.x_begin && rect.x_begin < rect.x_end && rect.x_end <= options.width, "camera columns out of range");
   RR_CHECK(0 <= rect.y_begin && rect.y_begin < rect.y_end && rect.y_end <= options.height, "camera rows out of range");
@@ -182,52 +193,45 @@ CameraHits trace_rect(const Scene& scene, const SurfaceBvh* bvh, const Camera& c
   out.options = options;
   out.pixels = rect;
   out.rays = rays;
-  const std::vector<Vec3> normals = surface_normals(scene);  // once, not per ray and surface
-  std::vector<SurfaceFrame> frames;
-  for (const Surface& s : scene.surfaces) frames.push_back(s.frame());
   // The hit of every ray (stratified, at the strata centres: deterministic): its side's slot
   // (kNone: none) and the point in the side's (s, t).
   constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
   std::vector<std::uint32_t> slot(rays);
   std::vector<Vec2> st(rays);
+  const SurfaceBvh* bvh = context.bvh ? &*context.bvh : nullptr;
   parallel_for(0, static_cast<std::int64_t>(rays), [&](std::int64_t r) {
     const size_t k = static_cast<size_t>(r);
     const size_t pixel = k / per_pixel, sub = k % per_pixel;
     const double x = static_cast<double>(rect.x_begin + pixel % rect_w) + (static_cast<double>(sub % S) + 0.5) / S;
     const double y = static_cast<double>(rect.y_begin + pixel / rect_w) + (static_cast<double>(sub / S) + 0.5) / S;
     const auto [o, d] = camera_ray(camera, W, H, x, y);
-    const std::optional<SurfaceHit> hit =
-        bvh != nullptr ? intersect_through(scene, normals, *bvh, o, d) : intersect_all(scene, normals, o, d);
+    const std::optional<SurfaceHit> hit = bvh != nullptr ? intersect_through(scene, context.normals, *bvh, o, d)
+                                                         : intersect_all(scene, context.normals, o, d);
     slot[k] = hit ? static_cast<std::uint32_t>(SideRef{hit->surface, hit->back_side}.slot()) : kNone;
-    if (hit) st[k] = frames[hit->surface].st(Vec2(hit->u, hit->v));
+    if (hit) st[k] = context.frames[hit->surface].st(Vec2(hit->u, hit->v));
   });
-  // Side by side, each in ray order.
-  out.sides.resize(side_slots(scene));
-  std::vector<size_t> count(out.sides.size(), 0);
+  // The sides met, by slot, each with its rays in order.
+  std::vector<std::uint32_t> index(side_slots(scene), 0);  // 1 + the side's place in out.sides; 0: none yet
   for (const std::uint32_t s : slot)
-    if (s != kNone) ++count[s];
-  for (size_t s = 0; s < out.sides.size(); ++s) {
-    out.sides[s].rays.reserve(count[s]);
-    out.sides[s].st.reserve(count[s]);
-  }
+    if (s != kNone && index[s] == 0) index[s] = 1;
+  for (size_t s = 0; s < index.size(); ++s)
+    if (index[s] != 0) {
+      out.sides.push_back({s, {}, {}});
+      index[s] = static_cast<std::uint32_t>(out.sides.size());
+    }
   for (size_t k = 0; k < rays; ++k)
     if (slot[k] != kNone) {
-      out.sides[slot[k]].rays.push_back(static_cast<std::uint32_t>(k));
-      out.sides[slot[k]].st.push_back(st[k]);
+      CameraHits::SideRays& side = out.sides[index[slot[k]] - 1];
+      side.rays.push_back(static_cast<std::uint32_t>(k));
+      side.st.push_back(st[k]);
     }
   return out;
-}
-
-std::optional<SurfaceBvh> hierarchy_for(const Scene& scene) {
-  if (scene.surfaces.size() < kBvhLeastSurfaces) return std::nullopt;
-  return SurfaceBvh(scene);
 }
 
 }  // namespace
 
 CameraHits trace_camera(const Scene& scene, const Camera& camera, const RenderOptions& options, const PixelRect& rect) {
-  const std::optional<SurfaceBvh> bvh = hierarchy_for(scene);
-  return trace_rect(scene, bvh ? &*bvh : nullptr, camera, options, rect);
+  return trace_rect(scene, TraceContext(scene), camera, options, rect);
 }
 
 Rendering render(const Scene& scene, const Camera& camera, const SideReconstruction& reconstruction,
@@ -237,11 +241,11 @@ Rendering render(const Scene& scene, const Camera& camera, const SideReconstruct
                 std::vector<std::uint8_t>(static_cast<size_t>(options.width) * options.height, 0)};
   const double pixels = static_cast<double>(options.width) * options.height;
   size_t done = 0;
-  const std::optional<SurfaceBvh> bvh = hierarchy_for(scene);  // once for all tiles
+  const TraceContext context(scene);  // once for all tiles
   for (int y = 0; y < options.height; y += tile)
     for (int x = 0; x < options.width; x += tile) {
       const PixelRect rect{x, y, std::min(options.width, x + tile), std::min(options.height, y + tile)};
-      shade(scene, trace_rect(scene, bvh ? &*bvh : nullptr, camera, options, rect), reconstruction, out);
+      shade(scene, trace_rect(scene, context, camera, options, rect), reconstruction, out);
       done += rect.pixels();
       if (progress) progress(static_cast<double>(done) / pixels);
     }
@@ -264,7 +268,6 @@ void shade(const Scene& scene, const CameraHits& traced, const SideReconstructio
   Image& img = out.image;
   RR_CHECK(img.width() == W && img.height() == options.height, "image size does not match the camera's");
   RR_CHECK_EQ(out.reflecting.size(), static_cast<size_t>(W) * options.height, "mask size does not match the camera's");
-  RR_CHECK_EQ(traced.sides.size(), side_slots(scene), "camera traced for another scene");
   const size_t rays = traced.rays;
   // Radiosity per ray (the background where a ray met nothing, black on a side without a
   // reconstruction); and whether the ray met a reflecting side.
@@ -274,10 +277,9 @@ void shade(const Scene& scene, const CameraHits& traced, const SideReconstructio
     for (int c = 0; c < 3; ++c) radiosity[static_cast<size_t>(k) * 3 + c] = options.background_w_m2[c];
   });
   std::vector<double> values;
-  for (size_t slot = 0; slot < traced.sides.size(); ++slot) {
-    const CameraHits::SideRays& hits = traced.sides[slot];
-    if (hits.rays.empty()) continue;
-    const SideRef side = SideRef::from_slot(slot);
+  for (const CameraHits::SideRays& hits : traced.sides) {
+    RR_CHECK(hits.slot < side_slots(scene), "camera traced for another scene");
+    const SideRef side = SideRef::from_slot(hits.slot);
     const Interpolant* f = reconstruction(side);
     const bool reflects = f != nullptr && !(side_emission(scene.surfaces[side.surface], side.back_side) > 0).any();
     if (f != nullptr) {

@@ -44,8 +44,9 @@ struct RenderOptions {
   Rgb background_w_m2 = Rgb::Zero();
 };
 
-/// Rays traced and shaded at a time by render() with automatic tiles: a tile holds about 120
-/// bytes a ray (the hit 48, its radiosity 24, the batch's point, value and index 48), 8 MB,
+/// Rays traced and shaded at a time by render() with automatic tiles: a tile holds at most about
+/// 120 bytes a ray (the hit's side and point 40 while traced, 20 kept; its radiosity 24; the
+/// batch's values 24), 8 MB,
 /// whatever the image size and rays per pixel (64 x 64 pixels at 16 rays, 16 x 16 at 256).
 inline constexpr size_t kRenderTileRays = size_t{1} << 16;
 
@@ -77,10 +78,11 @@ struct CameraHits {
   /// The rays that met one side (the nearest hit), in increasing order, and where: the side's
   /// metric coordinates (s, t) (SurfaceFrame), what its reconstruction is evaluated at.
   struct SideRays {
+    size_t slot;  ///< the side's SideRef::slot()
     std::vector<std::uint32_t> rays;
     std::vector<Vec2> st;
   };
-  std::vector<SideRays> sides;  ///< by SideRef::slot(); rays in none of them met nothing
+  std::vector<SideRays> sides;  ///< the sides met, by increasing slot; rays in none of them met nothing
 };
 CameraHits trace_camera(const Scene& scene, const Camera& camera, const RenderOptions& options);
 CameraHits trace_camera(const Scene& scene, const Camera& camera, const RenderOptions& options, const PixelRect& pixels);

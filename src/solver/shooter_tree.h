@@ -206,7 +206,9 @@ struct SeenFromCentre {
 /// point collocation next to the shooter.
 ///
 /// `seen`, if given, holds what visible_form_factor_past() gives for the block's outline at the
-/// element's centre with shadows.at(0): gather() then does not compute it again.
+/// element's centre with shadows.at(0): gather() then does not compute it again. If its `gauss`
+/// is given too, gather() takes the block's form factors at the Gauss points from there, or
+/// computes them and stores them there (NaN in gauss[0]) when it first needs them.
 Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, const Vec3& shooter_normal,
                 const ReceiverShadows& shadows, double budget_w_m2, const SeenFromCentre* seen = nullptr);
 
