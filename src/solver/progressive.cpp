@@ -58,9 +58,9 @@ struct PatchViews {
   std::vector<std::uint32_t> gauss_at;
   std::vector<double> gauss;  ///< 4 a slot (Receiver::gauss); NaN: not yet
   static constexpr std::uint32_t kAtCentre = std::numeric_limits<std::uint32_t>::max();
-  size_t bytes() const {
-    return form_factor.size() * sizeof(double) + partly.size() + gauss_at.size() * sizeof(std::uint32_t) +
-           gauss.size() * sizeof(double);
+  /// The bytes of the views of `receivers` elements, `slots` of them off the midpoint rule.
+  static size_t bytes(size_t receivers, size_t slots) {
+    return receivers * (sizeof(double) + sizeof(std::uint8_t) + sizeof(std::uint32_t)) + slots * 4 * sizeof(double);
   }
 };
 /// The most bytes of views kept over all patches; the patches that shoot after they are spent
@@ -219,17 +219,16 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
     PatchViews* views = nullptr;
     if (options.far_field_error > 0 && receiving > 0) {
       std::unique_ptr<PatchViews>& v = patch_views[best];
-      constexpr size_t kBytesPerReceiver = sizeof(double) + 1 + sizeof(std::uint32_t);
       if (!v) {
         // The patch's first shot: a slot for each element off the midpoint rule, if they fit.
         v = std::make_unique<PatchViews>();
-        if (patch_view_bytes + receiving * kBytesPerReceiver <= kMostPatchViewBytes) {
+        if (patch_view_bytes + PatchViews::bytes(receiving, 0) <= kMostPatchViewBytes) {
           std::vector<std::uint8_t> at_centre(receiving);
           parallel_for(0, static_cast<std::int64_t>(receiving), [&](std::int64_t i) {
             at_centre[static_cast<size_t>(i)] = gathers_at_centre(root, receiving_element(i).second);
           });
           const size_t slots = receiving - static_cast<size_t>(std::count(at_centre.begin(), at_centre.end(), 1));
-          if (patch_view_bytes + receiving * kBytesPerReceiver + slots * 4 * sizeof(double) <= kMostPatchViewBytes) {
+          if (patch_view_bytes + PatchViews::bytes(receiving, slots) <= kMostPatchViewBytes) {
             v->form_factor.assign(receiving, std::numeric_limits<double>::quiet_NaN());
             v->partly.assign(receiving, 0);
             v->gauss_at.assign(receiving, PatchViews::kAtCentre);
@@ -237,7 +236,7 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
             for (size_t k = 0; k < receiving; ++k)
               if (!at_centre[k]) v->gauss_at[k] = 4 * slot++;
             v->gauss.assign(4 * slots, std::numeric_limits<double>::quiet_NaN());
-            patch_view_bytes += v->bytes();
+            patch_view_bytes += PatchViews::bytes(receiving, slots);
           }
         }
       }
