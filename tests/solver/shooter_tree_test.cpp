@@ -16,6 +16,8 @@
 #include "solver/shooter_tree.h"
 #include "solver/visibility.h"
 #include "support/scenes.h"
+#include "support/ray_scene.h"
+#include "support/occluder_lists.h"
 
 namespace radrecon {
 namespace shooter_tree_test {
@@ -278,21 +280,25 @@ TEST(ShooterTree, GatherAtTheCentreIsWithinItsBudgetOfTheSumOverElements) {
 
 TEST(ReceiverShadows, OccludersFoundOnFirstNeedGiveTheSameVolumes) {
   // The receiving element's occluders searched when a shadow is first needed: the search runs
-  // once, and only then, and every point's shadow volumes are those of the occluders given at
-  // construction (one ReceiverShadows alive at a time: they share the thread's buffers).
+  // once, and only then; every point's shadow volumes are those of the occluders given at
+  // construction (one ReceiverShadows alive at a time: they share the thread's buffers); and
+  // the floor's visible form factor through them at each point is the ray caster's.
   Scene scene;
   scene.surfaces.push_back(quad("floor", Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(2, 2, 0), Vec3(0, 2, 0), 0.5, 0));
   scene.surfaces.push_back(quad("box_top", Vec3(0.5, 0.5, 0.5), Vec3(1.2, 0.5, 0.5), Vec3(1.2, 1.1, 0.5), Vec3(0.5, 1.1, 0.5), 0.5, 0));
   scene.surfaces.push_back(quad("slab", Vec3(0.8, 0.2, 0.3), Vec3(1.6, 0.2, 0.3), Vec3(1.6, 1.4, 0.9), Vec3(0.8, 1.4, 0.9), 0.5, 0));
   const std::vector<Occluder> occluders = make_occluders(scene);
-  std::vector<const Occluder*> given;
-  for (const Occluder& o : occluders) given.push_back(&o);
+  const size_t floor = 0, none = scene.surfaces.size();  // the receiver lies on no surface
+  const std::vector<const Occluder*> given = testing_support::all_but(occluders, floor, none);
   Receiver r;
   r.center = Vec3(1.0, 0.9, 1.5);
   r.normal = Vec3(0, 0, -1);
   r.size_m = 0.1;
   for (int k = 0; k < 4; ++k) r.gauss[static_cast<size_t>(k)] = r.center + Vec3(k % 2 ? 0.02 : -0.02, k / 2 ? 0.02 : -0.02, 0);
   r.gauss_count = 4;
+  ConvexPolygon floor_polygon;
+  for (const Vec3& c : scene.surfaces[floor].corners) floor_polygon.push(c);
+  const Vec3 floor_normal = scene.surfaces[floor].normal();
   std::vector<std::vector<std::pair<const Occluder*, int>>> eager(5), lazy(5);
   {
     const ReceiverShadows shadows(r, given);
@@ -311,18 +317,28 @@ TEST(ReceiverShadows, OccludersFoundOnFirstNeedGiveTheSameVolumes) {
   };
   std::vector<const Occluder*> found;
   Search search{given, found};
+  std::array<double, 5> seen{};
   {
     const ReceiverShadows shadows(r, found, &Search::find, &search);
     EXPECT_EQ(search.calls, 0) << "no shadow asked for yet";
-    for (int p = 4; p >= 0; --p)
+    for (int p = 4; p >= 0; --p) {
       for (const ShadowVolume& v : shadows.at(p)) lazy[static_cast<size_t>(p)].emplace_back(v.occluder, v.sides);
-    (void)shadows.at(0);
+      const Vec3& at = p == 0 ? r.center : r.gauss[static_cast<size_t>(p - 1)];
+      seen[static_cast<size_t>(p)] = visible_form_factor_past(at, r.normal, floor_polygon, floor_normal, shadows.at(p));
+    }
   }
   EXPECT_EQ(search.calls, 1);
   EXPECT_EQ(lazy, eager);
   size_t volumes = 0;
   for (const auto& v : eager) volumes += v.size();
   EXPECT_GE(volumes, 5u) << "the occluders should cast shadows toward the floor";
+  for (int p = 0; p < 5; ++p) {
+    const Vec3& at = p == 0 ? r.center : r.gauss[static_cast<size_t>(p - 1)];
+    const double rays = testing_support::brute_force_form_factor(scene, floor, at, r.normal, none, 400);
+    EXPECT_NEAR(seen[static_cast<size_t>(p)], rays, 2e-3 * rays) << "point " << p;
+    EXPECT_LT(seen[static_cast<size_t>(p)], 0.9 * lambert_form_factor(at, r.normal, floor_polygon))
+        << "point " << p << ": the occluders should hide part of the floor";
+  }
 }
 
 }  // namespace shooter_tree_test
