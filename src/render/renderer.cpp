@@ -211,17 +211,20 @@ CameraHits trace_rect(const Scene& scene, const TraceContext& context, const Cam
     if (hit) st[k] = context.frames[hit->surface].st(Vec2(hit->u, hit->v));
   });
   // The sides met, by slot, each with its rays in order.
-  std::vector<std::uint32_t> index(side_slots(scene), 0);  // 1 + the side's place in out.sides; 0: none yet
+  std::vector<std::uint32_t> count(side_slots(scene), 0);
   for (const std::uint32_t s : slot)
-    if (s != kNone && index[s] == 0) index[s] = 1;
-  for (size_t s = 0; s < index.size(); ++s)
-    if (index[s] != 0) {
-      out.sides.push_back({s, {}, {}});
-      index[s] = static_cast<std::uint32_t>(out.sides.size());
+    if (s != kNone) ++count[s];
+  std::vector<std::uint32_t> place(count.size());  // the side's place in out.sides
+  for (size_t s = 0; s < count.size(); ++s)
+    if (count[s] > 0) {
+      place[s] = static_cast<std::uint32_t>(out.sides.size());
+      CameraHits::SideRays& side = out.sides.emplace_back(CameraHits::SideRays{s, {}, {}});
+      side.rays.reserve(count[s]);
+      side.st.reserve(count[s]);
     }
   for (size_t k = 0; k < rays; ++k)
     if (slot[k] != kNone) {
-      CameraHits::SideRays& side = out.sides[index[slot[k]] - 1];
+      CameraHits::SideRays& side = out.sides[place[slot[k]]];
       side.rays.push_back(static_cast<std::uint32_t>(k));
       side.st.push_back(st[k]);
     }

@@ -67,24 +67,6 @@ struct PatchViews {
 /// compute theirs every shot. The Cornell box at grid:128 keeps 39 MB, the paper's grid:400 18 MB.
 constexpr size_t kMostPatchViewBytes = size_t{128} << 20;
 
-/// What a receiving element's occluders are searched with, when its shadows are first needed.
-struct OccluderSearch {
-  const OccluderBvh& bvh;
-  const Receiver& element;
-  std::span<const Vec3> shooter_outline;
-  size_t receiver_surface, shooter_surface;
-  std::vector<const Occluder*>& found;
-  static void find(void* context) {
-    const OccluderSearch& s = *static_cast<const OccluderSearch*>(context);
-    // gather() looks from the centre and the Gauss points: the shaft from the centre, widened
-    // by their farthest distance from it, holds every segment it follows.
-    double reach_m = 0;
-    for (int k = 0; k < s.element.gauss_count; ++k) reach_m = std::max(reach_m, (s.element.gauss[k] - s.element.center).norm());
-    s.bvh.collect(Shaft({&s.element.center, 1}, s.shooter_outline, reach_m), s.receiver_surface, s.shooter_surface,
-                  s.found);
-  }
-};
-
 }  // namespace
 
 Solution solve_progressive(const Scene& scene, const Mesh& mesh, const ProgressiveOptions& options,
@@ -252,11 +234,19 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
       const size_t e = static_cast<size_t>(i) - job->first;
       const MeshSurface& receiver = mesh.surfaces[job->side];
       // The occluders in the shaft between the element and the patch, searched when a shadow is
-      // first needed (for the estimate and every gather below).
+      // first needed (for the estimate and every gather below). gather() looks from the centre
+      // and the Gauss points: the shaft from the centre, widened by their farthest distance from
+      // it, holds every segment it follows.
       thread_local std::vector<const Occluder*> near;
       near.clear();
-      OccluderSearch search{bvh, element, shooter_outline, receiver.scene_surface, shooter_side.scene_surface, near};
-      const ReceiverShadows shadows(element, near, job->blockers.empty() ? nullptr : &OccluderSearch::find, &search);
+      const auto find_near = [&] {
+        if (job->blockers.empty()) return;
+        double reach_m = 0;
+        for (int k = 0; k < element.gauss_count; ++k) reach_m = std::max(reach_m, (element.gauss[k] - element.center).norm());
+        bvh.collect(Shaft({&element.center, 1}, shooter_outline, reach_m), receiver.scene_surface,
+                    shooter_side.scene_surface, near);
+      };
+      const ReceiverShadows shadows(element, near, find_near);
       const double so_far_w_m2 = state[job->side].irradiance[e].sum();
       double budget_w_m2 = 0;  // the distance rule
       SeenFromCentre seen{-1, false};  // the whole patch, as the root block's outline

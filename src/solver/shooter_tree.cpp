@@ -380,7 +380,7 @@ std::span<const ShadowVolume> ReceiverShadows::at(int point) const {
   const size_t k = static_cast<size_t>(point);
   if (!made_[k]) {
     if (find_ != nullptr && !found_) {
-      find_(find_context_);
+      call_find_(find_);
       found_ = true;
     }
     shadow_volumes(point == 0 ? r_.center : r_.gauss[k - 1], r_.normal, occluders_, volumes_[k]);

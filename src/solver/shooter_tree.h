@@ -157,19 +157,20 @@ struct Gathered {
 class ReceiverShadows {
  public:
   ReceiverShadows(const Receiver& r, const std::vector<const Occluder*>& occluders) : r_(r), occluders_(occluders) {}
-  /// The occluders found on first need: find(context) fills `occluders` before the first volume
-  /// is made (a gather that needs no shadow, such as a late shot's patch shooting whole with its
-  /// form factor known, then never searches for them).
-  ReceiverShadows(const Receiver& r, std::vector<const Occluder*>& occluders, void (*find)(void* context),
-                  void* context)
-      : r_(r), occluders_(occluders), find_(find), find_context_(context) {}
+  /// The occluders found on first need: find() fills `occluders` before the first volume is
+  /// made (a gather that needs no shadow, such as a late shot's patch shooting whole with its
+  /// form factor known, then never searches for them). `find` is held by reference, as
+  /// ThreadJob holds its callable: it must outlive this.
+  template <typename Find>
+  ReceiverShadows(const Receiver& r, const std::vector<const Occluder*>& occluders, const Find& find)
+      : r_(r), occluders_(occluders), find_(&find), call_find_([](const void* f) { (*static_cast<const Find*>(f))(); }) {}
   std::span<const ShadowVolume> at(int point) const;
 
  private:
   const Receiver& r_;
   const std::vector<const Occluder*>& occluders_;
-  void (*find_)(void*) = nullptr;  ///< null: the occluders are given
-  void* find_context_ = nullptr;
+  const void* find_ = nullptr;  ///< null: the occluders are given
+  void (*call_find_)(const void*) = nullptr;
   mutable bool found_ = false;
   mutable std::array<bool, 5> made_{};
   static thread_local std::array<std::vector<ShadowVolume>, 5> volumes_;

@@ -305,29 +305,23 @@ TEST(ReceiverShadows, OccludersFoundOnFirstNeedGiveTheSameVolumes) {
     for (int p = 0; p < 5; ++p)
       for (const ShadowVolume& v : shadows.at(p)) eager[static_cast<size_t>(p)].emplace_back(v.occluder, v.sides);
   }
-  struct Search {
-    const std::vector<const Occluder*>& all;
-    std::vector<const Occluder*>& found;
-    int calls = 0;
-    static void find(void* context) {
-      Search& s = *static_cast<Search*>(context);
-      ++s.calls;
-      s.found = s.all;
-    }
-  };
   std::vector<const Occluder*> found;
-  Search search{given, found};
+  int calls = 0;
+  const auto find = [&] {
+    ++calls;
+    found = given;
+  };
   std::array<double, 5> seen{};
   {
-    const ReceiverShadows shadows(r, found, &Search::find, &search);
-    EXPECT_EQ(search.calls, 0) << "no shadow asked for yet";
+    const ReceiverShadows shadows(r, found, find);
+    EXPECT_EQ(calls, 0) << "no shadow asked for yet";
     for (int p = 4; p >= 0; --p) {
       for (const ShadowVolume& v : shadows.at(p)) lazy[static_cast<size_t>(p)].emplace_back(v.occluder, v.sides);
       const Vec3& at = p == 0 ? r.center : r.gauss[static_cast<size_t>(p - 1)];
       seen[static_cast<size_t>(p)] = visible_form_factor_past(at, r.normal, floor_polygon, floor_normal, shadows.at(p));
     }
   }
-  EXPECT_EQ(search.calls, 1);
+  EXPECT_EQ(calls, 1);
   EXPECT_EQ(lazy, eager);
   size_t volumes = 0;
   for (const auto& v : eager) volumes += v.size();
