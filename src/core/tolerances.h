@@ -45,10 +45,25 @@ inline constexpr double kFarFieldLeastIrradianceFraction = 1e-2;
 /// An element whose gathered irradiance falls below this fraction of the estimate its budget was
 /// made for (the whole patch's, at its centre) gathers again with the budget of what it got.
 inline constexpr double kFarFieldRegatherRatio = 0.5;
-/// The far field's error estimate (solver/shooter_tree.h far_field_error()) is
-/// trusted while the kernel's second-order term across the block, relative to the kernel, is at
-/// most this: beyond, the orders it leaves out are no longer small, and the block is split.
+/// The far field (solver/shooter_tree.h far_field_radiosity()) is of second order while the
+/// kernel's second-order term over the block, relative to the kernel, is at most this; beyond,
+/// the orders it leaves out are no longer small (and 1 / shape could change sign): first order.
+/// Its error estimate (far_field_error()) is trusted while R^2 (|g_t|^2 + 4 / |d|^2) / 2 is at
+/// most this too (R the block's radius, g_t the kernel's log-gradient in the shooter's plane, d
+/// the distance): beyond, the block splits.
 inline constexpr double kFarFieldCurvatureLimit = 0.25;
+/// far_field_error() reads the kernel's remainder at a block's corners and edge midpoints; its
+/// largest value over the block is at most this many times the largest read there, for the
+/// leading (cubic) remainder on a box (1.53 over random cubic forms on a square, 1.48 on a
+/// 2:1 rectangle; 1.24 for a quadratic one, the first-order far field's) ...
+inline constexpr double kFarFieldRemainderSamplingBox = 1.6;
+/// ... and on a triangle or a box cut by a triangle's hypotenuse (2.30 for cubic forms on a
+/// right triangle).
+inline constexpr double kFarFieldRemainderSamplingOther = 2.4;
+
+/// A contact line lies on a boundary of a side's cells (solver/shooter_tree.h shooter_splits())
+/// when it is within this fraction of a cell of it, along its whole length.
+inline constexpr double kSplitAlignRelative = 1e-6;
 
 /// Two values of unshot radiosity (W/m^2) within this relative difference count as equal, so a
 /// block of uniform unshot radiosity (an emitter's first shot) is never split: by additivity of

@@ -78,6 +78,9 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
   const OccluderBvh bvh(occluders);
 
   std::vector<SideState> state(mesh.surfaces.size());
+  std::vector<ShooterSplits> splits;  // per side, for its shooter trees
+  const ContactFinder contacts(scene);
+  for (const MeshSurface& side : mesh.surfaces) splits.push_back(shooter_splits(scene, side, contacts));
   std::vector<Patch> patches;
   std::vector<size_t> first_patch(mesh.surfaces.size());
   Rgb emitted = Rgb::Zero();
@@ -153,7 +156,7 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
     const MeshSurface& shooter_side = mesh.surfaces[shooter.surface];
     const Surface& shooter_surface = scene.surfaces[shooter_side.scene_surface];
     ShooterTree tree(shooter_surface, shooter_side, state[shooter.surface].unshot, shooter.i0, shooter.j0,
-                     shooter.i1, shooter.j1, std::move(tree_storage));
+                     shooter.i1, shooter.j1, std::move(tree_storage), &splits[shooter.surface]);
     Rgb shot_power = shooter.unshot_w;
     for (int j = shooter.j0; j < shooter.j1; ++j)
       for (int i = shooter.i0; i < shooter.i1; ++i) {

@@ -8,6 +8,8 @@
 #include <vector>
 
 #include "mesh/grid_mesh.h"
+#include "scene/contacts.h"
+#include "scene/scene.h"
 #include "solver/visibility.h"
 
 namespace radrecon {
@@ -38,15 +40,31 @@ struct Block {
   int child_count = 0;
 };
 
+/// Cell boundaries of a side at which its shooter trees split a block first: the lines u = i / nu
+/// (in `u`) and v = j / nv (in `v`), ascending. See shooter_splits().
+struct ShooterSplits {
+  std::vector<int> u, v;
+};
+
+/// The splits of a side's shooter trees: the cell boundaries that lie on a contact line of the
+/// side (scene/contacts.h: where a wall stands on the ground), extended across the side. A
+/// receiver on that wall sees only what lies in front of its plane, so a block that straddles
+/// the line is seen in part and splits (gather()) down to the elements along it, for every such
+/// receiver; blocks split at the line are each seen whole or not at all. Lines off the cell
+/// boundaries (within tol::kSplitAlignRelative of a cell), and triangles' sides, give none.
+/// `contacts`: the scene's.
+ShooterSplits shooter_splits(const Scene& scene, const MeshSurface& side, const ContactFinder& contacts);
+
 /// The blocks over the cells [i0,i1) x [j0,j1) of a side (a shooting patch), from the whole
-/// patch down to single elements, with their unshot radiosity when built.
+/// patch down to single elements, with their unshot radiosity when built. A block splits in
+/// four at its middle cell boundaries, or at the split (`splits`) inside it nearest to them.
 class ShooterTree {
  public:
   /// `storage`: the blocks of an earlier tree (release()) to build in, so that successive shots
   /// reuse their memory rather than fault in fresh pages each (tens of MB for a large patch).
   ShooterTree(const Surface& surface, const MeshSurface& side, const std::vector<Rgb>& unshot,
-              int i0, int j0, int i1, int j1, std::vector<Block> storage = {})
-      : surface_(surface), side_(side), unshot_(unshot), blocks_(std::move(storage)) {
+              int i0, int j0, int i1, int j1, std::vector<Block> storage = {}, const ShooterSplits* splits = nullptr)
+      : surface_(surface), side_(side), unshot_(unshot), splits_(splits), blocks_(std::move(storage)) {
     blocks_.clear();
     blocks_.reserve(static_cast<size_t>(3 * (i1 - i0) * (j1 - j0)));
     blocks_.emplace_back();
@@ -73,6 +91,7 @@ class ShooterTree {
   const Surface& surface_;
   const MeshSurface& side_;
   const std::vector<Rgb>& unshot_;
+  const ShooterSplits* splits_;
   std::vector<Block> blocks_;
 };
 
@@ -99,10 +118,13 @@ Rgb far_field_radiosity(const Block& b, const Vec3& p, const Vec3& n, const Vec3
 bool kernel_log_gradient(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal, Vec3& g);
 
 /// The far field's error at p (unit normal n) per unit spread of the block's radiosity,
-/// relative to its form factor, given g = kernel_log_gradient(): an estimate of its third-order
-/// term (see the definition). Infinite where the kernel's second-order term exceeds
-/// tol::kFarFieldCurvatureLimit: the expansion is then not to be trusted. A block's far field
-/// errs by about its spread times its form factor times this, or less.
+/// relative to its form factor, given g = kernel_log_gradient(): half the largest remainder of
+/// the kernel's expansion over the block (relative to the kernel at its centroid), read off the
+/// kernel at the block's corners and edge midpoints and scaled by
+/// tol::kFarFieldRemainderSamplingBox (Other) for the points between them. Infinite where the
+/// kernel is not positive at all of them (the block is cut by the receiver's plane), or where
+/// its logarithm varies too much over the block for that (tol::kFarFieldCurvatureLimit). A block's
+/// far field errs by about its spread times its form factor times this, or less.
 double far_field_error(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal, const Vec3& g);
 
 /// A receiving element as gather() sees it: its centre, and the points of a Gauss rule over it

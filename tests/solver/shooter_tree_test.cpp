@@ -185,6 +185,8 @@ TEST(ShooterTree, FarFieldErrorIsWithinItsEstimate) {
       });
       ++blocks;
     }
+    std::printf("%s radiosity: %d blocks checked, largest error / estimate %.3f\n", step ? "step" : "random", checked,
+                tightest);
     EXPECT_EQ(exceeded, 0) << (step ? "step" : "random") << ": largest error / estimate " << tightest;
     EXPECT_GT(blocks, 100);
     EXPECT_GT(checked, 2000);
@@ -333,6 +335,72 @@ TEST(ReceiverShadows, OccludersFoundOnFirstNeedGiveTheSameVolumes) {
     EXPECT_LT(seen[static_cast<size_t>(p)], 0.9 * lambert_form_factor(at, r.normal, floor_polygon))
         << "point " << p << ": the occluders should hide part of the floor";
   }
+}
+
+TEST(ShooterTree, SplitsAtAWallsFootLeaveNoBlockAcrossIt) {
+  // A 2 m x 1 m ground and a wall standing on it along x = 0.75 (y in [0.2, 0.8]), facing -x. At
+  // 16 elements along the ground (1/8 m) its foot is the cell boundary u = 6: the tree splits
+  // there first, so no block but the whole patch straddles the wall's plane (seen in part from
+  // every receiver on the wall); at 17 it is on no boundary and gives no split.
+  Scene scene;
+  scene.name = "foot";
+  scene.surfaces.push_back(quad("ground", {0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {0, 1, 0}, 0.5));
+  scene.surfaces.push_back(quad("wall", {0.75, 0.8, 0}, {0.75, 0.2, 0}, {0.75, 0.2, 0.5}, {0.75, 0.8, 0.5}, 0.5));
+  const Mesh off_grid = make_grid_mesh(scene, {17, 1});
+  const ShooterSplits none = shooter_splits(scene, off_grid.surfaces[0], ContactFinder(scene));
+  EXPECT_TRUE(none.u.empty() && none.v.empty());
+  const Mesh mesh = make_grid_mesh(scene, {16, 1});
+  const MeshSurface& ground = mesh.surfaces[0];
+  ASSERT_EQ(ground.name, "ground");
+  const ShooterSplits splits = shooter_splits(scene, ground, ContactFinder(scene));
+  EXPECT_EQ(splits.u, std::vector<int>{6});
+  EXPECT_TRUE(splits.v.empty());
+
+  std::vector<Rgb> unshot;
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (size_t k = 0; k < ground.elements.size(); ++k) unshot.push_back(Rgb(u(rng), u(rng), u(rng)));
+  const auto straddling = [&](const ShooterTree& tree) {
+    int count = 0;
+    visit_blocks(tree, tree.root(), [&](const Block& b) {
+      bool before = false, after = false;
+      for (int k = 0; k < b.corner_count; ++k) {
+        before = before || b.corners[static_cast<size_t>(k)].x() < 0.75 - 1e-12;
+        after = after || b.corners[static_cast<size_t>(k)].x() > 0.75 + 1e-12;
+      }
+      count += before && after ? 1 : 0;
+    });
+    return count;
+  };
+  const ShooterTree plain(scene.surfaces[0], ground, unshot, 0, 0, ground.nu, ground.nv);
+  const ShooterTree split(scene.surfaces[0], ground, unshot, 0, 0, ground.nu, ground.nv, {}, &splits);
+  EXPECT_GT(straddling(plain), 2);  // the midpoint rule's blocks cross the foot at every level
+  EXPECT_EQ(straddling(split), 1);  // the whole patch alone
+
+  // Receivers on the wall's front see the ground before it alone: what they gather from the
+  // split tree is within its budget of the sum over those elements of their exact form factors.
+  const std::vector<const Occluder*> no_occluders;
+  int checked = 0;
+  for (int trial = 0; trial < 50; ++trial) {
+    Receiver r;
+    r.center = Vec3(0.75, 0.2 + 0.6 * u(rng), 0.01 + 0.45 * u(rng));
+    r.normal = Vec3(-1, 0, 0);
+    r.size_m = 1e-6;
+    r.gauss.fill(r.center);
+    r.gauss_count = 4;
+    Rgb exact = Rgb::Zero();
+    for (size_t k = 0; k < ground.elements.size(); ++k) {
+      ConvexPolygon polygon;
+      for (int c = 0; c < 4; ++c) polygon.push(ground.elements[k].corners[static_cast<size_t>(c)]);
+      exact += lambert_form_factor(r.center, r.normal, clip_to_horizon(r.center, r.normal, polygon)) * unshot[k];
+    }
+    const ReceiverShadows shadows(r, no_occluders);
+    const double budget = 2e-2 * exact.sum();
+    const Gathered got = gather(split, split.root(), r, ground.normal, shadows, budget);
+    EXPECT_LE((got.at_center - exact).abs().sum(), budget) << "trial " << trial;
+    ++checked;
+  }
+  EXPECT_EQ(checked, 50);
 }
 
 }  // namespace shooter_tree_test
