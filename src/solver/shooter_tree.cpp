@@ -5,6 +5,7 @@
 #include <limits>
 #include <numbers>
 
+#include "core/parallel.h"
 #include "core/tolerances.h"
 
 namespace radrecon {
@@ -83,11 +84,11 @@ void set_means(Block& b, double area, const Vec3& weighted_center, const Rgb& we
 
 }  // namespace
 
-void ShooterTree::set_radiosity(Block& b, std::span<const size_t> elements) const {
-  Rgb weighted = Rgb::Zero(), lo = unshot_[elements[0]], hi = lo;
+void ShooterTree::set_radiosity(Block& b, size_t first, size_t last) const {
+  Rgb weighted = Rgb::Zero(), lo = unshot_[first], hi = lo;
   double area = 0;
   Vec3 center = Vec3::Zero();
-  for (const size_t k : elements) {
+  for (size_t k = first; k < last; ++k) {
     const double a = side_.elements[k].area_m2;
     weighted += a * unshot_[k];
     center += a * side_.elements[k].center;
@@ -97,13 +98,13 @@ void ShooterTree::set_radiosity(Block& b, std::span<const size_t> elements) cons
   }
   set_means(b, area, center, weighted, lo, hi);
   b.dipole.setZero();
-  for (const size_t k : elements)
+  for (size_t k = first; k < last; ++k)
     b.dipole += side_.elements[k].area_m2 * (side_.elements[k].center - b.center) *
                 (unshot_[k] - b.unshot_w_m2).matrix().transpose();
   b.dipole /= area;
   b.area_moment.setZero();
   for (auto& q : b.quadrupole) q.setZero();
-  for (const size_t k : elements) {
+  for (size_t k = first; k < last; ++k) {
     const MeshElement& e = side_.elements[k];
     const Vec3 t = e.center - b.center;
     const Eigen::Matrix3d moment = e.area_m2 * (t * t.transpose() + own_area_moment(e));
@@ -150,17 +151,38 @@ void ShooterTree::aggregate(Block& b) const {
   for (auto& q : b.quadrupole) q /= area;
 }
 
-void ShooterTree::build(size_t index, int i0, int j0, int i1, int j1) {
-  const int nu = side_.nu, nv = side_.nv;
-  set_outline(blocks_[index], double(i0) / nu, double(j0) / nv, double(i1) / nu, double(j1) / nv);
+ShooterTree::ShooterTree(const Surface& surface, const MeshSurface& side, const std::vector<Rgb>& unshot, int i0,
+                         int j0, int i1, int j1, std::vector<Block> storage, const ShooterSplits* splits)
+    : surface_(surface), side_(side), unshot_(unshot), splits_(splits), blocks_(std::move(storage)) {
+  // Every field of a block is set when it is built: the storage's old blocks need no clearing.
+  blocks_.resize(count(i0, j0, i1, j1));
   if (i1 - i0 == 1 && j1 - j0 == 1) {
-    const auto [first, last] = side_.cell_elements(i0, j0);
-    std::vector<size_t> elements;
-    for (size_t k = first; k < last; ++k) elements.push_back(k);
-    set_radiosity(blocks_[index], elements);
-    if (elements.size() > 1) add_element_children(index, elements);
+    build(0, i0, j0, i1, j1, 1);
     return;
   }
+  // The whole patch's children, then their subtrees side by side, each from where the blocks
+  // of the ones before it end, as a depth-first build would lay them out.
+  std::array<std::array<int, 4>, 4> boxes;
+  const int children = child_boxes(i0, j0, i1, j1, boxes);
+  std::array<size_t, 4> first_descendant;
+  size_t next = 1 + static_cast<size_t>(children);
+  for (int c = 0; c < children; ++c) {
+    first_descendant[static_cast<size_t>(c)] = next;
+    const auto& q = boxes[static_cast<size_t>(c)];
+    next += count(q[0], q[1], q[2], q[3]) - 1;
+  }
+  Block& root = blocks_[0];
+  root.first_child = 1;
+  root.child_count = children;
+  set_outline(root, double(i0) / side_.nu, double(j0) / side_.nv, double(i1) / side_.nu, double(j1) / side_.nv);
+  parallel_for_coarse(0, children, [&](std::int64_t c) {
+    const auto& q = boxes[static_cast<size_t>(c)];
+    build(1 + static_cast<size_t>(c), q[0], q[1], q[2], q[3], first_descendant[static_cast<size_t>(c)]);
+  });
+  aggregate(root);
+}
+
+int ShooterTree::child_boxes(int i0, int j0, int i1, int j1, std::array<std::array<int, 4>, 4>& boxes) const {
   // The middle, or the split inside (lo, hi) nearest to it.
   const auto split_at = [](int lo, int hi, const std::vector<int>* splits) {
     if (hi - lo <= 1) return hi;
@@ -175,37 +197,66 @@ void ShooterTree::build(size_t index, int i0, int j0, int i1, int j1) {
   };
   const int mi = split_at(i0, i1, splits_ != nullptr ? &splits_->u : nullptr);
   const int mj = split_at(j0, j1, splits_ != nullptr ? &splits_->v : nullptr);
-  std::array<std::array<int, 4>, 4> quads = {{{i0, j0, mi, mj}, {mi, j0, i1, mj}, {i0, mj, mi, j1}, {mi, mj, i1, j1}}};
   // A part of the box beyond a triangle's hypotenuse (no elements) is no child.
-  const auto holds_elements = [&](const std::array<int, 4>& q) {
-    return q[2] > q[0] && q[3] > q[1] && (!side_.domain.is_triangle() || q[0] + q[1] <= nu - 1);
-  };
-  int first = static_cast<int>(blocks_.size());
   int count = 0;
-  for (const auto& q : quads) count += holds_elements(q) ? 1 : 0;
-  blocks_[index].first_child = first;
-  blocks_[index].child_count = count;
-  blocks_.resize(blocks_.size() + static_cast<size_t>(count));
-  int c = 0;
-  for (const auto& q : quads)
-    if (holds_elements(q)) build(static_cast<size_t>(first + c++), q[0], q[1], q[2], q[3]);
-  aggregate(blocks_[index]);
+  for (const std::array<int, 4>& q : {std::array<int, 4>{i0, j0, mi, mj}, std::array<int, 4>{mi, j0, i1, mj},
+                                      std::array<int, 4>{i0, mj, mi, j1}, std::array<int, 4>{mi, mj, i1, j1}})
+    if (q[2] > q[0] && q[3] > q[1] && (!side_.domain.is_triangle() || q[0] + q[1] <= side_.nu - 1))
+      boxes[static_cast<size_t>(count++)] = q;
+  return count;
 }
 
-/// A cell of two elements: one child block per element.
-void ShooterTree::add_element_children(size_t index, const std::vector<size_t>& elements) {
-  const int first = static_cast<int>(blocks_.size());
-  blocks_[index].first_child = first;
-  blocks_[index].child_count = static_cast<int>(elements.size());
-  for (const size_t k : elements) {
-    Block child;
-    const MeshElement& e = side_.elements[k];
-    child.corner_count = e.corner_count();
-    std::copy_n(e.corners.begin(), child.corner_count, child.corners.begin());
-    child.diagonal_m = widest(child);
-    set_radiosity(child, std::span<const size_t>(&k, 1));
-    blocks_.push_back(child);
+size_t ShooterTree::count(int i0, int j0, int i1, int j1) const {
+  if (i1 - i0 == 1 && j1 - j0 == 1) {
+    const auto [first, last] = side_.cell_elements(i0, j0);
+    return 1 + (last - first > 1 ? last - first : 0);  // a cell of two elements: one child each
   }
+  std::array<std::array<int, 4>, 4> boxes;
+  const int children = child_boxes(i0, j0, i1, j1, boxes);
+  size_t n = 1;
+  for (int c = 0; c < children; ++c) {
+    const auto& q = boxes[static_cast<size_t>(c)];
+    n += count(q[0], q[1], q[2], q[3]);
+  }
+  return n;
+}
+
+size_t ShooterTree::build(size_t index, int i0, int j0, int i1, int j1, size_t next) {
+  const int nu = side_.nu, nv = side_.nv;
+  Block& b = blocks_[index];
+  set_outline(b, double(i0) / nu, double(j0) / nv, double(i1) / nu, double(j1) / nv);
+  if (i1 - i0 == 1 && j1 - j0 == 1) {
+    const auto [first, last] = side_.cell_elements(i0, j0);
+    set_radiosity(b, first, last);
+    b.first_child = -1;
+    b.child_count = 0;
+    if (last - first == 1) return next;
+    // A cell of two elements (a triangle's lower and upper halves): one child block per element.
+    b.first_child = static_cast<int>(next);
+    b.child_count = static_cast<int>(last - first);
+    for (size_t k = first; k < last; ++k) {
+      Block& child = blocks_[next++];
+      const MeshElement& e = side_.elements[k];
+      child.corner_count = e.corner_count();
+      std::copy_n(e.corners.begin(), child.corner_count, child.corners.begin());
+      child.diagonal_m = widest(child);
+      set_radiosity(child, k, k + 1);
+      child.first_child = -1;
+      child.child_count = 0;
+    }
+    return next;
+  }
+  std::array<std::array<int, 4>, 4> boxes;
+  const int children = child_boxes(i0, j0, i1, j1, boxes);
+  b.first_child = static_cast<int>(next);
+  b.child_count = children;
+  size_t after = next + static_cast<size_t>(children);
+  for (int c = 0; c < children; ++c) {
+    const auto& q = boxes[static_cast<size_t>(c)];
+    after = build(next + static_cast<size_t>(c), q[0], q[1], q[2], q[3], after);
+  }
+  aggregate(b);
+  return after;
 }
 
 ShooterSplits shooter_splits(const Scene& scene, const MeshSurface& side, const ContactFinder& contacts) {

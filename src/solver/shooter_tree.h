@@ -62,14 +62,10 @@ class ShooterTree {
  public:
   /// `storage`: the blocks of an earlier tree (release()) to build in, so that successive shots
   /// reuse their memory rather than fault in fresh pages each (tens of MB for a large patch).
+  /// The subtrees of the whole patch's children are built side by side (core/parallel.h); the
+  /// blocks are laid out depth first, each block's children consecutive, whatever the threads.
   ShooterTree(const Surface& surface, const MeshSurface& side, const std::vector<Rgb>& unshot,
-              int i0, int j0, int i1, int j1, std::vector<Block> storage = {}, const ShooterSplits* splits = nullptr)
-      : surface_(surface), side_(side), unshot_(unshot), splits_(splits), blocks_(std::move(storage)) {
-    blocks_.clear();
-    blocks_.reserve(static_cast<size_t>(3 * (i1 - i0) * (j1 - j0)));
-    blocks_.emplace_back();
-    build(0, i0, j0, i1, j1);
-  }
+              int i0, int j0, int i1, int j1, std::vector<Block> storage = {}, const ShooterSplits* splits = nullptr);
   /// The blocks' memory, for the next tree.
   std::vector<Block> release() && { return std::move(blocks_); }
 
@@ -80,13 +76,18 @@ class ShooterTree {
   /// The outline of the (u,v) box [u0,u1] x [v0,v1] inside the side's parameter domain.
   void set_outline(Block& b, double u0, double v0, double u1, double v1) const;
   void set_corners(Block& b, const Vec2* uv, int n) const;
-  /// The block's radiosity and moments from its elements (a cell's).
-  void set_radiosity(Block& b, std::span<const size_t> elements) const;
+  /// The block's radiosity and moments from the side's elements [first, last) (a cell's).
+  void set_radiosity(Block& b, size_t first, size_t last) const;
   /// The block's radiosity and moments from its children's: O(children), not O(elements).
   void aggregate(Block& b) const;
-  void build(size_t index, int i0, int j0, int i1, int j1);
-  /// A cell of two elements: one child block per element.
-  void add_element_children(size_t index, const std::vector<size_t>& elements);
+  /// The boxes of cells a block over [i0,i1) x [j0,j1) (more than one cell) splits into, those
+  /// that hold elements, in order; returns their count.
+  int child_boxes(int i0, int j0, int i1, int j1, std::array<std::array<int, 4>, 4>& boxes) const;
+  /// The number of blocks of the subtree over a box of cells, its own included.
+  size_t count(int i0, int j0, int i1, int j1) const;
+  /// Builds block `index` over a box of cells, its descendants from block `next` on; returns the
+  /// block after the last of them.
+  size_t build(size_t index, int i0, int j0, int i1, int j1, size_t next);
 
   const Surface& surface_;
   const MeshSurface& side_;
