@@ -52,14 +52,16 @@ inline constexpr double kFarFieldRegatherRatio = 0.5;
 /// most this too (R the block's radius, g_t the kernel's log-gradient in the shooter's plane, d
 /// the distance): beyond, the block splits.
 inline constexpr double kFarFieldCurvatureLimit = 0.25;
-/// far_field_error() reads the kernel's remainder at a block's corners and edge midpoints; its
-/// largest value over the block is at most this many times the largest read there, for the
-/// leading (cubic) remainder on a box (1.53 over random cubic forms on a square, 1.48 on a
-/// 2:1 rectangle; 1.24 for a quadratic one, the first-order far field's) ...
-inline constexpr double kFarFieldRemainderSamplingBox = 1.6;
-/// ... and on a triangle or a box cut by a triangle's hypotenuse (2.30 for cubic forms on a
-/// right triangle).
-inline constexpr double kFarFieldRemainderSamplingOther = 2.4;
+/// far_field_error() reads the kernel's remainder at a box's corners and edge midpoints; its
+/// largest value over the box is at most this many times the largest read there, for the
+/// leading (cubic) remainder: 1.631 at worst for a cubic form (any box: stretching maps the
+/// points onto each other; 1.25 for a quadratic one, the first-order far field's) ...
+inline constexpr double kFarFieldRemainderSamplingBox = 1.65;
+/// ... and, read at each edge's quarters, on a triangle or a box cut by a triangle's hypotenuse:
+/// 1.22 at worst found for cubic forms on a right triangle (random forms, then hill climbing),
+/// 1.14 on a box with a corner cut. (Corners and midpoints alone lie on a triangle's medians,
+/// where a cubic form can vanish.)
+inline constexpr double kFarFieldRemainderSamplingOther = 1.3;
 
 /// A contact line lies on a boundary of a side's cells (solver/shooter_tree.h shooter_splits())
 /// when it is within this fraction of a cell of it, along its whole length.

@@ -120,7 +120,7 @@ class Hierarchy {
       out.shear_m = surface.shear_m();
       out.triangle = surface.is_triangle();
       collect_leaves(t, out);
-      st.emitted_w += t.node(0).area_m2 * t.emission_w_m2;
+      st.emitted_w += t.at(0).exposed * t.node(0).area_m2 * t.emission_w_m2;
       st.elements += out.elements.size();
       sol.surfaces.push_back(std::move(out));
     }
@@ -130,7 +130,11 @@ class Hierarchy {
   }
 
  private:
-  void add_tree(size_t k, bool back) { trees_.emplace_back(scene_.surfaces[k], k, back); }
+  void add_tree(size_t k, bool back) {
+    Tree& t = trees_.emplace_back(scene_.surfaces[k], k, back);
+    t.covers = covers_of(scene_, k);
+    t.at(0).exposed = t.exposed_fraction_of(0);
+  }
 
   const std::vector<const Occluder*>& occluders(int r, int s) const {
     return pair_occluders_[static_cast<size_t>(r) * trees_.size() + static_cast<size_t>(s)];
@@ -230,7 +234,10 @@ class Hierarchy {
     if (!t.node(node).is_leaf()) return;
     t.quad.split(node);
     const Rgb radiosity = t.at(node).radiosity;
-    for (int c = 0; c < 4; ++c) t.state.push_back({radiosity});
+    for (int c = 0; c < 4; ++c) {
+      t.state.push_back({radiosity});
+      t.state.back().exposed = t.exposed_fraction_of(static_cast<int>(t.state.size()) - 1);
+    }
   }
 
   /// Warms the cache with the links the next refinement pass will make, measured in parallel

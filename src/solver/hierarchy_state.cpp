@@ -15,7 +15,7 @@ Rgb push_pull(Tree& t, int index, const Rgb& irradiance_above, double& change, d
   const Rgb irradiance = irradiance_above + n.gathered;
   Rgb b;
   if (node.is_leaf()) {
-    b = t.emission_w_m2 + t.reflectance * irradiance;
+    b = n.exposed * (t.emission_w_m2 + t.reflectance * irradiance);
     n.irradiance = irradiance;
     change = std::max(change, (b - n.radiosity).abs().maxCoeff());
     largest = std::max(largest, b.abs().maxCoeff());
@@ -65,7 +65,8 @@ void collect_leaves(const Tree& t, SurfaceSolution& out) {
 }
 
 void add_absorbed(const Tree& t, Rgb& absorbed) {
-  for (const int k : t.quad.leaves()) absorbed += t.node(k).area_m2 * (1.0 - t.reflectance) * t.at(k).irradiance;
+  for (const int k : t.quad.leaves())
+    absorbed += t.at(k).exposed * t.node(k).area_m2 * (1.0 - t.reflectance) * t.at(k).irradiance;
 }
 
 }  // namespace radrecon::hierarchy

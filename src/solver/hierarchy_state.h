@@ -8,6 +8,7 @@
 
 #include "mesh/quadtree.h"
 #include "scene/side.h"
+#include "solver/covered.h"
 #include "solver/solution.h"
 
 namespace radrecon::hierarchy {
@@ -18,6 +19,7 @@ struct NodeState {
   Rgb gathered = Rgb::Zero();  ///< irradiance through this node's own links, W/m^2
   Rgb irradiance = Rgb::Zero();  ///< leaves: total irradiance including the ancestors', W/m^2
   double spread_w_m2 = 0;        ///< max - min of the children's radiosity (channel mean); 0 at leaves
+  double exposed = 1;            ///< Tree::exposed_fraction_of() the node, set when it is made
 };
 
 /// One side of one surface: its quadtree and the radiometry of every node.
@@ -35,6 +37,17 @@ struct Tree {
   Quadtree quad;
   std::vector<NodeState> state;  ///< by node index
   int leaf_cap = 0;              ///< 0: no cap
+  /// The surfaces lying on this one (solver/covered.h): a node's exposed fraction scales what it
+  /// emits, absorbs and reflects, so its radiosity is its mean over its area, the covered part dark.
+  std::vector<ConvexPolygon> covers;
+  /// The fraction of node k that `covers` leave exposed.
+  double exposed_fraction_of(int k) const {
+    if (covers.empty()) return 1.0;
+    ConvexPolygon part;
+    const QuadNode& n = node(k);
+    for (int c = 0; c < n.vertex_count(); ++c) part.push(n.corners[static_cast<size_t>(c)]);
+    return exposed_fraction(part, normal, covers);
+  }
   const QuadNode& node(int k) const { return quad.node(k); }
   NodeState& at(int k) { return state[static_cast<size_t>(k)]; }
   const NodeState& at(int k) const { return state[static_cast<size_t>(k)]; }

@@ -14,6 +14,7 @@
 #include "core/progress.h"
 #include "core/tolerances.h"
 #include "solver/bvh.h"
+#include "solver/covered.h"
 #include "solver/shooter_tree.h"
 #include "solver/visibility.h"
 
@@ -31,6 +32,10 @@ struct Patch {
 /// irradiance as the element's means (Gathered), which carry the power.
 struct SideState {
   std::vector<Rgb> radiosity, unshot, irradiance;
+  /// The fraction of each element that surfaces lying on the side leave exposed (solver/covered.h),
+  /// which scales the power it absorbs, reflects and emits; empty where nothing lies on it (1).
+  std::vector<double> exposed;
+  double exposed_at(size_t e) const { return exposed.empty() ? 1.0 : exposed[e]; }
 };
 
 /// A side that receives from the current shot: its elements are gain[first, first + their count).
@@ -88,12 +93,22 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
   for (size_t s = 0; s < mesh.surfaces.size(); ++s) {
     const MeshSurface& side = mesh.surfaces[s];
     SideState& st = state[s];
+    const std::vector<ConvexPolygon> covers = covers_of(scene, side.scene_surface);
+    if (!covers.empty()) {
+      st.exposed.resize(side.elements.size());
+      for (size_t e = 0; e < side.elements.size(); ++e) {
+        ConvexPolygon part;
+        for (int k = 0; k < side.elements[e].corner_count(); ++k) part.push(side.elements[e].corners[static_cast<size_t>(k)]);
+        st.exposed[e] = exposed_fraction(part, side.normal, covers);
+      }
+    }
     st.radiosity.assign(side.elements.size(), side.emission_w_m2);
-    st.unshot.assign(side.elements.size(), side.emission_w_m2);
+    st.unshot.resize(side.elements.size());
     st.irradiance.assign(side.elements.size(), Rgb::Zero());
-    for (const MeshElement& e : side.elements) {
-      emitted += e.area_m2 * side.emission_w_m2;
-      total_area_m2 += e.area_m2;
+    for (size_t e = 0; e < side.elements.size(); ++e) {
+      st.unshot[e] = st.exposed_at(e) * side.emission_w_m2;
+      emitted += side.elements[e].area_m2 * st.unshot[e];
+      total_area_m2 += st.exposed_at(e) * side.elements[e].area_m2;
     }
     // Every patch of the side's patch grid, empty ones beyond a triangle's hypotenuse included
     // (they never shoot: no power), so that patch (pi, pj) is at first_patch + pj * patches_u + pi.
@@ -286,10 +301,12 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
       SideState& st = state[job.side];
       for (size_t e = 0; e < receiver.elements.size(); ++e) {
         const Gathered& h = gain[job.first + e];
-        st.irradiance[e] += h.mean;
+        // A covered part receives nothing: its radiosity is the exposed part's.
+        const Rgb mean = st.exposed_at(e) * h.mean;
+        st.irradiance[e] += mean;
         st.radiosity[e] += receiver.reflectance * h.at_center;
-        st.unshot[e] += receiver.reflectance * h.mean;
-        delivered += receiver.elements[e].area_m2 * h.mean;
+        st.unshot[e] += receiver.reflectance * mean;
+        delivered += receiver.elements[e].area_m2 * mean;
       }
       update_patch_power(job.side);
     }

@@ -155,9 +155,9 @@ ShooterTree::ShooterTree(const Surface& surface, const MeshSurface& side, const 
                          int j0, int i1, int j1, std::vector<Block> storage, const ShooterSplits* splits)
     : surface_(surface), side_(side), unshot_(unshot), splits_(splits), blocks_(std::move(storage)) {
   // Every field of a block is set when it is built: the storage's old blocks need no clearing.
-  blocks_.resize(count(i0, j0, i1, j1));
   if (i1 - i0 == 1 && j1 - j0 == 1) {
-    build(0, i0, j0, i1, j1, 1);
+    blocks_.resize(count(i0, j0, i1, j1));
+    RR_CHECK_EQ(build(0, i0, j0, i1, j1, 1), blocks_.size(), "shooter tree: blocks miscounted");
     return;
   }
   // The whole patch's children, then their subtrees side by side, each from where the blocks
@@ -171,14 +171,17 @@ ShooterTree::ShooterTree(const Surface& surface, const MeshSurface& side, const 
     const auto& q = boxes[static_cast<size_t>(c)];
     next += count(q[0], q[1], q[2], q[3]) - 1;
   }
+  blocks_.resize(next);
   Block& root = blocks_[0];
   root.first_child = 1;
   root.child_count = children;
   set_outline(root, double(i0) / side_.nu, double(j0) / side_.nv, double(i1) / side_.nu, double(j1) / side_.nv);
+  std::array<size_t, 4> ends{};
   parallel_for_coarse(0, children, [&](std::int64_t c) {
     const auto& q = boxes[static_cast<size_t>(c)];
-    build(1 + static_cast<size_t>(c), q[0], q[1], q[2], q[3], first_descendant[static_cast<size_t>(c)]);
+    ends[static_cast<size_t>(c)] = build(1 + static_cast<size_t>(c), q[0], q[1], q[2], q[3], first_descendant[static_cast<size_t>(c)]);
   });
+  RR_CHECK_EQ(ends[static_cast<size_t>(children - 1)], blocks_.size(), "shooter tree: blocks miscounted");
   aggregate(root);
 }
 
@@ -323,12 +326,13 @@ double far_field_error(const Block& b, const Vec3& p, const Vec3& n, const Vec3&
   // The far field is sum_k A_k k(y_k) B_eff against the exact sum_k A_k k(y_k) B_k, with k's
   // expansion k(c) (1 + g . t + t^T M t / 2) integrated exactly (far_field_radiosity()): it errs
   // by k(c) sum_k A_k R(t_k) (B_eff - B_k), R the kernel's remainder relative to k(c). That is at
-  // most the form factor times max |R| times the mean deviation of the radiosity from B_eff
-  // (about its mean: at most half the spread). max |R| is read off the kernel itself at the
+  // most the form factor times max |R| times the mean deviation of the radiosity from B_eff:
+  // about half the spread (about the mean it is at most that; B_eff is the mean plus
+  // corrections of first and second order). max |R| is read off the kernel itself at the
   // block's corners and edge midpoints: the leading remainder, a cubic form in t, takes at most
-  // tol::kFarFieldRemainderSamplingBox times its largest value there anywhere on a box (a
-  // triangle's: kFarFieldRemainderSamplingOther). Where the far field is first order only
-  // (far_field_radiosity()), R is the remainder after the linear term.
+  // tol::kFarFieldRemainderSamplingBox times its largest value there anywhere on a box (other
+  // blocks: at each edge's quarters, kFarFieldRemainderSamplingOther). Where the far field is
+  // first order only (far_field_radiosity()), R is the remainder after the linear term.
   //
   // The cubic term dominates while the kernel's logarithm changes little over the block: its
   // gradient in the shooter's plane g_t, and the curvature 4 / |d|^2 of -4 ln |d|; beyond, the
@@ -361,12 +365,17 @@ double far_field_error(const Block& b, const Vec3& p, const Vec3& n, const Vec3&
     worst = std::max(worst, std::abs(k / k_c - taylor));
     return true;
   };
+  // A box's corners and edge midpoints; on other blocks those lie on three lines through the
+  // centroid for a triangle (its medians), where a cubic form can vanish: each edge's quarters.
+  const bool box = b.corner_count == 4;
+  const int per_edge = box ? 2 : 4;
   for (int a = 0; a < b.corner_count; ++a) {
     const Vec3& y0 = b.corners[a];
     const Vec3& y1 = b.corners[(a + 1) % b.corner_count];
-    if (!check(y0) || !check(0.5 * (y0 + y1))) return std::numeric_limits<double>::infinity();
+    for (int k = 0; k < per_edge; ++k)
+      if (!check(y0 + (static_cast<double>(k) / per_edge) * (y1 - y0))) return std::numeric_limits<double>::infinity();
   }
-  const double sampling = b.corner_count == 4 ? tol::kFarFieldRemainderSamplingBox : tol::kFarFieldRemainderSamplingOther;
+  const double sampling = box ? tol::kFarFieldRemainderSamplingBox : tol::kFarFieldRemainderSamplingOther;
   return 0.5 * sampling * worst;
 }
 

@@ -50,8 +50,8 @@ struct ShooterSplits {
 /// side (scene/contacts.h: where a wall stands on the ground), extended across the side. A
 /// receiver on that wall sees only what lies in front of its plane, so a block that straddles
 /// the line is seen in part and splits (gather()) down to the elements along it, for every such
-/// receiver; blocks split at the line are each seen whole or not at all. Lines off the cell
-/// boundaries (within tol::kSplitAlignRelative of a cell), and triangles' sides, give none.
+/// receiver; blocks split at the line are each seen whole or not at all. Lines farther than
+/// tol::kSplitAlignRelative of a cell from a cell boundary, and triangles' sides, give none.
 /// `contacts`: the scene's.
 ShooterSplits shooter_splits(const Scene& scene, const MeshSurface& side, const ContactFinder& contacts);
 
@@ -121,8 +121,8 @@ bool kernel_log_gradient(const Block& b, const Vec3& p, const Vec3& n, const Vec
 /// The far field's error at p (unit normal n) per unit spread of the block's radiosity,
 /// relative to its form factor, given g = kernel_log_gradient(): half the largest remainder of
 /// the kernel's expansion over the block (relative to the kernel at its centroid), read off the
-/// kernel at the block's corners and edge midpoints and scaled by
-/// tol::kFarFieldRemainderSamplingBox (Other) for the points between them. Infinite where the
+/// kernel at a box's corners and edge midpoints (other blocks: each edge's quarters) and scaled
+/// by tol::kFarFieldRemainderSamplingBox (Other) for the points between them. Infinite where the
 /// kernel is not positive at all of them (the block is cut by the receiver's plane), or where
 /// its logarithm varies too much over the block for that (tol::kFarFieldCurvatureLimit). A block's
 /// far field errs by about its spread times its form factor times this, or less.

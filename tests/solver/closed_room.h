@@ -37,6 +37,16 @@ inline Scene closed_room(double rho, double E) {
   return room;
 }
 
+/// The same room with its ceiling one quad and the light lying on it, face down, as a modeller
+/// places a lamp: the ceiling's part under the light is hidden (solver/covered.h), and the room's
+/// visible area and closed forms are the tiled room's.
+inline Scene closed_room_with_lamp(double rho, double E) {
+  Scene room = closed_room(rho, E);
+  std::erase_if(room.surfaces, [](const Surface& s) { return s.name.starts_with("ceiling_"); });
+  room.surfaces.push_back(quad("ceiling", {0, 0, 2}, {0, 2.5, 2}, {3, 2.5, 2}, {3, 0, 2}, rho));
+  return room;
+}
+
 /// sum A B over every element of the solution, channel 0, W: the radiosity power the closed forms
 /// predict (Phi / (1 - rho) in a closed room or box).
 inline double radiosity_power_w(const Solution& sol) {

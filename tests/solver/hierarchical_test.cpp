@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 
 #include <algorithm>
 #include <cmath>
@@ -88,6 +90,24 @@ TEST(Hierarchical, ClosedRoomKeepsItsEnergy) {
     EXPECT_NEAR(sol.stats.absorbed_w[0], phi, 1e-3 * phi) << "rho = " << rho;
     const double mean_radiosity = phi / ((1 - rho) * area);
     EXPECT_NEAR(radiosity_power / area, mean_radiosity, 1e-3 * mean_radiosity) << "rho = " << rho;
+  }
+}
+
+TEST(Hierarchical, ALightLyingOnTheCeilingKeepsTheRoomsEnergy) {
+  // The closed room with a lamp lying on its ceiling (solver/covered.h): a leaf's radiosity is its
+  // mean over its area, the covered part dark, so the closed forms of the tiled room hold: absorbed
+  // = emitted, and sum A B = Phi / (1 - rho).
+  const double E = 40, phi = E * testing_support::kClosedRoomLight_m2, area = testing_support::kClosedRoomArea_m2;
+  for (const double rho : {0.5, 0.95}) {
+    HierarchicalOptions options;
+    options.epsilon_w = 1e-3;
+    const Solution sol = solve_hierarchical(testing_support::closed_room_with_lamp(rho, E), options, "quadtree-eps:1e-3");
+    EXPECT_TRUE(sol.stats.converged);
+    EXPECT_NEAR(sol.stats.absorbed_w[0], phi, 1e-3 * phi) << "rho = " << rho;
+    const double mean_radiosity = phi / ((1 - rho) * area);
+    EXPECT_NEAR(testing_support::radiosity_power_w(sol) / area, mean_radiosity, 1e-3 * mean_radiosity) << "rho = " << rho;
+    std::printf("hierarchical, lamp on the ceiling, rho %.2f: absorbed / emitted - 1 = %.2e, sum A B / closed form - 1 = %.2e\n",
+                rho, sol.stats.absorbed_w[0] / phi - 1, testing_support::radiosity_power_w(sol) / area / mean_radiosity - 1);
   }
 }
 

@@ -1,0 +1,23 @@
+#pragma once
+// The parts of a surface that others lying flat on it hide (scene/contacts.h lies_on(): a lamp
+// placed on a ceiling). They neither receive nor shoot light: the solvers scale what an element
+// absorbs, reflects and emits by the fraction of it left exposed, so that a closed room keeps its
+// energy (docs/method.md, "Covered parts").
+
+#include <span>
+#include <vector>
+
+#include "scene/scene.h"
+#include "solver/polygon.h"
+
+namespace radrecon {
+
+/// The polygons of the surfaces lying flat on scene surface `surface` (either side of it).
+std::vector<ConvexPolygon> covers_of(const Scene& scene, size_t surface);
+
+/// The fraction of the convex polygon `part`, in the plane of a surface with unit normal
+/// `normal`, that `covers` (convex, in the same plane) leave exposed: 1 - the sum of its
+/// overlaps with each over its area, in [0, 1] (covers that overlap each other count twice).
+double exposed_fraction(const ConvexPolygon& part, const Vec3& normal, std::span<const ConvexPolygon> covers);
+
+}  // namespace radrecon

@@ -1,0 +1,56 @@
+// The parts of a surface that others lying on it hide (solver/covered.h), against areas known in
+// closed form.
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "solver/covered.h"
+#include "support/scenes.h"
+
+namespace radrecon {
+namespace covered_test {
+
+using testing_support::quad;
+
+ConvexPolygon polygon(std::initializer_list<Vec3> corners) {
+  ConvexPolygon p;
+  for (const Vec3& c : corners) p.push(c);
+  return p;
+}
+
+TEST(Covered, ExposedFractionIsOneMinusTheOverlapOverTheArea) {
+  // A 1 x 1 m element in z = 0 facing +z (and the same corners read facing -z: the orientation
+  // of neither polygon matters).
+  const ConvexPolygon element = polygon({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}});
+  const std::vector<ConvexPolygon> square = {polygon({{0.5, 0.25, 0}, {2, 0.25, 0}, {2, 2, 0}, {0.5, 2, 0}})};
+  for (const Vec3 normal : {Vec3(0, 0, 1), Vec3(0, 0, -1)}) {
+    EXPECT_NEAR(exposed_fraction(element, normal, square), 1 - 0.5 * 0.75, 1e-15);  // overlap 0.5 x 0.75
+    // A triangle with its right angle at (0.2, 0.2) and legs 0.5: area 0.125, all inside.
+    const std::vector<ConvexPolygon> triangle = {polygon({{0.2, 0.2, 0}, {0.2, 0.7, 0}, {0.7, 0.2, 0}})};
+    EXPECT_NEAR(exposed_fraction(element, normal, triangle), 1 - 0.125, 1e-15);
+    const std::vector<ConvexPolygon> apart = {polygon({{2, 2, 0}, {3, 2, 0}, {3, 3, 0}})};
+    EXPECT_EQ(exposed_fraction(element, normal, apart), 1.0);
+    const std::vector<ConvexPolygon> all = {polygon({{-1, -1, 0}, {2, -1, 0}, {2, 2, 0}, {-1, 2, 0}})};
+    EXPECT_EQ(exposed_fraction(element, normal, all), 0.0);
+    EXPECT_EQ(exposed_fraction(element, normal, {}), 1.0);
+  }
+}
+
+TEST(Covered, ALampOnACeilingCoversItAndNotTheFloor) {
+  Scene scene;
+  scene.name = "room";
+  scene.surfaces.push_back(quad("ceiling", {0, 0, 2}, {0, 2.5, 2}, {3, 2.5, 2}, {3, 0, 2}, 0.5));
+  scene.surfaces.push_back(quad("lamp", {1, 1, 2}, {1, 1.5, 2}, {2, 1.5, 2}, {2, 1, 2}, 0.5, 40));
+  scene.surfaces.push_back(quad("floor", {0, 0, 0}, {3, 0, 0}, {3, 2.5, 0}, {0, 2.5, 0}, 0.5));
+  const std::vector<ConvexPolygon> on_ceiling = covers_of(scene, 0);
+  ASSERT_EQ(on_ceiling.size(), 1u);
+  // The whole ceiling: the lamp hides 0.5 of its 7.5 m^2.
+  const ConvexPolygon ceiling = polygon({{0, 0, 2}, {0, 2.5, 2}, {3, 2.5, 2}, {3, 0, 2}});
+  EXPECT_NEAR(exposed_fraction(ceiling, scene.surfaces[0].normal(), on_ceiling), 1 - 0.5 / 7.5, 1e-14);
+  EXPECT_TRUE(covers_of(scene, 1).empty());  // the larger ceiling does not lie on the lamp
+  EXPECT_TRUE(covers_of(scene, 2).empty());
+}
+
+}  // namespace covered_test
+}  // namespace radrecon
