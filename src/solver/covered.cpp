@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "core/tolerances.h"
 #include "scene/contacts.h"
 
 namespace radrecon {
@@ -17,14 +18,36 @@ double area(const ConvexPolygon& p) {
 
 }  // namespace
 
-std::vector<ConvexPolygon> covers_of(const Scene& scene, size_t surface) {
-  std::vector<ConvexPolygon> out;
-  for (size_t k = 0; k < scene.surfaces.size(); ++k) {
-    if (k == surface || !lies_on(scene.surfaces[k], scene.surfaces[surface])) continue;
-    ConvexPolygon p;
-    for (const Vec3& c : scene.surfaces[k].polygon()) p.push(c);
-    out.push_back(p);
+std::vector<std::vector<ConvexPolygon>> covers_by_surface(const Scene& scene) {
+  const size_t n = scene.surfaces.size();
+  std::vector<std::vector<ConvexPolygon>> out(n);
+  // Bounding boxes, widened by a margin far below any surface's size: a cover outside a
+  // surface's box hides none of it.
+  std::vector<Vec3> lo(n), hi(n);
+  double extent = 0;
+  for (size_t k = 0; k < n; ++k) {
+    lo[k] = hi[k] = scene.surfaces[k].corners[0];
+    for (const Vec3& c : scene.surfaces[k].polygon()) lo[k] = lo[k].cwiseMin(c), hi[k] = hi[k].cwiseMax(c);
+    extent = std::max(extent, (hi[k] - lo[k]).maxCoeff());
   }
+  const double margin = tol::kContactRelative * extent;
+  std::vector<size_t> order(n);
+  for (size_t k = 0; k < n; ++k) order[k] = k;
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return lo[a].x() < lo[b].x() || (lo[a].x() == lo[b].x() && a < b); });
+  const auto add = [&](size_t cover, size_t base) {
+    if (!lies_on(scene.surfaces[cover], scene.surfaces[base])) return;
+    ConvexPolygon p;
+    for (const Vec3& c : scene.surfaces[cover].polygon()) p.push(c);
+    out[base].push_back(p);
+  };
+  for (size_t i = 0; i < n; ++i)
+    for (size_t j = i + 1; j < n && lo[order[j]].x() <= hi[order[i]].x() + margin; ++j) {
+      const size_t a = order[i], b = order[j];
+      if (((lo[a].array() - margin) <= hi[b].array()).all() && (lo[b].array() <= (hi[a].array() + margin)).all()) {
+        add(a, b);
+        add(b, a);
+      }
+    }
   return out;
 }
 

@@ -45,7 +45,8 @@ bool canonical(const Link& a, const Link& b) {
 class Hierarchy {
  public:
   Hierarchy(const Scene& scene, const HierarchicalOptions& options, LinkFormFactorCache* cache)
-      : scene_(scene), options_(options), cache_(cache != nullptr ? cache : &own_cache_) {
+      : scene_(scene), covers_(covers_by_surface(scene)), options_(options),
+        cache_(cache != nullptr ? cache : &own_cache_) {
     min_size_m_ = min_element_size_m(scene, options);
     occluders_ = make_occluders(scene);
     bvh_ = OccluderBvh(occluders_);
@@ -132,7 +133,7 @@ class Hierarchy {
  private:
   void add_tree(size_t k, bool back) {
     Tree& t = trees_.emplace_back(scene_.surfaces[k], k, back);
-    t.covers = covers_of(scene_, k);
+    t.covers = covers_[k];
     t.at(0).exposed = t.exposed_fraction_of(0);
   }
 
@@ -404,6 +405,7 @@ class Hierarchy {
   }
 
   const Scene& scene_;
+  std::vector<std::vector<ConvexPolygon>> covers_;  ///< by scene surface (solver/covered.h)
   HierarchicalOptions options_;
   LinkFormFactorCache own_cache_;
   LinkFormFactorCache* cache_;  ///< the caller's, or own_cache_

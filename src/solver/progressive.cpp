@@ -86,6 +86,7 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
   std::vector<ShooterSplits> splits;  // per side, for its shooter trees
   const ContactFinder contacts(scene);
   for (const MeshSurface& side : mesh.surfaces) splits.push_back(shooter_splits(scene, side, contacts));
+  const std::vector<std::vector<ConvexPolygon>> covers_by = covers_by_surface(scene);
   std::vector<Patch> patches;
   std::vector<size_t> first_patch(mesh.surfaces.size());
   Rgb emitted = Rgb::Zero();
@@ -93,7 +94,7 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
   for (size_t s = 0; s < mesh.surfaces.size(); ++s) {
     const MeshSurface& side = mesh.surfaces[s];
     SideState& st = state[s];
-    const std::vector<ConvexPolygon> covers = covers_of(scene, side.scene_surface);
+    const std::vector<ConvexPolygon>& covers = covers_by[side.scene_surface];
     if (!covers.empty()) {
       st.exposed.resize(side.elements.size());
       for (size_t e = 0; e < side.elements.size(); ++e) {

@@ -43,13 +43,15 @@ TEST(Covered, ALampOnACeilingCoversItAndNotTheFloor) {
   scene.surfaces.push_back(quad("ceiling", {0, 0, 2}, {0, 2.5, 2}, {3, 2.5, 2}, {3, 0, 2}, 0.5));
   scene.surfaces.push_back(quad("lamp", {1, 1, 2}, {1, 1.5, 2}, {2, 1.5, 2}, {2, 1, 2}, 0.5, 40));
   scene.surfaces.push_back(quad("floor", {0, 0, 0}, {3, 0, 0}, {3, 2.5, 0}, {0, 2.5, 0}, 0.5));
-  const std::vector<ConvexPolygon> on_ceiling = covers_of(scene, 0);
+  const std::vector<std::vector<ConvexPolygon>> covers = covers_by_surface(scene);
+  ASSERT_EQ(covers.size(), 3u);
+  const std::vector<ConvexPolygon>& on_ceiling = covers[0];
   ASSERT_EQ(on_ceiling.size(), 1u);
   // The whole ceiling: the lamp hides 0.5 of its 7.5 m^2.
   const ConvexPolygon ceiling = polygon({{0, 0, 2}, {0, 2.5, 2}, {3, 2.5, 2}, {3, 0, 2}});
   EXPECT_NEAR(exposed_fraction(ceiling, scene.surfaces[0].normal(), on_ceiling), 1 - 0.5 / 7.5, 1e-14);
-  EXPECT_TRUE(covers_of(scene, 1).empty());  // the larger ceiling does not lie on the lamp
-  EXPECT_TRUE(covers_of(scene, 2).empty());
+  EXPECT_TRUE(covers[1].empty());  // the larger ceiling does not lie on the lamp
+  EXPECT_TRUE(covers[2].empty());
 }
 
 }  // namespace covered_test
