@@ -403,5 +403,74 @@ TEST(ShooterTree, SplitsAtAWallsFootLeaveNoBlockAcrossIt) {
   EXPECT_EQ(checked, 50);
 }
 
+/// Whether two trees hold the same blocks, every field of every block (a block's corners past
+/// its count are not read, and not compared).
+void expect_same_blocks(const ShooterTree& a, const ShooterTree& b, const char* what) {
+  int k = 0;
+  std::vector<std::pair<const Block*, const Block*>> stack = {{&a.root(), &b.root()}};
+  while (!stack.empty()) {
+    const auto [x, y] = stack.back();
+    stack.pop_back();
+    ++k;
+    ASSERT_EQ(x->corner_count, y->corner_count) << what << ", block " << k;
+    for (int c = 0; c < x->corner_count; ++c)
+      EXPECT_EQ(x->corners[static_cast<size_t>(c)], y->corners[static_cast<size_t>(c)]) << what << ", block " << k;
+    EXPECT_EQ(x->center, y->center) << what;
+    EXPECT_EQ(x->diagonal_m, y->diagonal_m) << what;
+    EXPECT_EQ(x->area_m2, y->area_m2) << what;
+    EXPECT_EQ(x->radius_m, y->radius_m) << what;
+    EXPECT_TRUE((x->unshot_w_m2 == y->unshot_w_m2).all() && (x->lowest_w_m2 == y->lowest_w_m2).all() &&
+                (x->highest_w_m2 == y->highest_w_m2).all())
+        << what << ", block " << k;
+    EXPECT_EQ(x->dipole, y->dipole) << what;
+    EXPECT_EQ(x->area_moment, y->area_moment) << what;
+    for (size_t c = 0; c < 3; ++c) EXPECT_EQ(x->quadrupole[c], y->quadrupole[c]) << what;
+    EXPECT_EQ(x->uniform, y->uniform) << what;
+    ASSERT_EQ(x->child_count, y->child_count) << what << ", block " << k;
+    EXPECT_EQ(x->first_child < 0, y->first_child < 0) << what;
+    for (int c = 0; c < x->child_count; ++c)
+      stack.push_back({&a.block(x->first_child + c), &b.block(y->first_child + c)});
+  }
+  EXPECT_GT(k, 10) << what;
+}
+
+TEST(ShooterTree, AnEarlierTreesStorageGivesTheSameBlocksAsFreshOne) {
+  // The solver builds each shot's tree in the blocks of the last (ShooterTree::release()),
+  // without clearing them: a triangle's tree (cells of two elements: blocks of 3 and 5 corners)
+  // built in a quad's storage and the other way round, against the same trees built fresh.
+  LinearPlate plate(7);
+  Scene triangles = testing_support::as_triangles(plate.scene);
+  const Mesh triangle_mesh = make_grid_mesh(triangles, {9, 1});
+  const MeshSurface& triangle_side = triangle_mesh.surfaces[0];
+  std::vector<Rgb> triangle_unshot;
+  std::mt19937_64 rng(13);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (size_t k = 0; k < triangle_side.elements.size(); ++k) triangle_unshot.push_back(Rgb(u(rng), u(rng), u(rng)));
+  const auto triangle_tree = [&](std::vector<Block> storage) {
+    return ShooterTree(triangles.surfaces[0], triangle_side, triangle_unshot, 0, 0, triangle_side.nu, triangle_side.nv,
+                       std::move(storage));
+  };
+  const auto quad_tree = [&](std::vector<Block> storage) {
+    return ShooterTree(plate.scene.surfaces[0], plate.side(), plate.unshot, 0, 0, plate.side().nu, plate.side().nv,
+                       std::move(storage));
+  };
+  {
+    const ShooterTree t = triangle_tree({});
+    int threes = 0, fives = 0;
+    visit_blocks(t, t.root(), [&](const Block& b) {
+      threes += b.corner_count == 3 ? 1 : 0;
+      fives += b.corner_count == 5 ? 1 : 0;
+    });
+    EXPECT_GT(threes, 9);  // the lower and upper halves of cells along the hypotenuse
+    EXPECT_GT(fives, 0);   // boxes cut by it
+  }
+  expect_same_blocks(quad_tree(triangle_tree({}).release()), quad_tree({}), "quad in a triangle's storage");
+  expect_same_blocks(triangle_tree(quad_tree({}).release()), triangle_tree({}), "triangle in a quad's storage");
+  // A tree of one cell, then a large one, in the same storage.
+  const ShooterTree one(plate.scene.surfaces[0], plate.side(), plate.unshot, 2, 1, 3, 2);
+  EXPECT_EQ(one.root().child_count, 0);
+  expect_same_blocks(triangle_tree(ShooterTree(one).release()), triangle_tree({}), "triangle after one cell");
+}
+
 }  // namespace shooter_tree_test
 }  // namespace radrecon
