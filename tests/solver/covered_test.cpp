@@ -24,7 +24,7 @@ TEST(Covered, ExposedFractionIsOneMinusTheOverlapOverTheArea) {
   // of neither polygon matters).
   const ConvexPolygon element = polygon({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}});
   const std::vector<ConvexPolygon> square = {polygon({{0.5, 0.25, 0}, {2, 0.25, 0}, {2, 2, 0}, {0.5, 2, 0}})};
-  for (const Vec3 normal : {Vec3(0, 0, 1), Vec3(0, 0, -1)}) {
+  for (const Vec3& normal : {Vec3(0, 0, 1), Vec3(0, 0, -1)}) {
     EXPECT_NEAR(exposed_fraction(element, normal, square), 1 - 0.5 * 0.75, 1e-15);  // overlap 0.5 x 0.75
     // A triangle with its right angle at (0.2, 0.2) and legs 0.5: area 0.125, all inside.
     const std::vector<ConvexPolygon> triangle = {polygon({{0.2, 0.2, 0}, {0.2, 0.7, 0}, {0.7, 0.2, 0}})};
