@@ -109,7 +109,11 @@ InterpolantResult reconstruct_unmasked(const SurfaceSolution& s, Method method, 
   if (is_grid_method(method))
     return Failure{method_name(method) + " needs grid data; this side is " +
                    (s.triangle ? "a triangle (its elements are no grid of boxes)" : "an adaptive subdivision")};
-  return make_scattered_interpolant(method, outside_regions(element_centres(s), s.excluded), params);
+  const ScatteredSamples outside = outside_regions(element_centres(s), s.excluded);
+  // Every element centred under an excluded region (a coarse quadtree's one leaf under a lamp
+  // lying on it): piecewise constant draws the elements as they are, the regions masked.
+  if (method == Method::constant && outside.points.empty()) return make_cell_interpolant(method, element_cells(s), plain);
+  return make_scattered_interpolant(method, outside, params);
 }
 
 /// Refuses a solution side whose elements' centres are not where the scene's surface puts their

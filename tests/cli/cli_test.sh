@@ -219,6 +219,25 @@ red = [struct.unpack_from("<f", body, 12 * k)[0] for k in range(w * h)]
 bright = sum(1 for v in red if v > 20)
 assert red[30 * w + 30] == 40.0 and 24 * 24 <= bright <= 26 * 26, (red[30 * w + 30], bright)
 PY
+# A coarse quadtree's one ceiling leaf centred under the lamp lying on it: no sample outside the
+# lamp, so Shepard falls back to piecewise constant (the leaf's value) instead of failing.
+run coplanar_coarse solve --scene "$TMP/coplanar.json" --mesh quadtree-eps:10 --out "$TMP/coplanar_q.json" --quiet
+expect_rc coplanar_coarse 0
+run coplanar_coarse_render render --scene "$TMP/coplanar.json" --solution "$TMP/coplanar_q.json" --camera up \
+  --size 60x60 --method shepard --out "$TMP/coplanar_q.pfm" --quiet
+expect_rc coplanar_coarse_render 0
+expect_stderr_has coplanar_coarse_render "shepard cannot reconstruct side ceiling (no samples); drawn piecewise constant"
+python3 - "$TMP/coplanar_q.pfm" "$TMP/coplanar_q.json" <<'PY' || fail "render: the coarse ceiling is not its leaf's value"
+import json, struct, sys
+magic, size, scale, body = open(sys.argv[1], "rb").read().split(b"\n", 3)
+w, h = map(int, size.split())
+red = [struct.unpack_from("<f", body, 12 * k)[0] for k in range(w * h)]
+ceiling = [s for s in json.load(open(sys.argv[2]))["surfaces"] if s["name"] == "ceiling"][0]["elements"]
+assert len(ceiling) == 1, len(ceiling)
+value = ceiling[0]["radiosity"][0]
+assert red[30 * w + 30] == 40.0, red[30 * w + 30]  # the lamp
+assert abs(red[2 * w + 2] - value) <= 1e-6 * value, (red[2 * w + 2], value)  # the ceiling beside it
+PY
 # Too many rays, or more memory than there is: refused before any work, with advice.
 run render_rays render --scene paper --solution "$TMP/solution.json" --camera view --size 8192x8192 --samples 16 --out "$TMP/huge.png"
 expect_rc render_rays 2
