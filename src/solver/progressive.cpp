@@ -208,7 +208,7 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
       job.blockers = bvh.between(shooter_outline, scene.surfaces[receiver.scene_surface].polygon(),
                                  receiver.scene_surface, shooter_side.scene_surface);
     });
-    gain.assign(receiving, Gathered{});
+    gain.resize(receiving);  // every entry is written below: no need to clear it first
     // The receiving element of index i: its side's job and its index on that side.
     const auto receiving_element = [&](std::int64_t i) {
       const auto job = std::prev(std::upper_bound(jobs.begin(), jobs.end(), static_cast<size_t>(i),
@@ -296,19 +296,24 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
       }
       gain[static_cast<size_t>(i)] = got;
     });
+    // What each element keeps, side by side; the power delivered summed in order, on one thread.
+    parallel_for(0, static_cast<std::int64_t>(receiving), [&](std::int64_t i) {
+      const auto job = std::prev(std::upper_bound(jobs.begin(), jobs.end(), static_cast<size_t>(i),
+                                                  [](size_t k, const ReceivingSide& s) { return k < s.first; }));
+      const size_t e = static_cast<size_t>(i) - job->first;
+      SideState& st = state[job->side];
+      Gathered& h = gain[static_cast<size_t>(i)];
+      // A covered part receives nothing: its radiosity is the exposed part's.
+      h.mean *= st.exposed_at(e);
+      const Rgb& reflectance = mesh.surfaces[job->side].reflectance;
+      st.irradiance[e] += h.mean;
+      st.radiosity[e] += reflectance * h.at_center;
+      st.unshot[e] += reflectance * h.mean;
+    });
     Rgb delivered = Rgb::Zero();
     for (const ReceivingSide& job : jobs) {
       const MeshSurface& receiver = mesh.surfaces[job.side];
-      SideState& st = state[job.side];
-      for (size_t e = 0; e < receiver.elements.size(); ++e) {
-        const Gathered& h = gain[job.first + e];
-        // A covered part receives nothing: its radiosity is the exposed part's.
-        const Rgb mean = st.exposed_at(e) * h.mean;
-        st.irradiance[e] += mean;
-        st.radiosity[e] += receiver.reflectance * h.at_center;
-        st.unshot[e] += receiver.reflectance * mean;
-        delivered += receiver.elements[e].area_m2 * mean;
-      }
+      for (size_t e = 0; e < receiver.elements.size(); ++e) delivered += receiver.elements[e].area_m2 * gain[job.first + e].mean;
       update_patch_power(job.side);
     }
     escaped += shot_power - delivered;
