@@ -45,7 +45,7 @@ inline constexpr double kFarFieldLeastIrradianceFraction = 1e-2;
 /// An element whose gathered irradiance falls below this fraction of the estimate its budget was
 /// made for (the whole patch's, at its centre) gathers again with the budget of what it got.
 inline constexpr double kFarFieldRegatherRatio = 0.5;
-/// The far field (solver/shooter_tree.h far_field_radiosity()) is of second order while the
+/// The far field (solver/far_field.h far_field_radiosity()) is of second order while the
 /// kernel's second-order term over the block, relative to the kernel, is at most this; beyond,
 /// the orders it leaves out are no longer small (and 1 / shape could change sign): first order.
 /// Its error estimate (far_field_error()) is trusted while R^2 (|g_t|^2 + 4 / |d|^2) / 2 is at
@@ -242,7 +242,7 @@ inline constexpr double kRepeatedCornerRelative = 1e-9;
 /// Progressive refinement gathers a receiving element's irradiance at its centre (the midpoint
 /// rule, relative error of order (size / distance)^2) while its size is below this fraction of
 /// its distance to the shooting block's bounding sphere, and as the element's mean by a Gauss
-/// rule (solver/shooter_tree.h gather()) when it is nearer: point collocation near a
+/// rule (solver/gather.h gather()) when it is nearer: point collocation near a
 /// shooter gains or loses power with every bounce (0.4% of the shot in a closed room at grid:12).
 /// Not larger: at 1/8 (a third of the Gauss points in the paper's reference) the closed room still
 /// kept its energy to 3.3e-4, but the Cornell box's block sides erred by up to 6.5% on their row
@@ -250,7 +250,7 @@ inline constexpr double kRepeatedCornerRelative = 1e-9;
 /// 1/32 agree there to 0.5%).
 inline constexpr double kMidpointReceiverRatio = 1.0 / 16;
 
-/// The far-field correction of progressive refinement (solver/shooter_tree.cpp
+/// The far-field correction of progressive refinement (solver/far_field.cpp
 /// far_field_radiosity()) divides by the cosines at both ends of the kernel: at grazing angles,
 /// below this cosine, the block shoots with its mean radiosity alone.
 inline constexpr double kKernelCosine = 1e-3;

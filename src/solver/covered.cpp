@@ -51,7 +51,10 @@ std::vector<std::vector<ConvexPolygon>> covers_by_surface(const Scene& scene) {
   return out;
 }
 
-double exposed_fraction(const ConvexPolygon& part, const Vec3& normal, std::span<const ConvexPolygon> covers) {
+double exposed_fraction(std::span<const Vec3> corners, const Vec3& normal, std::span<const ConvexPolygon> covers) {
+  if (covers.empty()) return 1.0;
+  ConvexPolygon part;
+  for (const Vec3& c : corners) part.push(c);
   const double whole = area(part);
   if (covers.empty() || !(whole > 0)) return 1.0;
   double covered = 0;

@@ -17,9 +17,10 @@ namespace radrecon {
 /// (a model of 11,000 triangles: 1.2 s of lies_on() tests before).
 std::vector<std::vector<ConvexPolygon>> covers_by_surface(const Scene& scene);
 
-/// The fraction of the convex polygon `part`, in the plane of a surface with unit normal
-/// `normal`, that `covers` (convex, in the same plane) leave exposed: 1 - the sum of its
-/// overlaps with each over its area, in [0, 1] (covers that overlap each other count twice).
-double exposed_fraction(const ConvexPolygon& part, const Vec3& normal, std::span<const ConvexPolygon> covers);
+/// The fraction of the convex polygon of corners `part` (an element, a quadtree node), in the
+/// plane of a surface with unit normal `normal`, that `covers` (convex, in the same plane) leave
+/// exposed: 1 - the sum of its overlaps with each over its area, in [0, 1] (covers that overlap
+/// each other count twice).
+double exposed_fraction(std::span<const Vec3> part, const Vec3& normal, std::span<const ConvexPolygon> covers);
 
 }  // namespace radrecon

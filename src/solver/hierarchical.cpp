@@ -29,8 +29,7 @@ namespace {
 using hierarchy::Link;
 using hierarchy::NodeState;
 using hierarchy::Tree;
-using hierarchy::add_absorbed;
-using hierarchy::collect_leaves;
+using hierarchy::add_surfaces;
 using hierarchy::gather_over_links;
 
 /// Thrown when a hierarchy would exceed HierarchicalOptions::max_links.
@@ -110,23 +109,7 @@ class Hierarchy {
     st.residual = residual_;
     st.converged = converged_;
     st.seconds = seconds_;
-    for (const Tree& t : trees_) {
-      const Surface& surface = scene_.surfaces[t.scene_surface];
-      SurfaceSolution out;
-      out.name = t.name;
-      out.scene_surface = surface.name;
-      out.back_side = t.back_side;
-      out.length_u_m = surface.length_u_m();
-      out.length_v_m = surface.length_v_m();
-      out.shear_m = surface.shear_m();
-      out.triangle = surface.is_triangle();
-      collect_leaves(t, out);
-      st.emitted_w += t.at(0).exposed * t.node(0).area_m2 * t.emission_w_m2;
-      st.elements += out.elements.size();
-      sol.surfaces.push_back(std::move(out));
-    }
-    for (const Tree& t : trees_) add_absorbed(t, st.absorbed_w);
-    st.escaped_w = st.emitted_w - st.absorbed_w;  // what is not absorbed has left the scene
+    add_surfaces(scene_, trees_, sol);
     return sol;
   }
 

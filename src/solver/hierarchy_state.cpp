@@ -57,16 +57,30 @@ bool gather_over_links(std::vector<Tree>& trees, const std::vector<Link>& links,
   return false;
 }
 
-void collect_leaves(const Tree& t, SurfaceSolution& out) {
-  for (const int k : t.quad.leaves()) {
-    const QuadNode& n = t.node(k);
-    out.elements.push_back({n, n.center, n.area_m2, t.at(k).radiosity});
+void add_surfaces(const Scene& scene, const std::vector<Tree>& trees, Solution& sol) {
+  SolveStats& st = sol.stats;
+  for (const Tree& t : trees) {
+    const Surface& surface = scene.surfaces[t.scene_surface];
+    SurfaceSolution out;
+    out.name = t.name;
+    out.scene_surface = surface.name;
+    out.back_side = t.back_side;
+    out.length_u_m = surface.length_u_m();
+    out.length_v_m = surface.length_v_m();
+    out.shear_m = surface.shear_m();
+    out.triangle = surface.is_triangle();
+    for (const int k : t.quad.leaves()) {
+      const QuadNode& n = t.node(k);
+      out.elements.push_back({n, n.center, n.area_m2, t.at(k).radiosity});
+    }
+    st.emitted_w += t.at(0).exposed * t.node(0).area_m2 * t.emission_w_m2;
+    st.elements += out.elements.size();
+    sol.surfaces.push_back(std::move(out));
   }
-}
-
-void add_absorbed(const Tree& t, Rgb& absorbed) {
-  for (const int k : t.quad.leaves())
-    absorbed += t.at(k).exposed * t.node(k).area_m2 * (1.0 - t.reflectance) * t.at(k).irradiance;
+  for (const Tree& t : trees)
+    for (const int k : t.quad.leaves())
+      st.absorbed_w += t.at(k).exposed * t.node(k).area_m2 * (1.0 - t.reflectance) * t.at(k).irradiance;
+  st.escaped_w = st.emitted_w - st.absorbed_w;  // what is not absorbed has left the scene
 }
 
 }  // namespace radrecon::hierarchy

@@ -42,11 +42,8 @@ struct Tree {
   std::vector<ConvexPolygon> covers;
   /// The fraction of node k that `covers` leave exposed.
   double exposed_fraction_of(int k) const {
-    if (covers.empty()) return 1.0;
-    ConvexPolygon part;
     const QuadNode& n = node(k);
-    for (int c = 0; c < n.vertex_count(); ++c) part.push(n.corners[static_cast<size_t>(c)]);
-    return exposed_fraction(part, normal, covers);
+    return exposed_fraction({n.corners.data(), static_cast<size_t>(n.vertex_count())}, normal, covers);
   }
   const QuadNode& node(int k) const { return quad.node(k); }
   NodeState& at(int k) { return state[static_cast<size_t>(k)]; }
@@ -66,10 +63,9 @@ struct Link {
 bool gather_over_links(std::vector<Tree>& trees, const std::vector<Link>& links, int max_iterations, double tolerance,
                        double& residual);
 
-/// The tree's leaves as solution elements (their radiosity), in leaf order.
-void collect_leaves(const Tree& t, SurfaceSolution& out);
-
-/// Adds the power the tree's leaves absorb, W per channel.
-void add_absorbed(const Tree& t, Rgb& absorbed);
+/// Adds each tree to the solution as a surface side (its leaves as the elements, with their
+/// radiosity, in leaf order), and to its stats the power emitted and absorbed, W per channel
+/// (the covered parts' excluded), what escaped, and the element count.
+void add_surfaces(const Scene& scene, const std::vector<Tree>& trees, Solution& sol);
 
 }  // namespace radrecon::hierarchy

@@ -15,6 +15,7 @@
 #include "core/tolerances.h"
 #include "solver/bvh.h"
 #include "solver/covered.h"
+#include "solver/gather.h"
 #include "solver/shooter_tree.h"
 #include "solver/visibility.h"
 
@@ -98,9 +99,8 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
     if (!covers.empty()) {
       st.exposed.resize(side.elements.size());
       for (size_t e = 0; e < side.elements.size(); ++e) {
-        ConvexPolygon part;
-        for (int k = 0; k < side.elements[e].corner_count(); ++k) part.push(side.elements[e].corners[static_cast<size_t>(k)]);
-        st.exposed[e] = exposed_fraction(part, side.normal, covers);
+        const MeshElement& element = side.elements[e];
+        st.exposed[e] = exposed_fraction({element.corners.data(), static_cast<size_t>(element.corner_count())}, side.normal, covers);
       }
     }
     st.radiosity.assign(side.elements.size(), side.emission_w_m2);
@@ -209,10 +209,14 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
                                  receiver.scene_surface, shooter_side.scene_surface);
     });
     gain.resize(receiving);  // every entry is written below: no need to clear it first
+    // The receiving side of the receiving element of index i.
+    const auto job_of = [&](std::int64_t i) {
+      return std::prev(std::upper_bound(jobs.begin(), jobs.end(), static_cast<size_t>(i),
+                                        [](size_t k, const ReceivingSide& s) { return k < s.first; }));
+    };
     // The receiving element of index i: its side's job and its index on that side.
     const auto receiving_element = [&](std::int64_t i) {
-      const auto job = std::prev(std::upper_bound(jobs.begin(), jobs.end(), static_cast<size_t>(i),
-                                                  [](size_t k, const ReceivingSide& s) { return k < s.first; }));
+      const auto job = job_of(i);
       const size_t e = static_cast<size_t>(i) - job->first;
       const MeshSurface& receiver = mesh.surfaces[job->side];
       return std::pair{job, make_receiver(scene.surfaces[receiver.scene_surface], receiver.elements[e], receiver.normal)};
@@ -298,8 +302,7 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
     });
     // What each element keeps, side by side; the power delivered summed in order, on one thread.
     parallel_for(0, static_cast<std::int64_t>(receiving), [&](std::int64_t i) {
-      const auto job = std::prev(std::upper_bound(jobs.begin(), jobs.end(), static_cast<size_t>(i),
-                                                  [](size_t k, const ReceivingSide& s) { return k < s.first; }));
+      const auto job = job_of(i);
       const size_t e = static_cast<size_t>(i) - job->first;
       SideState& st = state[job->side];
       Gathered& h = gain[static_cast<size_t>(i)];

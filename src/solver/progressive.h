@@ -39,7 +39,7 @@ struct ProgressiveOptions {
   /// of its irradiance (gathered so far plus this shot's); the errors of successive shots add
   /// up, and the element's mean (its power) is estimated rather than bounded. 0: blocks shoot as
   /// one beyond tol::kFarFieldDiagonals of their diagonal instead, with no bound. See gather()
-  /// in solver/shooter_tree.h.
+  /// in solver/gather.h.
   double far_field_error = kDefaultFarFieldError;
   /// Name printed in progress messages on stderr; empty: quiet.
   std::string progress_label;

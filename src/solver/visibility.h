@@ -77,7 +77,7 @@ void shadow_volumes(const Vec3& p, const Vec3& n, const std::vector<const Occlud
 /// `partly_seen`, when given, is set to whether p may see only part of the polygon: some of it
 /// lies behind p's plane (the horizon) or some occluder's shadow falls on it, and not all of it
 /// is hidden. A shooter block of varying radiosity seen in part is not represented by its
-/// far field (solver/shooter_tree.h, gather()).
+/// far field (solver/gather.h gather()).
 double visible_form_factor(const Vec3& p, const Vec3& n, const ConvexPolygon& shooter,
                            const Vec3& shooter_normal,
                            const std::vector<const Occluder*>& occluders, bool* partly_seen = nullptr);

@@ -13,6 +13,7 @@ namespace covered_test {
 
 using testing_support::quad;
 
+/// The corners as a polygon (a cover).
 ConvexPolygon polygon(std::initializer_list<Vec3> corners) {
   ConvexPolygon p;
   for (const Vec3& c : corners) p.push(c);
@@ -22,7 +23,7 @@ ConvexPolygon polygon(std::initializer_list<Vec3> corners) {
 TEST(Covered, ExposedFractionIsOneMinusTheOverlapOverTheArea) {
   // A 1 x 1 m element in z = 0 facing +z (and the same corners read facing -z: the orientation
   // of neither polygon matters).
-  const ConvexPolygon element = polygon({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}});
+  const std::vector<Vec3> element = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
   const std::vector<ConvexPolygon> square = {polygon({{0.5, 0.25, 0}, {2, 0.25, 0}, {2, 2, 0}, {0.5, 2, 0}})};
   for (const Vec3& normal : {Vec3(0, 0, 1), Vec3(0, 0, -1)}) {
     EXPECT_NEAR(exposed_fraction(element, normal, square), 1 - 0.5 * 0.75, 1e-15);  // overlap 0.5 x 0.75
@@ -48,7 +49,7 @@ TEST(Covered, ALampOnACeilingCoversItAndNotTheFloor) {
   const std::vector<ConvexPolygon>& on_ceiling = covers[0];
   ASSERT_EQ(on_ceiling.size(), 1u);
   // The whole ceiling: the lamp hides 0.5 of its 7.5 m^2.
-  const ConvexPolygon ceiling = polygon({{0, 0, 2}, {0, 2.5, 2}, {3, 2.5, 2}, {3, 0, 2}});
+  const std::vector<Vec3> ceiling = {{0, 0, 2}, {0, 2.5, 2}, {3, 2.5, 2}, {3, 0, 2}};
   EXPECT_NEAR(exposed_fraction(ceiling, scene.surfaces[0].normal(), on_ceiling), 1 - 0.5 / 7.5, 1e-14);
   EXPECT_TRUE(covers[1].empty());  // the larger ceiling does not lie on the lamp
   EXPECT_TRUE(covers[2].empty());

@@ -13,6 +13,8 @@
 
 #include "mesh/grid_mesh.h"
 #include "solver/form_factor.h"
+#include "solver/far_field.h"
+#include "solver/gather.h"
 #include "solver/shooter_tree.h"
 #include "solver/visibility.h"
 #include "support/scenes.h"

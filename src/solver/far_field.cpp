@@ -1,0 +1,128 @@
+#include "solver/far_field.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "core/tolerances.h"
+
+namespace radrecon {
+
+bool kernel_log_gradient(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal, Vec3& g) {
+  // k = (n_s . d)(-n . d) / (pi |d|^4) with d = x - y (n_s the shooter's normal, n the
+  // receiver's): over y, grad ln k = -n_s / (n_s . d) + n / (-n . d) + 4 d / |d|^2.
+  const Vec3 d = p - b.center;  // from the source point y = c to the receiver x = p
+  const double r2 = d.squaredNorm(), cos_y = shooter_normal.dot(d), cos_x = -n.dot(d);  // times |d|
+  if (!(cos_y > tol::kKernelCosine * std::sqrt(r2) && cos_x > tol::kKernelCosine * std::sqrt(r2))) return false;
+  g = -shooter_normal / cos_y + n / cos_x + 4.0 * d / r2;
+  return true;
+}
+
+namespace {
+
+/// M = H + g g^T at p for the block's centroid: H the Hessian over the source point of ln k,
+/// k = (n_s . d)(-n . d) / (pi |d|^4), d = p - y: -n_s n_s^T / (n_s . d)^2 - n n^T / (n . d)^2 +
+/// 4 (2 d d^T / |d|^4 - I / |d|^2). Symmetric: its upper triangle, row by row (00 01 02 11 12 22).
+std::array<double, 6> kernel_second_order(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal,
+                                          const Vec3& g) {
+  const Vec3 d = p - b.center;
+  const double r2 = d.squaredNorm(), cos_y = shooter_normal.dot(d), cos_x = -n.dot(d);  // times |d|
+  const double wy = 1.0 / (cos_y * cos_y), wx = 1.0 / (cos_x * cos_x), wd = 8.0 / (r2 * r2), wi = 4.0 / r2;
+  const Vec3& s = shooter_normal;
+  const auto entry = [&](int i, int j) {
+    return -wy * s[i] * s[j] - wx * n[i] * n[j] + wd * d[i] * d[j] + g[i] * g[j] - (i == j ? wi : 0.0);
+  };
+  return {entry(0, 0), entry(0, 1), entry(0, 2), entry(1, 1), entry(1, 2), entry(2, 2)};
+}
+
+/// sum over i, j of M_ij S_ij for M as kernel_second_order() gives it (symmetric) and the moment S
+/// (symmetric but for rounding: both of its off-diagonal entries are read).
+double contract(const std::array<double, 6>& m, const Eigen::Matrix3d& s) {
+  return m[0] * s(0, 0) + m[3] * s(1, 1) + m[5] * s(2, 2) +
+         (m[1] * (s(0, 1) + s(1, 0)) + m[2] * (s(0, 2) + s(2, 0)) + m[4] * (s(1, 2) + s(2, 1)));
+}
+
+}  // namespace
+
+double far_field_error(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal, const Vec3& g) {
+  // The far field is sum_k A_k k(y_k) B_eff against the exact sum_k A_k k(y_k) B_k, with k's
+  // expansion k(c) (1 + g . t + t^T M t / 2) integrated exactly (far_field_radiosity()): it errs
+  // by k(c) sum_k A_k R(t_k) (B_eff - B_k), R the kernel's remainder relative to k(c). That is at
+  // most the form factor times max |R| times the mean deviation of the radiosity from B_eff:
+  // about half the spread (about the mean it is at most that; B_eff is the mean plus
+  // corrections of first and second order). max |R| is read off the kernel itself at the
+  // block's corners and edge midpoints: the leading remainder, a cubic form in t, takes at most
+  // tol::kFarFieldRemainderSamplingBox times its largest value there anywhere on a box (other
+  // blocks: at each edge's quarters, kFarFieldRemainderSamplingOther). Where the far field is
+  // first order only (far_field_radiosity()), R is the remainder after the linear term.
+  //
+  // The cubic term dominates while the kernel's logarithm changes little over the block: its
+  // gradient in the shooter's plane g_t, and the curvature 4 / |d|^2 of -4 ln |d|; beyond, the
+  // block splits (the higher orders compete, and a closed room lost 2.3e-4 of its power instead
+  // of 8e-6). The receiver's cosine is linear over the block: its curvature, large near the
+  // receiver's plane, is no limit. The kernel must be positive at every point read: a block cut
+  // by the receiver's plane has no expansion.
+  const Vec3 g_t = g - g.dot(shooter_normal) * shooter_normal;
+  const double radius = b.radius_m;
+  if (!(0.5 * radius * radius * (4.0 / (p - b.center).squaredNorm() + g_t.squaredNorm()) <= tol::kFarFieldCurvatureLimit))
+    return std::numeric_limits<double>::infinity();
+  const auto kernel = [&](const Vec3& y) {
+    const Vec3 d = p - y;
+    const double r2 = d.squaredNorm();
+    return shooter_normal.dot(d) * -n.dot(d) / (r2 * r2);
+  };
+  const double k_c = kernel(b.center);
+  if (!(k_c > 0)) return std::numeric_limits<double>::infinity();
+  const std::array<double, 6> m = kernel_second_order(b, p, n, shooter_normal, g);
+  const bool second = std::abs(0.5 * contract(m, b.area_moment)) <= tol::kFarFieldCurvatureLimit;
+  double worst = 0;
+  const auto check = [&](const Vec3& y) {
+    const Vec3 t = y - b.center;
+    const double k = kernel(y);
+    if (!(k > 0)) return false;
+    double taylor = 1.0 + g.dot(t);
+    if (second)
+      taylor += 0.5 * (m[0] * t[0] * t[0] + m[3] * t[1] * t[1] + m[5] * t[2] * t[2] +
+                       2.0 * (m[1] * t[0] * t[1] + m[2] * t[0] * t[2] + m[4] * t[1] * t[2]));
+    worst = std::max(worst, std::abs(k / k_c - taylor));
+    return true;
+  };
+  // A box's corners and edge midpoints; on other blocks those lie on three lines through the
+  // centroid for a triangle (its medians), where a cubic form can vanish: each edge's quarters.
+  const bool box = b.corner_count == 4;
+  const int per_edge = box ? 2 : 4;
+  for (int a = 0; a < b.corner_count; ++a) {
+    const Vec3& y0 = b.corners[a];
+    const Vec3& y1 = b.corners[(a + 1) % b.corner_count];
+    for (int k = 0; k < per_edge; ++k)
+      if (!check(y0 + (static_cast<double>(k) / per_edge) * (y1 - y0))) return std::numeric_limits<double>::infinity();
+  }
+  const double sampling = box ? tol::kFarFieldRemainderSamplingBox : tol::kFarFieldRemainderSamplingOther;
+  return 0.5 * sampling * worst;
+}
+
+
+Rgb far_field_radiosity(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal) {
+  Vec3 g;
+  return far_field_radiosity(b, p, n, shooter_normal, kernel_log_gradient(b, p, n, shooter_normal, g) ? &g : nullptr);
+}
+
+Rgb far_field_radiosity(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal, const Vec3* gradient) {
+  if (gradient == nullptr) return b.unshot_w_m2;
+  const Vec3& g = *gradient;
+  const std::array<double, 6> m = kernel_second_order(b, p, n, shooter_normal, g);
+  const double shape = 1.0 + 0.5 * contract(m, b.area_moment);
+  Rgb corrected = (g.transpose() * b.dipole).transpose().array();
+  // Where the second-order term is not small (near grazing, or a block near the receiver that
+  // shoots whole by the strict bound or the distance rule) the expansion is not to be trusted,
+  // and 1 / shape could even change sign: first order only.
+  if (std::abs(shape - 1.0) <= tol::kFarFieldCurvatureLimit) {
+    for (int c = 0; c < 3; ++c) corrected[c] += 0.5 * contract(m, b.quadrupole[static_cast<size_t>(c)]);
+    corrected /= shape;
+  }
+  corrected += b.unshot_w_m2;
+  return corrected.max(b.lowest_w_m2).min(b.highest_w_m2);
+}
+
+}  // namespace radrecon

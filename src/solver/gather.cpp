@@ -1,0 +1,174 @@
+#include "solver/gather.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "core/tolerances.h"
+#include "solver/far_field.h"
+
+namespace radrecon {
+
+GaussPoints gauss_points(const ParamCell& e) {
+  GaussPoints out;
+  if (e.is_triangle()) {
+    const auto v = e.vertices();
+    for (int k = 0; k < 3; ++k) out.uv[out.count++] = (4.0 * v[k] + v[(k + 1) % 3] + v[(k + 2) % 3]) / 6.0;
+    return out;
+  }
+  const double g = 0.5 / std::sqrt(3.0);  // Gauss-Legendre nodes at the centre +- half-width / sqrt(3)
+  const double um = 0.5 * (e.u0 + e.u1), vm = 0.5 * (e.v0 + e.v1);
+  const double du = (e.u1 - e.u0) * g, dv = (e.v1 - e.v0) * g;
+  for (const double sv : {-1.0, 1.0})
+    for (const double su : {-1.0, 1.0}) out.uv[out.count++] = Vec2(um + su * du, vm + sv * dv);
+  return out;
+}
+
+Receiver make_receiver(const Surface& surface, const MeshElement& e, const Vec3& normal) {
+  Receiver r;
+  r.center = e.center;
+  r.normal = normal;
+  r.size_m = std::max((e.corners[2] - e.corners[0]).norm(), (e.corners[3] - e.corners[1]).norm());
+  const GaussPoints g = gauss_points(e);
+  for (int k = 0; k < g.count; ++k) r.gauss[k] = surface.point(g.uv[k].x(), g.uv[k].y());
+  r.gauss_count = g.count;
+  return r;
+}
+
+double form_factor_bound(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal) {
+  const double d = (p - b.center).norm() - b.radius_m;  // no point of the block is nearer to p
+  if (!(d > 0)) return std::numeric_limits<double>::infinity();
+  const double h = shooter_normal.dot(p - b.center);  // cos_y = h / r, the same plane for all y
+  double lift = 0;  // n . (y - p) is linear in y: largest at a corner
+  for (int k = 0; k < b.corner_count; ++k) lift = std::max(lift, n.dot(b.corners[k] - p));
+  if (!(h > 0) || !(lift > 0)) return 0;
+  return b.area_m2 * std::min(1.0, lift / d) * std::min(1.0, h / d) / (std::numbers::pi * d * d);
+}
+
+bool gathers_at_centre(const Block& b, const Receiver& r) {
+  const double gap_m = (r.center - b.center).norm() - 0.5 * b.diagonal_m;
+  return r.size_m <= tol::kMidpointReceiverRatio * gap_m;
+}
+
+namespace {
+
+/// What shoots_whole() found at the receiving element's centre, for gather() to reuse: the
+/// visible form factor (-1 if not computed) and the kernel's log-gradient (if computed: `g` when
+/// `expands`, else the angle is grazing).
+struct AtCentre {
+  double f = -1;
+  bool partly_seen = false;  ///< with f: whether the centre sees the block in part
+  bool gradient_known = false, expands = false;
+  Vec3 g;
+};
+
+/// Whether the block may shoot to the receiving element as one source: see gather(). Fills
+/// `centre` with what it computed there to decide. `midpoint`: the element gathers at its
+/// centre alone.
+bool shoots_whole(const Block& b, const ConvexPolygon& poly, const Receiver& r, const Vec3& shooter_normal,
+                  const ReceiverShadows& shadows, double budget_w_m2, bool midpoint, AtCentre& centre) {
+  double& f = centre.f;
+  if (b.first_child < 0 || b.uniform) return true;
+  const Vec3 &p = r.center, &n = r.normal;
+  if (budget_w_m2 <= 0) {
+    const double far_m = tol::kFarFieldDiagonals * b.diagonal_m;
+    return (p - b.center).squaredNorm() > far_m * far_m;
+  }
+  const double spread = (b.highest_w_m2 - b.lowest_w_m2).sum();
+  // Any far field lies in [lowest, highest] times the visible form factor, as the children's sum
+  // does: a strict bound with form_factor_bound() at the centre (the Gauss points, which only
+  // the element's power uses, are within half its size of it).
+  double form_factor = form_factor_bound(b, p, n, shooter_normal);
+  if (form_factor * spread <= budget_w_m2) return true;
+  if (!std::isfinite(form_factor)) return false;
+  // The far field is exact to second order, whatever the radiosity over the block
+  // (far_field_radiosity()): what is left is the spread times the kernel's third order,
+  // provided the centre sees all of the block (else the kernel seen is cut).
+  centre.gradient_known = true;
+  centre.expands = kernel_log_gradient(b, p, n, shooter_normal, centre.g);
+  const double error_per_spread = centre.expands ? far_field_error(b, p, n, shooter_normal, centre.g)
+                                                 : std::numeric_limits<double>::infinity();
+  // Off the midpoint the bound's form factor stays: without the visible one, the block splits.
+  if (!midpoint && !(form_factor * spread * error_per_spread <= budget_w_m2)) return false;
+  if (f < 0) f = visible_form_factor_past(p, n, poly, shooter_normal, shadows.at(0), &centre.partly_seen);
+  const bool partly_seen = centre.partly_seen;
+  // A block seen in part splits: it would shoot with the mean of all of it, an error within the
+  // bound but of one sign for every element that sees the same part (the ground's blocks behind
+  // a wall's horizon), which adds up over the shots: the paper's walls were 0.1% too dark.
+  if (partly_seen) return false;
+  if (midpoint) {
+    // The element gathers at its centre alone: bound with the visible form factor there.
+    form_factor = f;
+    if (f * spread <= budget_w_m2) return true;
+  }
+  return form_factor * spread * error_per_spread <= budget_w_m2;
+}
+
+}  // namespace
+
+std::span<const ShadowVolume> ReceiverShadows::at(int point) const {
+  RR_CHECK(point >= 0 && point <= r_.gauss_count, "receiver point out of range");
+  const size_t k = static_cast<size_t>(point);
+  if (!made_[k]) {
+    if (find_ != nullptr && !found_) {
+      call_find_(find_);
+      found_ = true;
+    }
+    shadow_volumes(point == 0 ? r_.center : r_.gauss[k - 1], r_.normal, occluders_, volumes_[k]);
+    made_[k] = true;
+  }
+  return volumes_[k];
+}
+
+thread_local std::array<std::vector<ShadowVolume>, 5> ReceiverShadows::volumes_;
+
+Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, const Vec3& shooter_normal,
+                const ReceiverShadows& shadows, double budget_w_m2, const SeenFromCentre* seen) {
+  Gathered out;
+  if ((b.highest_w_m2 == 0).all()) return out;
+  AtCentre centre;
+  if (seen != nullptr) centre.f = seen->form_factor, centre.partly_seen = seen->partly;
+  // The budget is shared among the blocks in proportion to their area: those that shoot as one
+  // tile the patch, so their errors add up to at most budget_w_m2.
+  const double share = budget_w_m2 * b.area_m2 / tree.root().area_m2;
+  const bool midpoint = gathers_at_centre(b, r);
+  ConvexPolygon poly;  // the block's outline, for its form factors
+  for (int k = 0; k < b.corner_count; ++k) poly.push(b.corners[k]);
+  if (!shoots_whole(b, poly, r, shooter_normal, shadows, share, midpoint, centre)) {
+    for (int c = 0; c < b.child_count; ++c)
+      out += gather(tree, tree.block(b.first_child + c), r, shooter_normal, shadows, budget_w_m2);
+    return out;
+  }
+  const auto at = [&](const Vec3& p, int point, double f, const AtCentre* known) -> Rgb {
+    if (f < 0) f = visible_form_factor_past(p, r.normal, poly, shooter_normal, shadows.at(point));
+    if (f == 0 || b.uniform) return f * b.unshot_w_m2;
+    if (known != nullptr && known->gradient_known)
+      return f * far_field_radiosity(b, p, r.normal, shooter_normal, known->expands ? &known->g : nullptr);
+    return f * far_field_radiosity(b, p, r.normal, shooter_normal);
+  };
+  out.at_center = at(r.center, 0, centre.f, &centre);
+  if (midpoint) {
+    out.mean = out.at_center;
+  } else {
+    // The Gauss points' form factors together: those that see all of the block in one
+    // vectorised integral.
+    std::array<double, 4> f;
+    const size_t count = static_cast<size_t>(r.gauss_count);
+    double* kept = seen != nullptr ? seen->gauss : nullptr;  // the block's, from an earlier gather
+    if (kept != nullptr && !std::isnan(kept[0])) {
+      std::copy(kept, kept + count, f.begin());
+    } else {
+      std::array<std::span<const ShadowVolume>, 4> volumes;
+      for (size_t k = 0; k < count; ++k) volumes[k] = shadows.at(static_cast<int>(k) + 1);
+      visible_form_factors_past({r.gauss.data(), count}, r.normal, poly, shooter_normal, {volumes.data(), count},
+                                {f.data(), count});
+      if (kept != nullptr) std::copy(f.begin(), f.begin() + static_cast<std::ptrdiff_t>(count), kept);
+    }
+    for (size_t k = 0; k < count; ++k) out.mean += at(r.gauss[k], static_cast<int>(k) + 1, f[k], nullptr);
+    out.mean /= r.gauss_count;
+  }
+  return out;
+}
+
+}  // namespace radrecon

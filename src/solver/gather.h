@@ -1,0 +1,123 @@
+#pragma once
+// What a receiving element gathers from a shooting patch (solver/shooter_tree.h) in one shot of
+// progressive refinement: the patch's blocks that may shoot as one (solver/far_field.h) by an
+// error budget, their form factors at the element's centre and Gauss points, shadows included.
+
+#include <array>
+#include <span>
+#include <vector>
+
+#include "solver/shooter_tree.h"
+#include "solver/visibility.h"
+
+namespace radrecon {
+
+/// A receiving element as gather() sees it: its centre, and the points of a Gauss rule over it
+/// for the blocks it is near to.
+struct Receiver {
+  Vec3 center, normal;
+  double size_m = 0;  ///< the longer diagonal, metres
+  std::array<Vec3, 4> gauss;
+  int gauss_count = 0;
+};
+
+/// The Gauss rule's points over a cell, in (u, v), equal weights: exact for cubics on a box
+/// (2 x 2 points), for quadratics on a triangle (3 points at barycentric (2/3, 1/6, 1/6) and its
+/// permutations); the surface's Jacobian taken as constant over the cell (exact for
+/// parallelograms and triangles).
+struct GaussPoints {
+  std::array<Vec2, 4> uv;
+  int count = 0;
+};
+GaussPoints gauss_points(const ParamCell& cell);
+
+/// The element as a receiver: its centre and its Gauss points on the surface.
+Receiver make_receiver(const Surface& surface, const MeshElement& e, const Vec3& normal);
+
+/// An upper bound of the unoccluded form factor from a differential area at p (unit normal n)
+/// to the block: A cos_x cos_y / (pi r^2) with r no less than p's distance d to the block's
+/// bounding sphere, cos_y = h / r (h: p's height over the shooter's plane) and cos_x no more
+/// than the largest height of a corner over p's plane divided by d. Infinite when p is inside
+/// the bounding sphere; 0 when p cannot see the block's front.
+double form_factor_bound(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal);
+
+/// Whether the receiving element gathers from the block at its centre alone (the midpoint rule):
+/// its size is small against its distance to the block (tol::kMidpointReceiverRatio); else its
+/// mean is gathered at its Gauss points. See gather().
+bool gathers_at_centre(const Block& b, const Receiver& r);
+
+/// What a receiving element gathers from one shot, W/m^2 per channel.
+struct Gathered {
+  Rgb at_center = Rgb::Zero();  ///< the irradiance at its centre: its radiosity's
+  Rgb mean = Rgb::Zero();       ///< its mean irradiance: the power it absorbs and reflects
+  Gathered& operator+=(const Gathered& o) {
+    at_center += o.at_center;
+    mean += o.mean;
+    return *this;
+  }
+};
+
+/// The occluders' shadow volumes (visibility.h) as a receiving element's centre (point 0) and
+/// Gauss points (1 to gauss_count) see them: each point's made on first use and kept for every
+/// polygon it looks at (the blocks of a shooting patch, the whole patch). The volumes live in
+/// buffers of the calling thread: one at a time per thread. Receiver and occluders must outlive it.
+class ReceiverShadows {
+ public:
+  ReceiverShadows(const Receiver& r, const std::vector<const Occluder*>& occluders) : r_(r), occluders_(occluders) {}
+  /// The occluders found on first need: find() fills `occluders` before the first volume is
+  /// made (a gather that needs no shadow, such as a late shot's patch shooting whole with its
+  /// form factor known, then never searches for them). `find` is held by reference, as
+  /// ThreadJob holds its callable: it must outlive this.
+  template <typename Find>
+  ReceiverShadows(const Receiver& r, const std::vector<const Occluder*>& occluders, const Find& find)
+      : r_(r), occluders_(occluders), find_(&find), call_find_([](const void* f) { (*static_cast<const Find*>(f))(); }) {}
+  std::span<const ShadowVolume> at(int point) const;
+
+ private:
+  const Receiver& r_;
+  const std::vector<const Occluder*>& occluders_;
+  const void* find_ = nullptr;  ///< null: the occluders are given
+  void (*call_find_)(const void*) = nullptr;
+  mutable bool found_ = false;
+  mutable std::array<bool, 5> made_{};
+  static thread_local std::array<std::vector<ShadowVolume>, 5> volumes_;
+};
+
+/// A polygon's visible form factor at a receiving element's centre, and whether the centre sees
+/// it in part (visible_form_factor_past()'s value and `partly_seen`); and, if `gauss` is given,
+/// its visible form factors at the element's Gauss points: NaN in gauss[0] until gather()
+/// computes them (it then stores them there), else used as they are.
+struct SeenFromCentre {
+  double form_factor;
+  bool partly;
+  double* gauss = nullptr;  ///< Receiver::gauss_count values
+};
+
+/// Irradiance on the receiving element from the shooter's unshot radiosity: the block as a whole
+/// when it is uniform or a single element, or when it may shoot as one; else the sum over its
+/// children. With `budget_w_m2` <= 0 a block may shoot as one beyond tol::kFarFieldDiagonals of
+/// its diagonal from the element's centre. With a budget, while its error estimate at the
+/// centre is at most the budget's share in proportion to its area (the shares of the blocks that
+/// shoot as one add up to the budget):
+/// - its form factor times the spread of its unshot radiosity (channels summed), a strict bound:
+///   the far field and the children's sum both lie in [lowest, highest] times the visible form
+///   factor. The form factor is form_factor_bound(), or the visible form factor itself when the
+///   element gathers at its centre alone and sees all of the block; or, when smaller,
+/// - the same form factor times the spread times far_field_error(): the far field errs to third
+///   order for any radiosity over the block; used only if the centre sees the whole block (a
+///   block cut by the receiver's horizon or a shadow is seen through part of it only) and the
+///   estimate is finite.
+/// The element's radiosity is its value at its centre (what reconstructions sample); its power
+/// is its mean, the midpoint rule's (the centre's value, relative error of order
+/// (size / distance)^2) unless the element is large against its distance to the block
+/// (tol::kMidpointReceiverRatio): then by the Gauss rule, so that no power is gained or lost by
+/// point collocation next to the shooter.
+///
+/// `seen`, if given, holds what visible_form_factor_past() gives for the block's outline at the
+/// element's centre with shadows.at(0): gather() then does not compute it again. If its `gauss`
+/// is given too, gather() takes the block's form factors at the Gauss points from there, or
+/// computes them and stores them there (NaN in gauss[0]) when it first needs them.
+Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, const Vec3& shooter_normal,
+                const ReceiverShadows& shadows, double budget_w_m2, const SeenFromCentre* seen = nullptr);
+
+}  // namespace radrecon
