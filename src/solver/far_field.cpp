@@ -24,8 +24,8 @@ namespace {
 /// M = H + g g^T at p for the block's centroid: H the Hessian over the source point of ln k,
 /// k = (n_s . d)(-n . d) / (pi |d|^4), d = p - y: -n_s n_s^T / (n_s . d)^2 - n n^T / (n . d)^2 +
 /// 4 (2 d d^T / |d|^4 - I / |d|^2). Symmetric: its upper triangle, row by row (00 01 02 11 12 22).
-std::array<double, 6> kernel_second_order(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal,
-                                          const Vec3& g) {
+KernelSecondOrder kernel_second_order(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal,
+                                      const Vec3& g) {
   const Vec3 d = p - b.center;
   const double r2 = d.squaredNorm(), cos_y = shooter_normal.dot(d), cos_x = -n.dot(d);  // times |d|
   const double wy = 1.0 / (cos_y * cos_y), wx = 1.0 / (cos_x * cos_x), wd = 8.0 / (r2 * r2), wi = 4.0 / r2;
@@ -38,14 +38,15 @@ std::array<double, 6> kernel_second_order(const Block& b, const Vec3& p, const V
 
 /// sum over i, j of M_ij S_ij for M as kernel_second_order() gives it (symmetric) and the moment S
 /// (symmetric but for rounding: both of its off-diagonal entries are read).
-double contract(const std::array<double, 6>& m, const Eigen::Matrix3d& s) {
+double contract(const KernelSecondOrder& m, const Eigen::Matrix3d& s) {
   return m[0] * s(0, 0) + m[3] * s(1, 1) + m[5] * s(2, 2) +
          (m[1] * (s(0, 1) + s(1, 0)) + m[2] * (s(0, 2) + s(2, 0)) + m[4] * (s(1, 2) + s(2, 1)));
 }
 
 }  // namespace
 
-double far_field_error(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal, const Vec3& g) {
+double far_field_error(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal, const Vec3& g,
+                       std::optional<KernelSecondOrder>* second_order) {
   // The far field is sum_k A_k k(y_k) B_eff against the exact sum_k A_k k(y_k) B_k, with k's
   // expansion k(c) (1 + g . t + t^T M t / 2) integrated exactly (far_field_radiosity()): it errs
   // by k(c) sum_k A_k R(t_k) (B_eff - B_k), R the kernel's remainder relative to k(c). That is at
@@ -74,7 +75,8 @@ double far_field_error(const Block& b, const Vec3& p, const Vec3& n, const Vec3&
   };
   const double k_c = kernel(b.center);
   if (!(k_c > 0)) return std::numeric_limits<double>::infinity();
-  const std::array<double, 6> m = kernel_second_order(b, p, n, shooter_normal, g);
+  const KernelSecondOrder m = kernel_second_order(b, p, n, shooter_normal, g);
+  if (second_order != nullptr) *second_order = m;
   const bool second = std::abs(0.5 * contract(m, b.area_moment)) <= tol::kFarFieldCurvatureLimit;
   double worst = 0;
   const auto check = [&](const Vec3& y) {
@@ -108,10 +110,11 @@ Rgb far_field_radiosity(const Block& b, const Vec3& p, const Vec3& n, const Vec3
   return far_field_radiosity(b, p, n, shooter_normal, kernel_log_gradient(b, p, n, shooter_normal, g) ? &g : nullptr);
 }
 
-Rgb far_field_radiosity(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal, const Vec3* gradient) {
+Rgb far_field_radiosity(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal, const Vec3* gradient,
+                        const KernelSecondOrder* second_order) {
   if (gradient == nullptr) return b.unshot_w_m2;
   const Vec3& g = *gradient;
-  const std::array<double, 6> m = kernel_second_order(b, p, n, shooter_normal, g);
+  const KernelSecondOrder m = second_order != nullptr ? *second_order : kernel_second_order(b, p, n, shooter_normal, g);
   const double shape = 1.0 + 0.5 * contract(m, b.area_moment);
   Rgb corrected = (g.transpose() * b.dipole).transpose().array();
   // Where the second-order term is not small (near grazing, or a block near the receiver that

@@ -3,9 +3,17 @@
 // with to a receiving point, exact to second order in its size over the distance, and the error
 // of doing so.
 
+#include <array>
+#include <optional>
+
 #include "solver/shooter_tree.h"
 
 namespace radrecon {
+
+/// The kernel's second-order term at a receiving point over a block, M = H + g g^T (H the
+/// Hessian of ln k over the source point at the block's centroid, g its gradient), 1/m^2:
+/// symmetric, its upper triangle row by row (00 01 02 11 12 22).
+using KernelSecondOrder = std::array<double, 6>;
 
 /// The radiosity a far block shoots with to the receiver point p (unit normal n), second order:
 /// with k(y) = k(c) exp(g . t + t^T H t / 2 + ...) the point-to-point kernel (k = cos_y cos_x /
@@ -22,7 +30,9 @@ namespace radrecon {
 Rgb far_field_radiosity(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal);
 /// The same with the kernel's log-gradient at p already known: kernel_log_gradient()'s g, or
 /// nullptr where it returned false (grazing: the block's mean).
-Rgb far_field_radiosity(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal, const Vec3* gradient);
+/// `second_order`, if given, is the kernel's second-order term there as far_field_error() found it.
+Rgb far_field_radiosity(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal, const Vec3* gradient,
+                        const KernelSecondOrder* second_order = nullptr);
 
 /// The gradient g over the source point y, at the block's centroid, of ln k(p, y) (see
 /// far_field_radiosity()), 1/m; false at grazing angles (tol::kKernelCosine), where the far
@@ -37,6 +47,9 @@ bool kernel_log_gradient(const Block& b, const Vec3& p, const Vec3& n, const Vec
 /// kernel is not positive at all of them (the block is cut by the receiver's plane), or where
 /// its logarithm varies too much over the block for that (tol::kFarFieldCurvatureLimit). A block's
 /// far field errs by about its spread times its form factor times this, or less.
-double far_field_error(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal, const Vec3& g);
+/// `second_order`, if given, gets the kernel's second-order term where the estimate computed it
+/// (for far_field_radiosity() at the same point, which then need not compute it again).
+double far_field_error(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal, const Vec3& g,
+                       std::optional<KernelSecondOrder>* second_order = nullptr);
 
 }  // namespace radrecon

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 
 #include "core/tolerances.h"
 #include "solver/far_field.h"
@@ -61,6 +62,7 @@ struct AtCentre {
   bool partly_seen = false;  ///< with f: whether the centre sees the block in part
   bool gradient_known = false, expands = false;
   Vec3 g;
+  std::optional<KernelSecondOrder> second_order;  ///< if far_field_error() computed it
 };
 
 /// Whether the block may shoot to the receiving element as one source: see gather(). Fills
@@ -87,7 +89,7 @@ bool shoots_whole(const Block& b, const ConvexPolygon& poly, const Receiver& r, 
   // provided the centre sees all of the block (else the kernel seen is cut).
   centre.gradient_known = true;
   centre.expands = kernel_log_gradient(b, p, n, shooter_normal, centre.g);
-  const double error_per_spread = centre.expands ? far_field_error(b, p, n, shooter_normal, centre.g)
+  const double error_per_spread = centre.expands ? far_field_error(b, p, n, shooter_normal, centre.g, &centre.second_order)
                                                  : std::numeric_limits<double>::infinity();
   // Off the midpoint the bound's form factor stays: without the visible one, the block splits.
   if (!midpoint && !(form_factor * spread * error_per_spread <= budget_w_m2)) return false;
@@ -144,7 +146,8 @@ Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, cons
     if (f < 0) f = visible_form_factor_past(p, r.normal, poly, shooter_normal, shadows.at(point));
     if (f == 0 || b.uniform) return f * b.unshot_w_m2;
     if (known != nullptr && known->gradient_known)
-      return f * far_field_radiosity(b, p, r.normal, shooter_normal, known->expands ? &known->g : nullptr);
+      return f * far_field_radiosity(b, p, r.normal, shooter_normal, known->expands ? &known->g : nullptr,
+                                     known->second_order ? &*known->second_order : nullptr);
     return f * far_field_radiosity(b, p, r.normal, shooter_normal);
   };
   out.at_center = at(r.center, 0, centre.f, &centre);
