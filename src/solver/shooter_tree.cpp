@@ -154,24 +154,30 @@ void ShooterTree::aggregate(Block& b) const {
 ShooterTree::ShooterTree(const Surface& surface, const MeshSurface& side, const std::vector<Rgb>& unshot, int i0,
                          int j0, int i1, int j1, std::vector<Block> storage, const ShooterSplits* splits)
     : surface_(surface), side_(side), unshot_(unshot), splits_(splits), blocks_(std::move(storage)) {
-  // Every field of a block is set when it is built: the storage's old blocks need no clearing.
+  // Every field of a block is set when it is built: the storage's old blocks need no clearing,
+  // and the storage grows only when it holds too few (resize() would construct every block it
+  // adds, 0.6 KB each, on one thread, shot after shot).
+  const auto hold = [&](size_t blocks) {
+    if (blocks_.size() < blocks) blocks_.resize(blocks);
+  };
   if (i1 - i0 == 1 && j1 - j0 == 1) {
-    blocks_.resize(count(i0, j0, i1, j1));
-    RR_CHECK_EQ(build(0, i0, j0, i1, j1, 1), blocks_.size(), "shooter tree: blocks miscounted");
+    const size_t blocks = block_count(side_, splits_, i0, j0, i1, j1);
+    hold(blocks);
+    RR_CHECK_EQ(build(0, i0, j0, i1, j1, 1), blocks, "shooter tree: blocks miscounted");
     return;
   }
   // The whole patch's children, then their subtrees side by side, each from where the blocks
   // of the ones before it end, as a depth-first build would lay them out.
   std::array<std::array<int, 4>, 4> boxes;
-  const int children = child_boxes(i0, j0, i1, j1, boxes);
+  const int children = child_boxes(side_, splits_, i0, j0, i1, j1, boxes);
   std::array<size_t, 4> first_descendant;
   size_t next = 1 + static_cast<size_t>(children);
   for (int c = 0; c < children; ++c) {
     first_descendant[static_cast<size_t>(c)] = next;
     const auto& q = boxes[static_cast<size_t>(c)];
-    next += count(q[0], q[1], q[2], q[3]) - 1;
+    next += block_count(side_, splits_, q[0], q[1], q[2], q[3]) - 1;
   }
-  blocks_.resize(next);
+  hold(next);
   Block& root = blocks_[0];
   root.first_child = 1;
   root.child_count = children;
@@ -181,45 +187,46 @@ ShooterTree::ShooterTree(const Surface& surface, const MeshSurface& side, const 
     const auto& q = boxes[static_cast<size_t>(c)];
     ends[static_cast<size_t>(c)] = build(1 + static_cast<size_t>(c), q[0], q[1], q[2], q[3], first_descendant[static_cast<size_t>(c)]);
   });
-  RR_CHECK_EQ(ends[static_cast<size_t>(children - 1)], blocks_.size(), "shooter tree: blocks miscounted");
+  RR_CHECK_EQ(ends[static_cast<size_t>(children - 1)], next, "shooter tree: blocks miscounted");
   aggregate(root);
 }
 
-int ShooterTree::child_boxes(int i0, int j0, int i1, int j1, std::array<std::array<int, 4>, 4>& boxes) const {
+int ShooterTree::child_boxes(const MeshSurface& side, const ShooterSplits* splits, int i0, int j0, int i1, int j1,
+                             std::array<std::array<int, 4>, 4>& boxes) {
   // The middle, or the split inside (lo, hi) nearest to it.
-  const auto split_at = [](int lo, int hi, const std::vector<int>* splits) {
+  const auto split_at = [](int lo, int hi, const std::vector<int>* at_cells) {
     if (hi - lo <= 1) return hi;
     int at = (lo + hi) / 2;
-    if (splits != nullptr) {
+    if (at_cells != nullptr) {
       int best = -1;
-      for (auto it = std::upper_bound(splits->begin(), splits->end(), lo); it != splits->end() && *it < hi; ++it)
+      for (auto it = std::upper_bound(at_cells->begin(), at_cells->end(), lo); it != at_cells->end() && *it < hi; ++it)
         if (best < 0 || std::abs(*it - at) < std::abs(best - at)) best = *it;
       if (best >= 0) at = best;
     }
     return at;
   };
-  const int mi = split_at(i0, i1, splits_ != nullptr ? &splits_->u : nullptr);
-  const int mj = split_at(j0, j1, splits_ != nullptr ? &splits_->v : nullptr);
+  const int mi = split_at(i0, i1, splits != nullptr ? &splits->u : nullptr);
+  const int mj = split_at(j0, j1, splits != nullptr ? &splits->v : nullptr);
   // A part of the box beyond a triangle's hypotenuse (no elements) is no child.
   int count = 0;
   for (const std::array<int, 4>& q : {std::array<int, 4>{i0, j0, mi, mj}, std::array<int, 4>{mi, j0, i1, mj},
                                       std::array<int, 4>{i0, mj, mi, j1}, std::array<int, 4>{mi, mj, i1, j1}})
-    if (q[2] > q[0] && q[3] > q[1] && (!side_.domain.is_triangle() || q[0] + q[1] <= side_.nu - 1))
+    if (q[2] > q[0] && q[3] > q[1] && (!side.domain.is_triangle() || q[0] + q[1] <= side.nu - 1))
       boxes[static_cast<size_t>(count++)] = q;
   return count;
 }
 
-size_t ShooterTree::count(int i0, int j0, int i1, int j1) const {
+size_t ShooterTree::block_count(const MeshSurface& side, const ShooterSplits* splits, int i0, int j0, int i1, int j1) {
   if (i1 - i0 == 1 && j1 - j0 == 1) {
-    const auto [first, last] = side_.cell_elements(i0, j0);
+    const auto [first, last] = side.cell_elements(i0, j0);
     return 1 + (last - first > 1 ? last - first : 0);  // a cell of two elements: one child each
   }
   std::array<std::array<int, 4>, 4> boxes;
-  const int children = child_boxes(i0, j0, i1, j1, boxes);
+  const int children = child_boxes(side, splits, i0, j0, i1, j1, boxes);
   size_t n = 1;
   for (int c = 0; c < children; ++c) {
     const auto& q = boxes[static_cast<size_t>(c)];
-    n += count(q[0], q[1], q[2], q[3]);
+    n += block_count(side, splits, q[0], q[1], q[2], q[3]);
   }
   return n;
 }
@@ -250,7 +257,7 @@ size_t ShooterTree::build(size_t index, int i0, int j0, int i1, int j1, size_t n
     return next;
   }
   std::array<std::array<int, 4>, 4> boxes;
-  const int children = child_boxes(i0, j0, i1, j1, boxes);
+  const int children = child_boxes(side_, splits_, i0, j0, i1, j1, boxes);
   b.first_child = static_cast<int>(next);
   b.child_count = children;
   size_t after = next + static_cast<size_t>(children);

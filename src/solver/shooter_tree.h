@@ -60,13 +60,17 @@ ShooterSplits shooter_splits(const Scene& scene, const MeshSurface& side, const 
 class ShooterTree {
  public:
   /// `storage`: the blocks of an earlier tree (release()) to build in, so that successive shots
-  /// reuse their memory rather than fault in fresh pages each (tens of MB for a large patch).
+  /// reuse their memory rather than fault in fresh pages each (tens of MB for a large patch). It
+  /// grows when it holds fewer blocks than the tree needs, and never shrinks: its blocks past the
+  /// tree's are left as they are (block_count() of the largest patch sizes it once).
   /// The subtrees of the whole patch's children are built side by side (core/parallel.h); the
   /// blocks are laid out depth first, each block's children consecutive, whatever the threads.
   ShooterTree(const Surface& surface, const MeshSurface& side, const std::vector<Rgb>& unshot,
               int i0, int j0, int i1, int j1, std::vector<Block> storage = {}, const ShooterSplits* splits = nullptr);
   /// The blocks' memory, for the next tree.
   std::vector<Block> release() && { return std::move(blocks_); }
+  /// The number of blocks of the tree over the cells [i0,i1) x [j0,j1) of `side`.
+  static size_t block_count(const MeshSurface& side, const ShooterSplits* splits, int i0, int j0, int i1, int j1);
 
   const Block& root() const { return blocks_[0]; }
   const Block& block(int k) const { return blocks_[static_cast<size_t>(k)]; }
@@ -79,11 +83,10 @@ class ShooterTree {
   void set_radiosity(Block& b, size_t first, size_t last) const;
   /// The block's radiosity and moments from its children's: O(children), not O(elements).
   void aggregate(Block& b) const;
-  /// The boxes of cells a block over [i0,i1) x [j0,j1) (more than one cell) splits into, those
-  /// that hold elements, in order; returns their count.
-  int child_boxes(int i0, int j0, int i1, int j1, std::array<std::array<int, 4>, 4>& boxes) const;
-  /// The number of blocks of the subtree over a box of cells, its own included.
-  size_t count(int i0, int j0, int i1, int j1) const;
+  /// The boxes of cells a block over [i0,i1) x [j0,j1) (more than one cell) of `side` splits
+  /// into, those that hold elements, in order; returns their count.
+  static int child_boxes(const MeshSurface& side, const ShooterSplits* splits, int i0, int j0, int i1, int j1,
+                         std::array<std::array<int, 4>, 4>& boxes);
   /// Builds block `index` over a box of cells, its descendants from block `next` on; returns the
   /// block after the last of them.
   size_t build(size_t index, int i0, int j0, int i1, int j1, size_t next);
