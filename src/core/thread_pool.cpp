@@ -1,5 +1,6 @@
 #include "core/thread_pool.h"
 
+#include <pthread.h>
 #include <sched.h>
 #include <unistd.h>
 
@@ -166,6 +167,20 @@ int worker_thread_count() {
 
 void set_worker_thread_count(int threads) {
   g_thread_count.store(std::clamp(threads, 1, kMaxThreads), std::memory_order_relaxed);
+}
+
+LoopsOnThisThread::LoopsOnThisThread() : was_(t_in_job) { t_in_job = true; }
+LoopsOnThisThread::~LoopsOnThisThread() { t_in_job = was_; }
+
+bool set_background_scheduling(std::thread& thread, bool background) {
+#ifdef SCHED_IDLE
+  sched_param param{};
+  param.sched_priority = 0;
+  return pthread_setschedparam(thread.native_handle(), background ? SCHED_IDLE : SCHED_OTHER, &param) == 0;
+#else
+  (void)thread, (void)background;
+  return false;
+#endif
 }
 
 void run_on_threads(int threads, const ThreadJob& job) {

@@ -6,6 +6,7 @@
 // followed (docs/benchmarks.md, "Worker threads of our own").
 
 #include <cstdint>
+#include <thread>
 
 namespace radrecon {
 
@@ -37,5 +38,24 @@ class ThreadJob {
 /// dynamically (each participant claiming chunks from a counter until none is left), and must
 /// not throw (core/parallel.h's LoopException catches what its iterations throw).
 void run_on_threads(int threads, const ThreadJob& job);
+
+/// While it lives, the loops started on the calling thread run on it alone, as a job's nested
+/// loops do: for background work that must not hold the pool (a thread that may wait long for a
+/// core would keep the pool's workers from everyone else's loops meanwhile).
+class LoopsOnThisThread {
+ public:
+  LoopsOnThisThread();
+  ~LoopsOnThisThread();
+  LoopsOnThisThread(const LoopsOnThisThread&) = delete;
+  LoopsOnThisThread& operator=(const LoopsOnThisThread&) = delete;
+
+ private:
+  bool was_;
+};
+
+/// Puts `thread` in the background (Linux's SCHED_IDLE: it runs only on a core that would
+/// otherwise be idle), or back in the normal class; false where the system refuses (the thread
+/// then stays as it was). Its results are the same either way: only when it runs changes.
+bool set_background_scheduling(std::thread& thread, bool background);
 
 }  // namespace radrecon

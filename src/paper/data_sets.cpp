@@ -10,23 +10,17 @@
 
 namespace radrecon {
 
-PaperDataSets solve_data_sets(const Scene& scene, const PaperOptions& opt) {
+Solution solve_data_set(const Scene& scene, const PaperOptions& opt, const std::string& spec, const std::string& label,
+                        double& seconds) {
   SolveSettings settings;
   settings.residual = opt.residual;
   settings.shadow_barriers = opt.shadow_barriers;
-  auto solve = [&](const std::string& spec, const std::string& label, double& seconds) {
-    if (opt.progress) std::fprintf(stderr, "paper: solving %s (%s)\n", label.c_str(), spec.c_str());
-    settings.progress_label = opt.progress ? label : "";
-    const auto start = std::chrono::steady_clock::now();
-    Solution s = solve_scene(scene, spec, settings, "paper data set " + label);
-    seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return s;
-  };
-  PaperDataSets d;
-  d.reference = solve("grid:" + std::to_string(opt.reference_divisions), "reference", d.reference_s);
-  d.grid = solve("grid:" + std::to_string(opt.grid_divisions), "grid16", d.grid_s);
-  d.quadtree = solve("quadtree:" + std::to_string(opt.quadtree_leaves), "quadtree", d.quadtree_s);
-  return d;
+  if (opt.progress) std::fprintf(stderr, "paper: solving %s (%s)\n", label.c_str(), spec.c_str());
+  settings.progress_label = opt.progress ? label : "";
+  const auto start = std::chrono::steady_clock::now();
+  Solution s = solve_scene(scene, spec, settings, "paper data set " + label);
+  seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return s;
 }
 
 EvaluationGrid evaluation_grid(const Solution& reference) {

@@ -1,6 +1,7 @@
 #pragma once
 // The paper's three data sets of the built-in scene, and the points where they are compared.
 
+#include <string>
 #include <vector>
 
 #include "paper/paper.h"
@@ -16,8 +17,10 @@ struct PaperDataSets {
   double reference_s = 0, grid_s = 0, quadtree_s = 0;  ///< wall-clock seconds of each solve
 };
 
-/// Solves the three data sets of `scene` (progress on stderr if options.progress).
-PaperDataSets solve_data_sets(const Scene& scene, const PaperOptions& options);
+/// Solves one data set of `scene` on the mesh `spec` (progress on stderr under `label` if
+/// options.progress); `seconds` gets the solve's wall-clock time.
+Solution solve_data_set(const Scene& scene, const PaperOptions& options, const std::string& spec,
+                        const std::string& label, double& seconds);
 
 /// Where every method is judged: the reference's cell centres on the ground, (s, t) metres,
 /// row by row from t = 0, with the reference's cell values there (3 channels each).

@@ -41,21 +41,23 @@ MethodResult evaluate(const InterpolantResult& built, const std::string& name, c
 
 }  // namespace
 
-std::vector<MethodResult> evaluate_data_set(const Solution& data, const std::vector<Method>& methods,
-                                            const EvaluationGrid& at, const MethodParams& params,
-                                            const SideSampling& sampling, const std::filesystem::path& figures,
-                                            const std::string& figure) {
-  const SurfaceSolution& ground = require_surface(data, "ground", "solution " + data.mesh);
+DataSetView prepare_data_set(const Solution& data, const EvaluationGrid& at, const SideSampling& sampling) {
+  DataSetView view;
+  view.ground = &require_surface(data, "ground", "solution " + data.mesh);
+  view.sampling = sampling;
+  const SurfaceSolution& ground = *view.ground;
   const bool grid = ground.grid_nu > 0 && ground.grid_nv > 0;
-  // The ranges over the samples each point sees when the methods honour the barriers.
   Barriers barriers;
   if (sampling.barriers) barriers = Barriers::from_polylines(ground.barriers).value();
-  const std::optional<NeighbourRanges> ranges =
-      neighbour_ranges(grid ? grid_cells(ground).centres() : element_centres(ground), at.points, barriers);
-  std::vector<MethodResult> table;
-  for (Method m : methods)
-    table.push_back(evaluate(reconstruct_side(ground, m, params, sampling), method_name(m), at, ranges, figures, figure));
-  return table;
+  view.ranges = neighbour_ranges(grid ? grid_cells(ground).centres() : element_centres(ground), at.points, barriers);
+  return view;
+}
+
+MethodResult evaluate_method(const DataSetView& data, Method method, const EvaluationGrid& at,
+                             const MethodParams& params, const std::filesystem::path& figures,
+                             const std::string& figure) {
+  return evaluate(reconstruct_side(*data.ground, method, params, data.sampling), method_name(method), at, data.ranges,
+                  figures, figure);
 }
 
 void write_quadtree_figure(const Solution& quadtree, const EvaluationGrid& at, const std::filesystem::path& figures) {

@@ -1,12 +1,20 @@
 #include "paper/paper.h"
 
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
+#include <functional>
 #include <future>
+#include <deque>
 #include <mutex>
+#include <optional>
+#include <system_error>
+#include <thread>
 
 #include "core/progress.h"
+#include "core/thread_pool.h"
 #include "io/image_io.h"
 #include "io/paths.h"
 #include "io/solution_json.h"
@@ -33,6 +41,73 @@ class Stopwatch {
   std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
 };
 
+/// Jobs of two kinds on two threads: each thread takes its own queue's jobs from the front, then
+/// the other queue's from the back. The reconstructions and the views keep both cores busy
+/// through each other's serial parts (fits, PNG compression), and neither waits at the end for
+/// the other; a queue listed heaviest first lends only its lightest jobs, so that two heavy ones
+/// (the barrier RBFs' fits, tens of MB each) seldom run at once. A job's loops that find the
+/// worker threads busy run on the job's own thread (core/thread_pool.h); either way every result
+/// is the same. After a job throws no other job starts, and run() rethrows the first exception.
+class JobList {
+ public:
+  /// Adds a job to queue 0 or 1.
+  void add(int queue, std::function<void()> job) { queues_[queue].push_back(std::move(job)); }
+  size_t size() const { return queues_[0].size() + queues_[1].size(); }
+
+  void run(int threads) {
+    std::mutex mutex;  // guards what follows
+    std::array<size_t, 2> front{0, 0}, back{queues_[0].size(), queues_[1].size()};
+    bool failed = false;
+    std::exception_ptr first_error;
+    const auto take = [&](int own) -> const std::function<void()>* {
+      const std::lock_guard<std::mutex> lock(mutex);
+      if (failed) return nullptr;
+      if (front[own] < back[own]) return &queues_[own][front[own]++];
+      const int other = 1 - own;
+      if (front[other] < back[other]) return &queues_[other][--back[other]];
+      return nullptr;
+    };
+    const auto work = [&](int own) {
+      while (const std::function<void()>* job = take(own)) {
+        try {
+          (*job)();
+        } catch (...) {
+          const std::lock_guard<std::mutex> lock(mutex);
+          if (!first_error) first_error = std::current_exception();
+          failed = true;
+        }
+      }
+    };
+    // (Deferred to get() if no thread can be made: then it runs after this thread's share.)
+    std::future<void> helper;
+    if (threads > 1) helper = std::async(std::launch::async | std::launch::deferred, work, 1);
+    work(0);
+    if (helper.valid()) helper.get();
+    if (first_error) std::rethrow_exception(first_error);
+  }
+
+ private:
+  std::vector<std::function<void()>> queues_[2];
+};
+
+/// A value made by the first job that needs it, the others waiting for it.
+template <typename T>
+class Shared {
+ public:
+  explicit Shared(std::function<T()> make) : make_(std::move(make)) {}
+  const T& get() {
+    std::call_once(once_, [&] { value_ = make_(); });
+    return *value_;
+  }
+  /// Frees the value: once every job that uses it is done.
+  void release() { value_.reset(); }
+
+ private:
+  std::function<T()> make_;
+  std::once_flag once_;
+  std::optional<T> value_;
+};
+
 }  // namespace
 
 void run_paper(const PaperOptions& opt, const std::string& out_where) {
@@ -40,24 +115,8 @@ void run_paper(const PaperOptions& opt, const std::string& out_where) {
   check_output_folder(opt.out_dir.string(), out_where);  // before any work
   Stopwatch clock;
   const Scene scene = paper_scene();
-  const PaperDataSets data = solve_data_sets(scene, opt);
-  clock.lap();
-
-  // The solutions are written beside all that follows (formatting them is serial work).
-  // (Deferred to get() if no thread can be made.)
-  std::future<double> write_seconds = std::async(std::launch::async | std::launch::deferred, [&] {
-    Stopwatch write_clock;
-    const fs::path solutions = opt.out_dir / "solutions";
-    write_solution_json(solutions / "reference.json", data.reference);
-    write_solution_json(solutions / "grid16.json", data.grid);
-    write_solution_json(solutions / "quadtree.json", data.quadtree);
-    return write_clock.lap();
-  });
-
-  // Tables 1 and 2 with the ground figures (Fig. 1-4).
+  PaperDataSets data;
   const fs::path figures = opt.out_dir / "figures";
-  const EvaluationGrid at = evaluation_grid(data.reference);
-  write_png(figures / "fig2_reference_ground.png", radiosity_map(at.reference_w_m2, at.width, at.height, at.white_w_m2), true);
   const MethodParams params;  // the defaults of methods.h, stated in the tables
   const SideSampling plain{.barriers = false}, walled{.barriers = true}, bordered{.barriers = true, .border_samples = true};
   // Table 1: every method (all apply to grid data); Table 2: those that apply to a quadtree's
@@ -70,111 +129,152 @@ void run_paper(const PaperOptions& opt, const std::string& out_where) {
         out.push_back(m);
     return out;
   };
-  // Progress over the reconstructions and the views, each method of a data set and each method's
-  // views a step (they take about as long).
   auto of_paper = [](const std::vector<Method>& methods) {
     std::vector<Method> out;
     for (Method m : methods)
       if (is_paper_method(m)) out.push_back(m);
     return out;
   };
-  size_t total_steps = grid_methods.size() + quadtree_methods.size() + 1 + of_paper(grid_methods).size() +
-                       of_paper(quadtree_methods).size();
-  if (opt.barriers)
-    total_steps += taking_barriers(grid_methods, false).size() + taking_barriers(quadtree_methods, false).size() +
-                   of_paper(taking_barriers(grid_methods, false)).size() +
-                   of_paper(taking_barriers(quadtree_methods, false)).size();
-  if (opt.barriers && opt.border_samples)
-    total_steps += taking_barriers(grid_methods, true).size() + taking_barriers(quadtree_methods, true).size();
+
+  // The cameras' rays are traced while the data sets are solved, by a background thread: it runs
+  // only on a core the solves leave idle (their serial parts), its loops on itself alone.
+  // The traced rays (28 MB) are needed by the views anyway; their pictures would need the
+  // reference's white, and held until then they took the peak past 200 MiB.
+  Shared<std::vector<CameraHits>> cameras([&] {
+    RenderOptions options;
+    options.width = opt.view_width;
+    options.height = opt.view_height;
+    options.samples_per_axis = opt.view_samples;
+    std::vector<CameraHits> hits;
+    for (const Camera& c : scene.cameras) hits.push_back(trace_camera(scene, c, options));
+    return hits;
+  });
+  std::thread ahead;
+  try {
+    ahead = std::thread([&] {
+      const LoopsOnThisThread alone;
+      try {
+        cameras.get();
+      } catch (...) {  // traced again by the first view, which throws it
+      }
+    });
+    set_background_scheduling(ahead, true);
+  } catch (const std::system_error&) {  // no thread: traced by the first view
+  }
+  struct JoinAhead {
+    std::thread& thread;
+    ~JoinAhead() {
+      if (thread.joinable()) thread.join();
+    }
+  } join_ahead{ahead};
+  data.reference = solve_data_set(scene, opt, "grid:" + std::to_string(opt.reference_divisions), "reference",
+                                  data.reference_s);
+  data.grid = solve_data_set(scene, opt, "grid:" + std::to_string(opt.grid_divisions), "grid16", data.grid_s);
+  data.quadtree =
+      solve_data_set(scene, opt, "quadtree:" + std::to_string(opt.quadtree_leaves), "quadtree", data.quadtree_s);
+  if (ahead.joinable()) set_background_scheduling(ahead, false);  // what is left of the tracing, at full speed
+  clock.lap();
+
+  // Tables 1 and 2 with the ground figures (Fig. 1-4).
+  const EvaluationGrid at = evaluation_grid(data.reference);
+  write_png(figures / "fig2_reference_ground.png", radiosity_map(at.reference_w_m2, at.width, at.height, at.white_w_m2), true);
+
+  // The jobs: each method of a data set, each method's views, the quadtree figure and the
+  // solutions written. Progress counts jobs (they take about as long).
+  JobList jobs;
   Progress progress("paper", !opt.progress);
-  size_t steps_done = 0;
-  std::mutex step_mutex;  // the views run beside the reconstructions (below)
-  auto step = [&](size_t steps, const std::string& what) {
-    const std::lock_guard<std::mutex> lock(step_mutex);
-    steps_done += steps;
-    progress.update(static_cast<double>(steps_done) / static_cast<double>(total_steps),
+  size_t total_jobs = 0, jobs_done = 0;
+  std::mutex progress_mutex;
+  auto done = [&](const std::string& what) {
+    const std::lock_guard<std::mutex> lock(progress_mutex);
+    ++jobs_done;
+    progress.update(static_cast<double>(jobs_done) / static_cast<double>(total_jobs),
                     "the reconstructions and views (done: " + what + ")");
   };
-  auto evaluate = [&](const Solution& sol, const std::vector<Method>& methods, const SideSampling& sampling,
-                      const std::string& stem) {
-    std::vector<MethodResult> results = evaluate_data_set(sol, methods, at, params, sampling, figures, stem);
-    step(methods.size(), stem);
-    return results;
+  PaperRun run{opt, data, at, params, {}, {}, {}, {}, {}, {}};
+  // Each data set prepared by the first of its methods to run, and freed after the last.
+  struct DataSetJobs {
+    DataSetJobs(std::function<DataSetView()> make, size_t methods) : prepared(std::move(make)), left(methods) {}
+    Shared<DataSetView> prepared;
+    std::atomic<size_t> left;
   };
-  // Views into the scene (Fig. 2-4), every surface reconstructed by the method of the row, on a
-  // thread of their own beside the reconstructions: each stage's serial parts (fits, PNG
-  // compression) leave a core idle that the other fills. The loops of the stage that finds the
-  // worker threads busy run on its own thread (core/thread_pool.h); either way every result is
-  // the same.
-  std::vector<std::string> notes;
-  std::atomic<bool> stop_views{false};  // the reconstructions failed: no more views
-  std::future<double> views_seconds = std::async(std::launch::async | std::launch::deferred, [&] {
-    Stopwatch views_clock;
-    RenderOptions view;
-    view.width = opt.view_width;
-    view.height = opt.view_height;
-    view.samples_per_axis = opt.view_samples;
-    std::vector<CameraHits> cameras;
-    for (const Camera& c : scene.cameras) cameras.push_back(trace_camera(scene, c, view));
-    auto views = [&](const Solution& sol, Method m, const SideSampling& sampling, const std::string& stem,
-                     const std::string& only_camera = "") {
-      if (stop_views.load()) return;
-      for (const Fallback& f :
-           render_paper_views(scene, cameras, sol, m, params, sampling, at.white_w_m2, figures, stem, only_camera))
-        notes.push_back(stem + ": " + f.side + " drawn piecewise constant, as " + method_name(m) + " cannot serve it: " + f.reason);
-      step(1, stem);
-    };
-    // Views for the paper's own methods (its Fig. 2-4); the others have their ground figures.
-    views(data.reference, Method::constant, plain, "fig2_reference");
-    for (Method m : of_paper(grid_methods)) views(data.grid, m, plain, "fig3_" + method_name(m));
-    for (Method m : of_paper(quadtree_methods)) views(data.quadtree, m, plain, "fig4_" + method_name(m));
-    // With barriers: the close-up of the wall's foot, where they matter (border samples: the
-    // ground figures only).
-    if (opt.barriers) {
-      for (Method m : of_paper(taking_barriers(grid_methods, false)))
-        views(data.grid, m, walled, "fig5_" + method_name(m), "closeup");
-      for (Method m : of_paper(taking_barriers(quadtree_methods, false)))
-        views(data.quadtree, m, walled, "fig6_" + method_name(m), "closeup");
-    }
-    return views_clock.lap();
-  });
-  // An exception from the reconstructions stops the views at their next figure (the futures'
-  // destructors then wait for their threads, which use what is declared above).
-  struct StopViewsOnExit {
-    std::atomic<bool>& stop;
-    ~StopViewsOnExit() { stop.store(true); }
-  } stop_views_on_exit{stop_views};
-  PaperRun run{opt, data, at, params, evaluate(data.grid, grid_methods, plain, "fig3"),
-               evaluate(data.quadtree, quadtree_methods, plain, "fig4"), {}, {}, {}, {}};
-  write_quadtree_figure(data.quadtree, at, figures);
+  std::deque<DataSetJobs> data_sets;  // (a deque: the jobs hold references)
+  auto evaluate = [&](const Solution& sol, const std::vector<Method>& methods, const SideSampling& sampling,
+                      const std::string& stem, std::vector<MethodResult>& table) {
+    DataSetJobs& set =
+        data_sets.emplace_back([&sol, &at, sampling] { return prepare_data_set(sol, at, sampling); }, methods.size());
+    table.resize(methods.size());
+    for (size_t k = 0; k < methods.size(); ++k)
+      jobs.add(0, [&, k, m = methods[k], stem] {
+        table[k] = evaluate_method(set.prepared.get(), m, at, params, figures, stem);
+        if (--set.left == 0) set.prepared.release();
+        done(stem + "_" + method_name(m));
+      });
+  };
   // Table 3 (Fig. 5-8): the same data and methods with the scene's barriers, then with border
-  // samples too.
+  // samples too (which change the methods that take points only). Listed first: the heaviest.
   if (opt.barriers) {
-    run.grid_barriers = evaluate(data.grid, taking_barriers(grid_methods, false), walled, "fig5");
-    run.quadtree_barriers = evaluate(data.quadtree, taking_barriers(quadtree_methods, false), walled, "fig6");
+    evaluate(data.grid, taking_barriers(grid_methods, false), walled, "fig5", run.grid_barriers);
+    evaluate(data.quadtree, taking_barriers(quadtree_methods, false), walled, "fig6", run.quadtree_barriers);
   }
   if (opt.barriers && opt.border_samples) {
-    // Border samples change the methods that take points only.
-    run.grid_border = evaluate(data.grid, taking_barriers(grid_methods, true), bordered, "fig7");
-    run.quadtree_border = evaluate(data.quadtree, taking_barriers(quadtree_methods, true), bordered, "fig8");
+    evaluate(data.grid, taking_barriers(grid_methods, true), bordered, "fig7", run.grid_border);
+    evaluate(data.quadtree, taking_barriers(quadtree_methods, true), bordered, "fig8", run.quadtree_border);
   }
-  const double t_reconstruct = clock.lap();
-  const double t_views = views_seconds.get();
-  const double t_write = write_seconds.get();
-  clock.lap();
+  evaluate(data.quadtree, quadtree_methods, plain, "fig4", run.table2);
+  evaluate(data.grid, grid_methods, plain, "fig3", run.table1);
+  // The views (Fig. 2-4 for the paper's own methods; with barriers, the close-up of the wall's
+  // foot, where they matter), their notes in the order listed.
+  std::deque<std::vector<std::string>> view_notes;  // (a deque: the jobs hold references)
+  auto views = [&](const Solution& sol, Method m, const SideSampling& sampling, const std::string& stem,
+                   const std::string& only_camera = "") {
+    std::vector<std::string>& notes = view_notes.emplace_back();
+    jobs.add(1, [&, m, sampling, stem, only_camera] {
+      for (const Fallback& f : render_paper_views(scene, cameras.get(), sol, m, params, sampling, at.white_w_m2, figures,
+                                                  stem, only_camera))
+        notes.push_back(stem + ": " + f.side + " drawn piecewise constant, as " + method_name(m) + " cannot serve it: " + f.reason);
+      done(stem);
+    });
+  };
+  views(data.reference, Method::constant, plain, "fig2_reference");
+  for (Method m : of_paper(grid_methods)) views(data.grid, m, plain, "fig3_" + method_name(m));
+  for (Method m : of_paper(quadtree_methods)) views(data.quadtree, m, plain, "fig4_" + method_name(m));
+  if (opt.barriers) {
+    for (Method m : of_paper(taking_barriers(grid_methods, false)))
+      views(data.grid, m, walled, "fig5_" + method_name(m), "closeup");
+    for (Method m : of_paper(taking_barriers(quadtree_methods, false)))
+      views(data.quadtree, m, walled, "fig6_" + method_name(m), "closeup");
+  }
+  jobs.add(0, [&] {
+    write_quadtree_figure(data.quadtree, at, figures);
+    done("fig1");
+  });
+  double t_write = 0;
+  jobs.add(1, [&] {  // formatting the solutions is serial work
+    Stopwatch write_clock;
+    const fs::path solutions = opt.out_dir / "solutions";
+    write_solution_json(solutions / "reference.json", data.reference);
+    write_solution_json(solutions / "grid16.json", data.grid);
+    write_solution_json(solutions / "quadtree.json", data.quadtree);
+    t_write = write_clock.lap();
+    done("the solutions");
+  });
+  total_jobs = jobs.size();
+  jobs.run(std::min(2, worker_thread_count()));
+  const double t_jobs = clock.lap();
   progress.done();
 
   write_tables(opt.out_dir, run);
   ReportContent report = report_content(run, opt.view_samples * opt.view_samples);
-  report.notes = notes;
+  for (const auto& notes : view_notes) report.notes.insert(report.notes.end(), notes.begin(), notes.end());
   write_report(opt.out_dir, report);
   const double t_tables = clock.lap();
 
   if (opt.progress)
     std::fprintf(stderr,
-                 "paper: done: reference %.2f s, grid %.2f s, quadtree %.2f s, solutions written %.2f s, reconstruction "
-                 "and ground figures %.2f s, views %.2f s, tables and report %.2f s; results in %s\n",
-                 data.reference_s, data.grid_s, data.quadtree_s, t_write, t_reconstruct, t_views, t_tables,
+                 "paper: done: reference %.2f s, grid %.2f s, quadtree %.2f s, reconstructions, views and solutions "
+                 "written %.2f s (writing the solutions %.2f s), tables and report %.2f s; results in %s\n",
+                 data.reference_s, data.grid_s, data.quadtree_s, t_jobs, t_write, t_tables,
                  opt.out_dir.string().c_str());
 }
 
