@@ -1,7 +1,8 @@
 // radrecon's global operator new: malloc's memory, with the large allocations advised onto
-// transparent huge pages (core/allocator.h). Every other form of new (arrays, nothrow) reaches
-// this one through the standard library's defaults, and the library's delete is free(): memory
-// may pass between the program and its plugins either way. Left out of sanitized builds
+// transparent huge pages (core/allocator.h). Every other form of new (arrays, nothrow) in the
+// program reaches this one through the standard library's defaults, and the library's delete is
+// free(): memory may pass between the program and its plugins (which link the shared libstdc++
+// and allocate through its operator new, malloc too) either way. Left out of sanitized builds
 // (CMakeLists.txt), whose runtime pairs its own operator new with its own delete.
 
 #include <cstdlib>

@@ -172,13 +172,12 @@ void set_worker_thread_count(int threads) {
 LoopsOnThisThread::LoopsOnThisThread() : was_(t_in_job) { t_in_job = true; }
 LoopsOnThisThread::~LoopsOnThisThread() { t_in_job = was_; }
 
-bool set_background_scheduling(std::thread& thread, bool background) {
+bool enter_background_scheduling() {
 #ifdef SCHED_IDLE
   sched_param param{};
   param.sched_priority = 0;
-  return pthread_setschedparam(thread.native_handle(), background ? SCHED_IDLE : SCHED_OTHER, &param) == 0;
+  return pthread_setschedparam(pthread_self(), SCHED_IDLE, &param) == 0;
 #else
-  (void)thread, (void)background;
   return false;
 #endif
 }

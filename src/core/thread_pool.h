@@ -6,7 +6,6 @@
 // followed (docs/benchmarks.md, "Worker threads of our own").
 
 #include <cstdint>
-#include <thread>
 
 namespace radrecon {
 
@@ -53,9 +52,11 @@ class LoopsOnThisThread {
   bool was_;
 };
 
-/// Puts `thread` in the background (Linux's SCHED_IDLE: it runs only on a core that would
-/// otherwise be idle), or back in the normal class; false where the system refuses (the thread
-/// then stays as it was). Its results are the same either way: only when it runs changes.
-bool set_background_scheduling(std::thread& thread, bool background);
+/// Puts the calling thread in the background for good (Linux's SCHED_IDLE: it runs only on a
+/// core that would otherwise be idle); false where the system refuses, the thread then as it was.
+/// For good: an unprivileged thread may not come back (RLIMIT_NICE, 0 by default), so whatever
+/// it does must never be waited for by a busy thread. Its results are the same either way: only
+/// when it runs changes.
+bool enter_background_scheduling();
 
 }  // namespace radrecon

@@ -3,16 +3,17 @@
 #include <array>
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
 #include <cstdio>
-#include <cstdlib>
+#include <deque>
 #include <functional>
 #include <future>
-#include <deque>
 #include <mutex>
 #include <optional>
 #include <system_error>
 #include <thread>
 
+#include "core/check.h"
 #include "core/progress.h"
 #include "core/thread_pool.h"
 #include "io/image_io.h"
@@ -90,22 +91,50 @@ class JobList {
   std::vector<std::function<void()>> queues_[2];
 };
 
-/// A value made by the first job that needs it, the others waiting for it.
+/// A value made by the first job that needs it, the others waiting for it; if making it throws,
+/// every caller gets that exception (std::call_once is not used: after a throw, libstdc++'s may
+/// block the next caller for ever, GCC bug 66146).
 template <typename T>
 class Shared {
  public:
   explicit Shared(std::function<T()> make) : make_(std::move(make)) {}
   const T& get() {
-    std::call_once(once_, [&] { value_ = make_(); });
+    std::unique_lock<std::mutex> lock(mutex_);
+    if (!started_) {
+      started_ = true;
+      lock.unlock();
+      std::optional<T> made;
+      std::exception_ptr error;
+      try {
+        made.emplace(make_());
+      } catch (...) {
+        error = std::current_exception();
+      }
+      lock.lock();
+      value_ = std::move(made);
+      error_ = error;
+      done_ = true;
+      made_.notify_all();
+    } else {
+      made_.wait(lock, [&] { return done_; });
+    }
+    if (error_) std::rethrow_exception(error_);
+    RR_CHECK(value_.has_value(), "a shared value read after its release()");
     return *value_;
   }
   /// Frees the value: once every job that uses it is done.
-  void release() { value_.reset(); }
+  void release() {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    value_.reset();
+  }
 
  private:
   std::function<T()> make_;
-  std::once_flag once_;
+  std::mutex mutex_;
+  std::condition_variable made_;
+  bool started_ = false, done_ = false;
   std::optional<T> value_;
+  std::exception_ptr error_;
 };
 
 }  // namespace
@@ -136,43 +165,67 @@ void run_paper(const PaperOptions& opt, const std::string& out_where) {
     return out;
   };
 
-  // The cameras' rays are traced while the data sets are solved, by a background thread: it runs
-  // only on a core the solves leave idle (their serial parts), its loops on itself alone.
-  // The traced rays (28 MB) are needed by the views anyway; their pictures would need the
-  // reference's white, and held until then they took the peak past 200 MiB.
-  Shared<std::vector<CameraHits>> cameras([&] {
-    RenderOptions options;
-    options.width = opt.view_width;
-    options.height = opt.view_height;
-    options.samples_per_axis = opt.view_samples;
-    std::vector<CameraHits> hits;
-    for (const Camera& c : scene.cameras) hits.push_back(trace_camera(scene, c, options));
-    return hits;
-  });
+  // The cameras' rays (28 MB, needed by every view), traced in bands of kBandRows rows. While
+  // the data sets are solved a background thread traces them in order: it runs only on a core
+  // the solves leave idle (their serial parts), its loops on itself alone, never holding the
+  // pool's workers. The bands it has not finished when the solves end are traced here, with the
+  // pool: nothing waits for a thread that may get no core, but for one band at the end. (Their
+  // pictures would need the reference's white: held until then they took the peak past 200 MiB.)
+  constexpr int kBandRows = 16;
+  RenderOptions view_options;
+  view_options.width = opt.view_width;
+  view_options.height = opt.view_height;
+  view_options.samples_per_axis = opt.view_samples;
+  struct Band {
+    size_t camera;
+    PixelRect rows;
+    std::optional<CameraHits> traced;  // by the background thread
+    std::atomic<bool> done{false};     // `traced` holds it
+  };
+  std::deque<Band> bands;  // (a deque: atomics stay put)
+  for (size_t k = 0; k < scene.cameras.size(); ++k)
+    for (int y = 0; y < opt.view_height; y += kBandRows)
+      bands.emplace_back(k, PixelRect{0, y, opt.view_width, std::min(opt.view_height, y + kBandRows)});
+  const auto trace_band = [&](const Band& band) {
+    return trace_camera(scene, scene.cameras[band.camera], view_options, band.rows);
+  };
+  std::atomic<bool> stop_ahead{false};
   std::thread ahead;
-  try {
-    ahead = std::thread([&] {
-      const LoopsOnThisThread alone;
-      try {
-        cameras.get();
-      } catch (...) {  // traced again by the first view, which throws it
-      }
-    });
-    set_background_scheduling(ahead, true);
-  } catch (const std::system_error&) {  // no thread: traced by the first view
+  if (worker_thread_count() > 1) {  // (one thread asked for: the solves' alone)
+    try {
+      ahead = std::thread([&] {
+        if (!enter_background_scheduling()) return;  // beside the solves, not in their way
+        const LoopsOnThisThread alone;
+        try {
+          for (Band& band : bands) {
+            if (stop_ahead.load()) break;
+            band.traced = trace_band(band);
+            band.done.store(true);
+          }
+        } catch (...) {  // traced again below, which throws it
+        }
+      });
+    } catch (const std::system_error&) {  // no thread: every band traced below
+    }
   }
-  struct JoinAhead {
+  struct JoinAhead {  // (the thread uses what is declared above)
     std::thread& thread;
+    std::atomic<bool>& stop;
     ~JoinAhead() {
+      stop.store(true);
       if (thread.joinable()) thread.join();
     }
-  } join_ahead{ahead};
+  } join_ahead{ahead, stop_ahead};
   data.reference = solve_data_set(scene, opt, "grid:" + std::to_string(opt.reference_divisions), "reference",
                                   data.reference_s);
   data.grid = solve_data_set(scene, opt, "grid:" + std::to_string(opt.grid_divisions), "grid16", data.grid_s);
   data.quadtree =
       solve_data_set(scene, opt, "quadtree:" + std::to_string(opt.quadtree_leaves), "quadtree", data.quadtree_s);
-  if (ahead.joinable()) set_background_scheduling(ahead, false);  // what is left of the tracing, at full speed
+  stop_ahead.store(true);
+  std::vector<std::vector<CameraHits>> traced(scene.cameras.size());
+  for (Band& band : bands) traced[band.camera].push_back(band.done.load() ? std::move(*band.traced) : trace_band(band));
+  std::vector<CameraHits> cameras;
+  for (std::vector<CameraHits>& camera : traced) cameras.push_back(join_bands(camera));
   clock.lap();
 
   // Tables 1 and 2 with the ground figures (Fig. 1-4).
@@ -230,7 +283,7 @@ void run_paper(const PaperOptions& opt, const std::string& out_where) {
                    const std::string& only_camera = "") {
     std::vector<std::string>& notes = view_notes.emplace_back();
     jobs.add(1, [&, m, sampling, stem, only_camera] {
-      for (const Fallback& f : render_paper_views(scene, cameras.get(), sol, m, params, sampling, at.white_w_m2, figures,
+      for (const Fallback& f : render_paper_views(scene, cameras, sol, m, params, sampling, at.white_w_m2, figures,
                                                   stem, only_camera))
         notes.push_back(stem + ": " + f.side + " drawn piecewise constant, as " + method_name(m) + " cannot serve it: " + f.reason);
       done(stem);
@@ -261,6 +314,7 @@ void run_paper(const PaperOptions& opt, const std::string& out_where) {
   });
   total_jobs = jobs.size();
   jobs.run(std::min(2, worker_thread_count()));
+  cameras = {};  // their memory, for what follows
   const double t_jobs = clock.lap();
   progress.done();
 

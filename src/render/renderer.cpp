@@ -237,6 +237,44 @@ CameraHits trace_camera(const Scene& scene, const Camera& camera, const RenderOp
   return trace_rect(scene, TraceContext(scene), camera, options, rect);
 }
 
+CameraHits join_bands(std::vector<CameraHits>& bands) {
+  RR_CHECK(!bands.empty(), "no bands to join");
+  CameraHits out;
+  out.options = bands.front().options;
+  out.pixels = {0, bands.front().pixels.y_begin, out.options.width, bands.front().pixels.y_begin};
+  // Each side's rays over all bands, so that its arrays are made once at their size.
+  std::vector<std::pair<size_t, size_t>> count;  // (slot, rays), by slot
+  for (const CameraHits& band : bands)
+    for (const CameraHits::SideRays& side : band.sides) {
+      auto at = std::lower_bound(count.begin(), count.end(), std::pair{side.slot, size_t{0}});
+      if (at == count.end() || at->first != side.slot) at = count.insert(at, {side.slot, 0});
+      at->second += side.rays.size();
+    }
+  for (const auto& [slot, rays] : count) {
+    CameraHits::SideRays& side = out.sides.emplace_back(CameraHits::SideRays{slot, {}, {}});
+    side.rays.reserve(rays);
+    side.st.reserve(rays);
+  }
+  for (CameraHits& band : bands) {
+    RR_CHECK(band.pixels.x_begin == 0 && band.pixels.x_end == out.options.width && band.pixels.y_begin == out.pixels.y_end,
+             "bands must be as wide as the image and follow one another");
+    out.pixels.y_end = band.pixels.y_end;
+    // Ray k of a band is ray out.rays + k of the rows so far (pixels row by row, their rays in
+    // turn); each side's rays stay in increasing order, the sides by slot.
+    RR_CHECK(out.rays + band.rays <= std::numeric_limits<std::uint32_t>::max(), "too many rays for one camera trace");
+    const auto first = static_cast<std::uint32_t>(out.rays);
+    for (CameraHits::SideRays& side : band.sides) {
+      const auto at = std::lower_bound(out.sides.begin(), out.sides.end(), side.slot,
+                                       [](const CameraHits::SideRays& s, size_t slot) { return s.slot < slot; });
+      for (const std::uint32_t k : side.rays) at->rays.push_back(first + k);
+      at->st.insert(at->st.end(), side.st.begin(), side.st.end());
+    }
+    out.rays += band.rays;
+    band = CameraHits{};
+  }
+  return out;
+}
+
 Rendering render(const Scene& scene, const Camera& camera, const SideReconstruction& reconstruction,
                  const RenderOptions& options, const RenderProgress& progress) {
   const int tile = tile_side(options);

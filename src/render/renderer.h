@@ -86,6 +86,10 @@ struct CameraHits {
 };
 CameraHits trace_camera(const Scene& scene, const Camera& camera, const RenderOptions& options);
 CameraHits trace_camera(const Scene& scene, const Camera& camera, const RenderOptions& options, const PixelRect& pixels);
+/// Bands of rows traced one by one (trace_camera() of rectangles as wide as the image, each
+/// beginning where the one before it ends) as one trace of the rows they cover: the same as
+/// trace_camera() over those rows. The bands' hits are moved from.
+CameraHits join_bands(std::vector<CameraHits>& bands);
 
 /// A rendered picture: the linear radiosity, and which pixels see only reflecting surfaces (the
 /// pixels a default white point is taken from: exposure.h).

@@ -142,6 +142,31 @@ TEST(Tiles, SamePixelsBitForBitForAnyTileAndThreads) {
   set_worker_thread_count(threads);
 }
 
+TEST(Tiles, BandsJoinedAreTheWholeTrace) {
+  // join_bands() of bands of rows traced one by one (the paper's views, traced beside the
+  // solves) against the whole image traced at once: the same rays, sides and points.
+  const TestScene t;
+  RenderOptions options;
+  options.width = 97;
+  options.height = 61;
+  options.samples_per_axis = 2;
+  const CameraHits whole = trace_camera(t.scene, t.camera, options);
+  for (const int rows : {1, 7, 16, 61}) {
+    std::vector<CameraHits> bands;
+    for (int y = 0; y < options.height; y += rows)
+      bands.push_back(trace_camera(t.scene, t.camera, options, {0, y, options.width, std::min(options.height, y + rows)}));
+    const CameraHits joined = join_bands(bands);
+    EXPECT_EQ(joined.rays, whole.rays) << rows;
+    EXPECT_EQ(joined.pixels.pixels(), whole.pixels.pixels()) << rows;
+    ASSERT_EQ(joined.sides.size(), whole.sides.size()) << rows;
+    for (size_t s = 0; s < whole.sides.size(); ++s) {
+      EXPECT_EQ(joined.sides[s].slot, whole.sides[s].slot) << rows;
+      EXPECT_EQ(joined.sides[s].rays, whole.sides[s].rays) << rows;
+      EXPECT_EQ(joined.sides[s].st, whole.sides[s].st) << rows;
+    }
+  }
+}
+
 TEST(Tiles, AutomaticTilesHoldAtMostTheirRaysWhateverTheRaysPerPixel) {
   RenderOptions options;
   for (int S = 1; S <= 16; ++S) {

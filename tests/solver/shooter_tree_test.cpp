@@ -80,6 +80,13 @@ void visit_blocks(const ShooterTree& tree, const Block& b, Visit&& visit) {
   for (int c = 0; c < b.child_count; ++c) visit_blocks(tree, tree.block(b.first_child + c), visit);
 }
 
+/// The number of blocks reachable from a tree's root (its own included).
+size_t blocks_of(const ShooterTree& tree) {
+  size_t n = 0;
+  visit_blocks(tree, tree.root(), [&](const Block&) { ++n; });
+  return n;
+}
+
 /// Whether the element centre c lies in the block (the plate's blocks are boxes in z = 0).
 bool inside(const Block& b, const Vec3& c) {
   double x0 = b.corners[0].x(), x1 = x0, y0 = b.corners[0].y(), y1 = y0;
@@ -378,6 +385,9 @@ TEST(ShooterTree, SplitsAtAWallsFootLeaveNoBlockAcrossIt) {
   const ShooterTree split(scene.surfaces[0], ground, unshot, 0, 0, ground.nu, ground.nv, {}, &splits);
   EXPECT_GT(straddling(plain), 2);  // the midpoint rule's blocks cross the foot at every level
   EXPECT_EQ(straddling(split), 1);  // the whole patch alone
+  // block_count() (what the solver sizes the trees' storage by) counts the blocks built.
+  EXPECT_EQ(ShooterTree::block_count(ground, nullptr, 0, 0, ground.nu, ground.nv), blocks_of(plain));
+  EXPECT_EQ(ShooterTree::block_count(ground, &splits, 0, 0, ground.nu, ground.nv), blocks_of(split));
 
   // Receivers on the wall's front see the ground before it alone: what they gather from the
   // split tree is within its budget of the sum over those elements of their exact form factors.
@@ -468,6 +478,10 @@ TEST(ShooterTree, AnEarlierTreesStorageGivesTheSameBlocksAsFreshOne) {
   }
   expect_same_blocks(quad_tree(triangle_tree({}).release()), quad_tree({}), "quad in a triangle's storage");
   expect_same_blocks(triangle_tree(quad_tree({}).release()), triangle_tree({}), "triangle in a quad's storage");
+  EXPECT_EQ(ShooterTree::block_count(triangle_side, nullptr, 0, 0, triangle_side.nu, triangle_side.nv),
+            blocks_of(triangle_tree({})));
+  EXPECT_EQ(ShooterTree::block_count(plate.side(), nullptr, 0, 0, plate.side().nu, plate.side().nv),
+            blocks_of(quad_tree({})));
   // A tree of one cell, then a large one, in the same storage.
   const ShooterTree one(plate.scene.surfaces[0], plate.side(), plate.unshot, 2, 1, 3, 2);
   EXPECT_EQ(one.root().child_count, 0);
