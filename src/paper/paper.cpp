@@ -177,6 +177,7 @@ void run_paper(const PaperOptions& opt, const std::string& out_where) {
   view_options.height = opt.view_height;
   view_options.samples_per_axis = opt.view_samples;
   struct Band {
+    Band(size_t of_camera, const PixelRect& of_rows) : camera(of_camera), rows(of_rows) {}
     size_t camera;
     PixelRect rows;
     std::optional<CameraHits> traced;  // by the background thread

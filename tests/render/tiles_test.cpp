@@ -110,12 +110,18 @@ Rendering one_ray_at_a_time(const TestScene& t, const RenderOptions& options) {
   return out;
 }
 
-TEST(Tiles, SamePixelsBitForBitForAnyTileAndThreads) {
-  const TestScene t;
+/// The tests' picture: 97 x 61 pixels (odd sizes: tiles and bands that do not divide them).
+RenderOptions odd_picture(int samples_per_axis) {
   RenderOptions options;
   options.width = 97;
   options.height = 61;
-  options.samples_per_axis = 3;
+  options.samples_per_axis = samples_per_axis;
+  return options;
+}
+
+TEST(Tiles, SamePixelsBitForBitForAnyTileAndThreads) {
+  const TestScene t;
+  RenderOptions options = odd_picture(3);
   const Rendering expected = one_ray_at_a_time(t, options);
   // The picture shows all of it: background, floor, wall, light.
   int reflecting = 0, other = 0;
@@ -146,10 +152,7 @@ TEST(Tiles, BandsJoinedAreTheWholeTrace) {
   // join_bands() of bands of rows traced one by one (the paper's views, traced beside the
   // solves) against the whole image traced at once: the same rays, sides and points.
   const TestScene t;
-  RenderOptions options;
-  options.width = 97;
-  options.height = 61;
-  options.samples_per_axis = 2;
+  const RenderOptions options = odd_picture(2);
   const CameraHits whole = trace_camera(t.scene, t.camera, options);
   for (const int rows : {1, 7, 16, 61}) {
     std::vector<CameraHits> bands;
