@@ -185,11 +185,7 @@ bool enter_background_scheduling() {
 void run_on_threads(int threads, const ThreadJob& job) {
   threads = std::min(threads, worker_thread_count());
   if (threads <= 1 || t_in_job || !pool()->try_run(threads, job)) {
-    struct Restore {
-      bool was;
-      ~Restore() { t_in_job = was; }
-    } restore{t_in_job};
-    t_in_job = true;
+    const LoopsOnThisThread alone;
     job(0);
   }
 }

@@ -3,17 +3,17 @@
 #include <array>
 #include <atomic>
 #include <chrono>
-#include <condition_variable>
 #include <cstdio>
 #include <deque>
 #include <functional>
 #include <future>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <system_error>
 #include <thread>
 
-#include "core/check.h"
+#include "core/once.h"
 #include "core/progress.h"
 #include "core/thread_pool.h"
 #include "io/image_io.h"
@@ -89,52 +89,6 @@ class JobList {
 
  private:
   std::vector<std::function<void()>> queues_[2];
-};
-
-/// A value made by the first job that needs it, the others waiting for it; if making it throws,
-/// every caller gets that exception (std::call_once is not used: after a throw, libstdc++'s may
-/// block the next caller for ever, GCC bug 66146).
-template <typename T>
-class Shared {
- public:
-  explicit Shared(std::function<T()> make) : make_(std::move(make)) {}
-  const T& get() {
-    std::unique_lock<std::mutex> lock(mutex_);
-    if (!started_) {
-      started_ = true;
-      lock.unlock();
-      std::optional<T> made;
-      std::exception_ptr error;
-      try {
-        made.emplace(make_());
-      } catch (...) {
-        error = std::current_exception();
-      }
-      lock.lock();
-      value_ = std::move(made);
-      error_ = error;
-      done_ = true;
-      made_.notify_all();
-    } else {
-      made_.wait(lock, [&] { return done_; });
-    }
-    if (error_) std::rethrow_exception(error_);
-    RR_CHECK(value_.has_value(), "a shared value read after its release()");
-    return *value_;
-  }
-  /// Frees the value: once every job that uses it is done.
-  void release() {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    value_.reset();
-  }
-
- private:
-  std::function<T()> make_;
-  std::mutex mutex_;
-  std::condition_variable made_;
-  bool started_ = false, done_ = false;
-  std::optional<T> value_;
-  std::exception_ptr error_;
 };
 
 }  // namespace
@@ -248,19 +202,20 @@ void run_paper(const PaperOptions& opt, const std::string& out_where) {
   PaperRun run{opt, data, at, params, {}, {}, {}, {}, {}, {}};
   // Each data set prepared by the first of its methods to run, and freed after the last.
   struct DataSetJobs {
-    DataSetJobs(std::function<DataSetView()> make, size_t methods) : prepared(std::move(make)), left(methods) {}
-    Shared<DataSetView> prepared;
+    explicit DataSetJobs(size_t methods) : left(methods) {}
+    MadeOnce<DataSetView> prepared;
     std::atomic<size_t> left;
   };
   std::deque<DataSetJobs> data_sets;  // (a deque: the jobs hold references)
   auto evaluate = [&](const Solution& sol, const std::vector<Method>& methods, const SideSampling& sampling,
                       const std::string& stem, std::vector<MethodResult>& table) {
-    DataSetJobs& set =
-        data_sets.emplace_back([&sol, &at, sampling] { return prepare_data_set(sol, at, sampling); }, methods.size());
+    DataSetJobs& set = data_sets.emplace_back(methods.size());
     table.resize(methods.size());
     for (size_t k = 0; k < methods.size(); ++k)
-      jobs.add(0, [&, k, m = methods[k], stem] {
-        table[k] = evaluate_method(set.prepared.get(), m, at, params, figures, stem);
+      jobs.add(0, [&, k, m = methods[k], stem, sampling] {
+        const DataSetView& prepared = set.prepared.get(
+            [&] { return std::make_unique<DataSetView>(prepare_data_set(sol, at, sampling)); });
+        table[k] = evaluate_method(prepared, m, at, params, figures, stem);
         if (--set.left == 0) set.prepared.release();
         done(stem + "_" + method_name(m));
       });

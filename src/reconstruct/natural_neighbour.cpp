@@ -133,12 +133,12 @@ void NaturalNeighbour::evaluate_raster(const Raster& raster, size_t first, size_
   if (impl_->rule != NeighbourRule::sibson || !impl_->barriers.empty() ||
       point_count < kFaceRasterLeastPointsPerFace * static_cast<double>(impl_->dt.number_of_faces()))
     return Interpolant::evaluate_raster(raster, first, count, out);
-  std::call_once(impl_->raster_made, [&] {
-    impl_->raster = std::make_unique<SibsonRaster>(impl_->dt, impl_->points, impl_->values, impl_->channels, impl_->hull_edges);
+  const SibsonRaster& faces = impl_->raster.get([&] {
+    return std::make_unique<SibsonRaster>(impl_->dt, impl_->points, impl_->values, impl_->channels, impl_->hull_edges);
   });
-  if (!impl_->raster->usable()) return Interpolant::evaluate_raster(raster, first, count, out);
+  if (!faces.usable()) return Interpolant::evaluate_raster(raster, first, count, out);
   std::vector<size_t> unserved;
-  impl_->raster->evaluate(raster, first, count, out, unserved);
+  faces.evaluate(raster, first, count, out, unserved);
   if (unserved.empty()) return;
   const size_t C = static_cast<size_t>(impl_->channels), width = static_cast<size_t>(raster.width);
   std::vector<Vec2> points;

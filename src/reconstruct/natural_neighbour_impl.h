@@ -7,10 +7,10 @@
 #include <array>
 #include <limits>
 #include <memory>
-#include <mutex>
 #include <vector>
 
 #include "core/check.h"
+#include "core/once.h"
 #include "core/tolerances.h"
 #include "reconstruct/delaunay.h"
 #include "reconstruct/kdtree.h"
@@ -40,8 +40,7 @@ struct NaturalNeighbour::Impl {
   /// The samples' k-d tree, to start walks near a query and to find the samples one sees past
   /// barriers: made on first use (a raster served face by face needs none).
   const KdTree2& tree() const {
-    std::call_once(tree_made_, [&] { tree_ = std::make_unique<KdTree2>(points); });
-    return *tree_;
+    return tree_.get([&] { return std::make_unique<KdTree2>(points); });
   }
   Barriers barriers;
   /// With barriers and at most kMaxWholeVisibleSamples samples: which samples a query sees, and
@@ -49,10 +48,8 @@ struct NaturalNeighbour::Impl {
   std::unique_ptr<PointVisibility> visibility;
   SubsetCache<Delaunay> visible_triangulations{kMaxCachedTriangulationSamples};
   /// Sibson's rule over rasters (evaluate_raster()), made on first use.
-  std::unique_ptr<SibsonRaster> raster;
-  std::once_flag raster_made;
-  mutable std::unique_ptr<KdTree2> tree_;
-  mutable std::once_flag tree_made_;
+  MadeOnce<SibsonRaster> raster;
+  MadeOnce<KdTree2> tree_;
 
   /// Buffers of coordinates(), reused from query to query.
   struct Scratch {

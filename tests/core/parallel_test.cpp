@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/thread_pool.h"
+#include "core/once.h"
 #include "core/parallel.h"
 
 namespace radrecon {
@@ -146,4 +147,43 @@ TEST(ParallelFor, NestedLoopsAndSeveralCallersEachVisitEveryIndexOnce) {
 }
 
 }  // namespace parallel_test
+}  // namespace radrecon
+
+namespace radrecon {
+namespace made_once_test {
+
+TEST(MadeOnce, EveryThreadGetsTheOneValueMadeOnce) {
+  MadeOnce<int> value;
+  std::atomic<int> made{0};
+  std::vector<const int*> seen(8, nullptr);
+  std::vector<std::thread> threads;
+  for (size_t t = 0; t < seen.size(); ++t)
+    threads.emplace_back([&, t] {
+      seen[t] = &value.get([&] {
+        ++made;
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));  // the others arrive meanwhile
+        return std::make_unique<int>(42);
+      });
+    });
+  for (std::thread& t : threads) t.join();
+  EXPECT_EQ(made.load(), 1);
+  for (const int* p : seen) {
+    ASSERT_EQ(p, seen[0]);
+    EXPECT_EQ(*p, 42);
+  }
+}
+
+TEST(MadeOnce, AThrowReachesEveryCallerAndIsNotRetried) {
+  // std::call_once would run the maker again, and libstdc++'s may hang there (GCC bug 66146).
+  MadeOnce<int> value;
+  int made = 0;
+  const auto make = [&]() -> std::unique_ptr<int> {
+    ++made;
+    throw std::runtime_error("cannot make it");
+  };
+  for (int k = 0; k < 3; ++k) EXPECT_THROW(value.get(make), std::runtime_error);
+  EXPECT_EQ(made, 1);
+}
+
+}  // namespace made_once_test
 }  // namespace radrecon
