@@ -56,7 +56,7 @@ double exposed_fraction(std::span<const Vec3> corners, const Vec3& normal, std::
   ConvexPolygon part;
   for (const Vec3& c : corners) part.push(c);
   const double whole = area(part);
-  if (covers.empty() || !(whole > 0)) return 1.0;
+  if (!(whole > 0)) return 1.0;
   double covered = 0;
   for (const ConvexPolygon& cover : covers) {
     // The part clipped to the cover's inside: the half-spaces of its edges, each bounded by the
