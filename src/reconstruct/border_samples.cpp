@@ -89,7 +89,8 @@ bool inside(const Vec2& p, const Rect& r) { return p.x() >= r.x0 && p.x() <= r.x
 struct FitScratch {
   VisibleNeighbours visible;
   Eigen::Matrix<double, Eigen::Dynamic, 3> a;
-  Eigen::MatrixXd b, x;
+  Eigen::MatrixXd b;
+  Eigen::Vector3d x;
 };
 
 /// The value at p by the rule of border_samples.h into out[0, channels); false when p sees no
@@ -137,8 +138,13 @@ bool fit_value(const Vec2& p, const ScatteredSamples& interior, const KdTree2& t
     s.a(j, 2) = w * d.y();
     for (int c = 0; c < C; ++c) s.b(j, c) = w * (interior.values[i * C + c] - v0[c]);
   }
-  s.x = Eigen::HouseholderQR<Eigen::Matrix<double, Eigen::Dynamic, 3>>(s.a).solve(s.b);
-  for (int c = 0; c < C; ++c) out[c] = v0[c] + s.x(0, c);
+  // Channel by channel, so that a channel's arithmetic does not depend on how many there are
+  // (Eigen solves several right-hand sides at once as a matrix product, summed in another order).
+  const Eigen::HouseholderQR<Eigen::Matrix<double, Eigen::Dynamic, 3>> qr(s.a);
+  for (int c = 0; c < C; ++c) {
+    s.x = qr.solve(s.b.col(c));
+    out[c] = v0[c] + s.x(0);
+  }
   return true;
 }
 
