@@ -1,9 +1,5 @@
 #include "reconstruct/multiquadric_basis.h"
 
-#if defined(__AVX2__) && defined(__FMA__)
-#include <immintrin.h>
-#endif
-
 #include <algorithm>
 #include <cstdint>
 #include <optional>
@@ -13,6 +9,7 @@
 #include <Eigen/LU>
 
 #include "core/math.h"
+#include "core/simd.h"
 
 #include "core/check.h"
 #include "core/parallel.h"
@@ -194,41 +191,42 @@ void evaluate_rbf_fit(const RbfFit& fit, const RbfKernel& kernel, int channels, 
 
 void add_rbf_sum(const RbfFit& fit, const RbfKernel& kernel, int channels, const Vec2& p, double weight,
                  Eigen::ArrayXd& b, double* out) {
-#if defined(__AVX2__) && defined(__FMA__)
+#if RADRECON_SIMD
   // The multiquadric (mu = 1/2) for up to three channels in one pass over the samples, the
-  // basis and the sums in AVX2 registers (the general path below stores the basis first).
+  // basis and the sums in registers (the general path below stores the basis first); the last
+  // packet masked.
   if (!kernel.is_thin_plate() && kernel.mu == 0.5 && channels <= 3) {
+    using simd::PackD;
+    constexpr int L = PackD::kLanes;
     const size_t m = fit.subset.size();
     const double *xs = fit.px.data(), *ys = fit.py.data(), *rs = fit.r_sq.data();
     const double* a0 = fit.alpha_by_channel.data();
     const double* a1 = channels > 1 ? a0 + m : a0;
     const double* a2 = channels > 2 ? a0 + 2 * m : a0;
-    const double scale = fit.kernel_scale;
-    const __m256d x = _mm256_set1_pd(p.x()), y = _mm256_set1_pd(p.y()), s = _mm256_set1_pd(scale);
-    __m256d sum0 = _mm256_setzero_pd(), sum1 = sum0, sum2 = sum0;
+    const bool scaled = fit.kernel_scale != 1;
+    const PackD x = PackD::set(p.x()), y = PackD::set(p.y()), s = PackD::set(fit.kernel_scale);
+    PackD sum0 = PackD::zero(), sum1 = sum0, sum2 = sum0;
+    // phi of the packet at i times its alphas into the sums; `load` reads a packet (masked or
+    // not), `keep` sets the unmasked lanes' v to 0 (finite whatever the query).
+    const auto add = [&](size_t i, const auto& load, const auto& keep) {
+      const PackD dx = x - load(xs + i), dy = y - load(ys + i);
+      PackD v = (dx * dx + dy * dy) + load(rs + i);  // as fill_system() has it: exact at the samples
+      if (scaled) v = v * s;
+      const PackD phi = sqrt(keep(v));
+      sum0 = fmadd(phi, load(a0 + i), sum0);
+      if (channels > 1) sum1 = fmadd(phi, load(a1 + i), sum1);
+      if (channels > 2) sum2 = fmadd(phi, load(a2 + i), sum2);
+    };
     size_t i = 0;
-    for (; i + 4 <= m; i += 4) {
-      const __m256d dx = _mm256_sub_pd(x, _mm256_loadu_pd(xs + i)), dy = _mm256_sub_pd(y, _mm256_loadu_pd(ys + i));
-      __m256d v = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)), _mm256_loadu_pd(rs + i));
-      if (scale != 1) v = _mm256_mul_pd(v, s);
-      const __m256d phi = _mm256_sqrt_pd(v);
-      sum0 = _mm256_fmadd_pd(phi, _mm256_loadu_pd(a0 + i), sum0);
-      if (channels > 1) sum1 = _mm256_fmadd_pd(phi, _mm256_loadu_pd(a1 + i), sum1);
-      if (channels > 2) sum2 = _mm256_fmadd_pd(phi, _mm256_loadu_pd(a2 + i), sum2);
+    for (; i + L <= m; i += L) add(i, [](const double* q) { return PackD::load(q); }, [](PackD v) { return v; });
+    if (i < m) {  // the lanes past the end: phi(0) times alpha 0 adds nothing
+      const PackD::Mask tail = PackD::Mask::first(static_cast<int>(m - i));
+      add(i, [&](const double* q) { return PackD::load(q, tail); },
+          [&](PackD v) { return PackD::select(tail, v, PackD::zero()); });
     }
-    double t0 = sum_lanes(sum0), t1 = sum_lanes(sum1), t2 = sum_lanes(sum2);
-    for (; i < m; ++i) {
-      const double dx = p.x() - xs[i], dy = p.y() - ys[i];
-      double v = dx * dx + dy * dy + rs[i];
-      if (scale != 1) v *= scale;
-      const double phi = std::sqrt(v);
-      t0 += phi * a0[i];
-      t1 += phi * a1[i];
-      t2 += phi * a2[i];
-    }
-    out[0] += weight * t0;
-    if (channels > 1) out[1] += weight * t1;
-    if (channels > 2) out[2] += weight * t2;
+    out[0] += weight * sum0.sum();
+    if (channels > 1) out[1] += weight * sum1.sum();
+    if (channels > 2) out[2] += weight * sum2.sum();
     return;
   }
 #endif

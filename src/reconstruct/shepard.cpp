@@ -15,8 +15,21 @@
 #include "core/tolerances.h"
 #include "reconstruct/kdtree.h"
 #include "core/parallel.h"
+#include "core/simd.h"
 
 namespace radrecon {
+
+namespace {
+
+// global_value_one_pass()'s weights are w = d^-mu themselves (not relative to the nearest
+// sample's): safe while every squared distance d^2 lies in [kLeastDistSq, kMostDistSq] and every
+// value's magnitude in [kLeastValue, kMostValue] (or is 0). Then a product of two d^2 (the shared
+// division) lies in [1e-120, 1e120], w in [1e-120, 1e120] for mu up to 4, and w times a value in
+// [1e-270, 1e270]: normal numbers, with the relative rounding of the relative weights.
+constexpr double kLeastDistSq = 1e-60, kMostDistSq = 1e60;
+constexpr double kLeastValue = 1e-150, kMostValue = 1e150;
+
+}  // namespace
 
 Shepard::Shepard(ScatteredSamples samples, double mu, int k) : samples_(std::move(samples)), mu_(mu), k_(k) {
   RR_CHECK(mu > 0 && k >= 0, "Shepard parameters out of range");
@@ -29,6 +42,10 @@ Shepard::Shepard(ScatteredSamples samples, double mu, int k) : samples_(std::mov
   for (size_t i = 0; i < n; ++i)
     for (int c = 0; c < samples_.channels; ++c)
       values_by_channel_[static_cast<size_t>(c) * n + i] = samples_.values[i * samples_.channels + c];
+  one_pass_ = (mu_ == 4.0 || mu_ == 2.0) && samples_.channels <= 3 &&
+              std::all_of(samples_.values.begin(), samples_.values.end(), [](double v) {
+                return v == 0 || (std::abs(v) >= kLeastValue && std::abs(v) <= kMostValue);
+              });
   if (k_ > 0 && static_cast<size_t>(k_) < samples_.points.size()) {
     tree_ = std::make_unique<KdTree2>(samples_.points);
     nearest_ = std::make_unique<CoherentNearest>(*tree_, samples_.points, k_);
@@ -121,6 +138,65 @@ void Shepard::local_value(const Vec2& p, std::span<const unsigned> nearest_idx, 
       if (d2[j] <= radius_sq_) sum += relative_weight(nearest_sq / d2[j], mu_) * samples_.values[idx[j] * static_cast<size_t>(C) + c];
     o[c] = sum / total;
   }
+}
+
+bool Shepard::global_value_one_pass(const Vec2& p, double* o) const {
+#if RADRECON_SIMD
+  using simd::PackD;
+  constexpr size_t L = PackD::kLanes;
+  const int C = samples_.channels;
+  const size_t n = px_.size();
+  const double* v0 = values_by_channel_.data();
+  const double* v1 = C > 1 ? v0 + n : v0;
+  const double* v2 = C > 2 ? v0 + 2 * n : v0;
+  const bool square = mu_ == 4.0;
+  const PackD x = PackD::set(p.x()), y = PackD::set(p.y()), one = PackD::set(1.0);
+  PackD least = PackD::set(std::numeric_limits<double>::infinity()), most = PackD::zero();
+  // Sums of weights and of weights times values, two sets (the even and the odd packets of
+  // samples: two dependency chains), merged at the end.
+  struct Sums {
+    PackD total = PackD::zero(), s0 = total, s1 = total, s2 = total;
+  } even, odd;
+  const auto add = [&](Sums& sums, PackD w, size_t at, const auto& load) {  // w = d^-2 of samples at..
+    if (square) w = w * w;
+    sums.total = sums.total + w;
+    sums.s0 = fmadd(w, load(v0 + at), sums.s0);
+    if (C > 1) sums.s1 = fmadd(w, load(v1 + at), sums.s1);
+    if (C > 2) sums.s2 = fmadd(w, load(v2 + at), sums.s2);
+  };
+  const auto whole = [](const double* q) { return PackD::load(q); };
+  size_t i = 0;
+  // Two packets share one division (the divider is the bottleneck): with r = 1 / (a b),
+  // 1 / a = b r and 1 / b = a r.
+  for (; i + 2 * L <= n; i += 2 * L) {
+    const PackD ax = x - PackD::load(&px_[i]), ay = y - PackD::load(&py_[i]);
+    const PackD bx = x - PackD::load(&px_[i + L]), by = y - PackD::load(&py_[i + L]);
+    const PackD a = fmadd(ax, ax, ay * ay), b = fmadd(bx, bx, by * by);
+    least = min(least, min(a, b));
+    most = max(most, max(a, b));
+    const PackD r = one / (a * b);
+    add(even, b * r, i, whole);
+    add(odd, a * r, i + L, whole);
+  }
+  for (; i < n; i += L) {  // at most two packets, the last masked: its lanes past the end weigh 0
+    const PackD::Mask in = PackD::Mask::first(static_cast<int>(std::min(L, n - i)));
+    const auto masked = [&](const double* q) { return PackD::load(q, in); };
+    const PackD dx = x - masked(&px_[i]), dy = y - masked(&py_[i]);
+    const PackD a = PackD::select(in, fmadd(dx, dx, dy * dy), one);
+    least = min(least, a);
+    most = max(most, a);
+    add(even, PackD::select(in, one / a, PackD::zero()), i, masked);
+  }
+  if (!(least.min_lane() >= kLeastDistSq && most.max_lane() <= kMostDistSq)) return false;
+  const double total = (even.total + odd.total).sum();
+  o[0] = (even.s0 + odd.s0).sum() / total;
+  if (C > 1) o[1] = (even.s1 + odd.s1).sum() / total;
+  if (C > 2) o[2] = (even.s2 + odd.s2).sum() / total;
+  return true;
+#else
+  (void)p, (void)o;
+  return false;
+#endif
 }
 
 bool Shepard::global_value_fused(const Vec2& p, Scratch& s, double* o) const {
@@ -264,6 +340,9 @@ void Shepard::evaluate(std::span<const Vec2> points, std::span<double> out) cons
       for (int c = 0; c < C; ++c) o[c] = std::numeric_limits<double>::quiet_NaN();
       return;
     }
+    if (one_pass_ && barriers_.empty() && !(radius_sq_ < std::numeric_limits<double>::infinity()) &&
+        global_value_one_pass(p, o))
+      return;
     if (global_value_fused(p, s, o)) return;
     // Global: all samples at once as Eigen arrays (SIMD, sums in a fixed packet order).
     using Array = Eigen::Map<const Eigen::ArrayXd>;

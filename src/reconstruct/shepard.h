@@ -46,12 +46,20 @@ class Shepard final : public Interpolant {
   std::unique_ptr<PointVisibility> visibility_;  ///< with barriers: over samples_.points
   /// Per-thread buffers of evaluate().
   struct Scratch;
-  /// The local path's value at p (o: a value per channel) from its k nearest samples, in any
-  /// order, `nearest` the position of the nearest among them.
+  /// Whether global_value_one_pass() applies but for barriers and radius: mu 2 or 4, at most
+  /// three channels, and every value 0 or of a magnitude in [kLeastValue, kMostValue] (shepard.cpp).
+  bool one_pass_ = false;
+  /// The global weighted mean at p (finite) in one pass over the samples, in SIMD packets, with
+  /// weights d^-mu themselves: false (nothing written) where they could overflow or underflow,
+  /// i.e. where p is within sqrt(kLeastDistSq) of a sample or beyond sqrt(kMostDistSq) of one.
+  bool global_value_one_pass(const Vec2& p, double* o) const;
   /// The global weighted mean at p (finite, no radius, mu 2 or 4, at most three channels; with
   /// barriers the samples hidden from p weigh exactly 0) in two fused AVX2 passes over the
-  /// samples; false where it does not apply.
+  /// samples, with weights relative to the nearest sample's (no overflow whatever the
+  /// distances); false where it does not apply.
   bool global_value_fused(const Vec2& p, Scratch& s, double* o) const;
+  /// The local path's value at p (o: a value per channel) from its k nearest samples, in any
+  /// order, `nearest` the position of the nearest among them.
   void local_value(const Vec2& p, std::span<const unsigned> nearest_idx, std::span<const double> nearest_d2,
                    size_t nearest, Scratch& s, double* o) const;
 };

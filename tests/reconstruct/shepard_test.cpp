@@ -87,33 +87,38 @@ TEST(Shepard, MatchesTheFormulaAndItsKNearestRestriction) {
 // products near 1e+-180) and at scales that leave it either way, with sample counts that leave
 // a vector and single samples after the pairs.
 TEST(Shepard, GlobalVectorPathMatchesTheFormulaAtEveryScale) {
+  // The global paths: one pass with weights d^-mu (distances and values of moderate size), and
+  // two passes with weights relative to the nearest sample's where those could overflow or
+  // underflow (distances of 1e+-45 and beyond, values of 1e+-200).
   for (const double scale : {1.0, 1e-45, 1e45, 1e-60, 1e60})
-    for (const int n : {61, 64, 7})
-      for (const int channels : {1, 3})
-        for (const double mu : {2.0, 4.0}) {
-          std::mt19937 rng(static_cast<unsigned>(n * 7 + channels));
-          ScatteredSamples s = random_samples(n, rng, channels);
-          for (Vec2& p : s.points) p *= scale;
-          const Shepard f(s, mu, 0);
-          std::uniform_real_distribution<double> xy(-0.5, 4.5);
-          for (int t = 0; t < 40; ++t) {
-            const Vec2 q = Vec2(xy(rng), xy(rng)) * scale;
-            long double nearest = std::numeric_limits<long double>::infinity();
-            for (const Vec2& p : s.points) nearest = std::min(nearest, static_cast<long double>((p - q).norm()));
-            std::vector<long double> num(static_cast<size_t>(channels), 0.0L);
-            long double den = 0;
-            for (size_t i = 0; i < s.points.size(); ++i) {
-              const long double w = std::pow(nearest / static_cast<long double>((s.points[i] - q).norm()), static_cast<long double>(mu));
-              den += w;
-              for (int c = 0; c < channels; ++c) num[static_cast<size_t>(c)] += w * s.values[i * static_cast<size_t>(channels) + c];
+    for (const double value_scale : {1.0, 1e200, 1e-200})
+      for (const int n : {61, 64, 7})
+        for (const int channels : {1, 3})
+          for (const double mu : {2.0, 4.0}) {
+            std::mt19937 rng(static_cast<unsigned>(n * 7 + channels));
+            ScatteredSamples s = random_samples(n, rng, channels);
+            for (Vec2& p : s.points) p *= scale;
+            for (double& v : s.values) v *= value_scale;
+            const Shepard f(s, mu, 0);
+            std::uniform_real_distribution<double> xy(-0.5, 4.5);
+            for (int t = 0; t < 40; ++t) {
+              const Vec2 q = Vec2(xy(rng), xy(rng)) * scale;
+              long double nearest = std::numeric_limits<long double>::infinity();
+              for (const Vec2& p : s.points) nearest = std::min(nearest, static_cast<long double>((p - q).norm()));
+              std::vector<long double> num(static_cast<size_t>(channels), 0.0L);
+              long double den = 0;
+              for (size_t i = 0; i < s.points.size(); ++i) {
+                const long double w = std::pow(nearest / static_cast<long double>((s.points[i] - q).norm()), static_cast<long double>(mu));
+                den += w;
+                for (int c = 0; c < channels; ++c) num[static_cast<size_t>(c)] += w * s.values[i * static_cast<size_t>(channels) + c];
+              }
+              std::vector<double> got(static_cast<size_t>(channels));
+              f.evaluate(std::span(&q, 1), got);
+              for (int c = 0; c < channels; ++c)
+                EXPECT_NEAR(got[static_cast<size_t>(c)], static_cast<double>(num[static_cast<size_t>(c)] / den), 1e-13 * value_scale)
+                    << "scale " << scale << " values " << value_scale << " n " << n << " channels " << channels << " mu " << mu;
             }
-            std::vector<double> got(static_cast<size_t>(channels));
-            f.evaluate(std::span(&q, 1), got);
-            for (int c = 0; c < channels; ++c)
-              EXPECT_NEAR(got[static_cast<size_t>(c)], static_cast<double>(num[static_cast<size_t>(c)] / den), 1e-13)
-                  << "scale " << scale << " n " << n << " channels " << channels << " mu " << mu;
           }
-        }
 }
 
 // Local Shepard finds its k nearest for a batch of queries at once, by tiles (kdtree.h
@@ -182,9 +187,9 @@ TEST(Shepard, SearchRadiusUsesExactlyTheSamplesWithinItAsBruteForce) {
 
 TEST(Shepard, FastPathsForMu4AndMu2MatchTheFormulaWithPow) {
   // mu = 4 and mu = 2 skip pow() (squares and quotients of d^2, relative to the nearest sample's);
-  // they must agree with sum d^-mu B / sum d^-mu, d^-mu by std::pow, on every path: global (fused
-  // AVX2 passes for up to 3 channels, Eigen arrays beyond) and k nearest (channels 0..2 and the
-  // rest apart), with 70 samples (not a multiple of the vectors' 4 lanes). Positive values, so no
+  // they must agree with sum d^-mu B / sum d^-mu, d^-mu by std::pow, on every path: global (one
+  // pass in SIMD packets for up to 3 channels, Eigen arrays beyond) and k nearest (channels 0..2
+  // and the rest apart), with 70 samples (not a multiple of the packets' 4 or 8 lanes). Positive values, so no
   // cancellation: each side rounds every weight and sums <= 70 positive terms, a few ulps each,
   // hence 1e-14 relative.
   constexpr double kRelative = 1e-14;

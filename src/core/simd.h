@@ -1,0 +1,104 @@
+#pragma once
+// Packets of doubles for the kernels that weigh every sample (Shepard's weights, the RBF sums):
+// the widest vectors the build's -march offers, AVX-512 (8 lanes) or AVX2 with FMA (4 lanes), so
+// that one kernel body serves both. RADRECON_SIMD is 0 when the build has neither (the kernels'
+// scalar or Eigen forms run instead).
+//
+// Results depend on the width only through the order of sums: sum() adds the lanes in a fixed
+// order, so a given build gives the same bits on every CPU and with any number of threads.
+
+#if defined(__AVX512F__) || (defined(__AVX2__) && defined(__FMA__))
+#define RADRECON_SIMD 1
+#include <immintrin.h>
+#else
+#define RADRECON_SIMD 0
+#endif
+
+namespace radrecon::simd {
+
+#if defined(__AVX512F__)
+
+/// 8 doubles (AVX-512F).
+struct PackD {
+  static constexpr int kLanes = 8;
+  /// Which lanes take part: the first `count` of a packet at the end of an array.
+  struct Mask {
+    __mmask8 bits;
+    static Mask first(int count) { return {static_cast<__mmask8>((1u << count) - 1u)}; }
+  };
+  __m512d v;
+
+  static PackD set(double x) { return {_mm512_set1_pd(x)}; }
+  static PackD zero() { return {_mm512_setzero_pd()}; }
+  static PackD load(const double* p) { return {_mm512_loadu_pd(p)}; }
+  /// The masked lanes from p, the others 0 (nothing read beyond them).
+  static PackD load(const double* p, Mask m) { return {_mm512_maskz_loadu_pd(m.bits, p)}; }
+  /// The masked lanes of a, the others b.
+  static PackD select(Mask m, PackD a, PackD b) { return {_mm512_mask_blend_pd(m.bits, b.v, a.v)}; }
+
+  friend PackD operator+(PackD a, PackD b) { return {_mm512_add_pd(a.v, b.v)}; }
+  friend PackD operator-(PackD a, PackD b) { return {_mm512_sub_pd(a.v, b.v)}; }
+  friend PackD operator*(PackD a, PackD b) { return {_mm512_mul_pd(a.v, b.v)}; }
+  friend PackD operator/(PackD a, PackD b) { return {_mm512_div_pd(a.v, b.v)}; }
+  /// a * b + c, one rounding.
+  friend PackD fmadd(PackD a, PackD b, PackD c) { return {_mm512_fmadd_pd(a.v, b.v, c.v)}; }
+  friend PackD sqrt(PackD a) { return {_mm512_sqrt_pd(a.v)}; }
+  friend PackD min(PackD a, PackD b) { return {_mm512_min_pd(a.v, b.v)}; }
+  friend PackD max(PackD a, PackD b) { return {_mm512_max_pd(a.v, b.v)}; }
+
+  /// The lanes' sum in a fixed order: halves added pairwise, ((0 + 4) + (2 + 6)) + ((1 + 5) + (3 + 7)).
+  double sum() const {
+    const __m256d h = _mm256_add_pd(_mm512_castpd512_pd256(v), _mm512_extractf64x4_pd(v, 1));
+    const __m128d q = _mm_add_pd(_mm256_castpd256_pd128(h), _mm256_extractf128_pd(h, 1));
+    return _mm_cvtsd_f64(_mm_add_sd(q, _mm_unpackhi_pd(q, q)));
+  }
+  double min_lane() const { return _mm512_reduce_min_pd(v); }
+  double max_lane() const { return _mm512_reduce_max_pd(v); }
+};
+
+#elif RADRECON_SIMD
+
+/// 4 doubles (AVX2 and FMA).
+struct PackD {
+  static constexpr int kLanes = 4;
+  struct Mask {
+    __m256i bits;  // all ones in a lane that takes part
+    static Mask first(int count) {
+      return {_mm256_cmpgt_epi64(_mm256_set1_epi64x(count), _mm256_setr_epi64x(0, 1, 2, 3))};
+    }
+  };
+  __m256d v;
+
+  static PackD set(double x) { return {_mm256_set1_pd(x)}; }
+  static PackD zero() { return {_mm256_setzero_pd()}; }
+  static PackD load(const double* p) { return {_mm256_loadu_pd(p)}; }
+  static PackD load(const double* p, Mask m) { return {_mm256_maskload_pd(p, m.bits)}; }
+  static PackD select(Mask m, PackD a, PackD b) { return {_mm256_blendv_pd(b.v, a.v, _mm256_castsi256_pd(m.bits))}; }
+
+  friend PackD operator+(PackD a, PackD b) { return {_mm256_add_pd(a.v, b.v)}; }
+  friend PackD operator-(PackD a, PackD b) { return {_mm256_sub_pd(a.v, b.v)}; }
+  friend PackD operator*(PackD a, PackD b) { return {_mm256_mul_pd(a.v, b.v)}; }
+  friend PackD operator/(PackD a, PackD b) { return {_mm256_div_pd(a.v, b.v)}; }
+  friend PackD fmadd(PackD a, PackD b, PackD c) { return {_mm256_fmadd_pd(a.v, b.v, c.v)}; }
+  friend PackD sqrt(PackD a) { return {_mm256_sqrt_pd(a.v)}; }
+  friend PackD min(PackD a, PackD b) { return {_mm256_min_pd(a.v, b.v)}; }
+  friend PackD max(PackD a, PackD b) { return {_mm256_max_pd(a.v, b.v)}; }
+
+  /// The lanes' sum in a fixed order: (0 + 2) + (1 + 3).
+  double sum() const {
+    const __m128d q = _mm_add_pd(_mm256_castpd256_pd128(v), _mm256_extractf128_pd(v, 1));
+    return _mm_cvtsd_f64(_mm_add_sd(q, _mm_unpackhi_pd(q, q)));
+  }
+  double min_lane() const {
+    const __m128d q = _mm_min_pd(_mm256_castpd256_pd128(v), _mm256_extractf128_pd(v, 1));
+    return _mm_cvtsd_f64(_mm_min_sd(q, _mm_unpackhi_pd(q, q)));
+  }
+  double max_lane() const {
+    const __m128d q = _mm_max_pd(_mm256_castpd256_pd128(v), _mm256_extractf128_pd(v, 1));
+    return _mm_cvtsd_f64(_mm_max_sd(q, _mm_unpackhi_pd(q, q)));
+  }
+};
+
+#endif
+
+}  // namespace radrecon::simd
