@@ -7,24 +7,34 @@
 // Results depend on the width only through the order of sums: sum() adds the lanes in a fixed
 // order, so a given build gives the same bits on every CPU and with any number of threads.
 
-#if defined(__AVX512F__) || (defined(__AVX2__) && defined(__FMA__))
+#if (defined(__AVX512F__) && defined(__AVX512BW__) && defined(__AVX512VL__)) || (defined(__AVX2__) && defined(__FMA__))
 #define RADRECON_SIMD 1
 #include <immintrin.h>
+
+#include <cstdint>
+#include <cstring>
 #else
 #define RADRECON_SIMD 0
 #endif
 
 namespace radrecon::simd {
 
-#if defined(__AVX512F__)
+#if defined(__AVX512F__) && defined(__AVX512BW__) && defined(__AVX512VL__)
 
-/// 8 doubles (AVX-512F).
+/// 8 doubles (AVX-512 F, BW and VL: x86-64-v4).
 struct PackD {
   static constexpr int kLanes = 8;
   /// Which lanes take part: the first `count` of a packet at the end of an array.
   struct Mask {
     __mmask8 bits;
     static Mask first(int count) { return {static_cast<__mmask8>((1u << count) - 1u)}; }
+    /// The lanes whose byte of flags[0, kLanes) is 0.
+    static Mask zero_bytes(const char* flags) {
+      std::uint64_t b;
+      std::memcpy(&b, flags, sizeof b);
+      return {static_cast<__mmask8>(_mm_cmpeq_epi8_mask(_mm_cvtsi64_si128(static_cast<long long>(b)), _mm_setzero_si128()))};
+    }
+    friend Mask operator&(Mask a, Mask b) { return {static_cast<__mmask8>(a.bits & b.bits)}; }
   };
   __m512d v;
 
@@ -66,6 +76,13 @@ struct PackD {
     static Mask first(int count) {
       return {_mm256_cmpgt_epi64(_mm256_set1_epi64x(count), _mm256_setr_epi64x(0, 1, 2, 3))};
     }
+    /// The lanes whose byte of flags[0, kLanes) is 0.
+    static Mask zero_bytes(const char* flags) {
+      std::int32_t b;
+      std::memcpy(&b, flags, sizeof b);
+      return {_mm256_cmpeq_epi64(_mm256_cvtepi8_epi64(_mm_cvtsi32_si128(b)), _mm256_setzero_si256())};
+    }
+    friend Mask operator&(Mask a, Mask b) { return {_mm256_and_si256(a.bits, b.bits)}; }
   };
   __m256d v;
 

@@ -140,9 +140,10 @@ void Shepard::local_value(const Vec2& p, std::span<const unsigned> nearest_idx, 
   }
 }
 
-bool Shepard::global_value_one_pass(const Vec2& p, double* o) const {
+bool Shepard::global_value_one_pass(const Vec2& p, const char* hidden, double* o) const {
 #if RADRECON_SIMD
   using simd::PackD;
+  using Mask = PackD::Mask;
   constexpr size_t L = PackD::kLanes;
   const int C = samples_.channels;
   const size_t n = px_.size();
@@ -150,8 +151,8 @@ bool Shepard::global_value_one_pass(const Vec2& p, double* o) const {
   const double* v1 = C > 1 ? v0 + n : v0;
   const double* v2 = C > 2 ? v0 + 2 * n : v0;
   const bool square = mu_ == 4.0;
-  const PackD x = PackD::set(p.x()), y = PackD::set(p.y()), one = PackD::set(1.0);
-  PackD least = PackD::set(std::numeric_limits<double>::infinity()), most = PackD::zero();
+  const PackD x = PackD::set(p.x()), y = PackD::set(p.y()), one = PackD::set(1.0), zero = PackD::zero();
+  PackD least = PackD::set(std::numeric_limits<double>::infinity()), most = zero;
   // Sums of weights and of weights times values, two sets (the even and the odd packets of
   // samples: two dependency chains), merged at the end.
   struct Sums {
@@ -165,36 +166,56 @@ bool Shepard::global_value_one_pass(const Vec2& p, double* o) const {
     if (C > 2) sums.s2 = fmadd(w, load(v2 + at), sums.s2);
   };
   const auto whole = [](const double* q) { return PackD::load(q); };
+  // The squared distances of the packet at i; a hidden sample's stands in as 1 (within range, it
+  // moves no bound across a limit) and its weight is then 0.
+  const auto dist_sq = [&](size_t i, const auto& load) {
+    const PackD dx = x - load(&px_[i]), dy = y - load(&py_[i]);
+    return fmadd(dx, dx, dy * dy);
+  };
   size_t i = 0;
   // Two packets share one division (the divider is the bottleneck): with r = 1 / (a b),
   // 1 / a = b r and 1 / b = a r.
   for (; i + 2 * L <= n; i += 2 * L) {
-    const PackD ax = x - PackD::load(&px_[i]), ay = y - PackD::load(&py_[i]);
-    const PackD bx = x - PackD::load(&px_[i + L]), by = y - PackD::load(&py_[i + L]);
-    const PackD a = fmadd(ax, ax, ay * ay), b = fmadd(bx, bx, by * by);
+    PackD a = dist_sq(i, whole), b = dist_sq(i + L, whole);
+    Mask seen_a{}, seen_b{};
+    if (hidden) {
+      seen_a = Mask::zero_bytes(hidden + i), seen_b = Mask::zero_bytes(hidden + i + L);
+      a = PackD::select(seen_a, a, one), b = PackD::select(seen_b, b, one);
+    }
     least = min(least, min(a, b));
     most = max(most, max(a, b));
     const PackD r = one / (a * b);
-    add(even, b * r, i, whole);
-    add(odd, a * r, i + L, whole);
+    PackD wa = b * r, wb = a * r;
+    if (hidden) wa = PackD::select(seen_a, wa, zero), wb = PackD::select(seen_b, wb, zero);
+    add(even, wa, i, whole);
+    add(odd, wb, i + L, whole);
   }
   for (; i < n; i += L) {  // at most two packets, the last masked: its lanes past the end weigh 0
-    const PackD::Mask in = PackD::Mask::first(static_cast<int>(std::min(L, n - i)));
+    const size_t count = std::min(L, n - i);
+    Mask in = Mask::first(static_cast<int>(count));
     const auto masked = [&](const double* q) { return PackD::load(q, in); };
-    const PackD dx = x - masked(&px_[i]), dy = y - masked(&py_[i]);
-    const PackD a = PackD::select(in, fmadd(dx, dx, dy * dy), one);
+    if (hidden) {
+      char flags[L] = {};
+      std::copy_n(hidden + i, count, flags);
+      in = in & Mask::zero_bytes(flags);
+    }
+    const PackD a = PackD::select(in, dist_sq(i, masked), one);
     least = min(least, a);
     most = max(most, a);
-    add(even, PackD::select(in, one / a, PackD::zero()), i, masked);
+    add(even, PackD::select(in, one / a, zero), i, masked);
   }
   if (!(least.min_lane() >= kLeastDistSq && most.max_lane() <= kMostDistSq)) return false;
   const double total = (even.total + odd.total).sum();
+  if (total == 0) {  // every sample hidden: no value
+    for (int c = 0; c < C; ++c) o[c] = std::numeric_limits<double>::quiet_NaN();
+    return true;
+  }
   o[0] = (even.s0 + odd.s0).sum() / total;
   if (C > 1) o[1] = (even.s1 + odd.s1).sum() / total;
   if (C > 2) o[2] = (even.s2 + odd.s2).sum() / total;
   return true;
 #else
-  (void)p, (void)o;
+  (void)p, (void)hidden, (void)o;
   return false;
 #endif
 }
@@ -340,9 +361,15 @@ void Shepard::evaluate(std::span<const Vec2> points, std::span<double> out) cons
       for (int c = 0; c < C; ++c) o[c] = std::numeric_limits<double>::quiet_NaN();
       return;
     }
-    if (one_pass_ && barriers_.empty() && !(radius_sq_ < std::numeric_limits<double>::infinity()) &&
-        global_value_one_pass(p, o))
-      return;
+    if (one_pass_ && !(radius_sq_ < std::numeric_limits<double>::infinity())) {
+      // With barriers a hidden sample weighs 0.
+      const char* hidden = nullptr;
+      if (!barriers_.empty()) {
+        visibility_->hidden_from(p, s.hidden);
+        hidden = s.hidden.data();
+      }
+      if (global_value_one_pass(p, hidden, o)) return;
+    }
     if (global_value_fused(p, s, o)) return;
     // Global: all samples at once as Eigen arrays (SIMD, sums in a fixed packet order).
     using Array = Eigen::Map<const Eigen::ArrayXd>;

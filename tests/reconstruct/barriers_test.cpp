@@ -136,12 +136,18 @@ TEST(ShepardWithBarriers, ASampleAcrossABarrierHasExactlyZeroInfluence) {
   const std::vector<Vec2> q = left_queries();
   const Shepard a(two_sided_samples(1.0, 5.0), 4.0, 0, wall());
   const Shepard b(two_sided_samples(1.0, -300.0), 4.0, 0, wall());
-  // Values so large that any weight left on a hidden sample, however small, would show.
-  const Shepard c(two_sided_samples(1.0, 1e250), 4.0, 0, wall());
-  const std::vector<double> va = evaluate(a, q), vb = evaluate(b, q), vc = evaluate(c, q);
+  // Values so large that any weight left on a hidden sample would show.
+  const Shepard c(two_sided_samples(1.0, 1e140), 4.0, 0, wall());
+  // Values beyond the one-pass kernel's range: the path with weights relative to the nearest's.
+  const Shepard d(two_sided_samples(1.0, 1e250), 4.0, 0, wall());
+  const Shepard e(two_sided_samples(1.0, -1e250), 4.0, 0, wall());
+  const std::vector<double> va = evaluate(a, q), vb = evaluate(b, q), vc = evaluate(c, q), vd = evaluate(d, q),
+                            ve = evaluate(e, q);
   for (size_t k = 0; k < q.size(); ++k) {
     ASSERT_EQ(va[k], vb[k]) << "query " << k;
     ASSERT_EQ(va[k], vc[k]) << "query " << k;
+    ASSERT_EQ(vd[k], ve[k]) << "query " << k;
+    ASSERT_NEAR(va[k], vd[k], 1e-14 * std::abs(va[k])) << "query " << k;  // the two paths' rounding apart
   }
   // Without the wall the right side's values do leak in.
   const Shepard leaky(two_sided_samples(1.0, 5.0), 4.0, 0);
