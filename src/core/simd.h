@@ -55,6 +55,9 @@ struct PackD {
   friend PackD sqrt(PackD a) { return {_mm512_sqrt_pd(a.v)}; }
   friend PackD min(PackD a, PackD b) { return {_mm512_min_pd(a.v, b.v)}; }
   friend PackD max(PackD a, PackD b) { return {_mm512_max_pd(a.v, b.v)}; }
+  friend PackD abs(PackD a) { return {_mm512_abs_pd(a.v)}; }
+  /// Whether every lane is > 0 (false for a NaN lane).
+  bool all_positive() const { return _mm512_cmp_pd_mask(v, _mm512_setzero_pd(), _CMP_GT_OQ) == 0xff; }
 
   /// The lanes' sum in a fixed order: halves added pairwise, ((0 + 4) + (2 + 6)) + ((1 + 5) + (3 + 7)).
   double sum() const {
@@ -100,6 +103,8 @@ struct PackD {
   friend PackD sqrt(PackD a) { return {_mm256_sqrt_pd(a.v)}; }
   friend PackD min(PackD a, PackD b) { return {_mm256_min_pd(a.v, b.v)}; }
   friend PackD max(PackD a, PackD b) { return {_mm256_max_pd(a.v, b.v)}; }
+  friend PackD abs(PackD a) { return {_mm256_andnot_pd(_mm256_set1_pd(-0.0), a.v)}; }
+  bool all_positive() const { return _mm256_movemask_pd(_mm256_cmp_pd(v, _mm256_setzero_pd(), _CMP_GT_OQ)) == 0xf; }
 
   /// The lanes' sum in a fixed order: (0 + 2) + (1 + 3).
   double sum() const {
