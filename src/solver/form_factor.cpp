@@ -37,6 +37,24 @@ double lambert_form_factor(const Vec3& p, const Vec3& n, const ConvexPolygon& po
   // former's offset from p, r1 = the latter's); lanes past the last edge hold zero vectors,
   // whose cross product is zero: they add nothing, as an edge through p does.
   const int count = polygon.n;
+  const __m256d nx = _mm256_set1_pd(n.x()), ny = _mm256_set1_pd(n.y()), nz = _mm256_set1_pd(n.z());
+  if (count <= 4) {
+    // A triangle or a quad (most calls): its vertices' offsets put in lanes straight from the
+    // registers (a vector load of values just stored one by one would wait on their stores), the
+    // previous vertex's by rotating the lanes; the same lanes as below.
+    const auto offsets = [&](int axis) {
+      const auto at = [&](int k) { return k < count ? polygon.v[k][axis] - p[axis] : 0.0; };
+      return _mm256_setr_pd(at(0), at(1), at(2), at(3));
+    };
+    const __m256d bx = offsets(0), by = offsets(1), bz = offsets(2);
+    // Lane k takes vertex k - 1: lanes (3, 0, 1, 2) of a quad, (2, 0, 1, 3) of a triangle (its
+    // lane 3 zero in both).
+    const auto previous = [&](__m256d b) {
+      return count == 4 ? _mm256_permute4x64_pd(b, 0x93) : _mm256_permute4x64_pd(b, 0xd2);
+    };
+    const __m256d total = edge_terms(previous(bx), previous(by), previous(bz), bx, by, bz, nx, ny, nz);
+    return std::abs(sum_lanes(total)) / (2.0 * std::numbers::pi);
+  }
   alignas(32) double r[6][ConvexPolygon::kCapacity + 4];  // x0 y0 z0 x1 y1 z1 by edge
   Vec3 a = polygon.v[count - 1] - p;
   for (int k = 0; k < count; ++k) {
@@ -46,7 +64,6 @@ double lambert_form_factor(const Vec3& p, const Vec3& n, const ConvexPolygon& po
   }
   for (int k = count; k % 4 != 0; ++k)
     for (auto& row : r) row[k] = 0;
-  const __m256d nx = _mm256_set1_pd(n.x()), ny = _mm256_set1_pd(n.y()), nz = _mm256_set1_pd(n.z());
   __m256d total = _mm256_setzero_pd();
   for (int k = 0; k < count; k += 4)
     total = _mm256_add_pd(total, edge_terms(_mm256_load_pd(&r[0][k]), _mm256_load_pd(&r[1][k]), _mm256_load_pd(&r[2][k]),
