@@ -41,6 +41,7 @@ struct PackD {
   static PackD set(double x) { return {_mm512_set1_pd(x)}; }
   static PackD zero() { return {_mm512_setzero_pd()}; }
   static PackD load(const double* p) { return {_mm512_loadu_pd(p)}; }
+  void store(double* p) const { _mm512_storeu_pd(p, v); }
   /// The masked lanes from p, the others 0 (nothing read beyond them).
   static PackD load(const double* p, Mask m) { return {_mm512_maskz_loadu_pd(m.bits, p)}; }
   /// The masked lanes of a, the others b.
@@ -56,6 +57,9 @@ struct PackD {
   friend PackD min(PackD a, PackD b) { return {_mm512_min_pd(a.v, b.v)}; }
   friend PackD max(PackD a, PackD b) { return {_mm512_max_pd(a.v, b.v)}; }
   friend PackD abs(PackD a) { return {_mm512_abs_pd(a.v)}; }
+  friend PackD operator-(PackD a) { return {_mm512_xor_pd(a.v, _mm512_set1_pd(-0.0))}; }
+  friend Mask operator>(PackD a, PackD b) { return {_mm512_cmp_pd_mask(a.v, b.v, _CMP_GT_OQ)}; }
+  friend Mask operator<=(PackD a, PackD b) { return {_mm512_cmp_pd_mask(a.v, b.v, _CMP_LE_OQ)}; }
   /// Whether every lane is > 0 (false for a NaN lane).
   bool all_positive() const { return _mm512_cmp_pd_mask(v, _mm512_setzero_pd(), _CMP_GT_OQ) == 0xff; }
 
@@ -92,6 +96,7 @@ struct PackD {
   static PackD set(double x) { return {_mm256_set1_pd(x)}; }
   static PackD zero() { return {_mm256_setzero_pd()}; }
   static PackD load(const double* p) { return {_mm256_loadu_pd(p)}; }
+  void store(double* p) const { _mm256_storeu_pd(p, v); }
   static PackD load(const double* p, Mask m) { return {_mm256_maskload_pd(p, m.bits)}; }
   static PackD select(Mask m, PackD a, PackD b) { return {_mm256_blendv_pd(b.v, a.v, _mm256_castsi256_pd(m.bits))}; }
 
@@ -104,6 +109,9 @@ struct PackD {
   friend PackD min(PackD a, PackD b) { return {_mm256_min_pd(a.v, b.v)}; }
   friend PackD max(PackD a, PackD b) { return {_mm256_max_pd(a.v, b.v)}; }
   friend PackD abs(PackD a) { return {_mm256_andnot_pd(_mm256_set1_pd(-0.0), a.v)}; }
+  friend PackD operator-(PackD a) { return {_mm256_xor_pd(a.v, _mm256_set1_pd(-0.0))}; }
+  friend Mask operator>(PackD a, PackD b) { return {_mm256_castpd_si256(_mm256_cmp_pd(a.v, b.v, _CMP_GT_OQ))}; }
+  friend Mask operator<=(PackD a, PackD b) { return {_mm256_castpd_si256(_mm256_cmp_pd(a.v, b.v, _CMP_LE_OQ))}; }
   bool all_positive() const { return _mm256_movemask_pd(_mm256_cmp_pd(v, _mm256_setzero_pd(), _CMP_GT_OQ)) == 0xf; }
 
   /// The lanes' sum in a fixed order: (0 + 2) + (1 + 3).

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/check.h"
 #include "core/simd.h"
 #include "core/tolerances.h"
 
@@ -162,6 +163,61 @@ Rgb far_field_radiosity(const Block& b, const Vec3& p, const Vec3& n, const Vec3
   }
   corrected += b.unshot_w_m2;
   return corrected.max(b.lowest_w_m2).min(b.highest_w_m2);
+}
+
+void far_field_radiosities(const Block& b, std::span<const Vec3> points, const Vec3& n, const Vec3& shooter_normal,
+                           std::span<Rgb> out) {
+  RR_CHECK_EQ(points.size(), out.size(), "a far field per point");
+#if RADRECON_SIMD
+  // kernel_log_gradient(), kernel_second_order() and far_field_radiosity() lane by lane, in
+  // their operations and order (Eigen's 3-vector dot and a row vector times a 3 x 3 matrix sum
+  // (x + y) + z), so with their values bit for bit.
+  using simd::PackD;
+  constexpr size_t L = PackD::kLanes;
+  const auto set = [](double v) { return PackD::set(v); };
+  const Vec3& s = shooter_normal;
+  for (size_t first = 0; first < points.size(); first += L) {
+    const size_t count = std::min(L, points.size() - first);
+    alignas(64) double lane[3][L];
+    for (size_t k = 0; k < L; ++k)  // lanes past the end repeat the first point
+      for (int a = 0; a < 3; ++a) lane[a][k] = points[first + (k < count ? k : 0)][a] - b.center[a];
+    const PackD d[3] = {PackD::load(lane[0]), PackD::load(lane[1]), PackD::load(lane[2])};
+    const PackD r2 = (d[0] * d[0] + d[1] * d[1]) + d[2] * d[2];
+    const PackD cos_y = (set(s.x()) * d[0] + set(s.y()) * d[1]) + set(s.z()) * d[2];
+    const PackD cos_x = -((set(n.x()) * d[0] + set(n.y()) * d[1]) + set(n.z()) * d[2]);
+    const PackD least = set(tol::kKernelCosine) * sqrt(r2);
+    alignas(64) double expands[L];
+    PackD::select(cos_y > least, PackD::select(cos_x > least, set(1.0), PackD::zero()), PackD::zero()).store(expands);
+    PackD g[3];
+    for (int i = 0; i < 3; ++i) g[i] = (set(-s[i]) / cos_y + set(n[i]) / cos_x) + (set(4.0) * d[i]) / r2;
+    // M = H + g g^T, its upper triangle row by row (00 01 02 11 12 22).
+    const PackD wy = set(1.0) / (cos_y * cos_y), wx = set(1.0) / (cos_x * cos_x), wd = set(8.0) / (r2 * r2),
+                wi = set(4.0) / r2;
+    const auto entry = [&](int i, int j) {
+      const PackD e = (((-wy) * set(s[i]) * set(s[j]) - wx * set(n[i]) * set(n[j])) + wd * d[i] * d[j]) + g[i] * g[j];
+      return i == j ? e - wi : e - PackD::zero();
+    };
+    const PackD m[6] = {entry(0, 0), entry(0, 1), entry(0, 2), entry(1, 1), entry(1, 2), entry(2, 2)};
+    const auto contract = [&](const Eigen::Matrix3d& t) {
+      return ((m[0] * set(t(0, 0)) + m[3] * set(t(1, 1))) + m[5] * set(t(2, 2))) +
+             ((m[1] * set(t(0, 1) + t(1, 0)) + m[2] * set(t(0, 2) + t(2, 0))) + m[4] * set(t(1, 2) + t(2, 1)));
+    };
+    const PackD shape = set(1.0) + set(0.5) * contract(b.area_moment);
+    const PackD::Mask second = abs(shape - set(1.0)) <= set(tol::kFarFieldCurvatureLimit);
+    alignas(64) double channel[3][L];
+    for (int c = 0; c < 3; ++c) {
+      PackD corrected = (g[0] * set(b.dipole(0, c)) + g[1] * set(b.dipole(1, c))) + g[2] * set(b.dipole(2, c));
+      corrected = PackD::select(second, (corrected + set(0.5) * contract(b.quadrupole[static_cast<size_t>(c)])) / shape,
+                                corrected);
+      corrected = min(max(corrected + set(b.unshot_w_m2[c]), set(b.lowest_w_m2[c])), set(b.highest_w_m2[c]));
+      corrected.store(channel[c]);
+    }
+    for (size_t k = 0; k < count; ++k)
+      out[first + k] = expands[k] != 0 ? Rgb(channel[0][k], channel[1][k], channel[2][k]) : b.unshot_w_m2;
+  }
+#else
+  for (size_t k = 0; k < points.size(); ++k) out[k] = far_field_radiosity(b, points[k], n, shooter_normal);
+#endif
 }
 
 }  // namespace radrecon

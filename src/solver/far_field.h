@@ -5,6 +5,7 @@
 
 #include <array>
 #include <optional>
+#include <span>
 
 #include "solver/shooter_tree.h"
 
@@ -33,6 +34,11 @@ Rgb far_field_radiosity(const Block& b, const Vec3& p, const Vec3& n, const Vec3
 /// `second_order`, if given, is the kernel's second-order term there as far_field_error() found it.
 Rgb far_field_radiosity(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal, const Vec3* gradient,
                         const KernelSecondOrder* second_order = nullptr);
+
+/// far_field_radiosity(b, p, n, shooter_normal) at each of `points` (an element's Gauss points)
+/// into `out` (as many), the same values bit for bit, the points in SIMD packets.
+void far_field_radiosities(const Block& b, std::span<const Vec3> points, const Vec3& n, const Vec3& shooter_normal,
+                           std::span<Rgb> out);
 
 /// The gradient g over the source point y, at the block's centroid, of ln k(p, y) (see
 /// far_field_radiosity()), 1/m; false at grazing angles (tol::kKernelCosine), where the far

@@ -168,7 +168,11 @@ Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, cons
                                 {f.data(), count});
       if (kept != nullptr) std::copy(f.begin(), f.begin() + static_cast<std::ptrdiff_t>(count), kept);
     }
-    for (size_t k = 0; k < count; ++k) out.mean += at(r.gauss[k], static_cast<int>(k) + 1, f[k], nullptr);
+    // Their far fields together too, as at() would find them one by one.
+    std::array<Rgb, 4> radiosity;
+    if (!b.uniform) far_field_radiosities(b, {r.gauss.data(), count}, r.normal, shooter_normal, {radiosity.data(), count});
+    for (size_t k = 0; k < count; ++k)
+      out.mean += f[k] == 0 || b.uniform ? Rgb(f[k] * b.unshot_w_m2) : Rgb(f[k] * radiosity[k]);
     out.mean /= r.gauss_count;
   }
   return out;
