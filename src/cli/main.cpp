@@ -13,7 +13,40 @@
 #include "core/error.h"
 #include "io/atomic_file.h"
 
+namespace {
+
+/// Whether this CPU runs the instruction set the program was built for (CMake RADRECON_ARCH):
+/// else it would die of an illegal instruction somewhere; it says so instead.
+bool cpu_runs_this_build() {
+#if defined(__x86_64__)
+  __builtin_cpu_init();
+#if defined(__AVX512F__)
+  if (!__builtin_cpu_supports("avx512f") || !__builtin_cpu_supports("avx512bw") ||
+      !__builtin_cpu_supports("avx512dq") || !__builtin_cpu_supports("avx512vl"))
+    return false;
+#endif
+#if defined(__AVX2__)
+  if (!__builtin_cpu_supports("avx2") || !__builtin_cpu_supports("fma")) return false;
+#endif
+#endif
+  return true;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
+  if (!cpu_runs_this_build()) {
+    std::fprintf(stderr,
+                 "radrecon: error: this build uses instructions this CPU lacks (built with -march for %s); "
+                 "rebuild here, or with cmake -DRADRECON_ARCH=x86-64-v3 (any AVX2 CPU) or -DRADRECON_ARCH= (any x86-64)\n",
+#if defined(__AVX512F__)
+                 "AVX-512"
+#else
+                 "AVX2"
+#endif
+    );
+    return radrecon::kUserErrorExitCode;
+  }
   radrecon::keep_freed_memory();
   radrecon::remove_temporary_files_on_signals();
   CLI::App app{

@@ -4,10 +4,12 @@
 // that one kernel body serves both. RADRECON_SIMD is 0 when the build has neither (the kernels'
 // scalar or Eigen forms run instead).
 //
-// Results depend on the width only through the order of sums: sum() adds the lanes in a fixed
-// order, so a given build gives the same bits on every CPU and with any number of threads.
+// Results depend on the width through the order of sums and on how a kernel pairs packets (one
+// division for two, a masked tail): sum() adds the lanes in a fixed order and every operation is
+// IEEE-rounded, so a given build gives the same bits on every CPU and with any number of threads.
 
-#if (defined(__AVX512F__) && defined(__AVX512BW__) && defined(__AVX512VL__)) || (defined(__AVX2__) && defined(__FMA__))
+#if (defined(__AVX512F__) && defined(__AVX512BW__) && defined(__AVX512DQ__) && defined(__AVX512VL__)) || \
+    (defined(__AVX2__) && defined(__FMA__))
 #define RADRECON_SIMD 1
 #include <immintrin.h>
 
@@ -19,17 +21,18 @@
 
 namespace radrecon::simd {
 
-#if defined(__AVX512F__) && defined(__AVX512BW__) && defined(__AVX512VL__)
+#if defined(__AVX512F__) && defined(__AVX512BW__) && defined(__AVX512DQ__) && defined(__AVX512VL__)
 
-/// 8 doubles (AVX-512 F, BW and VL: x86-64-v4).
+/// 8 doubles (AVX-512 F, BW, DQ and VL: x86-64-v4).
 struct PackD {
   static constexpr int kLanes = 8;
   /// Which lanes take part: the first `count` of a packet at the end of an array.
   struct Mask {
     __mmask8 bits;
+    /// The first `count` lanes, 0 <= count <= kLanes.
     static Mask first(int count) { return {static_cast<__mmask8>((1u << count) - 1u)}; }
-    /// The lanes whose byte of flags[0, kLanes) is 0.
-    static Mask zero_bytes(const char* flags) {
+    /// The lanes whose byte of flags[0, kLanes) is 0 (all kLanes bytes readable).
+    static Mask where_zero(const char* flags) {
       std::uint64_t b;
       std::memcpy(&b, flags, sizeof b);
       return {static_cast<__mmask8>(_mm_cmpeq_epi8_mask(_mm_cvtsi64_si128(static_cast<long long>(b)), _mm_setzero_si128()))};
@@ -69,8 +72,18 @@ struct PackD {
     const __m128d q = _mm_add_pd(_mm256_castpd256_pd128(h), _mm256_extractf128_pd(h, 1));
     return _mm_cvtsd_f64(_mm_add_sd(q, _mm_unpackhi_pd(q, q)));
   }
-  double min_lane() const { return _mm512_reduce_min_pd(v); }
-  double max_lane() const { return _mm512_reduce_max_pd(v); }
+  /// The least and the largest lane, halves against halves as the AVX2 form does (a NaN lane:
+  /// either may be returned; the callers' lanes are finite or infinite).
+  double min_lane() const {
+    const __m256d h = _mm256_min_pd(_mm512_castpd512_pd256(v), _mm512_extractf64x4_pd(v, 1));
+    const __m128d q = _mm_min_pd(_mm256_castpd256_pd128(h), _mm256_extractf128_pd(h, 1));
+    return _mm_cvtsd_f64(_mm_min_sd(q, _mm_unpackhi_pd(q, q)));
+  }
+  double max_lane() const {
+    const __m256d h = _mm256_max_pd(_mm512_castpd512_pd256(v), _mm512_extractf64x4_pd(v, 1));
+    const __m128d q = _mm_max_pd(_mm256_castpd256_pd128(h), _mm256_extractf128_pd(h, 1));
+    return _mm_cvtsd_f64(_mm_max_sd(q, _mm_unpackhi_pd(q, q)));
+  }
 };
 
 #elif RADRECON_SIMD
@@ -80,11 +93,12 @@ struct PackD {
   static constexpr int kLanes = 4;
   struct Mask {
     __m256i bits;  // all ones in a lane that takes part
+    /// The first `count` lanes, 0 <= count <= kLanes.
     static Mask first(int count) {
       return {_mm256_cmpgt_epi64(_mm256_set1_epi64x(count), _mm256_setr_epi64x(0, 1, 2, 3))};
     }
-    /// The lanes whose byte of flags[0, kLanes) is 0.
-    static Mask zero_bytes(const char* flags) {
+    /// The lanes whose byte of flags[0, kLanes) is 0 (all kLanes bytes readable).
+    static Mask where_zero(const char* flags) {
       std::int32_t b;
       std::memcpy(&b, flags, sizeof b);
       return {_mm256_cmpeq_epi64(_mm256_cvtepi8_epi64(_mm_cvtsi32_si128(b)), _mm256_setzero_si256())};

@@ -26,7 +26,7 @@ namespace {
 // value's magnitude in [kLeastValue, kMostValue] (or is 0). Then a product of two d^2 (the shared
 // division) lies in [1e-120, 1e120], w in [1e-120, 1e120] for mu up to 4, and w times a value in
 // [1e-270, 1e270]: normal numbers, with the relative rounding of the relative weights.
-constexpr double kLeastDistSq = 1e-60, kMostDistSq = 1e60;
+[[maybe_unused]] constexpr double kLeastDistSq = 1e-60, kMostDistSq = 1e60;
 constexpr double kLeastValue = 1e-150, kMostValue = 1e150;
 
 }  // namespace
@@ -42,7 +42,7 @@ Shepard::Shepard(ScatteredSamples samples, double mu, int k) : samples_(std::mov
   for (size_t i = 0; i < n; ++i)
     for (int c = 0; c < samples_.channels; ++c)
       values_by_channel_[static_cast<size_t>(c) * n + i] = samples_.values[i * samples_.channels + c];
-  one_pass_ = (mu_ == 4.0 || mu_ == 2.0) && samples_.channels <= 3 &&
+  one_pass_ = RADRECON_SIMD && (mu_ == 4.0 || mu_ == 2.0) && samples_.channels <= 3 &&
               std::all_of(samples_.values.begin(), samples_.values.end(), [](double v) {
                 return v == 0 || (std::abs(v) >= kLeastValue && std::abs(v) <= kMostValue);
               });
@@ -179,26 +179,31 @@ bool Shepard::global_value_one_pass(const Vec2& p, const char* hidden, double* o
     PackD a = dist_sq(i, whole), b = dist_sq(i + L, whole);
     Mask seen_a{}, seen_b{};
     if (hidden) {
-      seen_a = Mask::zero_bytes(hidden + i), seen_b = Mask::zero_bytes(hidden + i + L);
-      a = PackD::select(seen_a, a, one), b = PackD::select(seen_b, b, one);
+      seen_a = Mask::where_zero(hidden + i);
+      seen_b = Mask::where_zero(hidden + i + L);
+      a = PackD::select(seen_a, a, one);
+      b = PackD::select(seen_b, b, one);
     }
     least = min(least, min(a, b));
     most = max(most, max(a, b));
     const PackD r = one / (a * b);
     PackD wa = b * r, wb = a * r;
-    if (hidden) wa = PackD::select(seen_a, wa, zero), wb = PackD::select(seen_b, wb, zero);
+    if (hidden) {
+      wa = PackD::select(seen_a, wa, zero);
+      wb = PackD::select(seen_b, wb, zero);
+    }
     add(even, wa, i, whole);
     add(odd, wb, i + L, whole);
   }
   for (; i < n; i += L) {  // at most two packets, the last masked: its lanes past the end weigh 0
     const size_t count = std::min(L, n - i);
     Mask in = Mask::first(static_cast<int>(count));
-    const auto masked = [&](const double* q) { return PackD::load(q, in); };
     if (hidden) {
       char flags[L] = {};
       std::copy_n(hidden + i, count, flags);
-      in = in & Mask::zero_bytes(flags);
+      in = in & Mask::where_zero(flags);
     }
+    const auto masked = [in](const double* q) { return PackD::load(q, in); };
     const PackD a = PackD::select(in, dist_sq(i, masked), one);
     least = min(least, a);
     most = max(most, a);
@@ -220,7 +225,7 @@ bool Shepard::global_value_one_pass(const Vec2& p, const char* hidden, double* o
 #endif
 }
 
-bool Shepard::global_value_fused(const Vec2& p, Scratch& s, double* o) const {
+bool Shepard::global_value_fused(const Vec2& p, bool hidden_known, Scratch& s, double* o) const {
 #if defined(__AVX2__) && defined(__FMA__)
   const int C = samples_.channels;
   if (radius_sq_ < std::numeric_limits<double>::infinity() || (mu_ != 4.0 && mu_ != 2.0) || C > 3) return false;
@@ -252,7 +257,7 @@ bool Shepard::global_value_fused(const Vec2& p, Scratch& s, double* o) const {
   // With barriers a hidden sample is infinitely far: its weight is exactly 0 below.
   bool any_hidden = false;
   if (!barriers_.empty()) {
-    visibility_->hidden_from(p, s.hidden);
+    if (!hidden_known) visibility_->hidden_from(p, s.hidden);
     nearest_sq = std::numeric_limits<double>::infinity();
     farthest_sq = 0;
     for (i = 0; i < n; ++i) {
@@ -330,7 +335,7 @@ bool Shepard::global_value_fused(const Vec2& p, Scratch& s, double* o) const {
   if (C > 2) o[2] = a2 / t;
   return true;
 #else
-  (void)p, (void)s, (void)o;
+  (void)p, (void)hidden_known, (void)s, (void)o;
   return false;
 #endif
 }
@@ -361,16 +366,16 @@ void Shepard::evaluate(std::span<const Vec2> points, std::span<double> out) cons
       for (int c = 0; c < C; ++c) o[c] = std::numeric_limits<double>::quiet_NaN();
       return;
     }
+    // With barriers, which samples p does not see (they weigh 0), found once for every path.
+    bool hidden_known = false;
     if (one_pass_ && !(radius_sq_ < std::numeric_limits<double>::infinity())) {
-      // With barriers a hidden sample weighs 0.
-      const char* hidden = nullptr;
       if (!barriers_.empty()) {
         visibility_->hidden_from(p, s.hidden);
-        hidden = s.hidden.data();
+        hidden_known = true;
       }
-      if (global_value_one_pass(p, hidden, o)) return;
+      if (global_value_one_pass(p, hidden_known ? s.hidden.data() : nullptr, o)) return;
     }
-    if (global_value_fused(p, s, o)) return;
+    if (global_value_fused(p, hidden_known, s, o)) return;
     // Global: all samples at once as Eigen arrays (SIMD, sums in a fixed packet order).
     using Array = Eigen::Map<const Eigen::ArrayXd>;
     const Eigen::Index N = static_cast<Eigen::Index>(n);
@@ -379,7 +384,7 @@ void Shepard::evaluate(std::span<const Vec2> points, std::span<double> out) cons
     dist_sq = (p.x() - Array(px_.data(), N)).square() + (p.y() - Array(py_.data(), N)).square();
     if (!barriers_.empty()) {
       // A hidden sample is infinitely far: its weight is 0 below.
-      visibility_->hidden_from(p, s.hidden);
+      if (!hidden_known) visibility_->hidden_from(p, s.hidden);
       for (Eigen::Index i = 0; i < N; ++i)
         if (s.hidden[static_cast<size_t>(i)]) dist_sq[i] = std::numeric_limits<double>::infinity();
     }

@@ -46,20 +46,21 @@ class Shepard final : public Interpolant {
   std::unique_ptr<PointVisibility> visibility_;  ///< with barriers: over samples_.points
   /// Per-thread buffers of evaluate().
   struct Scratch;
-  /// Whether global_value_one_pass() applies but for the radius: mu 2 or 4, at most three
-  /// channels, and every value 0 or of a magnitude in [kLeastValue, kMostValue] (shepard.cpp).
+  /// Whether global_value_one_pass() applies but for the radius: a SIMD build, mu 2 or 4, at most
+  /// three channels, and every value 0 or of a magnitude in [kLeastValue, kMostValue] (shepard.cpp).
   bool one_pass_ = false;
   /// The global weighted mean at p (finite) in one pass over the samples, in SIMD packets, with
   /// weights d^-mu themselves; `hidden` (with barriers, else null): a flag per sample, nonzero
   /// where p does not see it (it weighs 0; NaN where p sees none). False (nothing written) where
   /// the weights could overflow or underflow, i.e. where p is within sqrt(kLeastDistSq) of a
-  /// sample or beyond sqrt(kMostDistSq) of one.
+  /// visible sample or beyond sqrt(kMostDistSq) of one; always false in a build without SIMD.
   bool global_value_one_pass(const Vec2& p, const char* hidden, double* o) const;
   /// The global weighted mean at p (finite, no radius, mu 2 or 4, at most three channels; with
   /// barriers the samples hidden from p weigh exactly 0) in two fused AVX2 passes over the
   /// samples, with weights relative to the nearest sample's (no overflow whatever the
   /// distances); false where it does not apply.
-  bool global_value_fused(const Vec2& p, Scratch& s, double* o) const;
+  /// `hidden_known`: with barriers, s.hidden holds p's flags already.
+  bool global_value_fused(const Vec2& p, bool hidden_known, Scratch& s, double* o) const;
   /// The local path's value at p (o: a value per channel) from its k nearest samples, in any
   /// order, `nearest` the position of the nearest among them.
   void local_value(const Vec2& p, std::span<const unsigned> nearest_idx, std::span<const double> nearest_d2,

@@ -47,8 +47,8 @@ double lambert_form_factor(const Vec3& p, const Vec3& n, const ConvexPolygon& po
       return _mm256_setr_pd(at(0), at(1), at(2), at(3));
     };
     const __m256d bx = offsets(0), by = offsets(1), bz = offsets(2);
-    // Lane k takes vertex k - 1: lanes (3, 0, 1, 2) of a quad, (2, 0, 1, 3) of a triangle (its
-    // lane 3 zero in both).
+    // Lane k takes vertex k - 1: lanes (3, 0, 1, 2) of a quad, (2, 0, 1, 3) of a triangle (whose
+    // lane 3 is zero in b and in previous(b) alike: no edge).
     const auto previous = [&](__m256d b) {
       return count == 4 ? _mm256_permute4x64_pd(b, 0x93) : _mm256_permute4x64_pd(b, 0xd2);
     };

@@ -87,11 +87,12 @@ TEST(Shepard, MatchesTheFormulaAndItsKNearestRestriction) {
 // products near 1e+-180) and at scales that leave it either way, with sample counts that leave
 // a vector and single samples after the pairs.
 TEST(Shepard, GlobalVectorPathMatchesTheFormulaAtEveryScale) {
-  // The global paths: one pass with weights d^-mu (distances and values of moderate size), and
-  // two passes with weights relative to the nearest sample's where those could overflow or
-  // underflow (distances of 1e+-45 and beyond, values of 1e+-200).
-  for (const double scale : {1.0, 1e-45, 1e45, 1e-60, 1e60})
-    for (const double value_scale : {1.0, 1e200, 1e-200})
+  // The global paths: one pass with weights d^-mu where squared distances lie in [1e-60, 1e60]
+  // and values' magnitudes in [1e-150, 1e150] (scales up to 1e+-29 and 1e+-140: near those
+  // limits, some queries of 1e-29 beyond them), and two passes with weights relative to the
+  // nearest sample's where they could overflow or underflow (1e+-45 and beyond, 1e+-200).
+  for (const double scale : {1.0, 1e-29, 1e29, 1e-45, 1e45, 1e-60, 1e60})
+    for (const double value_scale : {1.0, 1e140, 1e-140, 1e200, 1e-200})
       for (const int n : {61, 64, 7})
         for (const int channels : {1, 3})
           for (const double mu : {2.0, 4.0}) {
