@@ -1,6 +1,7 @@
 #pragma once
-// Packets of doubles for the kernels that weigh every sample (Shepard's weights, the RBF sums):
-// the widest vectors the build's -march offers, AVX-512 (8 lanes) or AVX2 with FMA (4 lanes), so
+// Packets of doubles for the kernels that weigh every sample (Shepard's weights, the RBF sums)
+// and the solver's far field (a block's points, an element's Gauss points): the widest vectors
+// the build's -march offers, AVX-512 (8 lanes) or AVX2 with FMA (4 lanes), so
 // that one kernel body serves both. RADRECON_SIMD is 0 when the build has neither (the kernels'
 // scalar or Eigen forms run instead).
 //
@@ -26,7 +27,7 @@ namespace radrecon::simd {
 /// 8 doubles (AVX-512 F, BW, DQ and VL: x86-64-v4).
 struct PackD {
   static constexpr int kLanes = 8;
-  /// Which lanes take part: the first `count` of a packet at the end of an array.
+  /// Which lanes take part (a packet's first `count` at the end of an array, visible samples').
   struct Mask {
     __mmask8 bits;
     /// The first `count` lanes, 0 <= count <= kLanes.
@@ -57,6 +58,7 @@ struct PackD {
   /// a * b + c, one rounding.
   friend PackD fmadd(PackD a, PackD b, PackD c) { return {_mm512_fmadd_pd(a.v, b.v, c.v)}; }
   friend PackD sqrt(PackD a) { return {_mm512_sqrt_pd(a.v)}; }
+  /// The lesser (greater) lane by lane; b where either is NaN, as the instructions have it.
   friend PackD min(PackD a, PackD b) { return {_mm512_min_pd(a.v, b.v)}; }
   friend PackD max(PackD a, PackD b) { return {_mm512_max_pd(a.v, b.v)}; }
   friend PackD abs(PackD a) { return {_mm512_abs_pd(a.v)}; }
