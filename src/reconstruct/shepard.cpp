@@ -3,15 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
-#if defined(__AVX2__) && defined(__FMA__)
-#include <immintrin.h>
-#endif
 #include <limits>
 
 #include <Eigen/Core>
 
 #include "core/check.h"
-#include "core/math.h"
 #include "core/tolerances.h"
 #include "reconstruct/kdtree.h"
 #include "core/parallel.h"
@@ -225,121 +221,6 @@ bool Shepard::global_value_one_pass(const Vec2& p, const char* hidden, double* o
 #endif
 }
 
-bool Shepard::global_value_fused(const Vec2& p, bool hidden_known, Scratch& s, double* o) const {
-#if defined(__AVX2__) && defined(__FMA__)
-  const int C = samples_.channels;
-  if (radius_sq_ < std::numeric_limits<double>::infinity() || (mu_ != 4.0 && mu_ != 2.0) || C > 3) return false;
-  const size_t n = px_.size();
-  s.dist_sq.resize(static_cast<Eigen::Index>(n));
-  double* d2 = s.dist_sq.data();
-  // Pass 1: the squared distances and the nearest.
-  const __m256d x = _mm256_set1_pd(p.x()), y = _mm256_set1_pd(p.y());
-  __m256d least = _mm256_set1_pd(std::numeric_limits<double>::infinity()), most = _mm256_setzero_pd();
-  size_t i = 0;
-  for (; i + 4 <= n; i += 4) {
-    const __m256d dx = _mm256_sub_pd(x, _mm256_loadu_pd(&px_[i])), dy = _mm256_sub_pd(y, _mm256_loadu_pd(&py_[i]));
-    const __m256d d = _mm256_fmadd_pd(dx, dx, _mm256_mul_pd(dy, dy));
-    _mm256_storeu_pd(d2 + i, d);
-    least = _mm256_min_pd(least, d);
-    most = _mm256_max_pd(most, d);
-  }
-  alignas(32) double lanes[4];
-  _mm256_store_pd(lanes, least);
-  double nearest_sq = std::min(std::min(lanes[0], lanes[1]), std::min(lanes[2], lanes[3]));
-  _mm256_store_pd(lanes, most);
-  double farthest_sq = std::max(std::max(lanes[0], lanes[1]), std::max(lanes[2], lanes[3]));
-  for (; i < n; ++i) {
-    const double dx = p.x() - px_[i], dy = p.y() - py_[i];
-    d2[i] = std::fma(dx, dx, dy * dy);
-    nearest_sq = std::min(nearest_sq, d2[i]);
-    farthest_sq = std::max(farthest_sq, d2[i]);
-  }
-  // With barriers a hidden sample is infinitely far: its weight is exactly 0 below.
-  bool any_hidden = false;
-  if (!barriers_.empty()) {
-    if (!hidden_known) visibility_->hidden_from(p, s.hidden);
-    nearest_sq = std::numeric_limits<double>::infinity();
-    farthest_sq = 0;
-    for (i = 0; i < n; ++i) {
-      if (s.hidden[i]) {
-        d2[i] = std::numeric_limits<double>::infinity();
-        any_hidden = true;
-      } else {
-        nearest_sq = std::min(nearest_sq, d2[i]);
-        farthest_sq = std::max(farthest_sq, d2[i]);
-      }
-    }
-  }
-  if (!(nearest_sq < std::numeric_limits<double>::infinity())) {  // sees no sample, or distances overflow: no value
-    for (int c = 0; c < C; ++c) o[c] = std::numeric_limits<double>::quiet_NaN();
-    return true;
-  }
-  if (nearest_sq == 0) {  // at a sample: its value, the first such sample's
-    const size_t first = static_cast<size_t>(std::find(d2, d2 + n, 0.0) - d2);
-    for (int c = 0; c < C; ++c) o[c] = samples_.values[first * C + c];
-    return true;
-  }
-  // Pass 2: weights relative to the nearest's, (d_min / d_i)^mu in (0, 1], and their sums.
-  const double* v0 = values_by_channel_.data();
-  const double* v1 = C > 1 ? v0 + n : v0;
-  const double* v2 = C > 2 ? v0 + 2 * n : v0;
-  const __m256d nearest = _mm256_set1_pd(nearest_sq);
-  const bool square = mu_ == 4.0;
-  // Sums of weights and of weights times values, two sets (the even and the odd vectors of
-  // samples: two dependency chains), merged at the end.
-  struct Sums {
-    __m256d total = _mm256_setzero_pd(), s0 = total, s1 = total, s2 = total;
-  } even, odd;
-  const auto add = [&](Sums& sums, __m256d w, size_t at) {  // w = d_min^2 / d^2 of samples at..at+3
-    if (square) w = _mm256_mul_pd(w, w);
-    sums.total = _mm256_add_pd(sums.total, w);
-    sums.s0 = _mm256_fmadd_pd(w, _mm256_loadu_pd(v0 + at), sums.s0);
-    if (C > 1) sums.s1 = _mm256_fmadd_pd(w, _mm256_loadu_pd(v1 + at), sums.s1);
-    if (C > 2) sums.s2 = _mm256_fmadd_pd(w, _mm256_loadu_pd(v2 + at), sums.s2);
-  };
-  i = 0;
-  // Two vectors of samples share one division (the divider is the bottleneck): with r =
-  // d_min^2 / (a b), d_min^2 / a = b r and d_min^2 / b = a r. Exact to a few ulps while a b and
-  // r stay normal numbers: squared distances within [kLeast, kMost] (else a division each).
-  constexpr double kLeast = 1e-100, kMost = 1e100;
-  // A hidden sample's infinite distance stands in as kMost in the shared division, and its weight
-  // is then masked to exactly 0 (without hidden samples the masks are empty: the same bits).
-  if (nearest_sq >= kLeast && farthest_sq <= kMost) {
-    const __m256d most_sq = _mm256_set1_pd(kMost), infinite = _mm256_set1_pd(std::numeric_limits<double>::infinity());
-    for (; i + 8 <= n; i += 8) {
-      __m256d a = _mm256_loadu_pd(d2 + i), b = _mm256_loadu_pd(d2 + i + 4);
-      __m256d hidden_a = _mm256_setzero_pd(), hidden_b = hidden_a;
-      if (any_hidden) {
-        hidden_a = _mm256_cmp_pd(a, infinite, _CMP_EQ_OQ), hidden_b = _mm256_cmp_pd(b, infinite, _CMP_EQ_OQ);
-        a = _mm256_min_pd(a, most_sq), b = _mm256_min_pd(b, most_sq);
-      }
-      const __m256d r = _mm256_div_pd(nearest, _mm256_mul_pd(a, b));
-      add(even, _mm256_andnot_pd(hidden_a, _mm256_mul_pd(b, r)), i);
-      add(odd, _mm256_andnot_pd(hidden_b, _mm256_mul_pd(a, r)), i + 4);
-    }
-  }
-  for (; i + 4 <= n; i += 4) add(even, _mm256_div_pd(nearest, _mm256_loadu_pd(d2 + i)), i);
-  const __m256d total = _mm256_add_pd(even.total, odd.total), s0 = _mm256_add_pd(even.s0, odd.s0),
-                s1 = _mm256_add_pd(even.s1, odd.s1), s2 = _mm256_add_pd(even.s2, odd.s2);
-  double t = sum_lanes(total), a0 = sum_lanes(s0), a1 = sum_lanes(s1), a2 = sum_lanes(s2);
-  for (; i < n; ++i) {
-    double w = nearest_sq / d2[i];
-    if (square) w *= w;
-    t += w;
-    a0 = std::fma(w, v0[i], a0);
-    a1 = std::fma(w, v1[i], a1);
-    a2 = std::fma(w, v2[i], a2);
-  }
-  o[0] = a0 / t;
-  if (C > 1) o[1] = a1 / t;
-  if (C > 2) o[2] = a2 / t;
-  return true;
-#else
-  (void)p, (void)hidden_known, (void)s, (void)o;
-  return false;
-#endif
-}
-
 void Shepard::evaluate(std::span<const Vec2> points, std::span<double> out) const {
   const int C = samples_.channels;
   RR_CHECK(out.size() == points.size() * static_cast<size_t>(C), "output size does not match the query points");
@@ -375,8 +256,9 @@ void Shepard::evaluate(std::span<const Vec2> points, std::span<double> out) cons
       }
       if (global_value_one_pass(p, hidden_known ? s.hidden.data() : nullptr, o)) return;
     }
-    if (global_value_fused(p, hidden_known, s, o)) return;
-    // Global: all samples at once as Eigen arrays (SIMD, sums in a fixed packet order).
+    // Otherwise (exact hits, extreme ranges, a radius, other mu, more channels): all samples at
+    // once as Eigen arrays, with weights relative to the nearest sample's (SIMD, sums in a fixed
+    // packet order).
     using Array = Eigen::Map<const Eigen::ArrayXd>;
     const Eigen::Index N = static_cast<Eigen::Index>(n);
     Eigen::ArrayXd& dist_sq = s.dist_sq;

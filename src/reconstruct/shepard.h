@@ -55,12 +55,6 @@ class Shepard final : public Interpolant {
   /// the weights could overflow or underflow, i.e. where p is within sqrt(kLeastDistSq) of a
   /// visible sample or beyond sqrt(kMostDistSq) of one; always false in a build without SIMD.
   bool global_value_one_pass(const Vec2& p, const char* hidden, double* o) const;
-  /// The global weighted mean at p (finite, no radius, mu 2 or 4, at most three channels; with
-  /// barriers the samples hidden from p weigh exactly 0) in two fused AVX2 passes over the
-  /// samples, with weights relative to the nearest sample's (no overflow whatever the
-  /// distances); false where it does not apply.
-  /// `hidden_known`: with barriers, s.hidden holds p's flags already.
-  bool global_value_fused(const Vec2& p, bool hidden_known, Scratch& s, double* o) const;
   /// The local path's value at p (o: a value per channel) from its k nearest samples, in any
   /// order, `nearest` the position of the nearest among them.
   void local_value(const Vec2& p, std::span<const unsigned> nearest_idx, std::span<const double> nearest_d2,

@@ -142,15 +142,16 @@ Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, cons
       out += gather(tree, tree.block(b.first_child + c), r, shooter_normal, shadows, budget_w_m2);
     return out;
   }
-  const auto at = [&](const Vec3& p, int point, double f, const AtCentre* known) -> Rgb {
-    if (f < 0) f = visible_form_factor_past(p, r.normal, poly, shooter_normal, shadows.at(point));
-    if (f == 0 || b.uniform) return f * b.unshot_w_m2;
-    if (known != nullptr && known->gradient_known)
-      return f * far_field_radiosity(b, p, r.normal, shooter_normal, known->expands ? &known->g : nullptr,
-                                     known->second_order ? &*known->second_order : nullptr);
-    return f * far_field_radiosity(b, p, r.normal, shooter_normal);
-  };
-  out.at_center = at(r.center, 0, centre.f, &centre);
+  // At the centre, with what shoots_whole() found there.
+  const double f_centre =
+      centre.f >= 0 ? centre.f : visible_form_factor_past(r.center, r.normal, poly, shooter_normal, shadows.at(0));
+  if (f_centre == 0 || b.uniform)
+    out.at_center = f_centre * b.unshot_w_m2;
+  else if (centre.gradient_known)
+    out.at_center = f_centre * far_field_radiosity(b, r.center, r.normal, shooter_normal, centre.expands ? &centre.g : nullptr,
+                                                   centre.second_order ? &*centre.second_order : nullptr);
+  else
+    out.at_center = f_centre * far_field_radiosity(b, r.center, r.normal, shooter_normal);
   if (midpoint) {
     out.mean = out.at_center;
   } else {
@@ -168,7 +169,7 @@ Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, cons
                                 {f.data(), count});
       if (kept != nullptr) std::copy(f.begin(), f.begin() + static_cast<std::ptrdiff_t>(count), kept);
     }
-    // Their far fields together too, as at() would find them one by one.
+    // Their far fields together too (far_field_radiosity() at each, bit for bit).
     std::array<Rgb, 4> radiosity;
     if (!b.uniform) far_field_radiosities(b, {r.gauss.data(), count}, r.normal, shooter_normal, {radiosity.data(), count});
     for (size_t k = 0; k < count; ++k)

@@ -80,17 +80,14 @@ TEST(Shepard, MatchesTheFormulaAndItsKNearestRestriction) {
   }
 }
 
-// The global method's vector path (mu 2 and 4, up to 3 channels; pairs of sample vectors share a
-// division while the squared distances stay within [1e-100, 1e100], else one division each)
-// against the formula in long double, relative to the nearest sample's weight: at unit scale, at
-// scales whose squared distances lie near either end of that range (1e+-90: shared divisions of
-// products near 1e+-180) and at scales that leave it either way, with sample counts that leave
-// a vector and single samples after the pairs.
+// The global method's paths against the formula in long double, relative to the nearest sample's
+// weight, with sample counts that leave whole packet pairs, a packet and a masked tail: the one
+// pass in SIMD packets (mu 2 and 4, up to 3 channels; pairs of packets share a division) where
+// squared distances lie in [1e-60, 1e60] and values' magnitudes in [1e-150, 1e150] (scales up to
+// 1e+-29 and 1e+-140: near those limits, some queries of 1e-29 beyond them), and the Eigen path
+// with weights relative to the nearest sample's where they could overflow or underflow (1e+-45
+// and beyond, 1e+-200).
 TEST(Shepard, GlobalVectorPathMatchesTheFormulaAtEveryScale) {
-  // The global paths: one pass with weights d^-mu where squared distances lie in [1e-60, 1e60]
-  // and values' magnitudes in [1e-150, 1e150] (scales up to 1e+-29 and 1e+-140: near those
-  // limits, some queries of 1e-29 beyond them), and two passes with weights relative to the
-  // nearest sample's where they could overflow or underflow (1e+-45 and beyond, 1e+-200).
   for (const double scale : {1.0, 1e-29, 1e29, 1e-45, 1e45, 1e-60, 1e60})
     for (const double value_scale : {1.0, 1e140, 1e-140, 1e200, 1e-200})
       for (const int n : {61, 64, 7})
