@@ -16,7 +16,8 @@
 namespace {
 
 /// Whether this CPU runs the instruction set the program was built for (CMake RADRECON_ARCH):
-/// else it would die of an illegal instruction somewhere; it says so instead.
+/// else it would die of an illegal instruction somewhere; it says so instead. Best effort: a
+/// static initialiser, run before main(), could still meet such an instruction first.
 bool cpu_runs_this_build() {
 #if defined(__x86_64__)
   __builtin_cpu_init();
