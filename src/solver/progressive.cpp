@@ -88,6 +88,16 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
   const ContactFinder contacts(scene);
   for (const MeshSurface& side : mesh.surfaces) splits.push_back(shooter_splits(scene, side, contacts));
   const std::vector<std::vector<ConvexPolygon>> covers_by = covers_by_surface(scene);
+  // Every element as a receiver (its centre and Gauss points), made once for all shots.
+  std::vector<std::vector<Receiver>> receivers(mesh.surfaces.size());
+  for (size_t s = 0; s < mesh.surfaces.size(); ++s) {
+    const MeshSurface& side = mesh.surfaces[s];
+    receivers[s].resize(side.elements.size());
+    parallel_for(0, static_cast<std::int64_t>(side.elements.size()), [&](std::int64_t e) {
+      receivers[s][static_cast<size_t>(e)] =
+          make_receiver(scene.surfaces[side.scene_surface], side.elements[static_cast<size_t>(e)], side.normal);
+    });
+  }
   std::vector<Patch> patches;
   std::vector<size_t> first_patch(mesh.surfaces.size());
   Rgb emitted = Rgb::Zero();
@@ -227,8 +237,7 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
     const auto receiving_element = [&](std::int64_t i) {
       const auto job = job_of(i);
       const size_t e = static_cast<size_t>(i) - job->first;
-      const MeshSurface& receiver = mesh.surfaces[job->side];
-      return std::pair{job, make_receiver(scene.surfaces[receiver.scene_surface], receiver.elements[e], receiver.normal)};
+      return std::pair<decltype(job), const Receiver&>{job, receivers[job->side][e]};
     };
     PatchViews* views = nullptr;
     if (options.far_field_error > 0 && receiving > 0) {
