@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "core/check.h"
 
@@ -93,9 +94,11 @@ std::pair<int, int> grid_divisions(double longest_m, const Surface& s, const Gri
   auto count = [&](double length) { return std::clamp(std::round(length / element_m), 1.0, 1e9); };
   double nu = count(s.length_u_m()), nv = count(s.length_v_m());
   if (s.is_triangle()) {
-    // The regular subdivision: as many cells along both legs, set by the longest edge.
+    // The regular subdivision, n cells along every edge: its cells' longest edge is the square
+    // element's diagonal, so a quad cut along its diagonal meshes as the quad's grid, each cell
+    // cut in two.
     nu = nv = count(std::max({(s.corners[1] - s.corners[0]).norm(), (s.corners[2] - s.corners[1]).norm(),
-                              (s.corners[0] - s.corners[2]).norm()}));
+                              (s.corners[0] - s.corners[2]).norm()}) / std::numbers::sqrt2);
   }
   if (s.max_divisions && std::max(nu, nv) > *s.max_divisions) {
     const double scale = double(*s.max_divisions) / std::max(nu, nv);

@@ -102,12 +102,13 @@ TEST(TriangleGridMesh, IsTheRegularSubdivisionIntoNSquaredEqualTriangles) {
   Scene scene;
   scene.surfaces = {triangle()};
   const Surface& s = scene.surfaces[0];
-  const Mesh mesh = make_grid_mesh(scene, {7, 1});
+  const Mesh mesh = make_grid_mesh(scene, {9, 1});
   ASSERT_EQ(mesh.surfaces.size(), 1u);
   const MeshSurface& m = mesh.surfaces[0];
-  ASSERT_EQ(m.nu, 7);  // the longest edge, 2.5 m, in 7 divisions
+  // The longest edge, 2.18 m, against a square element's diagonal: round(2.18 / (sqrt 2 x 2.04 / 9)) = 7.
+  ASSERT_EQ(m.nu, 7);
   ASSERT_EQ(m.elements.size(), 49u);
-  EXPECT_EQ(grid_element_count(scene, {7, 1}), 49u);
+  EXPECT_EQ(grid_element_count(scene, {9, 1}), 49u);
   Vec3 moment = Vec3::Zero();
   for (const MeshElement& e : m.elements) {
     EXPECT_NEAR(e.area_m2, s.area_m2() / 49, 1e-14);

@@ -452,7 +452,7 @@ TEST(ShooterTree, AnEarlierTreesStorageGivesTheSameBlocksAsFreshOne) {
   // built in a quad's storage and the other way round, against the same trees built fresh.
   LinearPlate plate(7);
   Scene triangles = testing_support::as_triangles(plate.scene);
-  const Mesh triangle_mesh = make_grid_mesh(triangles, {9, 1});
+  const Mesh triangle_mesh = make_grid_mesh(triangles, {13, 1});  // round(13 / sqrt 2) = 9 cells an edge
   const MeshSurface& triangle_side = triangle_mesh.surfaces[0];
   std::vector<Rgb> triangle_unshot;
   std::mt19937_64 rng(13);
