@@ -78,7 +78,8 @@ void add_solve_command(CLI::App& app) {
       ->check(CLI::Range(kMinResidual, kMaxResidual))
       ->capture_default_str();
   cmd->add_option("--patches", args->patches,
-                  "grid: shooting patches along the longest edge (patches group elements; receivers are elements)")
+                  "grid: shooting patches along the longest edge (patches group elements; receivers are elements); "
+                  "closed rooms solve faster with smaller patches (the Cornell box: 4)")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
   cmd->add_option("--far-field-error", args->far_field_error,
