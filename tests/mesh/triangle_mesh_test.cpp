@@ -4,11 +4,13 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "mesh/grid_mesh.h"
 #include "mesh/quadtree.h"
 #include "scene/param_cell.h"
+#include "support/scenes.h"
 
 namespace radrecon {
 namespace triangle_mesh_test {
@@ -93,6 +95,37 @@ TEST(ParamCell, SubcellsTileTheCellWithTheMidpointsAsCentroids) {
         int holders = 0;
         for (const ParamCell& c : cells) holders += contains(c, p, 0) ? 1 : 0;
         EXPECT_EQ(holders, 1) << cell_shape_name(shape) << " n " << n << " at " << p.transpose();
+      }
+    }
+  }
+}
+
+TEST(TriangleGridMesh, AQuadCutAlongItsDiagonalMeshesAsItsGridOfSquaresCutInTwo) {
+  // A unit square, and beside it the same square as two triangles (as a modeller exports it, or
+  // as a warped quad is split): at any grid:N the triangles' cells are the square's cells, each
+  // cut in two along its diagonal: the same n, half the area, corners on the same lattice.
+  using testing_support::quad;
+  Scene scene;
+  scene.surfaces.push_back(quad("square", {0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, 0.5));
+  Scene halves;
+  halves.surfaces.push_back(quad("halves", {2, 0, 0}, {3, 0, 0}, {3, 1, 0}, {2, 1, 0}, 0.5));
+  for (const Surface& t : testing_support::as_triangles(halves).surfaces) scene.surfaces.push_back(t);
+  for (const int divisions : {3, 8, 13, 40}) {
+    const Mesh mesh = make_grid_mesh(scene, {divisions, 1});
+    ASSERT_EQ(mesh.surfaces.size(), 3u);
+    const MeshSurface& square = mesh.surfaces[0];
+    ASSERT_EQ(square.nu, square.nv);
+    const int n = square.nu;
+    const double cell_m2 = 1.0 / (double(n) * n);
+    for (size_t k : {1u, 2u}) {
+      const MeshSurface& half = mesh.surfaces[k];
+      EXPECT_EQ(half.nu, n) << "divisions " << divisions;
+      ASSERT_EQ(half.elements.size(), static_cast<size_t>(n) * n);
+      for (const MeshElement& e : half.elements) {
+        EXPECT_NEAR(e.area_m2, 0.5 * cell_m2, 1e-12);
+        for (int c = 0; c < e.corner_count(); ++c)
+          for (const double x : {e.corners[c].x() - 2.0, e.corners[c].y()})
+            EXPECT_NEAR(x * n, std::round(x * n), 1e-9) << "a corner off the square's lattice, divisions " << divisions;
       }
     }
   }
