@@ -64,8 +64,9 @@ void add_solve_command(CLI::App& app) {
   cmd->add_option("--scene", args->scene, "Scene JSON file, model file (.obj .gltf .glb .ply with an emitting face; docs/formats.md, Meshes), or a built-in scene: 'paper' (the paper experiment) or 'cornell' (the Cornell box, docs/cornell.md)")
       ->capture_default_str();
   cmd->add_option("--mesh", args->mesh,
-                  "grid:N: progressive refinement, N elements along the longest surface edge of the scene, the "
-                  "other surfaces with elements of the same size (capped by a surface's mesh.max_divisions); "
+                  "grid:N: progressive refinement, elements of 1/N of the longest quad edge or triangle base or height, "
+                  "on every surface (a triangle's cells about as wide as a square's diagonal; capped by a surface's "
+                  "mesh.max_divisions); "
                   "quadtree-eps:E: hierarchical radiosity, links refined while they carry more than E watts; "
                   "quadtree:LEAVES: hierarchical radiosity with exactly LEAVES (= 1 + 3k) leaves on one side "
                   "(see --leaves-on)")
@@ -79,7 +80,7 @@ void add_solve_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--patches", args->patches,
                   "grid: shooting patches along the longest edge (patches group elements; receivers are elements); "
-                  "closed rooms solve faster with smaller patches (the Cornell box: 4)")
+                  "the Cornell box solves fastest with 4 (more is slower)")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
   cmd->add_option("--far-field-error", args->far_field_error,

@@ -19,7 +19,7 @@ constexpr std::array<LimitSpec, std::size(kAllLimits)> kSpecs = {{
     {"--max-samples", "samples", 10'000'000, "about 270 bytes a sample with its triangulation: some 2.7 GB"},
     {"--max-raster-points", "points", 100'000'000, "about 26 bytes a point and its value: some 2.6 GB"},
     {"--max-rays", "rays", 1LL << 32, "8192 x 8192 pixels at 8 x 8 rays: some 25 minutes on two cores"},
-    {"--max-elements", "elements", 10'000'000, "about 900 bytes an element (measured: 880 on the paper scene, grid:200 to grid:560): some 9 GB, and the progressive solver's kept views of its patches, 128 MiB at most"},
+    {"--max-elements", "elements", 10'000'000, "about 900 bytes an element (a solve's peak memory: 870-880 on the paper scene, grid:200 to grid:800): some 9 GB, and the progressive solver's kept views of its patches, 128 MiB at most"},
     {"--max-leaves", "leaves", 10'000'000, "the links (--max-links) grow faster than the leaves"},
     {"--max-links", "links", 4'000'000, "about 2.6 KiB a link with its quadtrees: some 10 GB"},
     {"--max-file-bytes", "bytes", 1LL << 30, "1 GiB: every reader holds its file in memory, several times over"},

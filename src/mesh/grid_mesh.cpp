@@ -94,9 +94,9 @@ std::pair<int, int> grid_divisions(double longest_m, const Surface& s, const Gri
   auto count = [&](double length) { return std::clamp(std::round(length / element_m), 1.0, 1e9); };
   double nu = count(s.length_u_m()), nv = count(s.length_v_m());
   if (s.is_triangle()) {
-    // The regular subdivision, n cells along every edge: its cells' longest edge is the square
-    // element's diagonal, so a quad cut along its diagonal meshes as the quad's grid, each cell
-    // cut in two.
+    // The regular subdivision, n cells along every edge: its cells' longest edge about the square
+    // element's diagonal, so a square cut along its diagonal meshes as the square's grid, each
+    // cell cut in two.
     nu = nv = count(std::max({(s.corners[1] - s.corners[0]).norm(), (s.corners[2] - s.corners[1]).norm(),
                               (s.corners[0] - s.corners[2]).norm()}) / std::numbers::sqrt2);
   }

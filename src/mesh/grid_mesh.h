@@ -63,7 +63,7 @@ struct Mesh {
 struct GridMeshOptions {
   /// Elements along the longest surface edge of the scene, >= 1. Every surface gets elements of
   /// (about) the same size: a quad round(edge length / element size) along each edge, a triangle
-  /// round(longest edge / (sqrt 2 x element size)) along every edge (its cells no wider than a
+  /// round(longest edge / (sqrt 2 x element size)) along every edge (its cells about as wide as a
   /// square element's diagonal); at least 1, and at most the surface's own `max_divisions`
   /// along its longer edge.
   int divisions = 16;
