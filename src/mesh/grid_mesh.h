@@ -61,11 +61,11 @@ struct Mesh {
 };
 
 struct GridMeshOptions {
-  /// Elements along the longest surface edge of the scene, >= 1. Every surface gets elements of
-  /// (about) the same size: a quad round(edge length / element size) along each edge, a triangle
-  /// round(longest edge / (sqrt 2 x element size)) along every edge (its cells about as wide as a
-  /// square element's diagonal); at least 1, and at most the surface's own `max_divisions`
-  /// along its longer edge.
+  /// >= 1: elements of 1/divisions of the scene's longest quad edge or triangle base or height
+  /// (longest_edge_m()). Every surface gets elements of (about) that size: a quad
+  /// round(edge length / element size) along each edge, a triangle round(longest edge / (sqrt 2 x
+  /// element size)) along every edge (its cells about as wide as a square element's diagonal);
+  /// at least 1, and at most the surface's own `max_divisions` along its longer edge.
   int divisions = 16;
   /// Shooting patches along the longest edge, >= 1: patches are square groups of
   /// ceil(divisions / max_patches) elements per edge on every surface.
