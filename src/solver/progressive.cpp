@@ -70,8 +70,7 @@ struct PatchViews {
   }
 };
 /// The most bytes of views kept over all patches; the patches that shoot after they are spent
-/// compute theirs every shot. The Cornell box at grid:128 kept 39 MB (75,747 elements, before its
-/// triangles meshed coarser), the paper's grid:400 18 MB.
+/// compute theirs every shot. The Cornell box at grid:128 keeps 31 MB, the paper's grid:400 18 MB.
 constexpr size_t kMostPatchViewBytes = size_t{128} << 20;
 
 }  // namespace
