@@ -1,6 +1,8 @@
 #pragma once
 // Every numerical tolerance of the library, named, with the reason for its value.
 
+#include <cstddef>
+
 namespace radrecon::tol {
 
 /// Largest distance (relative to the quad's size) of a corner from the plane of the other three
@@ -261,6 +263,19 @@ inline constexpr double kKernelCosine = 1e-3;
 /// far above the projections' rounding, so that only fragments clear of the shadow are passed
 /// over.
 inline constexpr double kShadowTraceRelative = 1e-7;
+
+/// The fewest shadows on a shooting patch, seen from a receiving point, for which the point keeps
+/// the patch's visible fragments and clips them to each block it gathers from
+/// (solver/visibility.h VisibleFragments), rather than subtracting every shadow from each block
+/// again. A count, not a length; below it (the paper scene, the Cornell box) the per-block
+/// subtraction is cheaper, and the solutions stay bit for bit what they were.
+inline constexpr std::size_t kKeptFragmentsShadows = 16;
+
+/// VisibleFragments: a part of a shooting patch counts as seen in part when the fragments it sees
+/// cover less than (1 - this) of its area in front of the point: far above the round-off of the
+/// fragments' areas (relative 1e-15 each, hundreds of them), so that a part no shadow touches is
+/// seen whole; a shadow over less of it than this changes the form factor by less than this.
+inline constexpr double kHiddenAreaRelative = 1e-9;
 
 /// Shaft culling (solver/bvh.h): a BVH node or occluder counts as outside the shaft between a
 /// receiver and a shooter only when it lies more than this beyond one of the shaft's planes.

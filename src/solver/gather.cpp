@@ -93,7 +93,7 @@ bool shoots_whole(const Block& b, const ConvexPolygon& poly, const Receiver& r, 
                                                  : std::numeric_limits<double>::infinity();
   // Off the midpoint the bound's form factor stays: without the visible one, the block splits.
   if (!midpoint && !(form_factor * spread * error_per_spread <= budget_w_m2)) return false;
-  if (f < 0) f = visible_form_factor_past(p, n, poly, shooter_normal, shadows.at(0), &centre.partly_seen);
+  if (f < 0) f = shadows.visible_form_factor(0, poly, shooter_normal, &centre.partly_seen);
   const bool partly_seen = centre.partly_seen;
   // A block seen in part splits: it would shoot with the mean of all of it, an error within the
   // bound but of one sign for every element that sees the same part (the ground's blocks behind
@@ -124,6 +124,20 @@ std::span<const ShadowVolume> ReceiverShadows::at(int point) const {
 }
 
 thread_local std::array<std::vector<ShadowVolume>, 5> ReceiverShadows::volumes_;
+thread_local std::array<VisibleFragments, 5> ReceiverShadows::fragments_;
+
+double ReceiverShadows::visible_form_factor(int point, const ConvexPolygon& polygon, const Vec3& shooter_normal,
+                                            bool* partly_seen) const {
+  const std::span<const ShadowVolume> volumes = at(point);
+  const Vec3& p = point == 0 ? r_.center : r_.gauss[static_cast<size_t>(point - 1)];
+  const size_t k = static_cast<size_t>(point);
+  if (fragments_state_[k] == Fragments::unknown)
+    fragments_state_[k] = may_keep_fragments(point) && fragments_[k].find(p, r_.normal, *patch_, shooter_normal, volumes)
+                              ? Fragments::kept
+                              : Fragments::not_kept;
+  if (fragments_state_[k] == Fragments::kept) return fragments_[k].form_factor(polygon, partly_seen);
+  return visible_form_factor_past(p, r_.normal, polygon, shooter_normal, volumes, partly_seen);
+}
 
 Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, const Vec3& shooter_normal,
                 const ReceiverShadows& shadows, double budget_w_m2, const SeenFromCentre* seen) {
@@ -144,7 +158,7 @@ Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, cons
   }
   // At the centre, with what shoots_whole() found there.
   const double f_centre =
-      centre.f >= 0 ? centre.f : visible_form_factor_past(r.center, r.normal, poly, shooter_normal, shadows.at(0));
+      centre.f >= 0 ? centre.f : shadows.visible_form_factor(0, poly, shooter_normal);
   if (f_centre == 0 || b.uniform)
     out.at_center = f_centre * b.unshot_w_m2;
   else if (centre.gradient_known)
@@ -163,10 +177,16 @@ Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, cons
     if (kept != nullptr && !std::isnan(kept[0])) {
       std::copy(kept, kept + count, f.begin());
     } else {
-      std::array<std::span<const ShadowVolume>, 4> volumes;
-      for (size_t k = 0; k < count; ++k) volumes[k] = shadows.at(static_cast<int>(k) + 1);
-      visible_form_factors_past({r.gauss.data(), count}, r.normal, poly, shooter_normal, {volumes.data(), count},
-                                {f.data(), count});
+      bool one_by_one = false;
+      for (size_t k = 0; k < count; ++k) one_by_one = one_by_one || shadows.may_keep_fragments(static_cast<int>(k) + 1);
+      if (one_by_one) {
+        for (size_t k = 0; k < count; ++k) f[k] = shadows.visible_form_factor(static_cast<int>(k) + 1, poly, shooter_normal);
+      } else {
+        std::array<std::span<const ShadowVolume>, 4> volumes;
+        for (size_t k = 0; k < count; ++k) volumes[k] = shadows.at(static_cast<int>(k) + 1);
+        visible_form_factors_past({r.gauss.data(), count}, r.normal, poly, shooter_normal, {volumes.data(), count},
+                                  {f.data(), count});
+      }
       if (kept != nullptr) std::copy(f.begin(), f.begin() + static_cast<std::ptrdiff_t>(count), kept);
     }
     // Their far fields together too (far_field_radiosity() at each, bit for bit).

@@ -4,9 +4,11 @@
 // error budget, their form factors at the element's centre and Gauss points, shadows included.
 
 #include <array>
+#include <cstdint>
 #include <span>
 #include <vector>
 
+#include "core/tolerances.h"
 #include "solver/shooter_tree.h"
 #include "solver/visibility.h"
 
@@ -59,28 +61,49 @@ struct Gathered {
 
 /// The occluders' shadow volumes (visibility.h) as a receiving element's centre (point 0) and
 /// Gauss points (1 to gauss_count) see them: each point's made on first use and kept for every
-/// polygon it looks at (the blocks of a shooting patch, the whole patch). The volumes live in
-/// buffers of the calling thread: one at a time per thread. Receiver and occluders must outlive it.
+/// polygon it looks at (the blocks of a shooting patch, the whole patch). Given the shooting
+/// patch's outline, a point that sees many shadows on it (tol::kKeptFragmentsShadows) keeps the
+/// patch's visible fragments too (VisibleFragments), for each block it looks at. The volumes and
+/// fragments live in buffers of the calling thread: one at a time per thread. Receiver,
+/// occluders and outline must outlive it.
 class ReceiverShadows {
  public:
   ReceiverShadows(const Receiver& r, const std::vector<const Occluder*>& occluders) : r_(r), occluders_(occluders) {}
   /// The occluders found on first need: find() fills `occluders` before the first volume is
   /// made (a gather that needs no shadow, such as a late shot's patch shooting whole with its
   /// form factor known, then never searches for them). `find` is held by reference, as
-  /// ThreadJob holds its callable: it must outlive this.
+  /// ThreadJob holds its callable: it must outlive this. `patch`: the shooting patch's outline,
+  /// of which every polygon given to visible_form_factor() is a part; null: none.
   template <typename Find>
-  ReceiverShadows(const Receiver& r, const std::vector<const Occluder*>& occluders, const Find& find)
-      : r_(r), occluders_(occluders), find_(&find), call_find_([](const void* f) { (*static_cast<const Find*>(f))(); }) {}
+  ReceiverShadows(const Receiver& r, const std::vector<const Occluder*>& occluders, const Find& find,
+                  const ConvexPolygon* patch = nullptr)
+      : r_(r), occluders_(occluders), find_(&find), call_find_([](const void* f) { (*static_cast<const Find*>(f))(); }),
+        patch_(patch) {}
   std::span<const ShadowVolume> at(int point) const;
+  /// visible_form_factor_past() of `polygon` (unit normal `shooter_normal`) at the point with
+  /// at(point)'s volumes, and whether the point sees it in part: through the patch's kept
+  /// fragments when the point sees many shadows on the patch (the same values to round-off),
+  /// else as visible_form_factor_past() gives it, bit for bit.
+  double visible_form_factor(int point, const ConvexPolygon& polygon, const Vec3& shooter_normal,
+                             bool* partly_seen = nullptr) const;
+  /// Whether the point sees enough shadows that visible_form_factor() may take the fragments'
+  /// way (then the Gauss points go one by one, not in gather()'s vectorised batch).
+  bool may_keep_fragments(int point) const {
+    return patch_ != nullptr && at(point).size() >= tol::kKeptFragmentsShadows;
+  }
 
  private:
   const Receiver& r_;
   const std::vector<const Occluder*>& occluders_;
   const void* find_ = nullptr;  ///< null: the occluders are given
   void (*call_find_)(const void*) = nullptr;
+  const ConvexPolygon* patch_ = nullptr;
   mutable bool found_ = false;
   mutable std::array<bool, 5> made_{};
+  enum class Fragments : std::uint8_t { unknown, kept, not_kept };
+  mutable std::array<Fragments, 5> fragments_state_{};
   static thread_local std::array<std::vector<ShadowVolume>, 5> volumes_;
+  static thread_local std::array<VisibleFragments, 5> fragments_;
 };
 
 /// A polygon's visible form factor at a receiving element's centre, and whether the centre sees

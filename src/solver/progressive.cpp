@@ -287,7 +287,7 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
         bvh.collect(Shaft({&element.center, 1}, shooter_outline, reach_m), receiver.scene_surface,
                     shooter_side.scene_surface, near);
       };
-      const ReceiverShadows shadows(element, near, find_near);
+      const ReceiverShadows shadows(element, near, find_near, &patch_outline);
       const double so_far_w_m2 = state[job->side].irradiance[e].sum();
       double budget_w_m2 = 0;  // the distance rule
       SeenFromCentre seen{-1, false};  // the whole patch, as the root block's outline
@@ -298,8 +298,7 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
         if (views != nullptr && !std::isnan(views->form_factor[k])) {
           seen = {views->form_factor[k], views->partly[k] != 0};
         } else {
-          seen.form_factor = visible_form_factor_past(element.center, element.normal, patch_outline, shooter_normal,
-                                                      shadows.at(0), &seen.partly);
+          seen.form_factor = shadows.visible_form_factor(0, patch_outline, shooter_normal, &seen.partly);
           if (views != nullptr) views->form_factor[k] = seen.form_factor, views->partly[k] = seen.partly;
         }
         if (views != nullptr && views->gauss_at[k] != PatchViews::kAtCentre) seen.gauss = &views->gauss[views->gauss_at[k]];

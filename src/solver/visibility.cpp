@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <optional>
 
@@ -134,73 +135,24 @@ ConvexPolygon clip_all(const ConvexPolygon& poly, const std::array<HalfSpace, 5>
   return *now;
 }
 
-/// A box in a plane's 2-D coordinates (PlaneBasis), m; empty when lo > hi, everything when
-/// infinite. A NaN bound meets everything: a box decides nothing it cannot.
-struct Box2 {
-  double lo_u = std::numeric_limits<double>::infinity(), lo_w = lo_u;
-  double hi_u = -lo_u, hi_w = -lo_u;
-  void add(double u, double w) {
-    lo_u = std::min(lo_u, u), hi_u = std::max(hi_u, u);
-    lo_w = std::min(lo_w, w), hi_w = std::max(hi_w, w);
-  }
-  bool meets(const Box2& o) const { return !(o.hi_u < lo_u || hi_u < o.lo_u || o.hi_w < lo_w || hi_w < o.lo_w); }
-  static Box2 everything() {
-    constexpr double inf = std::numeric_limits<double>::infinity();
-    return Box2{-inf, -inf, inf, inf};
-  }
-};
-
-/// Central projection from a point p in front of a plane {x : normal . x = offset} (normal of
-/// unit length) onto it, in the plane's 2-D coordinates. Points of the shooter and of its
-/// fragments are projected too, not taken as lying in the plane: a quad may be off its plane
-/// within tol::kPlanarityRelative, and projected from p both boxes see what the shadow volumes'
-/// planes through p see.
-class PlaneBasis {
- public:
-  PlaneBasis(const Vec3& p, const Vec3& normal, double offset)
-      : p_(p), normal_(normal), height_p_(normal.dot(p) - offset) {
-    u_ = (std::abs(normal.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(normal).normalized();
-    w_ = normal.cross(u_);
-  }
-  /// The box of the projections of a fragment's vertices, widened (tol::kShadowTraceRelative).
-  Box2 box(const ConvexPolygon& polygon) const { return projected(polygon.v.data(), polygon.n); }
-  /// The box of the occluder's projection, widened (tol::kShadowTraceRelative): it holds the trace
-  /// of the occluder's shadow on the plane (the projection of the part of the occluder between p
-  /// and the plane) when every corner lies on the plane's side of the plane through p parallel to
-  /// it; else everything.
-  Box2 trace(const Occluder& o) const { return projected(o.corners.data(), o.corner_count); }
-
- private:
-  Box2 projected(const Vec3* points, int count) const {
-    Box2 b;
-    for (int i = 0; i < count; ++i) {
-      const Vec3 ray = points[i] - p_;
-      const double down = -normal_.dot(ray);  // how far the point is from p toward the plane
-      if (!(down > 0)) return Box2::everything();
-      const Vec3 x = p_ + (height_p_ / down) * ray;
-      b.add(u_.dot(x), w_.dot(x));
-    }
-    return widened(b);
-  }
-  /// Rounding in the projections, and clip()'s own tolerance, kept out of the boxes' verdict.
-  static Box2 widened(Box2 b) {
-    const double margin = tol::kShadowTraceRelative * (1 + std::max(b.hi_u - b.lo_u, b.hi_w - b.lo_w) +
-                                          std::max({std::abs(b.lo_u), std::abs(b.hi_u), std::abs(b.lo_w), std::abs(b.hi_w)}));
-    b.lo_u -= margin, b.lo_w -= margin, b.hi_u += margin, b.hi_w += margin;
-    if (!(std::isfinite(b.lo_u) && std::isfinite(b.lo_w) && std::isfinite(b.hi_u) && std::isfinite(b.hi_w)))
-      return Box2::everything();
-    return b;
-  }
-  Vec3 p_, normal_, u_, w_;
-  double height_p_;
-};
-
 /// The fewest shadows on a shooter for which visible_form_factor_past() rejects shadows by boxes.
 constexpr size_t kBoxedShadows = 16;
 
 /// Each of subtract()'s five clips adds at most one vertex: a polygon with more vertices than this
 /// is cut in two first (subtract_large()).
 constexpr int kMaxSubtractVertices = ConvexPolygon::kCapacity - 6;
+
+/// Whether q lies wholly outside one of the half-spaces (to clip()'s tolerance): then it misses
+/// their intersection.
+bool misses(const ConvexPolygon& q, const std::array<HalfSpace, 5>& volume) {
+  for (const HalfSpace& h : volume) {
+    const double on_plane = h.on_plane >= 0 ? h.on_plane : tol::kPlaneDistance_m * h.normal.norm();
+    bool outside = true;
+    for (int i = 0; i < q.n && outside; ++i) outside = h.eval(q.v[i]) <= on_plane;
+    if (outside) return true;
+  }
+  return false;
+}
 
 /// Appends the convex pieces of q (at most kMaxSubtractVertices vertices) minus the
 /// intersection of the half-spaces to `out`.
@@ -209,14 +161,9 @@ void subtract(const ConvexPolygon& q, const std::array<HalfSpace, 5>& volume,
   // A fragment wholly outside one of the half-spaces (to clip()'s tolerance) misses the shadow:
   // keep it whole rather than cut it along the planes before that one (fewer, larger fragments;
   // the same visible polygon).
-  for (const HalfSpace& h : volume) {
-    const double on_plane = h.on_plane >= 0 ? h.on_plane : tol::kPlaneDistance_m * h.normal.norm();
-    bool outside = true;
-    for (int i = 0; i < q.n && outside; ++i) outside = h.eval(q.v[i]) <= on_plane;
-    if (outside) {
-      out.push_back(q);
-      return;
-    }
+  if (misses(q, volume)) {
+    out.push_back(q);
+    return;
   }
   // Peel off the part outside each half-space in turn; what is left inside all five is hidden.
   std::array<ConvexPolygon, 2> rest;
@@ -247,6 +194,102 @@ void subtract(const ConvexPolygon& q, const std::array<HalfSpace, 5>& volume,
   b.push(q.v[0]);
   subtract_large(a, volume, out);
   subtract_large(b, volume, out);
+}
+
+/// A shadow volume that meets the polygon, with its occluder's squared distance from the point.
+struct Shadow {
+  double distance_m2;
+  const ShadowVolume* volume;
+};
+
+/// The convex fragments of `front` (a polygon in front of the point) that the point sees past
+/// `shadows` (the volumes that meet it; sorted here) into `fragments`. Nearest occluders first:
+/// their shadows are the largest seen from the point, so the fragments shrink (or vanish, ending
+/// the loop) early and later shadows cut fewer of them. With `plane` (the polygon's plane seen from
+/// the point: for many shadows, a light seen past hundreds of a model's small triangles) each
+/// shadow's trace on the plane lies within its occluder's projection, so a fragment whose
+/// projection's box misses that one's misses the shadow, and is kept whole without subtract()'s
+/// plane tests; the fragments' boxes are then left in `boxes`. With a few shadows there are few
+/// fragments, and the boxes would cost more than they save.
+void subtract_shadows(std::vector<Shadow>& shadows, const ConvexPolygon& front, const PlaneBasis* plane,
+                      std::vector<ConvexPolygon>& fragments, std::vector<Box2>& boxes) {
+  std::stable_sort(shadows.begin(), shadows.end(),
+                   [](const Shadow& x, const Shadow& y) { return x.distance_m2 < y.distance_m2; });
+  thread_local std::vector<ConvexPolygon> pieces;
+  const auto subtract_one = [&](const ConvexPolygon& q, const Shadow& shadow) {
+    pieces.clear();
+    if (q.n <= kMaxSubtractVertices) subtract(q, shadow.volume->planes, pieces);
+    else subtract_large(q, shadow.volume->planes, pieces);
+  };
+  fragments.clear();
+  boxes.clear();
+  if (plane == nullptr) {
+    // Shadow by shadow over the fragments left. A fragment the shadow misses stays where it is;
+    // one it cuts is replaced by its first piece, and its other pieces go to the end, past the
+    // fragments still to cut.
+    fragments.push_back(front);
+    for (const Shadow& shadow : shadows) {
+      const size_t count = fragments.size();
+      size_t kept = 0;  // fragments [0, kept) survive; the rest of [0, f) are gone
+      for (size_t f = 0; f < count; ++f) {
+        subtract_one(fragments[f], shadow);
+        if (pieces.empty()) continue;
+        fragments[kept++] = pieces[0];
+        for (size_t i = 1; i < pieces.size(); ++i) fragments.push_back(pieces[i]);
+      }
+      // Close the gap between the survivors and the pieces appended after them.
+      fragments.erase(fragments.begin() + static_cast<std::ptrdiff_t>(kept),
+                      fragments.begin() + static_cast<std::ptrdiff_t>(count));
+      if (fragments.empty()) return;
+    }
+    return;
+  }
+  // With boxes: fragment by fragment, depth first, each with the shadows after the one that made
+  // it whose traces its box meets (listed again for each new piece: a piece is smaller than the
+  // fragment it came from, and meets fewer traces). Each fragment meets the shadows in the same
+  // order as above, so the fragments are the same; only their order differs.
+  thread_local std::vector<Box2> traces;
+  traces.clear();
+  for (const Shadow& shadow : shadows) traces.push_back(plane->trace(*shadow.volume->occluder));
+  struct Work {
+    ConvexPolygon fragment;
+    Box2 box;
+    size_t first, last;  ///< its shadows: candidates[first, last), indices into `shadows`
+  };
+  thread_local std::vector<std::uint32_t> candidates;
+  thread_local std::vector<Work> stack;
+  candidates.clear();
+  stack.clear();
+  const auto push = [&](const ConvexPolygon& fragment, const Box2& box, size_t from, size_t to) {
+    const size_t first = candidates.size();
+    for (size_t i = from; i < to; ++i)
+      if (box.meets(traces[candidates[i]])) candidates.push_back(candidates[i]);
+    stack.push_back({fragment, box, first, candidates.size()});
+  };
+  for (size_t k = 0; k < shadows.size(); ++k) candidates.push_back(static_cast<std::uint32_t>(k));
+  push(front, plane->box(front), 0, shadows.size());
+  while (!stack.empty()) {
+    const Work work = stack.back();
+    stack.pop_back();
+    // What later-pushed (so already finished) work listed after this one's candidates is spent.
+    candidates.resize(work.last);
+    size_t i = work.first;
+    while (i < work.last && misses(work.fragment, shadows[candidates[i]].volume->planes)) ++i;
+    if (i == work.last) {  // past every shadow
+      fragments.push_back(work.fragment);
+      boxes.push_back(work.box);
+      continue;
+    }
+    subtract_one(work.fragment, shadows[candidates[i]]);
+    for (const ConvexPolygon& piece : pieces) push(piece, plane->box(piece), i + 1, work.last);
+  }
+}
+
+/// The area of a convex polygon, m^2.
+double area_m2(const ConvexPolygon& q) {
+  Vec3 twice = Vec3::Zero();
+  for (int i = 1; i + 1 < q.n; ++i) twice += (q.v[i] - q.v[0]).cross(q.v[i + 1] - q.v[0]);
+  return 0.5 * twice.norm();
 }
 
 }  // namespace
@@ -298,85 +341,80 @@ double visible_form_factor_past(const Vec3& p, const Vec3& n, const ConvexPolygo
     return std::max(0.0, unoccluded - lambert_form_factor(p, n, first_shadow));
 
   // General case: subtract every shadow volume that meets the polygon from the fragments of the
-  // visible polygon. Nearest occluders first: their shadows are the largest seen from p, so the
-  // fragments shrink (or vanish, ending the loop) early and later shadows cut fewer of them.
-  struct Shadow {
-    double distance_m2;
-    const ShadowVolume* volume;
-  };
+  // visible polygon.
   thread_local std::vector<Shadow> shadows;
   shadows.clear();
   for (const ShadowVolume& v : volumes)
     if (meets(v, front)) shadows.push_back({(v.occluder->centroid - p).squaredNorm(), &v});
-  std::stable_sort(shadows.begin(), shadows.end(),
-                   [](const Shadow& x, const Shadow& y) { return x.distance_m2 < y.distance_m2; });
-  // With many shadows (a light seen past hundreds of a model's small triangles), each one's trace
-  // on the shooter's plane lies within the occluder's projection from p (PlaneBasis): a fragment
-  // whose projection's box misses that one's misses the shadow, and is kept whole without
-  // subtract()'s plane tests. With a few there are
-  // few fragments, and the boxes would cost more than they save.
-  thread_local std::vector<Box2> traces, boxes;
   std::optional<PlaneBasis> plane;
-  traces.clear();
-  if (shadows.size() >= kBoxedShadows) {
-    plane.emplace(p, shooter_normal, shooter_normal.dot(shooter.v[0]));
-    for (const Shadow& shadow : shadows) traces.push_back(plane->trace(*shadow.volume->occluder));
-  }
-  thread_local std::vector<ConvexPolygon> fragments, pieces;
-  // The fragments left after each shadow, with their boxes when `Boxed`. A fragment the shadow
-  // misses stays where it is (no copy: there are hundreds of shadows); one it cuts is replaced
-  // by its first piece, and its other pieces go to the end, past the fragments still to cut.
-  const auto subtract_shadows = [&]<bool Boxed>() {
-    fragments.assign(1, front);
-    if constexpr (Boxed) boxes.assign(1, plane->box(front));
-    for (size_t k_shadow = 0; k_shadow < shadows.size(); ++k_shadow) {
-      const size_t count = fragments.size();
-      size_t kept = 0;  // fragments [0, kept) survive; the rest of [0, f) are gone
-      for (size_t f = 0; f < count; ++f) {
-        const auto keep = [&](size_t from) {
-          if (from != kept) {
-            fragments[kept] = fragments[from];
-            if constexpr (Boxed) boxes[kept] = boxes[from];
-          }
-          ++kept;
-        };
-        if constexpr (Boxed) {
-          if (!boxes[f].meets(traces[k_shadow])) {
-            keep(f);
-            continue;
-          }
-        }
-        pieces.clear();
-        const ConvexPolygon& q = fragments[f];
-        if (q.n <= kMaxSubtractVertices) subtract(q, shadows[k_shadow].volume->planes, pieces);
-        else subtract_large(q, shadows[k_shadow].volume->planes, pieces);
-        if (pieces.empty()) continue;
-        fragments[kept] = pieces[0];
-        if constexpr (Boxed) boxes[kept] = plane->box(pieces[0]);
-        ++kept;
-        for (size_t i = 1; i < pieces.size(); ++i) {
-          fragments.push_back(pieces[i]);
-          if constexpr (Boxed) boxes.push_back(plane->box(pieces[i]));
-        }
-      }
-      // Close the gap between the survivors and the pieces appended after them.
-      if (kept < count) {
-        fragments.erase(fragments.begin() + static_cast<std::ptrdiff_t>(kept),
-                        fragments.begin() + static_cast<std::ptrdiff_t>(count));
-        if constexpr (Boxed)
-          boxes.erase(boxes.begin() + static_cast<std::ptrdiff_t>(kept), boxes.begin() + static_cast<std::ptrdiff_t>(count));
-      }
-      if (fragments.empty()) return;
-    }
-  };
-  if (plane) subtract_shadows.template operator()<true>();
-  else subtract_shadows.template operator()<false>();
+  if (shadows.size() >= kBoxedShadows) plane.emplace(p, shooter_normal, shooter_normal.dot(shooter.v[0]));
+  thread_local std::vector<ConvexPolygon> fragments;
+  thread_local std::vector<Box2> boxes;
+  subtract_shadows(shadows, front, plane ? &*plane : nullptr, fragments, boxes);
   if (fragments.empty()) {
     partly = false;
     return 0.0;
   }
   double visible = 0.0;
   for (const ConvexPolygon& q : fragments) visible += lambert_form_factor(p, n, q);
+  return visible;
+}
+
+bool VisibleFragments::find(const Vec3& p, const Vec3& n, const ConvexPolygon& polygon, const Vec3& polygon_normal,
+                            std::span<const ShadowVolume> volumes) {
+  p_ = p, n_ = n, polygon_normal_ = polygon_normal;
+  fragments_.clear();
+  boxes_.clear();
+  behind_ = polygon.empty() || polygon_normal.dot(p - polygon.v[0]) <= tol::kPlaneDistance_m;
+  if (!behind_) front_ = clip_to_horizon(p, n, polygon);
+  behind_ = behind_ || front_.empty();
+  if (behind_) return true;  // every part gives 0
+  thread_local std::vector<Shadow> shadows;
+  shadows.clear();
+  for (const ShadowVolume& v : volumes)
+    if (meets(v, front_)) shadows.push_back({(v.occluder->centroid - p).squaredNorm(), &v});
+  if (shadows.size() < tol::kKeptFragmentsShadows) return false;
+  plane_ = PlaneBasis(p, polygon_normal, polygon_normal.dot(polygon.v[0]));
+  subtract_shadows(shadows, front_, &plane_, fragments_, boxes_);
+  return true;
+}
+
+double VisibleFragments::form_factor(const ConvexPolygon& part, bool* partly_seen) const {
+  bool partly_unused = false;
+  bool& partly = partly_seen != nullptr ? *partly_seen : partly_unused;
+  partly = false;
+  if (behind_ || part.empty() || polygon_normal_.dot(p_ - part.v[0]) <= tol::kPlaneDistance_m) return 0.0;
+  const ConvexPolygon front = clip_to_horizon(p_, n_, part);
+  if (front.empty()) return 0.0;
+  // The part's cone from p: the half-spaces through p and each edge of its front, the front's
+  // middle inside.
+  Vec3 middle = Vec3::Zero();
+  for (int i = 0; i < front.n; ++i) middle += front.v[i] / front.n;
+  std::array<HalfSpace, ConvexPolygon::kCapacity> cone;
+  for (int i = 0; i < front.n; ++i) {
+    Vec3 m = (front.v[i] - p_).cross(front.v[(i + 1) % front.n] - p_);
+    if (m.dot(middle - p_) < 0) m = -m;
+    cone[static_cast<size_t>(i)] = HalfSpace{m, m.dot(p_)}.with_tolerance();
+  }
+  const auto in_cone = [&](ConvexPolygon q) {
+    for (int i = 0; i < front.n && !q.empty(); ++i) q = clip(q, cone[static_cast<size_t>(i)]);
+    return q;
+  };
+  const Box2 box = plane_.box(front);
+  double visible = 0.0, seen_m2 = 0.0;
+  bool any = false;
+  for (size_t f = 0; f < fragments_.size(); ++f) {
+    if (!boxes_[f].meets(box)) continue;
+    const ConvexPolygon piece = in_cone(fragments_[f]);
+    if (piece.empty()) continue;
+    any = true;
+    visible += lambert_form_factor(p_, n_, piece);
+    seen_m2 += area_m2(piece);
+  }
+  if (!any) return 0.0;  // all of it hidden
+  for (int i = 0; i < part.n && !partly; ++i) partly = n_.dot(part.v[i] - p_) < 0;
+  // Else compare what the fragments show of the part with its front, both in the polygon's plane.
+  if (!partly) partly = seen_m2 < (1 - tol::kHiddenAreaRelative) * area_m2(in_cone(front_));
   return visible;
 }
 

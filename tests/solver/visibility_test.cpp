@@ -3,8 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <random>
+#include <span>
 
+#include "core/tolerances.h"
 #include "solver/form_factor.h"
 #include "solver/visibility.h"
 #include "support/ray_scene.h"
@@ -228,6 +231,124 @@ TEST(VisibleFormFactor, ManySmallOccludersHideExactlyTheirProjections) {
     EXPECT_NEAR(seen, unoccluded - hidden, 1e-12 * unoccluded) << "hidden " << hidden / unoccluded << " of it";
     EXPECT_GT(hidden, 0.05 * unoccluded);
   }
+}
+
+/// A 2 x 2 shooter at z = 2 facing down, and `count` random small squares between it and the
+/// floor (heights 0.6 to 1.6, over [-1.2, 1.2]^2), overlapping one another as a model's triangles
+/// do.
+struct ManyOccluders {
+  ConvexPolygon shooter;
+  Vec3 down{0, 0, -1};
+  std::vector<Occluder> occluders;
+  std::vector<const Occluder*> all;
+  explicit ManyOccluders(int count, unsigned seed) {
+    for (const Vec3& c : {Vec3(-1, -1, 2), Vec3(-1, 1, 2), Vec3(1, 1, 2), Vec3(1, -1, 2)}) shooter.push(c);
+    Scene scene;
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> xy(-1.2, 1.2), z(0.6, 1.6), half(0.03, 0.12), angle(0, std::numbers::pi),
+        tilt(-0.8, 0.8);
+    for (int k = 0; k < count; ++k) {
+      const Vec3 c(xy(rng), xy(rng), z(rng));
+      const Eigen::Matrix3d rot =
+          (Eigen::AngleAxisd(angle(rng), Vec3::UnitZ()) * Eigen::AngleAxisd(tilt(rng), Vec3::UnitX())).toRotationMatrix();
+      const Vec3 u = rot * Vec3(half(rng), 0, 0), v = rot * Vec3(0, half(rng), 0);
+      scene.surfaces.push_back(make_quad("o" + std::to_string(k), c - u - v, c + u - v, c + u + v, c - u + v));
+    }
+    occluders = make_occluders(scene);
+    for (const Occluder& o : occluders) all.push_back(&o);
+  }
+  /// Cell (i, j) of an m x m grid over the shooter, in the shooter's order of corners.
+  ConvexPolygon cell(int i, int j, int m) const {
+    const double a = 2.0 / m;
+    ConvexPolygon q;
+    const double x0 = -1 + i * a, y0 = -1 + j * a;
+    for (const Vec3& c : {Vec3(x0, y0, 2), Vec3(x0, y0 + a, 2), Vec3(x0 + a, y0 + a, 2), Vec3(x0 + a, y0, 2)}) q.push(c);
+    return q;
+  }
+};
+
+TEST(VisibleFragments, EachPartOfThePatchAsVisibleFormFactorPastFindsItAlone) {
+  // The fragments the point sees of the whole shooter, clipped to each cell of 1 x 1 to 8 x 8
+  // grids over it, against the shadows subtracted from each cell on its own: the same form
+  // factor to round-off, and the same verdict on whether the cell is seen in part. Points
+  // below the occluders, some tilted so that their horizon cuts the shooter; the cells' sums
+  // give the whole shooter's (additivity).
+  const ManyOccluders scene(150, 7);
+  const std::array<std::pair<Vec3, Vec3>, 5> points = {{{Vec3(0.1, -0.05, 0), Vec3(0, 0, 1)},
+                                                        {Vec3(-0.6, 0.4, 0.2), Vec3(0, 0, 1)},
+                                                        {Vec3(0.3, 0.2, 0.1), Vec3(0.6, 0, 0.8)},
+                                                        {Vec3(-0.2, -0.7, 0.3), Vec3(0, -0.8, 0.6)},
+                                                        {Vec3(0.9, 0.9, 0.4), Vec3(-0.3, -0.4, 0.866).normalized()}}};
+  int kept = 0, partly = 0, whole = 0;
+  for (const auto& [p, n] : points) {
+    std::vector<ShadowVolume> volumes;
+    shadow_volumes(p, n, scene.all, volumes);
+    VisibleFragments fragments;
+    if (!fragments.find(p, n, scene.shooter, scene.down, volumes)) continue;
+    ++kept;
+    const double open = lambert_form_factor(p, n, clip_to_horizon(p, n, scene.shooter));
+    for (int m : {1, 2, 3, 8}) {
+      double sum = 0;
+      for (int j = 0; j < m; ++j)
+        for (int i = 0; i < m; ++i) {
+          const ConvexPolygon cell = scene.cell(i, j, m);
+          bool partly_alone = false, partly_kept = false;
+          const double alone = visible_form_factor_past(p, n, cell, scene.down, volumes, &partly_alone);
+          const double from_kept = fragments.form_factor(cell, &partly_kept);
+          EXPECT_NEAR(from_kept, alone, 1e-12 * open) << "cell " << i << "," << j << " of " << m;
+          EXPECT_EQ(partly_kept, partly_alone) << "cell " << i << "," << j << " of " << m << ": " << alone;
+          sum += from_kept;
+          partly += partly_alone;
+          whole += !partly_alone && alone > 0;
+        }
+      EXPECT_NEAR(sum, visible_form_factor_past(p, n, scene.shooter, scene.down, volumes), 1e-12 * open);
+    }
+  }
+  EXPECT_EQ(kept, static_cast<int>(points.size())) << "every point should see many shadows on the shooter";
+  EXPECT_GT(partly, 50);
+  EXPECT_GT(whole, 20) << "some cells should be seen whole, between the shadows";
+}
+
+TEST(VisibleFragments, FewShadowsKeepNothingAndAPointBehindSeesNothing) {
+  const ManyOccluders scene(150, 7);
+  const Vec3 p(0.1, -0.05, 0), n(0, 0, 1);
+  std::vector<ShadowVolume> volumes;
+  shadow_volumes(p, n, scene.all, volumes);
+  VisibleFragments fragments;
+  // Fewer shadows than tol::kKeptFragmentsShadows on the shooter: each part costs less alone.
+  const std::span<const ShadowVolume> few(volumes.data(), tol::kKeptFragmentsShadows - 1);
+  EXPECT_FALSE(fragments.find(p, n, scene.shooter, scene.down, few));
+  // Above the shooter's plane: every part is out of sight.
+  const Vec3 above(0, 0, 2.5);
+  shadow_volumes(above, n, scene.all, volumes);
+  ASSERT_TRUE(fragments.find(above, n, scene.shooter, scene.down, volumes));
+  bool partly = true;
+  EXPECT_EQ(fragments.form_factor(scene.cell(1, 1, 4), &partly), 0.0);
+  EXPECT_FALSE(partly);
+}
+
+TEST(VisibleFragments, ACellHiddenWholeGivesZeroAndIsNotSeenInPart) {
+  // Many small occluders, and a large square just under the shooter's corner cell (of a 4 x 4
+  // grid): that cell is wholly hidden (0, not seen in part, as visible_form_factor_past() has
+  // it), its neighbour partly.
+  ManyOccluders scene(60, 3);
+  Scene big;
+  big.surfaces.push_back(make_quad("lid", {-1.2, -1.2, 1.9}, {-1.2, -0.45, 1.9}, {-0.45, -0.45, 1.9}, {-0.45, -1.2, 1.9}));
+  const std::vector<Occluder> lid = make_occluders(big);
+  scene.all.push_back(&lid[0]);
+  const Vec3 p(-0.7, -0.7, 0), n(0, 0, 1);
+  std::vector<ShadowVolume> volumes;
+  shadow_volumes(p, n, scene.all, volumes);
+  VisibleFragments fragments;
+  ASSERT_TRUE(fragments.find(p, n, scene.shooter, scene.down, volumes));
+  bool partly = true;
+  EXPECT_EQ(fragments.form_factor(scene.cell(0, 0, 4), &partly), 0.0);
+  EXPECT_FALSE(partly);
+  bool partly_alone = false;
+  const double alone = visible_form_factor_past(p, n, scene.cell(1, 0, 4), scene.down, volumes, &partly_alone);
+  EXPECT_NEAR(fragments.form_factor(scene.cell(1, 0, 4), &partly), alone, 1e-12);
+  EXPECT_TRUE(partly);
+  EXPECT_TRUE(partly_alone);
 }
 
 /// Howell's C-11: F between directly opposed parallel rectangles a x b (metres) at distance c.
