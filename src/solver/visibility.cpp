@@ -292,6 +292,35 @@ double area_m2(const ConvexPolygon& q) {
   return 0.5 * twice.norm();
 }
 
+/// Sums over the pieces of polygons inside a cone: their Lambert form factors and areas.
+struct InCone {
+  double form_factor = 0, area_m2 = 0;
+  bool any = false;  ///< some piece was not empty
+};
+
+/// Adds q's part inside every half-space of `cone` to `sums`, its form factor as seen from p
+/// (unit normal n). A part that would outgrow a ConvexPolygon (each clip adds at most one vertex)
+/// is cut in two along a diagonal first: form factors and areas add up over the pieces.
+void add_in_cone(ConvexPolygon q, std::span<const HalfSpace> cone, const Vec3& p, const Vec3& n, InCone& sums) {
+  for (size_t i = 0; i < cone.size(); ++i) {
+    if (q.n >= ConvexPolygon::kCapacity) {
+      ConvexPolygon a, b;
+      const int m = q.n / 2;
+      for (int k = 0; k <= m; ++k) a.push(q.v[k]);
+      for (int k = m; k < q.n; ++k) b.push(q.v[k]);
+      b.push(q.v[0]);
+      add_in_cone(a, cone.subspan(i), p, n, sums);
+      add_in_cone(b, cone.subspan(i), p, n, sums);
+      return;
+    }
+    q = clip(q, cone[i]);
+    if (q.empty()) return;
+  }
+  sums.any = true;
+  sums.form_factor += lambert_form_factor(p, n, q);
+  sums.area_m2 += area_m2(q);
+}
+
 }  // namespace
 
 double visible_form_factor(const Vec3& p, const Vec3& n, const ConvexPolygon& shooter,
@@ -396,26 +425,20 @@ double VisibleFragments::form_factor(const ConvexPolygon& part, bool* partly_see
     if (m.dot(middle - p_) < 0) m = -m;
     cone[static_cast<size_t>(i)] = HalfSpace{m, m.dot(p_)}.with_tolerance();
   }
-  const auto in_cone = [&](ConvexPolygon q) {
-    for (int i = 0; i < front.n && !q.empty(); ++i) q = clip(q, cone[static_cast<size_t>(i)]);
-    return q;
-  };
+  const std::span<const HalfSpace> sides(cone.data(), static_cast<size_t>(front.n));
   const Box2 box = plane_.box(front);
-  double visible = 0.0, seen_m2 = 0.0;
-  bool any = false;
-  for (size_t f = 0; f < fragments_.size(); ++f) {
-    if (!boxes_[f].meets(box)) continue;
-    const ConvexPolygon piece = in_cone(fragments_[f]);
-    if (piece.empty()) continue;
-    any = true;
-    visible += lambert_form_factor(p_, n_, piece);
-    seen_m2 += area_m2(piece);
-  }
-  if (!any) return 0.0;  // all of it hidden
+  InCone seen;
+  for (size_t f = 0; f < fragments_.size(); ++f)
+    if (boxes_[f].meets(box)) add_in_cone(fragments_[f], sides, p_, n_, seen);
+  if (!seen.any) return 0.0;  // all of it hidden
   for (int i = 0; i < part.n && !partly; ++i) partly = n_.dot(part.v[i] - p_) < 0;
   // Else compare what the fragments show of the part with its front, both in the polygon's plane.
-  if (!partly) partly = seen_m2 < (1 - tol::kHiddenAreaRelative) * area_m2(in_cone(front_));
-  return visible;
+  if (!partly) {
+    InCone whole;
+    add_in_cone(front_, sides, p_, n_, whole);
+    partly = seen.area_m2 < (1 - tol::kHiddenAreaRelative) * whole.area_m2;
+  }
+  return seen.form_factor;
 }
 
 namespace {
