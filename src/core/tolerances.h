@@ -272,9 +272,10 @@ inline constexpr double kShadowTraceRelative = 1e-7;
 inline constexpr std::size_t kKeptFragmentsShadows = 16;
 
 /// VisibleFragments: a part of a shooting patch counts as seen in part when the fragments it sees
-/// cover less than (1 - this) of its area in front of the point: far above the round-off of the
-/// fragments' areas (relative 1e-15 each, hundreds of them), so that a part no shadow touches is
-/// seen whole; a shadow over less of it than this changes the form factor by less than this.
+/// cover less of its front than its area less this fraction of it, and less kPlaneDistance_m
+/// times its outline's length: clip() takes a vertex within kPlaneDistance_m of a plane as on it,
+/// which can move the part's boundary by as much; the fragments' areas themselves round off at
+/// 1e-15 relative. A shadow over less than that slack changes the form factor by less than it.
 inline constexpr double kHiddenAreaRelative = 1e-9;
 
 /// Shaft culling (solver/bvh.h): a BVH node or occluder counts as outside the shaft between a

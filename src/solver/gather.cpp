@@ -126,17 +126,24 @@ std::span<const ShadowVolume> ReceiverShadows::at(int point) const {
 thread_local std::array<std::vector<ShadowVolume>, 5> ReceiverShadows::volumes_;
 thread_local std::array<VisibleFragments, 5> ReceiverShadows::fragments_;
 
-double ReceiverShadows::visible_form_factor(int point, const ConvexPolygon& polygon, const Vec3& shooter_normal,
-                                            bool* partly_seen) const {
-  const std::span<const ShadowVolume> volumes = at(point);
-  const Vec3& p = point == 0 ? r_.center : r_.gauss[static_cast<size_t>(point - 1)];
+bool ReceiverShadows::keeps_fragments(int point, const Vec3& shooter_normal) const {
   const size_t k = static_cast<size_t>(point);
-  if (fragments_state_[k] == Fragments::unknown)
-    fragments_state_[k] = may_keep_fragments(point) && fragments_[k].find(p, r_.normal, *patch_, shooter_normal, volumes)
+  if (fragments_state_[k] == Fragments::unknown) {
+    const std::span<const ShadowVolume> volumes = at(point);
+    const Vec3& p = point == 0 ? r_.center : r_.gauss[k - 1];
+    fragments_state_[k] = patch_ != nullptr && volumes.size() >= tol::kKeptFragmentsShadows &&
+                                  fragments_[k].find(p, r_.normal, *patch_, shooter_normal, volumes)
                               ? Fragments::kept
                               : Fragments::not_kept;
-  if (fragments_state_[k] == Fragments::kept) return fragments_[k].form_factor(polygon, partly_seen);
-  return visible_form_factor_past(p, r_.normal, polygon, shooter_normal, volumes, partly_seen);
+  }
+  return fragments_state_[k] == Fragments::kept;
+}
+
+double ReceiverShadows::visible_form_factor(int point, const ConvexPolygon& polygon, const Vec3& shooter_normal,
+                                            bool* partly_seen) const {
+  if (keeps_fragments(point, shooter_normal)) return fragments_[static_cast<size_t>(point)].form_factor(polygon, partly_seen);
+  const Vec3& p = point == 0 ? r_.center : r_.gauss[static_cast<size_t>(point - 1)];
+  return visible_form_factor_past(p, r_.normal, polygon, shooter_normal, at(point), partly_seen);
 }
 
 Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, const Vec3& shooter_normal,
@@ -177,15 +184,26 @@ Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, cons
     if (kept != nullptr && !std::isnan(kept[0])) {
       std::copy(kept, kept + count, f.begin());
     } else {
-      bool one_by_one = false;
-      for (size_t k = 0; k < count; ++k) one_by_one = one_by_one || shadows.may_keep_fragments(static_cast<int>(k) + 1);
-      if (one_by_one) {
-        for (size_t k = 0; k < count; ++k) f[k] = shadows.visible_form_factor(static_cast<int>(k) + 1, poly, shooter_normal);
-      } else {
-        std::array<std::span<const ShadowVolume>, 4> volumes;
-        for (size_t k = 0; k < count; ++k) volumes[k] = shadows.at(static_cast<int>(k) + 1);
-        visible_form_factors_past({r.gauss.data(), count}, r.normal, poly, shooter_normal, {volumes.data(), count},
-                                  {f.data(), count});
+      // Those behind many shadows through the patch's kept fragments, the others in a batch.
+      std::array<Vec3, 4> points;
+      std::array<std::span<const ShadowVolume>, 4> volumes;
+      std::array<size_t, 4> slot;
+      std::array<double, 4> batch;
+      size_t batched = 0;
+      for (size_t k = 0; k < count; ++k) {
+        const int point = static_cast<int>(k) + 1;
+        if (shadows.keeps_fragments(point, shooter_normal)) {
+          f[k] = shadows.visible_form_factor(point, poly, shooter_normal);
+        } else {
+          points[batched] = r.gauss[k];
+          volumes[batched] = shadows.at(point);
+          slot[batched++] = k;
+        }
+      }
+      if (batched > 0) {
+        visible_form_factors_past({points.data(), batched}, r.normal, poly, shooter_normal, {volumes.data(), batched},
+                                  {batch.data(), batched});
+        for (size_t b = 0; b < batched; ++b) f[slot[b]] = batch[b];
       }
       if (kept != nullptr) std::copy(f.begin(), f.begin() + static_cast<std::ptrdiff_t>(count), kept);
     }

@@ -86,11 +86,10 @@ class ReceiverShadows {
   /// else as visible_form_factor_past() gives it, bit for bit.
   double visible_form_factor(int point, const ConvexPolygon& polygon, const Vec3& shooter_normal,
                              bool* partly_seen = nullptr) const;
-  /// Whether the point sees enough shadows that visible_form_factor() may take the fragments'
-  /// way (then the Gauss points go one by one, not in gather()'s vectorised batch).
-  bool may_keep_fragments(int point) const {
-    return patch_ != nullptr && at(point).size() >= tol::kKeptFragmentsShadows;
-  }
+  /// Whether visible_form_factor() at the point goes through the patch's kept fragments: the
+  /// patch given, and tol::kKeptFragmentsShadows or more shadows on it from there (found on the
+  /// first call, for the polygons of this shooter). gather() batches the other points.
+  bool keeps_fragments(int point, const Vec3& shooter_normal) const;
 
  private:
   const Receiver& r_;

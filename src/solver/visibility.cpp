@@ -181,6 +181,15 @@ void subtract(const ConvexPolygon& q, const std::array<HalfSpace, 5>& volume,
 /// subtract() for a polygon of any size: one with too many vertices is cut into two convex halves
 /// along a diagonal first (form factors add up over the pieces), so the fragments of any number of
 /// overlapping shadows fit in a ConvexPolygon and the result stays exact. Rare: kept out of line.
+/// A convex polygon cut in two convex halves along a diagonal (form factors and areas add up
+/// over the halves).
+void halve(const ConvexPolygon& q, ConvexPolygon& a, ConvexPolygon& b) {
+  const int m = q.n / 2;
+  for (int i = 0; i <= m; ++i) a.push(q.v[i]);
+  for (int i = m; i < q.n; ++i) b.push(q.v[i]);
+  b.push(q.v[0]);
+}
+
 [[gnu::noinline]] void subtract_large(const ConvexPolygon& q, const std::array<HalfSpace, 5>& volume,
                                       std::vector<ConvexPolygon>& out) {
   if (q.n <= kMaxSubtractVertices) {
@@ -188,10 +197,7 @@ void subtract(const ConvexPolygon& q, const std::array<HalfSpace, 5>& volume,
     return;
   }
   ConvexPolygon a, b;
-  const int m = q.n / 2;
-  for (int i = 0; i <= m; ++i) a.push(q.v[i]);
-  for (int i = m; i < q.n; ++i) b.push(q.v[i]);
-  b.push(q.v[0]);
+  halve(q, a, b);
   subtract_large(a, volume, out);
   subtract_large(b, volume, out);
 }
@@ -247,7 +253,8 @@ void subtract_shadows(std::vector<Shadow>& shadows, const ConvexPolygon& front, 
   // With boxes: fragment by fragment, depth first, each with the shadows after the one that made
   // it whose traces its box meets (listed again for each new piece: a piece is smaller than the
   // fragment it came from, and meets fewer traces). Each fragment meets the shadows in the same
-  // order as above, so the fragments are the same; only their order differs.
+  // order as above: the same visible polygon, in fragments listed in another order (and a
+  // fragment of many vertices that a shadow misses is kept whole rather than halved).
   thread_local std::vector<Box2> traces;
   traces.clear();
   for (const Shadow& shadow : shadows) traces.push_back(plane->trace(*shadow.volume->occluder));
@@ -305,10 +312,7 @@ void add_in_cone(ConvexPolygon q, std::span<const HalfSpace> cone, const Vec3& p
   for (size_t i = 0; i < cone.size(); ++i) {
     if (q.n >= ConvexPolygon::kCapacity) {
       ConvexPolygon a, b;
-      const int m = q.n / 2;
-      for (int k = 0; k <= m; ++k) a.push(q.v[k]);
-      for (int k = m; k < q.n; ++k) b.push(q.v[k]);
-      b.push(q.v[0]);
+      halve(q, a, b);
       add_in_cone(a, cone.subspan(i), p, n, sums);
       add_in_cone(b, cone.subspan(i), p, n, sums);
       return;
@@ -415,28 +419,33 @@ double VisibleFragments::form_factor(const ConvexPolygon& part, bool* partly_see
   if (behind_ || part.empty() || polygon_normal_.dot(p_ - part.v[0]) <= tol::kPlaneDistance_m) return 0.0;
   const ConvexPolygon front = clip_to_horizon(p_, n_, part);
   if (front.empty()) return 0.0;
-  // The part's cone from p: the half-spaces through p and each edge of its front, the front's
-  // middle inside.
+  // The part's cone from p: the half-spaces through p and each edge of the part (not of its
+  // front: the fragments lie in front of p already, and a short edge that the horizon cut off a
+  // corner would tilt its plane), the part's middle inside.
   Vec3 middle = Vec3::Zero();
-  for (int i = 0; i < front.n; ++i) middle += front.v[i] / front.n;
+  for (int i = 0; i < part.n; ++i) middle += part.v[i] / part.n;
   std::array<HalfSpace, ConvexPolygon::kCapacity> cone;
-  for (int i = 0; i < front.n; ++i) {
-    Vec3 m = (front.v[i] - p_).cross(front.v[(i + 1) % front.n] - p_);
+  for (int i = 0; i < part.n; ++i) {
+    Vec3 m = (part.v[i] - p_).cross(part.v[(i + 1) % part.n] - p_);
     if (m.dot(middle - p_) < 0) m = -m;
     cone[static_cast<size_t>(i)] = HalfSpace{m, m.dot(p_)}.with_tolerance();
   }
-  const std::span<const HalfSpace> sides(cone.data(), static_cast<size_t>(front.n));
+  const std::span<const HalfSpace> sides(cone.data(), static_cast<size_t>(part.n));
   const Box2 box = plane_.box(front);
   InCone seen;
   for (size_t f = 0; f < fragments_.size(); ++f)
     if (boxes_[f].meets(box)) add_in_cone(fragments_[f], sides, p_, n_, seen);
   if (!seen.any) return 0.0;  // all of it hidden
   for (int i = 0; i < part.n && !partly; ++i) partly = n_.dot(part.v[i] - p_) < 0;
-  // Else compare what the fragments show of the part with its front, both in the polygon's plane.
+  // Else compare what the fragments show of the part with its front, both in the polygon's plane,
+  // up to the slack of clip()'s snapping along the part's outline (tol::kHiddenAreaRelative).
   if (!partly) {
     InCone whole;
     add_in_cone(front_, sides, p_, n_, whole);
-    partly = seen.area_m2 < (1 - tol::kHiddenAreaRelative) * whole.area_m2;
+    double outline_m = 0;
+    for (int i = 0; i < front.n; ++i) outline_m += (front.v[(i + 1) % front.n] - front.v[i]).norm();
+    const double slack_m2 = tol::kHiddenAreaRelative * whole.area_m2 + tol::kPlaneDistance_m * outline_m;
+    partly = seen.area_m2 < whole.area_m2 - slack_m2;
   }
   return seen.form_factor;
 }

@@ -186,13 +186,14 @@ class VisibleFragments {
             std::span<const ShadowVolume> volumes);
   /// visible_form_factor_past(p, n, part, polygon_normal, volumes, partly_seen) for a convex
   /// polygon `part` within the polygon given to find() (which must have returned true), to
-  /// round-off. `partly_seen`: some of the part lies behind p's plane, or some shadow covers more
-  /// than tol::kHiddenAreaRelative of its area, and not all of it is hidden.
+  /// round-off. `partly_seen`: some of the part lies behind p's plane, or the fragments cover
+  /// less of its front than all of it but the slack of tol::kHiddenAreaRelative, and not all of
+  /// it is hidden (visible_form_factor_past() asks whether a shadow volume cuts it: the two differ
+  /// only for shadows over less than that slack, whose form factor is within it).
   double form_factor(const ConvexPolygon& part, bool* partly_seen = nullptr) const;
 
  private:
   Vec3 p_ = Vec3::Zero(), n_ = Vec3::UnitZ(), polygon_normal_ = Vec3::UnitZ();
-  double polygon_offset_ = 0;  ///< the polygon's plane: polygon_normal . x = offset
   bool behind_ = false;        ///< p is not in front of the polygon's plane: every part gives 0
   ConvexPolygon front_;        ///< the polygon in front of p's plane
   PlaneBasis plane_;

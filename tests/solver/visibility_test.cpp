@@ -239,11 +239,11 @@ TEST(VisibleFormFactor, ManySmallOccludersHideExactlyTheirProjections) {
 struct ManyOccluders {
   ConvexPolygon shooter;
   Vec3 down{0, 0, -1};
+  Scene scene;  ///< the occluders as surfaces, for the ray caster
   std::vector<Occluder> occluders;
   std::vector<const Occluder*> all;
   explicit ManyOccluders(int count, unsigned seed) {
     for (const Vec3& c : {Vec3(-1, -1, 2), Vec3(-1, 1, 2), Vec3(1, 1, 2), Vec3(1, -1, 2)}) shooter.push(c);
-    Scene scene;
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> xy(-1.2, 1.2), z(0.6, 1.6), half(0.03, 0.12), angle(0, std::numbers::pi),
         tilt(-0.8, 0.8);
@@ -274,9 +274,10 @@ TEST(VisibleFragments, EachPartOfThePatchAsVisibleFormFactorPastFindsItAlone) {
   // below the occluders, some tilted so that their horizon cuts the shooter; the cells' sums
   // give the whole shooter's (additivity).
   const ManyOccluders scene(150, 7);
+  int horizon_cuts = 0;
   const std::array<std::pair<Vec3, Vec3>, 5> points = {{{Vec3(0.1, -0.05, 0), Vec3(0, 0, 1)},
                                                         {Vec3(-0.6, 0.4, 0.2), Vec3(0, 0, 1)},
-                                                        {Vec3(0.3, 0.2, 0.1), Vec3(0.6, 0, 0.8)},
+                                                        {Vec3(0.3, 0.2, 0.1), Vec3(0.9, 0, 0.3).normalized()},
                                                         {Vec3(-0.2, -0.7, 0.3), Vec3(0, -0.8, 0.6)},
                                                         {Vec3(0.9, 0.9, 0.4), Vec3(-0.3, -0.4, 0.866).normalized()}}};
   int kept = 0, partly = 0, whole = 0;
@@ -286,6 +287,9 @@ TEST(VisibleFragments, EachPartOfThePatchAsVisibleFormFactorPastFindsItAlone) {
     VisibleFragments fragments;
     if (!fragments.find(p, n, scene.shooter, scene.down, volumes)) continue;
     ++kept;
+    bool cut = false;
+    for (int i = 0; i < scene.shooter.n; ++i) cut = cut || n.dot(scene.shooter.v[i] - p) < 0;
+    horizon_cuts += cut;
     const double open = lambert_form_factor(p, n, clip_to_horizon(p, n, scene.shooter));
     for (int m : {1, 2, 3, 8}) {
       double sum = 0;
@@ -305,8 +309,57 @@ TEST(VisibleFragments, EachPartOfThePatchAsVisibleFormFactorPastFindsItAlone) {
     }
   }
   EXPECT_EQ(kept, static_cast<int>(points.size())) << "every point should see many shadows on the shooter";
+  EXPECT_GE(horizon_cuts, 2) << "some points' horizons should cut the shooter";
   EXPECT_GT(partly, 50);
   EXPECT_GT(whole, 20) << "some cells should be seen whole, between the shadows";
+}
+
+TEST(VisibleFragments, SlowEachCellAsTheRayCasterSeesIt) {
+  // An independent answer: the midpoint rule over each cell with every point's visibility by the
+  // ray caster (tests/support/ray_scene.h), past 150 overlapping occluders; its error is O(1/N)
+  // where shadow edges cross the cell (here within 2e-4 of the unoccluded form factor). A
+  // fragment lost or counted twice would show.
+  constexpr int kN = 300;
+  const ManyOccluders scene(150, 11);
+  for (const auto& [p, n] : {std::pair{Vec3(0.1, -0.05, 0), Vec3(0, 0, 1)},
+                             std::pair{Vec3(-0.4, 0.3, 0.2), Vec3(0.5, 0, 0.866).normalized()}}) {
+    std::vector<ShadowVolume> volumes;
+    shadow_volumes(p, n, scene.all, volumes);
+    VisibleFragments fragments;
+    ASSERT_TRUE(fragments.find(p, n, scene.shooter, scene.down, volumes));
+    int shadowed = 0;
+    for (const auto& [i, j] : {std::pair{0, 0}, std::pair{1, 2}, std::pair{2, 1}, std::pair{3, 3}}) {
+      const ConvexPolygon cell = scene.cell(i, j, 4);
+      Scene with_cell = scene.scene;
+      with_cell.surfaces.push_back(make_quad("cell", cell.v[0], cell.v[1], cell.v[2], cell.v[3]));
+      const size_t shooter = with_cell.surfaces.size() - 1, no_receiver = with_cell.surfaces.size();
+      const double brute = testing_support::brute_force_form_factor(with_cell, shooter, p, n, no_receiver, kN);
+      const double open = lambert_form_factor(p, n, clip_to_horizon(p, n, cell));
+      const double from_kept = fragments.form_factor(cell);
+      EXPECT_NEAR(from_kept, brute, 2e-3 * open) << "cell " << i << "," << j << ": unoccluded " << open;
+      shadowed += from_kept < 0.95 * open;
+    }
+    EXPECT_GE(shadowed, 2) << "the cells should be shadowed";
+  }
+}
+
+TEST(VisibleFragments, ManyVolumesButFewShadowsOnThePatchKeepNothing) {
+  // 40 occluders beside the shooter's shaft (their volumes exist, their shadows miss the
+  // shooter) and 5 in it: fewer than tol::kKeptFragmentsShadows shadows meet the shooter.
+  ManyOccluders scene(5, 4);
+  Scene beside;
+  for (int k = 0; k < 40; ++k) {
+    const double x = 3 + 0.1 * k;
+    beside.surfaces.push_back(make_quad("b" + std::to_string(k), {x, -0.1, 1}, {x, 0.1, 1}, {x + 0.05, 0.1, 1}, {x + 0.05, -0.1, 1}));
+  }
+  const std::vector<Occluder> far = make_occluders(beside);
+  for (const Occluder& o : far) scene.all.push_back(&o);
+  const Vec3 p(0, 0, 0), n(0, 0, 1);
+  std::vector<ShadowVolume> volumes;
+  shadow_volumes(p, n, scene.all, volumes);
+  ASSERT_GE(volumes.size(), tol::kKeptFragmentsShadows);
+  VisibleFragments fragments;
+  EXPECT_FALSE(fragments.find(p, n, scene.shooter, scene.down, volumes));
 }
 
 TEST(VisibleFragments, FewShadowsKeepNothingAndAPointBehindSeesNothing) {
