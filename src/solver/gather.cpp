@@ -203,7 +203,7 @@ Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, cons
       if (batched > 0) {
         visible_form_factors_past({points.data(), batched}, r.normal, poly, shooter_normal, {volumes.data(), batched},
                                   {batch.data(), batched});
-        for (size_t b = 0; b < batched; ++b) f[slot[b]] = batch[b];
+        for (size_t i = 0; i < batched; ++i) f[slot[i]] = batch[i];
       }
       if (kept != nullptr) std::copy(f.begin(), f.begin() + static_cast<std::ptrdiff_t>(count), kept);
     }
