@@ -266,7 +266,7 @@ inline constexpr double kShadowTraceRelative = 1e-7;
 
 /// The fewest shadows on a shooting patch, seen from a receiving point, for which the point keeps
 /// the patch's visible fragments and clips them to each block it gathers from
-/// (solver/visibility.h VisibleFragments), rather than subtracting every shadow from each block
+/// (solver/shadow_subtraction.h VisibleFragments), rather than subtracting every shadow from each block
 /// again. A count, not a length; below it (the paper scene, the Cornell box) the per-block
 /// subtraction is cheaper, and the solutions stay bit for bit what they were.
 inline constexpr std::size_t kKeptFragmentsShadows = 16;

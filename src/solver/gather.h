@@ -10,6 +10,7 @@
 
 #include "core/tolerances.h"
 #include "solver/shooter_tree.h"
+#include "solver/shadow_subtraction.h"
 #include "solver/visibility.h"
 
 namespace radrecon {

@@ -9,6 +9,7 @@
 
 #include "core/tolerances.h"
 #include "solver/form_factor.h"
+#include "solver/shadow_subtraction.h"
 #include "solver/visibility.h"
 #include "support/ray_scene.h"
 
