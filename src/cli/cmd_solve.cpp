@@ -20,6 +20,7 @@ struct SolveArgs {
   double residual = kDefaultResidual;
   int patches = SolveSettings{}.patches;
   double far_field_error = kDefaultFarFieldError;
+  std::string clusters = "on";
   std::string leaves_on;
   bool shadow_barriers = false;
   bool quiet = false;
@@ -28,7 +29,7 @@ struct SolveArgs {
 void run_solve(const SolveArgs& args, const CLI::App& cmd) {
   // Options that only one kind of mesh uses are refused with the other, not silently ignored.
   const bool grid = args.mesh.rfind("grid:", 0) == 0, leaves = args.mesh.rfind("quadtree:", 0) == 0;
-  for (const char* option : {"--residual", "--patches", "--far-field-error"})
+  for (const char* option : {"--residual", "--patches", "--far-field-error", "--clusters"})
     if (!grid && cmd.count(option) > 0) throw UserError(option, "applies to grid:N meshes only");
   // CLI11's ranges let NaN through (every comparison with it is false).
   if (!std::isfinite(args.residual)) throw UserError("--residual", "must be a number in [1e-12, 0.5]");
@@ -42,6 +43,7 @@ void run_solve(const SolveArgs& args, const CLI::App& cmd) {
   settings.residual = args.residual;
   settings.patches = args.patches;
   settings.far_field_error = args.far_field_error;
+  settings.clusters = args.clusters == "on";
   settings.leaves_on = args.leaves_on;
   settings.leaves_on_where = "--leaves-on";
   settings.progress_label = args.quiet ? "" : "solve";
@@ -88,6 +90,12 @@ void add_solve_command(CLI::App& app) {
                   "this fraction of the receiver's irradiance; 0: beyond 2.5 of its diagonals instead, with no "
                   "bound (docs/method.md)")
       ->check(CLI::IsMember({0.0}) | CLI::Range(kMinFarFieldError, kMaxFarFieldError))
+      ->capture_default_str();
+  cmd->add_option("--clusters", args->clusters,
+                  "grid: with 256 or more sides of one element (a model's triangles), shoot them in clusters of up "
+                  "to 256, each subtree far from a receiver as point sources past one shadow ray (on), or each "
+                  "alone with exact shadows (off; docs/method.md)")
+      ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
   cmd->add_flag("--shadow-barriers", args->shadow_barriers,
                 "Also list the direct light's D1/D2 lines (umbra and penumbra boundaries cast by occluder edges) "

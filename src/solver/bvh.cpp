@@ -150,6 +150,72 @@ void OccluderBvh::collect(const Shaft& shaft, size_t skip_a, size_t skip_b,
   }
 }
 
+namespace {
+
+/// Whether the segment p + t d, t in [0, 1], meets the box [lo, hi] widened by `slack_m`.
+bool segment_meets_box(const Vec3& p, const Vec3& d, const Vec3& lo, const Vec3& hi, double slack_m) {
+  double t0 = 0, t1 = 1;
+  for (int a = 0; a < 3; ++a) {
+    const double l = lo[a] - slack_m, h = hi[a] + slack_m;
+    if (d[a] == 0) {
+      if (p[a] < l || p[a] > h) return false;
+      continue;
+    }
+    double ta = (l - p[a]) / d[a], tb = (h - p[a]) / d[a];
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+    if (t0 > t1) return false;
+  }
+  return true;
+}
+
+/// Whether the segment from p to q crosses the occluder's polygon farther than `ignore_m` from q.
+bool crosses(const Occluder& o, const Vec3& p, const Vec3& q, double ignore_m) {
+  const double ep = o.plane.eval(p), eq = o.plane.eval(q);
+  if (!((ep > tol::kPlaneDistance_m && eq < -tol::kPlaneDistance_m) ||
+        (ep < -tol::kPlaneDistance_m && eq > tol::kPlaneDistance_m)))
+    return false;
+  const Vec3 x = p + (ep / (ep - eq)) * (q - p);
+  if ((x - q).squaredNorm() < ignore_m * ignore_m) return false;
+  // Inside when x lies on one side of every edge (either orientation of the corners).
+  bool left = true, right = true;
+  for (int k = 0; k < o.corner_count; ++k) {
+    const Vec3& a = o.corners[static_cast<size_t>(k)];
+    const Vec3& b = o.corners[static_cast<size_t>((k + 1) % o.corner_count)];
+    const double side = (b - a).cross(x - a).dot(o.plane.normal);
+    left = left && side >= 0;
+    right = right && side <= 0;
+  }
+  return left || right;
+}
+
+}  // namespace
+
+bool OccluderBvh::blocks_segment(const Vec3& p, const Vec3& q, double ignore_m, size_t skip,
+                                 std::span<const std::uint8_t> skip_surfaces) const {
+  if (nodes_.empty()) return false;
+  const Vec3 d = q - p;
+  std::array<int, 64> stack;  // as collect()
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const BoxNode& node = nodes_[static_cast<size_t>(stack[--top])];
+    if (!segment_meets_box(p, d, node.lo, node.hi, tol::kShaftSlack_m)) continue;
+    if (node.count > 0) {
+      for (int k = node.first; k < node.first + node.count; ++k) {
+        const Occluder* o = order_[static_cast<size_t>(k)];
+        if (o->scene_surface == skip || (!skip_surfaces.empty() && skip_surfaces[o->scene_surface] != 0)) continue;
+        if (crosses(*o, p, q, ignore_m)) return true;
+      }
+    } else {
+      stack[top++] = node.first + 1;
+      stack[top++] = node.first;
+    }
+  }
+  return false;
+}
+
 std::vector<const Occluder*> OccluderBvh::between(std::span<const Vec3> a, std::span<const Vec3> b,
                                                   size_t surface_a, size_t surface_b) const {
   std::vector<const Occluder*> out;

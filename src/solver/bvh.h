@@ -20,6 +20,7 @@
 // BVH (median split, a few occluders per leaf) is that set directly.
 
 #include <array>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -88,6 +89,13 @@ class OccluderBvh {
   /// (up to the slack of the box test).
   std::vector<const Occluder*> between(std::span<const Vec3> a, std::span<const Vec3> b, size_t surface_a,
                                        size_t surface_b) const;
+
+  /// Whether an occluder crosses the segment from p to q farther than `ignore_m` from q: p and
+  /// q strictly on either side of its plane (beyond tol::kPlaneDistance_m) and the crossing
+  /// inside its polygon; the surface `skip` and those flagged in `skip_surfaces` (by scene
+  /// surface; empty: none) aside. The shadow ray of a point source (solver/shooter_clusters.h).
+  bool blocks_segment(const Vec3& p, const Vec3& q, double ignore_m, size_t skip,
+                      std::span<const std::uint8_t> skip_surfaces) const;
 
   size_t node_count() const { return nodes_.size(); }
 

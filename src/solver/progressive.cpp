@@ -16,6 +16,7 @@
 #include "solver/bvh.h"
 #include "solver/covered.h"
 #include "solver/gather.h"
+#include "solver/shooter_clusters.h"
 #include "solver/shooter_tree.h"
 #include "solver/visibility.h"
 
@@ -142,6 +143,13 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
       }
   };
   for (size_t s = 0; s < mesh.surfaces.size(); ++s) update_patch_power(s);
+  // The sides of one element, grouped to shoot together (solver/shooter_clusters.h): their own
+  // patches never shoot alone.
+  const ShooterClusters clusters = options.clusters ? make_shooter_clusters(mesh) : ShooterClusters{};
+  const auto cluster_of_side = [&](size_t s) { return clusters.empty() ? -1 : clusters.cluster_of_side[s]; };
+  std::vector<const std::vector<Rgb>*> unshot_by_side;
+  for (const SideState& st : state) unshot_by_side.push_back(&st.unshot);
+  std::vector<double> cluster_unshot_w(clusters.roots.size());
 
   Rgb escaped = Rgb::Zero();
   const double emitted_sum = emitted.sum();
@@ -167,12 +175,23 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
   size_t patch_view_bytes = 0;
 
   while (true) {
+    // The patch or cluster with the most unshot power (the first of equals).
     size_t best = 0;
+    double best_w = -1;
     Rgb unshot_total = Rgb::Zero();
+    std::fill(cluster_unshot_w.begin(), cluster_unshot_w.end(), 0.0);
     for (size_t k = 0; k < patches.size(); ++k) {
       unshot_total += patches[k].unshot_w;
-      if (patches[k].unshot_w.sum() > patches[best].unshot_w.sum()) best = k;
+      if (const int c = cluster_of_side(patches[k].surface); c >= 0) {
+        cluster_unshot_w[static_cast<size_t>(c)] += patches[k].unshot_w.sum();
+      } else if (patches[k].unshot_w.sum() > best_w) {
+        best = k;
+        best_w = patches[k].unshot_w.sum();
+      }
     }
+    int best_cluster = -1;
+    for (size_t c = 0; c < cluster_unshot_w.size(); ++c)
+      if (cluster_unshot_w[c] > best_w) best_cluster = static_cast<int>(c), best_w = cluster_unshot_w[c];
     residual = unshot_total.sum() / emitted_sum;
     if (residual > 0 && residual < 1) {
       // The residual falls about geometrically: its logarithm measures the way done.
@@ -187,138 +206,163 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
     }
     if (options.max_shots != 0 && shots >= options.max_shots) break;
 
-    const Patch shooter = patches[best];
-    const MeshSurface& shooter_side = mesh.surfaces[shooter.surface];
-    const Surface& shooter_surface = scene.surfaces[shooter_side.scene_surface];
-    ShooterTree tree(shooter_surface, shooter_side, state[shooter.surface].unshot, shooter.i0, shooter.j0,
-                     shooter.i1, shooter.j1, std::move(tree_storage), &splits[shooter.surface]);
-    Rgb shot_power = shooter.unshot_w;
-    for (int j = shooter.j0; j < shooter.j1; ++j)
-      for (int i = shooter.i0; i < shooter.i1; ++i) {
-        const auto [first, last] = shooter_side.cell_elements(i, j);
-        for (size_t e = first; e < last; ++e) state[shooter.surface].unshot[e] = Rgb::Zero();
-      }
-    update_patch_power(shooter.surface);
-
-    const Block& root = tree.root();
-    ConvexPolygon patch_outline;
-    for (int k = 0; k < root.corner_count; ++k) patch_outline.push(root.corners[k]);
-    const double least_irradiance_w_m2 = tol::kFarFieldLeastIrradianceFraction * shot_power.sum() / total_area_m2;
-    const Vec3 shooter_normal = shooter_side.normal;
-    // The sides that can receive from the shooter, with the occluders in the shaft between the
-    // two surfaces (then, per receiving element, in the shaft between the element and the
-    // shooting patch: solver/bvh.h, the same shadows, fewer tests); their elements numbered
-    // one after the other, so that one parallel loop covers every receiving element.
-    const std::span<const Vec3> shooter_outline(root.corners.data(), static_cast<size_t>(root.corner_count));
-    jobs.clear();
-    size_t receiving = 0;
-    for (size_t r = 0; r < mesh.surfaces.size(); ++r) {
-      const MeshSurface& receiver = mesh.surfaces[r];
-      if (receiver.scene_surface == shooter_side.scene_surface) continue;
-      if (!quads_face(scene.surfaces[receiver.scene_surface].corners, receiver.normal, shooter_surface.corners,
-                      shooter_normal))
-        continue;
-      jobs.push_back({r, receiving, {}});
-      receiving += receiver.elements.size();
-    }
-    parallel_for_coarse(0, static_cast<std::int64_t>(jobs.size()), [&](std::int64_t j) {
-      ReceivingSide& job = jobs[static_cast<size_t>(j)];
-      const MeshSurface& receiver = mesh.surfaces[job.side];
-      job.blockers = bvh.between(shooter_outline, scene.surfaces[receiver.scene_surface].polygon(),
-                                 receiver.scene_surface, shooter_side.scene_surface);
-    });
-    gain.resize(receiving);  // every entry is written below: no need to clear it first
     // The receiving side of the receiving element of index i.
     const auto job_of = [&](std::int64_t i) {
       return std::prev(std::upper_bound(jobs.begin(), jobs.end(), static_cast<size_t>(i),
                                         [](size_t k, const ReceivingSide& s) { return k < s.first; }));
     };
-    // The receiving element of index i: its side's job and its index on that side.
-    const auto receiving_element = [&](std::int64_t i) {
-      const auto job = job_of(i);
-      const size_t e = static_cast<size_t>(i) - job->first;
-      return std::pair<decltype(job), const Receiver&>{job, receivers[job->side][e]};
-    };
-    PatchViews* views = nullptr;
-    if (options.far_field_error > 0 && receiving > 0) {
-      std::unique_ptr<PatchViews>& v = patch_views[best];
-      if (!v) {
-        // The patch's first shot: a slot for each element off the midpoint rule, if they fit.
-        v = std::make_unique<PatchViews>();
-        if (patch_view_bytes + PatchViews::bytes(receiving, 0) <= kMostPatchViewBytes) {
-          std::vector<std::uint8_t> at_centre(receiving);
-          parallel_for(0, static_cast<std::int64_t>(receiving), [&](std::int64_t i) {
-            at_centre[static_cast<size_t>(i)] = gathers_at_centre(root, receiving_element(i).second);
-          });
-          const size_t slots = receiving - static_cast<size_t>(std::count(at_centre.begin(), at_centre.end(), 1));
-          if (patch_view_bytes + PatchViews::bytes(receiving, slots) <= kMostPatchViewBytes) {
-            v->form_factor.assign(receiving, std::numeric_limits<double>::quiet_NaN());
-            v->partly.assign(receiving, 0);
-            v->gauss_at.assign(receiving, PatchViews::kAtCentre);
-            std::uint32_t slot = 0;
-            for (size_t k = 0; k < receiving; ++k)
-              if (!at_centre[k]) v->gauss_at[k] = 4 * slot++;
-            v->gauss.assign(4 * slots, std::numeric_limits<double>::quiet_NaN());
-            patch_view_bytes += PatchViews::bytes(receiving, slots);
+    Rgb shot_power;
+    if (best_cluster >= 0) {
+      // A cluster shoots: every element of every side receives (the members from each other).
+      const ClusterShot shot(scene, mesh, clusters, static_cast<size_t>(best_cluster), occluders, bvh, unshot_by_side);
+      shot_power = shot.power_w();
+      const ShooterClusters::Node& root = clusters.nodes[static_cast<size_t>(clusters.roots[static_cast<size_t>(best_cluster)])];
+      for (int m = root.begin; m < root.end; ++m) {
+        const size_t s = clusters.sides[static_cast<size_t>(m)];
+        std::fill(state[s].unshot.begin(), state[s].unshot.end(), Rgb::Zero());
+        update_patch_power(s);
+      }
+      jobs.clear();
+      size_t receiving = 0;
+      for (size_t r = 0; r < mesh.surfaces.size(); ++r) {
+        jobs.push_back({r, receiving, {}});
+        receiving += mesh.surfaces[r].elements.size();
+      }
+      gain.resize(receiving);
+      parallel_for_grained(0, static_cast<std::int64_t>(receiving), kReceiverGrain, [&](std::int64_t i) {
+        const auto job = job_of(i);
+        gain[static_cast<size_t>(i)] = shot.gather(receivers[job->side][static_cast<size_t>(i) - job->first], job->side);
+      });
+    } else {
+      const Patch shooter = patches[best];
+      const MeshSurface& shooter_side = mesh.surfaces[shooter.surface];
+      const Surface& shooter_surface = scene.surfaces[shooter_side.scene_surface];
+      ShooterTree tree(shooter_surface, shooter_side, state[shooter.surface].unshot, shooter.i0, shooter.j0,
+                       shooter.i1, shooter.j1, std::move(tree_storage), &splits[shooter.surface]);
+      shot_power = shooter.unshot_w;
+      for (int j = shooter.j0; j < shooter.j1; ++j)
+        for (int i = shooter.i0; i < shooter.i1; ++i) {
+          const auto [first, last] = shooter_side.cell_elements(i, j);
+          for (size_t e = first; e < last; ++e) state[shooter.surface].unshot[e] = Rgb::Zero();
+        }
+      update_patch_power(shooter.surface);
+
+      const Block& root = tree.root();
+      ConvexPolygon patch_outline;
+      for (int k = 0; k < root.corner_count; ++k) patch_outline.push(root.corners[k]);
+      const double least_irradiance_w_m2 = tol::kFarFieldLeastIrradianceFraction * shot_power.sum() / total_area_m2;
+      const Vec3 shooter_normal = shooter_side.normal;
+      // The sides that can receive from the shooter, with the occluders in the shaft between the
+      // two surfaces (then, per receiving element, in the shaft between the element and the
+      // shooting patch: solver/bvh.h, the same shadows, fewer tests); their elements numbered
+      // one after the other, so that one parallel loop covers every receiving element.
+      const std::span<const Vec3> shooter_outline(root.corners.data(), static_cast<size_t>(root.corner_count));
+      jobs.clear();
+      size_t receiving = 0;
+      for (size_t r = 0; r < mesh.surfaces.size(); ++r) {
+        const MeshSurface& receiver = mesh.surfaces[r];
+        if (receiver.scene_surface == shooter_side.scene_surface) continue;
+        if (!quads_face(scene.surfaces[receiver.scene_surface].corners, receiver.normal, shooter_surface.corners,
+                        shooter_normal))
+          continue;
+        jobs.push_back({r, receiving, {}});
+        receiving += receiver.elements.size();
+      }
+      parallel_for_coarse(0, static_cast<std::int64_t>(jobs.size()), [&](std::int64_t j) {
+        ReceivingSide& job = jobs[static_cast<size_t>(j)];
+        const MeshSurface& receiver = mesh.surfaces[job.side];
+        job.blockers = bvh.between(shooter_outline, scene.surfaces[receiver.scene_surface].polygon(),
+                                   receiver.scene_surface, shooter_side.scene_surface);
+      });
+      gain.resize(receiving);  // every entry is written below: no need to clear it first
+      // The receiving element of index i: its side's job and its index on that side.
+      const auto receiving_element = [&](std::int64_t i) {
+        const auto job = job_of(i);
+        const size_t e = static_cast<size_t>(i) - job->first;
+        return std::pair<decltype(job), const Receiver&>{job, receivers[job->side][e]};
+      };
+      PatchViews* views = nullptr;
+      if (options.far_field_error > 0 && receiving > 0) {
+        std::unique_ptr<PatchViews>& v = patch_views[best];
+        if (!v) {
+          // The patch's first shot: a slot for each element off the midpoint rule, if they fit.
+          v = std::make_unique<PatchViews>();
+          if (patch_view_bytes + PatchViews::bytes(receiving, 0) <= kMostPatchViewBytes) {
+            std::vector<std::uint8_t> at_centre(receiving);
+            parallel_for(0, static_cast<std::int64_t>(receiving), [&](std::int64_t i) {
+              at_centre[static_cast<size_t>(i)] = gathers_at_centre(root, receiving_element(i).second);
+            });
+            const size_t slots = receiving - static_cast<size_t>(std::count(at_centre.begin(), at_centre.end(), 1));
+            if (patch_view_bytes + PatchViews::bytes(receiving, slots) <= kMostPatchViewBytes) {
+              v->form_factor.assign(receiving, std::numeric_limits<double>::quiet_NaN());
+              v->partly.assign(receiving, 0);
+              v->gauss_at.assign(receiving, PatchViews::kAtCentre);
+              std::uint32_t slot = 0;
+              for (size_t k = 0; k < receiving; ++k)
+                if (!at_centre[k]) v->gauss_at[k] = 4 * slot++;
+              v->gauss.assign(4 * slots, std::numeric_limits<double>::quiet_NaN());
+              patch_view_bytes += PatchViews::bytes(receiving, slots);
+            }
           }
         }
-      }
-      if (!v->form_factor.empty()) {
-        RR_CHECK_EQ(v->form_factor.size(), receiving, "a patch's receivers changed between its shots");
-        views = v.get();
-      }
-    }
-    parallel_for_grained(0, static_cast<std::int64_t>(receiving), kReceiverGrain, [&](std::int64_t i) {
-      const auto found = receiving_element(i);
-      const auto job = found.first;
-      const Receiver& element = found.second;
-      const size_t e = static_cast<size_t>(i) - job->first;
-      const MeshSurface& receiver = mesh.surfaces[job->side];
-      // The occluders in the shaft between the element and the patch, searched when a shadow is
-      // first needed (for the estimate and every gather below). gather() looks from the centre
-      // and the Gauss points: the shaft from the centre, widened by their farthest distance from
-      // it, holds every segment it follows.
-      thread_local std::vector<const Occluder*> near;
-      near.clear();
-      const auto find_near = [&] {
-        if (job->blockers.empty()) return;
-        double reach_m = 0;
-        for (int k = 0; k < element.gauss_count; ++k) reach_m = std::max(reach_m, (element.gauss[k] - element.center).norm());
-        bvh.collect(Shaft({&element.center, 1}, shooter_outline, reach_m), receiver.scene_surface,
-                    shooter_side.scene_surface, near);
-      };
-      const ReceiverShadows shadows(element, near, find_near, &patch_outline);
-      const double so_far_w_m2 = state[job->side].irradiance[e].sum();
-      double budget_w_m2 = 0;  // the distance rule
-      SeenFromCentre seen{-1, false};  // the whole patch, as the root block's outline
-      if (options.far_field_error > 0) {
-        // A fraction of the element's irradiance: gathered so far, plus this shot's as the
-        // whole patch would give it.
-        const size_t k = static_cast<size_t>(i);
-        if (views != nullptr && !std::isnan(views->form_factor[k])) {
-          seen = {views->form_factor[k], views->partly[k] != 0};
-        } else {
-          seen.form_factor = shadows.visible_form_factor(0, patch_outline, shooter_normal, &seen.partly);
-          if (views != nullptr) views->form_factor[k] = seen.form_factor, views->partly[k] = seen.partly;
+        if (!v->form_factor.empty()) {
+          RR_CHECK_EQ(v->form_factor.size(), receiving, "a patch's receivers changed between its shots");
+          views = v.get();
         }
-        if (views != nullptr && views->gauss_at[k] != PatchViews::kAtCentre) seen.gauss = &views->gauss[views->gauss_at[k]];
-        const double estimate = seen.form_factor * root.unshot_w_m2.sum();
-        budget_w_m2 = options.far_field_error * std::max(so_far_w_m2 + estimate, least_irradiance_w_m2);
       }
-      const SeenFromCentre* root_seen = seen.form_factor >= 0 ? &seen : nullptr;
-      Gathered got = gather(tree, tree.root(), element, shooter_normal, shadows, budget_w_m2, root_seen);
-      if (budget_w_m2 > 0) {
-        // The whole patch's estimate can exceed what the element gets many times over (a dark
-        // element beside a bright one, a patch seen in part): then again, with the budget made
-        // for what it got.
-        const double irradiance = so_far_w_m2 + std::min(got.at_center.sum(), got.mean.sum());
-        const double budget_got = options.far_field_error * std::max(irradiance, least_irradiance_w_m2);
-        if (budget_got < tol::kFarFieldRegatherRatio * budget_w_m2) got = gather(tree, tree.root(), element, shooter_normal, shadows, budget_got, root_seen);
-      }
-      gain[static_cast<size_t>(i)] = got;
-    });
+      parallel_for_grained(0, static_cast<std::int64_t>(receiving), kReceiverGrain, [&](std::int64_t i) {
+        const auto found = receiving_element(i);
+        const auto job = found.first;
+        const Receiver& element = found.second;
+        const size_t e = static_cast<size_t>(i) - job->first;
+        const MeshSurface& receiver = mesh.surfaces[job->side];
+        // The occluders in the shaft between the element and the patch, searched when a shadow is
+        // first needed (for the estimate and every gather below). gather() looks from the centre
+        // and the Gauss points: the shaft from the centre, widened by their farthest distance from
+        // it, holds every segment it follows.
+        thread_local std::vector<const Occluder*> near;
+        near.clear();
+        const auto find_near = [&] {
+          if (job->blockers.empty()) return;
+          double reach_m = 0;
+          for (int k = 0; k < element.gauss_count; ++k) reach_m = std::max(reach_m, (element.gauss[k] - element.center).norm());
+          bvh.collect(Shaft({&element.center, 1}, shooter_outline, reach_m), receiver.scene_surface,
+                      shooter_side.scene_surface, near);
+        };
+        const ReceiverShadows shadows(element, near, find_near, &patch_outline);
+        const double so_far_w_m2 = state[job->side].irradiance[e].sum();
+        double budget_w_m2 = 0;  // the distance rule
+        SeenFromCentre seen{-1, false};  // the whole patch, as the root block's outline
+        if (options.far_field_error > 0) {
+          // A fraction of the element's irradiance: gathered so far, plus this shot's as the
+          // whole patch would give it.
+          const size_t k = static_cast<size_t>(i);
+          if (views != nullptr && !std::isnan(views->form_factor[k])) {
+            seen = {views->form_factor[k], views->partly[k] != 0};
+          } else {
+            seen.form_factor = shadows.visible_form_factor(0, patch_outline, shooter_normal, &seen.partly);
+            if (views != nullptr) views->form_factor[k] = seen.form_factor, views->partly[k] = seen.partly;
+          }
+          if (views != nullptr && views->gauss_at[k] != PatchViews::kAtCentre) seen.gauss = &views->gauss[views->gauss_at[k]];
+          const double estimate = seen.form_factor * root.unshot_w_m2.sum();
+          budget_w_m2 = options.far_field_error * std::max(so_far_w_m2 + estimate, least_irradiance_w_m2);
+        }
+        const SeenFromCentre* root_seen = seen.form_factor >= 0 ? &seen : nullptr;
+        Gathered got = gather(tree, tree.root(), element, shooter_normal, shadows, budget_w_m2, root_seen);
+        if (budget_w_m2 > 0) {
+          // The whole patch's estimate can exceed what the element gets many times over (a dark
+          // element beside a bright one, a patch seen in part): then again, with the budget made
+          // for what it got.
+          const double irradiance = so_far_w_m2 + std::min(got.at_center.sum(), got.mean.sum());
+          const double budget_got = options.far_field_error * std::max(irradiance, least_irradiance_w_m2);
+          if (budget_got < tol::kFarFieldRegatherRatio * budget_w_m2) got = gather(tree, tree.root(), element, shooter_normal, shadows, budget_got, root_seen);
+        }
+        gain[static_cast<size_t>(i)] = got;
+      });
+      tree_storage = std::move(tree).release();
+    }
     // What each element keeps, side by side; the power delivered summed in order, on one thread.
-    parallel_for(0, static_cast<std::int64_t>(receiving), [&](std::int64_t i) {
+    parallel_for(0, static_cast<std::int64_t>(gain.size()), [&](std::int64_t i) {
       const auto job = job_of(i);
       const size_t e = static_cast<size_t>(i) - job->first;
       SideState& st = state[job->side];
@@ -338,7 +382,6 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
     }
     escaped += shot_power - delivered;
     ++shots;
-    tree_storage = std::move(tree).release();
   }
 
   Solution sol;

@@ -41,6 +41,10 @@ struct ProgressiveOptions {
   /// one beyond tol::kFarFieldDiagonals of their diagonal instead, with no bound. See gather()
   /// in solver/gather.h.
   double far_field_error = kDefaultFarFieldError;
+  /// Whether a mesh's many sides of a single element (a model's triangles) shoot in clusters
+  /// (solver/shooter_clusters.h), with a point source's shadows far from each cluster; false:
+  /// each alone, with exact shadows.
+  bool clusters = true;
   /// Name printed in progress messages on stderr; empty: quiet.
   std::string progress_label;
 };

@@ -65,6 +65,7 @@ Solution solve_by_spec(const Scene& scene, const std::string& spec, const SolveS
     ProgressiveOptions po;
     po.residual = settings.residual;
     po.far_field_error = settings.far_field_error;
+    po.clusters = settings.clusters;
     po.progress_label = settings.progress_label;
     return solve_progressive(scene, mesh, po, "grid:" + std::to_string(n));
   }

@@ -19,6 +19,8 @@ struct SolveSettings {
   /// progressive: the far field's error bound as a fraction of irradiance; 0: the distance rule
   /// (ProgressiveOptions::far_field_error)
   double far_field_error = kDefaultFarFieldError;
+  /// Many sides of one element shoot in clusters (ProgressiveOptions::clusters).
+  bool clusters = true;
   /// quadtree:LEAVES: the side that gets LEAVES leaves; empty: "ground" if the scene has such a
   /// side, else the side of the largest surface.
   std::string leaves_on;
