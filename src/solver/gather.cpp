@@ -69,7 +69,7 @@ struct AtCentre {
 /// `centre` with what it computed there to decide. `midpoint`: the element gathers at its
 /// centre alone.
 bool shoots_whole(const Block& b, const ConvexPolygon& poly, const Receiver& r, const Vec3& shooter_normal,
-                  const ReceiverShadows& shadows, double budget_w_m2, bool midpoint, AtCentre& centre) {
+                  const ReceiverShadows& shadows, double budget_w_m2, bool midpoint, bool alone, AtCentre& centre) {
   double& f = centre.f;
   if (b.first_child < 0 || b.uniform) return true;
   const Vec3 &p = r.center, &n = r.normal;
@@ -93,7 +93,7 @@ bool shoots_whole(const Block& b, const ConvexPolygon& poly, const Receiver& r, 
                                                  : std::numeric_limits<double>::infinity();
   // Off the midpoint the bound's form factor stays: without the visible one, the block splits.
   if (!midpoint && !(form_factor * spread * error_per_spread <= budget_w_m2)) return false;
-  if (f < 0) f = shadows.visible_form_factor(0, poly, shooter_normal, &centre.partly_seen);
+  if (f < 0) f = shadows.visible_form_factor(0, poly, shooter_normal, &centre.partly_seen, alone);
   const bool partly_seen = centre.partly_seen;
   // A block seen in part splits: it would shoot with the mean of all of it, an error within the
   // bound but of one sign for every element that sees the same part (the ground's blocks behind
@@ -140,32 +140,57 @@ bool ReceiverShadows::keeps_fragments(int point, const Vec3& shooter_normal) con
 }
 
 double ReceiverShadows::visible_form_factor(int point, const ConvexPolygon& polygon, const Vec3& shooter_normal,
-                                            bool* partly_seen) const {
-  if (keeps_fragments(point, shooter_normal)) return fragments_[static_cast<size_t>(point)].form_factor(polygon, partly_seen);
+                                            bool* partly_seen, bool alone) const {
+  if (alone ? found_fragments(point) : keeps_fragments(point, shooter_normal)) return fragments_[static_cast<size_t>(point)].form_factor(polygon, partly_seen);
   const Vec3& p = point == 0 ? r_.center : r_.gauss[static_cast<size_t>(point - 1)];
   return visible_form_factor_past(p, r_.normal, polygon, shooter_normal, at(point), partly_seen);
 }
 
+const BlockView* BlockViews::find(std::uint32_t block) const {
+  const auto it = std::lower_bound(last.begin(), last.end(), block,
+                                   [](const BlockView& v, std::uint32_t k) { return v.block < k; });
+  return it != last.end() && it->block == block ? &*it : nullptr;
+}
+
 Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, const Vec3& shooter_normal,
-                const ReceiverShadows& shadows, double budget_w_m2, const SeenFromCentre* seen) {
+                const ReceiverShadows& shadows, double budget_w_m2, const SeenFromCentre* seen,
+                const BlockViews* views) {
   Gathered out;
   if ((b.highest_w_m2 == 0).all()) return out;
   AtCentre centre;
+  // What the element saw of this block at its last gather from the patch (not the root's: `seen`).
+  const std::uint32_t index = static_cast<std::uint32_t>(&b - &tree.root());
+  const BlockView* known = seen == nullptr && views != nullptr ? views->find(index) : nullptr;
+  // A block new to the element's views in a later shot: its form factors alone, rather than
+  // finding the patch's fragments for it (a shot that descends one level deeper than the last).
+  const bool alone = known == nullptr && seen == nullptr && views != nullptr && !views->last.empty();
+  BlockView now;  // what it sees of it this time
+  now.block = index;
   if (seen != nullptr) centre.f = seen->form_factor, centre.partly_seen = seen->partly;
+  if (known != nullptr && known->centre_known) centre.f = known->centre, centre.partly_seen = known->partly;
+  // Keeps what the element saw of the block, as it leaves it, for the next shot.
+  const auto keep = [&](const Gathered& got) {
+    if (seen != nullptr || views == nullptr) return got;
+    now.centre_known = centre.f >= 0;
+    if (now.centre_known) now.centre = centre.f, now.partly = centre.partly_seen;
+    views->now->push_back(now);
+    return got;
+  };
   // The budget is shared among the blocks in proportion to their area: those that shoot as one
   // tile the patch, so their errors add up to at most budget_w_m2.
   const double share = budget_w_m2 * b.area_m2 / tree.root().area_m2;
   const bool midpoint = gathers_at_centre(b, r);
   ConvexPolygon poly;  // the block's outline, for its form factors
   for (int k = 0; k < b.corner_count; ++k) poly.push(b.corners[k]);
-  if (!shoots_whole(b, poly, r, shooter_normal, shadows, share, midpoint, centre)) {
+  if (!shoots_whole(b, poly, r, shooter_normal, shadows, share, midpoint, alone, centre)) {
+    keep(out);
     for (int c = 0; c < b.child_count; ++c)
-      out += gather(tree, tree.block(b.first_child + c), r, shooter_normal, shadows, budget_w_m2);
+      out += gather(tree, tree.block(b.first_child + c), r, shooter_normal, shadows, budget_w_m2, nullptr, views);
     return out;
   }
   // At the centre, with what shoots_whole() found there.
-  const double f_centre =
-      centre.f >= 0 ? centre.f : shadows.visible_form_factor(0, poly, shooter_normal);
+  if (centre.f < 0) centre.f = shadows.visible_form_factor(0, poly, shooter_normal, &centre.partly_seen, alone);
+  const double f_centre = centre.f;
   if (f_centre == 0 || b.uniform)
     out.at_center = f_centre * b.unshot_w_m2;
   else if (centre.gradient_known)
@@ -183,6 +208,8 @@ Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, cons
     double* kept = seen != nullptr ? seen->gauss : nullptr;  // the block's, from an earlier gather
     if (kept != nullptr && !std::isnan(kept[0])) {
       std::copy(kept, kept + count, f.begin());
+    } else if (known != nullptr && known->gauss_known) {
+      std::copy(known->gauss.begin(), known->gauss.begin() + static_cast<std::ptrdiff_t>(count), f.begin());
     } else {
       // Those behind many shadows through the patch's kept fragments, the others in a batch.
       std::array<Vec3, 4> points;
@@ -192,7 +219,7 @@ Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, cons
       size_t batched = 0;
       for (size_t k = 0; k < count; ++k) {
         const int point = static_cast<int>(k) + 1;
-        if (shadows.keeps_fragments(point, shooter_normal)) {
+        if (alone ? shadows.found_fragments(point) : shadows.keeps_fragments(point, shooter_normal)) {
           f[k] = shadows.visible_form_factor(point, poly, shooter_normal);
         } else {
           points[batched] = r.gauss[k];
@@ -213,8 +240,10 @@ Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, cons
     for (size_t k = 0; k < count; ++k)
       out.mean += f[k] == 0 || b.uniform ? Rgb(f[k] * b.unshot_w_m2) : Rgb(f[k] * radiosity[k]);
     out.mean /= r.gauss_count;
+    now.gauss_known = true;
+    std::copy(f.begin(), f.begin() + static_cast<std::ptrdiff_t>(count), now.gauss.begin());
   }
-  return out;
+  return keep(out);
 }
 
 }  // namespace radrecon

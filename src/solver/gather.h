@@ -3,6 +3,7 @@
 // progressive refinement: the patch's blocks that may shoot as one (solver/far_field.h) by an
 // error budget, their form factors at the element's centre and Gauss points, shadows included.
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <span>
@@ -85,12 +86,23 @@ class ReceiverShadows {
   /// at(point)'s volumes, and whether the point sees it in part: through the patch's kept
   /// fragments when the point sees many shadows on the patch (the same values to round-off),
   /// else as visible_form_factor_past() gives it, bit for bit.
+  /// `alone`: unless the point has found the patch's fragments already, by
+  /// visible_form_factor_past() without finding them (a block new to the element in a later shot:
+  /// gather() with BlockViews).
   double visible_form_factor(int point, const ConvexPolygon& polygon, const Vec3& shooter_normal,
-                             bool* partly_seen = nullptr) const;
+                             bool* partly_seen = nullptr, bool alone = false) const;
   /// Whether visible_form_factor() at the point goes through the patch's kept fragments: the
   /// patch given, and tol::kKeptFragmentsShadows or more shadows on it from there (found on the
   /// first call, for the polygons of this shooter). gather() batches the other points.
   bool keeps_fragments(int point, const Vec3& shooter_normal) const;
+  /// Whether the point has found the patch's fragments already (keeps_fragments() true); asks
+  /// nothing new.
+  bool found_fragments(int point) const { return fragments_state_[static_cast<size_t>(point)] == Fragments::kept; }
+  /// Whether some point has been found to keep the patch's fragments (keeps_fragments()): it sees
+  /// many shadows there. Asks nothing new.
+  bool kept_fragments() const {
+    return std::find(fragments_state_.begin(), fragments_state_.end(), Fragments::kept) != fragments_state_.end();
+  }
 
  private:
   const Receiver& r_;
@@ -114,6 +126,28 @@ struct SeenFromCentre {
   double form_factor;
   bool partly;
   double* gauss = nullptr;  ///< Receiver::gauss_count values
+};
+
+/// What a receiving element saw of one block of a patch's shooter tree, other than its root
+/// (SeenFromCentre holds that), when it last gathered from the patch: the block's visible form
+/// factor at its centre and whether the centre sees it in part, and its visible form factors at
+/// the Gauss points, each if computed then. Geometry alone, so a later shot of the same patch
+/// takes them as they are, bit for bit, without the shadows behind them.
+struct BlockView {
+  std::uint32_t block = 0;  ///< its index in the tree (ShooterTree::block())
+  bool partly = false, centre_known = false, gauss_known = false;
+  double centre = 0;
+  std::array<double, 4> gauss{};
+};
+
+/// The block views of a receiving element: those of its last gather from the patch (`last`,
+/// sorted by block), to take values from, and those of this gather (`now`, appended in the order
+/// visited), to keep for the next.
+struct BlockViews {
+  std::span<const BlockView> last;
+  std::vector<BlockView>* now = nullptr;
+  /// The view of the block in `last`, or null.
+  const BlockView* find(std::uint32_t block) const;
 };
 
 /// Irradiance on the receiving element from the shooter's unshot radiosity: the block as a whole
@@ -140,7 +174,12 @@ struct SeenFromCentre {
 /// element's centre with shadows.at(0): gather() then does not compute it again. If its `gauss`
 /// is given too, gather() takes the block's form factors at the Gauss points from there, or
 /// computes them and stores them there (NaN in gauss[0]) when it first needs them.
+///
+/// `views`, if given, holds what the element saw of the other blocks at its last gather from the
+/// patch: gather() takes their form factors from there rather than computing them, and appends
+/// what it saw of each block it visits to views->now.
 Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, const Vec3& shooter_normal,
-                const ReceiverShadows& shadows, double budget_w_m2, const SeenFromCentre* seen = nullptr);
+                const ReceiverShadows& shadows, double budget_w_m2, const SeenFromCentre* seen = nullptr,
+                const BlockViews* views = nullptr);
 
 }  // namespace radrecon

@@ -64,6 +64,11 @@ struct PatchViews {
   /// (it gathers from the whole patch at its centre alone: gathers_at_centre()).
   std::vector<std::uint32_t> gauss_at;
   std::vector<double> gauss;  ///< 4 a slot (Receiver::gauss); NaN: not yet
+  /// By receiving element: what it saw of the tree's other blocks at its last gather (BlockView),
+  /// sorted by block; kept while `keep_blocks` (a small tree, and the bytes within their share).
+  std::vector<std::vector<BlockView>> blocks;
+  bool keep_blocks = false;
+  size_t block_bytes = 0;
   static constexpr std::uint32_t kAtCentre = std::numeric_limits<std::uint32_t>::max();
   /// The bytes of the views of `receivers` elements, `slots` of them off the midpoint rule.
   static size_t bytes(size_t receivers, size_t slots) {
@@ -73,6 +78,14 @@ struct PatchViews {
 /// The most bytes of views kept over all patches; the patches that shoot after they are spent
 /// compute theirs every shot. The Cornell box at grid:128 keeps 31 MB, the paper's grid:400 18 MB.
 constexpr size_t kMostPatchViewBytes = size_t{128} << 20;
+/// The largest shooter tree, in blocks, whose other blocks' views (BlockView) a patch keeps for
+/// its later shots, for the receiving elements behind many shadows (ReceiverShadows::
+/// kept_fragments()): the Wuson scene's floor quarters have 85 blocks; the Cornell box's patches
+/// at grid:128 5461, of which a receiver near them sees hundreds.
+constexpr size_t kMostViewedBlocks = 1024;
+/// The most bytes of those block views kept over all patches; a patch whose views would pass it
+/// keeps none from then on.
+constexpr size_t kMostBlockViewBytes = size_t{96} << 20;
 
 }  // namespace
 
@@ -172,7 +185,7 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
   bool converged = false;  // the residual, not the shot limit, ended the loop
   // Made at a patch's first shot, with a far-field budget only; kept empty where they did not fit.
   std::vector<std::unique_ptr<PatchViews>> patch_views(options.far_field_error > 0 ? patches.size() : 0);
-  size_t patch_view_bytes = 0;
+  size_t patch_view_bytes = 0, block_view_bytes = 0;
 
   while (true) {
     // The patch or cluster with the most unshot power (the first of equals).
@@ -302,6 +315,9 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
                 if (!at_centre[k]) v->gauss_at[k] = 4 * slot++;
               v->gauss.assign(4 * slots, std::numeric_limits<double>::quiet_NaN());
               patch_view_bytes += PatchViews::bytes(receiving, slots);
+              v->keep_blocks = options.keep_block_views && ShooterTree::block_count(shooter_side, &splits[shooter.surface], shooter.i0, shooter.j0,
+                                                        shooter.i1, shooter.j1) <= kMostViewedBlocks;
+              if (v->keep_blocks) v->blocks.resize(receiving);
             }
           }
         }
@@ -348,18 +364,47 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
           budget_w_m2 = options.far_field_error * std::max(so_far_w_m2 + estimate, least_irradiance_w_m2);
         }
         const SeenFromCentre* root_seen = seen.form_factor >= 0 ? &seen : nullptr;
-        Gathered got = gather(tree, tree.root(), element, shooter_normal, shadows, budget_w_m2, root_seen);
+        // What the element saw of the other blocks at the patch's last shot, and sees now.
+        thread_local std::vector<BlockView> seen_now;
+        seen_now.clear();
+        BlockViews block_views;
+        const bool keep_blocks = views != nullptr && views->keep_blocks;
+        if (keep_blocks) block_views = {views->blocks[static_cast<size_t>(i)], &seen_now};
+        const BlockViews* blocks_seen = keep_blocks ? &block_views : nullptr;
+        Gathered got = gather(tree, tree.root(), element, shooter_normal, shadows, budget_w_m2, root_seen, blocks_seen);
         if (budget_w_m2 > 0) {
           // The whole patch's estimate can exceed what the element gets many times over (a dark
           // element beside a bright one, a patch seen in part): then again, with the budget made
           // for what it got.
           const double irradiance = so_far_w_m2 + std::min(got.at_center.sum(), got.mean.sum());
           const double budget_got = options.far_field_error * std::max(irradiance, least_irradiance_w_m2);
-          if (budget_got < tol::kFarFieldRegatherRatio * budget_w_m2) got = gather(tree, tree.root(), element, shooter_normal, shadows, budget_got, root_seen);
+          if (budget_got < tol::kFarFieldRegatherRatio * budget_w_m2) {
+            seen_now.clear();
+            got = gather(tree, tree.root(), element, shooter_normal, shadows, budget_got, root_seen, blocks_seen);
+          }
         }
         gain[static_cast<size_t>(i)] = got;
+        // Kept for an element behind many shadows, where finding them again costs most.
+        std::vector<BlockView>& kept = keep_blocks ? views->blocks[static_cast<size_t>(i)] : seen_now;
+        if (keep_blocks && (shadows.kept_fragments() || !kept.empty())) {
+          std::sort(seen_now.begin(), seen_now.end(), [](const BlockView& a, const BlockView& b) { return a.block < b.block; });
+          kept.assign(seen_now.begin(), seen_now.end());
+        }
       });
-      tree_storage = std::move(tree).release();
+      if (views != nullptr && views->keep_blocks) {
+      // The bytes its block views now hold: past their share, the patch keeps none.
+      size_t bytes = 0;
+      for (const std::vector<BlockView>& b : views->blocks) bytes += b.capacity() * sizeof(BlockView);
+      block_view_bytes += bytes - views->block_bytes;
+      views->block_bytes = bytes;
+      if (block_view_bytes > kMostBlockViewBytes) {
+        block_view_bytes -= bytes;
+        views->keep_blocks = false;
+        views->block_bytes = 0;
+        std::vector<std::vector<BlockView>>().swap(views->blocks);
+      }
+    }
+    tree_storage = std::move(tree).release();
     }
     // What each element keeps, side by side; the power delivered summed in order, on one thread.
     parallel_for(0, static_cast<std::int64_t>(gain.size()), [&](std::int64_t i) {

@@ -45,6 +45,11 @@ struct ProgressiveOptions {
   /// (solver/shooter_clusters.h), with a point source's shadows far from each cluster; false:
   /// each alone, with exact shadows.
   bool clusters = true;
+  /// Whether a patch keeps, for its later shots, what each receiving element behind many shadows
+  /// saw of its blocks (solver/gather.h BlockView); false: every shot finds them again. The same
+  /// values either way (to round-off where a later shot reaches a block first), only slower
+  /// without (for the tests, and for measuring).
+  bool keep_block_views = true;
   /// Name printed in progress messages on stderr; empty: quiet.
   std::string progress_label;
 };

@@ -187,6 +187,39 @@ TEST(Progressive, ShotLimitIsReportedNotConverged) {
   EXPECT_GT(sol.stats.residual, options.residual);
 }
 
+TEST(Progressive, BlockViewsKeptFromShotToShotGiveTheSameValues) {
+  // A floor under a ceiling, a lattice of 100 small squares between them: the ceiling's elements
+  // see dozens of shadows on each of the floor's patches, which shoot again and again (the light
+  // on the ceiling, the two reflecting). What they saw of a patch's blocks at its last shot
+  // (solver/gather.h BlockView) must give what finding the shadows again gives: the same bits,
+  // but for a block first seen in a later shot, whose form factors come without the patch's
+  // fragments (the same to round-off).
+  Scene scene;
+  scene.name = "lattice";
+  scene.surfaces.push_back(quad("floor", {0, 0, 0}, {4, 0, 0}, {4, 4, 0}, {0, 4, 0}, 0.6));
+  scene.surfaces.push_back(quad("ceiling", {0, 0, 2}, {0, 4, 2}, {4, 4, 2}, {4, 0, 2}, 0.6));
+  scene.surfaces.push_back(quad("light", {1.5, 1.5, 1.9}, {1.5, 2.5, 1.9}, {2.5, 2.5, 1.9}, {2.5, 1.5, 1.9}, 0.0, 40.0));
+  for (int j = 0; j < 10; ++j)
+    for (int i = 0; i < 10; ++i) {
+      const double x = 0.25 + 0.35 * i, y = 0.25 + 0.35 * j;
+      scene.surfaces.push_back(quad("slat" + std::to_string(10 * j + i), {x, y, 1}, {x + 0.2, y, 1}, {x + 0.2, y + 0.2, 1},
+                                    {x, y + 0.2, 1}, 0.3));
+    }
+  ProgressiveOptions kept, found;
+  kept.residual = found.residual = 1e-3;
+  found.keep_block_views = false;
+  const Mesh mesh = make_grid_mesh(scene, {16, 2});
+  const Solution a = solve_progressive(scene, mesh, kept, "grid:16"), b = solve_progressive(scene, mesh, found, "grid:16");
+  ASSERT_GT(a.stats.shots, 10u);
+  EXPECT_EQ(a.stats.shots, b.stats.shots);
+  for (size_t s = 0; s < a.surfaces.size(); ++s)
+    for (size_t e = 0; e < a.surfaces[s].elements.size(); ++e)
+      ASSERT_NEAR(a.surfaces[s].elements[e].radiosity_w_m2[0], b.surfaces[s].elements[e].radiosity_w_m2[0],
+                  1e-12 * b.surfaces[s].elements[e].radiosity_w_m2[0])
+          << a.surfaces[s].name << " element " << e;
+  EXPECT_NEAR(a.stats.escaped_w[0], b.stats.escaped_w[0], 1e-12 * b.stats.escaped_w[0]);
+}
+
 TEST(Progressive, ResultDoesNotDependOnThreadCount) {
   const Scene scene = paper_scene();
   const int threads = worker_thread_count();
