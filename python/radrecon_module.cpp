@@ -263,5 +263,6 @@ Raises radrecon.Error (a ValueError) for refused input.)doc");
      R"doc(Solve a scene's radiosity, as `radrecon solve` does.
 
 scene: a scene JSON file, a mesh file (.obj, .gltf, .glb, .ply) with emitters, or 'paper' or
-'cornell'. mesh: grid:N, quadtree:LEAVES or quadtree-eps:E. Returns a Solution.)doc");
+'cornell'. mesh: grid:N, quadtree:LEAVES or quadtree-eps:E. patches: grid: shooting patches
+along the longest edge; 0: 2, or 4 for a scene of 256 surfaces or more. Returns a Solution.)doc");
 }

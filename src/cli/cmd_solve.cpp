@@ -82,9 +82,9 @@ void add_solve_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--patches", args->patches,
                   "grid: shooting patches along the longest edge (patches group elements; receivers are elements); "
-                  "the Cornell box solves fastest with 4 (more is slower)")
-      ->check(CLI::Range(1, 100000))
-      ->capture_default_str();
+                  "default 2, or 4 for a scene of 256 surfaces or more (a model's triangles); the Cornell box "
+                  "solves fastest with 4 (more is slower)")
+      ->check(CLI::Range(1, 100000));
   cmd->add_option("--far-field-error", args->far_field_error,
                   "grid: a block of a shooting patch shoots as one source only while its error estimate is at most "
                   "this fraction of the receiver's irradiance; 0: beyond 2.5 of its diagonals instead, with no "

@@ -277,6 +277,10 @@ inline constexpr double kClusterPointKernelRadii = 16.0;
 /// with exact shadows, as it always did. A count.
 inline constexpr std::size_t kLeastClusteredSides = 256;
 
+/// A scene of at least this many surfaces (a model's triangles) gets 4 shooting patches along its
+/// longest edge by default rather than 2 (solver/solve.h default_patches()). A count.
+inline constexpr std::size_t kManySurfaces = 256;
+
 /// The boxes by which visibility.cpp rejects a shadow for a fragment of the shooter (the
 /// projections from the receiving point onto the shooter's plane of the occluder and of the
 /// fragment) are widened by this fraction of (1 m + their extent + their coordinates' size):

@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "core/limits.h"
 #include "core/parse.h"
+#include "core/tolerances.h"
 #include "mesh/grid_mesh.h"
 #include "scene/contacts.h"
 #include "scene/shadow_lines.h"
@@ -15,6 +16,10 @@
 #include "solver/progressive.h"
 
 namespace radrecon {
+
+int default_patches(const Scene& scene) {
+  return scene.surfaces.size() >= tol::kManySurfaces ? 4 : GridMeshOptions{}.max_patches;
+}
 
 namespace {
 
@@ -54,7 +59,7 @@ Solution solve_by_spec(const Scene& scene, const std::string& spec, const SolveS
   const std::string kind = spec.substr(0, colon), value = spec.substr(colon + 1);
   if (kind == "grid") {
     const int n = static_cast<int>(spec_integer(value, 1, 100000, field, spec));
-    const GridMeshOptions mesh_options{n, settings.patches};
+    const GridMeshOptions mesh_options{n, settings.patches > 0 ? settings.patches : default_patches(scene)};
     const size_t elements = grid_element_count(scene, mesh_options);
     check_limit(Limit::elements, static_cast<long long>(elements), field, "'" + spec + "' makes",
                 "use a smaller N");

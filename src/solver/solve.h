@@ -13,9 +13,17 @@
 
 namespace radrecon {
 
+/// The shooting patches along the longest edge for a scene (GridMeshOptions::max_patches) when
+/// none are asked for: 2, or 4 for a scene of tol::kManySurfaces surfaces or more (a model's
+/// triangles), whose receivers see a patch past many occluders: there the cost of a patch's
+/// visibility grows faster than its area, and the Wuson scene solves in 48-51 s with 4 against
+/// 71-75 s with 2 (docs/benchmarks.md).
+int default_patches(const Scene& scene);
+
 struct SolveSettings {
   double residual = kDefaultResidual;  ///< progressive: stop below this unshot fraction of the emitted power
-  int patches = GridMeshOptions{}.max_patches;  ///< progressive: shooting patches along the longest edge
+  /// progressive: shooting patches along the longest edge; 0: default_patches()
+  int patches = 0;
   /// progressive: the far field's error bound as a fraction of irradiance; 0: the distance rule
   /// (ProgressiveOptions::far_field_error)
   double far_field_error = kDefaultFarFieldError;
