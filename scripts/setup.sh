@@ -16,6 +16,7 @@ packages=(
   pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module (python/) and its tests
   clang-14 libclang-rt-14-dev libomp-14-dev llvm-14  # the sanitized tree and its fuzzers (make test-asan, make fuzz); llvm-14: the symbolizer
   python-matplotlib-data  # a real elevation model (jacksboro_fault_dem.npz) for reconstruct.dem_edges
+  assimp-testmodels  # the 10,000-triangle benchmark scene's model (bench/scenes/wuson_trio.json)
 )
 
 missing=()
