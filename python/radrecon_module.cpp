@@ -250,19 +250,22 @@ Raises radrecon.Error (a ValueError) for refused input.)doc");
       }, py::arg("path"), "Write the solution JSON that `radrecon solve --out` writes.");
 
   m.def("solve", [](const std::string& scene_spec, const std::string& mesh, double residual, int patches,
-                    const std::string& leaves_on) {
+                    const std::string& leaves_on, bool clusters) {
+    if (patches < 0) throw UserError("patches", "must be 0 (the default for the scene) or a positive count");
     SolveSettings settings;
     settings.residual = residual;
     settings.patches = patches;
+    settings.clusters = clusters;
     settings.leaves_on = leaves_on;
     py::gil_scoped_release release;
     const Scene scene = load_scene(scene_spec);
     return solve_scene(scene, mesh, settings, "mesh");
   }, py::arg("scene") = "paper", py::arg("mesh") = "grid:16", py::arg("residual") = kDefaultResidual,
-     py::arg("patches") = SolveSettings{}.patches, py::arg("leaves_on") = "",
+     py::arg("patches") = SolveSettings{}.patches, py::arg("leaves_on") = "", py::arg("clusters") = true,
      R"doc(Solve a scene's radiosity, as `radrecon solve` does.
 
 scene: a scene JSON file, a mesh file (.obj, .gltf, .glb, .ply) with emitters, or 'paper' or
 'cornell'. mesh: grid:N, quadtree:LEAVES or quadtree-eps:E. patches: grid: shooting patches
-along the longest edge; 0: 2, or 4 for a scene of 256 surfaces or more. Returns a Solution.)doc");
+along the longest edge; 0: 2, or 4 for a scene of 256 surfaces or more. clusters: a model's many
+small triangles shoot in clusters (radrecon solve --clusters). Returns a Solution.)doc");
 }

@@ -93,8 +93,9 @@ void add_solve_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--clusters", args->clusters,
                   "grid: with 256 or more sides of one element (a model's triangles), shoot them in clusters of up "
-                  "to 256, each subtree far from a receiver as point sources past one shadow ray (on), or each "
-                  "alone with exact shadows (off; docs/method.md)")
+                  "to 256, each subtree far from a receiver as its sides' sources past one shadow ray to its "
+                  "centre, a side near it with exact shadows (on), or each alone with exact shadows (off; "
+                  "docs/method.md)")
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
   cmd->add_flag("--shadow-barriers", args->shadow_barriers,

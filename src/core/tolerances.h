@@ -278,7 +278,8 @@ inline constexpr double kClusterPointKernelRadii = 16.0;
 inline constexpr std::size_t kLeastClusteredSides = 256;
 
 /// A scene of at least this many surfaces (a model's triangles) gets 4 shooting patches along its
-/// longest edge by default rather than 2 (solver/solve.h default_patches()). A count.
+/// longest edge by default rather than 2 (solver/solve.h default_patches()). A count of scene
+/// surfaces, where kLeastClusteredSides counts mesh sides of one element. A count.
 inline constexpr std::size_t kManySurfaces = 256;
 
 /// The boxes by which visibility.cpp rejects a shadow for a fragment of the shooter (the

@@ -178,14 +178,17 @@ bool crosses(const Occluder& o, const Vec3& p, const Vec3& q, double ignore_m) {
     return false;
   const Vec3 x = p + (ep / (ep - eq)) * (q - p);
   if ((x - q).squaredNorm() < ignore_m * ignore_m) return false;
-  // Inside when x lies on one side of every edge (either orientation of the corners).
+  // Inside when x lies on one side of every edge (either orientation of the corners), edges
+  // included to tol::kPlaneDistance_m: a ray along the edge two triangles share passes through
+  // neither by round-off, a crack the exact shadows do not have.
   bool left = true, right = true;
   for (int k = 0; k < o.corner_count; ++k) {
     const Vec3& a = o.corners[static_cast<size_t>(k)];
     const Vec3& b = o.corners[static_cast<size_t>((k + 1) % o.corner_count)];
-    const double side = (b - a).cross(x - a).dot(o.plane.normal);
-    left = left && side >= 0;
-    right = right && side <= 0;
+    const double side = (b - a).cross(x - a).dot(o.plane.normal);  // |b - a| times x's distance
+    const double slack = tol::kPlaneDistance_m * (b - a).norm();
+    left = left && side >= -slack;
+    right = right && side <= slack;
   }
   return left || right;
 }

@@ -142,7 +142,9 @@ struct BlockView {
 
 /// The block views of a receiving element: those of its last gather from the patch (`last`,
 /// sorted by block), to take values from, and those of this gather (`now`, appended in the order
-/// visited), to keep for the next.
+/// visited), to keep for the next. A block without a view in `last` gets its form factors alone
+/// (ReceiverShadows::visible_form_factor()): the same to round-off, its seen-in-part flag by the
+/// per-block test.
 struct BlockViews {
   std::span<const BlockView> last;
   std::vector<BlockView>* now = nullptr;

@@ -65,10 +65,10 @@ struct PatchViews {
   std::vector<std::uint32_t> gauss_at;
   std::vector<double> gauss;  ///< 4 a slot (Receiver::gauss); NaN: not yet
   /// By receiving element: what it saw of the tree's other blocks at its last gather (BlockView),
-  /// sorted by block; kept while `keep_blocks` (a small tree, and the bytes within their share).
+  /// sorted by block, for an element behind many shadows; kept if `keep_blocks` (a small tree,
+  /// and the most it can hold within kMostBlockViewBytes).
   std::vector<std::vector<BlockView>> blocks;
   bool keep_blocks = false;
-  size_t block_bytes = 0;
   static constexpr std::uint32_t kAtCentre = std::numeric_limits<std::uint32_t>::max();
   /// The bytes of the views of `receivers` elements, `slots` of them off the midpoint rule.
   static size_t bytes(size_t receivers, size_t slots) {
@@ -83,9 +83,11 @@ constexpr size_t kMostPatchViewBytes = size_t{128} << 20;
 /// kept_fragments()): the Wuson scene's floor quarters have 85 blocks; the Cornell box's patches
 /// at grid:128 5461, of which a receiver near them sees hundreds.
 constexpr size_t kMostViewedBlocks = 1024;
-/// The most bytes of those block views kept over all patches; a patch whose views would pass it
-/// keeps none from then on.
-constexpr size_t kMostBlockViewBytes = size_t{96} << 20;
+/// The most bytes of those block views over all patches, each patch's counted as the most it can
+/// hold (every receiving element, every block) before its first shot; a patch that would pass
+/// it keeps none. The Wuson scene's 16 floor patches (4 along the longest edge, 21 blocks each)
+/// reserve 11 MB each.
+constexpr size_t kMostBlockViewBytes = size_t{256} << 20;
 
 }  // namespace
 
@@ -227,7 +229,7 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
     Rgb shot_power;
     if (best_cluster >= 0) {
       // A cluster shoots: every element of every side receives (the members from each other).
-      const ClusterShot shot(scene, mesh, clusters, static_cast<size_t>(best_cluster), occluders, bvh, unshot_by_side);
+      const ClusterShot shot(scene, mesh, clusters, static_cast<size_t>(best_cluster), bvh, unshot_by_side);
       shot_power = shot.power_w();
       const ShooterClusters::Node& root = clusters.nodes[static_cast<size_t>(clusters.roots[static_cast<size_t>(best_cluster)])];
       for (int m = root.begin; m < root.end; ++m) {
@@ -315,9 +317,17 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
                 if (!at_centre[k]) v->gauss_at[k] = 4 * slot++;
               v->gauss.assign(4 * slots, std::numeric_limits<double>::quiet_NaN());
               patch_view_bytes += PatchViews::bytes(receiving, slots);
-              v->keep_blocks = options.keep_block_views && ShooterTree::block_count(shooter_side, &splits[shooter.surface], shooter.i0, shooter.j0,
-                                                        shooter.i1, shooter.j1) <= kMostViewedBlocks;
-              if (v->keep_blocks) v->blocks.resize(receiving);
+              // Block views where the tree is small and the most they can hold (every receiving
+              // element, every block) fits in what is left of their bytes.
+              const size_t blocks = ShooterTree::block_count(shooter_side, &splits[shooter.surface], shooter.i0,
+                                                             shooter.j0, shooter.i1, shooter.j1);
+              const size_t most_bytes = receiving * (sizeof(std::vector<BlockView>) + blocks * sizeof(BlockView));
+              v->keep_blocks = options.keep_block_views && blocks <= kMostViewedBlocks &&
+                               block_view_bytes + most_bytes <= kMostBlockViewBytes;
+              if (v->keep_blocks) {
+                v->blocks.resize(receiving);
+                block_view_bytes += most_bytes;
+              }
             }
           }
         }
@@ -391,19 +401,6 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
           kept.assign(seen_now.begin(), seen_now.end());
         }
       });
-      if (views != nullptr && views->keep_blocks) {
-      // The bytes its block views now hold: past their share, the patch keeps none.
-      size_t bytes = 0;
-      for (const std::vector<BlockView>& b : views->blocks) bytes += b.capacity() * sizeof(BlockView);
-      block_view_bytes += bytes - views->block_bytes;
-      views->block_bytes = bytes;
-      if (block_view_bytes > kMostBlockViewBytes) {
-        block_view_bytes -= bytes;
-        views->keep_blocks = false;
-        views->block_bytes = 0;
-        std::vector<std::vector<BlockView>>().swap(views->blocks);
-      }
-    }
     tree_storage = std::move(tree).release();
     }
     // What each element keeps, side by side; the power delivered summed in order, on one thread.

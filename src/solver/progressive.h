@@ -47,8 +47,9 @@ struct ProgressiveOptions {
   bool clusters = true;
   /// Whether a patch keeps, for its later shots, what each receiving element behind many shadows
   /// saw of its blocks (solver/gather.h BlockView); false: every shot finds them again. The same
-  /// values either way (to round-off where a later shot reaches a block first), only slower
-  /// without (for the tests, and for measuring).
+  /// values either way (to round-off, and a seen-in-part flag by the per-block test, where a shot
+  /// reaches a block without a view from the shot before), only slower without (for the tests,
+  /// and for measuring).
   bool keep_block_views = true;
   /// Name printed in progress messages on stderr; empty: quiet.
   std::string progress_label;

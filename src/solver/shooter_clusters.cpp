@@ -8,7 +8,7 @@
 #include "core/box_hierarchy.h"
 #include "core/check.h"
 #include "core/tolerances.h"
-#include "solver/form_factor.h"
+#include "solver/visibility.h"
 
 namespace radrecon {
 
@@ -92,9 +92,9 @@ ShooterClusters make_shooter_clusters(const Mesh& mesh) {
 }
 
 ClusterShot::ClusterShot(const Scene& scene, const Mesh& mesh, const ShooterClusters& clusters, size_t cluster,
-                         const std::vector<Occluder>& occluders, const OccluderBvh& bvh,
+                         const OccluderBvh& bvh,
                          std::span<const std::vector<Rgb>* const> unshot)
-    : mesh_(mesh), clusters_(clusters), bvh_(bvh), root_(clusters.roots[cluster]), is_member_(occluders.size(), 0) {
+    : mesh_(mesh), clusters_(clusters), bvh_(bvh), root_(clusters.roots[cluster]) {
   const ShooterClusters::Node& root = clusters.nodes[static_cast<size_t>(root_)];
   trees_.reserve(static_cast<size_t>(root.end - root.begin));
   for (int m = root.begin; m < root.end; ++m) {
@@ -102,7 +102,6 @@ ClusterShot::ClusterShot(const Scene& scene, const Mesh& mesh, const ShooterClus
     const MeshSurface& side = mesh.surfaces[s];
     const MeshElement& e = side.elements[0];
     const Rgb& b = (*unshot[s])[0];
-    is_member_[side.scene_surface] = 1;
     trees_.emplace_back(scene.surfaces[side.scene_surface], side, *unshot[s], 0, 0, side.nu, side.nv);
     at_.push_back(e.center);
     normal_.push_back(side.normal);
@@ -127,13 +126,10 @@ Rgb ClusterShot::far_irradiance(int begin, int end, const Vec3& p, const Vec3& n
       if (cos_p > 0) sum += (cos_m * cos_p / (r2 * r2)) * intensity_[m];
       continue;
     }
-    // Near: the member's form factor, exact (its part in front of p's plane).
+    // Near: the member's form factor, exact (its part in front of p's plane; no shadows).
     ConvexPolygon polygon;
     for (int c = 0; c < corners_[m].second; ++c) polygon.push(corners_[m].first[static_cast<size_t>(c)]);
-    bool whole = true;
-    for (int c = 0; c < polygon.n && whole; ++c) whole = n.dot(polygon.v[static_cast<size_t>(c)] - p) >= 0;
-    const double f = lambert_form_factor(p, n, whole ? polygon : clip_to_horizon(p, n, polygon));
-    sum += f * radiosity_[m];
+    sum += visible_form_factor_past(p, n, polygon, normal_[m], {}) * radiosity_[m];
   }
   return sum;
 }
@@ -143,7 +139,9 @@ Rgb ClusterShot::seen_irradiance(const ShooterClusters::Node& node, const Vec3& 
   const int first = clusters_.nodes[static_cast<size_t>(root_)].begin;
   const Rgb e = far_irradiance(node.begin - first, node.end - first, p, n);
   if ((e == 0).all()) return e;
-  return bvh_.blocks_segment(p, node.center, node.radius_m, receiver_surface, is_member_) ? Rgb(Rgb::Zero()) : e;
+  // The node's own members lie within its radius of its centre, where crossings are passed over;
+  // the cluster's other members, and every other surface, may hide it.
+  return bvh_.blocks_segment(p, node.center, node.radius_m, receiver_surface, {}) ? Rgb(Rgb::Zero()) : e;
 }
 
 Gathered ClusterShot::gather(const Receiver& r, size_t receiver_side) const {

@@ -7,12 +7,13 @@
 // exact shadows: the 10,000-triangle scene of issue 11 spent 40-50 ms a triangle. The members of
 // a cluster (up to kClusterMembers) lie in a hierarchy, and a receiving element gathers from it
 // top down (as Barnes and Hut sum gravity):
-// - a subtree at least tol::kClusterFarRadii of its radius away shoots as the sum of its
-//   members' point kernels B_m A_m cos_m cos_x / (pi d_m^2), each from the member's centroid
-//   with its own normal and unshot radiosity, past one shadow ray from the element to the
-//   subtree's centre (OccluderBvh::blocks_segment()); the cluster's members, and whatever lies
-//   within the subtree's radius of its centre, aside: the shadow of a point light where the
-//   subtree is small against its distance;
+// - a subtree at least tol::kClusterFarRadii of its radius away (tol::kClusterMemberFarRadii for
+//   a single member) shoots as the sum of its members' sources, past one shadow ray from the
+//   element to the subtree's centre (OccluderBvh::blocks_segment()); the receiver's surface, and
+//   whatever lies within the subtree's radius of its centre (its own members among it), aside:
+//   the shadow of a point light where the subtree is small against its distance. Each member's
+//   source is its exact (Lambert) form factor times its unshot radiosity, or beyond
+//   tol::kClusterPointKernelRadii of its own radii its point kernel B A cos_m cos_x / (pi d^2);
 // - a member nearer than that shoots as any patch does (gather()): exact shadows, the Gauss rule
 //   where the element is large against its distance.
 // A penumbra narrower than a subtree's size is drawn as a hard edge; the unshot power of every
@@ -63,12 +64,13 @@ class ClusterShot {
   /// `unshot`: by mesh side, each element's unshot radiosity, W/m^2. Everything given must
   /// outlive the shot.
   ClusterShot(const Scene& scene, const Mesh& mesh, const ShooterClusters& clusters, size_t cluster,
-              const std::vector<Occluder>& occluders, const OccluderBvh& bvh,
+              const OccluderBvh& bvh,
               std::span<const std::vector<Rgb>* const> unshot);
 
   /// What the element `r` of the side `receiver_side` gathers from the cluster's members: from
-  /// each subtree at least tol::kClusterFarRadii of its radii away as from its members' point
-  /// sources past one shadow ray to its centre, from each nearer member exactly (gather()).
+  /// each subtree at least tol::kClusterFarRadii of its radii away (kClusterMemberFarRadii for one
+  /// member) as from its members' sources past one shadow ray to its centre, from each nearer
+  /// member with exact shadows (gather()).
   /// Thread-safe (one call at a time per thread: ReceiverShadows' buffers).
   Gathered gather(const Receiver& r, size_t receiver_side) const;
 
@@ -77,7 +79,7 @@ class ClusterShot {
 
  private:
   /// The unoccluded irradiance at p (unit normal n) from the members [begin, end), W/m^2: their
-  /// point kernels.
+  /// form factors times their radiosity, or their point kernels far from them.
   Rgb far_irradiance(int begin, int end, const Vec3& p, const Vec3& n) const;
   /// far_irradiance() of the node's members at p, or zero if an occluder hides the node's centre
   /// from p (past its radius).
@@ -87,7 +89,6 @@ class ClusterShot {
   const ShooterClusters& clusters_;
   const OccluderBvh& bvh_;
   int root_;
-  std::vector<std::uint8_t> is_member_;  ///< by scene surface
   std::vector<ShooterTree> trees_;       ///< by member from the root's begin: its one block
   // By member (ShooterClusters::sides, from the root's begin): centroid, unit normal, unshot
   // radiosity B and A B / pi, corners, and the squared distance beyond which its point kernel

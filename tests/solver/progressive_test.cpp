@@ -218,6 +218,15 @@ TEST(Progressive, BlockViewsKeptFromShotToShotGiveTheSameValues) {
                   1e-12 * b.surfaces[s].elements[e].radiosity_w_m2[0])
           << a.surfaces[s].name << " element " << e;
   EXPECT_NEAR(a.stats.escaped_w[0], b.stats.escaped_w[0], 1e-12 * b.stats.escaped_w[0]);
+  // And with the views kept, the same bits on one thread as on several.
+  const int threads = worker_thread_count();
+  set_worker_thread_count(1);
+  const Solution one = solve_progressive(scene, mesh, kept, "grid:16");
+  set_worker_thread_count(threads);
+  for (size_t s = 0; s < a.surfaces.size(); ++s)
+    for (size_t e = 0; e < a.surfaces[s].elements.size(); ++e)
+      ASSERT_TRUE((a.surfaces[s].elements[e].radiosity_w_m2 == one.surfaces[s].elements[e].radiosity_w_m2).all())
+          << a.surfaces[s].name << " element " << e;
 }
 
 TEST(Progressive, ResultDoesNotDependOnThreadCount) {

@@ -44,13 +44,16 @@ void add_tessellated(Scene& scene, const std::string& name, const Vec3& c0, cons
 }
 
 /// A 4 x 4 m floor (reflectance 0.5) under a 1 x 1 m light at 1.5 m, facing down, of 2 x 12 x 12
-/// triangles emitting 40 W/m^2; with `occluder`, a black 0.6 x 0.6 m square half way down.
-Scene light_of_triangles(bool occluder) {
+/// triangles emitting 40 W/m^2; with `occluder`, a black 0.6 x 0.6 m square half way down, or
+/// with `shade`, a black 0.9 x 0.9 m square of 2 x 9 x 9 triangles 0.3 m under the light, each
+/// one element: in the light's clusters.
+Scene light_of_triangles(bool occluder, bool shade = false) {
   Scene scene;
   scene.name = "triangle-light";
   scene.surfaces.push_back(quad("floor", {0, 0, 0}, {4, 0, 0}, {4, 4, 0}, {0, 4, 0}, 0.5));
   add_tessellated(scene, "light", {1.5, 1.5, 1.5}, {1.5, 2.5, 1.5}, {2.5, 2.5, 1.5}, {2.5, 1.5, 1.5}, 12, 0.0, 40.0);
   if (occluder) scene.surfaces.push_back(quad("occluder", {1.7, 1.7, 0.75}, {2.3, 1.7, 0.75}, {2.3, 2.3, 0.75}, {1.7, 2.3, 0.75}, 0.0));
+  if (shade) add_tessellated(scene, "shade", {1.55, 1.55, 1.2}, {2.45, 1.55, 1.2}, {2.45, 2.45, 1.2}, {1.55, 2.45, 1.2}, 9, 0.0);
   return scene;
 }
 
@@ -107,14 +110,16 @@ TEST(ShooterClusters, LightOfTrianglesMatchesTheClosedFormOfTheRectangle) {
   }
   std::printf("light of 288 triangles in clusters: floor radiosity against the closed form, largest error %.2e\n",
               worst);
-  // Every watt emitted is absorbed, escaped or still unshot: the books balance.
-  const SolveStats& st = sol.stats;
-  EXPECT_NEAR(st.absorbed_w[0] + st.escaped_w[0] + st.unshot_w[0], st.emitted_w[0], 1e-9 * st.emitted_w[0]);
+  // No shot delivers more than it shoots (a kernel that overestimated would), and all was shot.
+  EXPECT_GE(sol.stats.escaped_w[0], 0);
+  EXPECT_LT(sol.stats.unshot_w[0], 1e-6 * sol.stats.emitted_w[0]);
 }
 
-TEST(ShooterClusters, ShadowMatchesExactVisibilityOutsideThePenumbra) {
-  // The same scene, every light triangle shooting alone with exact shadows: the reference.
-  const Scene scene = light_of_triangles(true);
+/// The floor of `scene` solved with clusters against every triangle shooting alone with exact
+/// shadows (the reference): the exact umbra dark, the elements that see the whole light (at
+/// least `least_lit` of them) within 1e-3, and the floor's total (its penumbra drawn by the
+/// subtrees' shadow rays) within `total_relative`.
+void expect_shadow_as_exact_visibility(const Scene& scene, const char* what, int least_lit, double total_relative) {
   const Solution clustered = solve(scene, true), exact = solve(scene, false);
   const SurfaceSolution *a = clustered.find("floor"), *b = exact.find("floor");
   ASSERT_TRUE(a != nullptr && b != nullptr);
@@ -136,12 +141,38 @@ TEST(ShooterClusters, ShadowMatchesExactVisibilityOutsideThePenumbra) {
       EXPECT_NEAR(got, want, 1e-3 * want) << "at " << p.transpose();
     }
   }
-  EXPECT_GE(umbra, 4);  // 0.2 x 0.2 m: the occluder twice over, less the light
-  EXPECT_GT(lit, 1000);
-  // The penumbra is drawn by nodes' shadow rays: the floor's mean within 1%.
-  EXPECT_NEAR(sum_a, sum_b, 1e-2 * sum_b);
-  std::printf("shadow: %d umbra elements dark, %d lit within %.2e, floor mean %+.2e against exact visibility\n",
-              umbra, lit, worst_lit, sum_a / sum_b - 1);
+  EXPECT_GE(umbra, 4) << what;
+  EXPECT_GE(lit, least_lit) << what;
+  EXPECT_NEAR(sum_a, sum_b, total_relative * sum_b) << what;
+  std::printf("%s: %d umbra elements dark, %d lit within %.2e, floor total %+.2e against exact visibility\n",
+              what, umbra, lit, worst_lit, sum_a / sum_b - 1);
+}
+
+TEST(ShooterClusters, ShadowMatchesExactVisibilityOutsideThePenumbra) {
+  expect_shadow_as_exact_visibility(light_of_triangles(true), "square half way down", 1000, 2e-3);
+}
+
+TEST(ShooterClusters, TrianglesOfTheSameClusterCastTheirShadows) {
+  // A shade of triangles under the light of triangles: both in the same clusters. Far from a
+  // subtree, the cluster's other members hide it as any surface does: the umbra stays dark (it
+  // was lit when a cluster's members were passed over by its shadow rays). No floor element
+  // sees all of the light; its penumbra, slivers of the light seen past the shade's edges, is
+  // drawn by the subtrees' rays to their centres (measured +8.3% on the floor's total): an
+  // occluder this near a light is where clusters cost accuracy (docs/method.md).
+  const Scene scene = light_of_triangles(false, true);
+  const Mesh mesh = make_grid_mesh(scene, {kDivisions, 2});
+  const ShooterClusters clusters = make_shooter_clusters(mesh);
+  for (const int root : clusters.roots) {
+    const ShooterClusters::Node& node = clusters.nodes[static_cast<size_t>(root)];
+    bool light = false, shade = false;
+    for (int m = node.begin; m < node.end; ++m) {
+      const std::string& name = mesh.surfaces[clusters.sides[static_cast<size_t>(m)]].name;
+      light = light || name.starts_with("light");
+      shade = shade || name.starts_with("shade");
+    }
+    EXPECT_TRUE(light && shade) << "a cluster should hold both";
+  }
+  expect_shadow_as_exact_visibility(scene, "shade in the light's clusters", 0, 0.5);
 }
 
 TEST(ShooterClusters, SlowClosedRoomOfTrianglesKeepsItsEnergy) {
@@ -211,6 +242,15 @@ TEST(ShooterClusters, ShadowRaysAgreeWithTheRayCaster) {
   }
   EXPECT_GT(blocked, 400);
   EXPECT_LT(blocked, 3600);
+  // Crossings within `ignore_m` of the end passed over: the segment shortened by as much; a
+  // surface skipped: the ray caster skips it too.
+  for (int k = 0; k < 2000; ++k) {
+    const Vec3 p(pos(rng), pos(rng), pos(rng)), q(pos(rng), pos(rng), pos(rng));
+    const double ignore_m = 0.5 * (q - p).norm() * std::uniform_real_distribution<double>(0, 1)(rng);
+    const size_t skip = static_cast<size_t>(k) % scene.surfaces.size();
+    const Vec3 end = q - ignore_m * (q - p).normalized();
+    ASSERT_EQ(bvh.blocks_segment(p, q, ignore_m, skip, {}), !testing_support::visible(scene, p, end, skip, none)) << k;
+  }
 }
 
 }  // namespace shooter_clusters_test
