@@ -5,10 +5,10 @@
 
 #include <cstdio>
 
-#include "core/thread_pool.h"
 #include "mesh/grid_mesh.h"
 #include "support/closed_forms.h"
 #include "support/scenes.h"
+#include "support/threads.h"
 #include "solver/closed_room.h"
 #include "solver/progressive.h"
 
@@ -219,30 +219,17 @@ TEST(Progressive, BlockViewsKeptFromShotToShotGiveTheSameValues) {
           << a.surfaces[s].name << " element " << e;
   EXPECT_NEAR(a.stats.escaped_w[0], b.stats.escaped_w[0], 1e-12 * b.stats.escaped_w[0]);
   // And with the views kept, the same bits on one thread as on several.
-  const int threads = worker_thread_count();
-  set_worker_thread_count(1);
-  const Solution one = solve_progressive(scene, mesh, kept, "grid:16");
-  set_worker_thread_count(threads);
-  for (size_t s = 0; s < a.surfaces.size(); ++s)
-    for (size_t e = 0; e < a.surfaces[s].elements.size(); ++e)
-      ASSERT_TRUE((a.surfaces[s].elements[e].radiosity_w_m2 == one.surfaces[s].elements[e].radiosity_w_m2).all())
-          << a.surfaces[s].name << " element " << e;
+  const auto [one, many] =
+      testing_support::solved_on_one_and_many_threads([&] { return solve_progressive(scene, mesh, kept, "grid:16"); });
+  testing_support::expect_same_bits(one, many);
 }
 
 TEST(Progressive, ResultDoesNotDependOnThreadCount) {
   const Scene scene = paper_scene();
-  const int threads = worker_thread_count();
   for (const double far_field_error : {0.0, 1e-2}) {
-    set_worker_thread_count(1);
-    const Solution one = solve(scene, 32, 1e-4, 0, far_field_error);
-    set_worker_thread_count(std::max(2, threads));
-    const Solution many = solve(scene, 32, 1e-4, 0, far_field_error);
-    set_worker_thread_count(threads);
-    ASSERT_EQ(one.surfaces.size(), many.surfaces.size());
-    for (size_t s = 0; s < one.surfaces.size(); ++s)
-      for (size_t e = 0; e < one.surfaces[s].elements.size(); ++e)
-        ASSERT_EQ(one.surfaces[s].elements[e].radiosity_w_m2[0], many.surfaces[s].elements[e].radiosity_w_m2[0]);
-    EXPECT_EQ(one.stats.escaped_w[0], many.stats.escaped_w[0]);
+    const auto [one, many] = testing_support::solved_on_one_and_many_threads(
+        [&] { return solve(scene, 32, 1e-4, 0, far_field_error); });
+    testing_support::expect_same_bits(one, many);
   }
 }
 

@@ -9,7 +9,6 @@
 #include <cstdio>
 #include <random>
 
-#include "core/thread_pool.h"
 #include "mesh/grid_mesh.h"
 #include "solver/bvh.h"
 #include "solver/closed_room.h"
@@ -18,6 +17,7 @@
 #include "support/closed_forms.h"
 #include "support/ray_scene.h"
 #include "support/scenes.h"
+#include "support/threads.h"
 
 namespace radrecon {
 namespace shooter_clusters_test {
@@ -200,17 +200,8 @@ TEST(ShooterClusters, SlowClosedRoomOfTrianglesKeepsItsEnergy) {
 
 TEST(ShooterClusters, ResultDoesNotDependOnThreadCount) {
   const Scene scene = light_of_triangles(true);
-  const int threads = worker_thread_count();
-  set_worker_thread_count(1);
-  const Solution one = solve(scene, true, 1e-4);
-  set_worker_thread_count(std::max(2, threads));
-  const Solution many = solve(scene, true, 1e-4);
-  set_worker_thread_count(threads);
-  ASSERT_EQ(one.surfaces.size(), many.surfaces.size());
-  for (size_t s = 0; s < one.surfaces.size(); ++s)
-    for (size_t e = 0; e < one.surfaces[s].elements.size(); ++e)
-      ASSERT_EQ(one.surfaces[s].elements[e].radiosity_w_m2[0], many.surfaces[s].elements[e].radiosity_w_m2[0]);
-  EXPECT_EQ(one.stats.escaped_w[0], many.stats.escaped_w[0]);
+  const auto [one, many] = testing_support::solved_on_one_and_many_threads([&] { return solve(scene, true, 1e-4); });
+  testing_support::expect_same_bits(one, many);
 }
 
 TEST(ShooterClusters, ShadowRaysAgreeWithTheRayCaster) {
