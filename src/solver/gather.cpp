@@ -161,8 +161,9 @@ Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, cons
   // What the element saw of this block at its last gather from the patch (not the root's: `seen`).
   const std::uint32_t index = static_cast<std::uint32_t>(&b - &tree.root());
   const BlockView* known = seen == nullptr && views != nullptr ? views->find(index) : nullptr;
-  // A block new to the element's views in a later shot: its form factors alone, rather than
-  // finding the patch's fragments for it (a shot that descends one level deeper than the last).
+  // A block without a view from the element's last gather (this shot goes one level deeper, or
+  // the block had no unshot power then): its form factors alone, rather than finding the
+  // patch's fragments for it.
   const bool alone = known == nullptr && seen == nullptr && views != nullptr && !views->last.empty();
   BlockView now;  // what it sees of it this time
   now.block = index;

@@ -364,7 +364,7 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
           kept.assign(seen_now.begin(), seen_now.end());
         }
       });
-    tree_storage = std::move(tree).release();
+      tree_storage = std::move(tree).release();
     }
     // What each element keeps, side by side; the power delivered summed in order, on one thread.
     parallel_for(0, static_cast<std::int64_t>(gain.size()), [&](std::int64_t i) {
