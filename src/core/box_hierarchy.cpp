@@ -1,6 +1,7 @@
 #include "core/box_hierarchy.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/check.h"
 
@@ -40,6 +41,24 @@ void build_node(std::span<const BoxItem> items, int leaf_size, size_t index, int
 }
 
 }  // namespace
+
+double ray_box_entry(const Vec3& lo, const Vec3& hi, const Vec3& o, const Vec3& inverse, double t_max) {
+  double t0 = 0, t1 = t_max;
+  for (int a = 0; a < 3; ++a) {
+    // An axis the ray runs parallel to: inside the slab or not (an infinite inverse would give
+    // 0 x infinity = NaN at the slab's face).
+    if (!std::isfinite(inverse[a])) {
+      if (o[a] < lo[a] || o[a] > hi[a]) return -1;
+      continue;
+    }
+    double ta = (lo[a] - o[a]) * inverse[a], tb = (hi[a] - o[a]) * inverse[a];
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+    if (!(t0 <= t1)) return -1;
+  }
+  return t0;
+}
 
 void build_box_hierarchy(std::span<const BoxItem> items, int leaf_size, std::vector<BoxNode>& nodes,
                          std::vector<int>& order) {

@@ -23,6 +23,11 @@ struct BoxItem {
   Vec3 lo, hi, centre;
 };
 
+/// Where the ray o + t d enters the box [lo, hi] for t in [0, t_max]: the least such t, or a
+/// negative value if it misses the box. `inverse`: 1 / d per axis (infinite along an axis the
+/// ray runs parallel to). The slab test of both hierarchies' ray queries.
+double ray_box_entry(const Vec3& lo, const Vec3& hi, const Vec3& o, const Vec3& inverse, double t_max);
+
 /// Builds the hierarchy of `items` into `nodes` (node 0 the root; empty for no items) and
 /// `order` (the items' indices, leaf by leaf). Deterministic: the same input gives the same tree.
 void build_box_hierarchy(std::span<const BoxItem> items, int leaf_size, std::vector<BoxNode>& nodes,

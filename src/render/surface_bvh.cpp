@@ -37,21 +37,7 @@ SurfaceBvh::SurfaceBvh(const Scene& scene) {
 }
 
 double SurfaceBvh::enter(const BoxNode& node, const Vec3& o, const Vec3& inverse, double t_max) {
-  double t0 = 0, t1 = t_max;
-  for (int a = 0; a < 3; ++a) {
-    // An axis the ray runs parallel to: inside the slab or not (an infinite inverse would give
-    // 0 x infinity = NaN at the slab's face).
-    if (!std::isfinite(inverse[a])) {
-      if (o[a] < node.lo[a] || o[a] > node.hi[a]) return -1;
-      continue;
-    }
-    double ta = (node.lo[a] - o[a]) * inverse[a], tb = (node.hi[a] - o[a]) * inverse[a];
-    if (ta > tb) std::swap(ta, tb);
-    t0 = std::max(t0, ta);
-    t1 = std::min(t1, tb);
-    if (!(t0 <= t1)) return -1;
-  }
-  return t0;
+  return ray_box_entry(node.lo, node.hi, o, inverse, t_max);
 }
 
 }  // namespace radrecon

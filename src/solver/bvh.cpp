@@ -152,24 +152,6 @@ void OccluderBvh::collect(const Shaft& shaft, size_t skip_a, size_t skip_b,
 
 namespace {
 
-/// Whether the segment p + t d, t in [0, 1], meets the box [lo, hi] widened by `slack_m`.
-bool segment_meets_box(const Vec3& p, const Vec3& d, const Vec3& lo, const Vec3& hi, double slack_m) {
-  double t0 = 0, t1 = 1;
-  for (int a = 0; a < 3; ++a) {
-    const double l = lo[a] - slack_m, h = hi[a] + slack_m;
-    if (d[a] == 0) {
-      if (p[a] < l || p[a] > h) return false;
-      continue;
-    }
-    double ta = (l - p[a]) / d[a], tb = (h - p[a]) / d[a];
-    if (ta > tb) std::swap(ta, tb);
-    t0 = std::max(t0, ta);
-    t1 = std::min(t1, tb);
-    if (t0 > t1) return false;
-  }
-  return true;
-}
-
 /// Whether the segment from p to q crosses the occluder's polygon farther than `ignore_m` from q.
 bool crosses(const Occluder& o, const Vec3& p, const Vec3& q, double ignore_m) {
   const double ep = o.plane.eval(p), eq = o.plane.eval(q);
@@ -198,13 +180,14 @@ bool crosses(const Occluder& o, const Vec3& p, const Vec3& q, double ignore_m) {
 bool OccluderBvh::blocks_segment(const Vec3& p, const Vec3& q, double ignore_m, size_t skip,
                                  std::span<const std::uint8_t> skip_surfaces) const {
   if (nodes_.empty()) return false;
-  const Vec3 d = q - p;
+  const Vec3 inverse = (q - p).cwiseInverse();  // infinite along an axis the segment runs parallel to
+  const Vec3 slack = Vec3::Constant(tol::kShaftSlack_m);
   std::array<int, 64> stack;  // as collect()
   int top = 0;
   stack[top++] = 0;
   while (top > 0) {
     const BoxNode& node = nodes_[static_cast<size_t>(stack[--top])];
-    if (!segment_meets_box(p, d, node.lo, node.hi, tol::kShaftSlack_m)) continue;
+    if (ray_box_entry(node.lo - slack, node.hi + slack, p, inverse, 1) < 0) continue;
     if (node.count > 0) {
       for (int k = node.first; k < node.first + node.count; ++k) {
         const Occluder* o = order_[static_cast<size_t>(k)];

@@ -170,12 +170,11 @@ Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, cons
   if (seen != nullptr) centre.f = seen->form_factor, centre.partly_seen = seen->partly;
   if (known != nullptr && known->centre_known) centre.f = known->centre, centre.partly_seen = known->partly;
   // Keeps what the element saw of the block, as it leaves it, for the next shot.
-  const auto keep = [&](const Gathered& got) {
-    if (seen != nullptr || views == nullptr) return got;
+  const auto keep = [&] {
+    if (seen != nullptr || views == nullptr) return;
     now.centre_known = centre.f >= 0;
     if (now.centre_known) now.centre = centre.f, now.partly = centre.partly_seen;
     views->now->push_back(now);
-    return got;
   };
   // The budget is shared among the blocks in proportion to their area: those that shoot as one
   // tile the patch, so their errors add up to at most budget_w_m2.
@@ -184,7 +183,7 @@ Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, cons
   ConvexPolygon poly;  // the block's outline, for its form factors
   for (int k = 0; k < b.corner_count; ++k) poly.push(b.corners[k]);
   if (!shoots_whole(b, poly, r, shooter_normal, shadows, share, midpoint, alone, centre)) {
-    keep(out);
+    keep();
     for (int c = 0; c < b.child_count; ++c)
       out += gather(tree, tree.block(b.first_child + c), r, shooter_normal, shadows, budget_w_m2, nullptr, views);
     return out;
@@ -244,7 +243,8 @@ Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, cons
     now.gauss_known = true;
     std::copy(f.begin(), f.begin() + static_cast<std::ptrdiff_t>(count), now.gauss.begin());
   }
-  return keep(out);
+  keep();
+  return out;
 }
 
 }  // namespace radrecon

@@ -358,10 +358,12 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
         }
         gain[static_cast<size_t>(i)] = got;
         // Kept for an element behind many shadows, where finding them again costs most.
-        std::vector<BlockView>& kept = keep_blocks ? views->blocks[static_cast<size_t>(i)] : seen_now;
-        if (keep_blocks && (shadows.kept_fragments() || !kept.empty())) {
-          std::sort(seen_now.begin(), seen_now.end(), [](const BlockView& a, const BlockView& b) { return a.block < b.block; });
-          kept.assign(seen_now.begin(), seen_now.end());
+        if (keep_blocks) {
+          std::vector<BlockView>& kept = views->blocks[static_cast<size_t>(i)];
+          if (shadows.kept_fragments() || !kept.empty()) {
+            std::sort(seen_now.begin(), seen_now.end(), [](const BlockView& a, const BlockView& b) { return a.block < b.block; });
+            kept.assign(seen_now.begin(), seen_now.end());
+          }
         }
       });
       tree_storage = std::move(tree).release();
