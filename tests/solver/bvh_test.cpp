@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <random>
 
 #include "solver/bvh.h"
@@ -12,6 +13,7 @@
 #include "solver/visibility.h"
 #include "support/occluder_lists.h"
 #include "support/ray_scene.h"
+#include "support/scenes.h"
 
 namespace radrecon {
 namespace bvh_test {
@@ -231,6 +233,70 @@ TEST(OccluderBvh, WallsThatOnlyTouchTheShaftAreCulledAndShadeNothing) {
     }
   }
   EXPECT_GT(partition_kept, 20);
+}
+
+TEST(OccluderBvh, FewBlockersTakenAsTheyAreGiveTheSameShadowsBitForBit) {
+  // The progressive solver's receivers take a side's few blockers (at most 4, no solid) as they
+  // are instead of searching their own widened shaft (solver/progressive.cpp, kFewBlockers): the
+  // visible form factors of the patch and of its blocks must not change in a single bit, nor
+  // whether each is seen in part, at the element's centre and at points around it.
+  std::mt19937 rng(2026);
+  std::uniform_real_distribution<double> pos(-0.6, 1.6), height(0.2, 1.8), size(0.1, 0.7), unit(0, 1), tilt(-0.4, 0.4);
+  int compared = 0, shaded = 0, dropped = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    Scene scene;
+    scene.surfaces.push_back(testing_support::quad("receiver", {0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, 0.5));
+    scene.surfaces.push_back(testing_support::quad("shooter", {0, 0, 2}, {0, 1, 2}, {1, 1, 2}, {1, 0, 2}, 0.5));
+    const int blockers = 1 + trial % 4;
+    for (int k = 0; k < blockers; ++k) {
+      const Vec3 c(pos(rng), pos(rng), height(rng));
+      const Vec3 u = Vec3(size(rng), 0, tilt(rng) * 0.3), v = Vec3(0, size(rng), tilt(rng) * 0.3);
+      Surface s;
+      s.name = "b" + std::to_string(k);
+      if (k % 2 == 1) s.set_triangle(c - u - v, c + u - v, c + v);
+      else s.corners = {c - u - v, c + u - v, c + u + v, c - u + v};
+      scene.surfaces.push_back(s);
+    }
+    const std::vector<Occluder> occ = make_occluders(scene);
+    const OccluderBvh bvh(occ);
+    const Surface& shooter = scene.surfaces[1];
+    const std::vector<const Occluder*> side = bvh.between(shooter.polygon(), scene.surfaces[0].polygon(), 0, 1);
+    // The patch and its quarters and sixteenths, as the shooter tree's blocks.
+    std::vector<ConvexPolygon> blocks;
+    for (const int n : {1, 2, 4})
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+          const double u0 = double(i) / n, u1 = double(i + 1) / n, v0 = double(j) / n, v1 = double(j + 1) / n;
+          ConvexPolygon b;
+          for (const auto& [u, v] : {std::pair{u0, v0}, {u0, v1}, {u1, v1}, {u1, v0}}) b.push(Vec3(u, v, 2));
+          blocks.push_back(b);
+        }
+    const Vec3 n(0, 0, 1);
+    for (int k = 0; k < 20; ++k) {
+      const Vec3 centre(unit(rng), unit(rng), 0);
+      const double reach_m = 0.05;
+      std::vector<const Occluder*> near;
+      bvh.collect(Shaft({&centre, 1}, shooter.polygon(), reach_m), 0, 1, near);
+      dropped += static_cast<int>(side.size() - near.size());
+      for (const Vec3& p : {centre, Vec3(centre + Vec3(0.03, -0.02, 0)), Vec3(centre + Vec3(-0.035, 0.035, 0))}) {
+        std::vector<ShadowVolume> from_side, from_shaft;
+        shadow_volumes(p, n, side, from_side);
+        shadow_volumes(p, n, near, from_shaft);
+        for (const ConvexPolygon& b : blocks) {
+          bool partly_side = false, partly_shaft = false;
+          const double f_side = visible_form_factor_past(p, n, b, -Vec3::UnitZ(), from_side, &partly_side);
+          const double f_shaft = visible_form_factor_past(p, n, b, -Vec3::UnitZ(), from_shaft, &partly_shaft);
+          ASSERT_EQ(f_side, f_shaft) << "trial " << trial << ", point " << p.transpose();
+          ASSERT_EQ(partly_side, partly_shaft) << "trial " << trial;
+          ++compared;
+          shaded += partly_shaft;
+        }
+      }
+    }
+  }
+  std::printf("%d form factors compared, %d seen in part; %d blockers off an element's shaft\n", compared, shaded, dropped);
+  EXPECT_GT(shaded, compared / 10) << "the blockers should often shade the blocks";
+  EXPECT_GT(dropped, 100) << "the elements' shafts should often drop some of the side's blockers";
 }
 
 TEST(OccluderBvh, EmptyAndSingleOccluderScenes) {
