@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -114,6 +115,48 @@ TEST(CornellBox, PublishedFloorMeanAgreesWithPathTracing) {
   const Scene scene = cornell_scene();
   ASSERT_TRUE(scene.surfaces[*scene.find_surface("red_wall.a")].is_triangle());
   expect_floor_agrees(scene);
+}
+
+/// The far field's bound (ProgressiveOptions::far_field_error) against a bound 20 times finer,
+/// both converged to 1e-6, on every side of the published box but the light: each side's mean
+/// relative difference over its elements (those above 1e-3 of its peak), and the largest.
+/// Blocks that the strict bound lets shoot whole though an occluder hides part of them darken
+/// the box by one sign (docs/method.md, the far field's bound): the ceiling by 0.22% on average
+/// at the default bound (largest 0.39%), by 0.72% at four times the bound, which this test
+/// tells apart.
+TEST(CornellBox, SlowFarFieldBoundKeepsEverySideNearAFineSolve) {
+  constexpr double kMeanRelative = 5e-3, kLargestRelative = 1e-2;
+  const Scene scene = cornell_scene();
+  const Mesh mesh = make_grid_mesh(scene, {kDivisions, 2});
+  const auto solve = [&](double far_field_error) {
+    ProgressiveOptions options;
+    options.residual = 1e-6;
+    options.far_field_error = far_field_error;
+    return solve_progressive(scene, mesh, options, "grid");
+  };
+  const Solution bounded = solve(kDefaultFarFieldError), fine = solve(1e-3);
+  double worst_mean = 0, worst = 0;
+  for (size_t s = 0; s < fine.surfaces.size(); ++s) {
+    const SurfaceSolution& ref = fine.surfaces[s];
+    if (ref.name == "light") continue;
+    double peak = 0;
+    for (const SolutionElement& e : ref.elements) peak = std::max(peak, e.radiosity_w_m2.sum());
+    double sum = 0, largest = 0;
+    int count = 0;
+    for (size_t e = 0; e < ref.elements.size(); ++e) {
+      const double b_ref = ref.elements[e].radiosity_w_m2.sum();
+      if (b_ref <= 1e-3 * peak) continue;
+      const double relative = (bounded.surfaces[s].elements[e].radiosity_w_m2.sum() - b_ref) / b_ref;
+      sum += relative, largest = std::max(largest, std::abs(relative)), ++count;
+    }
+    ASSERT_GT(count, 0) << ref.name;
+    const double mean = sum / count;
+    EXPECT_LT(std::abs(mean), kMeanRelative) << ref.name;
+    EXPECT_LT(largest, kLargestRelative) << ref.name;
+    if (std::abs(mean) > std::abs(worst_mean)) worst_mean = mean;
+    worst = std::max(worst, largest);
+  }
+  std::printf("the default bound against a 20 times finer one: worst side mean %+.2e, largest %.2e\n", worst_mean, worst);
 }
 
 }  // namespace cornell_test
