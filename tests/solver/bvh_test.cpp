@@ -31,11 +31,7 @@ Scene random_scene(std::mt19937& rng, int count) {
     if (axis.norm() < 1e-3) axis = Vec3::UnitZ();
     const Eigen::Matrix3d rot = Eigen::AngleAxisd(angle(rng), axis.normalized()).toRotationMatrix();
     const Vec3 u = rot * Vec3(size(rng) / 2, 0, 0), v = rot * Vec3(0, size(rng) / 2, 0);
-    Surface s;
-    s.name = "s" + std::to_string(k);
-    if (k % 3 == 2) s.set_triangle(c - u - v, c + u - v, c + v);
-    else s.corners = {c - u - v, c + u - v, c + u + v, c - u + v};
-    scene.surfaces.push_back(s);
+    scene.surfaces.push_back(testing_support::centred_polygon("s" + std::to_string(k), c, u, v, k % 3 == 2));
   }
   return scene;
 }
@@ -251,11 +247,7 @@ TEST(OccluderBvh, FewBlockersTakenAsTheyAreGiveTheSameShadowsBitForBit) {
     for (int k = 0; k < blockers; ++k) {
       const Vec3 c(pos(rng), pos(rng), height(rng));
       const Vec3 u = Vec3(size(rng), 0, tilt(rng) * 0.3), v = Vec3(0, size(rng), tilt(rng) * 0.3);
-      Surface s;
-      s.name = "b" + std::to_string(k);
-      if (k % 2 == 1) s.set_triangle(c - u - v, c + u - v, c + v);
-      else s.corners = {c - u - v, c + u - v, c + u + v, c - u + v};
-      scene.surfaces.push_back(s);
+      scene.surfaces.push_back(testing_support::centred_polygon("b" + std::to_string(k), c, u, v, k % 2 == 1));
     }
     const std::vector<Occluder> occ = make_occluders(scene);
     const OccluderBvh bvh(occ);

@@ -215,11 +215,7 @@ TEST(ShooterClusters, ShadowRaysAgreeWithTheRayCaster) {
     Vec3 u(unit(rng), unit(rng), unit(rng)), w(unit(rng), unit(rng), unit(rng));
     u = u.normalized() * size(rng) / 2;
     w = (w - w.dot(u) / u.squaredNorm() * u).normalized() * size(rng) / 2;
-    Surface s;
-    s.name = "s" + std::to_string(k);
-    if (k % 3 == 2) s.set_triangle(c - u - w, c + u - w, c + w);
-    else s.corners = {c - u - w, c + u - w, c + u + w, c - u + w};
-    scene.surfaces.push_back(s);
+    scene.surfaces.push_back(testing_support::centred_polygon("s" + std::to_string(k), c, u, w, k % 3 == 2));
   }
   const std::vector<Occluder> occluders = make_occluders(scene);
   const OccluderBvh bvh(occluders);

@@ -18,6 +18,16 @@ inline Surface quad(const std::string& name, const Vec3& c0, const Vec3& c1, con
   return s;
 }
 
+/// A polygon about the point c with half-axes u and v: the parallelogram c +- u +- v, or the
+/// triangle (c - u - v, c + u - v, c + v) inside it (random occluders in the visibility tests).
+inline Surface centred_polygon(const std::string& name, const Vec3& c, const Vec3& u, const Vec3& v, bool triangle) {
+  Surface s;
+  s.name = name;
+  if (triangle) s.set_triangle(c - u - v, c + u - v, c + v);
+  else s.corners = {c - u - v, c + u - v, c + u + v, c - u + v};
+  return s;
+}
+
 /// A closed unit box, every face of reflectance rho facing inwards; the top emits E W/m^2.
 inline Scene closed_box(double rho, double E) {
   Scene box;
