@@ -6,6 +6,7 @@
 #include <numbers>
 #include <optional>
 
+#include "core/parallel.h"
 #include "core/tolerances.h"
 #include "solver/far_field.h"
 
@@ -35,6 +36,19 @@ Receiver make_receiver(const Surface& surface, const MeshElement& e, const Vec3&
   for (int k = 0; k < g.count; ++k) r.gauss[k] = surface.point(g.uv[k].x(), g.uv[k].y());
   r.gauss_count = g.count;
   return r;
+}
+
+std::vector<std::vector<Receiver>> make_receivers(const Scene& scene, const Mesh& mesh) {
+  std::vector<std::vector<Receiver>> out(mesh.surfaces.size());
+  for (size_t s = 0; s < mesh.surfaces.size(); ++s) {
+    const MeshSurface& side = mesh.surfaces[s];
+    out[s].resize(side.elements.size());
+    parallel_for(0, static_cast<std::int64_t>(side.elements.size()), [&](std::int64_t e) {
+      out[s][static_cast<size_t>(e)] =
+          make_receiver(scene.surfaces[side.scene_surface], side.elements[static_cast<size_t>(e)], side.normal);
+    });
+  }
+  return out;
 }
 
 double form_factor_bound(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal) {

@@ -37,6 +37,8 @@ GaussPoints gauss_points(const ParamCell& cell);
 
 /// The element as a receiver: its centre and its Gauss points on the surface.
 Receiver make_receiver(const Surface& surface, const MeshElement& e, const Vec3& normal);
+/// Every element of the mesh as a receiver, side by side: [side][element].
+std::vector<std::vector<Receiver>> make_receivers(const Scene& scene, const Mesh& mesh);
 
 /// An upper bound of the unoccluded form factor from a differential area at p (unit normal n)
 /// to the block: A cos_x cos_y / (pi r^2) with r no less than p's distance d to the block's

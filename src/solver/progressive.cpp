@@ -53,11 +53,12 @@ struct ReceivingSide {
 
 /// At most this many blockers between a receiving side and the shooter, none of them a convex
 /// solid's face, and each receiving element takes them all rather than those in its own shaft:
-/// making the shaft costs more than the shadow volumes it saves (the paper's reference solve: 9%
-/// of its time). The same shadows, bit for bit: an occluder outside the element's shaft casts
-/// none on the patch from there (its volume meets no block), and the element's list is the
-/// side's in the same order, less such occluders. A solid's faces are left to the shaft: which of
-/// them stand in for the others (ConvexSolid::face_hides_nothing()) depends on the faces listed.
+/// making the shaft costs more than the shadow volumes it saves (9% of the processor time of
+/// the paper's reference solve). The same shadows, bit for bit: an occluder outside the
+/// element's shaft casts none on the patch from there (its volume meets no block), and the
+/// element's list is the side's in the same order, less such occluders. A solid's faces are left
+/// to the shaft: which of them stand in for the others (ConvexSolid::face_hides_nothing())
+/// depends on the faces listed.
 constexpr size_t kFewBlockers = 4;
 
 /// Receiving elements handed to a thread at a time: one costs a microsecond (a far patch, no
@@ -79,16 +80,7 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
   const ContactFinder contacts(scene);
   for (const MeshSurface& side : mesh.surfaces) splits.push_back(shooter_splits(scene, side, contacts));
   const std::vector<std::vector<ConvexPolygon>> covers_by = covers_by_surface(scene);
-  // Every element as a receiver (its centre and Gauss points), made once for all shots.
-  std::vector<std::vector<Receiver>> receivers(mesh.surfaces.size());
-  for (size_t s = 0; s < mesh.surfaces.size(); ++s) {
-    const MeshSurface& side = mesh.surfaces[s];
-    receivers[s].resize(side.elements.size());
-    parallel_for(0, static_cast<std::int64_t>(side.elements.size()), [&](std::int64_t e) {
-      receivers[s][static_cast<size_t>(e)] =
-          make_receiver(scene.surfaces[side.scene_surface], side.elements[static_cast<size_t>(e)], side.normal);
-    });
-  }
+  const std::vector<std::vector<Receiver>> receivers = make_receivers(scene, mesh);  // once for all shots
   std::vector<Patch> patches;
   std::vector<size_t> first_patch(mesh.surfaces.size());
   Rgb emitted = Rgb::Zero();
