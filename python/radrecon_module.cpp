@@ -246,6 +246,7 @@ Raises radrecon.Error (a ValueError) for refused input.)doc");
          "metres, radiosity (n, 3) W/m^2, area (n,) m^2, cell (n, 4) its (u0, v0, u1, v1), triangle (n,)")
       .def("save", [](const Solution& s, const std::string& path) {
         check_output_file(path, "path");
+        py::gil_scoped_release release;
         write_solution_json(path, s);
       }, py::arg("path"), "Write the solution JSON that `radrecon solve --out` writes.");
 

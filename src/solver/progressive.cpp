@@ -54,12 +54,12 @@ struct ReceivingSide {
 /// At most this many blockers between a receiving side and the shooter, none of them a convex
 /// solid's face, and each receiving element takes them all rather than those in its own shaft:
 /// making the shaft costs more than the shadow volumes it saves (9% of the processor time of
-/// the paper's reference solve). The same shadows, bit for bit: the side's shaft holds every
-/// segment from a point of the side to the patch, so the element's list is the side's in the
-/// same order less occluders outside the element's shaft, which cast no shadow on the patch from
-/// the element's points (their volumes meet no block). A solid's faces are left to the shaft:
-/// which of them stand in for the others (ConvexSolid::face_hides_nothing()) depends on the
-/// faces listed.
+/// the paper's reference solve). The same visible polygons: the side's shaft holds every segment
+/// from a point of the side to the patch, so the side's list holds every occluder that shades
+/// the patch from the element's points. The form factors agree to round-off (an extra volume
+/// that meets a block's polygon only loosely can send it down another path of the clipping);
+/// the paper's solution is bit for bit the same. A solid's faces are left to the shaft: which of
+/// them stand in for the others (ConvexSolid::face_hides_nothing()) depends on the faces listed.
 constexpr size_t kFewBlockers = 4;
 
 /// Receiving elements handed to a thread at a time: one costs a microsecond (a far patch, no
