@@ -81,7 +81,7 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
   const ContactFinder contacts(scene);
   for (const MeshSurface& side : mesh.surfaces) splits.push_back(shooter_splits(scene, side, contacts));
   const std::vector<std::vector<ConvexPolygon>> covers_by = covers_by_surface(scene);
-  const std::vector<std::vector<Receiver>> receivers = make_receivers(scene, mesh);  // once for all shots
+  std::vector<std::vector<Receiver>> receivers = make_receivers(scene, mesh);  // once for all shots
   std::vector<Patch> patches;
   std::vector<size_t> first_patch(mesh.surfaces.size());
   Rgb emitted = Rgb::Zero();
@@ -133,7 +133,6 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
   std::vector<const std::vector<Rgb>*> unshot_by_side;
   for (const SideState& st : state) unshot_by_side.push_back(&st.unshot);
   std::vector<double> cluster_unshot_w(clusters.roots.size());
-
   Rgb escaped = Rgb::Zero();
   const double emitted_sum = emitted.sum();
   RR_CHECK(emitted_sum > 0, "the scene emits no light");
@@ -403,6 +402,8 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
     ++shots;
   }
 
+  // The shots' buffers freed first: the solution's elements take their memory, not fresh pages.
+  [](auto&... v) { (std::remove_reference_t<decltype(v)>().swap(v), ...); }(receivers, patch_views, tree_storage, gain);
   Solution sol;
   sol.scene = scene.name;
   sol.mesh = mesh_spec;
