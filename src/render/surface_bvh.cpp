@@ -1,8 +1,5 @@
 #include "render/surface_bvh.h"
 
-#include <algorithm>
-#include <cmath>
-
 #include "core/tolerances.h"
 
 namespace radrecon {
@@ -34,10 +31,6 @@ SurfaceBvh::SurfaceBvh(const Scene& scene) {
   const double slack_m = tol::kRayBoxSlackRelative * (1.0 + (scene_hi - scene_lo).norm() + scene_lo.norm() + scene_hi.norm());
   for (BoxItem& b : items) b.lo.array() -= slack_m, b.hi.array() += slack_m;
   build_box_hierarchy(items, kLeafSize, nodes_, order_);
-}
-
-double SurfaceBvh::enter(const BoxNode& node, const Vec3& o, const Vec3& inverse, double t_max) {
-  return ray_box_entry(node.lo, node.hi, o, inverse, t_max);
 }
 
 }  // namespace radrecon

@@ -29,9 +29,6 @@ class SurfaceBvh {
   size_t node_count() const { return nodes_.size(); }
 
  private:
-  /// The entry of the ray into the node's box, or a negative value if it misses it.
-  static double enter(const BoxNode& node, const Vec3& o, const Vec3& inverse, double t_max);
-
   std::vector<int> order_;       ///< surfaces, leaf by leaf
   std::vector<BoxNode> nodes_;  ///< core/box_hierarchy.h
 };
@@ -47,7 +44,12 @@ void SurfaceBvh::collect(const Vec3& o, const Vec3& inverse, TMax&& t_max, std::
   };
   std::array<Entry, 64> stack;
   int top = 0;
-  if (const double t = enter(nodes_[0], o, inverse, t_max()); t >= 0) stack[top++] = {0, t};
+  // The ray's entry into a node's box, or a negative value if it misses it.
+  const auto enter = [&](int k) {
+    const BoxNode& node = nodes_[static_cast<size_t>(k)];
+    return ray_box_entry(node.lo, node.hi, o, inverse, t_max());
+  };
+  if (const double t = enter(0); t >= 0) stack[top++] = {0, t};
   while (top > 0) {
     const Entry entry = stack[--top];
     if (entry.t > t_max()) continue;  // hits found since it was pushed lie nearer
@@ -58,8 +60,7 @@ void SurfaceBvh::collect(const Vec3& o, const Vec3& inverse, TMax&& t_max, std::
     }
     // The nearer child on top, so that its hits lower t_max before the farther one is entered.
     const int a = node.first, b = node.first + 1;
-    const double ta = enter(nodes_[static_cast<size_t>(a)], o, inverse, t_max());
-    const double tb = enter(nodes_[static_cast<size_t>(b)], o, inverse, t_max());
+    const double ta = enter(a), tb = enter(b);
     if (ta >= 0 && tb >= 0) {
       stack[top++] = ta <= tb ? Entry{b, tb} : Entry{a, ta};
       stack[top++] = ta <= tb ? Entry{a, ta} : Entry{b, tb};

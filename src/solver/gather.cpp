@@ -155,7 +155,7 @@ bool ReceiverShadows::keeps_fragments(int point, const Vec3& shooter_normal) con
 
 double ReceiverShadows::visible_form_factor(int point, const ConvexPolygon& polygon, const Vec3& shooter_normal,
                                             bool* partly_seen, bool alone) const {
-  if (alone ? found_fragments(point) : keeps_fragments(point, shooter_normal)) return fragments_[static_cast<size_t>(point)].form_factor(polygon, partly_seen);
+  if (uses_fragments(point, shooter_normal, alone)) return fragments_[static_cast<size_t>(point)].form_factor(polygon, partly_seen);
   const Vec3& p = point == 0 ? r_.center : r_.gauss[static_cast<size_t>(point - 1)];
   return visible_form_factor_past(p, r_.normal, polygon, shooter_normal, at(point), partly_seen);
 }
@@ -233,7 +233,7 @@ Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, cons
       size_t batched = 0;
       for (size_t k = 0; k < count; ++k) {
         const int point = static_cast<int>(k) + 1;
-        if (alone ? shadows.found_fragments(point) : shadows.keeps_fragments(point, shooter_normal)) {
+        if (shadows.uses_fragments(point, shooter_normal, alone)) {
           f[k] = shadows.visible_form_factor(point, poly, shooter_normal);
         } else {
           points[batched] = r.gauss[k];

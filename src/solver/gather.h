@@ -93,20 +93,24 @@ class ReceiverShadows {
   /// gather() with BlockViews).
   double visible_form_factor(int point, const ConvexPolygon& polygon, const Vec3& shooter_normal,
                              bool* partly_seen = nullptr, bool alone = false) const;
-  /// Whether visible_form_factor() at the point goes through the patch's kept fragments: the
-  /// patch given, and tol::kKeptFragmentsShadows or more shadows on it from there (found on the
-  /// first call, for the polygons of this shooter). gather() batches the other points.
-  bool keeps_fragments(int point, const Vec3& shooter_normal) const;
-  /// Whether the point has found the patch's fragments already (keeps_fragments() true); asks
-  /// nothing new.
-  bool found_fragments(int point) const { return fragments_state_[static_cast<size_t>(point)] == Fragments::kept; }
-  /// Whether some point has been found to keep the patch's fragments (keeps_fragments()): it sees
+  /// Whether visible_form_factor() at the point, with `alone`, goes through the patch's kept
+  /// fragments: the patch given, and tol::kKeptFragmentsShadows or more shadows on it from there
+  /// (found on the first call, for the polygons of this shooter; with `alone`, only if found
+  /// already). gather() batches the other points.
+  bool uses_fragments(int point, const Vec3& shooter_normal, bool alone = false) const {
+    return alone ? found_fragments(point) : keeps_fragments(point, shooter_normal);
+  }
+  /// Whether some point has been found to keep the patch's fragments (uses_fragments()): it sees
   /// many shadows there. Asks nothing new.
   bool kept_fragments() const {
     return std::find(fragments_state_.begin(), fragments_state_.end(), Fragments::kept) != fragments_state_.end();
   }
 
  private:
+  /// Whether the point keeps the patch's fragments, found on the first call.
+  bool keeps_fragments(int point, const Vec3& shooter_normal) const;
+  /// Whether the point has found the patch's fragments already; asks nothing new.
+  bool found_fragments(int point) const { return fragments_state_[static_cast<size_t>(point)] == Fragments::kept; }
   const Receiver& r_;
   const std::vector<const Occluder*>& occluders_;
   const void* find_ = nullptr;  ///< null: the occluders are given
