@@ -61,6 +61,11 @@ double form_factor_bound(const Block& b, const Vec3& p, const Vec3& n, const Vec
   return b.area_m2 * std::min(1.0, lift / d) * std::min(1.0, h / d) / (std::numbers::pi * d * d);
 }
 
+double form_factor_ceiling(const Block& b, const Vec3& p, const Vec3& shooter_normal) {
+  const double h = shooter_normal.dot(p - b.center);
+  return h > 0 ? std::min(1.0, b.area_m2 / (std::numbers::pi * h * h)) : 0.0;
+}
+
 bool gathers_at_centre(const Block& b, const Receiver& r) {
   const double gap_m = (r.center - b.center).norm() - 0.5 * b.diagonal_m;
   return r.size_m <= tol::kMidpointReceiverRatio * gap_m;
@@ -97,6 +102,9 @@ bool shoots_whole(const Block& b, const ConvexPolygon& poly, const Receiver& r, 
   // the element's power uses, are within half its size of it).
   double form_factor = form_factor_bound(b, p, n, shooter_normal);
   if (form_factor * spread <= budget_w_m2) return true;
+  // Near the block, where that bound is large or infinite, a ceiling that holds everywhere, with
+  // a tenth of the share: the error there has one sign over the elements around the block.
+  if (form_factor_ceiling(b, p, shooter_normal) * spread <= tol::kNearFieldCeilingShare * budget_w_m2) return true;
   if (!std::isfinite(form_factor)) return false;
   // The far field is exact to second order, whatever the radiosity over the block
   // (far_field_radiosity()): what is left is the spread times the kernel's third order,

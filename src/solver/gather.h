@@ -47,6 +47,13 @@ std::vector<std::vector<Receiver>> make_receivers(const Scene& scene, const Mesh
 /// the bounding sphere; 0 when p cannot see the block's front.
 double form_factor_bound(const Block& b, const Vec3& p, const Vec3& n, const Vec3& shooter_normal);
 
+/// An upper bound of the form factor from a differential area at p, of any orientation, to the
+/// block, wherever p lies (form_factor_bound() is infinite within the block's bounding sphere):
+/// min(1, A / (pi h^2)), h p's height over the shooter's plane, as the kernel
+/// cos_x cos_y / (pi r^2) = cos_x h / (pi r^3) is at most 1 / (pi h^2) there; 0 when p is not in
+/// front of the plane.
+double form_factor_ceiling(const Block& b, const Vec3& p, const Vec3& shooter_normal);
+
 /// Whether the receiving element gathers from the block at its centre alone (the midpoint rule):
 /// its size is small against its distance to the block (tol::kMidpointReceiverRatio); else its
 /// mean is gathered at its Gauss points. See gather().
@@ -167,7 +174,8 @@ struct BlockViews {
 /// - its form factor times the spread of its unshot radiosity (channels summed), a strict bound:
 ///   the far field and the children's sum both lie in [lowest, highest] times the visible form
 ///   factor. The form factor is form_factor_bound(), or the visible form factor itself when the
-///   element gathers at its centre alone and sees all of the block; or, when smaller,
+///   element gathers at its centre alone and sees all of the block; or form_factor_ceiling()
+///   against tol::kNearFieldCeilingShare of the share; or, when smaller,
 /// - the same form factor times the spread times far_field_error(): the far field errs to third
 ///   order for any radiosity over the block; used only if the centre sees the whole block (a
 ///   block cut by the receiver's horizon or a shadow is seen through part of it only) and the

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <numbers>
 #include <random>
+#include <tuple>
 
 #include "mesh/grid_mesh.h"
 #include "solver/form_factor.h"
@@ -54,6 +55,51 @@ TEST(ShooterTree, FormFactorBoundIsAtLeastTheExactFormFactor) {
   }
   EXPECT_GT(finite, 10000);
   EXPECT_GT(zero, 1000);  // points behind the block or with the block behind them
+}
+
+TEST(ShooterTree, FormFactorCeilingIsAtLeastTheExactFormFactorAnywhere) {
+  // The ceiling against Lambert's formula for points anywhere, within the block's bounding sphere
+  // included (where form_factor_bound() is infinite), and how close it comes: directly over a
+  // small block it is the form factor to leading order, and next to a large one it is 1.
+  std::mt19937_64 rng(43);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const auto direction = [&] { return Vec3(u(rng), u(rng), u(rng)).normalized(); };
+  int within_sphere = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const Vec3 origin(u(rng), u(rng), u(rng)), a = 0.5 * direction(), b0 = 0.5 * direction();
+    const Vec3 normal = a.cross(b0).normalized(), b = normal.cross(a).normalized() * 0.3 + 0.2 * a;
+    Block block;
+    block.corners = {origin, origin + a, origin + a + b, origin + b, Vec3::Zero()};
+    block.corner_count = 4;
+    block.center = origin + 0.5 * (a + b);
+    block.area_m2 = a.cross(b).norm();
+    for (int k = 0; k < 4; ++k) block.radius_m = std::max(block.radius_m, (block.corners[k] - block.center).norm());
+    // Half of the points within a bounding radius of the centre, half within three.
+    const double reach = trial % 2 == 0 ? block.radius_m : 3.0;
+    const Vec3 p = block.center + reach * Vec3(u(rng), u(rng), u(rng)) / std::sqrt(3.0), n = direction();
+    ConvexPolygon polygon;
+    for (int k = 0; k < 4; ++k) polygon.push(block.corners[k]);
+    const double exact = normal.dot(p - origin) > 0 ? lambert_form_factor(p, n, clip_to_horizon(p, n, polygon)) : 0.0;
+    within_sphere += std::isfinite(form_factor_bound(block, p, n, normal)) ? 0 : 1;
+    ASSERT_LE(exact, form_factor_ceiling(block, p, normal) * (1 + 1e-12)) << "trial " << trial;
+  }
+  EXPECT_GT(within_sphere, 5000);
+  // A 0.1 m square at 1 m, and a 10 m square at 1 cm, each facing the point.
+  for (const auto& [side, height, least_ratio] : {std::tuple{0.1, 1.0, 0.99}, std::tuple{10.0, 0.01, 0.99}}) {
+    Block block;
+    const double half = side / 2;
+    block.corners = {Vec3(-half, -half, 0), Vec3(half, -half, 0), Vec3(half, half, 0), Vec3(-half, half, 0), Vec3::Zero()};
+    block.corner_count = 4;
+    block.center = Vec3::Zero();
+    block.area_m2 = side * side;
+    block.radius_m = half * std::sqrt(2.0);
+    ConvexPolygon polygon;
+    for (int k = 0; k < 4; ++k) polygon.push(block.corners[k]);
+    const Vec3 p(0, 0, height), n(0, 0, -1), up(0, 0, 1);
+    const double exact = lambert_form_factor(p, n, polygon), ceiling = form_factor_ceiling(block, p, up);
+    EXPECT_LE(exact, ceiling * (1 + 1e-12));
+    EXPECT_GE(exact, least_ratio * ceiling) << "side " << side;
+  }
 }
 
 /// A 2 m x 1 m plate in the plane z = 0, facing +z, meshed with `divisions` elements along its
