@@ -267,6 +267,6 @@ Raises radrecon.Error (a ValueError) for refused input.)doc");
 
 scene: a scene JSON file, a mesh file (.obj, .gltf, .glb, .ply) with emitters, or 'paper' or
 'cornell'. mesh: grid:N, quadtree:LEAVES or quadtree-eps:E. patches: grid: shooting patches
-along the longest edge; 0: 2, or 4 for a scene of 256 surfaces or more. clusters: a model's many
+along the longest edge; 0: the default, 4. clusters: a model's many
 small triangles shoot in clusters (radrecon solve --clusters). Returns a Solution.)doc");
 }

@@ -88,7 +88,8 @@ struct AtCentre {
 /// `centre` with what it computed there to decide. `midpoint`: the element gathers at its
 /// centre alone.
 bool shoots_whole(const Block& b, const ConvexPolygon& poly, const Receiver& r, const Vec3& shooter_normal,
-                  const ReceiverShadows& shadows, double budget_w_m2, bool midpoint, bool alone, AtCentre& centre) {
+                  const ReceiverShadows& shadows, double budget_w_m2, double strict_share, bool midpoint, bool alone,
+                  AtCentre& centre) {
   double& f = centre.f;
   if (b.first_child < 0 || b.uniform) return true;
   const Vec3 &p = r.center, &n = r.normal;
@@ -101,10 +102,11 @@ bool shoots_whole(const Block& b, const ConvexPolygon& poly, const Receiver& r, 
   // does: a strict bound with form_factor_bound() at the centre (the Gauss points, which only
   // the element's power uses, are within half its size of it).
   double form_factor = form_factor_bound(b, p, n, shooter_normal);
-  if (form_factor * spread <= budget_w_m2) return true;
+  if (form_factor * spread <= strict_share * budget_w_m2) return true;
   // Near the block, where that bound is large or infinite, a ceiling that holds everywhere, with
   // a tenth of the share: the error there has one sign over the elements around the block.
-  if (form_factor_ceiling(b, p, shooter_normal) * spread <= tol::kNearFieldCeilingShare * budget_w_m2) return true;
+  if (form_factor_ceiling(b, p, shooter_normal) * spread <= strict_share * tol::kNearFieldCeilingShare * budget_w_m2)
+    return true;
   if (!std::isfinite(form_factor)) return false;
   // The far field is exact to second order, whatever the radiosity over the block
   // (far_field_radiosity()): what is left is the spread times the kernel's third order,
@@ -176,7 +178,7 @@ const BlockView* BlockViews::find(std::uint32_t block) const {
 
 Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, const Vec3& shooter_normal,
                 const ReceiverShadows& shadows, double budget_w_m2, const SeenFromCentre* seen,
-                const BlockViews* views) {
+                const BlockViews* views, double strict_share) {
   Gathered out;
   if ((b.highest_w_m2 == 0).all()) return out;
   AtCentre centre;
@@ -204,10 +206,11 @@ Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, cons
   const bool midpoint = gathers_at_centre(b, r);
   ConvexPolygon poly;  // the block's outline, for its form factors
   for (int k = 0; k < b.corner_count; ++k) poly.push(b.corners[k]);
-  if (!shoots_whole(b, poly, r, shooter_normal, shadows, share, midpoint, alone, centre)) {
+  if (!shoots_whole(b, poly, r, shooter_normal, shadows, share, strict_share, midpoint, alone, centre)) {
     keep();
     for (int c = 0; c < b.child_count; ++c)
-      out += gather(tree, tree.block(b.first_child + c), r, shooter_normal, shadows, budget_w_m2, nullptr, views);
+      out += gather(tree, tree.block(b.first_child + c), r, shooter_normal, shadows, budget_w_m2, nullptr, views,
+                    strict_share);
     return out;
   }
   // At the centre, with what shoots_whole() found there.

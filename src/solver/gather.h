@@ -194,8 +194,13 @@ struct BlockViews {
 /// `views`, if given, holds what the element saw of the other blocks at its last gather from the
 /// patch: gather() takes their form factors from there rather than computing them, and appends
 /// what it saw of each block it visits to views->now.
+///
+/// `strict_share`: the fraction of a block's share within which the strict bound with
+/// form_factor_bound() or form_factor_ceiling() lets it shoot as one before its visible form
+/// factor is looked at, seen in part or not (tol::kPartlyHiddenStrictShare where occluders may
+/// hide part of the patch from the element).
 Gathered gather(const ShooterTree& tree, const Block& b, const Receiver& r, const Vec3& shooter_normal,
                 const ReceiverShadows& shadows, double budget_w_m2, const SeenFromCentre* seen = nullptr,
-                const BlockViews* views = nullptr);
+                const BlockViews* views = nullptr, double strict_share = 1.0);
 
 }  // namespace radrecon

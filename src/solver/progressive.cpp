@@ -334,8 +334,7 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
         double budget_w_m2 = 0;  // the distance rule
         SeenFromCentre seen{-1, false};  // the whole patch, as the root block's outline
         if (options.far_field_error > 0) {
-          // A fraction of the element's irradiance: gathered so far, plus this shot's as the
-          // whole patch would give it.
+          // A fraction of the element's irradiance: so far, plus this shot's from the whole patch.
           const size_t k = static_cast<size_t>(i);
           if (views != nullptr && !std::isnan(views->form_factor[k])) {
             seen = {views->form_factor[k], views->partly[k] != 0};
@@ -355,16 +354,17 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
         const bool keep_blocks = views != nullptr && views->keep_blocks;
         if (keep_blocks) block_views = {views->blocks[static_cast<size_t>(i)], &seen_now};
         const BlockViews* blocks_seen = keep_blocks ? &block_views : nullptr;
-        Gathered got = gather(tree, tree.root(), element, shooter_normal, shadows, budget_w_m2, root_seen, blocks_seen);
+        // Occluders may hide part of the patch: less share for the strict bound alone (gather()).
+        const double strict = seen.partly && !job->blockers.empty() ? tol::kPartlyHiddenStrictShare : 1.0;
+        Gathered got = gather(tree, tree.root(), element, shooter_normal, shadows, budget_w_m2, root_seen, blocks_seen, strict);
         if (budget_w_m2 > 0) {
           // The whole patch's estimate can exceed what the element gets many times over (a dark
-          // element beside a bright one, a patch seen in part): then again, with the budget made
-          // for what it got.
+          // element beside a bright one, a patch seen in part): then again, for what it got.
           const double irradiance = so_far_w_m2 + std::min(got.at_center.sum(), got.mean.sum());
           const double budget_got = options.far_field_error * std::max(irradiance, least_irradiance_w_m2);
           if (budget_got < tol::kFarFieldRegatherRatio * budget_w_m2) {
             seen_now.clear();
-            got = gather(tree, tree.root(), element, shooter_normal, shadows, budget_got, root_seen, blocks_seen);
+            got = gather(tree, tree.root(), element, shooter_normal, shadows, budget_got, root_seen, blocks_seen, strict);
           }
         }
         gain[static_cast<size_t>(i)] = got;

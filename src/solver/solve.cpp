@@ -17,9 +17,7 @@
 
 namespace radrecon {
 
-int default_patches(const Scene& scene) {
-  return scene.surfaces.size() >= tol::kManySurfaces ? 4 : GridMeshOptions{}.max_patches;
-}
+int default_patches() { return GridMeshOptions{}.max_patches; }
 
 namespace {
 
@@ -59,7 +57,7 @@ Solution solve_by_spec(const Scene& scene, const std::string& spec, const SolveS
   const std::string kind = spec.substr(0, colon), value = spec.substr(colon + 1);
   if (kind == "grid") {
     const int n = static_cast<int>(spec_integer(value, 1, 100000, field, spec));
-    const GridMeshOptions mesh_options{n, settings.patches > 0 ? settings.patches : default_patches(scene)};
+    const GridMeshOptions mesh_options{n, settings.patches > 0 ? settings.patches : default_patches()};
     const size_t elements = grid_element_count(scene, mesh_options);
     check_limit(Limit::elements, static_cast<long long>(elements), field, "'" + spec + "' makes",
                 "use a smaller N");

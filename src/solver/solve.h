@@ -13,12 +13,12 @@
 
 namespace radrecon {
 
-/// The shooting patches along the longest edge for a scene (GridMeshOptions::max_patches) when
-/// none are asked for: 2, or 4 for a scene of tol::kManySurfaces surfaces or more (a model's
-/// triangles), whose receivers see a patch past many occluders: there the cost of a patch's
-/// visibility grows faster than its area, and the Wuson scene solves in 48-51 s with 4 against
-/// 71-75 s with 2 (docs/benchmarks.md).
-int default_patches(const Scene& scene);
+/// The shooting patches along the longest edge when none are asked for
+/// (GridMeshOptions::max_patches): 4, the fastest for every scene measured (docs/benchmarks.md,
+/// twenty-sixth session): the paper's reference and the Cornell box at grid:128 against 2, 3, 6
+/// and 8, the Wuson scene (48-51 s against 71-75 s with 2). Smaller patches give smaller trees
+/// to visit from each receiver, in more shots.
+int default_patches();
 
 struct SolveSettings {
   double residual = kDefaultResidual;  ///< progressive: stop below this unshot fraction of the emitted power

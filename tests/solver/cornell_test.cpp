@@ -28,7 +28,7 @@ constexpr int kStrata = 2;
 /// Area-weighted mean radiosity (W/m^2 per channel) over the floor's elements, solved on grid:N.
 Rgb solver_floor_mean(const Scene& scene, int divisions) {
   const Solution solution =
-      solve_progressive(scene, make_grid_mesh(scene, {divisions, 2}), ProgressiveOptions{}, "grid");
+      solve_progressive(scene, make_grid_mesh(scene, {divisions}), ProgressiveOptions{}, "grid");
   const SurfaceSolution* floor = solution.find("floor");
   EXPECT_NE(floor, nullptr);
   Rgb sum = Rgb::Zero();
@@ -127,7 +127,7 @@ TEST(CornellBox, PublishedFloorMeanAgreesWithPathTracing) {
 TEST(CornellBox, SlowFarFieldBoundKeepsEverySideNearAFineSolve) {
   constexpr double kMeanRelative = 5e-3, kLargestRelative = 1e-2;
   const Scene scene = cornell_scene();
-  const Mesh mesh = make_grid_mesh(scene, {kDivisions, 2});
+  const Mesh mesh = make_grid_mesh(scene, {kDivisions});
   const auto solve = [&](double far_field_error) {
     ProgressiveOptions options;
     options.residual = 1e-6;

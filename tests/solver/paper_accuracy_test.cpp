@@ -27,7 +27,7 @@ constexpr int kIndirectPaths = 30000; ///< cosine-weighted paths per point check
 const Solution& reference_solution() {
   static const Solution reference = [] {
     const Scene scene = paper_scene();
-    return solve_progressive(scene, make_grid_mesh(scene, {400, 2}), ProgressiveOptions{}, "grid:400");
+    return solve_progressive(scene, make_grid_mesh(scene, {400}), ProgressiveOptions{}, "grid:400");
   }();
   return reference;
 }

@@ -38,7 +38,7 @@ Solution solve(const Scene& scene, int divisions, double residual = 1e-6, size_t
   po.residual = residual;
   po.max_shots = max_shots;
   po.far_field_error = far_field_error;
-  return solve_progressive(scene, make_grid_mesh(scene, {divisions, 2}), po, "grid:" + std::to_string(divisions));
+  return solve_progressive(scene, make_grid_mesh(scene, {divisions}), po, "grid:" + std::to_string(divisions));
 }
 
 TEST(Progressive, OpenFloorUnderRectangularLightMatchesClosedForm) {
