@@ -234,19 +234,20 @@ TEST(OccluderBvh, WallsThatOnlyTouchTheShaftAreCulledAndShadeNothing) {
 }
 
 TEST(OccluderBvh, FewBlockersTakenAsTheyAreGiveTheSameShadows) {
-  // The progressive solver's receivers take a side's few blockers (at most 4, no solid) as they
-  // are instead of searching their own widened shaft (solver/progressive.cpp, kFewBlockers): the
-  // visible form factors of the patch and of its blocks, at the element's centre and at points
-  // around it, one at a time and in the batched path of an element's Gauss points, must agree to
-  // round-off (an extra volume that meets a block only loosely can change the clipping's path),
-  // and whether each is seen in part exactly.
+  // The progressive solver's receivers take a side's few blockers (solver/progressive.cpp,
+  // kFewBlockers), convex solids' faces among them, as they are instead of searching their own
+  // widened shaft: the visible form factors of the patch and of its blocks, at the element's
+  // centre and at points around it, one at a time and in the batched path of an element's Gauss
+  // points, must agree to round-off (an extra volume that meets a block only loosely can change
+  // the clipping's path), and whether each is seen in part exactly. Every third trial adds a
+  // closed box, whose faces seen from the back hide nothing (ConvexSolid::face_hides_nothing()).
   constexpr double kRoundOff = 1e-12;
   std::mt19937 rng(2026);
   // Element centres kept off the receiver's border by more than the points' offsets: the side's
   // shaft holds the segments from every point of the receiving surface, not from beyond it.
   std::uniform_real_distribution<double> pos(-0.6, 1.6), height(0.2, 1.8), size(0.1, 0.7), inner(0.05, 0.95),
       tilt(-0.4, 0.4);
-  int compared = 0, shaded = 0, dropped = 0, equal = 0;
+  int compared = 0, shaded = 0, dropped = 0, equal = 0, solid_faces = 0;
   double largest = 0;
   for (int trial = 0; trial < 60; ++trial) {
     Scene scene;
@@ -258,10 +259,16 @@ TEST(OccluderBvh, FewBlockersTakenAsTheyAreGiveTheSameShadows) {
       const Vec3 u = Vec3(size(rng), 0, tilt(rng) * 0.3), v = Vec3(0, size(rng), tilt(rng) * 0.3);
       scene.surfaces.push_back(testing_support::centred_polygon("b" + std::to_string(k), c, u, v, k % 2 == 1));
     }
+    if (trial % 3 == 2) {
+      std::uniform_real_distribution<double> within(0.0, 0.7);  // a box over the receiver, below the shooter
+      const Vec3 lo(within(rng), within(rng), 0.2 + within(rng)), extent(0.5 * size(rng), 0.5 * size(rng), size(rng));
+      for (const Surface& f : testing_support::box_faces(lo, lo + extent)) scene.surfaces.push_back(f);
+    }
     const std::vector<Occluder> occ = make_occluders(scene);
     const OccluderBvh bvh(occ);
     const Surface& shooter = scene.surfaces[1];
     const std::vector<const Occluder*> side = bvh.between(shooter.polygon(), scene.surfaces[0].polygon(), 0, 1);
+    for (const Occluder* o : side) solid_faces += o->solid != nullptr ? 1 : 0;
     // The patch and its quarters and sixteenths, as the shooter tree's blocks.
     std::vector<ConvexPolygon> blocks;
     for (const int n : {1, 2, 4})
@@ -308,9 +315,11 @@ TEST(OccluderBvh, FewBlockersTakenAsTheyAreGiveTheSameShadows) {
     }
   }
   std::printf("%d points' form factors compared (%d seen in part), %d equal bit for bit, largest difference %.1e; "
-              "%d blockers off an element's shaft\n", compared, shaded, equal, largest, dropped);
+              "%d blockers off an element's shaft; %d solids' faces among the sides' blockers\n", compared, shaded, equal,
+              largest, dropped, solid_faces);
   EXPECT_GT(shaded, compared / 10) << "the blockers should often shade the blocks";
   EXPECT_GT(dropped, 100) << "the elements' shafts should often drop some of the side's blockers";
+  EXPECT_GT(solid_faces, 40) << "the boxes' faces should often stand between the surfaces";
 }
 
 TEST(OccluderBvh, EmptyAndSingleOccluderScenes) {

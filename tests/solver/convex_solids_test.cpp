@@ -10,6 +10,7 @@
 #include "solver/visibility.h"
 #include "support/occluder_lists.h"
 #include "support/ray_scene.h"
+#include "support/scenes.h"
 
 namespace radrecon {
 namespace convex_solids_test {
@@ -21,22 +22,7 @@ Surface quad(const std::string& name, std::array<Vec3, 4> c) {
   return s;
 }
 
-/// The axis-aligned box [lo, hi] as six quads with outward normals (counter-clockwise seen from
-/// outside), in the order -x, +x, -y, +y, -z, +z; `inward` reverses every one.
-std::vector<Surface> box(const Vec3& lo, const Vec3& hi, bool inward = false) {
-  const auto at = [&](int x, int y, int z) { return Vec3(x ? hi.x() : lo.x(), y ? hi.y() : lo.y(), z ? hi.z() : lo.z()); };
-  std::vector<Surface> faces = {
-      quad("-x", {at(0, 0, 0), at(0, 0, 1), at(0, 1, 1), at(0, 1, 0)}),
-      quad("+x", {at(1, 0, 0), at(1, 1, 0), at(1, 1, 1), at(1, 0, 1)}),
-      quad("-y", {at(0, 0, 0), at(1, 0, 0), at(1, 0, 1), at(0, 0, 1)}),
-      quad("+y", {at(0, 1, 0), at(0, 1, 1), at(1, 1, 1), at(1, 1, 0)}),
-      quad("-z", {at(0, 0, 0), at(0, 1, 0), at(1, 1, 0), at(1, 0, 0)}),
-      quad("+z", {at(0, 0, 1), at(1, 0, 1), at(1, 1, 1), at(0, 1, 1)}),
-  };
-  if (inward)
-    for (Surface& f : faces) std::swap(f.corners[1], f.corners[3]);
-  return faces;
-}
+using testing_support::box_faces;
 
 Scene scene_of(std::vector<Surface> surfaces) {
   Scene s;
@@ -45,7 +31,7 @@ Scene scene_of(std::vector<Surface> surfaces) {
 }
 
 TEST(ConvexSolids, AClosedBoxIsOneSolidWithOutwardFaces) {
-  const Scene scene = scene_of(box(Vec3(0, 0, 0), Vec3(1, 2, 3)));
+  const Scene scene = scene_of(box_faces(Vec3(0, 0, 0), Vec3(1, 2, 3)));
   for (const Surface& f : scene.surfaces)  // the test's own box: outward as claimed
     EXPECT_GT(f.normal().dot(f.corners[0] - Vec3(0.5, 1, 1.5)), 0) << f.name;
   const auto solids = find_convex_solids(scene);
@@ -61,20 +47,20 @@ TEST(ConvexSolids, AClosedBoxIsOneSolidWithOutwardFaces) {
 
 TEST(ConvexSolids, WhatBoundsNoConvexSolidIsNone) {
   // A room: its walls face in.
-  EXPECT_FALSE(find_convex_solids(scene_of(box(Vec3(0, 0, 0), Vec3(1, 1, 1), true)))[0]);
+  EXPECT_FALSE(find_convex_solids(scene_of(box_faces(Vec3(0, 0, 0), Vec3(1, 1, 1), true)))[0]);
   // Open on three sides (+x, -z, +z), whose edges lie in no one plane.
-  std::vector<Surface> open3 = box(Vec3(0, 0, 0), Vec3(1, 1, 1));
+  std::vector<Surface> open3 = box_faces(Vec3(0, 0, 0), Vec3(1, 1, 1));
   open3.erase(open3.begin() + 4, open3.end());
   open3.erase(open3.begin() + 1);
   for (const auto& s : find_convex_solids(scene_of(open3))) EXPECT_FALSE(s);
   // One face flipped: two edges run the same way.
-  std::vector<Surface> flipped = box(Vec3(0, 0, 0), Vec3(1, 1, 1));
+  std::vector<Surface> flipped = box_faces(Vec3(0, 0, 0), Vec3(1, 1, 1));
   std::swap(flipped[2].corners[1], flipped[2].corners[3]);
   for (const auto& s : find_convex_solids(scene_of(flipped))) EXPECT_FALSE(s);
   // Two boxes sharing a face (its edges run by four faces) are no solid, nor is a flat pair of
   // triangles (no corner behind either's plane).
-  std::vector<Surface> two = box(Vec3(0, 0, 0), Vec3(1, 1, 1));
-  for (Surface& f : box(Vec3(1, 0, 0), Vec3(2, 1, 1))) two.push_back(f);
+  std::vector<Surface> two = box_faces(Vec3(0, 0, 0), Vec3(1, 1, 1));
+  for (Surface& f : box_faces(Vec3(1, 0, 0), Vec3(2, 1, 1))) two.push_back(f);
   for (const auto& s : find_convex_solids(scene_of(two))) EXPECT_FALSE(s);
   Surface a, b;
   a.set_triangle(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0));
@@ -192,7 +178,7 @@ TEST(ConvexSolids, AClosedBoxSeenPastItsFrontFacesAgainstRays) {
   // A box on a floor under a light panel: points on the floor around it, inside its footprint,
   // and on its faces. The form factor to the light against the midpoint rule with an
   // independent ray caster.
-  std::vector<Surface> s = box(Vec3(0.3, 0, 0.3), Vec3(0.6, 0.4, 0.7));
+  std::vector<Surface> s = box_faces(Vec3(0.3, 0, 0.3), Vec3(0.6, 0.4, 0.7));
   s.push_back(quad("floor", {Vec3(0, 0, 0), Vec3(0, 0, 1), Vec3(1, 0, 1), Vec3(1, 0, 0)}));  // faces +y
   s.push_back(quad("light", {Vec3(0.2, 1, 0.2), Vec3(0.8, 1, 0.2), Vec3(0.8, 1, 0.8), Vec3(0.2, 1, 0.8)}));  // faces -y
   const Scene scene = scene_of(s);
