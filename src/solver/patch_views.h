@@ -37,12 +37,13 @@ struct PatchViews {
   }
 };
 /// The most bytes of views kept over all patches; the patches that shoot after they are spent
-/// compute theirs every shot. The Cornell box at grid:128 keeps 31 MB, the paper's grid:400 18 MB.
+/// compute theirs every shot. The Cornell box at grid:128 keeps 51 MB, the paper's grid:400 20 MB
+/// (4 patches along the longest edge).
 inline constexpr size_t kMostPatchViewBytes = size_t{128} << 20;
 /// The largest shooter tree, in blocks, whose other blocks' views (BlockView) a patch keeps for
 /// its later shots, for the receiving elements behind many shadows (ReceiverShadows::
 /// kept_fragments()): the Wuson scene's floor quarters have 85 blocks; the Cornell box's patches
-/// at grid:128 5461, of which a receiver near them sees hundreds.
+/// at grid:128 1365, of which a receiver near them sees hundreds.
 inline constexpr size_t kMostViewedBlocks = 1024;
 /// The most bytes of those block views over all patches, each patch's counted as the most it can
 /// hold (every receiving element, every block) before its first shot; a patch that would pass
