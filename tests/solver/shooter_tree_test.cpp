@@ -27,6 +27,26 @@ namespace shooter_tree_test {
 
 using testing_support::quad;
 
+/// A block over the parallelogram origin + s a + t b (s, t in [0, 1]), with its centre, area and
+/// bounding radius, and its outline as a polygon.
+struct ParallelogramBlock {
+  Block block;
+  ConvexPolygon outline;
+};
+ParallelogramBlock parallelogram_block(const Vec3& origin, const Vec3& a, const Vec3& b) {
+  ParallelogramBlock out;
+  Block& block = out.block;
+  block.corners = {origin, origin + a, origin + a + b, origin + b, Vec3::Zero()};
+  block.corner_count = 4;
+  block.center = origin + 0.5 * (a + b);
+  block.area_m2 = a.cross(b).norm();
+  for (int k = 0; k < 4; ++k) {
+    block.radius_m = std::max(block.radius_m, (block.corners[k] - block.center).norm());
+    out.outline.push(block.corners[k]);
+  }
+  return out;
+}
+
 TEST(ShooterTree, FormFactorBoundIsAtLeastTheExactFormFactor) {
   // Random parallelograms and receiver points: the bound against the closed-form point-to-polygon
   // form factor (Lambert's formula) of the part in front of the receiver.
@@ -37,15 +57,8 @@ TEST(ShooterTree, FormFactorBoundIsAtLeastTheExactFormFactor) {
   for (int trial = 0; trial < 20000; ++trial) {
     const Vec3 origin(u(rng), u(rng), u(rng)), a = 0.5 * direction(), b0 = 0.5 * direction();
     const Vec3 normal = a.cross(b0).normalized(), b = normal.cross(a).normalized() * 0.3 + 0.2 * a;
-    Block block;
-    block.corners = {origin, origin + a, origin + a + b, origin + b, Vec3::Zero()};
-    block.corner_count = 4;
-    block.center = origin + 0.5 * (a + b);
-    block.area_m2 = a.cross(b).norm();
-    for (int k = 0; k < 4; ++k) block.radius_m = std::max(block.radius_m, (block.corners[k] - block.center).norm());
+    const auto [block, polygon] = parallelogram_block(origin, a, b);
     const Vec3 p = block.center + 3 * Vec3(u(rng), u(rng), u(rng)), n = direction();
-    ConvexPolygon polygon;
-    for (int k = 0; k < 4; ++k) polygon.push(block.corners[k]);
     const double exact = normal.dot(p - origin) > 0 ? lambert_form_factor(p, n, clip_to_horizon(p, n, polygon)) : 0.0;
     const double bound = form_factor_bound(block, p, n, normal);
     if (!std::isfinite(bound)) continue;
@@ -68,17 +81,10 @@ TEST(ShooterTree, FormFactorCeilingIsAtLeastTheExactFormFactorAnywhere) {
   for (int trial = 0; trial < 20000; ++trial) {
     const Vec3 origin(u(rng), u(rng), u(rng)), a = 0.5 * direction(), b0 = 0.5 * direction();
     const Vec3 normal = a.cross(b0).normalized(), b = normal.cross(a).normalized() * 0.3 + 0.2 * a;
-    Block block;
-    block.corners = {origin, origin + a, origin + a + b, origin + b, Vec3::Zero()};
-    block.corner_count = 4;
-    block.center = origin + 0.5 * (a + b);
-    block.area_m2 = a.cross(b).norm();
-    for (int k = 0; k < 4; ++k) block.radius_m = std::max(block.radius_m, (block.corners[k] - block.center).norm());
+    const auto [block, polygon] = parallelogram_block(origin, a, b);
     // Half of the points within a bounding radius of the centre, half within three.
     const double reach = trial % 2 == 0 ? block.radius_m : 3.0;
     const Vec3 p = block.center + reach * Vec3(u(rng), u(rng), u(rng)) / std::sqrt(3.0), n = direction();
-    ConvexPolygon polygon;
-    for (int k = 0; k < 4; ++k) polygon.push(block.corners[k]);
     const double exact = normal.dot(p - origin) > 0 ? lambert_form_factor(p, n, clip_to_horizon(p, n, polygon)) : 0.0;
     within_sphere += std::isfinite(form_factor_bound(block, p, n, normal)) ? 0 : 1;
     ASSERT_LE(exact, form_factor_ceiling(block, p, normal) * (1 + 1e-12)) << "trial " << trial;
@@ -86,15 +92,7 @@ TEST(ShooterTree, FormFactorCeilingIsAtLeastTheExactFormFactorAnywhere) {
   EXPECT_GT(within_sphere, 5000);
   // A 0.1 m square at 1 m, and a 10 m square at 1 cm, each facing the point.
   for (const auto& [side, height, least_ratio] : {std::tuple{0.1, 1.0, 0.99}, std::tuple{10.0, 0.01, 0.99}}) {
-    Block block;
-    const double half = side / 2;
-    block.corners = {Vec3(-half, -half, 0), Vec3(half, -half, 0), Vec3(half, half, 0), Vec3(-half, half, 0), Vec3::Zero()};
-    block.corner_count = 4;
-    block.center = Vec3::Zero();
-    block.area_m2 = side * side;
-    block.radius_m = half * std::sqrt(2.0);
-    ConvexPolygon polygon;
-    for (int k = 0; k < 4; ++k) polygon.push(block.corners[k]);
+    const auto [block, polygon] = parallelogram_block(Vec3(-side / 2, -side / 2, 0), Vec3(side, 0, 0), Vec3(0, side, 0));
     const Vec3 p(0, 0, height), n(0, 0, -1), up(0, 0, 1);
     const double exact = lambert_form_factor(p, n, polygon), ceiling = form_factor_ceiling(block, p, up);
     EXPECT_LE(exact, ceiling * (1 + 1e-12));
