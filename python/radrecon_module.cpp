@@ -252,7 +252,7 @@ Raises radrecon.Error (a ValueError) for refused input.)doc");
 
   m.def("solve", [](const std::string& scene_spec, const std::string& mesh, double residual, int patches,
                     const std::string& leaves_on, bool clusters) {
-    if (patches < 0) throw UserError("patches", "must be 0 (the default for the scene) or a positive count");
+    if (patches < 0) throw UserError("patches", "must be 0 (the default, 4) or a positive count");
     SolveSettings settings;
     settings.residual = residual;
     settings.patches = patches;

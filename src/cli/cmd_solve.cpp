@@ -82,8 +82,8 @@ void add_solve_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--patches", args->patches,
                   "grid: shooting patches along the longest edge (patches group elements; receivers are elements); "
-                  "default 4, the fastest for the paper scene, the Cornell box and a model of 11,000 triangles "
-                  "(docs/benchmarks.md)")
+                  "default 4, the fastest for the Cornell box and a model of 11,000 triangles, and within the "
+                  "noise of the fastest (3) for the paper scene (docs/benchmarks.md)")
       ->check(CLI::Range(1, 100000));
   cmd->add_option("--far-field-error", args->far_field_error,
                   "grid: a block of a shooting patch shoots as one source only while its error estimate is at most "

@@ -59,8 +59,8 @@ inline constexpr double kNearFieldCeilingShare = 0.1;
 /// share). Such a block may be partly hidden, and shot whole it shoots the mean of all of it; an
 /// occluder hides from many elements the very region it darkens, so that error has one sign.
 /// The Cornell box at grid:32 against a 20 times finer bound (4 patches along the longest edge):
-/// the ceiling's mean -0.48% with the whole share, -0.14% with a quarter, -0.06% with a tenth
-/// (at 60% more time); at grid:128 in 6.6, 7.4 and 10.7 s.
+/// the box's ceiling (the surface) is -0.48% off on average with the whole share, -0.14% with a
+/// quarter, -0.06% with a tenth; at grid:128 it solves in 6.6, 7.4 and 10.7 s.
 inline constexpr double kPartlyHiddenStrictShare = 0.25;
 /// An element whose gathered irradiance falls below this fraction of the estimate its budget was
 /// made for (the whole patch's, at its centre) gathers again with the budget of what it got.
@@ -294,7 +294,6 @@ inline constexpr double kClusterPointKernelRadii = 16.0;
 /// when it has at least this many: a scene of a few dozen small surfaces shoots them one by one,
 /// with exact shadows, as it always did. A count.
 inline constexpr std::size_t kLeastClusteredSides = 256;
-
 
 /// The boxes by which visibility.cpp rejects a shadow for a fragment of the shooter (the
 /// projections from the receiving point onto the shooter's plane of the occluder and of the

@@ -175,8 +175,10 @@ struct BlockViews {
 ///   the far field and the children's sum both lie in [lowest, highest] times the visible form
 ///   factor. The form factor is form_factor_bound(), or the visible form factor itself when the
 ///   element gathers at its centre alone and sees all of the block; or form_factor_ceiling()
-///   against tol::kNearFieldCeilingShare of the share; or, when smaller,
-/// - the same form factor times the spread times far_field_error(): the far field errs to third
+///   (the largest at the centre and, off the midpoint rule, the Gauss points) against
+///   tol::kNearFieldCeilingShare of the share; or, when smaller,
+/// - form_factor_bound() or the visible form factor (not the ceiling) times the spread times
+///   far_field_error(): the far field errs to third
 ///   order for any radiosity over the block; used only if the centre sees the whole block (a
 ///   block cut by the receiver's horizon or a shadow is seen through part of it only) and the
 ///   estimate is finite.

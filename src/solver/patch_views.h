@@ -42,7 +42,7 @@ struct PatchViews {
 inline constexpr size_t kMostPatchViewBytes = size_t{128} << 20;
 /// The largest shooter tree, in blocks, whose other blocks' views (BlockView) a patch keeps for
 /// its later shots, for the receiving elements behind many shadows (ReceiverShadows::
-/// kept_fragments()): the Wuson scene's floor quarters have 85 blocks; the Cornell box's patches
+/// kept_fragments()): the Wuson scene's floor patches have 21 blocks; the Cornell box's patches
 /// at grid:128 1365, of which a receiver near them sees hundreds.
 inline constexpr size_t kMostViewedBlocks = 1024;
 /// The most bytes of those block views over all patches, each patch's counted as the most it can

@@ -141,7 +141,7 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
   std::vector<Gathered> gain;  // per receiving element of the shot, in the order of `jobs`
   std::vector<ReceivingSide> jobs;
   // The shooter trees' blocks, reused from shot to shot: made once, for the largest patch's tree
-  // (made as it comes, storage for a 200 x 200 patch twice over: 73 MB, fresh pages and a copy).
+  // (made as it comes, it grew shot by shot: fresh pages and a copy each time).
   std::vector<Block> tree_storage;
   {
     size_t most_blocks = 0;

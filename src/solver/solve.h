@@ -14,10 +14,10 @@
 namespace radrecon {
 
 /// The shooting patches along the longest edge when none are asked for
-/// (GridMeshOptions::max_patches): 4, the fastest for every scene measured (docs/benchmarks.md,
-/// twenty-sixth session): the paper's reference and the Cornell box at grid:128 against 2, 3, 6
-/// and 8, the Wuson scene (48-51 s against 71-75 s with 2). Smaller patches give smaller trees
-/// to visit from each receiver, in more shots.
+/// (GridMeshOptions::max_patches): 4, the fastest for the Cornell box at grid:128 (against 2, 3,
+/// 6 and 8) and the Wuson scene (45-48 s against 71-75 s with 2), and within the noise of the
+/// fastest (3) for the paper's reference (docs/benchmarks.md, twenty-sixth session). Smaller
+/// patches give smaller trees to visit from each receiver, in more shots.
 int default_patches();
 
 struct SolveSettings {

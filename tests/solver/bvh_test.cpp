@@ -239,15 +239,18 @@ TEST(OccluderBvh, FewBlockersTakenAsTheyAreGiveTheSameShadows) {
   // widened shaft: the visible form factors of the patch and of its blocks, at the element's
   // centre and at points around it, one at a time and in the batched path of an element's Gauss
   // points, must agree to round-off (an extra volume that meets a block only loosely can change
-  // the clipping's path), and whether each is seen in part exactly. Every third trial adds a
-  // closed box, whose faces seen from the back hide nothing (ConvexSolid::face_hides_nothing()).
+  // the clipping's path), and whether each is seen in part exactly. Every third trial adds a box,
+  // whose faces seen from the back hide nothing (ConvexSolid::face_hides_nothing()): closed and
+  // floating, or open at the bottom and standing on the receiver; the side's list, with those
+  // faces left out, is also checked against every occluder kept, no solid known (an
+  // independent reference: no shafts, no faces left out).
   constexpr double kRoundOff = 1e-12;
   std::mt19937 rng(2026);
   // Element centres kept off the receiver's border by more than the points' offsets: the side's
   // shaft holds the segments from every point of the receiving surface, not from beyond it.
   std::uniform_real_distribution<double> pos(-0.6, 1.6), height(0.2, 1.8), size(0.1, 0.7), inner(0.05, 0.95),
       tilt(-0.4, 0.4);
-  int compared = 0, shaded = 0, dropped = 0, equal = 0, solid_faces = 0;
+  int compared = 0, shaded = 0, dropped = 0, equal = 0, solid_faces = 0, left_out = 0;
   double largest = 0;
   for (int trial = 0; trial < 60; ++trial) {
     Scene scene;
@@ -261,10 +264,16 @@ TEST(OccluderBvh, FewBlockersTakenAsTheyAreGiveTheSameShadows) {
     }
     if (trial % 3 == 2) {
       std::uniform_real_distribution<double> within(0.0, 0.7);  // a box over the receiver, below the shooter
-      const Vec3 lo(within(rng), within(rng), 0.2 + within(rng)), extent(0.5 * size(rng), 0.5 * size(rng), size(rng));
-      for (const Surface& f : testing_support::box_faces(lo, lo + extent)) scene.surfaces.push_back(f);
+      const bool standing = trial % 2 == 0;
+      const Vec3 lo(within(rng), within(rng), standing ? 0.0 : 0.2 + within(rng));
+      const Vec3 extent(0.5 * size(rng), 0.5 * size(rng), size(rng));
+      for (const Surface& f : testing_support::box_faces(lo, lo + extent))
+        if (!standing || f.name != "-z") scene.surfaces.push_back(f);
     }
     const std::vector<Occluder> occ = make_occluders(scene);
+    std::vector<Occluder> bare = occ;  // the same occluders, no solid known: every face kept
+    for (Occluder& o : bare) o.solid = nullptr;
+    const std::vector<const Occluder*> every = testing_support::all_but(bare, 0, 1);
     const OccluderBvh bvh(occ);
     const Surface& shooter = scene.surfaces[1];
     const std::vector<const Occluder*> side = bvh.between(shooter.polygon(), scene.surfaces[0].polygon(), 0, 1);
@@ -287,10 +296,16 @@ TEST(OccluderBvh, FewBlockersTakenAsTheyAreGiveTheSameShadows) {
       bvh.collect(Shaft({&centre, 1}, shooter.polygon(), reach_m), 0, 1, near);
       dropped += static_cast<int>(side.size() - near.size());
       const std::array<Vec3, 3> points{centre, Vec3(centre + Vec3(0.03, -0.02, 0)), Vec3(centre + Vec3(-0.035, 0.035, 0))};
-      std::array<std::vector<ShadowVolume>, 3> from_side, from_shaft;
+      std::array<std::vector<ShadowVolume>, 3> from_side, from_shaft, from_every;
+      std::vector<const Occluder*> side_bare;  // the side's list, no solid known
+      for (const Occluder* o : side) side_bare.push_back(&bare[static_cast<size_t>(o - occ.data())]);
       for (size_t q = 0; q < points.size(); ++q) {
         shadow_volumes(points[q], n, side, from_side[q]);
         shadow_volumes(points[q], n, near, from_shaft[q]);
+        shadow_volumes(points[q], n, every, from_every[q]);
+        std::vector<ShadowVolume> kept;
+        shadow_volumes(points[q], n, side_bare, kept);
+        left_out += static_cast<int>(kept.size() - from_side[q].size());
       }
       const std::array<std::span<const ShadowVolume>, 3> side_spans{from_side[0], from_side[1], from_side[2]},
           shaft_spans{from_shaft[0], from_shaft[1], from_shaft[2]};
@@ -306,6 +321,8 @@ TEST(OccluderBvh, FewBlockersTakenAsTheyAreGiveTheSameShadows) {
           ASSERT_NEAR(batch_side[q], batch_shaft[q], kRoundOff) << "trial " << trial << ", batched";
           ASSERT_NEAR(batch_side[q], f_side, kRoundOff) << "trial " << trial << ", batched against one at a time";
           ASSERT_EQ(partly_side, partly_shaft) << "trial " << trial;
+          ASSERT_NEAR(f_side, visible_form_factor_past(points[q], n, b, -Vec3::UnitZ(), from_every[q]), kRoundOff)
+              << "trial " << trial << ", against every occluder kept";
           largest = std::max({largest, std::abs(f_side - f_shaft), std::abs(batch_side[q] - batch_shaft[q])});
           equal += f_side == f_shaft && batch_side[q] == batch_shaft[q];
           ++compared;
@@ -315,11 +332,12 @@ TEST(OccluderBvh, FewBlockersTakenAsTheyAreGiveTheSameShadows) {
     }
   }
   std::printf("%d points' form factors compared (%d seen in part), %d equal bit for bit, largest difference %.1e; "
-              "%d blockers off an element's shaft; %d solids' faces among the sides' blockers\n", compared, shaded, equal,
-              largest, dropped, solid_faces);
+              "%d blockers off an element's shaft; %d solids' faces among the sides' blockers, %d volumes left out\n",
+              compared, shaded, equal, largest, dropped, solid_faces, left_out);
   EXPECT_GT(shaded, compared / 10) << "the blockers should often shade the blocks";
   EXPECT_GT(dropped, 100) << "the elements' shafts should often drop some of the side's blockers";
   EXPECT_GT(solid_faces, 40) << "the boxes' faces should often stand between the surfaces";
+  EXPECT_GT(left_out, 100) << "the boxes' faces seen from the back should often be left out";
 }
 
 TEST(OccluderBvh, EmptyAndSingleOccluderScenes) {

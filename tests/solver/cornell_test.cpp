@@ -121,11 +121,11 @@ TEST(CornellBox, PublishedFloorMeanAgreesWithPathTracing) {
 /// both converged to 1e-6, on every side of the published box but the light: each side's mean
 /// relative difference over its elements (those above 1e-3 of its peak), and the largest.
 /// Blocks that the strict bound lets shoot whole though an occluder hides part of them darken
-/// the box by one sign (docs/method.md, the far field's bound): the ceiling by 0.22% on average
-/// at the default bound (largest 0.39%), by 0.72% at four times the bound, which this test
-/// tells apart.
+/// the box by one sign (docs/method.md, the far field's bound): its ceiling by 0.14% on average
+/// at the default bound (largest 0.28%), by 0.48% (largest 0.79%) without the quarter share
+/// behind occluders (tol::kPartlyHiddenStrictShare), which this test tells apart.
 TEST(CornellBox, SlowFarFieldBoundKeepsEverySideNearAFineSolve) {
-  constexpr double kMeanRelative = 5e-3, kLargestRelative = 1e-2;
+  constexpr double kMeanRelative = 3e-3, kLargestRelative = 6e-3;
   const Scene scene = cornell_scene();
   const Mesh mesh = make_grid_mesh(scene, {kDivisions});
   const auto solve = [&](double far_field_error) {
