@@ -50,8 +50,8 @@ inline constexpr double kFarFieldLeastIrradianceFraction = 1e-2;
 /// the spread, but near the block that error has one sign over the elements around it: with the
 /// whole share, the closed room with a lamp on its ceiling gained 3.0e-3 of its power at
 /// reflectance 0.95 (the issue allows 1e-3), with 0.3 of it 8.2e-4, with a tenth -2.8e-4
-/// (-6.0e-4 without the ceiling; all with 2 patches along the longest edge); the paper's
-/// reference solves in 7-10% less time.
+/// (-6.0e-4 without the ceiling; all with 2 patches along the longest edge and the ceiling at the
+/// element's centre alone); the paper's reference took 7-10% less processor time.
 inline constexpr double kNearFieldCeilingShare = 0.1;
 /// Where an element sees the shooting patch in part and occluders stand between its side and the
 /// patch, a block may shoot as one by form_factor_bound() or form_factor_ceiling() alone, before
