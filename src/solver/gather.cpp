@@ -106,11 +106,14 @@ bool shoots_whole(const Block& b, const ConvexPolygon& poly, const Receiver& r, 
   // Near the block, where that bound is large or infinite, a ceiling that holds everywhere, with
   // a tenth of the share: the error there has one sign over the elements around the block. Off
   // the midpoint rule, the largest at the Gauss points too, which carry the element's power (a
-  // point nearer the shooter's plane, or in front of it when the centre is not).
-  double ceiling = form_factor_ceiling(b, p, shooter_normal);
-  if (!midpoint)
-    for (int k = 0; k < r.gauss_count; ++k) ceiling = std::max(ceiling, form_factor_ceiling(b, r.gauss[k], shooter_normal));
-  if (ceiling * spread <= strict_share * tol::kNearFieldCeilingShare * budget_w_m2) return true;
+  // point nearer the shooter's plane, or in front of it when the centre is not): looked at only
+  // when the centre's passes, as the largest can only be more.
+  const double ceiling_share = strict_share * tol::kNearFieldCeilingShare * budget_w_m2;
+  if (double ceiling = form_factor_ceiling(b, p, shooter_normal); ceiling * spread <= ceiling_share) {
+    if (!midpoint)
+      for (int k = 0; k < r.gauss_count; ++k) ceiling = std::max(ceiling, form_factor_ceiling(b, r.gauss[k], shooter_normal));
+    if (ceiling * spread <= ceiling_share) return true;
+  }
   if (!std::isfinite(form_factor)) return false;
   // The far field is exact to second order, whatever the radiosity over the block
   // (far_field_radiosity()): what is left is the spread times the kernel's third order,

@@ -278,6 +278,8 @@ TEST(OccluderBvh, FewBlockersTakenAsTheyAreGiveTheSameShadows) {
     const Surface& shooter = scene.surfaces[1];
     const std::vector<const Occluder*> side = bvh.between(shooter.polygon(), scene.surfaces[0].polygon(), 0, 1);
     for (const Occluder* o : side) solid_faces += o->solid != nullptr ? 1 : 0;
+    std::vector<const Occluder*> side_bare;  // the side's list, no solid known
+    for (const Occluder* o : side) side_bare.push_back(&bare[static_cast<size_t>(o - occ.data())]);
     // The patch and its quarters and sixteenths, as the shooter tree's blocks.
     std::vector<ConvexPolygon> blocks;
     for (const int n : {1, 2, 4})
@@ -297,8 +299,6 @@ TEST(OccluderBvh, FewBlockersTakenAsTheyAreGiveTheSameShadows) {
       dropped += static_cast<int>(side.size() - near.size());
       const std::array<Vec3, 3> points{centre, Vec3(centre + Vec3(0.03, -0.02, 0)), Vec3(centre + Vec3(-0.035, 0.035, 0))};
       std::array<std::vector<ShadowVolume>, 3> from_side, from_shaft, from_every;
-      std::vector<const Occluder*> side_bare;  // the side's list, no solid known
-      for (const Occluder* o : side) side_bare.push_back(&bare[static_cast<size_t>(o - occ.data())]);
       for (size_t q = 0; q < points.size(); ++q) {
         shadow_volumes(points[q], n, side, from_side[q]);
         shadow_volumes(points[q], n, near, from_shaft[q]);
