@@ -7,6 +7,7 @@
 #include <iterator>
 #include <limits>
 #include <memory>
+#include <numeric>
 #include <span>
 
 #include "core/check.h"
@@ -19,17 +20,12 @@
 #include "solver/patch_views.h"
 #include "solver/shooter_clusters.h"
 #include "solver/shooter_tree.h"
+#include "solver/shooting_patches.h"
 #include "solver/visibility.h"
 
 namespace radrecon {
 
 namespace {
-
-struct Patch {
-  size_t surface;
-  int i0, j0, i1, j1;
-  Rgb unshot_w = Rgb::Zero();  ///< unshot power per channel, W
-};
 
 /// Per element of a side, W/m^2: radiosity at the element's centre; unshot radiosity and
 /// irradiance as the element's means (Gathered), which carry the power.
@@ -82,8 +78,8 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
   for (const MeshSurface& side : mesh.surfaces) splits.push_back(shooter_splits(scene, side, contacts));
   const std::vector<std::vector<ConvexPolygon>> covers_by = covers_by_surface(scene);
   std::vector<std::vector<Receiver>> receivers = make_receivers(scene, mesh);  // once for all shots
-  std::vector<Patch> patches;
-  std::vector<size_t> first_patch(mesh.surfaces.size());
+  ShootingPatches shooting(mesh);
+  std::vector<Patch>& patches = shooting.patches;
   Rgb emitted = Rgb::Zero();
   double total_area_m2 = 0;
   for (size_t s = 0; s < mesh.surfaces.size(); ++s) {
@@ -105,33 +101,16 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
       emitted += side.elements[e].area_m2 * st.unshot[e];
       total_area_m2 += st.exposed_at(e) * side.elements[e].area_m2;
     }
-    // Every patch of the side's patch grid, empty ones beyond a triangle's hypotenuse included
-    // (they never shoot: no power), so that patch (pi, pj) is at first_patch + pj * patches_u + pi.
-    first_patch[s] = patches.size();
-    for (int pj = 0; pj < side.patches_v(); ++pj)
-      for (int pi = 0; pi < side.patches_u(); ++pi)
-        patches.push_back({s, pi * side.patch_size, pj * side.patch_size,
-                           std::min(side.nu, (pi + 1) * side.patch_size),
-                           std::min(side.nv, (pj + 1) * side.patch_size)});
   }
-  auto update_patch_power = [&](size_t s) {
-    const MeshSurface& side = mesh.surfaces[s];
-    const size_t count = static_cast<size_t>(side.patches_u()) * side.patches_v();
-    for (size_t k = 0; k < count; ++k) patches[first_patch[s] + k].unshot_w = Rgb::Zero();
-    for (int j = 0; j < side.nv; ++j)
-      for (int i = 0; i < side.nu; ++i) {
-        size_t p = first_patch[s] + static_cast<size_t>(j / side.patch_size) * side.patches_u() + i / side.patch_size;
-        const auto [first, last] = side.cell_elements(i, j);
-        for (size_t e = first; e < last; ++e) patches[p].unshot_w += side.elements[e].area_m2 * state[s].unshot[e];
-      }
-  };
-  for (size_t s = 0; s < mesh.surfaces.size(); ++s) update_patch_power(s);
+  std::vector<const std::vector<Rgb>*> unshot_by_side;
+  for (const SideState& st : state) unshot_by_side.push_back(&st.unshot);
+  std::vector<size_t> updated_sides(mesh.surfaces.size());  // the sides whose patches' power is summed again
+  std::iota(updated_sides.begin(), updated_sides.end(), size_t{0});
+  shooting.sum_power(mesh, unshot_by_side, updated_sides);
   // The sides of one element, grouped to shoot together (solver/shooter_clusters.h): their own
   // patches never shoot alone.
   const ShooterClusters clusters = options.clusters ? make_shooter_clusters(mesh) : ShooterClusters{};
   const auto cluster_of_side = [&](size_t s) { return clusters.empty() ? -1 : clusters.cluster_of_side[s]; };
-  std::vector<const std::vector<Rgb>*> unshot_by_side;
-  for (const SideState& st : state) unshot_by_side.push_back(&st.unshot);
   std::vector<double> cluster_unshot_w(clusters.roots.size());
   Rgb escaped = Rgb::Zero();
   const double emitted_sum = emitted.sum();
@@ -199,10 +178,10 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
       const ClusterShot shot(scene, mesh, clusters, static_cast<size_t>(best_cluster), bvh, unshot_by_side);
       shot_power = shot.power_w();
       const ShooterClusters::Node& root = clusters.nodes[static_cast<size_t>(clusters.roots[static_cast<size_t>(best_cluster)])];
+      // Every side receives, and its patches' power is summed again below.
       for (int m = root.begin; m < root.end; ++m) {
         const size_t s = clusters.sides[static_cast<size_t>(m)];
         std::fill(state[s].unshot.begin(), state[s].unshot.end(), Rgb::Zero());
-        update_patch_power(s);
       }
       jobs.clear();
       size_t receiving = 0;
@@ -227,7 +206,8 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
           const auto [first, last] = shooter_side.cell_elements(i, j);
           for (size_t e = first; e < last; ++e) state[shooter.surface].unshot[e] = Rgb::Zero();
         }
-      update_patch_power(shooter.surface);
+      // Its side's other patches keep their power: the side does not receive from itself.
+      patches[best].unshot_w = Rgb::Zero();
 
       const Block& root = tree.root();
       ConvexPolygon patch_outline;
@@ -391,11 +371,13 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
       st.unshot[e] += reflectance * h.mean;
     });
     Rgb delivered = Rgb::Zero();
+    updated_sides.clear();
     for (const ReceivingSide& job : jobs) {
       const MeshSurface& receiver = mesh.surfaces[job.side];
       for (size_t e = 0; e < receiver.elements.size(); ++e) delivered += receiver.elements[e].area_m2 * gain[job.first + e].mean;
-      update_patch_power(job.side);
+      updated_sides.push_back(job.side);
     }
+    shooting.sum_power(mesh, unshot_by_side, updated_sides);
     escaped += shot_power - delivered;
     ++shots;
   }
