@@ -79,7 +79,7 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
   const std::vector<std::vector<ConvexPolygon>> covers_by = covers_by_surface(scene);
   std::vector<std::vector<Receiver>> receivers = make_receivers(scene, mesh);  // once for all shots
   ShootingPatches shooting(mesh);
-  std::vector<Patch>& patches = shooting.patches;
+  const std::vector<ShootingPatch>& patches = shooting.patches();
   Rgb emitted = Rgb::Zero();
   double total_area_m2 = 0;
   for (size_t s = 0; s < mesh.surfaces.size(); ++s) {
@@ -124,7 +124,7 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
   std::vector<Block> tree_storage;
   {
     size_t most_blocks = 0;
-    for (const Patch& p : patches)
+    for (const ShootingPatch& p : patches)
       most_blocks = std::max(most_blocks, ShooterTree::block_count(mesh.surfaces[p.surface], &splits[p.surface], p.i0,
                                                                    p.j0, p.i1, p.j1));
     tree_storage.resize(most_blocks);
@@ -195,19 +195,13 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
         gain[static_cast<size_t>(i)] = shot.gather(receivers[job->side][static_cast<size_t>(i) - job->first], job->side);
       });
     } else {
-      const Patch shooter = patches[best];
+      const ShootingPatch shooter = patches[best];
       const MeshSurface& shooter_side = mesh.surfaces[shooter.surface];
       const Surface& shooter_surface = scene.surfaces[shooter_side.scene_surface];
       ShooterTree tree(shooter_surface, shooter_side, state[shooter.surface].unshot, shooter.i0, shooter.j0,
                        shooter.i1, shooter.j1, std::move(tree_storage), &splits[shooter.surface]);
       shot_power = shooter.unshot_w;
-      for (int j = shooter.j0; j < shooter.j1; ++j)
-        for (int i = shooter.i0; i < shooter.i1; ++i) {
-          const auto [first, last] = shooter_side.cell_elements(i, j);
-          for (size_t e = first; e < last; ++e) state[shooter.surface].unshot[e] = Rgb::Zero();
-        }
-      // Its side's other patches keep their power: the side does not receive from itself.
-      patches[best].unshot_w = Rgb::Zero();
+      shooting.shoot(mesh, best, state[shooter.surface].unshot);
 
       const Block& root = tree.root();
       ConvexPolygon patch_outline;
@@ -223,6 +217,7 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
       size_t receiving = 0;
       for (size_t r = 0; r < mesh.surfaces.size(); ++r) {
         const MeshSurface& receiver = mesh.surfaces[r];
+        // Neither side of the shooter's surface receives (ShootingPatches::shoot() counts on it).
         if (receiver.scene_surface == shooter_side.scene_surface) continue;
         if (!quads_face(scene.surfaces[receiver.scene_surface].corners, receiver.normal, shooter_surface.corners,
                         shooter_normal))
