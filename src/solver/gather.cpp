@@ -134,7 +134,8 @@ bool shoots_whole(const Block& b, const ConvexPolygon& poly, const Receiver& r, 
   centre.expands = kernel_log_gradient(b, p, n, shooter_normal, centre.g);
   const double error_per_spread = centre.expands ? far_field_error(b, p, n, shooter_normal, centre.g, &centre.second_order)
                                                  : std::numeric_limits<double>::infinity();
-  // Off the midpoint the bound's form factor stays: without the visible one, the block splits.
+  // On the midpoint rule with the visible form factor; off it with the bound's (an element that
+  // gathers at its Gauss points looks at the visible one only if this passes).
   if (!(form_factor * spread * error_per_spread <= budget_w_m2)) return false;
   if (f < 0) f = shadows.visible_form_factor(0, poly, shooter_normal, &centre.partly_seen, alone);
   return !centre.partly_seen;

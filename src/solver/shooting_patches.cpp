@@ -8,6 +8,20 @@
 
 namespace radrecon {
 
+namespace {
+
+/// Calls f(begin, end) for the elements [begin, end) of each cell of the patch, row by row.
+template <typename F>
+void for_each_cell(const MeshSurface& side, const ShootingPatch& patch, F&& f) {
+  for (int j = patch.j0; j < patch.j1; ++j)
+    for (int i = patch.i0; i < patch.i1; ++i) {
+      const auto [begin, end] = side.cell_elements(i, j);
+      f(begin, end);
+    }
+}
+
+}  // namespace
+
 ShootingPatches::ShootingPatches(const Mesh& mesh) : first_of_side_(mesh.surfaces.size()) {
   for (size_t s = 0; s < mesh.surfaces.size(); ++s) {
     const MeshSurface& side = mesh.surfaces[s];
@@ -33,23 +47,18 @@ void ShootingPatches::sum_power(const Mesh& mesh, std::span<const std::vector<Rg
     const MeshSurface& side = mesh.surfaces[patch.surface];
     const std::vector<Rgb>& unshot = *unshot_w_m2[patch.surface];
     patch.unshot_w = Rgb::Zero();
-    for (int j = patch.j0; j < patch.j1; ++j)
-      for (int i = patch.i0; i < patch.i1; ++i) {
-        const auto [begin, end] = side.cell_elements(i, j);
-        for (size_t e = begin; e < end; ++e) patch.unshot_w += side.elements[e].area_m2 * unshot[e];
-      }
+    for_each_cell(side, patch, [&](size_t begin, size_t end) {
+      for (size_t e = begin; e < end; ++e) patch.unshot_w += side.elements[e].area_m2 * unshot[e];
+    });
   });
 }
 
 void ShootingPatches::shoot(const Mesh& mesh, size_t k, std::vector<Rgb>& side_unshot_w_m2) {
   ShootingPatch& patch = patches_[k];
-  const MeshSurface& side = mesh.surfaces[patch.surface];
-  for (int j = patch.j0; j < patch.j1; ++j)
-    for (int i = patch.i0; i < patch.i1; ++i) {
-      const auto [begin, end] = side.cell_elements(i, j);
-      std::fill(side_unshot_w_m2.begin() + static_cast<std::ptrdiff_t>(begin),
-                side_unshot_w_m2.begin() + static_cast<std::ptrdiff_t>(end), Rgb::Zero());
-    }
+  for_each_cell(mesh.surfaces[patch.surface], patch, [&](size_t begin, size_t end) {
+    std::fill(side_unshot_w_m2.begin() + static_cast<std::ptrdiff_t>(begin),
+              side_unshot_w_m2.begin() + static_cast<std::ptrdiff_t>(end), Rgb::Zero());
+  });
   patch.unshot_w = Rgb::Zero();
 }
 

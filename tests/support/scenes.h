@@ -1,7 +1,6 @@
 #pragma once
 // Small scenes the solver tests share.
 
-#include <array>
 #include <string>
 #include <utility>
 #include <vector>
@@ -32,23 +31,17 @@ inline Surface centred_polygon(const std::string& name, const Vec3& c, const Vec
 }
 
 /// The axis-aligned box [lo, hi] as six quads with outward normals (counter-clockwise seen from
-/// outside), in the order -x, +x, -y, +y, -z, +z, named so; `inward` reverses every one. A
-/// convex solid (solver/convex_solids.h) unless turned inward.
+/// outside), in the order -x, +x, -y, +y, -z, +z, named so, black; `inward` reverses every one.
+/// A convex solid (solver/convex_solids.h) unless turned inward.
 inline std::vector<Surface> box_faces(const Vec3& lo, const Vec3& hi, bool inward = false) {
   const auto at = [&](int x, int y, int z) { return Vec3(x ? hi.x() : lo.x(), y ? hi.y() : lo.y(), z ? hi.z() : lo.z()); };
-  const auto face = [](const std::string& name, std::array<Vec3, 4> c) {
-    Surface s;
-    s.name = name;
-    s.corners = c;
-    return s;
-  };
   std::vector<Surface> faces = {
-      face("-x", {at(0, 0, 0), at(0, 0, 1), at(0, 1, 1), at(0, 1, 0)}),
-      face("+x", {at(1, 0, 0), at(1, 1, 0), at(1, 1, 1), at(1, 0, 1)}),
-      face("-y", {at(0, 0, 0), at(1, 0, 0), at(1, 0, 1), at(0, 0, 1)}),
-      face("+y", {at(0, 1, 0), at(0, 1, 1), at(1, 1, 1), at(1, 1, 0)}),
-      face("-z", {at(0, 0, 0), at(0, 1, 0), at(1, 1, 0), at(1, 0, 0)}),
-      face("+z", {at(0, 0, 1), at(1, 0, 1), at(1, 1, 1), at(0, 1, 1)}),
+      quad("-x", at(0, 0, 0), at(0, 0, 1), at(0, 1, 1), at(0, 1, 0), 0.0),
+      quad("+x", at(1, 0, 0), at(1, 1, 0), at(1, 1, 1), at(1, 0, 1), 0.0),
+      quad("-y", at(0, 0, 0), at(1, 0, 0), at(1, 0, 1), at(0, 0, 1), 0.0),
+      quad("+y", at(0, 1, 0), at(0, 1, 1), at(1, 1, 1), at(1, 1, 0), 0.0),
+      quad("-z", at(0, 0, 0), at(0, 1, 0), at(1, 1, 0), at(1, 0, 0), 0.0),
+      quad("+z", at(0, 0, 1), at(1, 0, 1), at(1, 1, 1), at(0, 1, 1), 0.0),
   };
   if (inward)
     for (Surface& f : faces) std::swap(f.corners[1], f.corners[3]);
