@@ -270,7 +270,7 @@ void add_compare_command(CLI::App& app) {
                   "written linearly: zero is mid-grey (128), brighter is A above B");
   cmd->add_option("--scale", args->scale, "The difference image's scale (the paper's figures: 2)")->capture_default_str();
   cmd->add_option("--white", args->white, "The value shown as white (W/m^2 for radiosity); see above for the default")
-      ->check(CLI::Range(0.0, 1e300));
+      ->check(positive_at_most(1e300));
   cmd->add_option("--threshold", args->thresholds,
                   "KEY=VALUE, repeatable: exit with code 1 when L1, L2, RMSE, Linf or gradient_L2 is above VALUE, or SSIM "
                   "below it (a figure that is n/a or NaN exceeds every threshold)");

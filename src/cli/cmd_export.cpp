@@ -110,7 +110,7 @@ void add_export_command(CLI::App& app) {
   cmd->add_option("--white", args->white,
                   "The radiosity (W/m^2) shown as white in the lightmap; default: the 99th percentile of the brightest "
                   "channel of the texels of the surfaces that emit nothing")
-      ->check(CLI::Range(0.0, 1e12));
+      ->check(positive_at_most(1e12));
   cmd->add_option("--out", args->out, "The .glb file to write")->required();
   cmd->add_option("--exr", args->exr, "Also write the lightmap's linear radiosity (W/m^2, same layout) as this .exr file");
   cmd->add_flag("--no-barriers", args->no_barriers, "Ignore the solution's barriers (as render's)");

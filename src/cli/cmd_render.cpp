@@ -198,7 +198,7 @@ void add_render_command(CLI::App& app) {
                   "PNG: the radiosity (W/m^2) shown as white; default: the 99th percentile of the brightest channel "
                   "of the pixels that see only lit, non-emitting surfaces (lights, background and sides drawn black "
                   "do not count; 1% of those pixels may clip)")
-      ->check(CLI::Range(0.0, 1e12));
+      ->check(positive_at_most(1e12));
   cmd->add_option("--out", args->out, "Image to write: .png (tone-mapped), .pfm or .exr (linear radiosity, W/m^2)")->required();
   cmd->add_flag("--no-barriers", args->no_barriers,
                 "Ignore the solution's barriers (by default no sample's influence crosses the lines where surfaces "

@@ -20,6 +20,10 @@ void add_export_command(CLI::App& app);
 /// Adds the --max-* options of `limits` to a command (core/limits.h, docs/hostile.md).
 void add_limit_options(CLI::App& cmd, std::initializer_list<Limit> limits);
 
+/// A check for an option that takes a positive number of at most `most` (a white point: zero
+/// would divide by zero, so it is refused rather than read as "the default").
+CLI::Validator positive_at_most(double most);
+
 /// Thrown by a command to end the program with `code` (after its output), e.g. compare's 1
 /// when a threshold is exceeded.
 struct ExitStatus {

@@ -1,8 +1,10 @@
-// The --max-* options that raise (or lower) the resource limits of core/limits.h.
+// The --max-* options that raise (or lower) the resource limits of core/limits.h, and the checks
+// that several commands' options share.
 #include <string>
 
 #include "cli/commands.h"
 #include "core/limits.h"
+#include "core/parse.h"
 
 namespace radrecon::cli {
 
@@ -16,6 +18,17 @@ void add_limit_options(CLI::App& cmd, std::initializer_list<Limit> limits) {
         ->check(CLI::PositiveNumber)
         ->group("Limits");
   }
+}
+
+CLI::Validator positive_at_most(double most) {
+  return CLI::Validator(
+      [most](std::string& text) -> std::string {
+        double value = 0;
+        if (!CLI::detail::lexical_cast(text, value)) return "must be a number, got '" + text + "'";
+        if (!(value > 0 && value <= most)) return "must be positive and at most " + format_number(most) + ", got " + text;
+        return {};
+      },
+      "POSITIVE at most " + format_number(most));
 }
 
 }  // namespace radrecon::cli

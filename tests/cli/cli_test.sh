@@ -197,6 +197,17 @@ expect_stderr_has render_white "99th percentile"
 run render_white_set render --scene paper --solution "$TMP/solution.json" --camera view --size 32x24 --white 3 --out "$TMP/white3.png"
 expect_rc render_white_set 0
 expect_stderr_has render_white_set "white 3 W/m^2 (--white)"
+# A white of zero would divide by zero: refused, not read as the default (render, export, compare).
+run render_white_zero render --scene paper --solution "$TMP/solution.json" --camera view --size 32x24 --white 0 --out "$TMP/white0.png"
+expect_rc render_white_zero 2
+expect_stderr_has render_white_zero "--white: must be positive"
+expect_no_output render_white_zero "$TMP/white0.png"
+run export_white_zero export --scene paper --solution "$TMP/solution.json" --white 0 --out "$TMP/white0.glb"
+expect_rc export_white_zero 2
+expect_no_output export_white_zero "$TMP/white0.glb"
+run compare_white_zero compare "$TMP/white.png" "$TMP/white3.png" --white -1
+expect_rc compare_white_zero 2
+expect_stderr_has compare_white_zero "--white: must be positive"
 # A light in the ceiling's plane, solved and rendered from below: drawn (the emitter wins the tie).
 cat >"$TMP/coplanar.json" <<'EOF'
 {"name": "coplanar", "surfaces": [
