@@ -125,8 +125,15 @@ void validate_surface(const Surface& s, const std::string& where) {
     longest_sq = std::max(longest_sq, (s.corners[(i + 1) % n_corners] - s.corners[i]).squaredNorm());
   double longest = std::sqrt(longest_sq);
   const std::string kind = n_corners == 3 ? "triangle" : "quad";
-  if (longest == 0 || s.area_m2() <= tol::kDegenerateAreaRelative * longest_sq)
+  if (longest == 0 || s.area_m2() <= tol::kDegenerateAreaRelative * longest_sq) {
+    // A bow tie's two halves cancel: zero area, though three of its corners span a triangle.
+    double spanned_m2 = 0;
+    for (int i = 0; n_corners == 4 && i < n_corners; ++i)
+      spanned_m2 = std::max(spanned_m2, 0.5 * (s.corners[(i + 1) % 4] - s.corners[i]).cross(s.corners[(i + 2) % 4] - s.corners[i]).norm());
+    if (spanned_m2 > tol::kDegenerateAreaRelative * longest_sq)
+      throw UserError(where + ".corners", "quad crosses itself (a bow tie): its corners are not in order around it");
     throw UserError(where + ".corners", "degenerate " + kind + " (zero area: its corners are collinear or coincide)");
+  }
   Vec3 n = s.normal();
   Vec3 centroid = 0.25 * (s.corners[0] + s.corners[1] + s.corners[2] + s.corners[3]);
   for (int i = 0; i < n_corners; ++i) {

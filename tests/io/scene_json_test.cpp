@@ -237,6 +237,10 @@ TEST(SceneJson, SplitsANonConvexQuadAndRefusesAMisorderedOne) {
   // Self-intersecting order with non-zero diagonal cross product (corners 2 and 3 swapped-ish).
   doc["surfaces"][0]["corners"] = json::parse("[[0,0,0],[3,0,0],[0,2,0],[1,3,0]]");
   EXPECT_TRUE(RefusedMentioning(doc.dump(), {kSource, "surfaces[0].corners"}));
+  // A bow tie whose halves cancel (zero area, corners far from collinear): said to cross itself,
+  // not to be collinear.
+  doc["surfaces"][0]["corners"] = json::parse("[[0,0,0],[4,0,0],[0,3,0],[4,4,0]]");
+  EXPECT_TRUE(RefusedMentioning(doc.dump(), {kSource, "surfaces[0].corners", "crosses itself"}));
 }
 
 TEST(SceneJson, RefusesReflectanceOutsideZeroToOne) {
