@@ -251,22 +251,32 @@ Raises radrecon.Error (a ValueError) for refused input.)doc");
       }, py::arg("path"), "Write the solution JSON that `radrecon solve --out` writes.");
 
   m.def("solve", [](const std::string& scene_spec, const std::string& mesh, double residual, int patches,
-                    const std::string& leaves_on, bool clusters) {
-    if (patches < 0) throw UserError("patches", "must be 0 (the default, 4) or a positive count");
+                    const std::string& leaves_on, bool clusters, double far_field_error, bool shadow_barriers) {
+    if (patches < 0 || patches > kMostPatches)
+      throw UserError("patches", "must be 0 (the default, 4) or a count up to " + std::to_string(kMostPatches));
+    if (const std::string problem = residual_problem(residual); !problem.empty()) throw UserError("residual", problem);
+    if (const std::string problem = far_field_error_problem(far_field_error); !problem.empty())
+      throw UserError("far_field_error", problem);
     SolveSettings settings;
     settings.residual = residual;
     settings.patches = patches;
     settings.clusters = clusters;
     settings.leaves_on = leaves_on;
+    settings.far_field_error = far_field_error;
+    settings.shadow_barriers = shadow_barriers;
     py::gil_scoped_release release;
     const Scene scene = load_scene(scene_spec);
     return solve_scene(scene, mesh, settings, "mesh");
   }, py::arg("scene") = "paper", py::arg("mesh") = "grid:16", py::arg("residual") = kDefaultResidual,
      py::arg("patches") = SolveSettings{}.patches, py::arg("leaves_on") = "", py::arg("clusters") = true,
+     py::arg("far_field_error") = kDefaultFarFieldError, py::arg("shadow_barriers") = false,
      R"doc(Solve a scene's radiosity, as `radrecon solve` does.
 
 scene: a scene JSON file, a mesh file (.obj, .gltf, .glb, .ply) with emitters, or 'paper' or
 'cornell'. mesh: grid:N, quadtree:LEAVES or quadtree-eps:E. patches: grid: shooting patches
 along the longest edge; 0: the default, 4. clusters: a model's many
-small triangles shoot in clusters (radrecon solve --clusters). Returns a Solution.)doc");
+small triangles shoot in clusters (radrecon solve --clusters). far_field_error: grid: the far
+field's error bound, a fraction of each receiver's irradiance; 0: the distance rule
+(--far-field-error). shadow_barriers: also the direct light's umbra and penumbra lines among
+each side's barriers (--shadow-barriers). Returns a Solution.)doc");
 }

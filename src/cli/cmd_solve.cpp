@@ -32,9 +32,9 @@ void run_solve(const SolveArgs& args, const CLI::App& cmd) {
   for (const char* option : {"--residual", "--patches", "--far-field-error", "--clusters"})
     if (!grid && cmd.count(option) > 0) throw UserError(option, "applies to grid:N meshes only");
   // CLI11's ranges let NaN through (every comparison with it is false).
-  if (!std::isfinite(args.residual)) throw UserError("--residual", "must be a number in [1e-12, 0.5]");
-  if (!std::isfinite(args.far_field_error))
-    throw UserError("--far-field-error", "must be 0 or a number in [1e-6, 0.5]");
+  if (const std::string problem = residual_problem(args.residual); !problem.empty()) throw UserError("--residual", problem);
+  if (const std::string problem = far_field_error_problem(args.far_field_error); !problem.empty())
+    throw UserError("--far-field-error", problem);
   if (!leaves && cmd.count("--leaves-on")) throw UserError("--leaves-on", "applies to quadtree:LEAVES meshes only");
   refuse_overwriting_inputs(args.out, "--out", scene_input_files(args.scene));
   check_output_file(args.out, "--out");
@@ -84,7 +84,7 @@ void add_solve_command(CLI::App& app) {
                   "grid: shooting patches along the longest edge (patches group elements; receivers are elements); "
                   "default 4, the fastest for the Cornell box and a model of 11,000 triangles, and within the "
                   "noise of the fastest (3) for the paper scene (docs/benchmarks.md)")
-      ->check(CLI::Range(1, 100000));
+      ->check(CLI::Range(1, kMostPatches));
   cmd->add_option("--far-field-error", args->far_field_error,
                   "grid: a block of a shooting patch shoots as one source only while its error estimate is at most "
                   "this fraction of the receiver's irradiance; 0: beyond 2.5 of its diagonals instead, with no "

@@ -19,6 +19,18 @@ namespace radrecon {
 
 int default_patches() { return GridMeshOptions{}.max_patches; }
 
+std::string residual_problem(double residual) {
+  if (residual >= kMinResidual && residual <= kMaxResidual) return {};  // NaN fails both
+  return "must be a number in [" + format_number(kMinResidual) + ", " + format_number(kMaxResidual) + "], got " +
+         format_number(residual);
+}
+
+std::string far_field_error_problem(double far_field_error) {
+  if (far_field_error == 0 || (far_field_error >= kMinFarFieldError && far_field_error <= kMaxFarFieldError)) return {};
+  return "must be 0 or a number in [" + format_number(kMinFarFieldError) + ", " + format_number(kMaxFarFieldError) +
+         "], got " + format_number(far_field_error);
+}
+
 namespace {
 
 /// The integer in [lo, hi] that is all of `text`, a part of the specification `spec`.

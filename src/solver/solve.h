@@ -19,6 +19,8 @@ namespace radrecon {
 /// fastest (3) for the paper's reference (docs/benchmarks.md, twenty-sixth session). Smaller
 /// patches give smaller trees to visit from each receiver, in more shots.
 int default_patches();
+/// The most shooting patches along the longest edge one may ask for (SolveSettings::patches).
+inline constexpr int kMostPatches = 100000;
 
 struct SolveSettings {
   double residual = kDefaultResidual;  ///< progressive: stop below this unshot fraction of the emitted power
@@ -40,6 +42,13 @@ struct SolveSettings {
   /// off regions that hold no sample (docs/method.md).
   bool shadow_barriers = false;
 };
+
+/// Why `residual` cannot be SolveSettings::residual (a number in [kMinResidual, kMaxResidual]),
+/// e.g. "must be a number in [1e-12, 0.5], got 2"; empty if it can.
+std::string residual_problem(double residual);
+/// Why `far_field_error` cannot be SolveSettings::far_field_error (0, or a number in
+/// [kMinFarFieldError, kMaxFarFieldError]); empty if it can.
+std::string far_field_error_problem(double far_field_error);
 
 /// Solves `scene` as `mesh_spec` says. Throws UserError naming `where` (the caller's location
 /// of the specification, e.g. an option) for a malformed or

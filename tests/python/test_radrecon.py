@@ -233,3 +233,29 @@ def test_solve_refusals():
         radrecon.solve("paper", "grid:banana")
     with pytest.raises(radrecon.Error, match="nothing.json"):
         radrecon.solve("nothing.json")
+    # Out of range or NaN: refused by name, as the command line refuses them (no abort).
+    for keywords, name in [({"residual": -1.0}, "residual"), ({"residual": 2.0}, "residual"),
+                           ({"residual": float("nan")}, "residual"), ({"far_field_error": 0.6}, "far_field_error"),
+                           ({"far_field_error": 1e-7}, "far_field_error"), ({"patches": 10**6}, "patches")]:
+        with pytest.raises(radrecon.Error, match=name):
+            radrecon.solve("paper", "grid:4", **keywords)
+
+
+def test_solve_takes_the_far_field_bound_and_shadow_barriers_as_the_command_line(tmp_path):
+    # Each keyword reaches the solver: the saved solution is the command line's with the same
+    # option, timing aside, and not the default's.
+    def without_timing(path):
+        doc = json.load(open(path))
+        doc["stats"].pop("seconds")
+        return doc
+
+    default = tmp_path / "default.json"
+    radrecon.solve("paper", "grid:8").save(str(default))
+    for keywords, options in [({"far_field_error": 0.0}, ["--far-field-error", "0"]),
+                              ({"shadow_barriers": True}, ["--shadow-barriers"])]:
+        ours, theirs = tmp_path / "ours.json", tmp_path / "theirs.json"
+        radrecon.solve("paper", "grid:8", **keywords).save(str(ours))
+        subprocess.run([RADRECON_BIN, "solve", "--scene", "paper", "--mesh", "grid:8", "--out", str(theirs), "--quiet",
+                        *options], check=True)
+        assert without_timing(ours) == without_timing(theirs), options
+        assert without_timing(ours) != without_timing(default), options
