@@ -85,6 +85,17 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
+  } catch (const CLI::ExtrasError& e) {
+    // CLI11 says "The following argument was not expected: --foo": worded as every refusal is,
+    // the unexpected words first.
+    std::string words;
+    for (const std::string& word : app.remaining(true)) words += (words.empty() ? "" : " ") + word;
+    if (words.empty()) words = e.what();
+    std::string command = "radrecon";
+    for (const CLI::App* sub : app.get_subcommands()) command += " " + sub->get_name();
+    std::fprintf(stderr, "radrecon: error: %s: not an option or argument of '%s' ('%s --help' lists them)\n",
+                 words.c_str(), command.c_str(), command.c_str());
+    return radrecon::kUserErrorExitCode;
   } catch (const CLI::ParseError& e) {
     // As every refusal is worded (docs/cli.md): "radrecon: error: WHERE: WHAT".
     std::fprintf(stderr, "radrecon: error: %s\nRun with --help for more information.\n", e.what());

@@ -156,6 +156,10 @@ expect_stderr_has option_twice "radrecon: error: --scene: "
 run no_command
 expect_rc no_command 2
 expect_stderr_has no_command "radrecon: error: A subcommand is required"
+run unknown_option solve --scene paper --mesh grid:4 --out "$TMP/unknown.json" --quiet --bogus 3
+expect_rc unknown_option 2
+expect_stderr_has unknown_option "radrecon: error: --bogus 3: not an option or argument of 'radrecon solve'"
+expect_no_output unknown_option "$TMP/unknown.json"
 
 # A solution of another scene (same side names, other lengths) is refused, not drawn wrongly;
 # so is a method that fits no side of the solution.
