@@ -250,33 +250,48 @@ Raises radrecon.Error (a ValueError) for refused input.)doc");
         write_solution_json(path, s);
       }, py::arg("path"), "Write the solution JSON that `radrecon solve --out` writes.");
 
-  m.def("solve", [](const std::string& scene_spec, const std::string& mesh, double residual, int patches,
-                    const std::string& leaves_on, bool clusters, double far_field_error, bool shadow_barriers) {
-    if (patches < 0 || patches > kMostPatches)
-      throw UserError("patches", "must be 0 (the default, 4) or a count up to " + std::to_string(kMostPatches));
-    if (const std::string problem = residual_problem(residual); !problem.empty()) throw UserError("residual", problem);
-    if (const std::string problem = far_field_error_problem(far_field_error); !problem.empty())
-      throw UserError("far_field_error", problem);
+  m.def("solve", [](const std::string& scene_spec, const std::string& mesh, std::optional<double> residual,
+                    std::optional<long long> patches, std::optional<std::string> leaves_on, std::optional<bool> clusters,
+                    std::optional<double> far_field_error, bool shadow_barriers) {
+    // As the command line: options the mesh does not use are refused, not ignored.
+    std::vector<std::string> grid_only_given;
+    if (residual) grid_only_given.emplace_back("residual");
+    if (patches) grid_only_given.emplace_back("patches");
+    if (far_field_error) grid_only_given.emplace_back("far_field_error");
+    if (clusters) grid_only_given.emplace_back("clusters");
+    refuse_unused_options(mesh, grid_only_given, leaves_on ? "leaves_on" : "");
     SolveSettings settings;
-    settings.residual = residual;
-    settings.patches = patches;
-    settings.clusters = clusters;
-    settings.leaves_on = leaves_on;
-    settings.far_field_error = far_field_error;
+    if (patches && (*patches < 0 || *patches > kMostPatches))
+      throw UserError("patches", "must be 0 (the default, " + std::to_string(default_patches()) + ") or a count up to " +
+                                     std::to_string(kMostPatches));
+    if (residual) {
+      if (const std::string problem = residual_problem(*residual); !problem.empty()) throw UserError("residual", problem);
+      settings.residual = *residual;
+    }
+    if (far_field_error) {
+      if (const std::string problem = far_field_error_problem(*far_field_error); !problem.empty())
+        throw UserError("far_field_error", problem);
+      settings.far_field_error = *far_field_error;
+    }
+    if (patches) settings.patches = static_cast<int>(*patches);
+    if (clusters) settings.clusters = *clusters;
+    if (leaves_on) settings.leaves_on = *leaves_on;
     settings.shadow_barriers = shadow_barriers;
     py::gil_scoped_release release;
     const Scene scene = load_scene(scene_spec);
     return solve_scene(scene, mesh, settings, "mesh");
-  }, py::arg("scene") = "paper", py::arg("mesh") = "grid:16", py::arg("residual") = kDefaultResidual,
-     py::arg("patches") = SolveSettings{}.patches, py::arg("leaves_on") = "", py::arg("clusters") = true,
-     py::arg("far_field_error") = kDefaultFarFieldError, py::arg("shadow_barriers") = false,
+  }, py::arg("scene") = "paper", py::arg("mesh") = "grid:16", py::arg("residual") = py::none(),
+     py::arg("patches") = py::none(), py::arg("leaves_on") = py::none(), py::arg("clusters") = py::none(),
+     py::arg("far_field_error") = py::none(), py::arg("shadow_barriers") = false,
      R"doc(Solve a scene's radiosity, as `radrecon solve` does.
 
 scene: a scene JSON file, a mesh file (.obj, .gltf, .glb, .ply) with emitters, or 'paper' or
-'cornell'. mesh: grid:N, quadtree:LEAVES or quadtree-eps:E. patches: grid: shooting patches
-along the longest edge; 0: the default, 4. clusters: a model's many
-small triangles shoot in clusters (radrecon solve --clusters). far_field_error: grid: the far
-field's error bound, a fraction of each receiver's irradiance; 0: the distance rule
-(--far-field-error). shadow_barriers: also the direct light's umbra and penumbra lines among
-each side's barriers (--shadow-barriers). Returns a Solution.)doc");
+'cornell'. mesh: grid:N, quadtree:LEAVES or quadtree-eps:E. For grid:N only (refused with the
+others, as on the command line): residual (default 1e-4); patches: shooting patches along the
+longest edge (0 or None: the default, 4); clusters (default True): a model's many small
+triangles shoot in clusters (radrecon solve --clusters); far_field_error (default 0.02): the far
+field's error bound, a fraction of each receiver's irradiance, 0 the distance rule. For
+quadtree:LEAVES only: leaves_on, the side that gets the leaves. shadow_barriers: also the direct
+light's umbra and penumbra lines among each side's barriers (--shadow-barriers). Returns a
+Solution.)doc");
 }

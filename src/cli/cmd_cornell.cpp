@@ -178,7 +178,7 @@ void add_cornell_command(CLI::App& app) {
       ->check(CLI::Range(1, 8))
       ->capture_default_str();
   cmd->add_option("--residual", args->residual, "Stop when the unshot power falls below this fraction of the emitted power")
-      ->check(CLI::Range(kMinResidual, kMaxResidual))
+      ->check(residual_check())
       ->capture_default_str();
   cmd->add_option("--rbf-k", args->rbf_k,
                   "multiquadric and thin-plate: local patches of this many nearest samples (their k=); 0: one "

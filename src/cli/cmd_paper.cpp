@@ -17,7 +17,7 @@ void add_paper_command(CLI::App& app) {
       ->check(CLI::Range(16, 2000))
       ->capture_default_str();
   cmd->add_option("--residual", opt->residual, "Progressive refinement stops below this unshot fraction")
-      ->check(CLI::Range(kMinResidual, kMaxResidual))
+      ->check(residual_check())
       ->capture_default_str();
   auto no_barriers = std::make_shared<bool>(false);
   cmd->add_flag("--no-barriers", *no_barriers,

@@ -28,14 +28,10 @@ struct SolveArgs {
 
 void run_solve(const SolveArgs& args, const CLI::App& cmd) {
   // Options that only one kind of mesh uses are refused with the other, not silently ignored.
-  const bool grid = args.mesh.rfind("grid:", 0) == 0, leaves = args.mesh.rfind("quadtree:", 0) == 0;
+  std::vector<std::string> grid_only_given;
   for (const char* option : {"--residual", "--patches", "--far-field-error", "--clusters"})
-    if (!grid && cmd.count(option) > 0) throw UserError(option, "applies to grid:N meshes only");
-  // CLI11's ranges let NaN through (every comparison with it is false).
-  if (const std::string problem = residual_problem(args.residual); !problem.empty()) throw UserError("--residual", problem);
-  if (const std::string problem = far_field_error_problem(args.far_field_error); !problem.empty())
-    throw UserError("--far-field-error", problem);
-  if (!leaves && cmd.count("--leaves-on")) throw UserError("--leaves-on", "applies to quadtree:LEAVES meshes only");
+    if (cmd.count(option) > 0) grid_only_given.emplace_back(option);
+  refuse_unused_options(args.mesh, grid_only_given, cmd.count("--leaves-on") > 0 ? "--leaves-on" : "");
   refuse_overwriting_inputs(args.out, "--out", scene_input_files(args.scene));
   check_output_file(args.out, "--out");
   const Scene scene = load_scene(args.scene);
@@ -78,7 +74,7 @@ void add_solve_command(CLI::App& app) {
   cmd->add_option("--out", args->out, "Solution file to write (JSON)")->required();
   cmd->add_option("--residual", args->residual,
                   "grid: stop when the unshot power falls below this fraction of the emitted power")
-      ->check(CLI::Range(kMinResidual, kMaxResidual))
+      ->check(residual_check())
       ->capture_default_str();
   cmd->add_option("--patches", args->patches,
                   "grid: shooting patches along the longest edge (patches group elements; receivers are elements); "
@@ -89,7 +85,7 @@ void add_solve_command(CLI::App& app) {
                   "grid: a block of a shooting patch shoots as one source only while its error estimate is at most "
                   "this fraction of the receiver's irradiance; 0: beyond 2.5 of its diagonals instead, with no "
                   "bound (docs/method.md)")
-      ->check(CLI::IsMember({0.0}) | CLI::Range(kMinFarFieldError, kMaxFarFieldError))
+      ->check(far_field_error_check())
       ->capture_default_str();
   cmd->add_option("--clusters", args->clusters,
                   "grid: with 256 or more sides of one element (a model's triangles), shoot them in clusters of up "

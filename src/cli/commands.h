@@ -24,6 +24,15 @@ void add_limit_options(CLI::App& cmd, std::initializer_list<Limit> limits);
 /// would divide by zero, so it is refused rather than read as "the default").
 CLI::Validator positive_at_most(double most);
 
+/// A check for a number option by one of the library's own "why not" functions (empty: fine),
+/// e.g. residual_problem(): the option is refused as the library refuses the value elsewhere, NaN
+/// included (CLI11's ranges let it through). `description` shows in --help.
+CLI::Validator number_check(std::string (*problem)(double), const std::string& description);
+/// --residual (solve, paper, cornell): residual_problem()'s values.
+CLI::Validator residual_check();
+/// --far-field-error: far_field_error_problem()'s values.
+CLI::Validator far_field_error_check();
+
 /// Thrown by a command to end the program with `code` (after its output), e.g. compare's 1
 /// when a threshold is exceeded.
 struct ExitStatus {

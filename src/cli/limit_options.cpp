@@ -5,6 +5,7 @@
 #include "cli/commands.h"
 #include "core/limits.h"
 #include "core/parse.h"
+#include "solver/solve.h"
 
 namespace radrecon::cli {
 
@@ -18,6 +19,25 @@ void add_limit_options(CLI::App& cmd, std::initializer_list<Limit> limits) {
         ->check(CLI::PositiveNumber)
         ->group("Limits");
   }
+}
+
+CLI::Validator number_check(std::string (*problem)(double), const std::string& description) {
+  return CLI::Validator(
+      [problem](std::string& text) -> std::string {
+        double value = 0;
+        if (!CLI::detail::lexical_cast(text, value)) return "must be a number, got '" + text + "'";
+        return problem(value);
+      },
+      description);
+}
+
+CLI::Validator residual_check() {
+  return number_check(residual_problem, "in [" + format_number(kMinResidual) + ", " + format_number(kMaxResidual) + "]");
+}
+
+CLI::Validator far_field_error_check() {
+  return number_check(far_field_error_problem,
+                      "0 or in [" + format_number(kMinFarFieldError) + ", " + format_number(kMaxFarFieldError) + "]");
 }
 
 CLI::Validator positive_at_most(double most) {

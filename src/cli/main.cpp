@@ -88,11 +88,17 @@ int main(int argc, char** argv) {
   } catch (const CLI::ExtrasError& e) {
     // CLI11 says "The following argument was not expected: --foo": worded as every refusal is,
     // the unexpected words first.
-    std::string words;
-    for (const std::string& word : app.remaining(true)) words += (words.empty() ? "" : " ") + word;
-    if (words.empty()) words = e.what();
+    // Words before the command are radrecon's own; after it, the command's.
+    std::vector<std::string> extras = app.remaining(false);
     std::string command = "radrecon";
-    for (const CLI::App* sub : app.get_subcommands()) command += " " + sub->get_name();
+    if (extras.empty())
+      for (const CLI::App* sub : app.get_subcommands()) {
+        command += " " + sub->get_name();
+        extras = sub->remaining(false);
+      }
+    std::string words;
+    for (const std::string& word : extras) words += (words.empty() ? "" : " ") + word;
+    if (words.empty()) words = e.what();
     std::fprintf(stderr, "radrecon: error: %s: not an option or argument of '%s' ('%s --help' lists them)\n",
                  words.c_str(), command.c_str(), command.c_str());
     return radrecon::kUserErrorExitCode;

@@ -126,11 +126,16 @@ void validate_surface(const Surface& s, const std::string& where) {
   double longest = std::sqrt(longest_sq);
   const std::string kind = n_corners == 3 ? "triangle" : "quad";
   if (longest == 0 || s.area_m2() <= tol::kDegenerateAreaRelative * longest_sq) {
-    // A bow tie's two halves cancel: zero area, though three of its corners span a triangle.
+    // A bow tie's two halves cancel: zero area, though its corners are distinct and three of them
+    // span a triangle.
+    bool distinct = true;
     double spanned_m2 = 0;
-    for (int i = 0; n_corners == 4 && i < n_corners; ++i)
+    for (int i = 0; n_corners == 4 && i < n_corners; ++i) {
+      for (int j = i + 1; j < n_corners; ++j)
+        distinct = distinct && (s.corners[j] - s.corners[i]).squaredNorm() > tol::kDegenerateAreaRelative * longest_sq;
       spanned_m2 = std::max(spanned_m2, 0.5 * (s.corners[(i + 1) % 4] - s.corners[i]).cross(s.corners[(i + 2) % 4] - s.corners[i]).norm());
-    if (spanned_m2 > tol::kDegenerateAreaRelative * longest_sq)
+    }
+    if (n_corners == 4 && distinct && spanned_m2 > tol::kDegenerateAreaRelative * longest_sq)
       throw UserError(where + ".corners", "quad crosses itself (a bow tie): its corners are not in order around it");
     throw UserError(where + ".corners", "degenerate " + kind + " (zero area: its corners are collinear or coincide)");
   }

@@ -25,10 +25,10 @@ inline constexpr double kDefaultResidual = 1e-4;
 inline constexpr double kMinResidual = 1e-12, kMaxResidual = 0.5;
 /// The far field's default error bound (ProgressiveOptions::far_field_error): measured against a
 /// solve with a bound of 1e-3, it keeps the paper reference's wall fronts within 0.04%, its
-/// ground within 0.31% and its umbra within 0.08% (the back sides' 0.34% is the same at bounds of
-/// 2e-2 to 4e-2), and each side of the Cornell box within 0.14% on average of a bound 20 times
-/// finer (docs/benchmarks.md, twenty-eighth session). 3e-2 would be 10% faster at 1.5 times the
-/// error.
+/// ground within 0.31% and its umbra within 0.08% (the back sides' 0.34% is the same at bounds
+/// of 2e-2 to 4e-2), and each side of the Cornell box at grid:32 within 0.14% on average of a
+/// bound 20 times finer (docs/benchmarks.md, twenty-eighth session). 3e-2 took 12% less
+/// processor time on the Cornell box at grid:128, for 1.5 times the error.
 inline constexpr double kDefaultFarFieldError = 2e-2;
 /// The far-field error bounds a user may ask for, besides 0 (the distance rule).
 inline constexpr double kMinFarFieldError = 1e-6, kMaxFarFieldError = 0.5;

@@ -19,6 +19,14 @@ namespace radrecon {
 
 int default_patches() { return GridMeshOptions{}.max_patches; }
 
+void refuse_unused_options(const std::string& mesh_spec, const std::vector<std::string>& grid_only_given,
+                           const std::string& leaves_on_given) {
+  if (mesh_spec.rfind("grid:", 0) != 0 && !grid_only_given.empty())
+    throw UserError(grid_only_given.front(), "applies to grid:N meshes only");
+  if (mesh_spec.rfind("quadtree:", 0) != 0 && !leaves_on_given.empty())
+    throw UserError(leaves_on_given, "applies to quadtree:LEAVES meshes only");
+}
+
 std::string residual_problem(double residual) {
   if (residual >= kMinResidual && residual <= kMaxResidual) return {};  // NaN fails both
   return "must be a number in [" + format_number(kMinResidual) + ", " + format_number(kMaxResidual) + "], got " +

@@ -5,6 +5,7 @@
 //   quadtree:LEAVES   hierarchical radiosity with exactly LEAVES leaves on one surface side
 
 #include <string>
+#include <vector>
 
 #include "mesh/grid_mesh.h"
 #include "scene/scene.h"
@@ -49,6 +50,13 @@ std::string residual_problem(double residual);
 /// Why `far_field_error` cannot be SolveSettings::far_field_error (0, or a number in
 /// [kMinFarFieldError, kMaxFarFieldError]); empty if it can.
 std::string far_field_error_problem(double far_field_error);
+
+/// Refuses an option that the kind of mesh `mesh_spec` names does not use, rather than ignoring
+/// it: `grid_only_given`, the names of the grid-only options given (residual, patches, far-field
+/// error, clusters), with any mesh but grid:N; `leaves_on_given`, the leaves-on option's name if
+/// given, with any but quadtree:LEAVES. Throws UserError naming the first.
+void refuse_unused_options(const std::string& mesh_spec, const std::vector<std::string>& grid_only_given,
+                           const std::string& leaves_on_given);
 
 /// Solves `scene` as `mesh_spec` says. Throws UserError naming `where` (the caller's location
 /// of the specification, e.g. an option) for a malformed or

@@ -156,6 +156,13 @@ expect_stderr_has option_twice "radrecon: error: --scene: "
 run no_command
 expect_rc no_command 2
 expect_stderr_has no_command "radrecon: error: A subcommand is required"
+# NaN passes CLI11's ranges: each command that takes --residual refuses it itself (paper and
+# cornell aborted on the solver's internal check).
+for command in solve paper cornell; do
+  run "residual_nan_$command" "$command" --residual nan --out "$TMP/nan_$command" --quiet
+  expect_rc "residual_nan_$command" 2
+  expect_stderr_has "residual_nan_$command" "--residual: must be a number in [1e-12, 0.5], got nan"
+done
 run unknown_option solve --scene paper --mesh grid:4 --out "$TMP/unknown.json" --quiet --bogus 3
 expect_rc unknown_option 2
 expect_stderr_has unknown_option "radrecon: error: --bogus 3: not an option or argument of 'radrecon solve'"
@@ -208,8 +215,9 @@ expect_stderr_has render_white_zero "--white: must be positive"
 expect_no_output render_white_zero "$TMP/white0.png"
 run export_white_zero export --scene paper --solution "$TMP/solution.json" --white 0 --out "$TMP/white0.glb"
 expect_rc export_white_zero 2
+expect_stderr_has export_white_zero "--white: must be positive"
 expect_no_output export_white_zero "$TMP/white0.glb"
-run compare_white_zero compare "$TMP/white.png" "$TMP/white3.png" --white -1
+run compare_white_zero compare "$TMP/white.png" "$TMP/white3.png" --white 0
 expect_rc compare_white_zero 2
 expect_stderr_has compare_white_zero "--white: must be positive"
 # A light in the ceiling's plane, solved and rendered from below: drawn (the emitter wins the tie).

@@ -241,6 +241,9 @@ TEST(SceneJson, SplitsANonConvexQuadAndRefusesAMisorderedOne) {
   // not to be collinear.
   doc["surfaces"][0]["corners"] = json::parse("[[0,0,0],[4,0,0],[0,3,0],[4,4,0]]");
   EXPECT_TRUE(RefusedMentioning(doc.dump(), {kSource, "surfaces[0].corners", "crosses itself"}));
+  // Two opposite corners at one point: degenerate, not a bow tie.
+  doc["surfaces"][0]["corners"] = json::parse("[[0,0,0],[1,0,0],[0,0,0],[0,1,0]]");
+  EXPECT_TRUE(RefusedMentioning(doc.dump(), {kSource, "surfaces[0].corners", "coincide"}));
 }
 
 TEST(SceneJson, RefusesReflectanceOutsideZeroToOne) {

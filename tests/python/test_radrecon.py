@@ -239,6 +239,13 @@ def test_solve_refusals():
                            ({"far_field_error": 1e-7}, "far_field_error"), ({"patches": 10**6}, "patches")]:
         with pytest.raises(radrecon.Error, match=name):
             radrecon.solve("paper", "grid:4", **keywords)
+    # Options the mesh does not use are refused, as the command line refuses them, not ignored.
+    for mesh, keywords, name in [("quadtree:49", {"far_field_error": 0.3}, "far_field_error"),
+                                 ("quadtree:49", {"patches": 7}, "patches"),
+                                 ("quadtree-eps:0.01", {"residual": 1e-3}, "residual"),
+                                 ("grid:4", {"leaves_on": "ground"}, "leaves_on")]:
+        with pytest.raises(radrecon.Error, match=name + ": applies to"):
+            radrecon.solve("paper", mesh, **keywords)
 
 
 def test_solve_takes_the_far_field_bound_and_shadow_barriers_as_the_command_line(tmp_path):

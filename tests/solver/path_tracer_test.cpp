@@ -6,6 +6,7 @@
 #include <random>
 
 #include "support/path_tracer.h"
+#include "support/scenes.h"
 
 namespace radrecon {
 namespace path_tracer_test {
@@ -55,6 +56,39 @@ TEST(PathTracerSupport, RaysMeetATriangleInsideItsHypotenuseOnly) {
   EXPECT_FALSE(intersect_quad(t, Vec3(0.51, 0.51, 1), down, 0, 10));  // just outside it
   EXPECT_FALSE(intersect_quad(t, Vec3(0.9, 0.9, 1), down, 0, 10));    // inside the quad it would span
   EXPECT_NEAR(*intersect_quad(t, Vec3(0.2, 0.3, 1), down, 0, 10), 1.0, 1e-15);
+}
+
+TEST(PathTracerSupport, ASurfaceLyingOnAnotherCoversItOnTheSideItShows) {
+  // A two-sided slab at z = 1 and a smaller one-sided lamp lying on its underside, facing down
+  // (the Cornell box's light on its ceiling), listed in either order.
+  using testing_support::quad;
+  const Surface slab = quad("slab", Vec3(0, 0, 1), Vec3(0, 4, 1), Vec3(4, 4, 1), Vec3(4, 0, 1), 0.5);  // faces -z
+  Surface two_sided = slab;
+  two_sided.two_sided = true;
+  const Surface lamp = quad("lamp", Vec3(1, 1, 1), Vec3(1, 2, 1), Vec3(2, 2, 1), Vec3(2, 1, 1), 0, 10);  // faces -z
+  ASSERT_LT(slab.normal().z(), 0);
+  ASSERT_LT(lamp.normal().z(), 0);
+  for (const bool lamp_first : {false, true}) {
+    Scene scene;
+    scene.surfaces = lamp_first ? std::vector<Surface>{lamp, two_sided} : std::vector<Surface>{two_sided, lamp};
+    const size_t lamp_index = lamp_first ? 0 : 1, slab_index = 1 - lamp_index;
+    const testing_support::PathTracer tracer(scene);
+    const size_t none = scene.surfaces.size();
+    // From below, under the lamp: the lamp, on its front.
+    auto hit = tracer.nearest(Vec3(1.5, 1.5, 0), Vec3(0, 0, 1), none);
+    ASSERT_TRUE(hit);
+    EXPECT_EQ(hit->surface, lamp_index);
+    EXPECT_TRUE(hit->front);
+    // From below, beside the lamp: the slab.
+    hit = tracer.nearest(Vec3(3, 3, 0), Vec3(0, 0, 1), none);
+    ASSERT_TRUE(hit);
+    EXPECT_EQ(hit->surface, slab_index);
+    // From above, over the lamp: the slab's upper side; the lamp shows nothing that way.
+    hit = tracer.nearest(Vec3(1.5, 1.5, 2), Vec3(0, 0, -1), none);
+    ASSERT_TRUE(hit);
+    EXPECT_EQ(hit->surface, slab_index);
+    EXPECT_FALSE(hit->front);
+  }
 }
 
 }  // namespace path_tracer_test

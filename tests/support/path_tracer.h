@@ -3,10 +3,10 @@
 // ray caster of ray_scene.h (no form factors, no clipping, no mesh), per colour channel, over
 // quads and triangles, lit by every emitting surface.
 //
-// The scene is read as the solver reads it: an emitter lying in the plane of another surface (the
-// Cornell box's light in its ceiling) adds its emission there and hides nothing, so where they
-// overlap the other surface still reflects (a path meeting both at once continues from the
-// reflecting one, and a shadow ray ending on an emitter is not blocked by a surface in its plane).
+// The scene is read as the solver reads it: a surface lying flat on another (the Cornell box's
+// light on its ceiling) covers it there (solver/covered.h), so a path meeting both at once
+// continues from the one on top, facing it (nearest()); a shadow ray ending on an emitter is not
+// blocked by a surface in its plane.
 
 #include <algorithm>
 #include <cmath>
@@ -42,9 +42,41 @@ inline Vec3 uniform_point(const Surface& s, double a, double b) {
 
 class PathTracer {
  public:
-  explicit PathTracer(const Scene& scene) : scene_(scene) {
+  explicit PathTracer(const Scene& scene) : scene_(scene), coplanar_(scene.surfaces.size()) {
     for (size_t k = 0; k < scene.surfaces.size(); ++k)
       if ((scene.surfaces[k].emission_w_m2 > 0).any()) emitters_.push_back(k);
+    // The surfaces in each one's plane (either orientation), to break ties between them.
+    for (size_t a = 0; a < scene.surfaces.size(); ++a)
+      for (size_t b = 0; b < scene.surfaces.size(); ++b) {
+        const Surface &sa = scene.surfaces[a], &sb = scene.surfaces[b];
+        const Vec3 n = sa.normal();
+        if (a == b || std::abs(std::abs(n.dot(sb.normal())) - 1) > kTie) continue;
+        const double size = std::sqrt(std::max(sa.area_m2(), sb.area_m2()));
+        bool in_plane = true;
+        for (const Vec3& c : sb.polygon()) in_plane = in_plane && std::abs(n.dot(c - sa.corners[0])) <= kTie * size;
+        if (in_plane) coplanar_[a].push_back(b);
+      }
+  }
+
+  /// The nearest surface along the ray o + t d (t > 0), `skip` excepted. Where surfaces coincide
+  /// there, the smallest of those the ray meets on a side they show (the front, or either side of
+  /// a two-sided one) wins: it lies on the others and covers them (the light on the Cornell box's
+  /// ceiling, seen from below; the ceiling, seen from above a one-sided light). Taking the ceiling
+  /// under the light reflected light from under the black emitter and put the box's floor 0.8%
+  /// too bright (docs/cornell.md).
+  std::optional<Hit> nearest(const Vec3& o, const Vec3& d, size_t skip) const {
+    auto hit = trace(scene_, o, d, skip);
+    if (!hit || coplanar_[hit->surface].empty()) return hit;
+    const auto shows = [&](size_t k) { return scene_.surfaces[k].two_sided || scene_.surfaces[k].normal().dot(d) < 0; };
+    std::optional<Hit> best;
+    if (shows(hit->surface)) best = hit;
+    for (size_t k : coplanar_[hit->surface]) {
+      if (k == skip || !shows(k)) continue;
+      if (best && scene_.surfaces[k].area_m2() >= scene_.surfaces[best->surface].area_m2()) continue;
+      if (auto t = intersect_quad(scene_.surfaces[k], o, d, hit->t * (1 - kTie), hit->t * (1 + kTie)))
+        best = Hit{*t, k, scene_.surfaces[k].normal().dot(d) < 0, o + *t * d};
+    }
+    return best ? best : hit;
   }
 
   /// Irradiance (W/m^2 per channel) at p (unit normal n, on surface `surface`) straight from the
@@ -112,24 +144,6 @@ class PathTracer {
   /// Relative distance within which two hits are one (coplanar surfaces).
   static constexpr double kTie = 1e-9;
 
-  bool is_emitter(size_t k) const { return std::find(emitters_.begin(), emitters_.end(), k) != emitters_.end(); }
-
-  /// Nearest hit; on a tie between an emitter and a surface in its plane, the emitter: it lies on
-  /// the surface and covers it there (the Cornell box's light on its ceiling), as the solver's
-  /// covered parts and the renderer's tie have it. A path ends on it (black; its emission is
-  /// direct()'s). Taking the surface instead reflected light from under the light and put the
-  /// box's floor 0.8% too bright (docs/cornell.md).
-  std::optional<Hit> nearest(const Vec3& o, const Vec3& d, size_t skip) const {
-    auto hit = trace(scene_, o, d, skip);
-    if (!hit || is_emitter(hit->surface)) return hit;
-    for (size_t k : emitters_) {
-      if (k == skip) continue;
-      if (auto t = intersect_quad(scene_.surfaces[k], o, d, hit->t * (1 - kTie), hit->t * (1 + kTie)))
-        return Hit{*t, k, scene_.surfaces[k].normal().dot(d) < 0, o + *t * d};
-    }
-    return hit;
-  }
-
   /// True if nothing blocks the segment from p (on surface a) to y (on emitter b); a surface
   /// through y itself (in the emitter's plane) does not.
   bool unblocked(const Vec3& p, const Vec3& y, size_t a, size_t b) const {
@@ -143,6 +157,7 @@ class PathTracer {
 
   const Scene& scene_;
   std::vector<size_t> emitters_;
+  std::vector<std::vector<size_t>> coplanar_;  ///< by surface: the others in its plane
 };
 
 }  // namespace radrecon::testing_support
