@@ -1,7 +1,9 @@
 #pragma once
 // The radrecon subcommands; each adds itself to the application and runs when selected.
 
+#include <functional>
 #include <initializer_list>
+#include <string>
 
 #include <CLI/CLI.hpp>
 
@@ -27,7 +29,7 @@ CLI::Validator positive_at_most(double most);
 /// A check for a number option by one of the library's own "why not" functions (empty: fine),
 /// e.g. residual_problem(): the option is refused as the library refuses the value elsewhere, NaN
 /// included (CLI11's ranges let it through). `description` shows in --help.
-CLI::Validator number_check(std::string (*problem)(double), const std::string& description);
+CLI::Validator number_check(std::function<std::string(double)> problem, const std::string& description);
 /// --residual (solve, paper, cornell): residual_problem()'s values.
 CLI::Validator residual_check();
 /// --far-field-error: far_field_error_problem()'s values.

@@ -1,6 +1,7 @@
 // The --max-* options that raise (or lower) the resource limits of core/limits.h, and the checks
 // that several commands' options share.
 #include <string>
+#include <utility>
 
 #include "cli/commands.h"
 #include "core/limits.h"
@@ -21,9 +22,9 @@ void add_limit_options(CLI::App& cmd, std::initializer_list<Limit> limits) {
   }
 }
 
-CLI::Validator number_check(std::string (*problem)(double), const std::string& description) {
+CLI::Validator number_check(std::function<std::string(double)> problem, const std::string& description) {
   return CLI::Validator(
-      [problem](std::string& text) -> std::string {
+      [problem = std::move(problem)](std::string& text) -> std::string {
         double value = 0;
         if (!CLI::detail::lexical_cast(text, value)) return "must be a number, got '" + text + "'";
         return problem(value);
@@ -41,12 +42,10 @@ CLI::Validator far_field_error_check() {
 }
 
 CLI::Validator positive_at_most(double most) {
-  return CLI::Validator(
-      [most](std::string& text) -> std::string {
-        double value = 0;
-        if (!CLI::detail::lexical_cast(text, value)) return "must be a number, got '" + text + "'";
-        if (!(value > 0 && value <= most)) return "must be positive and at most " + format_number(most) + ", got " + text;
-        return {};
+  return number_check(
+      [most](double value) -> std::string {
+        if (value > 0 && value <= most) return {};  // NaN fails
+        return "must be positive and at most " + format_number(most) + ", got " + format_number(value);
       },
       "POSITIVE at most " + format_number(most));
 }

@@ -86,9 +86,9 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ExtrasError& e) {
-    // CLI11 says "The following argument was not expected: --foo": worded as every refusal is,
-    // the unexpected words first.
-    // Words before the command are radrecon's own; after it, the command's.
+    // CLI11 says "The following argument was not expected: --foo"; worded as every refusal is,
+    // the unexpected words first: those before the command are radrecon's own, those after it
+    // the command's.
     std::vector<std::string> extras = app.remaining(false);
     std::string command = "radrecon";
     if (extras.empty())
