@@ -260,23 +260,18 @@ Raises radrecon.Error (a ValueError) for refused input.)doc");
     if (far_field_error) grid_only_given.emplace_back("far_field_error");
     if (clusters) grid_only_given.emplace_back("clusters");
     refuse_unused_options(mesh, grid_only_given, leaves_on ? "leaves_on" : "");
+    // Checked before the int it goes into; the other settings by check_settings(), before the
+    // scene is read (solve_scene() checks them again).
+    if (const std::string problem = patches ? patches_problem(*patches) : ""; !problem.empty())
+      throw UserError("patches", problem);
     SolveSettings settings;
-    if (patches && (*patches < 0 || *patches > kMostPatches))
-      throw UserError("patches", "must be 0 (the default, " + std::to_string(default_patches()) + ") or a count up to " +
-                                     std::to_string(kMostPatches));
-    if (residual) {
-      if (const std::string problem = residual_problem(*residual); !problem.empty()) throw UserError("residual", problem);
-      settings.residual = *residual;
-    }
-    if (far_field_error) {
-      if (const std::string problem = far_field_error_problem(*far_field_error); !problem.empty())
-        throw UserError("far_field_error", problem);
-      settings.far_field_error = *far_field_error;
-    }
+    if (residual) settings.residual = *residual;
+    if (far_field_error) settings.far_field_error = *far_field_error;
     if (patches) settings.patches = static_cast<int>(*patches);
     if (clusters) settings.clusters = *clusters;
     if (leaves_on) settings.leaves_on = *leaves_on;
     settings.shadow_barriers = shadow_barriers;
+    check_settings(settings);
     py::gil_scoped_release release;
     const Scene scene = load_scene(scene_spec);
     return solve_scene(scene, mesh, settings, "mesh");

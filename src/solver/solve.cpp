@@ -19,11 +19,18 @@ namespace radrecon {
 
 int default_patches() { return GridMeshOptions{}.max_patches; }
 
+namespace {
+
+/// The kind of mesh a specification names: what precedes its colon (grid, quadtree, ...).
+std::string mesh_kind(const std::string& spec) { return spec.substr(0, spec.find(':')); }
+
+}  // namespace
+
 void refuse_unused_options(const std::string& mesh_spec, const std::vector<std::string>& grid_only_given,
                            const std::string& leaves_on_given) {
-  if (mesh_spec.rfind("grid:", 0) != 0 && !grid_only_given.empty())
+  if (mesh_kind(mesh_spec) != "grid" && !grid_only_given.empty())
     throw UserError(grid_only_given.front(), "applies to grid:N meshes only");
-  if (mesh_spec.rfind("quadtree:", 0) != 0 && !leaves_on_given.empty())
+  if (mesh_kind(mesh_spec) != "quadtree" && !leaves_on_given.empty())
     throw UserError(leaves_on_given, "applies to quadtree:LEAVES meshes only");
 }
 
@@ -37,6 +44,20 @@ std::string far_field_error_problem(double far_field_error) {
   if (far_field_error == 0 || (far_field_error >= kMinFarFieldError && far_field_error <= kMaxFarFieldError)) return {};
   return "must be 0 or a number in [" + format_number(kMinFarFieldError) + ", " + format_number(kMaxFarFieldError) +
          "], got " + format_number(far_field_error);
+}
+
+std::string patches_problem(long long patches) {
+  if (patches >= 0 && patches <= kMostPatches) return {};
+  return "must be 0 (the default, " + std::to_string(default_patches()) + ") or a count up to " +
+         std::to_string(kMostPatches) + ", got " + std::to_string(patches);
+}
+
+void check_settings(const SolveSettings& settings) {
+  if (const std::string problem = residual_problem(settings.residual); !problem.empty())
+    throw UserError("residual", problem);
+  if (const std::string problem = far_field_error_problem(settings.far_field_error); !problem.empty())
+    throw UserError("far_field_error", problem);
+  if (const std::string problem = patches_problem(settings.patches); !problem.empty()) throw UserError("patches", problem);
 }
 
 namespace {
@@ -74,7 +95,7 @@ Solution solve_by_spec(const Scene& scene, const std::string& spec, const SolveS
   const auto colon = spec.find(':');
   if (colon == std::string::npos)
     throw UserError(field, "expected grid:N, quadtree:LEAVES or quadtree-eps:E, got '" + spec + "'");
-  const std::string kind = spec.substr(0, colon), value = spec.substr(colon + 1);
+  const std::string kind = mesh_kind(spec), value = spec.substr(colon + 1);
   if (kind == "grid") {
     const int n = static_cast<int>(spec_integer(value, 1, 100000, field, spec));
     const GridMeshOptions mesh_options{n, settings.patches > 0 ? settings.patches : default_patches()};
@@ -136,6 +157,7 @@ Solution with_barriers(const Scene& scene, Solution sol, bool shadow_lines_too) 
 
 Solution solve_scene(const Scene& scene, const std::string& spec, const SolveSettings& settings,
                      const std::string& where) {
+  check_settings(settings);
   return with_barriers(scene, solve_by_spec(scene, spec, settings, where), settings.shadow_barriers);
 }
 

@@ -50,6 +50,13 @@ std::string residual_problem(double residual);
 /// Why `far_field_error` cannot be SolveSettings::far_field_error (0, or a number in
 /// [kMinFarFieldError, kMaxFarFieldError]); empty if it can.
 std::string far_field_error_problem(double far_field_error);
+/// Why `patches` cannot be SolveSettings::patches (0, the default, or a count up to
+/// kMostPatches); empty if it can.
+std::string patches_problem(long long patches);
+/// Refuses settings out of range (UserError naming the field: residual, far_field_error,
+/// patches), whoever filled them in; solve_scene() calls it first. The command line checks its
+/// options as it parses them, before any work.
+void check_settings(const SolveSettings& settings);
 
 /// Refuses an option that the kind of mesh `mesh_spec` names does not use, rather than ignoring
 /// it: `grid_only_given`, the names of the grid-only options given (residual, patches, far-field
