@@ -96,6 +96,10 @@ class Hierarchy {
       gather_until_converged();
     }
     seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (!options_.progress_label.empty())
+      std::fprintf(stderr, "%s: %d leaves on %zu surface sides, %zu links, %d refinement passes, %.2f s%s\n",
+                   options_.progress_label.c_str(), total_leaves(), trees_.size(), hierarchy_links_, passes, seconds_,
+                   converged_ ? "" : " (gathering stopped before converging)");
   }
 
   Solution solution(const std::string& mesh_spec) const {
