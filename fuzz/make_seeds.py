@@ -9,6 +9,7 @@ import base64
 import json
 import pathlib
 import struct
+import zlib
 
 ROOT = pathlib.Path(__file__).resolve().parent / "corpus"
 
@@ -100,3 +101,31 @@ vertices = b"".join(struct.pack("<3f3B", *v) for v in [(0, 0, 0, 255, 0, 0), (1,
                                                        (1, 1, 0, 0, 0, 255), (0, 1, 0, 9, 9, 9)])
 put("mesh_ply", "binary.ply", ply_header.format("binary_little_endian 1.0").encode() + vertices +
     struct.pack("<B4i", 4, 0, 1, 2, 3))
+
+# --- pictures (io/image_read.h), as `radrecon compare` reads them -------------------------------
+rgb = [0.0, 0.5, 1.0, 2.0, -1.0, 1e-30, 3.5, 0.25, 7.0, 1e30, 0.125, 4.0]  # 2 x 2 pixels, 3 channels
+put("picture_pfm", "rgb_little.pfm", b"PF\n2 2\n-1.0\n" + struct.pack("<12f", *rgb))
+put("picture_pfm", "grey_big.pfm", b"Pf\n3 1\n1.0\n" + struct.pack(">3f", 0.0, 0.5, 1.0))
+put("picture_pfm", "spaces.pfm", b"PF 1\t1 -2.5\n" + struct.pack("<3f", 1, 2, 3))
+
+
+def png(width, height, depth, colour, rows, palette=None, transparency=None):
+    """A PNG of the given rows (bytes each, filter byte included) in one IDAT chunk."""
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+    out = b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, depth, colour, 0, 0, 0))
+    if palette is not None:
+        out += chunk(b"PLTE", palette)
+    if transparency is not None:
+        out += chunk(b"tRNS", transparency)
+    return out + chunk(b"IDAT", zlib.compress(b"".join(rows))) + chunk(b"IEND", b"")
+
+
+put("picture_png", "grey8.png", png(2, 2, 8, 0, [b"\0\x00\x80", b"\1\xff\x01"]))
+put("picture_png", "rgb16.png", png(1, 2, 16, 2, [b"\0" + struct.pack(">3H", 0, 32768, 65535),
+                                                  b"\2" + struct.pack(">3H", 1, 2, 3)]))
+put("picture_png", "rgba8.png", png(2, 1, 8, 6, [b"\4" + bytes([10, 20, 30, 255, 40, 50, 60, 0])]))
+put("picture_png", "grey_alpha.png", png(1, 1, 8, 4, [b"\0\x40\x80"]))
+put("picture_png", "palette2.png", png(4, 1, 2, 3, [b"\0\x1b"], palette=bytes([0, 0, 0, 255, 0, 0, 0, 255, 0, 0, 0, 255]),
+                                       transparency=b"\x80"))
+put("picture_png", "grey1.png", png(8, 2, 1, 0, [b"\0\xa5", b"\3\x0f"]))

@@ -17,10 +17,12 @@ jobs=${FUZZ_JOBS:-$(nproc)}
 # Leaks inside Debian's assimp are not ours to fix (fuzz/lsan_suppressions.txt says which).
 export LSAN_OPTIONS="suppressions=$here/lsan_suppressions.txt:print_suppressions=0"
 
-harnesses=(scene_json solution_json samples_csv query_csv geojson mesh_obj mesh_gltf mesh_glb mesh_ply)
+harnesses=(scene_json solution_json samples_csv query_csv geojson mesh_obj mesh_gltf mesh_glb mesh_ply picture_pfm
+           picture_png)
 declare -A hostile_glob=([scene_json]='scene_*.json' [solution_json]='solution_*.json' [samples_csv]='*.csv'
                          [query_csv]='*.csv' [geojson]='*.geojson' [mesh_obj]='*.obj' [mesh_gltf]='*.gltf'
-                         [mesh_glb]='*.glb' [mesh_ply]='*.ply')
+                         [mesh_glb]='*.glb' [mesh_ply]='*.ply' [picture_pfm]='*.pfm'
+                         [picture_png]='*.png')
 
 for h in "${harnesses[@]}"; do
   if [ ! -x "$build/fuzz/fuzz_$h" ]; then
