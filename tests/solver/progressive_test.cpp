@@ -7,6 +7,7 @@
 
 #include "mesh/grid_mesh.h"
 #include "support/closed_forms.h"
+#include "support/ray_scene.h"
 #include "support/scenes.h"
 #include "support/threads.h"
 #include "solver/closed_room.h"
@@ -80,6 +81,36 @@ TEST(Progressive, PaperSceneDirectLightMatchesClosedFormAndUmbraIsDark) {
   EXPECT_EQ(checked, 260u * 260u);
 }
 
+TEST(Progressive, PaperScenePenumbraeMatchBruteForcePointByPoint) {
+  // Behind the walls, where part of the light is hidden: after the light's one shot each ground
+  // element's radiosity is rho E F(centre -> visible light), checked against the ray caster's
+  // midpoint rule (tests/support/ray_scene.h: no code shared with the exact clipping). The
+  // rule's error is at most the weight of the cells a shadow's edge cuts: an edge crosses at most
+  // 2 n of the n x n cells, each at most 1.5 F / n^2 (the kernel varies by less than 1.5 over
+  // the light from here), so 3 F / n of the unoccluded F.
+  constexpr int kSide = 512;
+  constexpr double kBruteForceShare = 3.0 / kSide;
+  const Scene scene = paper_scene();
+  const Solution sol = solve(scene, 100, 1e-4, 1);
+  ASSERT_EQ(sol.stats.shots, 1u);
+  const SurfaceSolution* ground = sol.find("ground");
+  size_t behind = 0, checked = 0, partly = 0;
+  for (const SolutionElement& e : ground->elements) {
+    const Vec3& c = e.center;
+    if (c.x() < 2.6 && c.y() < 2.6) continue;  // inside the L: the closed form's test above
+    if (behind++ % 97 != 0) continue;         // some 60 points spread over the region behind
+    const double unoccluded = 0.5 * 40.0 * floor_to_light(c.x(), c.y(), 1, 1, 2, 2, 2.5);
+    const double expected =
+        0.5 * 40.0 * testing_support::brute_force_form_factor(scene, 1, c, Vec3(0, 0, 1), 0, kSide);
+    EXPECT_NEAR(e.radiosity_w_m2[0], expected, kDirectRelative * expected + kBruteForceShare * unoccluded)
+        << "at " << c.transpose() << " (unoccluded " << unoccluded << ")";
+    ++checked;
+    if (expected > 0.05 * unoccluded && expected < 0.95 * unoccluded) ++partly;
+  }
+  EXPECT_GE(checked, 50u);
+  EXPECT_GE(partly, 15u);  // the points are in penumbrae, not only in full light or umbra
+}
+
 TEST(Progressive, EnergyBalanceHolds) {
   const Solution sol = solve(paper_scene(), 16, 1e-4);
   const SolveStats& s = sol.stats;
@@ -110,8 +141,11 @@ TEST(Progressive, ClosedBoxRadiosityPowerIsEmittedOverOneMinusReflectance) {
   for (const SurfaceSolution& s : sol.surfaces)
     for (const SolutionElement& e : s.elements) power += e.area_m2 * e.radiosity_w_m2[0];
   const double phi = E * 1.0;
-  EXPECT_NEAR(power, phi / (1 - rho), 0.01 * phi / (1 - rho));
-  EXPECT_LT(std::abs(sol.stats.escaped_w[0]), 0.01 * phi);
+  // The 1e-3 for a closed room (measured: 1.1e-5 of the power, escaped -1.8e-5 of Phi):
+  // a gain of 0.2% of each shot's power, as before the Gauss rule near the shooter, fails it.
+  EXPECT_NEAR(power, phi / (1 - rho), kClosedRoomRelative * phi / (1 - rho));
+  EXPECT_LT(std::abs(sol.stats.escaped_w[0]), kClosedRoomRelative * phi);
+  EXPECT_NEAR(sol.stats.absorbed_w[0], phi, kClosedRoomRelative * phi);
   EXPECT_TRUE(sol.stats.converged);
   EXPECT_LT(sol.stats.residual, 1e-7);
 }

@@ -20,6 +20,9 @@ using testing_support::quad;
 
 /// The bound for direct radiosity against the closed form (as for quads).
 constexpr double kDirectRelative = 1e-3;
+/// A hierarchical leaf's radiosity against the closed form's mean over it by an 8 x 8 midpoint
+/// rule: the solver's links average 4 x 4 points, a second-order error in the leaf's size.
+constexpr double kLeafRelative = 2e-3;  // measured: 9.3e-5 at most
 
 TEST(TriangleFormFactor, IsHalfTheSquaresSeenFromBelowItsCorner) {
   // A point under corner (0, 0) of the square [0, a]^2 at height c, facing it: the diagonal from
@@ -85,7 +88,11 @@ TEST(TriangleHierarchical, LeavesHoldTheClosedFormAverageOfDirectLight) {
         const Vec3 p = s.point(uv.x(), uv.y());
         sum += testing_support::floor_to_rectangle(p.x(), p.y(), 1, 1, 2, 2, 2.5);
       });
-      closed_power += e.area_m2 * 0.5 * 40.0 * sum / 64;
+      const double expected = 0.5 * 40.0 * sum / 64;
+      closed_power += e.area_m2 * expected;
+      // Leaf by leaf too, as for quads (hierarchical_test.cpp): power moved between leaves
+      // (a mirrored or misplaced triangle cell) cancels out of the sums.
+      EXPECT_NEAR(e.radiosity_w_m2[0], expected, kLeafRelative * expected) << name << " leaf at " << e.center.transpose();
     }
   EXPECT_GT(sol.stats.elements, 20u);
   EXPECT_NEAR(leaf_power, closed_power, 2e-3 * closed_power);
@@ -112,8 +119,10 @@ TEST(TriangleProgressive, SlowClosedBoxOfTrianglesHoldsEmittedOverOneMinusReflec
   po.residual = 1e-7;
   const Solution sol = solve_progressive(box, make_grid_mesh(box, {17, 2}), po, "grid:17");  // 12 cells an edge
   const double power = testing_support::radiosity_power_w(sol);
-  EXPECT_NEAR(power, E / (1 - rho), 0.01 * E / (1 - rho));
-  EXPECT_LT(std::abs(sol.stats.escaped_w[0]), 0.01 * E);
+  // The closed room's 1e-3 (issue 11), as for the box of quads (progressive_test.cpp).
+  EXPECT_NEAR(power, E / (1 - rho), 1e-3 * E / (1 - rho));
+  EXPECT_LT(std::abs(sol.stats.escaped_w[0]), 1e-3 * E);
+  EXPECT_NEAR(sol.stats.absorbed_w[0], E, 1e-3 * E);
   EXPECT_TRUE(sol.stats.converged);
 }
 
