@@ -15,6 +15,8 @@
 
 #include "core/error.h"
 #include "core/limits.h"
+#include "core/parse.h"
+#include "core/tolerances.h"
 #include "io/geojson.h"
 #include "io/paths.h"
 #include "io/raster.h"
@@ -39,12 +41,17 @@ std::string shape_of(const py::array& a) {
   return s + (a.ndim() == 1 ? ",)" : ")");
 }
 
-/// An (n, 2) array of finite coordinates, named `what` in messages.
+/// An (n, 2) array of finite coordinates of magnitude at most tol::kMaxSampleCoordinate (the
+/// command line's bound), named `what` in messages.
 void check_points(const Doubles& a, const std::string& what) {
   if (a.ndim() != 2 || a.shape(1) != 2) throw UserError(what, "an array of shape (n, 2) is expected; got shape " + shape_of(a));
   const double* p = a.data();
-  for (py::ssize_t i = 0; i < a.size(); ++i)
+  for (py::ssize_t i = 0; i < a.size(); ++i) {
     if (!std::isfinite(p[i])) throw UserError(what + "[" + std::to_string(i / 2) + "]", "not a finite number");
+    if (std::abs(p[i]) > tol::kMaxSampleCoordinate)
+      throw UserError(what + "[" + std::to_string(i / 2) + "]",
+                      format_number(p[i]) + " is beyond the largest coordinate, " + format_number(tol::kMaxSampleCoordinate));
+  }
 }
 
 /// The points of an (n, 2) array as Vec2 (a copy: 16 bytes a point, small beside the work).
@@ -98,8 +105,13 @@ py::array interpolate(const Doubles& points, const Doubles& values, const std::o
                                   ", channels) is expected, one row per point; got shape " + shape_of(values));
   const int channels = values.ndim() == 2 ? static_cast<int>(values.shape(1)) : 1;
   if (channels < 1) throw UserError("values", "no value columns");
-  for (py::ssize_t i = 0; i < values.size(); ++i)
-    if (!std::isfinite(values.data()[i])) throw UserError("values[" + std::to_string(i / channels) + "]", "not a finite number");
+  for (py::ssize_t i = 0; i < values.size(); ++i) {
+    const double v = values.data()[i];
+    if (!std::isfinite(v)) throw UserError("values[" + std::to_string(i / channels) + "]", "not a finite number");
+    if (std::abs(v) > tol::kMaxSampleValue)
+      throw UserError("values[" + std::to_string(i / channels) + "]",
+                      format_number(v) + " is beyond the largest value, " + format_number(tol::kMaxSampleValue));
+  }
   if (queries.has_value() == raster.has_value())
     throw UserError("queries/raster", queries ? "give either queries or raster, not both"
                                               : "give the query points: queries=(m, 2) array, or raster=(width, height) with "
@@ -131,8 +143,10 @@ py::array interpolate(const Doubles& points, const Doubles& values, const std::o
       throw UserError("raster", "(" + std::to_string(w) + ", " + std::to_string(h) + ") is out of range: 1 <= width, height <= " +
                                     std::to_string(kMaxRasterSide) + ", at most " + std::to_string(limit_value(Limit::raster_points)) + " cells");
     const auto& d = *domain;
-    if (!(std::isfinite(d[0]) && std::isfinite(d[1]) && std::isfinite(d[2]) && std::isfinite(d[3]) && d[2] > d[0] && d[3] > d[1]))
-      throw UserError("domain", "(x0, y0, x1, y1) with finite x1 > x0 and y1 > y0 is expected");
+    const auto within = [](double v) { return std::abs(v) <= tol::kMaxSampleCoordinate; };  // false for NaN
+    if (!(within(d[0]) && within(d[1]) && within(d[2]) && within(d[3]) && d[2] > d[0] && d[3] > d[1]))
+      throw UserError("domain", "(x0, y0, x1, y1) with x1 > x0 and y1 > y0, each of magnitude at most " +
+                                    format_number(tol::kMaxSampleCoordinate) + ", is expected");
     grid.width = w;
     grid.height = h;
     grid.domain = Rect{d[0], d[1], d[2], d[3]};

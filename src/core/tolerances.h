@@ -111,6 +111,10 @@ inline constexpr double kParallelogramRelative = 1e-12;
 /// far from double overflow (1.8e308), with room for the products the methods form. Beyond it
 /// distances overflow and neighbour searches lose points.
 inline constexpr double kMaxSampleCoordinate = 1e100;
+/// Largest magnitude of a sample's value: the methods' weighted sums, gradient estimates and
+/// their products with distances then stay far from overflow. Beyond it, values near the
+/// largest double (1e308) made Shepard's sums infinite and the C1 methods' gradients NaN.
+inline constexpr double kMaxSampleValue = 1e100;
 
 /// A grid solution's element (i, j) must start within this of (i / nu, j / nv) in (u, v): the
 /// files hold 17 significant digits, so only a misplaced element is farther.

@@ -118,7 +118,13 @@ ScatteredSamples read_samples_ogr(const std::string& path, std::vector<std::stri
   s.channels = static_cast<int>(value_fields.size());
   for_each_point(src, columns, [&](const OGRFeature& f, const Vec2& p) {
     s.points.push_back(p);
-    for (const int k : value_fields) s.values.push_back(src.number(f, k));
+    for (const int k : value_fields) {
+      const double v = src.number(f, k);
+      if (std::abs(v) > tol::kMaxSampleValue)
+        throw UserError(src.where(f), "field " + std::string(src.fields().GetFieldDefn(k)->GetNameRef()) +
+                                          " is beyond the largest value, " + format_number(tol::kMaxSampleValue));
+      s.values.push_back(v);
+    }
   });
   if (value_names) {
     value_names->clear();

@@ -131,6 +131,15 @@ class CsvTable {
     return v;
   }
 
+  /// The value in field `column`: a finite number of magnitude at most tol::kMaxSampleValue.
+  double value(const std::vector<std::string_view>& fields, size_t column) const {
+    const double v = number(fields, column);
+    if (std::abs(v) > tol::kMaxSampleValue)
+      throw UserError(where(), "column " + std::to_string(column + 1) + " (" + header_[column] + "): " +
+                                   in_quotes(fields[column]) + " is beyond the largest value, " + format_number(tol::kMaxSampleValue));
+    return v;
+  }
+
   /// The coordinate in field `column`: a finite number of magnitude at most
   /// tol::kMaxSampleCoordinate.
   double coordinate(const std::vector<std::string_view>& fields, size_t column) const {
@@ -233,7 +242,7 @@ ScatteredSamples read_samples_csv(const std::string& path, std::vector<std::stri
     check_limit(Limit::samples, static_cast<long long>(s.points.size()) + 1, path, "holds at least");
     const double x = table.coordinate(f, xc), y = table.coordinate(f, yc);
     s.points.emplace_back(x, y);
-    for (const size_t c : value_columns) s.values.push_back(table.number(f, c));
+    for (const size_t c : value_columns) s.values.push_back(table.value(f, c));
   });
   if (value_names) {
     value_names->clear();

@@ -47,6 +47,7 @@ utm = [(500000 + i + 0.2 * rng.random(), 5400000 + j + 0.2 * rng.random()) for i
 csv("utm.csv", [(x, y, 0.01 * (x - 500000) - 0.02 * (y - 5400000)) for x, y in utm])
 csv("utm_queries.csv", [(500002.5 + 6 * rng.random(), 5400002.5 + 6 * rng.random()) for _ in range(10)], "x,y")
 csv("huge.csv", [(x * 1e300, y * 1e300, plane(x, y)) for x, y in good])
+csv("huge_values.csv", [(x, y, 1e308 * (-1) ** k) for k, (x, y) in enumerate(good)])
 csv("tiny.csv", [(x * 1e-300, y * 1e-300, plane(x, y)) for x, y in good])
 csv("nan_queries.csv", [(0.5, 0.5), (float("nan"), 0.5)], "x,y")
 # Queries exactly at the samples, and on the hull's edges (midpoints of the hull of good.csv is

@@ -175,6 +175,20 @@ def test_bad_arrays_are_named():
         radrecon.interpolate(p, v)
     with pytest.raises(radrecon.Error, match="raster needs domain"):
         radrecon.interpolate(p, v, raster=(10, 10))
+    # The command line's bounds: beyond them distances and sums overflow (a query at 1e200 had
+    # aborted the interpreter in the k-d tree, values near 1e308 gave inf or NaN).
+    far = p.copy()
+    far[3, 0] = 1e200
+    with pytest.raises(radrecon.Error, match=r"points\[3\]: 1e\+200 is beyond the largest coordinate, 1e\+100"):
+        radrecon.interpolate(far, v, queries=p)
+    with pytest.raises(radrecon.Error, match=r"queries\[3\]: 1e\+200 is beyond the largest coordinate"):
+        radrecon.interpolate(p, v, queries=far)
+    with pytest.raises(radrecon.Error, match="domain: .*magnitude at most 1e\\+100"):
+        radrecon.interpolate(p, v, raster=(2, 2), domain=(0, 0, 1e200, 1))
+    big = v.copy()
+    big[5] = -1e308
+    with pytest.raises(radrecon.Error, match=r"values\[5\]: -1e\+308 is beyond the largest value, 1e\+100"):
+        radrecon.interpolate(p, big, queries=p)
 
 
 def test_duplicates_are_merged_with_a_warning():
