@@ -183,7 +183,8 @@ Solution read_solution_json(const std::filesystem::path& path) {
   if (doc.contains("scene")) sol.scene = r.string(doc["scene"], "scene");
   if (doc.contains("mesh")) sol.mesh = r.string(doc["mesh"], "mesh");
   const json& surfaces = r.member(doc, "surfaces", "");
-  if (!surfaces.is_array()) r.fail("surfaces", "must be an array");
+  // A solution holds at least one side: one of none has nothing to render, export or compare.
+  if (!surfaces.is_array() || surfaces.empty()) r.fail("surfaces", "must be a non-empty array (a solution holds its surface sides)");
   for (size_t s = 0; s < surfaces.size(); ++s) {
     const std::string sp = JsonReader::at("surfaces", s);
     const json& js = surfaces[s];

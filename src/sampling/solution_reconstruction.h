@@ -42,8 +42,9 @@ struct Fallback {
 class SolutionReconstruction {
  public:
   /// Every side by reconstruct_side(). A side the method cannot serve falls back to piecewise
-  /// constant and is listed with the reason in fallbacks(). The solution's sides must belong to
-  /// `scene`, with its edge lengths: UserError naming `source` (the solution's file) otherwise.
+  /// constant and is listed with the reason in fallbacks(). The solution's sides must be the
+  /// sides of `scene`, every one, with its edge lengths: UserError naming `source` (the
+  /// solution's file) otherwise.
   SolutionReconstruction(const Scene& scene, const Solution& solution, Method method, const MethodParams& params,
                          const std::string& source, const SideSampling& sampling = {});
   ~SolutionReconstruction();

@@ -175,6 +175,23 @@ run render_other render --scene paper --solution "$TMP/other_scene.json" --camer
 expect_rc render_other 2
 expect_stderr_has render_other "another scene"
 expect_no_output render_other "$TMP/other.png"
+# A solution cut short (a side of the scene missing) or holding no sides: refused, not drawn
+# black or aborted (export had failed an internal check on no sides).
+/usr/bin/python3 -c '
+import json, sys
+doc = json.load(open(sys.argv[1]))
+doc["surfaces"] = [s for s in doc["surfaces"] if s["name"] != "ground"]
+json.dump(doc, open(sys.argv[2], "w"))
+doc["surfaces"] = []
+json.dump(doc, open(sys.argv[3], "w"))' "$TMP/solution.json" "$TMP/cut.json" "$TMP/no_sides.json"
+run render_cut render --scene paper --solution "$TMP/cut.json" --camera view --size 8x6 --out "$TMP/cut.png" --quiet
+expect_rc render_cut 2
+expect_stderr_has render_cut "cut.json: the scene's side 'ground' is not in the solution (it holds 5 sides)"
+expect_no_output render_cut "$TMP/cut.png"
+run export_no_sides export --scene paper --solution "$TMP/no_sides.json" --out "$TMP/no_sides.glb" --quiet
+expect_rc export_no_sides 2
+expect_stderr_has export_no_sides "no_sides.json: surfaces: must be a non-empty array"
+expect_no_output export_no_sides "$TMP/no_sides.glb"
 run qt_sol solve --scene paper --mesh quadtree:4 --out "$TMP/qt4.json" --quiet
 run render_nofit render --scene paper --solution "$TMP/qt4.json" --method bilinear --camera view --size 8x6 --out "$TMP/nofit.png" --quiet
 expect_rc render_nofit 2

@@ -168,6 +168,7 @@ printf 'x,y,B\n0,0,1\n1,1,2\n2,2,3\n3,3,5\n' >"$TMP/collinear.csv"
 printf 'x,y\n0,nan\n' >"$TMP/queries_nan.csv"
 printf 'x,y,B\n0,0,1\n1e200,0,2\n0,1,3\n' >"$TMP/huge.csv"
 printf 'x,y,B\n0,0,1e308\n1,0,-1e308\n0,1,1e308\n1,1,-1e308\n' >"$TMP/huge_values.csv"
+printf 'x,y,B\n0,0,1e50\n1,0,-1e50\n0,1,1e50\n1,1,-1e50\n' >"$TMP/float_range.csv"  # within 1e100, beyond a float
 
 refuse() {  # NAME TEXT OUT ARGS...: expects exit 2, TEXT on stderr and no OUT
   local name=$1 text=$2 out=$3
@@ -204,8 +205,8 @@ refuse unknown_extension ".nosuchext" "$TMP/o20.nosuchext" --samples "$S" --meth
 refuse pfm_two_columns "1 or 3" "$TMP/o21.pfm" --samples "$TMP/scattered.csv" --method constant --raster 5x5 --domain 0,0,1,1
 refuse huge_coordinate "huge.csv:3" "$TMP/o23.csv" --samples "$TMP/huge.csv" --method shepard --queries "$Q"
 refuse huge_domain "--domain" "$TMP/o24.pfm" --samples "$S" --method constant --raster 5x5 --domain=-1e200,0,1,1
-refuse mq_overflow "too large" "$TMP/o25.csv" --samples "$TMP/huge_values.csv" --method multiquadric --queries "$Q"
-refuse pfm_float_range "32-bit floats" "$TMP/o26.pfm" --samples "$TMP/huge_values.csv" --method bilinear --raster 4x4 --domain 0,0,1,1
+refuse huge_values "huge_values.csv:2: column 3 (B): '1e308' is beyond the largest value" "$TMP/o25.csv" --samples "$TMP/huge_values.csv" --method multiquadric --queries "$Q"
+refuse pfm_float_range "32-bit floats" "$TMP/o26.pfm" --samples "$TMP/float_range.csv" --method bilinear --raster 4x4 --domain 0,0,1,1
 refuse bad_queries "queries_nan.csv:2" "$TMP/o22.csv" --samples "$S" --method constant --queries "$TMP/queries_nan.csv"
 # No input is ever overwritten: the samples or queries named as the output, directly, through a
 # symbolic link, through "..", or as a hard link, are refused before any work; so are outputs

@@ -134,6 +134,8 @@ TEST_F(SolutionFiles, MalformedFilesAreRefusedWithTheFieldOrLine) {
            R"(, "elements": [)" + elements + "]}";
   };
   EXPECT_EQ(refusal(R"({"surfaces": [)" + side("a", "[1, 1]", element) + "]}"), "");
+  // No sides: render and export had drawn nothing with exit 0, or aborted.
+  EXPECT_NE(refusal(R"({"scene": "paper", "surfaces": []})").find("surfaces: must be a non-empty array"), std::string::npos);
   // Excluded regions are optional; when present, polygons of at least 3 points [s, t].
   auto with_excluded = [&](const std::string& excluded) {
     return R"({"surfaces": [{"name": "a", "length_u_m": 1, "length_v_m": 1, "excluded": )" + excluded +
