@@ -183,7 +183,8 @@ void add_cornell_command(CLI::App& app) {
   cmd->add_option("--rbf-k", args->rbf_k,
                   "multiquadric and thin-plate: local patches of this many nearest samples (their k=); 0: one "
                   "global system per side (slow on fine meshes)")
-      ->check(CLI::Range(0, 100000))
+      ->check(number_check(rbf_patch_problem, "0 or an integer in [" + std::to_string(kLeastRbfPatch) + ", " +
+                                                   std::to_string(kMostRbfPatch) + "]"))
       ->capture_default_str();
   cmd->add_option("--out", args->out, "Output folder (created if missing)")->capture_default_str();
   cmd->add_flag("--quiet", args->quiet, "No progress messages");

@@ -105,6 +105,12 @@ double parse_number(const std::string& text, const std::string& where) {
 
 }  // namespace
 
+std::string rbf_patch_problem(double k) {
+  if (k == 0 || (k == std::floor(k) && k >= kLeastRbfPatch && k <= kMostRbfPatch)) return {};  // NaN fails
+  return "must be 0 (one global system) or an integer from " + std::to_string(kLeastRbfPatch) + " to " +
+         std::to_string(kMostRbfPatch) + " (samples per local patch), got " + format_number(k);
+}
+
 MethodParams parse_params(Method method, const std::vector<std::string>& settings, const std::string& field) {
   // `field` is the caller's location of the settings; each parameter is named after it.
   MethodParams p;
@@ -139,8 +145,7 @@ MethodParams parse_params(Method method, const std::vector<std::string>& setting
       if (!(*p.multiquadric_r > 0)) throw UserError(where, "must be > 0");
     } else if ((method == Method::multiquadric || method == Method::thin_plate) && name == "k") {
       const double k = parse_number(value, where);
-      if (k != std::floor(k) || (k != 0 && k < 3) || k > 1e5)
-        throw UserError(where, "must be 0 (one global system) or an integer >= 3 (samples per local patch)");
+      if (const std::string problem = rbf_patch_problem(k); !problem.empty()) throw UserError(where, problem);
       (method == Method::multiquadric ? p.multiquadric_k : p.thin_plate_k) = static_cast<int>(k);
     } else if (method == Method::multiquadric && name == "poly") {
       if (value == "0") p.multiquadric_poly = 0;

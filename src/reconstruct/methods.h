@@ -112,6 +112,12 @@ struct MethodParams {
 /// malformed value or one out of range.
 MethodParams parse_params(Method method, const std::vector<std::string>& settings, const std::string& where);
 
+/// Why `k` is no patch size of the local multiquadric and thin-plate (their k=): 0 (one global
+/// system) or an integer from kLeastRbfPatch to kMostRbfPatch samples; empty if it is one.
+inline constexpr int kLeastRbfPatch = 3;
+inline constexpr int kMostRbfPatch = 100000;
+std::string rbf_patch_problem(double k);
+
 /// A one-line description of the parameters in effect, for reports ("mu=4, k=all").
 std::string describe_params(Method method, const MethodParams& params);
 
