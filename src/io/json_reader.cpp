@@ -6,6 +6,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <vector>
 
@@ -64,9 +65,33 @@ class ErrorOffset final : public nlohmann::json_sax<nlohmann::json> {
   }
 };
 
+/// The byte offset at which `text` nests arrays and objects deeper than `most` levels, if it does
+/// (brackets inside strings aside).
+std::optional<size_t> too_deep(const std::string& text, int most) {
+  int depth = 0;
+  bool in_string = false;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      if (c == '\\') ++i;  // the escaped character, whatever it is
+      else if (c == '"') in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > most) return i;
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 JsonReader::json JsonReader::parse(const std::string& text, const std::string& kind) const {
+  if (const std::optional<size_t> at = too_deep(text, kMaxJsonDepth))
+    throw UserError(source_ + ":" + std::to_string(line_of(text, *at)),
+                    "not a valid " + kind + ": nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
   try {
     return json::parse(text);
   } catch (const json::out_of_range& e) {  // a number too large for a double, e.g. 1e999

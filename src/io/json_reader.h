@@ -16,6 +16,11 @@ namespace radrecon {
 /// cannot be read.
 std::string read_text_file(const std::string& path, const std::string& what);
 
+/// Deepest nesting of arrays and objects in a JSON document read: none of radrecon's formats, nor
+/// glTF, comes near it, and assimp's glTF reader recurses once a level (200,000 levels overflowed
+/// the stack).
+inline constexpr int kMaxJsonDepth = 256;
+
 class JsonReader {
  public:
   using json = nlohmann::json;
@@ -25,7 +30,8 @@ class JsonReader {
 
   /// Parses `text`. Invalid JSON throws UserError "SOURCE:LINE: not valid JSON: ..."; a number
   /// too large for a double "SOURCE:LINE: not a valid KIND: number overflow parsing '1e999'"
-  /// (`kind`: "scene", "solution").
+  /// (`kind`: "scene", "solution"); arrays and objects nested deeper than kMaxJsonDepth
+  /// "SOURCE:LINE: not a valid KIND: nested deeper than 256 levels".
   json parse(const std::string& text, const std::string& kind) const;
 
   /// "path.key", or "key" at the top level.

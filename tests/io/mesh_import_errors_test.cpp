@@ -130,6 +130,15 @@ TEST(MeshImportErrors, GltfMissingBufferBadAccessorSchemaAndTruncation) {
   bad_component["accessors"][0]["componentType"] = 9999;
   EXPECT_TRUE(Refused(dir, "component.gltf", bad_component.dump(), {"accessors[0]", "componentType"}));
 
+  // Nesting: 200,000 levels in an unused member overflowed assimp's recursive reader's stack.
+  const std::string deep = good.substr(0, good.rfind('}')) + ", \"extras\": " + std::string(200000, '[') +
+                           std::string(200000, ']') + "}";
+  EXPECT_TRUE(Refused(dir, "deep.gltf", deep, {"deep.gltf:1", "nested deeper than 256 levels"}));
+  const std::string shallow = good.substr(0, good.rfind('}')) + ", \"extras\": " + std::string(200, '[') +
+                              std::string(200, ']') + "}";
+  write_file((dir / "shallow.gltf").string(), shallow);
+  EXPECT_NO_THROW(import_mesh((dir / "shallow.gltf").string())) << "200 levels are read";
+
   nlohmann::json bad_index = nlohmann::json::parse(good);
   bad_index["meshes"][0]["primitives"][0]["indices"] = 7;  // no accessor 7
   EXPECT_TRUE(Refused(dir, "index.gltf", bad_index.dump(), {"accessors"}));
