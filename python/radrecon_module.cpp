@@ -175,6 +175,12 @@ py::array interpolate(const Doubles& points, const Doubles& values, const std::o
   return out;
 }
 
+/// A solution as Python holds it: with the files it was solved from (the scene and its model
+/// files), which save() must not overwrite, as the command line refuses to.
+struct PySolution : Solution {
+  std::vector<std::string> inputs;
+};
+
 /// A surface side of a solution, its elements as arrays.
 py::dict surface_dict(const SurfaceSolution& s) {
   const auto n = static_cast<py::ssize_t>(s.elements.size());
@@ -248,18 +254,19 @@ keywords are the method's parameters as in --param (k=32, mu=2, outside="none", 
 NaN where a method has no value. Samples at the same point are merged (a UserWarning).
 Raises radrecon.Error (a ValueError) for refused input.)doc");
 
-  py::class_<Solution>(m, "Solution", "A solved scene: its statistics and its surface sides' elements as arrays.")
-      .def_property_readonly("scene", [](const Solution& s) { return s.scene; })
-      .def_property_readonly("mesh", [](const Solution& s) { return s.mesh; })
-      .def_property_readonly("stats", [](const Solution& s) { return stats_dict(s.stats); })
-      .def_property_readonly("surfaces", [](const Solution& s) {
+  py::class_<PySolution>(m, "Solution", "A solved scene: its statistics and its surface sides' elements as arrays.")
+      .def_property_readonly("scene", [](const PySolution& s) { return s.scene; })
+      .def_property_readonly("mesh", [](const PySolution& s) { return s.mesh; })
+      .def_property_readonly("stats", [](const PySolution& s) { return stats_dict(s.stats); })
+      .def_property_readonly("surfaces", [](const PySolution& s) {
         py::list out;
         for (const SurfaceSolution& side : s.surfaces) out.append(surface_dict(side));
         return out;
       }, "Per side: name, scene_surface, back_side, grid ((nu, nv) or None), and per element center (n, 3) "
          "metres, radiosity (n, 3) W/m^2, area (n,) m^2, cell (n, 4) its (u0, v0, u1, v1), triangle (n,)")
-      .def("save", [](const Solution& s, const std::string& path) {
+      .def("save", [](const PySolution& s, const std::string& path) {
         check_output_file(path, "path");
+        refuse_overwriting_inputs(path, "path", s.inputs);
         py::gil_scoped_release release;
         write_solution_json(path, s);
       }, py::arg("path"), "Write the solution JSON that `radrecon solve --out` writes.");
@@ -276,8 +283,10 @@ Raises radrecon.Error (a ValueError) for refused input.)doc");
     refuse_unused_options(mesh, grid_only_given, leaves_on ? "leaves_on" : "");
     // Checked before the int it goes into; the other settings by check_settings(), before the
     // scene is read (solve_scene() checks them again).
-    if (const std::string problem = patches ? patches_problem(*patches) : ""; !problem.empty())
-      throw UserError("patches", problem);
+    // A count from 1, as --patches takes (the library's 0 for its default is None here).
+    if (const std::string problem = patches ? patches_problem(*patches) : ""; !problem.empty() || (patches && *patches == 0))
+      throw UserError("patches", "must be a count from 1 to " + std::to_string(kMostPatches) + " (None: the default, " +
+                                     std::to_string(default_patches()) + "), got " + std::to_string(*patches));
     SolveSettings settings;
     if (residual) settings.residual = *residual;
     if (far_field_error) settings.far_field_error = *far_field_error;
@@ -288,7 +297,10 @@ Raises radrecon.Error (a ValueError) for refused input.)doc");
     check_settings(settings);
     py::gil_scoped_release release;
     const Scene scene = load_scene(scene_spec);
-    return solve_scene(scene, mesh, settings, "mesh");
+    PySolution out;
+    static_cast<Solution&>(out) = solve_scene(scene, mesh, settings, "mesh");
+    out.inputs = scene_input_files(scene_spec);
+    return out;
   }, py::arg("scene") = "paper", py::arg("mesh") = "grid:16", py::arg("residual") = py::none(),
      py::arg("patches") = py::none(), py::arg("leaves_on") = py::none(), py::arg("clusters") = py::none(),
      py::arg("far_field_error") = py::none(), py::arg("shadow_barriers") = false,
@@ -297,7 +309,7 @@ Raises radrecon.Error (a ValueError) for refused input.)doc");
 scene: a scene JSON file, a mesh file (.obj, .gltf, .glb, .ply) with emitters, or 'paper' or
 'cornell'. mesh: grid:N, quadtree:LEAVES or quadtree-eps:E. For grid:N only (refused with the
 others, as on the command line): residual (default 1e-4); patches: shooting patches along the
-longest edge (0 or None: the default, 4); clusters (default True): a model's many small
+longest edge (None: the default, 4); clusters (default True): a model's many small
 triangles shoot in clusters (radrecon solve --clusters); far_field_error (default 0.02): the far
 field's error bound, a fraction of each receiver's irradiance, 0 the distance rule. For
 quadtree:LEAVES only: leaves_on, the side that gets the leaves. shadow_barriers: also the direct

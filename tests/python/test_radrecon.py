@@ -250,7 +250,8 @@ def test_solve_refusals():
     # Out of range or NaN: refused by name, as the command line refuses them (no abort).
     for keywords, name in [({"residual": -1.0}, "residual"), ({"residual": 2.0}, "residual"),
                            ({"residual": float("nan")}, "residual"), ({"far_field_error": 0.6}, "far_field_error"),
-                           ({"far_field_error": 1e-7}, "far_field_error"), ({"patches": 10**6}, "patches")]:
+                           ({"far_field_error": 1e-7}, "far_field_error"), ({"patches": 10**6}, "patches"),
+                           ({"patches": 0}, "patches: must be a count from 1")]:
         with pytest.raises(radrecon.Error, match=name):
             radrecon.solve("paper", "grid:4", **keywords)
     # Options the mesh does not use are refused, as the command line refuses them, not ignored.
@@ -260,6 +261,21 @@ def test_solve_refusals():
                                  ("grid:4", {"leaves_on": "ground"}, "leaves_on")]:
         with pytest.raises(radrecon.Error, match=name + ": applies to"):
             radrecon.solve("paper", mesh, **keywords)
+
+
+def test_a_solution_does_not_overwrite_its_scene(tmp_path):
+    # As the command line refuses --out naming an input: the scene file, or a model it includes.
+    scene = tmp_path / "scene.json"
+    scene.write_text(json.dumps({"name": "s", "surfaces": [
+        {"name": "floor", "corners": [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], "reflectance": 0.5},
+        {"name": "light", "corners": [[0.4, 0.4, 1], [0.4, 0.6, 1], [0.6, 0.6, 1], [0.6, 0.4, 1]],
+         "reflectance": 0, "emission": 10}]}))
+    before = scene.read_bytes()
+    solution = radrecon.solve(str(scene), "grid:2")
+    with pytest.raises(radrecon.Error, match="is the input file"):
+        solution.save(str(scene))
+    assert scene.read_bytes() == before
+    solution.save(str(tmp_path / "solution.json"))
 
 
 def test_solve_takes_the_far_field_bound_and_shadow_barriers_as_the_command_line(tmp_path):
