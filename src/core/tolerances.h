@@ -215,7 +215,8 @@ inline constexpr double kBorderSpacingRelative = 1e-9;
 inline constexpr double kFitCollinearRelative = 1e-8;
 
 /// sibson-c1's gradient fit: the weighted normal matrix H of a sample's plane counts as singular
-/// (the sample's visible neighbours on one line through it; gradient 0) when det H is below this
+/// (the sample's visible neighbours on one line through it: the plane is fitted along that line
+/// alone, with no gradient across it) when det H is below this
 /// fraction of trace(H)^2 (det / trace^2 is 1/4 for neighbours spread evenly around, and scales
 /// like the square of the spread's aspect ratio).
 inline constexpr double kGradientFitSingularRelative = 1e-12;

@@ -45,8 +45,24 @@ std::vector<double> fit_gradients(const Delaunay& dt, std::span<const Delaunay::
         r[2 * c] += w * df * d.x(), r[2 * c + 1] += w * df * d.y();
       }
     }
-    const double det = h00 * h11 - h01 * h01;
-    if (!(det > tol::kGradientFitSingularRelative * (h00 + h11) * (h00 + h11))) return;  // gradient 0
+    const double det = h00 * h11 - h01 * h01, trace = h00 + h11;
+    if (!(trace > 0)) return;  // no visible neighbour: gradient 0
+    if (!(det > tol::kGradientFitSingularRelative * trace * trace)) {
+      // The neighbours (nearly) on one line through p_i: the plane is fitted along that line
+      // alone, H's larger eigenvector e (eigenvalue lambda), g = (e . r / lambda) e, and
+      // nothing across it. A linear function's gradient along the line is exact; across it, its
+      // component errs by at most the spread's thickness times that component.
+      const double lambda = trace / 2 + std::sqrt(std::max(trace * trace / 4 - det, 0.0));
+      const Vec2 a(h01, lambda - h00), b(lambda - h11, h01);  // each along e, or zero
+      const Vec2 e = (a.squaredNorm() >= b.squaredNorm() ? a : b).normalized();
+      if (!e.allFinite()) return;  // H = 0 would have no trace; a guard
+      for (size_t c = 0; c < C; ++c) {
+        const double along = (e.x() * r[2 * c] + e.y() * r[2 * c + 1]) / lambda / scale;
+        gradients[(i * C + c) * 2] = along * e.x();
+        gradients[(i * C + c) * 2 + 1] = along * e.y();
+      }
+      return;
+    }
     for (size_t c = 0; c < C; ++c) {
       gradients[(i * C + c) * 2] = (h11 * r[2 * c] - h01 * r[2 * c + 1]) / det / scale;
       gradients[(i * C + c) * 2 + 1] = (h00 * r[2 * c + 1] - h01 * r[2 * c]) / det / scale;

@@ -28,7 +28,8 @@ namespace radrecon::nn {
 /// w_j = lambda_j / |p_j - p_i|^2 with lambda_j the Sibson coordinates of p_i among the other
 /// samples (Sibson's choice, CGAL's sibson_gradient_fitting); on the hull, where those do not
 /// exist, w_j = 1 / |p_j - p_i|^2. Neighbours a barrier hides from p_i are left out. A sample
-/// whose remaining neighbours lie on one line through it (or that has none) gets gradient 0.
+/// whose remaining neighbours lie (nearly) on one line through it gets the gradient of the
+/// plane fitted along that line, and none across it; one that has none, gradient 0.
 /// `vertex_of[i]` is sample i's vertex in `dt`.
 std::vector<double> fit_gradients(const Delaunay& dt, std::span<const Delaunay::Vertex_handle> vertex_of,
                                   std::span<const Vec2> points, std::span<const double> values, int channels,

@@ -192,6 +192,28 @@ TEST(SibsonC1, ReproducesLinearFunctionsAtAnyScaleOfCoordinates) {
   }
 }
 
+TEST(SibsonC1, ASliverOfSamplesReproducesALinearFunctionWithinItsThickness) {
+  // Samples along x, one lifted by `thickness`: every sample's neighbours lie nearly on one line,
+  // its normal matrix singular. The gradient along the line is the function's; across it the
+  // fit has none, which errs by at most the thickness times the function's slope across
+  // (with slope 0 across, exact). Before, such samples got gradient 0, and a query between the
+  // samples of v = x came out 1.359 for 1.5.
+  for (const double thickness : {1e-6, 1e-9, 1e-12}) {
+    ScatteredSamples s;
+    s.channels = 1;
+    s.points = {Vec2(0, 0), Vec2(1, 0), Vec2(2, thickness), Vec2(3, 0)};
+    for (const double slope_y : {0.0, -5.0}) {
+      auto f = [&](const Vec2& p) { return 3 + 2 * p.x() + slope_y * p.y(); };
+      s.values.clear();
+      for (const Vec2& p : s.points) s.values.push_back(f(p));
+      const NaturalNeighbour c1(s, OutsideHull::none, {}, NeighbourRule::sibson_c1);
+      for (const Vec2& q : {Vec2(1.5, thickness / 4), Vec2(0.5, 0), Vec2(2.5, 0), Vec2(2, thickness)})
+        EXPECT_NEAR(eval1(c1, q), f(q), 1e-12 + 2 * std::abs(slope_y) * thickness)
+            << "at (" << q.x() << ", " << q.y() << "), thickness " << thickness << ", slope across " << slope_y;
+    }
+  }
+}
+
 TEST(SibsonC1, FirstDerivativesAreContinuousAtTheSamplesAndAcrossEdges) {
   std::mt19937 rng(36);
   ScatteredSamples s = random_samples(200, rng);
