@@ -70,7 +70,12 @@ void check_obj_lines(const std::string& path) {
       continue;
     }
     if (line[0] != 'f' && line[0] != 'l' && line[0] != 'p') continue;
-    for (const std::string& word : line_words(line.substr(1))) {
+    const std::vector<std::string> corners = line_words(line.substr(1));
+    // assimp 5.2 makes such a face a line or a point it then fails to validate, unnamed.
+    if (line[0] == 'f' && corners.size() < 3)
+      throw UserError(at, "a face of " + std::to_string(corners.size()) + " corner" + (corners.size() == 1 ? "" : "s") +
+                              "; a face ('f') needs 3 or more (lines are 'l', points 'p', which are skipped)");
+    for (const std::string& word : corners) {
       long long index = 0;
       try {
         size_t used = 0;

@@ -23,7 +23,7 @@ struct ObjMaterials {
 };
 
 /// Refuses (UserError naming "path:line") an OBJ vertex (`v`) whose first three coordinates are
-/// not finite numbers, and a face (or line, or point) whose vertex index is 0 or names a vertex
+/// not finite numbers, a face (`f`) of fewer than 3 corners, and a face (or line, or point) whose vertex index is 0 or names a vertex
 /// the file does not have (a negative one counting back from the vertices before it). assimp 5.2
 /// reads a coordinate it cannot parse as a smaller vertex count, and refuses an index out of
 /// range without the line, leaking memory doing so (LeakSanitizer, found by fuzzing).

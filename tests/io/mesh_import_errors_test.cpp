@@ -58,6 +58,9 @@ TEST(MeshImportErrors, ObjIndicesOutOfRangeAndNonFiniteCoordinates) {
   EXPECT_TRUE(Refused(dir, "index.obj", std::string(kTriangle) + "f 1 2 7\n", {"index.obj:4", "vertex index 7 out of range (3 vertices)"}));
   EXPECT_TRUE(Refused(dir, "negative.obj", std::string(kTriangle) + "f 1 2 -9\n", {"negative.obj:4", "vertex index -9 out of range"}));
   EXPECT_TRUE(Refused(dir, "zero.obj", std::string(kTriangle) + "f 0/1/1 2/1/1 3/1/1\n", {"zero.obj:4", "vertex index 0"}));
+  // A face of 1 or 2 corners: assimp 5.2 failed its own validation on it, naming no line.
+  EXPECT_TRUE(Refused(dir, "two.obj", std::string(kTriangle) + "f 1 2 3\nf 1 2\n", {"two.obj:5", "a face of 2 corners"}));
+  EXPECT_TRUE(Refused(dir, "one.obj", std::string(kTriangle) + "f 1/1\nf 1 2 3\n", {"one.obj:4", "a face of 1 corner;"}));
   // Relative indices count back from the vertices before the face: -1 -2 -3 is the triangle.
   write_file(dir / "relative.obj", std::string(kTriangle) + "f -3 -2 -1\n");
   EXPECT_EQ(import_mesh((dir / "relative.obj").string()).surfaces.size(), 1u);
