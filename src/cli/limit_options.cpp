@@ -17,7 +17,21 @@ void add_limit_options(CLI::App& cmd, std::initializer_list<Limit> limits) {
            spec.option, [which](const long long& value) { set_limit(which, value); },
            std::string("Limit: at most this many ") + spec.unit + " (default " + std::to_string(spec.default_value) +
                ": " + spec.why + "); beyond it, refused with nothing written")
-        ->check(CLI::PositiveNumber)
+        ->check(CLI::Validator(
+            [](std::string& text) -> std::string {
+              // Read whole: CLI11's own check would say "not in range 0.000000 to 1.797...e308".
+              long long value = 0;
+              size_t used = 0;
+              try {
+                value = std::stoll(text, &used);
+              } catch (const std::exception&) {
+                used = 0;
+              }
+              if (used == 0 || used != text.size() || value < 1)
+                return "must be a whole number of at least 1, got '" + text + "'";
+              return {};
+            },
+            "POSITIVE"))
         ->group("Limits");
   }
 }
