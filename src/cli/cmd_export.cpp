@@ -105,7 +105,7 @@ void add_export_command(CLI::App& app) {
   cmd->add_option("--texels", args->texels,
                   "Lightmap texels along the scene's longest surface edge; every side gets the same density (texels "
                   "per metre)")
-      ->check(CLI::Range(2, kMaxLightmapSide))
+      ->check(CLI::Range(2, kMaxLightmapSide - 2 * kLightmapGutter))  // a tile and its gutters in one texture
       ->capture_default_str();
   cmd->add_option("--white", args->white,
                   "The radiosity (W/m^2) shown as white in the lightmap; default: the 99th percentile of the brightest "

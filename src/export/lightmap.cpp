@@ -57,10 +57,13 @@ LightmapAtlas bake_lightmaps(const Scene& scene, const Solution& solution, const
     t.solution_side = k;
     t.side = *side;
     const double w = std::ceil(s.length_u_m * texels_per_metre), h = std::ceil(s.length_v_m * texels_per_metre);
-    if (!(w + 2 * g <= kMaxLightmapSide && h + 2 * g <= kMaxLightmapSide))
+    if (!(w + 2 * g <= kMaxLightmapSide && h + 2 * g <= kMaxLightmapSide)) {
+      const int fits = static_cast<int>(texels_along_longest * static_cast<double>(kMaxLightmapSide - 2 * g) / std::max(w, h));
       throw UserError(where, "side '" + s.name + "' would need " + std::to_string(static_cast<long long>(w)) + " x " +
-                                 std::to_string(static_cast<long long>(h)) + " texels, more than the largest texture (" +
-                                 std::to_string(kMaxLightmapSide) + " texels a side); use fewer");
+                                 std::to_string(static_cast<long long>(h)) + " texels and a gutter of " + std::to_string(g) +
+                                 " around them, more than the largest texture (" + std::to_string(kMaxLightmapSide) +
+                                 " texels a side); at most about " + std::to_string(fits) + " fit");
+    }
     t.width = std::max(2, static_cast<int>(w));
     t.height = std::max(2, static_cast<int>(h));
     area += static_cast<double>(t.width + 2 * g) * (t.height + 2 * g);

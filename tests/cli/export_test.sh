@@ -64,9 +64,12 @@ cmp -s box.json keep.json || fail "over_input: the solution was changed"
 run wrong_scene --scene paper --solution box.json --out b.glb
 expect_rc wrong_scene 2 && expect_stderr_has wrong_scene "box.json"
 expect_no_output wrong_scene b.glb
-run too_fine --scene cornell --solution box.json --texels 16384 --out b.glb
-expect_rc too_fine 2 && expect_stderr_has too_fine "--texels"
+run too_fine --scene cornell --solution box.json --texels 10000 --out b.glb
+expect_rc too_fine 2 && expect_stderr_has too_fine "--texels: the atlas would be" && expect_stderr_has too_fine "at most about"
 expect_no_output too_fine b.glb
+# The largest --texels leaves room for a tile's gutters (16384 had been offered and could not work).
+run beyond_texture --scene cornell --solution box.json --texels 16384 --out b.glb
+expect_rc beyond_texture 2 && expect_stderr_has beyond_texture "--texels: Value 16384 not in range 2 to 16380"
 run no_solution --scene cornell --solution missing.json --out b.glb
 expect_rc no_solution 2 && expect_stderr_has no_solution "missing.json"
 
