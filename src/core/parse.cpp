@@ -62,11 +62,49 @@ void split_fields(std::string_view line, std::vector<std::string_view>& fields) 
   }
 }
 
+namespace {
+
+/// The length of the well-formed UTF-8 sequence of 2 to 4 bytes at the start of `s`, else 0.
+size_t utf8_sequence(std::string_view s) {
+  const auto byte = [&](size_t k) { return static_cast<unsigned char>(s[k]); };
+  const unsigned char lead = byte(0);
+  const size_t n = lead >= 0xc2 && lead <= 0xdf ? 2 : lead >= 0xe0 && lead <= 0xef ? 3 : lead >= 0xf0 && lead <= 0xf4 ? 4 : 0;
+  if (n == 0 || s.size() < n) return 0;
+  for (size_t k = 1; k < n; ++k)
+    if ((byte(k) & 0xc0) != 0x80) return 0;
+  // No overlong forms, surrogates or code points beyond U+10FFFF.
+  if ((lead == 0xe0 && byte(1) < 0xa0) || (lead == 0xed && byte(1) > 0x9f) || (lead == 0xf0 && byte(1) < 0x90) ||
+      (lead == 0xf4 && byte(1) > 0x8f))
+    return 0;
+  return n;
+}
+
+}  // namespace
+
 std::string in_quotes(std::string_view s) {
   constexpr size_t kMax = 40;
+  const bool cut = s.size() > kMax;
+  if (cut) s = s.substr(0, kMax);
   std::string out = "'";
-  out += s.size() > kMax ? std::string(s.substr(0, kMax)) + "..." : std::string(s);
-  return out + "'";
+  // Control characters and bytes that are not UTF-8 as \xNN: a message shows the input, never
+  // sends a terminal its raw bytes (nor ends at a NUL).
+  for (size_t i = 0; i < s.size();) {
+    const unsigned char c = static_cast<unsigned char>(s[i]);
+    if (c >= 0x20 && c < 0x7f) {
+      out += static_cast<char>(c);
+      ++i;
+    } else if (const size_t n = c >= 0x80 ? utf8_sequence(s.substr(i)) : 0; n > 0) {
+      out.append(s.substr(i, n));
+      i += n;
+    } else {
+      static constexpr char kHex[] = "0123456789abcdef";
+      out += "\\x";
+      out += kHex[c >> 4];
+      out += kHex[c & 15];
+      ++i;
+    }
+  }
+  return out + (cut ? "...'" : "'");
 }
 
 std::string ascii_lower(std::string_view text) {

@@ -41,7 +41,8 @@ std::string_view trim_blanks(std::string_view text);
 /// quoting. "a, b,,c" gives "a", "b", "", "c".
 void split_fields(std::string_view line, std::vector<std::string_view>& fields);
 
-/// `text` in single quotes for a message, cut to 40 characters.
+/// `text` in single quotes for a message, cut to 40 bytes; control characters and bytes that
+/// are not UTF-8 written as \xNN ("a\x00b" for a NUL), well-formed UTF-8 as it is.
 std::string in_quotes(std::string_view text);
 
 /// `text` with ASCII letters in lower case (locale-independent).

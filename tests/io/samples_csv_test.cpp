@@ -117,6 +117,12 @@ TEST(SamplesIo, RefusesMalformedSamplesNamingFileAndLine) {
   expect_samples_refused("x,y,B\n0,0,1\n1,0,-inf\n", 3, "not finite");
   expect_samples_refused("x,y,B\n0,,1\n", 2, "column 2 (y): empty field");
   expect_samples_refused("x,y,B\n# nothing\n\n", 3, "no data rows");
+  // A field's bytes are shown, never sent raw: a NUL had cut the message short before its reason.
+  expect_samples_refused(std::string("x,y,B\n0,0,1\n1,0,3\0\n", 19), 3, "column 3 (B): '3\\x00' is not a number");
+  expect_samples_refused("x,y,B\n0,0,1\n1,0,\x1b[2J\n", 3, "'\\x1b[2J' is not a number");
+  expect_samples_refused("x,y,B\n0,0,1\n1,0,\xff\xfe\n", 3, "'\\xff\\xfe' is not a number");
+  expect_samples_refused("x,y,B\n0,0,1\n1,0,\xc3\xa9t\xc3\xa9\n", 3, "'\xc3\xa9t\xc3\xa9' is not a number");  // UTF-8 as it is
+  expect_samples_refused("x,y,B\n0,0,1e101\n", 2, "column 3 (B): '1e101' is beyond the largest value, 1e+100");
 }
 
 // The files people have: a header that does not start with x,y (columns chosen by name), R's
