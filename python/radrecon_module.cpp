@@ -87,8 +87,14 @@ Barriers barriers_of(const py::object& barriers) {
     const std::string what = "barriers[" + std::to_string(index++) + "]";
     if (!line) throw UserError(what, "a polyline is an array of shape (k, 2)");
     check_points(line, what);
+    // Checked here so that messages count from 0, as Python does (the library's count from 1).
+    if (line.shape(0) < 2) throw UserError(what, "a line needs 2 points, got " + std::to_string(line.shape(0)));
     Polyline& l = lines.emplace_back();
-    for (py::ssize_t i = 0; i < line.shape(0); ++i) l.emplace_back(line.at(i, 0), line.at(i, 1));
+    for (py::ssize_t i = 0; i < line.shape(0); ++i) {
+      l.emplace_back(line.at(i, 0), line.at(i, 1));
+      if (i > 0 && l[i] == l[i - 1])
+        throw UserError(what + "[" + std::to_string(i) + "]", "repeats the point before it: a segment of zero length");
+    }
   }
   Result<Barriers> b = Barriers::from_polylines(lines);
   if (!b) throw UserError("barriers", b.reason());
@@ -120,8 +126,11 @@ py::array interpolate(const Doubles& points, const Doubles& values, const std::o
     throw UserError("domain", raster ? "raster needs domain=(x0, y0, x1, y1), the rectangle it covers"
                                      : "domain goes with raster");
   const Method method = method_by_name(method_text, "method");
+  if (const std::string problem = point_method_problem(method); !problem.empty()) throw UserError("method", problem);
   MethodParams params = parse_params(method, settings_of(kwargs), "params");
   params.barriers = barriers_of(barriers);
+  if (const std::string problem = params.barriers.empty() ? "" : barriers_problem(method); !problem.empty())
+    throw UserError("barriers", problem);
 
   ScatteredSamples samples;
   samples.channels = channels;

@@ -103,9 +103,9 @@ void run_interpolate(const InterpolateArgs& args) {
   }
   const std::optional<Method> method = method_by_name(args.method, "--method");
   MethodParams params = parse_params(*method, args.params, "--param");
-  if (is_cell_method(*method))
-    throw UserError("--method", args.method + " reconstructs cells (a grid's or a quadtree's leaves: radrecon render "
-                                              "and paper), not points; use e.g. linear or natural-neighbour");
+  if (const std::string problem = point_method_problem(*method); !problem.empty()) throw UserError("--method", problem);
+  if (const std::string problem = args.barriers.empty() ? "" : barriers_problem(*method); !problem.empty())
+    throw UserError("--barriers", problem);
   if (args.border_samples && (*method == Method::constant || is_grid_method(*method)))
     throw UserError("--border-samples", "applies to the scattered methods that interpolate, not " + args.method);
   // No input is ever overwritten, and an unwritable output is refused before any work.

@@ -225,10 +225,7 @@ BarrierGrid::Kind grid_kind(Method m) {
 /// Methods that do not take barriers refuse them, naming those that do.
 std::optional<Failure> refuse_barriers(Method method, const MethodParams& params) {
   if (params.barriers.empty() || takes_barriers(method)) return std::nullopt;
-  std::string names;
-  for (Method m : all_methods())
-    if (takes_barriers(m)) names += (names.empty() ? "" : ", ") + method_name(m);
-  return Failure{method_name(method) + " does not take barriers (methods that do: " + names + ")"};
+  return Failure{barriers_problem(method)};
 }
 
 }  // namespace
@@ -349,10 +346,22 @@ InterpolantResult make_scattered_interpolant(Method method, const ScatteredSampl
   return Failure{"unknown method"};
 }
 
+std::string barriers_problem(Method method) {
+  if (takes_barriers(method)) return {};
+  std::string names;
+  for (Method m : all_methods())
+    if (takes_barriers(m)) names += (names.empty() ? "" : ", ") + method_name(m);
+  return method_name(method) + " does not take barriers (methods that do: " + names + ")";
+}
+
+std::string point_method_problem(Method method) {
+  if (!is_cell_method(method)) return {};
+  return method_name(method) + " reconstructs cells (a grid's or a quadtree's leaves: radrecon render and paper), not "
+                               "points; use e.g. linear or natural-neighbour";
+}
+
 InterpolantResult make_point_interpolant(Method method, const ScatteredSamples& samples, const MethodParams& params) {
-  if (is_cell_method(method))
-    return Failure{method_name(method) + " reconstructs cells (a grid's or a quadtree's leaves: radrecon render and "
-                                         "paper), not points; use e.g. linear or natural-neighbour"};
+  if (const std::string problem = point_method_problem(method); !problem.empty()) return Failure{problem};
   if (!is_grid_method(method)) return make_scattered_interpolant(method, samples, params);
   const std::optional<GridNodes> grid = as_regular_grid(samples);
   if (!grid) {

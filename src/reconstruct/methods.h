@@ -56,6 +56,11 @@ bool is_cell_method(Method m);
 /// gouraud) refuse them in the factories; a solution's side is then reconstructed
 /// without them (sampling/solution_reconstruction.h says so).
 bool takes_barriers(Method m);
+/// Why the method cannot take barriers ("linear does not take barriers (methods that do: ...)"),
+/// or empty if it can.
+std::string barriers_problem(Method m);
+/// Why the method cannot interpolate points (gouraud reconstructs cells), or empty if it can.
+std::string point_method_problem(Method m);
 
 /// What the triangulation methods (natural-neighbour, linear, clough-tocher, sibson-c1, laplace)
 /// return outside the convex hull of the samples (the other methods are defined everywhere).

@@ -145,6 +145,15 @@ def test_barrier_samples_keyword():
     assert np.max(np.abs(on - off)) > 1e-6
     with pytest.raises(radrecon.Error, match="barrier-samples"):
         radrecon.interpolate(p, v, queries=q, barriers=wall, barrier_samples="maybe")
+    # Refusals name the argument at fault, counting from 0 as Python does.
+    with pytest.raises(radrecon.Error, match=r"^barriers: linear does not take barriers"):
+        radrecon.interpolate(p, v, queries=q, barriers=wall, method="linear")
+    with pytest.raises(radrecon.Error, match=r"^method: gouraud reconstructs cells"):
+        radrecon.interpolate(p, v, queries=q, method="gouraud")
+    with pytest.raises(radrecon.Error, match=r"^barriers\[1\]: a line needs 2 points, got 1"):
+        radrecon.interpolate(p, v, queries=q, barriers=[wall[0], np.array([[0.1, 0.1]])])
+    with pytest.raises(radrecon.Error, match=r"^barriers\[0\]\[2\]: repeats the point before it"):
+        radrecon.interpolate(p, v, queries=q, barriers=[np.array([[0, 0], [1, 1], [1, 1]])])
 
 
 def test_refusals_carry_the_command_lines_messages(tmp_path):
