@@ -35,4 +35,13 @@ for table, method in [("grid", "constant"), ("grid", "bilinear"), ("grid", "bicu
 assert doc["settings"]["ground_leaves"] == 286
 EOF
 
+# --- run again into the same folder without barriers: nothing of the first run's Table 3 -------
+[ -s "$TMP/paper/table3.md" ] && [ -s "$TMP/paper/figures/fig5_natural-neighbour_difference.png" ] ||
+  fail "paper: the run with barriers wrote no Table 3 or Fig. 5"
+run again paper --out "$TMP/paper" --reference 32 --no-barriers
+expect_rc again 0 && expect_stderr_has again "removed"
+[ -e "$TMP/paper/table3.md" ] && fail "again: table3.md of the earlier run is left beside the new tables"
+ls "$TMP/paper/figures" | grep -q '^fig[5-8]_' && fail "again: Fig. 5-8 of the earlier run are left"
+[ -s "$TMP/paper/table1.md" ] || fail "again: no table1.md"
+
 finish paper_test
