@@ -321,8 +321,9 @@ void add_interpolate_command(CLI::App& app) {
                   "GDAL rasters: the value written where a method gives none (NaN), declared as the bands' no-data "
                   "value (default -9999)");
   cmd->add_option("--barriers", args->barriers,
-                  "GeoJSON file of barrier lines (LineString, MultiLineString, Polygon/MultiPolygon rings; a "
-                  "geometry, Feature or FeatureCollection; coordinates in the samples' units, CRS ignored): no "
+                  "Barrier lines: a GeoJSON file (LineString, MultiLineString, Polygon/MultiPolygon rings; a "
+                  "geometry, Feature or FeatureCollection), or any GDAL vector source of lines (.gpkg, .shp, ...); "
+                  "coordinates in the samples' units, CRS ignored: no "
                   "sample's influence crosses them. A sample counts for a query only if the straight segment "
                   "between them crosses no barrier; a query that sees no sample gets no value (NaN). Every "
                   "method honours them except linear and clough-tocher, which refuse them; see "
