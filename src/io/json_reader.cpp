@@ -8,10 +8,12 @@
 #include <fstream>
 #include <optional>
 #include <sstream>
+#include <unordered_set>
 #include <vector>
 
 #include "core/error.h"
 #include "core/limits.h"
+#include "core/parse.h"
 
 namespace radrecon {
 
@@ -65,6 +67,81 @@ class ErrorOffset final : public nlohmann::json_sax<nlohmann::json> {
   }
 };
 
+/// A SAX handler that builds nothing and finds the first key given twice in one object, with
+/// the path of that object ("surfaces[0]"). Each open object's keys in a list (reused from
+/// object to object), a long one's in a set too.
+class RepeatedKey final : public nlohmann::json_sax<nlohmann::json> {
+ public:
+  std::string repeated;  ///< the key, empty if none
+  std::string path;      ///< of the object holding it, "" at the top level
+  bool null() override { return value(); }
+  bool boolean(bool) override { return value(); }
+  bool number_integer(number_integer_t) override { return value(); }
+  bool number_unsigned(number_unsigned_t) override { return value(); }
+  bool number_float(number_float_t, const string_t&) override { return value(); }
+  bool string(string_t&) override { return value(); }
+  bool binary(binary_t&) override { return value(); }
+  bool start_object(std::size_t) override {
+    value();
+    Frame& f = open(false);
+    f.keys.clear();
+    f.set.clear();
+    return true;
+  }
+  bool key(string_t& key) override {
+    Frame& f = frames_[depth_ - 1];
+    const bool seen = f.set.empty() ? std::find(f.keys.begin(), f.keys.end(), key) != f.keys.end() : !f.set.insert(key).second;
+    if (seen) {
+      repeated = key;
+      for (size_t d = 0; d + 1 < depth_; ++d)
+        path += frames_[d].array ? "[" + std::to_string(frames_[d].index - 1) + "]" : (path.empty() ? "" : ".") + frames_[d].keys.back();
+      return false;  // stop here
+    }
+    if (f.set.empty()) {
+      f.keys.push_back(key);
+      if (f.keys.size() == kListed) f.set.insert(f.keys.begin(), f.keys.end());
+    } else {
+      f.keys.back() = key;  // the last key, for paths
+    }
+    return true;
+  }
+  bool end_object() override { return close(); }
+  bool start_array(std::size_t) override {
+    value();
+    open(true).index = 0;
+    return true;
+  }
+  bool end_array() override { return close(); }
+  bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override { return false; }
+
+ private:
+  static constexpr size_t kListed = 16;  ///< keys searched in a list; beyond, in a set
+  struct Frame {
+    bool array = false;
+    size_t index = 0;               ///< an array's values so far
+    std::vector<std::string> keys;  ///< an object's keys so far (the last one last)
+    std::unordered_set<std::string> set;
+  };
+  /// A value begins: an array holding it counts it.
+  bool value() {
+    if (depth_ > 0 && frames_[depth_ - 1].array) ++frames_[depth_ - 1].index;
+    return true;
+  }
+  /// A new innermost frame (storage reused), its kind set.
+  Frame& open(bool array) {
+    if (frames_.size() <= depth_) frames_.resize(depth_ + 1);
+    Frame& f = frames_[depth_++];
+    f.array = array;
+    return f;
+  }
+  bool close() {
+    --depth_;
+    return true;
+  }
+  std::vector<Frame> frames_;  ///< [0, depth_) open; beyond, kept for their storage
+  size_t depth_ = 0;
+};
+
 /// The byte offset at which `text` nests arrays and objects deeper than `most` levels, if it does
 /// (brackets inside strings aside).
 std::optional<size_t> too_deep(const std::string& text, int most) {
@@ -88,12 +165,23 @@ std::optional<size_t> too_deep(const std::string& text, int most) {
 
 }  // namespace
 
-JsonReader::json JsonReader::parse(const std::string& text, const std::string& kind) const {
+JsonReader::json JsonReader::parse(const std::string& text, const std::string& kind, Keys keys) const {
   if (const std::optional<size_t> at = too_deep(text, kMaxJsonDepth))
     throw UserError(source_ + ":" + std::to_string(line_of(text, *at)),
                     "not a valid " + kind + ": nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
   try {
-    return json::parse(text);
+    json doc = json::parse(text);
+    if (keys == Keys::as_parsed) return doc;
+    // A key given twice in one object: the document keeps the last value silently. Looked for
+    // by a second pass through the SAX interface (nlohmann's parser callback, which could see
+    // it in the first, made a 34 MB solution read 8 times slower).
+    RepeatedKey sax;
+    json::sax_parse(text, &sax);
+    if (!sax.repeated.empty())
+      throw UserError(source_, "not a valid " + kind + ": the key " + in_quotes(sax.repeated) + " appears twice in " +
+                                   (sax.path.empty() ? std::string("the top-level object") : sax.path) +
+                                   " (its last value would be taken silently)");
+    return doc;
   } catch (const json::out_of_range& e) {  // a number too large for a double, e.g. 1e999
     // Parse again without a document (only on this error path) for the number's line, and keep
     // nlohmann's reason without its "[json.exception.out_of_range.406] " tag.

@@ -177,7 +177,9 @@ std::vector<Polyline> polylines(const JsonReader& r, const json& j, const std::s
 Solution read_solution_json(const std::filesystem::path& path) {
   const std::string text = read_text_file(path.string(), "solution file");
   const JsonReader r(path.string());
-  const json doc = r.parse(text, "solution");
+  // Written by radrecon (tens of MB for a fine mesh), whose writer gives each key once: not
+  // searched for repeated keys, which would cost half again the parse.
+  const json doc = r.parse(text, "solution", JsonReader::Keys::as_parsed);
   if (!doc.is_object()) r.fail("(top level)", "must be a JSON object");
   Solution sol;
   if (doc.contains("scene")) sol.scene = r.string(doc["scene"], "scene");

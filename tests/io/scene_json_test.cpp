@@ -177,6 +177,23 @@ TEST(SceneJson, RefusesTextThatIsNotJsonWithItsLineNumber) {
   EXPECT_TRUE(RefusedMentioning(text, {"bad.json:3"}));
 }
 
+TEST(SceneJson, RefusesAKeyGivenTwiceInOneObjectNamingWhere) {
+  // JSON would keep the last value silently: a scene with two reflectances is refused.
+  EXPECT_TRUE(RefusedMentioning(R"({"name": "x", "name": "y", "surfaces": []})",
+                                {"the key 'name' appears twice in the top-level object"}));
+  json doc = ValidScene();
+  const std::string text = doc.dump();
+  const std::string twice = text.substr(0, text.rfind("}]")) + R"(, "two_sided": true, "two_sided": false}]})";
+  EXPECT_TRUE(RefusedMentioning(twice, {"the key 'two_sided' appears twice in surfaces["}));
+  // Objects of more than 16 keys are searched through a set: the same answer.
+  std::string many = R"({"name": "x", "surfaces": [], "extra": {)";
+  for (int k = 0; k < 40; ++k) many += "\"k" + std::to_string(k) + "\": " + std::to_string(k) + ", ";
+  EXPECT_TRUE(RefusedMentioning(many + R"("k33": 0}})", {"the key 'k33' appears twice in extra"}));
+  // The same key in different objects is no repeat.
+  EXPECT_FALSE(RefusedMentioning(R"({"name": "x", "a": {"k": 1}, "b": [{"k": 1}, {"k": 2}], "surfaces": []})",
+                                 {"appears twice"}));
+}
+
 TEST(SceneJson, RefusesAMissingSurfacesField) {
   json doc = ValidScene();
   doc.erase("surfaces");
