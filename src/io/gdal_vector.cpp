@@ -113,7 +113,16 @@ ScatteredSamples read_samples_ogr(const std::string& path, std::vector<std::stri
       const std::string name = ascii_lower(src.fields().GetFieldDefn(k)->GetNameRef());
       if (src.numeric(k) && name != ascii_lower(columns.x) && name != ascii_lower(columns.y)) value_fields.push_back(k);
     }
-  if (value_fields.empty()) throw UserError(path, "has no numeric field to interpolate (name one with --value)");
+  if (value_fields.empty()) {
+    std::string found;  // the fields there are, with their types (a number written as a string is text)
+    for (int k = 0; k < src.fields().GetFieldCount(); ++k) {
+      const OGRFieldDefn* d = src.fields().GetFieldDefn(k);
+      found += (found.empty() ? "" : ", ") + std::string(d->GetNameRef()) + " (" +
+               OGRFieldDefn::GetFieldTypeName(d->GetType()) + ")";
+    }
+    throw UserError(path, "has no numeric field to interpolate (its fields: " + (found.empty() ? "none" : found) +
+                              "; a number in quotes is a string); name one with --value");
+  }
   ScatteredSamples s;
   s.channels = static_cast<int>(value_fields.size());
   for_each_point(src, columns, [&](const OGRFeature& f, const Vec2& p) {
