@@ -263,8 +263,8 @@ class Builder {
         continue;
       }
       const std::vector<std::array<int, 3>> triangles = triangulate_polygon(corners);
-      if (triangles.empty()) {
-        ++out_.degenerate_skipped;
+      if (triangles.empty()) {  // no area, or no ear to cut: a polygon that crosses itself
+        ++(polygon_on_a_line(corners) ? out_.degenerate_skipped : out_.self_crossing_skipped);
         continue;
       }
       ++out_.polygons_triangulated;
@@ -365,7 +365,13 @@ MeshImport import_mesh_assimp(const std::string& path, const MeshPlacement& plac
   if (out.degenerate_skipped > 0)
     out.warnings.push_back(path + ": " + std::to_string(out.degenerate_skipped) +
                            " face(s) of fewer than 3 corners or of zero area skipped");
-  if (out.surfaces.empty()) throw UserError(path, "has no face of non-zero area (" + std::to_string(out.faces_read) + " faces read)");
+  if (out.self_crossing_skipped > 0)
+    out.warnings.push_back(path + ": " + std::to_string(out.self_crossing_skipped) +
+                           " polygon(s) of more than 4 corners that cross themselves skipped");
+  if (out.surfaces.empty())
+    throw UserError(path, "has no face of non-zero area that does not cross itself (" + std::to_string(out.faces_read) +
+                              " faces read: " + std::to_string(out.degenerate_skipped) + " of zero area or fewer than 3 corners, " +
+                              std::to_string(out.self_crossing_skipped) + " crossing themselves)");
   if (placement.merge_triangles) out.triangle_pairs_merged = merge_coplanar_triangle_pairs(out.surfaces);
   return out;
 }

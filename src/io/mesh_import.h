@@ -49,6 +49,7 @@ struct MeshImport {
   size_t faces_read = 0;              ///< faces in the file (each instance of a mesh counted)
   size_t degenerate_skipped = 0;      ///< faces of fewer than 3 corners or of zero area
   size_t polygons_triangulated = 0;   ///< faces of more than 4 corners, cut into triangles
+  size_t self_crossing_skipped = 0;   ///< faces of more than 4 corners that cross themselves
   size_t triangle_pairs_merged = 0;   ///< pairs of triangles made quads
 };
 

@@ -53,6 +53,24 @@ double polygon_off_plane(std::span<const Vec3> c) {
   return off / longest;
 }
 
+bool polygon_on_a_line(std::span<const Vec3> corners) {
+  if (corners.size() < 3) return true;
+  // The line through the first corner's farthest and that one's farthest.
+  const auto farthest = [&](const Vec3& from) {
+    size_t best = 0;
+    for (size_t k = 1; k < corners.size(); ++k)
+      if ((corners[k] - from).squaredNorm() > (corners[best] - from).squaredNorm()) best = k;
+    return corners[best];
+  };
+  const Vec3 a = farthest(corners[0]), b = farthest(a);
+  const double length = (b - a).norm();
+  if (!(length > 0)) return true;
+  const Vec3 along = (b - a) / length;
+  for (const Vec3& c : corners)
+    if ((c - a).cross(along).norm() > tol::kDegenerateAreaRelative * length) return false;
+  return true;
+}
+
 std::vector<std::array<int, 3>> triangulate_polygon(std::span<const Vec3> corners) {
   const int n = static_cast<int>(corners.size());
   std::vector<std::array<int, 3>> out;

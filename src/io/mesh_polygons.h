@@ -25,6 +25,11 @@ double polygon_off_plane(std::span<const Vec3> corners);
 /// or not. Empty if the polygon has no area or no ear can be cut (self-intersecting).
 std::vector<std::array<int, 3>> triangulate_polygon(std::span<const Vec3> corners);
 
+/// Whether the polygon's corners all lie on one line (within tol::kDegenerateAreaRelative of its
+/// longest extent), or coincide: it has no area. A polygon that triangulate_polygon() cannot cut
+/// and that has area crosses itself.
+bool polygon_on_a_line(std::span<const Vec3> corners);
+
 /// Merges pairs of triangles of `surfaces` into quads, in place; returns the number of pairs
 /// merged. Two triangles merge when they share an edge (the same two corners, exactly, walked in
 /// opposite directions), have the same reflectance, emission, two_sided and mesh setting, and

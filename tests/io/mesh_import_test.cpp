@@ -135,6 +135,29 @@ TEST(MeshImport, ObjFacesBeforeAnyMaterialAreHalfGreyAndDegenerateFacesAreCounte
             1);
 }
 
+TEST(MeshImport, APolygonThatCrossesItselfIsSkippedAndNamedSo) {
+  // A pentagon whose edges cross (area 6 by the shoelace, yet no ear to cut), a collinear
+  // pentagon (no area) and a triangle: each counted for what it is.
+  TempDir dir("mesh_obj");
+  write_file(dir / "crossing.obj",
+             "v 0 0 0\nv 4 0 0\nv 0 4 0\nv 4 4 0\nv 2 5 0\nv 1 0 0\nv 2 0 0\nv 3 0 0\n"
+             "f 1 2 3 4 5\nf 1 6 7 8 2\nf 1 2 4\n");
+  const MeshImport m = import_mesh((dir / "crossing.obj").string());
+  EXPECT_EQ(m.surfaces.size(), 1u);
+  EXPECT_EQ(m.self_crossing_skipped, 1u);
+  EXPECT_EQ(m.degenerate_skipped, 1u);
+  EXPECT_EQ(std::count_if(m.warnings.begin(), m.warnings.end(),
+                          [](const std::string& w) { return w.find("1 polygon(s) of more than 4 corners that cross themselves skipped") != std::string::npos; }),
+            1);
+  write_file(dir / "only.obj", "v 0 0 0\nv 4 0 0\nv 0 4 0\nv 4 4 0\nv 2 5 0\nf 1 2 3 4 5\n");
+  try {
+    import_mesh((dir / "only.obj").string());
+    ADD_FAILURE() << "accepted";
+  } catch (const UserError& e) {
+    EXPECT_NE(std::string(e.what()).find("1 crossing themselves"), std::string::npos) << e.what();
+  }
+}
+
 TEST(MeshImport, ObjFaceClosedOnItsFirstCornerKeepsItsAreaAndOneValueColoursAreGrey) {
   // The pentagon of write_obj() closed on its first corner (`f 1 2 3 4 5 1`, as some exporters
   // write), a quad with a corner twice (a triangle), and MTL colours of one value (grey).
