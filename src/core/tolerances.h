@@ -214,6 +214,12 @@ inline constexpr double kBorderSpacingRelative = 1e-9;
 /// extrapolate any noise in the values without bound.
 inline constexpr double kFitCollinearRelative = 1e-8;
 
+/// The multiquadric's exponent mu must stay this far (relative) from a positive integer k, where
+/// (d^2 + r^2)^mu is a polynomial and the system singular: its conditioning degrades as
+/// 1 / |mu - k| (on 7 samples the values at the samples erred by 5e-10 at 1e-6 from 1, 2e-8 at
+/// 1e-8, 1.6e-6 at 1e-10, without the condition estimate noticing).
+inline constexpr double kMultiquadricIntegerGap = 1e-6;
+
 /// sibson-c1's gradient fit: the weighted normal matrix H of a sample's plane counts as singular
 /// (the sample's visible neighbours on one line through it: the plane is fitted along that line
 /// alone, with no gradient across it) when det H is below this

@@ -138,8 +138,13 @@ MethodParams parse_params(Method method, const std::vector<std::string>& setting
     } else if (method == Method::multiquadric && name == "mu") {
       p.multiquadric_mu = parse_number(value, where);
       if (p.multiquadric_mu == 0) throw UserError(where, "must not be 0");
-      if (p.multiquadric_mu > 0 && p.multiquadric_mu == std::floor(p.multiquadric_mu))
-        throw UserError(where, "must not be a positive integer: (d^2 + r^2)^mu is then a polynomial and the system is singular");
+      const double mu = p.multiquadric_mu, nearest = std::round(mu);
+      if (mu > 0 && nearest >= 1 && std::abs(mu - nearest) < tol::kMultiquadricIntegerGap * nearest)
+        throw UserError(where, mu == nearest ? "must not be a positive integer: (d^2 + r^2)^mu is then a polynomial and "
+                                               "the system is singular"
+                                             : "must not be within " + format_number(tol::kMultiquadricIntegerGap) +
+                                                   " (relative) of a positive integer: (d^2 + r^2)^mu is then nearly a "
+                                                   "polynomial and the system nearly singular, got " + value);
     } else if (method == Method::multiquadric && name == "r") {
       p.multiquadric_r = parse_number(value, where);
       if (!(*p.multiquadric_r > 0)) throw UserError(where, "must be > 0");
