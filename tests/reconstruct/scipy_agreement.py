@@ -4,8 +4,9 @@ Delaunay triangulation (Qhull): griddata(method="linear") and CloughTocher2DInte
 random samples and on a jittered 30 x 30 lattice (near-co-circular quadruples, a unique
 triangulation), one and two value columns, at random queries inside the hull.
 
-Usage: scipy_agreement.py RADRECON. Exit 0 when every difference is within 1e-6 (values O(1)),
-1 otherwise, 77 (skipped) when numpy or scipy is not installed.
+Usage: scipy_agreement.py RADRECON. Exit 0 when every difference is within its bound (values
+O(1): linear 1e-12, clough-tocher 1e-10), 1 otherwise, 77 (skipped) when numpy or scipy is not
+installed.
 
 scipy estimates the gradients by Gauss-Seidel sweeps until the largest relative change is below
 tol (default 1e-6); radrecon solves the same equations exactly. The test compares with scipy run
@@ -24,7 +25,11 @@ except ImportError as e:
     print(f"skipped: {e}")
     sys.exit(77)
 
-TOLERANCE = 1e-6  # the issue's bound, for values O(1)
+# Values O(1). Both compute the same barycentric sums in double precision: linear agrees to
+# round-off (measured 5.6e-16), clough-tocher to scipy's own gradient tolerance of 1e-12 times the
+# gradients' size (measured 2.7e-12 on the 4 km box). The issue's 1e-6 would pass a value
+# rounded to a float on its way through the CSV files.
+TOLERANCE = {"linear": 1e-12, "clough-tocher": 1e-10}
 
 
 def write_csv(path, header, columns):
@@ -77,8 +82,8 @@ def main():
             print(f"{name}: {len(q)} queries; max |radrecon - scipy|: linear {d_lin:.2e}, "
                   f"clough-tocher {d_ct:.2e} (scipy tol=1e-12), {d_default:.2e} (scipy's default tol=1e-6)")
             for label, d in (("linear", d_lin), ("clough-tocher", d_ct)):
-                if not d <= TOLERANCE:
-                    print(f"FAILED: {name}, {label}: {d:.3e} > {TOLERANCE}")
+                if not d <= TOLERANCE[label]:
+                    print(f"FAILED: {name}, {label}: {d:.3e} > {TOLERANCE[label]}")
                     failed = True
     return 1 if failed else 0
 
