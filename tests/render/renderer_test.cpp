@@ -62,6 +62,26 @@ TEST(Renderer, PrimaryRaysHitTheRightSurfaceAtTheRightPlace) {
   }
 }
 
+TEST(Renderer, AWidePictureSpansTheVerticalFieldOfViewUpAndDownAndTheAspectAcross) {
+  // fov_deg is the vertical field of view (scene.h): looking straight down from 5 m with up = +y,
+  // a 200 x 100 picture sees the floor 5 tan(fov / 2) either side of the centre in y and twice
+  // that in x. A pixel (px, py) sees x = 2 + (2 px / W - 1) 5 tan(fov / 2) W / H and
+  // y = 2 - (2 py / H - 1) 5 tan(fov / 2). A horizontal field of view, or W and H swapped, fails.
+  Scene scene;
+  scene.surfaces.push_back(quad("floor", {-8, -8, 0}, {12, -8, 0}, {12, 12, 0}, {-8, 12, 0}));
+  const Camera cam{"down", Vec3(2, 2, 5), Vec3(2, 2, 0), Vec3(0, 1, 0), 60.0};
+  const int W = 200, H = 100;
+  const double half = 5 * std::tan(30.0 * std::numbers::pi / 180);
+  for (const auto& [px, py] : {std::pair{0.0, 0.0}, {200.0, 100.0}, {50.0, 25.0}, {173.5, 91.25}, {100.0, 50.0}}) {
+    const auto [o, d] = camera_ray(cam, W, H, px, py);
+    const auto hit = intersect_scene(scene, o, d);
+    ASSERT_TRUE(hit.has_value());
+    const Vec3 p = o + hit->t * d;
+    EXPECT_NEAR(p.x(), 2 + (2 * px / W - 1) * half * W / H, 1e-9) << "pixel (" << px << ", " << py << ")";
+    EXPECT_NEAR(p.y(), 2 - (2 * py / H - 1) * half, 1e-9) << "pixel (" << px << ", " << py << ")";
+  }
+}
+
 TEST(Renderer, ConstantRadiosityRendersToThePredictedPixelValue) {
   Scene scene;
   scene.surfaces.push_back(quad("wall", {-5, -5, 0}, {5, -5, 0}, {5, 5, 0}, {-5, 5, 0}));
