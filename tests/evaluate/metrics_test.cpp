@@ -223,6 +223,32 @@ TEST(Overshoot, MeasuresTheDistanceOutOfTheNaturalNeighboursRange) {
   EXPECT_NEAR(*overshoot(s, two, std::vector<double>{3.1, 0.5}), 0.5, 1e-15);
 }
 
+TEST(Overshoot, ABarrierAcrossTheDomainLeavesEachSideTheRangesOfItsOwnSamples) {
+  // A wall at x = 0.5 across the whole domain: a query on the left sees only the left samples,
+  // so its ranges with the barrier are those of the left samples alone without it, bit for bit
+  // (zero influence across a barrier). The right samples' values (100 and up) would widen them.
+  std::mt19937 rng(91);
+  std::uniform_real_distribution<double> u(0, 1);
+  ScatteredSamples all, left;
+  for (int k = 0; k < 200; ++k) {
+    const Vec2 p(u(rng), u(rng));
+    if (std::abs(p.x() - 0.5) < 0.05) continue;
+    const double v = p.x() < 0.5 ? std::sin(7 * p.y()) + p.x() : 100 + 50 * p.y();
+    all.points.push_back(p), all.values.push_back(v);
+    if (p.x() < 0.5) left.points.push_back(p), left.values.push_back(v);
+  }
+  const Barriers wall = Barriers::from_polylines(std::vector<Polyline>{{{0.5, -1}, {0.5, 2}}}).value();
+  std::vector<Vec2> q;
+  for (int k = 0; k < 300; ++k) q.emplace_back(0.12 + 0.25 * u(rng), 0.12 + 0.76 * u(rng));  // inside the left hull
+  const std::optional<NeighbourRanges> walled = neighbour_ranges(all, q, wall), alone = neighbour_ranges(left, q);
+  ASSERT_TRUE(walled && alone);
+  EXPECT_EQ(walled->lo, alone->lo);
+  EXPECT_EQ(walled->hi, alone->hi);
+  // Without the wall the right samples reach some of these queries: the test can tell.
+  const std::optional<NeighbourRanges> open = neighbour_ranges(all, q);
+  EXPECT_NE(open->hi, alone->hi);
+}
+
 TEST(Overshoot, OutsideTheHullUsesTheNearestHullEdgeAndTheNearestSamples) {
   const ScatteredSamples s = square_with_centre();
   // Below the square: edge (0,0)-(1,0) and nearest samples (0,0), (1,0), centre: [1, 3].
