@@ -105,5 +105,10 @@ cmp -s t1/cmp.png t2/cmp.png || fail "compare: the difference image differs betw
 both paper paper/errors.json paper/table1.md paper/table2.md paper/solutions/reference.json \
   paper/solutions/quadtree.json paper/figures/fig2_reference_ground.png paper/figures/fig3_natural-neighbour_ground.png \
   -- paper --reference 32 --no-barriers --out paper
+# With the scene's barriers: the barrier data sets (visible-sample fits, parallel neighbour ranges
+# over what each point sees) too.
+both paper_barriers walled/errors.json walled/table3.md walled/figures/fig5_natural-neighbour_ground.png \
+  walled/figures/fig6_multiquadric_ground.png walled/figures/fig5_sibson-c1_difference.png \
+  -- paper --reference 32 --out walled
 
 finish threads_test
