@@ -172,7 +172,9 @@ TEST(ShooterClusters, TrianglesOfTheSameClusterCastTheirShadows) {
     }
     EXPECT_TRUE(light && shade) << "a cluster should hold both";
   }
-  expect_shadow_as_exact_visibility(scene, "shade in the light's clusters", 0, 0.5);
+  // The bound: the measured 8.3% and half as much again, so that a change that doubles the
+  // clusters' error here fails (0.5 had let six times it pass).
+  expect_shadow_as_exact_visibility(scene, "shade in the light's clusters", 0, 0.125);
 }
 
 TEST(ShooterClusters, SlowClosedRoomOfTrianglesKeepsItsEnergy) {
