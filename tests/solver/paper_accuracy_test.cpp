@@ -65,6 +65,53 @@ TEST(PaperReference, AgreesWithIndependentPathTracing) {
   EXPECT_LT(mean_rel, kMeanRelative);
 }
 
+TEST(PaperReference, WallsBothSidesAgreeWithIndependentPathTracing) {
+  // The walls' fronts (lit by the lamp) and wall1's back (lit only by the ground beyond it, all
+  // indirect) at random element centres. Each point's path-traced estimate has its own standard
+  // error (from its paths' spread): the reference must lie within 4 of them plus 0.3% of the
+  // value (the mesh), and the mean signed relative difference over a side within 3 standard
+  // errors of that mean plus 0.3% (a bias would show there).
+  constexpr int kSidePoints = 40, kSidePaths = 20000;
+  constexpr double kMeshRelative = 3e-3;
+  const Scene scene = paper_scene();
+  const Solution& reference = reference_solution();
+  PathTracer tracer(scene);
+  for (const char* side : {"wall1/front", "wall1/back", "wall2/front"}) {
+    const SurfaceSolution* s = reference.find(side);
+    ASSERT_NE(s, nullptr) << side;
+    const size_t index = *scene.find_surface(s->scene_surface);
+    const Vec3 n = s->back_side ? Vec3(-scene.surfaces[index].normal()) : scene.surfaces[index].normal();
+    std::mt19937_64 pick(4321);
+    std::uniform_int_distribution<size_t> element(0, s->elements.size() - 1);
+    double sum_rel = 0, sum_rel_sq = 0;
+    int counted = 0;
+    for (int k = 0; k < kSidePoints; ++k) {
+      const SolutionElement& e = s->elements[element(pick)];
+      std::mt19937_64 rng(5000 + k);
+      const double direct = tracer.direct(e.center, n, index, kDirectStrata, rng)[0];
+      double sum = 0, sum_sq = 0;
+      for (int i = 0; i < kSidePaths; ++i) {
+        const double x = tracer.indirect(e.center, n, index, rng)[0];
+        sum += x, sum_sq += x * x;
+      }
+      const double mean = sum / kSidePaths;
+      const double standard_error = 0.5 * std::sqrt(std::max(0.0, sum_sq / kSidePaths - mean * mean) / (kSidePaths - 1));
+      const double b_mc = 0.5 * (direct + mean), b_ref = e.radiosity_w_m2[0];
+      if (b_mc <= 1e-3) continue;
+      EXPECT_NEAR(b_ref, b_mc, 4 * standard_error + kMeshRelative * b_mc) << side << " at " << e.center.transpose();
+      const double rel = b_ref / b_mc - 1;
+      sum_rel += rel, sum_rel_sq += rel * rel;
+      ++counted;
+    }
+    ASSERT_GT(counted, kSidePoints / 2) << side;
+    const double mean_rel = sum_rel / counted;
+    const double mean_se = std::sqrt(std::max(0.0, sum_rel_sq / counted - mean_rel * mean_rel) / (counted - 1));
+    std::printf("%s: reference vs path tracing, mean relative difference %+.2e (standard error %.1e) over %d points\n",
+                side, mean_rel, mean_se, counted);
+    EXPECT_NEAR(mean_rel, 0.0, 3 * mean_se + kMeshRelative) << side;
+  }
+}
+
 /// The bound: RMS over the leaves of (leaf radiosity - reference averaged over the leaf).
 constexpr double kLeafRms_w_m2 = 0.02;
 
