@@ -9,6 +9,7 @@
 
 #include <assimp/Importer.hpp>
 #include <assimp/scene.h>
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -126,6 +127,45 @@ TEST(GltfExport, GeometryAndTexelsReadBackByAssimp) {
   EXPECT_EQ(checked, atlas.tiles[0].width * atlas.tiles[0].height);
   EXPECT_LE(worst, 1);
   std::filesystem::remove(path);
+}
+
+TEST(Lightmap, GuttersRepeatTheirTilesBorderAndTilesDoNotOverlap) {
+  // Around each tile, kLightmapGutter texels repeat its border (the nearest texel of the tile),
+  // so that bilinear filtering at a tile's edge never reads a neighbour; no texel belongs to two
+  // tiles with their gutters. On the floor and lamp of the test above, the floor's texels varying.
+  const Scene scene = floor_and_lamp();
+  Solution solution = solve_scene(scene, "grid:16", SolveSettings{}, "mesh");
+  for (SurfaceSolution& side : solution.surfaces)
+    if (side.name == "floor")
+      for (SolutionElement& e : side.elements) e.radiosity_w_m2 = floor_radiosity(side.centroid_st(e));
+  const SolutionReconstruction recon(scene, solution, Method::thin_plate, {}, "test");
+  const LightmapAtlas atlas = bake_lightmaps(scene, solution, recon, 36, "test");
+  const Image& img = atlas.radiosity_w_m2;
+  std::vector<int> owner(static_cast<size_t>(img.width()) * img.height(), -1);
+  constexpr int g = kLightmapGutter;
+  int gutter_texels = 0;
+  for (size_t k = 0; k < atlas.tiles.size(); ++k) {
+    const LightmapTile& t = atlas.tiles[k];
+    ASSERT_GE(t.x0 - g, 0);
+    ASSERT_GE(t.y0 - g, 0);
+    ASSERT_LE(t.x0 + t.width + g, img.width());
+    ASSERT_LE(t.y0 + t.height + g, img.height());
+    for (int y = t.y0 - g; y < t.y0 + t.height + g; ++y)
+      for (int x = t.x0 - g; x < t.x0 + t.width + g; ++x) {
+        int& o = owner[static_cast<size_t>(y) * img.width() + x];
+        EXPECT_EQ(o, -1) << "texel (" << x << ", " << y << ") in tiles " << o << " and " << k;
+        o = static_cast<int>(k);
+        const int cx = std::clamp(x, t.x0, t.x0 + t.width - 1), cy = std::clamp(y, t.y0, t.y0 + t.height - 1);
+        if (cx == x && cy == y) continue;
+        ++gutter_texels;
+        EXPECT_EQ(img.at(x, y)[0], img.at(cx, cy)[0]) << "gutter texel (" << x << ", " << y << ") of tile " << k;
+        EXPECT_EQ(img.at(x, y)[2], img.at(cx, cy)[2]) << "gutter texel (" << x << ", " << y << ") of tile " << k;
+      }
+  }
+  EXPECT_GT(gutter_texels, 100);
+  // The floor's border varies along it: a gutter copying one value everywhere would fail above.
+  const LightmapTile& floor_tile = atlas.tiles[0].side.surface == 0 ? atlas.tiles[0] : atlas.tiles[1];
+  EXPECT_NE(img.at(floor_tile.x0, floor_tile.y0)[0], img.at(floor_tile.x0 + floor_tile.width - 1, floor_tile.y0)[0]);
 }
 
 }  // namespace gltf_export_test
