@@ -56,7 +56,10 @@ LightmapAtlas bake_lightmaps(const Scene& scene, const Solution& solution, const
     LightmapTile t;
     t.solution_side = k;
     t.side = *side;
-    const double w = std::ceil(s.length_u_m * texels_per_metre), h = std::ceil(s.length_v_m * texels_per_metre);
+    // The length's share of the longest first: x / x is exactly 1, so the longest side gets
+    // exactly the texels asked for (length * density rounded up to one more at some lengths).
+    const double w = std::ceil(texels_along_longest * (s.length_u_m / longest_m)),
+                 h = std::ceil(texels_along_longest * (s.length_v_m / longest_m));
     if (!(w + 2 * g <= kMaxLightmapSide && h + 2 * g <= kMaxLightmapSide)) {
       const int fits = static_cast<int>(texels_along_longest * static_cast<double>(kMaxLightmapSide - 2 * g) / std::max(w, h));
       throw UserError(where, "side '" + s.name + "' would need " + std::to_string(static_cast<long long>(w)) + " x " +

@@ -54,18 +54,18 @@ bool can_create_raster(GDALDriver* d) {
 
 /// Refuses a driver that cannot write bands of `type` (its creation data types, where it lists
 /// them): GDAL would round the values into its own type (Byte for GIF, JPEG, XPM and PNG) without
-/// a word.
+/// a word. Only for Float32: the list is Create()'s, and a driver that writes through CreateCopy()
+/// alone may hold more (an Arc/Info grid lists no Float64, yet writes a Float64 band's values in
+/// full), or less (XYZ lists nothing).
 void require_band_type(GDALDriver* d, const char* type, const std::string& where) {
   const char* types = d->GetMetadataItem(GDAL_DMD_CREATIONDATATYPES);
   if (types == nullptr) return;  // not listed: CreateCopy() refuses what it cannot write
   std::istringstream list(types);
   for (std::string t; list >> t;)
     if (t == type) return;
-  const bool float64 = std::string(type) == "Float64";
   throw UserError(where, std::string("GDAL's ") + d->GetDescription() + " driver writes bands of " + types +
-                             " only, which would round the values to them (" +
-                             (float64 ? "--type float64 asks for Float64); write .tif or .nc, or leave --type at float32"
-                                      : "radrecon writes Float32); write .tif, .asc, .nc or another format of floating-point bands"));
+                             " only, which would round the values to them (radrecon writes " + type +
+                             "); write .tif, .asc, .nc or another format of floating-point bands");
 }
 
 }  // namespace
@@ -122,7 +122,6 @@ void write_raster_gdal(const std::string& path, const Raster& raster, std::span<
   GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
   GDALDriver* driver = GetGDALDriverManager()->GetDriverByName(driver_name.c_str());
   RR_CHECK(mem != nullptr && driver != nullptr, "GDAL drivers missing");
-  if (options.float64) require_band_type(driver, "Float64", "--type");  // Float32: gdal_raster_driver()
   const GDALDataType type = options.float64 ? GDT_Float64 : GDT_Float32;
   std::unique_ptr<GDALDataset> image(mem->Create("", raster.width, raster.height, channels, type, nullptr));
   if (!image) throw UserError(path, "GDAL cannot hold the raster in memory: " + QuietGdal::last_error());

@@ -168,5 +168,30 @@ TEST(Lightmap, GuttersRepeatTheirTilesBorderAndTilesDoNotOverlap) {
   EXPECT_NE(img.at(floor_tile.x0, floor_tile.y0)[0], img.at(floor_tile.x0 + floor_tile.width - 1, floor_tile.y0)[0]);
 }
 
+TEST(Lightmap, TheLongestSideGetsExactlyTheTexelsAsked) {
+  // length x (texels / longest) rounds up to one more texel at some lengths (12.5 m, 5.56 m):
+  // at the largest --texels, 16380, that tile and its gutters would not fit a 16384 texture.
+  for (const double length_m : {12.5, 5.56, 1.0}) {
+    Scene scene;
+    scene.name = "strip";
+    Surface strip;
+    strip.name = "strip";
+    strip.corners = {Vec3(0, 0, 0), Vec3(length_m, 0, 0), Vec3(length_m, 0.002, 0), Vec3(0, 0.002, 0)};
+    strip.reflectance = Rgb(0.5, 0.5, 0.5);
+    Surface lamp;
+    lamp.name = "lamp";
+    lamp.corners = {Vec3(0, 0, 1), Vec3(0, 0.001, 1), Vec3(0.001, 0.001, 1), Vec3(0.001, 0, 1)};
+    lamp.emission_w_m2 = Rgb(10, 10, 10);
+    scene.surfaces = {strip, lamp};
+    const Solution solution = solve_scene(scene, "grid:2", SolveSettings{}, "mesh");
+    const SolutionReconstruction recon(scene, solution, Method::constant, {}, "test");
+    for (const int texels : {1000, 16380}) {
+      const LightmapAtlas atlas = bake_lightmaps(scene, solution, recon, texels, "test");
+      const LightmapTile& tile = atlas.tiles[0].side.surface == 0 ? atlas.tiles[0] : atlas.tiles[1];
+      EXPECT_EQ(tile.width, texels) << length_m << " m";
+    }
+  }
+}
+
 }  // namespace gltf_export_test
 }  // namespace radrecon

@@ -219,16 +219,22 @@ with tempfile.TemporaryDirectory() as tmp:
     check(r.returncode == 0, f"-9999.0001 in a Float64 band is no clash ({r.stderr.strip()})")
 
     # Drivers of integer bands only would round the values without a word (GDAL converts): refused
-    # before any work, nothing written. Float64 asks more than an Arc/Info grid's Float32.
+    # before any work, nothing written.
     for name, extra, words in [("g.gif", [], "GIF driver writes bands of Byte only"),
                                ("g.xpm", [], "XPM driver writes bands of Byte only"),
-                               ("g.data", ["--format", "PNG"], "PNG driver writes bands of Byte UInt16 only"),
-                               ("g64.asc", ["--type", "float64"], "--type float64 asks for Float64")]:
+                               ("g.data", ["--format", "PNG"], "PNG driver writes bands of Byte UInt16 only")]:
         out = os.path.join(tmp, name)
         r = run("--samples", samples, "--value", "mag", "--method", "linear", "--raster", "4x3", "--domain", "0,0,4,3",
                 *extra, "--out", out)
         check(r.returncode == 2 and words in r.stderr and not os.path.exists(out),
               f"{name} {extra}: exit {r.returncode}, {r.stderr.strip()}")
+
+    # An Arc/Info grid lists no Float64 band among its creation types, yet writes a Float64 band's
+    # values in full: --type float64 is no refusal there.
+    out = os.path.join(tmp, "g64.asc")
+    r = run("--samples", samples, "--value", "mag", "--method", "linear", "--raster", "4x3", "--domain", "0,0,4,3",
+            "--type", "float64", "--out", out)
+    check(r.returncode == 0 and os.path.exists(out), f"g64.asc --type float64: exit {r.returncode}, {r.stderr.strip()}")
 
     # An output that cannot be created (its folder is a file): exit 2 naming it, nothing left behind.
     blocker = os.path.join(tmp, "not_a_folder")
