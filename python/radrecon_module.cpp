@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
@@ -308,7 +309,8 @@ Raises radrecon.Error (a ValueError) for refused input.)doc");
     const Scene scene = load_scene(scene_spec);
     PySolution out;
     static_cast<Solution&>(out) = solve_scene(scene, mesh, settings, "mesh");
-    out.inputs = scene_input_files(scene_spec);
+    // Absolute: the working folder may change between solve() and save().
+    for (const std::string& file : scene_input_files(scene_spec)) out.inputs.push_back(std::filesystem::absolute(file).string());
     return out;
   }, py::arg("scene") = "paper", py::arg("mesh") = "grid:16", py::arg("residual") = py::none(),
      py::arg("patches") = py::none(), py::arg("leaves_on") = py::none(), py::arg("clusters") = py::none(),

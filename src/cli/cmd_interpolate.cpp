@@ -278,7 +278,7 @@ void add_interpolate_command(CLI::App& app) {
                   "NAME=VALUE, repeatable. shepard: mu (> 0, default 4): weights 1/d^mu; k (integer >= 0, "
                   "default 0): the k nearest samples, 0 = all; radius (m, > 0; default none): only samples within it; "
                   "min_points (default 1): fewer samples within the radius give no value (gdal_grid's invdistnn). "
-                  "multiquadric: mu (nonzero, not within 1e-6 of a positive integer; default 0.5): basis "
+                  "multiquadric: mu (nonzero, not within 1e-6 (relative) of a positive integer; default 0.5): basis "
                   "(d^2 + r^2)^mu; r (> 0, default: per sample, the distance to its nearest other sample "
                   "(Eck)); k (0 = one global system, default; >= 3: local patches of ~k samples blended, for large "
                   "sample sets); poly (0 default | 1: add a linear polynomial, reproducing linear functions); "
@@ -323,7 +323,7 @@ void add_interpolate_command(CLI::App& app) {
   cmd->add_option("--barriers", args->barriers,
                   "Barrier lines: a GeoJSON file (LineString, MultiLineString, Polygon/MultiPolygon rings; a "
                   "geometry, Feature or FeatureCollection), or any GDAL vector source of lines (.gpkg, .shp, ...); "
-                  "coordinates in the samples' units, CRS ignored: no "
+                  "coordinates in the samples' units, CRS ignored. No "
                   "sample's influence crosses them. A sample counts for a query only if the straight segment "
                   "between them crosses no barrier; a query that sees no sample gets no value (NaN). Every "
                   "method honours them except linear and clough-tocher, which refuse them; see "

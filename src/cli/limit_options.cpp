@@ -17,7 +17,7 @@ void add_limit_options(CLI::App& cmd, std::initializer_list<Limit> limits) {
            spec.option, [which](const long long& value) { set_limit(which, value); },
            std::string("Limit: at most this many ") + spec.unit + " (default " + std::to_string(spec.default_value) +
                ": " + spec.why + "); beyond it, refused with nothing written")
-        ->check(CLI::Validator(
+        ->transform(CLI::Validator(  // transform: the text it rewrites is what CLI11 converts
             [](std::string& text) -> std::string {
               // Read whole: CLI11's own check would say "not in range 0.000000 to 1.797...e308".
               long long value = 0;
@@ -29,6 +29,7 @@ void add_limit_options(CLI::App& cmd, std::initializer_list<Limit> limits) {
               }
               if (used == 0 || used != text.size() || value < 1)
                 return "must be a whole number of at least 1, got '" + text + "'";
+              text = std::to_string(value);  // as read here: CLI11 would take "010" as octal
               return {};
             },
             "POSITIVE"))

@@ -130,8 +130,9 @@ ScatteredSamples read_samples_ogr(const std::string& path, std::vector<std::stri
     for (const int k : value_fields) {
       const double v = src.number(f, k);
       if (std::abs(v) > tol::kMaxSampleValue)
-        throw UserError(src.where(f), "field " + std::string(src.fields().GetFieldDefn(k)->GetNameRef()) +
-                                          " is beyond the largest value, " + format_number(tol::kMaxSampleValue));
+        throw UserError(src.where(f), "field " + std::string(src.fields().GetFieldDefn(k)->GetNameRef()) + ": " +
+                                          format_number(v) + " is beyond the largest value, " +
+                                          format_number(tol::kMaxSampleValue));
       s.values.push_back(v);
     }
   });
@@ -152,13 +153,22 @@ std::vector<Vec2> read_queries_ogr(const std::string& path, const CsvColumns& co
 std::vector<Polyline> read_ogr_barriers(const std::string& path) {
   OgrLayer src(path);
   std::vector<Polyline> lines;
+  const OGRFeature* feature = nullptr;  // the one being read, for messages
   const auto add = [&](const OGRLineString& l) {
     Polyline line;
-    for (int k = 0; k < l.getNumPoints(); ++k) line.emplace_back(l.getX(k), l.getY(k));
+    for (int k = 0; k < l.getNumPoints(); ++k) {
+      const Vec2 p(l.getX(k), l.getY(k));
+      // As GeoJSON barriers (geojson.h): beyond it squared distances overflow.
+      if (!(std::abs(p.x()) <= tol::kMaxSampleCoordinate && std::abs(p.y()) <= tol::kMaxSampleCoordinate))
+        throw UserError(src.where(*feature), "point " + std::to_string(k + 1) + " of a barrier line is not finite or beyond "
+                                             "the largest coordinate, " + format_number(tol::kMaxSampleCoordinate));
+      line.push_back(p);
+    }
     lines.push_back(std::move(line));
   };
   src.layer().ResetReading();
   for (std::unique_ptr<OGRFeature> f(src.layer().GetNextFeature()); f; f.reset(src.layer().GetNextFeature())) {
+    feature = f.get();
     const OGRGeometry* g = f->GetGeometryRef();
     if (g == nullptr) continue;
     switch (wkbFlatten(g->getGeometryType())) {

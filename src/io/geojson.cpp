@@ -173,7 +173,9 @@ std::vector<Polyline> read_geojson_barriers(const std::string& path) {
   if (text.find_first_not_of(" \t\r\n") == std::string::npos) throw UserError(path, "empty file: no barrier lines");
   const JsonReader r(path);
   BarrierReader reader(path);
-  reader.document(r.parse(text, "GeoJSON file"));
+  // A GIS tool's file: a key repeated among a feature's properties, which radrecon does not read,
+  // is no reason to refuse it.
+  reader.document(r.parse(text, "GeoJSON file", JsonReader::Keys::as_parsed));
   if (reader.lines.empty())
     throw UserError(path, "no barrier lines: no " + kLineTypes + " (a Feature whose geometry is null holds none)");
   return std::move(reader.lines);

@@ -86,7 +86,9 @@ GltfExtras read_gltf_extras(const std::string& path) {
   std::string bin;
   if (binary) std::tie(text, bin) = glb_chunks(text, path);
   const JsonReader r(path);
-  const json doc = r.parse(text, "glTF file");
+  // A modelling tool's file: a key it repeats where radrecon reads nothing (extras, extensions)
+  // is no reason to refuse it; the last value counts, as in every glTF reader.
+  const json doc = r.parse(text, "glTF file", JsonReader::Keys::as_parsed);
   if (!doc.is_object()) r.fail("(top level)", "must be a JSON object");
   const json& asset = r.member(doc, "asset", "");
   const std::string version = r.string(r.member(asset, "version", "asset"), "asset.version");

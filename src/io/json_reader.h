@@ -31,10 +31,10 @@ class JsonReader {
   /// Parses `text`. Invalid JSON throws UserError "SOURCE:LINE: not valid JSON: ..."; a number
   /// too large for a double "SOURCE:LINE: not a valid KIND: number overflow parsing '1e999'"
   /// (`kind`: "scene", "solution"); arrays and objects nested deeper than kMaxJsonDepth
-  /// "SOURCE:LINE: not a valid KIND: nested deeper than 256 levels"; with `unique_keys`, a key
-  /// given twice in one object "SOURCE: not a valid KIND: the key 'k' appears twice in PATH"
-  /// (JSON would keep its last value silently; looking costs a second pass, half again the
-  /// parse's time).
+  /// "SOURCE:LINE: not a valid KIND: nested deeper than 256 levels"; with Keys::unique (scene
+  /// files, written by hand), a key given twice in one object "SOURCE: not a valid KIND: the key
+  /// 'k' appears twice in PATH" (JSON would keep its last value silently; looking costs a second
+  /// pass, half again the parse's time).
   enum class Keys { unique, as_parsed };
   json parse(const std::string& text, const std::string& kind, Keys keys = Keys::unique) const;
 

@@ -71,8 +71,10 @@ void check_obj_lines(const std::string& path) {
     }
     if (line[0] != 'f' && line[0] != 'l' && line[0] != 'p') continue;
     const std::vector<std::string> corners = line_words(line.substr(1));
-    // assimp 5.2 makes such a face a line or a point it then fails to validate, unnamed.
-    if (line[0] == 'f' && corners.size() < 3)
+    // assimp 5.2 makes such a face a line or a point it then fails to validate, unnamed. (A line
+    // ending in '\\' goes on in the next, as assimp reads it: its corners are not all here.)
+    const bool continued = !corners.empty() && corners.back().ends_with('\\');
+    if (line[0] == 'f' && corners.size() < 3 && !continued)
       throw UserError(at, "a face of " + std::to_string(corners.size()) + " corner" + (corners.size() == 1 ? "" : "s") +
                               "; a face ('f') needs 3 or more (lines are 'l', points 'p', which are skipped)");
     for (const std::string& word : corners) {

@@ -255,6 +255,10 @@ Solution read_solution_json(const std::filesystem::path& path) {
       el.center = r.vec3(r.member(je, "center", ep), ep + ".center");
       el.area_m2 = num("area");
       el.radiosity_w_m2 = r.vec3(r.member(je, "radiosity", ep), ep + ".radiosity").array();
+      // Reconstructions take these as samples (io/samples_csv.h's bound: beyond it their sums and
+      // gradients overflow); a solve's own stay far below (emission at most 1e12 W/m^2).
+      if ((el.radiosity_w_m2.abs() > tol::kMaxSampleValue).any())
+        r.fail(ep + ".radiosity", "beyond the largest value, " + format_number(tol::kMaxSampleValue));
       out.elements.push_back(el);
     }
     sol.surfaces.push_back(std::move(out));

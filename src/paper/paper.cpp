@@ -122,8 +122,8 @@ void run_paper(const PaperOptions& opt, const std::string& out_where) {
   namespace fs = std::filesystem;
   check_output_folder(opt.out_dir.string(), out_where);  // before any work
   if (const size_t removed = remove_stale_outputs(opt); removed > 0 && opt.progress)
-    std::fprintf(stderr, "paper: removed %zu files of an earlier run in %s that this run does not write (Table 3 or "
-                         "Fig. 5-8)\n", removed, opt.out_dir.string().c_str());
+    std::fprintf(stderr, "paper: removed %zu file%s of an earlier run in %s that this run does not write (Table 3 or "
+                         "Fig. 5-8)\n", removed, removed == 1 ? "" : "s", opt.out_dir.string().c_str());
   Stopwatch clock;
   const Scene scene = paper_scene();
   PaperDataSets data;

@@ -72,7 +72,8 @@ enum class OutsideHull {
 /// Method parameters, as NAME=VALUE settings (parse_params()):
 ///   shepard:           mu (> 0, default 4): weights 1 / d^mu;
 ///                      k (integer >= 0, default 0): use the k nearest samples, 0 = all.
-///   multiquadric:      mu (nonzero, not a positive integer; default 0.5): basis (d^2 + r^2)^mu;
+///   multiquadric:      mu (nonzero, not within tol::kMultiquadricIntegerGap of a positive
+///                      integer; default 0.5): basis (d^2 + r^2)^mu;
 ///                      r (> 0, metres; default: Eck's rule, r_i = distance from sample i to
 ///                      its nearest other sample);
 ///                      k (integer, 0 or >= 3, default 0): 0 solves one global system; k > 0

@@ -46,7 +46,7 @@ class KdTree2;
 struct RbfKernel {
   enum class Kind { multiquadric, thin_plate };
   Kind kind = Kind::multiquadric;
-  double mu = 0.5;  ///< the multiquadric's exponent: nonzero, not a positive integer
+  double mu = 0.5;  ///< the multiquadric's exponent: nonzero, not (near) a positive integer (methods.h)
   int poly = 0;     ///< 0: no polynomial; 1: a linear polynomial with the side conditions
 
   static RbfKernel multiquadric(double mu, int poly = 0) { return {Kind::multiquadric, mu, poly}; }

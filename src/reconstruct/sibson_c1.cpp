@@ -55,7 +55,7 @@ std::vector<double> fit_gradients(const Delaunay& dt, std::span<const Delaunay::
       const double lambda = trace / 2 + std::sqrt(std::max(trace * trace / 4 - det, 0.0));
       const Vec2 a(h01, lambda - h00), b(lambda - h11, h01);  // each along e, or zero
       const Vec2 e = (a.squaredNorm() >= b.squaredNorm() ? a : b).normalized();
-      if (!e.allFinite()) return;  // H = 0 would have no trace; a guard
+      if (!(e.squaredNorm() > 0)) return;  // both candidates zero: not reached (H has a trace here)
       for (size_t c = 0; c < C; ++c) {
         const double along = (e.x() * r[2 * c] + e.y() * r[2 * c + 1]) / lambda / scale;
         gradients[(i * C + c) * 2] = along * e.x();

@@ -146,6 +146,20 @@ SolutionReconstruction::SolutionReconstruction(const Scene& scene, const Solutio
                                                const MethodParams& params, const std::string& source,
                                                const SideSampling& sampling) {
   sides_.resize(side_slots(scene));
+  // Every side of the scene must be there, before any is built: one missing would be drawn
+  // black as if unlit.
+  std::vector<bool> present(side_slots(scene), false);
+  for (const SurfaceSolution& side : solution.surfaces)
+    if (const std::optional<SideRef> ref = find_side(scene, side.name)) present[ref->slot()] = true;
+  for (size_t k = 0; k < scene.surfaces.size(); ++k)
+    for (const bool back : {false, true}) {
+      if (back && !scene.surfaces[k].two_sided) continue;
+      if (!present[SideRef{k, back}.slot()])
+        throw UserError(source, "the scene's side '" + side_name(scene.surfaces[k], back) +
+                                    "' is not in the solution (it holds " + std::to_string(solution.surfaces.size()) +
+                                    (solution.surfaces.size() == 1 ? " side" : " sides") +
+                                    "): it belongs to another scene, or was cut short; solve the scene again");
+    }
   for (const SurfaceSolution& side : solution.surfaces) {
     const std::optional<SideRef> ref = find_side(scene, side.name);
     if (!ref)
@@ -176,15 +190,6 @@ SolutionReconstruction::SolutionReconstruction(const Scene& scene, const Solutio
     }
     sides_[ref->slot()] = std::move(built).value();
   }
-  // Every side of the scene must be there: one missing would be drawn black as if unlit.
-  for (size_t k = 0; k < scene.surfaces.size(); ++k)
-    for (const bool back : {false, true}) {
-      if (back && !scene.surfaces[k].two_sided) continue;
-      if (!sides_[SideRef{k, back}.slot()])
-        throw UserError(source, "the scene's side '" + side_name(scene.surfaces[k], back) +
-                                    "' is not in the solution (it holds " + std::to_string(solution.surfaces.size()) +
-                                    (solution.surfaces.size() == 1 ? " side" : " sides") + "): it belongs to another scene, or was cut short; solve the scene again");
-    }
 }
 
 SolutionReconstruction::~SolutionReconstruction() = default;

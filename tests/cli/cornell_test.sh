@@ -63,13 +63,13 @@ run bad_mesh "${SMALL[@]}" --mesh quadtree:10 --out bad1
 expect_rc bad_mesh 2 && expect_stderr_has bad_mesh "--mesh"
 expect_no_output bad_mesh bad1/index.html
 run bad_camera "${SMALL[@]}" --camera nowhere --out bad2
-# A local patch of fewer than 3 samples: refused before any work (it had aborted on an internal
-# check after writing pictures, and left the folder without its page).
-run bad_rbf_k "${SMALL[@]}" --rbf-k 2 --out bad3
-expect_rc bad_rbf_k 2 && expect_stderr_has bad_rbf_k "--rbf-k: must be 0 (one global system) or an integer from 3"
-[ -e bad3 ] && fail "bad_rbf_k: left bad3/"
 expect_rc bad_camera 2 && expect_stderr_has bad_camera "nowhere"
 expect_no_output bad_camera bad2/index.html
+# A local patch of fewer than 3 samples: refused before any work (it had aborted on an internal
+# check after writing pictures, and left the folder without its page).
+run bad_rbf_k "${SMALL[@]}" --rbf-k 2 --out bad_rbf
+expect_rc bad_rbf_k 2 && expect_stderr_has bad_rbf_k "--rbf-k: must be 0 (one global system) or an integer from 3"
+[ -e bad_rbf ] && fail "bad_rbf_k: left bad_rbf/"
 run bad_scene "${SMALL[@]}" --scene missing.json --out bad3
 expect_rc bad_scene 2 && expect_stderr_has bad_scene "missing.json"
 

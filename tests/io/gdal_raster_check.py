@@ -177,6 +177,19 @@ with tempfile.TemporaryDirectory() as tmp:
         check(r.returncode == 0, f"GeoPackage samples with {name} barriers ({r.stderr.strip()})")
         outputs[name] = open(out).read() if r.returncode == 0 else None
     check(outputs["gpkg"] is not None and outputs["gpkg"] == outputs["geojson"], "OGR and GeoJSON barriers agree")
+    # A barrier beyond the largest coordinate is refused through OGR as through GeoJSON.
+    far = os.path.join(tmp, "far.gpkg")
+    ds = ogr.GetDriverByName("GPKG").CreateDataSource(far)
+    layer = ds.CreateLayer("faults", geom_type=ogr.wkbLineString)
+    feature = ogr.Feature(layer.GetLayerDefn())
+    feature.SetGeometry(ogr.CreateGeometryFromWkt("LINESTRING (2.2 -1, 2.2 1e200)"))
+    layer.CreateFeature(feature)
+    ds = None
+    out = os.path.join(tmp, "nn_far.csv")
+    r = run("--samples", gpkg, "--method", "natural-neighbour", "--raster", "8x6", "--domain", "0,0,4,3",
+            "--barriers", far, "--out", out)
+    check(r.returncode == 2 and "beyond the largest coordinate" in r.stderr and not os.path.exists(out),
+          f"a barrier at 1e200 through OGR: exit {r.returncode}, {r.stderr.strip()}")
     out = os.path.join(tmp, "gpkg_linear.csv")
     r = run("--samples", gpkg, "--method", "linear", "--raster", "8x6", "--domain", "0,0,4,3", "--out", out)
     if check(r.returncode == 0, f"GeoPackage samples ({r.stderr.strip()})") is None and r.returncode == 0:

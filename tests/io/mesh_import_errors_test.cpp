@@ -61,6 +61,9 @@ TEST(MeshImportErrors, ObjIndicesOutOfRangeAndNonFiniteCoordinates) {
   // A face of 1 or 2 corners: assimp 5.2 failed its own validation on it, naming no line.
   EXPECT_TRUE(Refused(dir, "two.obj", std::string(kTriangle) + "f 1 2 3\nf 1 2\n", {"two.obj:5", "a face of 2 corners"}));
   EXPECT_TRUE(Refused(dir, "one.obj", std::string(kTriangle) + "f 1/1\nf 1 2 3\n", {"one.obj:4", "a face of 1 corner;"}));
+  // A face continued on the next line ('\\' at the end, as assimp reads it) is no such face.
+  write_file((dir / "continued.obj").string(), std::string(kTriangle) + "f 1 2 \\\n3\n");
+  EXPECT_EQ(import_mesh((dir / "continued.obj").string()).surfaces.size(), 1u);
   // Relative indices count back from the vertices before the face: -1 -2 -3 is the triangle.
   write_file(dir / "relative.obj", std::string(kTriangle) + "f -3 -2 -1\n");
   EXPECT_EQ(import_mesh((dir / "relative.obj").string()).surfaces.size(), 1u);

@@ -134,6 +134,10 @@ TEST_F(SolutionFiles, MalformedFilesAreRefusedWithTheFieldOrLine) {
            R"(, "elements": [)" + elements + "]}";
   };
   EXPECT_EQ(refusal(R"({"surfaces": [)" + side("a", "[1, 1]", element) + "]}"), "");
+  // A radiosity beyond the samples' bound: reconstructions would overflow on it.
+  const std::string huge = R"({"u0": 0, "v0": 0, "u1": 1, "v1": 1, "center": [0,0,0], "area": 1, "radiosity": [1,1e308,1]})";
+  EXPECT_NE(refusal(R"({"surfaces": [)" + side("a", "[1, 1]", huge) + "]}").find("surfaces[0].elements[0].radiosity: beyond the largest value"),
+            std::string::npos);
   // No sides: render and export had drawn nothing with exit 0, or aborted.
   EXPECT_NE(refusal(R"({"scene": "paper", "surfaces": []})").find("surfaces: must be a non-empty array"), std::string::npos);
   // Excluded regions are optional; when present, polygons of at least 3 points [s, t].

@@ -283,6 +283,16 @@ def test_a_solution_does_not_overwrite_its_scene(tmp_path):
     solution = radrecon.solve(str(scene), "grid:2")
     with pytest.raises(radrecon.Error, match="is the input file"):
         solution.save(str(scene))
+    # The scene named relative to the working folder, which then changes: still refused.
+    here = os.getcwd()
+    try:
+        os.chdir(tmp_path)
+        relative = radrecon.solve("scene.json", "grid:2")
+        os.chdir(here)
+        with pytest.raises(radrecon.Error, match="is the input file"):
+            relative.save(str(scene))
+    finally:
+        os.chdir(here)
     assert scene.read_bytes() == before
     solution.save(str(tmp_path / "solution.json"))
 
