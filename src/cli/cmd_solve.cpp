@@ -69,7 +69,7 @@ void add_solve_command(CLI::App& app) {
                   "(see --leaves-on)")
       ->capture_default_str();
   cmd->add_option("--leaves-on", args->leaves_on,
-                  "Surface side that quadtree:LEAVES counts (default: 'ground' if present, else the largest surface)");
+                  "Surface side that quadtree:LEAVES counts (default: 'ground' if present, else 'floor', else the largest surface)");
   cmd->add_option("--out", args->out, "Solution file to write (JSON)")->required();
   cmd->add_option("--residual", args->residual,
                   "grid: stop when the unshot power falls below this fraction of the emitted power")

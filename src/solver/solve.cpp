@@ -79,10 +79,10 @@ double parse_positive(const std::string& text, const std::string& field, const s
 }
 
 std::string default_leaf_side(const Scene& scene) {
-  if (scene.find_surface("ground")) {
-    const Surface& g = scene.surfaces[*scene.find_surface("ground")];
-    return side_name(g, false);
-  }
+  // The surface under study by name: the paper's ground, a room's floor (the Cornell box's, whose
+  // ceiling is a little larger).
+  for (const char* name : {"ground", "floor"})
+    if (const std::optional<size_t> k = scene.find_surface(name)) return side_name(scene.surfaces[*k], false);
   size_t best = 0;
   for (size_t k = 1; k < scene.surfaces.size(); ++k)
     if (scene.surfaces[k].area_m2() > scene.surfaces[best].area_m2()) best = k;

@@ -33,7 +33,7 @@ struct SolveSettings {
   /// Many sides of one element shoot in clusters (ProgressiveOptions::clusters).
   bool clusters = true;
   /// quadtree:LEAVES: the side that gets LEAVES leaves; empty: "ground" if the scene has such a
-  /// side, else the side of the largest surface.
+  /// side, else "floor", else the side of the largest surface.
   std::string leaves_on;
   /// Where leaves_on came from (an option or field), named if it is refused.
   std::string leaves_on_where = "leaves_on";

@@ -193,6 +193,10 @@ expect_rc export_no_sides 2
 expect_stderr_has export_no_sides "no_sides.json: surfaces: must be a non-empty array"
 expect_no_output export_no_sides "$TMP/no_sides.glb"
 run qt_sol solve --scene paper --mesh quadtree:4 --out "$TMP/qt4.json" --quiet
+# quadtree:LEAVES counts a room's floor by default (the Cornell box's ceiling, a little larger, had
+# taken them).
+run qt_cornell solve --scene cornell --mesh quadtree:10 --out "$TMP/qt_cornell.json"
+expect_rc qt_cornell 0 && expect_stderr_has qt_cornell "gives 10 leaves on floor"
 run render_nofit render --scene paper --solution "$TMP/qt4.json" --method bilinear --camera view --size 8x6 --out "$TMP/nofit.png" --quiet
 expect_rc render_nofit 2
 expect_stderr_has render_nofit "cannot reconstruct any side"
