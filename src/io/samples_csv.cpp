@@ -133,20 +133,21 @@ class CsvTable {
 
   /// The value in field `column`: a finite number of magnitude at most tol::kMaxSampleValue.
   double value(const std::vector<std::string_view>& fields, size_t column) const {
-    const double v = number(fields, column);
-    if (std::abs(v) > tol::kMaxSampleValue)
-      throw UserError(where(), "column " + std::to_string(column + 1) + " (" + header_[column] + "): " +
-                                   in_quotes(fields[column]) + " is beyond the largest value, " + format_number(tol::kMaxSampleValue));
-    return v;
+    return bounded(fields, column, tol::kMaxSampleValue, "value");
   }
 
   /// The coordinate in field `column`: a finite number of magnitude at most
   /// tol::kMaxSampleCoordinate.
   double coordinate(const std::vector<std::string_view>& fields, size_t column) const {
+    return bounded(fields, column, tol::kMaxSampleCoordinate, "coordinate");
+  }
+
+  /// The number in field `column`, of magnitude at most `most`: else "beyond the largest WHAT".
+  double bounded(const std::vector<std::string_view>& fields, size_t column, double most, const char* what) const {
     const double v = number(fields, column);
-    if (std::abs(v) > tol::kMaxSampleCoordinate)
+    if (std::abs(v) > most)
       throw UserError(where(), "column " + std::to_string(column + 1) + " (" + header_[column] + "): " +
-                                   in_quotes(fields[column]) + " is beyond the largest coordinate, " + format_number(tol::kMaxSampleCoordinate));
+                                   in_quotes(fields[column]) + " is beyond the largest " + what + ", " + format_number(most));
     return v;
   }
 

@@ -46,12 +46,18 @@ Rgb floor_radiosity(const Vec2& st) {
   return Rgb(f, 0.5 * f, 0.25 * f + 0.1);
 }
 
-TEST(GltfExport, GeometryAndTexelsReadBackByAssimp) {
-  const Scene scene = floor_and_lamp();
+/// The scene solved on grid:16, its floor given floor_radiosity() at its elements' centroids.
+Solution floor_solution(const Scene& scene) {
   Solution solution = solve_scene(scene, "grid:16", SolveSettings{}, "mesh");
   for (SurfaceSolution& side : solution.surfaces)
     if (side.name == "floor")
       for (SolutionElement& e : side.elements) e.radiosity_w_m2 = floor_radiosity(side.centroid_st(e));
+  return solution;
+}
+
+TEST(GltfExport, GeometryAndTexelsReadBackByAssimp) {
+  const Scene scene = floor_and_lamp();
+  const Solution solution = floor_solution(scene);
   const SolutionReconstruction recon(scene, solution, Method::thin_plate, {}, "test");
   const LightmapAtlas atlas = bake_lightmaps(scene, solution, recon, 36, "test");
   const double white = 2.8;  // above the floor's largest value, 2.7: nothing clips there
@@ -134,10 +140,7 @@ TEST(Lightmap, GuttersRepeatTheirTilesBorderAndTilesDoNotOverlap) {
   // so that bilinear filtering at a tile's edge never reads a neighbour; no texel belongs to two
   // tiles with their gutters. On the floor and lamp of the test above, the floor's texels varying.
   const Scene scene = floor_and_lamp();
-  Solution solution = solve_scene(scene, "grid:16", SolveSettings{}, "mesh");
-  for (SurfaceSolution& side : solution.surfaces)
-    if (side.name == "floor")
-      for (SolutionElement& e : side.elements) e.radiosity_w_m2 = floor_radiosity(side.centroid_st(e));
+  const Solution solution = floor_solution(scene);
   const SolutionReconstruction recon(scene, solution, Method::thin_plate, {}, "test");
   const LightmapAtlas atlas = bake_lightmaps(scene, solution, recon, 36, "test");
   const Image& img = atlas.radiosity_w_m2;

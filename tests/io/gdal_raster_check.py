@@ -159,13 +159,18 @@ with tempfile.TemporaryDirectory() as tmp:
             feature.SetField("name", f"p{i}{j}")
             layer.CreateFeature(feature)
     ds = None
-    lines = os.path.join(tmp, "fault.gpkg")
-    ds = ogr.GetDriverByName("GPKG").CreateDataSource(lines)
-    layer = ds.CreateLayer("faults", geom_type=ogr.wkbLineString)
-    feature = ogr.Feature(layer.GetLayerDefn())
-    feature.SetGeometry(ogr.CreateGeometryFromWkt("LINESTRING (2.2 -1, 2.2 4)"))
-    layer.CreateFeature(feature)
-    ds = None
+    def line_layer(name, wkt):
+        """A GeoPackage of one line feature, for --barriers."""
+        path = os.path.join(tmp, name)
+        ds = ogr.GetDriverByName("GPKG").CreateDataSource(path)
+        layer = ds.CreateLayer("faults", geom_type=ogr.wkbLineString)
+        feature = ogr.Feature(layer.GetLayerDefn())
+        feature.SetGeometry(ogr.CreateGeometryFromWkt(wkt))
+        layer.CreateFeature(feature)
+        ds = None
+        return path
+
+    lines = line_layer("fault.gpkg", "LINESTRING (2.2 -1, 2.2 4)")
     geojson = os.path.join(tmp, "fault.geojson")
     with open(geojson, "w") as out:
         out.write('{"type": "LineString", "coordinates": [[2.2, -1], [2.2, 4]]}')
@@ -178,13 +183,7 @@ with tempfile.TemporaryDirectory() as tmp:
         outputs[name] = open(out).read() if r.returncode == 0 else None
     check(outputs["gpkg"] is not None and outputs["gpkg"] == outputs["geojson"], "OGR and GeoJSON barriers agree")
     # A barrier beyond the largest coordinate is refused through OGR as through GeoJSON.
-    far = os.path.join(tmp, "far.gpkg")
-    ds = ogr.GetDriverByName("GPKG").CreateDataSource(far)
-    layer = ds.CreateLayer("faults", geom_type=ogr.wkbLineString)
-    feature = ogr.Feature(layer.GetLayerDefn())
-    feature.SetGeometry(ogr.CreateGeometryFromWkt("LINESTRING (2.2 -1, 2.2 1e200)"))
-    layer.CreateFeature(feature)
-    ds = None
+    far = line_layer("far.gpkg", "LINESTRING (2.2 -1, 2.2 1e200)")
     out = os.path.join(tmp, "nn_far.csv")
     r = run("--samples", gpkg, "--method", "natural-neighbour", "--raster", "8x6", "--domain", "0,0,4,3",
             "--barriers", far, "--out", out)

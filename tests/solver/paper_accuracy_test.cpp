@@ -32,6 +32,25 @@ const Solution& reference_solution() {
   return reference;
 }
 
+/// A reflectance-0.5 side's radiosity (red) at p by path tracing: the direct light by
+/// `kDirectStrata`^2 light samples, the indirect by `paths` cosine-weighted paths, seeded with
+/// `seed`; and the standard error of the indirect part's mean (W/m^2).
+struct PointEstimate {
+  double radiosity_w_m2, standard_error_w_m2;
+};
+PointEstimate path_traced(const PathTracer& tracer, const Vec3& p, const Vec3& n, size_t surface, int paths,
+                          std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  const double direct = tracer.direct(p, n, surface, kDirectStrata, rng)[0];
+  double sum = 0, sum_sq = 0;
+  for (int i = 0; i < paths; ++i) {
+    const double x = tracer.indirect(p, n, surface, rng)[0];
+    sum += x, sum_sq += x * x;
+  }
+  const double mean = sum / paths;
+  return {0.5 * (direct + mean), 0.5 * std::sqrt(std::max(0.0, sum_sq / paths - mean * mean) / (paths - 1))};
+}
+
 TEST(PaperReference, AgreesWithIndependentPathTracing) {
   const Scene scene = paper_scene();
   const Solution& reference = reference_solution();
@@ -46,11 +65,7 @@ TEST(PaperReference, AgreesWithIndependentPathTracing) {
   int counted = 0;
   for (int k = 0; k < kPoints; ++k) {
     const SolutionElement& e = ground->elements[element(pick)];
-    std::mt19937_64 rng(1000 + k);
-    const double direct = tracer.direct(e.center, Vec3::UnitZ(), ground_index, kDirectStrata, rng)[0];
-    double indirect = 0;
-    for (int i = 0; i < kIndirectPaths; ++i) indirect += tracer.indirect(e.center, Vec3::UnitZ(), ground_index, rng)[0];
-    const double b_mc = 0.5 * (direct + indirect / kIndirectPaths);
+    const double b_mc = path_traced(tracer, e.center, Vec3::UnitZ(), ground_index, kIndirectPaths, 1000 + k).radiosity_w_m2;
     const double b_ref = e.radiosity_w_m2[0];
     if (b_mc <= 0.05) continue;
     const double rel = std::abs(b_ref - b_mc) / b_mc;
@@ -87,16 +102,8 @@ TEST(PaperReference, WallsBothSidesAgreeWithIndependentPathTracing) {
     int counted = 0;
     for (int k = 0; k < kSidePoints; ++k) {
       const SolutionElement& e = s->elements[element(pick)];
-      std::mt19937_64 rng(5000 + k);
-      const double direct = tracer.direct(e.center, n, index, kDirectStrata, rng)[0];
-      double sum = 0, sum_sq = 0;
-      for (int i = 0; i < kSidePaths; ++i) {
-        const double x = tracer.indirect(e.center, n, index, rng)[0];
-        sum += x, sum_sq += x * x;
-      }
-      const double mean = sum / kSidePaths;
-      const double standard_error = 0.5 * std::sqrt(std::max(0.0, sum_sq / kSidePaths - mean * mean) / (kSidePaths - 1));
-      const double b_mc = 0.5 * (direct + mean), b_ref = e.radiosity_w_m2[0];
+      const auto [b_mc, standard_error] = path_traced(tracer, e.center, n, index, kSidePaths, 5000 + k);
+      const double b_ref = e.radiosity_w_m2[0];
       if (b_mc <= 1e-3) continue;
       EXPECT_NEAR(b_ref, b_mc, 4 * standard_error + kMeshRelative * b_mc) << side << " at " << e.center.transpose();
       const double rel = b_ref / b_mc - 1;
