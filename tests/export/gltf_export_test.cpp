@@ -10,6 +10,7 @@
 #include <assimp/Importer.hpp>
 #include <assimp/scene.h>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -25,19 +26,25 @@ namespace gltf_export_test {
 
 /// A trapezoidal floor (2 m wide at y = 0, 1 m at y = 1; u along x, v along y, facing +z) under a
 /// square lamp facing down.
-Scene floor_and_lamp() {
+/// A grey quad named `name` and a square lamp of 10 W/m^2 above it, facing down.
+Scene lit_quad(const std::string& name, const std::array<Vec3, 4>& corners, const std::array<Vec3, 4>& lamp_corners) {
   Scene scene;
-  scene.name = "floor-and-lamp";
-  Surface floor;
-  floor.name = "floor";
-  floor.corners = {Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(1.5, 1, 0), Vec3(0.5, 1, 0)};
-  floor.reflectance = Rgb(0.5, 0.5, 0.5);
+  scene.name = name + "-and-lamp";
+  Surface quad;
+  quad.name = name;
+  quad.corners = corners;
+  quad.reflectance = Rgb(0.5, 0.5, 0.5);
   Surface lamp;
   lamp.name = "lamp";
-  lamp.corners = {Vec3(0.8, 0.3, 1), Vec3(0.8, 0.7, 1), Vec3(1.2, 0.7, 1), Vec3(1.2, 0.3, 1)};
+  lamp.corners = lamp_corners;
   lamp.emission_w_m2 = Rgb(10, 10, 10);
-  scene.surfaces = {floor, lamp};
+  scene.surfaces = {quad, lamp};
   return scene;
+}
+
+Scene floor_and_lamp() {
+  return lit_quad("floor", {Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(1.5, 1, 0), Vec3(0.5, 1, 0)},
+                  {Vec3(0.8, 0.3, 1), Vec3(0.8, 0.7, 1), Vec3(1.2, 0.7, 1), Vec3(1.2, 0.3, 1)});
 }
 
 /// The radiosity the floor is given: linear in its (s, t) metres, different per channel, W/m^2.
@@ -175,17 +182,8 @@ TEST(Lightmap, TheLongestSideGetsExactlyTheTexelsAsked) {
   // length x (texels / longest) rounds up to one more texel at some lengths (12.5 m, 5.56 m):
   // at the largest --texels, 16380, that tile and its gutters would not fit a 16384 texture.
   for (const double length_m : {12.5, 5.56, 1.0}) {
-    Scene scene;
-    scene.name = "strip";
-    Surface strip;
-    strip.name = "strip";
-    strip.corners = {Vec3(0, 0, 0), Vec3(length_m, 0, 0), Vec3(length_m, 0.002, 0), Vec3(0, 0.002, 0)};
-    strip.reflectance = Rgb(0.5, 0.5, 0.5);
-    Surface lamp;
-    lamp.name = "lamp";
-    lamp.corners = {Vec3(0, 0, 1), Vec3(0, 0.001, 1), Vec3(0.001, 0.001, 1), Vec3(0.001, 0, 1)};
-    lamp.emission_w_m2 = Rgb(10, 10, 10);
-    scene.surfaces = {strip, lamp};
+    const Scene scene = lit_quad("strip", {Vec3(0, 0, 0), Vec3(length_m, 0, 0), Vec3(length_m, 0.002, 0), Vec3(0, 0.002, 0)},
+                                 {Vec3(0, 0, 1), Vec3(0, 0.001, 1), Vec3(0.001, 0.001, 1), Vec3(0.001, 0, 1)});
     const Solution solution = solve_scene(scene, "grid:2", SolveSettings{}, "mesh");
     const SolutionReconstruction recon(scene, solution, Method::constant, {}, "test");
     for (const int texels : {1000, 16380}) {
