@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -102,11 +103,19 @@ void run_cornell(const CornellArgs& args) {
                         " (cameras: " + (names.empty() ? "none" : names) + ")");
   }
 
+  // Every file this writes, checked against the inputs before any work: the scene could lie in
+  // --out under one of their names. The scene's and camera's names made fit for a file name.
+  const std::filesystem::path dir(args.out);
+  const std::string stem = file_name_part(scene.name) + "_" + file_name_part(camera->name) + "_";
+  const std::vector<std::string> inputs = scene_input_files(args.scene);
+  for (const std::string& file : {std::string("solution.json"), std::string("index.html")})
+    refuse_overwriting_inputs((dir / file).string(), "--out", inputs);
+  for (Method m : all_methods()) refuse_overwriting_inputs((dir / (stem + method_name(m) + ".png")).string(), "--out", inputs);
+
   SolveSettings settings;
   settings.residual = args.residual;
   settings.progress_label = args.quiet ? "" : "cornell";
   const Solution solution = solve_scene(scene, args.mesh, settings, "--mesh");
-  const std::filesystem::path dir(args.out);
   write_solution_json(dir / "solution.json", solution);
   size_t elements = 0;
   for (const SurfaceSolution& s : solution.surfaces) elements += s.elements.size();
@@ -131,15 +140,15 @@ void run_cornell(const CornellArgs& args) {
   std::vector<Panel> panels;
   for (Method m : all_methods()) {
     const auto t = clock::now();
-    Panel panel{method_name(m), scene.name + "_" + camera->name + "_" + method_name(m) + ".png", "", "", 0};
+    Panel panel{method_name(m), stem + method_name(m) + ".png", "", "", 0};
     MethodParams params;
     params.multiquadric_k = args.rbf_k;
     params.thin_plate_k = args.rbf_k;
     panel.params = describe_params(m, params);
+    std::optional<Image> linear;  // the method's picture, if it can reconstruct the solution
     try {
       const SolutionReconstruction recon(scene, solution, m, params, "solution", sampling);
-      const Image linear = shade(scene, hits, [&](SideRef side) { return recon.side(side); });
-      write_png(dir / panel.file, tone_mapped(linear, white), true);
+      linear = shade(scene, hits, [&](SideRef side) { return recon.side(side); });
       std::string sides;
       for (const Fallback& f : recon.fallbacks()) sides += (sides.empty() ? "" : ", ") + f.side;
       if (!sides.empty())
@@ -148,6 +157,8 @@ void run_cornell(const CornellArgs& args) {
       panel.note = std::string("not drawn: ") + e.what();
       panel.file.clear();
     }
+    // Outside the try: a picture that cannot be written fails the command, as any output does.
+    if (linear) write_png(dir / panel.file, tone_mapped(*linear, white), true);
     panel.seconds = seconds_since(t);
     if (!args.quiet)
       std::fprintf(stderr, "cornell: %s in %.1f s%s%s\n", panel.method.c_str(), panel.seconds,

@@ -100,4 +100,14 @@ void check_output_folder(const std::string& path, const std::string& where) {
   check_writable_ancestor(path, where);
 }
 
+std::string file_name_part(const std::string& name, size_t most) {
+  std::string out;
+  for (const char c : name.substr(0, most)) {
+    const bool plain = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-' ||
+                       c == '_' || (c == '.' && !out.empty());
+    out += plain ? c : '_';
+  }
+  return out.empty() ? "_" : out;
+}
+
 }  // namespace radrecon

@@ -18,6 +18,11 @@ void refuse_overwriting_inputs(const std::string& output, const std::string& whe
 /// folder. Creates nothing.
 void check_output_file(const std::string& path, const std::string& where);
 
+/// A name (a scene's, a camera's) made fit to be part of a file name: every character but ASCII
+/// letters, digits, '-', '_' and '.' made '_' (no '/', no "..": nothing leaves its folder), a
+/// leading '.' too, and cut to `most` bytes; "_" if empty.
+std::string file_name_part(const std::string& name, size_t most = 60);
+
 /// Refuses (UserError naming `where`) an output folder that cannot be used: an empty path, an
 /// existing path that is not a folder, or one whose nearest existing ancestor is not a writable folder.
 /// Creates nothing.

@@ -57,6 +57,16 @@ cat >quads.json <<'JSON'
 JSON
 run quads "${SMALL[@]}" --scene quads.json --out quads
 expect_rc quads 0 && { [ -s quads/room_front_bilinear.png ] && [ -s quads/index.html ] || fail "quads: pictures or page missing"; }
+# A scene named "../up": its pictures stay in --out ("_._up_front_METHOD.png"), none goes up.
+sed 's/"name": "room"/"name": "..\/up"/' quads.json >up.json
+run named_up "${SMALL[@]}" --scene up.json --out named_up
+expect_rc named_up 0 && { [ -s named_up/_._up_front_bilinear.png ] || fail "named_up: pictures not in --out: $(ls named_up)"; }
+ls | grep -q '_front_' && fail "named_up: a picture left --out"
+# The scene lying in --out under a name the command writes: refused before any work, unchanged.
+mkdir -p over && cp quads.json over/solution.json
+run over_scene "${SMALL[@]}" --scene over/solution.json --out over
+expect_rc over_scene 2 && expect_stderr_has over_scene "is the input file"
+cmp -s quads.json over/solution.json || fail "over_scene: the scene was overwritten"
 
 # --- bad input: exit 2, a message naming the option, no page ---------------------------------------
 run bad_mesh "${SMALL[@]}" --mesh quadtree:10 --out bad1
