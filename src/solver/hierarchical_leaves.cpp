@@ -51,6 +51,12 @@ Solution solve_hierarchical_leaves(const Scene& scene, const std::string& side, 
     const std::optional<SideRef> ref = find_side(scene, side);
     if (!ref) throw UserError(field, "the scene has no surface side named '" + side + "' (its sides: " + side_names(scene) + ")");
     const Surface& surface = scene.surfaces[ref->surface];
+    // Refinement never splits a black side: its radiosity is its uniform emission, so no link's
+    // error involves it (hierarchical.h). Refused at once rather than after a search to the
+    // link limit.
+    if (leaves > 1 && (surface.reflectance == 0).all())
+      throw UserError(field, std::to_string(leaves) + " leaves on '" + side + "' cannot be reached: a black side (reflectance 0) "
+                                 "is never split, its radiosity being its uniform emission; count another side with --leaves-on");
     const double side_size = std::max(surface.length_u_m(), surface.length_v_m());
     double most = 1;
     for (double size = side_size; size >= 2 * min_size && most <= leaves; size /= 2) most *= 4;
@@ -69,8 +75,14 @@ Solution solve_hierarchical_leaves(const Scene& scene, const std::string& side, 
   double hi = 1.0, lo = kStart;
   int c_hi = count(hi);
   while (c_hi >= leaves && hi < kLargest) c_hi = count(hi *= kStep);
-  int c_lo = count(lo), previous = -1;
-  for (int k = 0; c_lo < leaves && c_lo > previous && k < kMaxSteps; ++k) {
+  // A count that stays put over kStalledSteps steps in a row (kStep each) has stopped: a side's
+  // refinement can rest for a step and then go on (a small triangle's 16 leaves, at 1e-3 and
+  // 1e-4 W, became more below; one step had been taken for the end). Each step down costs more
+  // than the last: the links grow as the other sides refine.
+  constexpr int kStalledSteps = 2;
+  int c_lo = count(lo), previous = -1, stalled = 0;
+  const double first_lo = lo;
+  for (int k = 0; c_lo < leaves && stalled < kStalledSteps && k < kMaxSteps; ++k) {
     double next = lo / kStep;
     if (c_hi > 0 && c_lo > c_hi && hi > lo) {
       const double exponent = std::log(double(c_lo) / c_hi) / std::log(hi / lo);  // count ~ epsilon^-exponent
@@ -81,10 +93,14 @@ Solution solve_hierarchical_leaves(const Scene& scene, const std::string& side, 
     lo = next;
     previous = c_lo;
     c_lo = count(lo);
+    stalled = c_lo == previous ? stalled + 1 : 0;
   }
-  if (c_lo < leaves)
+  if (c_lo < leaves) {
+    char range[96];
+    std::snprintf(range, sizeof range, " (from epsilon %.3g W down to %.3g W)", first_lo, lo);
     throw UserError(field, std::to_string(leaves) + " leaves on '" + side + "' cannot be reached: refinement stops at " +
-                               std::to_string(c_lo));
+                               std::to_string(c_lo) + range);
+  }
   // The Illinois method on f = log(count / leaves) against log epsilon: regula falsi, with the
   // end kept twice in a row weighed down by half so that neither end stagnates.
   const auto f = [&](int c) { return c == kTooFine ? 1.0 : std::log(double(std::max(c, 1)) / leaves); };

@@ -62,6 +62,28 @@ TEST(Hierarchical, RefusesImpossibleLeafCounts) {
   EXPECT_THROW(paper_leaves(1000000), UserError);  // beyond the minimum element size
 }
 
+TEST(Hierarchical, ASmallTrianglesLeafCountsAreReachedAndABlackSideIsRefusedAtOnce) {
+  // A tilted triangle in a closed box with a black lamp: its leaf count rests at 16 over a
+  // decade of epsilon before it grows on; every 1 + 3k count is still reached (19 to 28 had
+  // been refused as "refinement stops at 16"). The black lamp is never split: refused at once.
+  Scene box = testing_support::closed_box(0.5, 0.0);
+  box.surfaces.push_back(testing_support::quad("lamp", {0.4, 0.4, 0.999}, {0.4, 0.6, 0.999}, {0.6, 0.6, 0.999},
+                                               {0.6, 0.4, 0.999}, 0.0, 40.0));
+  Surface tri = box.surfaces[0];
+  tri.name = "tri";
+  tri.set_triangle({0.7, 0.1, 0.3}, {0.9, 0.1, 0.3}, {0.8, 0.3, 0.6});
+  box.surfaces.push_back(tri);
+  for (const int leaves : {16, 19, 22, 28, 31})
+    EXPECT_EQ(leaf_count(solve_hierarchical_leaves(box, "tri", leaves, HierarchicalOptions{}, "test"), "tri"),
+              static_cast<size_t>(leaves));
+  try {
+    solve_hierarchical_leaves(box, "lamp", 4, HierarchicalOptions{}, "test");
+    ADD_FAILURE() << "4 leaves on the black lamp accepted";
+  } catch (const UserError& e) {
+    EXPECT_NE(std::string(e.what()).find("a black side (reflectance 0) is never split"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Hierarchical, ClosedBoxRadiosityPowerIsEmittedOverOneMinusReflectance) {
   const double rho = 0.6, E = 10.0;
   const Scene box = testing_support::closed_box(rho, E);
