@@ -199,13 +199,26 @@ py::dict surface_dict(const SurfaceSolution& s) {
   auto c = center.mutable_unchecked<2>(), b = radiosity.mutable_unchecked<2>(), uv = cell.mutable_unchecked<2>();
   auto a = area.mutable_unchecked<1>();
   auto t = triangle.mutable_unchecked<1>();
+  py::list shape;  // which half of its cell a triangle's element is, as the solution file names it
   for (py::ssize_t i = 0; i < n; ++i) {
     const SolutionElement& e = s.elements[static_cast<size_t>(i)];
     for (int k = 0; k < 3; ++k) c(i, k) = e.center[k], b(i, k) = e.radiosity_w_m2[k];
     a(i) = e.area_m2;
     uv(i, 0) = e.u0, uv(i, 1) = e.v0, uv(i, 2) = e.u1, uv(i, 3) = e.v1;
     t(i) = e.is_triangle();
+    shape.append(cell_shape_name(e.shape));
   }
+  // Polylines in the side's (s, t) metres, each a (k, 2) array.
+  const auto polylines = [](const std::vector<Polyline>& lines) {
+    py::list out;
+    for (const Polyline& l : lines) {
+      py::array_t<double> points({static_cast<py::ssize_t>(l.size()), py::ssize_t{2}});
+      auto p = points.mutable_unchecked<2>();
+      for (size_t k = 0; k < l.size(); ++k) p(static_cast<py::ssize_t>(k), 0) = l[k].x(), p(static_cast<py::ssize_t>(k), 1) = l[k].y();
+      out.append(points);
+    }
+    return out;
+  };
   py::dict d;
   d["name"] = s.name;
   d["scene_surface"] = s.scene_surface;
@@ -216,6 +229,12 @@ py::dict surface_dict(const SurfaceSolution& s) {
   d["area"] = area;
   d["cell"] = cell;
   d["triangle"] = triangle;
+  d["shape"] = shape;
+  d["length_u_m"] = s.length_u_m;
+  d["length_v_m"] = s.length_v_m;
+  d["shear_m"] = s.shear_m;
+  d["barriers"] = polylines(s.barriers);
+  d["excluded"] = polylines(s.excluded);
   return d;
 }
 
@@ -224,6 +243,7 @@ py::dict stats_dict(const SolveStats& s) {
   py::dict d;
   d["method"] = s.method;
   d["shots"] = s.shots;
+  d["patches"] = s.patches;
   d["elements"] = s.elements;
   d["links"] = s.links;
   d["emitted_w"] = rgb(s.emitted_w);
@@ -273,7 +293,9 @@ Raises radrecon.Error (a ValueError) for refused input.)doc");
         for (const SurfaceSolution& side : s.surfaces) out.append(surface_dict(side));
         return out;
       }, "Per side: name, scene_surface, back_side, grid ((nu, nv) or None), and per element center (n, 3) "
-         "metres, radiosity (n, 3) W/m^2, area (n,) m^2, cell (n, 4) its (u0, v0, u1, v1), triangle (n,)")
+         "metres, radiosity (n, 3) W/m^2, area (n,) m^2, cell (n, 4) its (u0, v0, u1, v1), triangle (n,), shape "
+         "(n names: box, lower or upper half of the cell); per side length_u_m, length_v_m, shear_m (its (s, t) "
+         "frame), barriers and excluded (lists of (k, 2) polylines in (s, t) metres)")
       .def("save", [](const PySolution& s, const std::string& path) {
         check_output_file(path, "path");
         refuse_overwriting_inputs(path, "path", s.inputs);

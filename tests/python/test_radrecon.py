@@ -272,6 +272,30 @@ def test_solve_refusals():
             radrecon.solve("paper", mesh, **keywords)
 
 
+def test_solution_arrays_hold_what_the_file_holds(tmp_path):
+    # Each side's frame, barriers, excluded regions and each element's cell shape, as the saved
+    # file (read here by Python's json) has them: a triangle's two halves of one cell were told
+    # apart only by their centres.
+    sol = radrecon.solve("cornell", "grid:4")
+    path = tmp_path / "cornell.json"
+    sol.save(str(path))
+    doc = json.load(open(path))
+    assert sol.stats["patches"] == doc["stats"]["patches"] > 0
+    by_name = {s["name"]: s for s in doc["surfaces"]}
+    for side in sol.surfaces:
+        saved = by_name[side["name"]]
+        for key in ("length_u_m", "length_v_m"):
+            assert side[key] == saved[key]
+        assert side["shear_m"] == saved.get("shear_m", 0.0)
+        assert [line.tolist() for line in side["barriers"]] == saved.get("barriers", [])
+        assert [poly.tolist() for poly in side["excluded"]] == saved.get("excluded", [])
+        assert side["shape"] == [e.get("shape", "box") for e in saved["elements"]]
+    red = next(s for s in sol.surfaces if s["name"] == "red_wall.a")
+    assert set(red["shape"]) == {"lower", "upper"}
+    floor = next(s for s in sol.surfaces if s["name"] == "floor")
+    assert len(floor["barriers"]) > 0 and len(floor["excluded"]) == 2  # the blocks' feet, their covered floor
+
+
 def test_a_solution_does_not_overwrite_its_scene(tmp_path):
     # As the command line refuses --out naming an input: the scene file, or a model it includes.
     scene = tmp_path / "scene.json"
