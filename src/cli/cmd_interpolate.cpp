@@ -106,8 +106,8 @@ void run_interpolate(const InterpolateArgs& args) {
   if (const std::string problem = point_method_problem(*method); !problem.empty()) throw UserError("--method", problem);
   if (const std::string problem = args.barriers.empty() ? "" : barriers_problem(*method); !problem.empty())
     throw UserError("--barriers", problem);
-  if (args.border_samples && (*method == Method::constant || is_grid_method(*method)))
-    throw UserError("--border-samples", "applies to the scattered methods that interpolate, not " + args.method);
+  if (const std::string problem = args.border_samples ? border_samples_problem(*method) : ""; !problem.empty())
+    throw UserError("--border-samples", problem);
   // No input is ever overwritten, and an unwritable output is refused before any work.
   std::vector<std::string> inputs = {args.samples};
   if (use_queries) inputs.push_back(args.queries);

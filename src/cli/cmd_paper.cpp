@@ -20,14 +20,17 @@ void add_paper_command(CLI::App& app) {
       ->check(residual_check())
       ->capture_default_str();
   auto no_barriers = std::make_shared<bool>(false);
-  cmd->add_flag("--no-barriers", *no_barriers,
-                "Skip the data sets with the scene's barriers (grid+barriers, quadtree+barriers: Table 3, Fig. 5 "
-                "and 6)");
+  CLI::Option* skip = cmd->add_flag("--no-barriers", *no_barriers,
+                                     "Skip the data sets with the scene's barriers (grid+barriers, quadtree+barriers: "
+                                     "Table 3, Fig. 5 and 6)");
+  // Both act on Table 3's data sets, which --no-barriers leaves out: refused together, not ignored.
   cmd->add_flag("--border-samples", opt->border_samples,
-                "Table 3 also with border samples (grid+barriers+border, quadtree+barriers+border: Fig. 7 and 8)");
+                "Table 3 also with border samples (grid+barriers+border, quadtree+barriers+border: Fig. 7 and 8)")
+      ->excludes(skip);
   cmd->add_flag("--shadow-barriers", opt->shadow_barriers,
                 "Table 3 with the direct light's D1/D2 lines among the barriers too (an experiment; "
-                "docs/method.md)");
+                "docs/method.md)")
+      ->excludes(skip);
   cmd->add_flag("--quiet", *quiet, "No progress messages");
   cmd->callback([opt, out, quiet, no_barriers] {
     opt->out_dir = *out;

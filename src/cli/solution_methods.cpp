@@ -22,6 +22,8 @@ std::unique_ptr<SolutionReconstruction> reconstruct_solution(const Scene& scene,
                                                              const std::vector<std::string>& settings, bool no_barriers,
                                                              bool border_samples) {
   const Method method = method_option(method_name_text);
+  if (const std::string problem = border_samples ? border_samples_problem(method) : ""; !problem.empty())
+    throw UserError("--border-samples", problem);  // as interpolate refuses it, not ignored
   const MethodParams params = parse_params(method, settings, "--param");
   const SideSampling sampling{.barriers = !no_barriers, .border_samples = border_samples};
   auto recon = std::make_unique<SolutionReconstruction>(scene, solution, method, params, solution_path, sampling);

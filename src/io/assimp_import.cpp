@@ -230,8 +230,10 @@ class Builder {
         check_finite_vertex(v, path_, base, idx);
         const Vec3 p = linear * Vec3(v.x, v.y, v.z) + translate;
         if (!p.allFinite() || p.cwiseAbs().maxCoeff() > tol::kMaxCoordinate_m)
-          throw UserError(path_, "mesh '" + base + "' vertex " + std::to_string(idx) + " lands outside the +-" +
-                                     std::to_string(tol::kMaxCoordinate_m) + " m of a scene after placement");
+          throw UserError(path_, "mesh '" + base + "' vertex " + std::to_string(idx) + " (counted from 0, as in the mesh) lands at (" +
+                                     format_number(p.x()) + ", " + format_number(p.y()) + ", " + format_number(p.z()) +
+                                     ") m after placement, outside the +-" + format_number(tol::kMaxCoordinate_m) +
+                                     " m of a scene");
         corners.push_back(p);
         if (vertex_colours) {
           const aiColor4D& c = mesh.mColors[0][idx];

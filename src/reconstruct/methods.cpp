@@ -365,6 +365,11 @@ std::string point_method_problem(Method method) {
                                "points; use e.g. linear or natural-neighbour";
 }
 
+std::string border_samples_problem(Method method) {
+  if (method != Method::constant && !is_grid_method(method) && !is_cell_method(method)) return {};
+  return "applies to the scattered methods that interpolate, not " + method_name(method) + " (which uses the data as it is)";
+}
+
 InterpolantResult make_point_interpolant(Method method, const ScatteredSamples& samples, const MethodParams& params) {
   if (const std::string problem = point_method_problem(method); !problem.empty()) return Failure{problem};
   if (!is_grid_method(method)) return make_scattered_interpolant(method, samples, params);

@@ -61,6 +61,9 @@ bool takes_barriers(Method m);
 std::string barriers_problem(Method m);
 /// Why the method cannot interpolate points (gouraud reconstructs cells), or empty if it can.
 std::string point_method_problem(Method m);
+/// Why border samples (border_samples.h) do not apply to the method (constant, the grid methods
+/// and gouraud use the data as it is), or empty if they do.
+std::string border_samples_problem(Method m);
 
 /// What the triangulation methods (natural-neighbour, linear, clough-tocher, sibson-c1, laplace)
 /// return outside the convex hull of the samples (the other methods are defined everywhere).
