@@ -64,7 +64,7 @@ void add_solve_command(CLI::App& app) {
                   "grid:N: progressive refinement, elements of 1/N of the longest quad edge or triangle base or height, "
                   "on every surface (a triangle's cells about as wide as a square's diagonal; capped by a surface's "
                   "mesh.max_divisions); "
-                  "quadtree-eps:E: hierarchical radiosity, links refined while they carry more than E watts; "
+                  "quadtree-eps:E: hierarchical radiosity, links refined while their error estimate (the power they may carry wrongly) exceeds E watts; "
                   "quadtree:LEAVES: hierarchical radiosity with exactly LEAVES (= 1 + 3k) leaves on one side "
                   "(see --leaves-on)")
       ->capture_default_str();
