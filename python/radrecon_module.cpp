@@ -313,10 +313,10 @@ Raises radrecon.Error (a ValueError) for refused input.)doc");
     if (far_field_error) grid_only_given.emplace_back("far_field_error");
     if (clusters) grid_only_given.emplace_back("clusters");
     refuse_unused_options(mesh, grid_only_given, leaves_on ? "leaves_on" : "");
-    // Checked before the int it goes into; the other settings by check_settings(), before the
-    // scene is read (solve_scene() checks them again).
-    // A count from 1, as --patches takes (the library's 0 for its default is None here).
-    if (const std::string problem = patches ? patches_problem(*patches) : ""; !problem.empty() || (patches && *patches == 0))
+    // Checked before the int it goes into, as a count from 1 as --patches takes it (the library's
+    // 0 for its default is None here); the other settings by check_settings(), before the scene
+    // is read (solve_scene() checks them again).
+    if (patches && !(*patches >= 1 && *patches <= kMostPatches))
       throw UserError("patches", "must be a count from 1 to " + std::to_string(kMostPatches) + " (None: the default, " +
                                      std::to_string(default_patches()) + "), got " + std::to_string(*patches));
     SolveSettings settings;

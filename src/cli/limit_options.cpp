@@ -1,5 +1,6 @@
 // The --max-* options that raise (or lower) the resource limits of core/limits.h, and the checks
 // that several commands' options share.
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -20,16 +21,9 @@ void add_limit_options(CLI::App& cmd, std::initializer_list<Limit> limits) {
         ->transform(CLI::Validator(  // transform: the text it rewrites is what CLI11 converts
             [](std::string& text) -> std::string {
               // Read whole: CLI11's own check would say "not in range 0.000000 to 1.797...e308".
-              long long value = 0;
-              size_t used = 0;
-              try {
-                value = std::stoll(text, &used);
-              } catch (const std::exception&) {
-                used = 0;
-              }
-              if (used == 0 || used != text.size() || value < 1)
-                return "must be a whole number of at least 1, got '" + text + "'";
-              text = std::to_string(value);  // as read here: CLI11 would take "010" as octal
+              const std::optional<long long> value = parse_integer(text);
+              if (!value || *value < 1) return "must be a whole number of at least 1, got '" + text + "'";
+              text = std::to_string(*value);  // as read here: CLI11 would take "010" as octal
               return {};
             },
             "POSITIVE"))

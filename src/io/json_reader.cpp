@@ -68,8 +68,8 @@ class ErrorOffset final : public nlohmann::json_sax<nlohmann::json> {
 };
 
 /// A SAX handler that builds nothing and finds the first key given twice in one object, with
-/// the path of that object ("surfaces[0]"). Each open object's keys in a list (reused from
-/// object to object), a long one's in a set too.
+/// the path of that object ("surfaces[0]"). Each open object's keys in a set (frames reused from
+/// object to object).
 class RepeatedKey final : public nlohmann::json_sax<nlohmann::json> {
  public:
   std::string repeated;  ///< the key, empty if none
@@ -83,26 +83,18 @@ class RepeatedKey final : public nlohmann::json_sax<nlohmann::json> {
   bool binary(binary_t&) override { return value(); }
   bool start_object(std::size_t) override {
     value();
-    Frame& f = open(false);
-    f.keys.clear();
-    f.set.clear();
+    open(false).keys.clear();
     return true;
   }
   bool key(string_t& key) override {
     Frame& f = frames_[depth_ - 1];
-    const bool seen = f.set.empty() ? std::find(f.keys.begin(), f.keys.end(), key) != f.keys.end() : !f.set.insert(key).second;
-    if (seen) {
+    if (!f.keys.insert(key).second) {
       repeated = key;
       for (size_t d = 0; d + 1 < depth_; ++d)
-        path += frames_[d].array ? "[" + std::to_string(frames_[d].index - 1) + "]" : (path.empty() ? "" : ".") + frames_[d].keys.back();
+        path += frames_[d].array ? "[" + std::to_string(frames_[d].index - 1) + "]" : (path.empty() ? "" : ".") + frames_[d].last;
       return false;  // stop here
     }
-    if (f.set.empty()) {
-      f.keys.push_back(key);
-      if (f.keys.size() == kListed) f.set.insert(f.keys.begin(), f.keys.end());
-    } else {
-      f.keys.back() = key;  // the last key, for paths
-    }
+    f.last = key;
     return true;
   }
   bool end_object() override { return close(); }
@@ -115,12 +107,11 @@ class RepeatedKey final : public nlohmann::json_sax<nlohmann::json> {
   bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override { return false; }
 
  private:
-  static constexpr size_t kListed = 16;  ///< keys searched in a list; beyond, in a set
   struct Frame {
     bool array = false;
-    size_t index = 0;               ///< an array's values so far
-    std::vector<std::string> keys;  ///< an object's keys so far (the last one last)
-    std::unordered_set<std::string> set;
+    size_t index = 0;                      ///< an array's values so far
+    std::unordered_set<std::string> keys;  ///< an object's keys so far
+    std::string last;                      ///< and the last of them, for paths
   };
   /// A value begins: an array holding it counts it.
   bool value() {

@@ -423,12 +423,12 @@ std::optional<Solution> try_solve_hierarchical(const Scene& scene, const Hierarc
 }
 
 Solution solve_hierarchical(const Scene& scene, const HierarchicalOptions& options, const std::string& mesh_spec,
-                            LinkFormFactorCache* cache) {
+                            LinkFormFactorCache* cache, const std::string& where) {
   std::optional<Solution> sol = try_solve_hierarchical(scene, options, mesh_spec, cache);
   if (!sol) {
     char eps[32];
     std::snprintf(eps, sizeof eps, "%g", options.epsilon_w);
-    throw UserError(mesh_spec, std::string("epsilon ") + eps + " W would need more than " +
+    throw UserError(where.empty() ? mesh_spec : where, std::string("epsilon ") + eps + " W would need more than " +
                                    std::to_string(options.max_links) + " links; use a larger epsilon, or " +
                                    limit_spec(Limit::links).option + " raises the limit (nothing was written)");
   }

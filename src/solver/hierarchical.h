@@ -53,9 +53,10 @@ struct HierarchicalOptions {
 std::optional<Solution> try_solve_hierarchical(const Scene& scene, const HierarchicalOptions& options,
                                                const std::string& mesh_spec, LinkFormFactorCache* cache = nullptr);
 
-/// try_solve_hierarchical(), with too many links refused (UserError naming `mesh_spec`).
+/// try_solve_hierarchical(), with too many links refused (UserError naming `where`, e.g.
+/// "--mesh quadtree-eps:1e-9"; empty: `mesh_spec`).
 Solution solve_hierarchical(const Scene& scene, const HierarchicalOptions& options, const std::string& mesh_spec,
-                            LinkFormFactorCache* cache = nullptr);
+                            LinkFormFactorCache* cache = nullptr, const std::string& where = "");
 
 /// The smallest element of `options` (metres): its min_size_m, or by default
 /// tol::kMinElementFraction of the scene's longest edge.

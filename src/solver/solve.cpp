@@ -118,11 +118,7 @@ Solution solve_by_spec(const Scene& scene, const std::string& spec, const SolveS
   ho.max_links = static_cast<size_t>(limit_value(Limit::links));
   if (kind == "quadtree-eps") {
     ho.epsilon_w = parse_positive(value, field, spec);
-    try {
-      return solve_hierarchical(scene, ho, spec);
-    } catch (const UserError& e) {  // named by the option that gave the spec, as grid:N's refusals are
-      throw UserError(field + " " + e.what());
-    }
+    return solve_hierarchical(scene, ho, spec, nullptr, field + " " + spec);  // named as grid:N's refusals are
   }
   if (kind == "quadtree") {
     const long long asked = spec_integer(value, 1, std::numeric_limits<int>::max(), field, spec);

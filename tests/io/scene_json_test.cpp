@@ -185,7 +185,7 @@ TEST(SceneJson, RefusesAKeyGivenTwiceInOneObjectNamingWhere) {
   const std::string text = doc.dump();
   const std::string twice = text.substr(0, text.rfind("}]")) + R"(, "two_sided": true, "two_sided": false}]})";
   EXPECT_TRUE(RefusedMentioning(twice, {"the key 'two_sided' appears twice in surfaces["}));
-  // Objects of more than 16 keys are searched through a set: the same answer.
+  // A long object: the same answer.
   std::string many = R"({"name": "x", "surfaces": [], "extra": {)";
   for (int k = 0; k < 40; ++k) many += "\"k" + std::to_string(k) + "\": " + std::to_string(k) + ", ";
   EXPECT_TRUE(RefusedMentioning(many + R"("k33": 0}})", {"the key 'k33' appears twice in extra"}));
