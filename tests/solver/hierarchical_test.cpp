@@ -2,15 +2,14 @@
 
 #include <gtest/gtest.h>
 
-#include <cstdio>
-
-
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "core/thread_pool.h"
 #include "core/error.h"
 #include "solver/hierarchical.h"
+#include "solver/solve.h"
 #include "support/closed_forms.h"
 #include "support/scenes.h"
 #include "solver/closed_room.h"
@@ -19,7 +18,6 @@ namespace radrecon {
 namespace hierarchical_test {
 
 using testing_support::quad;
-
 
 Solution paper_leaves(int leaves) {
   return solve_hierarchical_leaves(paper_scene(), "ground", leaves, HierarchicalOptions{}, "test");
@@ -219,6 +217,50 @@ TEST(Hierarchical, SmallerEpsilonRefinesMore) {
   fine.epsilon_w = 0.002;
   EXPECT_LT(leaf_count(solve_hierarchical(paper_scene(), coarse, "c"), "ground"),
             leaf_count(solve_hierarchical(paper_scene(), fine, "f"), "ground"));
+}
+
+TEST(Hierarchical, GroundLeavesApproachAFineProgressiveSolveAsEpsilonShrinks) {
+  // The paper scene with its interreflections: each ground leaf's radiosity (its mean) against
+  // the mean over the leaf of a progressive solve on a 128 x 128 grid (another solver: shooting,
+  // a far-field bound, point collocation), over the leaves no smaller than the grid's elements
+  // (dyadic squares: each holds whole elements). The error, weighted by area and relative to the
+  // mean radiosity, falls as epsilon falls: measured 1.31%, 1.10% and 0.69% at 0.02, 0.002 and
+  // 0.0005 W (the largest errors at 0.002 W are 1% under the light, in leaves of 0.0625 m^2
+  // whose power, 0.064 W, errs by a third of epsilon).
+  constexpr int kGrid = 128;
+  const Solution reference = solve_scene(paper_scene(), "grid:128", SolveSettings{}, "test");
+  const SurfaceSolution& fine = *reference.find("ground");
+  ASSERT_EQ(fine.grid_nu, kGrid);
+  ASSERT_EQ(fine.grid_nv, kGrid);
+  std::vector<double> errors;
+  for (const double epsilon_w : {0.02, 0.002, 0.0005}) {
+    HierarchicalOptions options;
+    options.epsilon_w = epsilon_w;
+    const Solution sol = solve_hierarchical(paper_scene(), options, "test");
+    double error = 0, total = 0, covered = 0;
+    for (const SolutionElement& leaf : sol.find("ground")->elements) {
+      if (leaf.u1 - leaf.u0 < 1.0 / kGrid - 1e-12) continue;
+      double mean = 0;
+      int count = 0;
+      for (const SolutionElement& e : fine.elements)
+        if (e.center.x() > 4 * leaf.u0 && e.center.x() < 4 * leaf.u1 && e.center.y() > 4 * leaf.v0 &&
+            e.center.y() < 4 * leaf.v1)
+          mean += e.radiosity_w_m2[0], ++count;
+      const double side = (leaf.u1 - leaf.u0) * kGrid;
+      ASSERT_EQ(count, static_cast<int>(std::lround(side * side))) << "a leaf holds whole elements";
+      mean /= count;
+      error += leaf.area_m2 * std::abs(leaf.radiosity_w_m2[0] - mean);
+      total += leaf.area_m2 * mean;
+      covered += leaf.area_m2;
+    }
+    EXPECT_GT(covered, 0.9 * 16) << "the leaves compared cover most of the ground";
+    errors.push_back(error / total);
+    std::printf("epsilon %g W: %zu ground leaves, relative L1 error %.3e over %.1f m^2\n", epsilon_w,
+                sol.find("ground")->elements.size(), error / total, covered);
+  }
+  EXPECT_LT(errors[1], errors[0]);
+  EXPECT_LT(errors[2], errors[1]);
+  EXPECT_LT(errors[2], 0.01);
 }
 
 }  // namespace hierarchical_test
