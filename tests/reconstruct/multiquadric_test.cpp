@@ -1,9 +1,13 @@
 // Hardy's multiquadrics: exact at the samples, Eck's radii, and the coefficients against an
-// independent solve (Householder QR with full pivoting instead of partial-pivoting LU).
+// independent solve (Householder QR with full pivoting instead of partial-pivoting LU); the local
+// partition of unity rebuilt from its definition.
 
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <numbers>
 #include <random>
 #include <string>
 
@@ -180,6 +184,86 @@ TEST(LocalMultiquadric, ExactAtTheSamplesAndWeightsCoverTheBox) {
   std::vector<double> v(q.size());
   f.evaluate(q, v);
   for (double x : v) EXPECT_TRUE(std::isfinite(x));
+}
+
+/// Whether p lies inside the convex hull of the points: no half-plane through p holds them all,
+/// i.e. no angular gap of more than pi between the directions from p to them.
+bool inside_hull_of(const Vec2& p, const std::vector<Vec2>& points) {
+  std::vector<double> angles;
+  for (const Vec2& q : points) angles.push_back(std::atan2(q.y() - p.y(), q.x() - p.x()));
+  std::sort(angles.begin(), angles.end());
+  double gap = angles.front() + 2 * std::numbers::pi - angles.back();
+  for (size_t a = 1; a < angles.size(); ++a) gap = std::max(gap, angles[a] - angles[a - 1]);
+  return gap < std::numbers::pi - 1e-9;
+}
+
+TEST(LocalMultiquadric, TheBlendRebuiltFromItsDefinition) {
+  // The partition of unity rebuilt from the header's words alone, at queries inside every
+  // contributing patch's hull: patches centred on the grid origin + (i h, j h) over the samples'
+  // box (h = patch_radius()), each through every sample within 1.5 h of its centre, fitting the
+  // deviations from their mean (the multiquadric system solved here by full-pivoting QR) and
+  // adding the mean back; blended by Wendland's C2 weights (1 - t)^4 (4 t + 1), t = d / h.
+  std::mt19937 rng(31);
+  const ScatteredSamples s = random_samples(400, rng);
+  constexpr double kMu = 0.5, kR = 0.15;
+  const LocalMultiquadric f(s, kMu, kR, 24);
+  const double h = f.patch_radius();
+  Vec2 lo = s.points[0], hi = s.points[0];
+  for (const Vec2& p : s.points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  const int nx = static_cast<int>(std::ceil((hi.x() - lo.x()) / h)) + 1;
+  const int ny = static_cast<int>(std::ceil((hi.y() - lo.y()) / h)) + 1;
+  const auto basis = [&](const Vec2& a, const Vec2& b) { return std::pow((a - b).squaredNorm() + kR * kR, kMu); };
+  std::uniform_real_distribution<double> xy(0.3, 3.7);
+  int checked = 0, skipped = 0;
+  double worst = 0;
+  for (int t = 0; t < 200; ++t) {
+    const Vec2 q(xy(rng), xy(rng));
+    double weighted = 0, weights = 0;
+    bool every_hull_holds_q = true;
+    for (int j = 0; j < ny && every_hull_holds_q; ++j)
+      for (int i = 0; i < nx && every_hull_holds_q; ++i) {
+        const Vec2 c = lo + Vec2(i * h, j * h);
+        const double d = (q - c).norm();
+        if (d >= h) continue;
+        std::vector<Vec2> points;
+        std::vector<double> values;
+        for (size_t k = 0; k < s.points.size(); ++k)
+          if ((s.points[k] - c).norm() <= 1.5 * h) points.push_back(s.points[k]), values.push_back(s.values[k]);
+        ASSERT_GE(points.size(), 3u) << "the disc holds enough samples here";
+        if (!inside_hull_of(q, points)) {
+          every_hull_holds_q = false;
+          break;
+        }
+        const Eigen::Index m = static_cast<Eigen::Index>(points.size());
+        double mean = 0;
+        for (double v : values) mean += v / static_cast<double>(m);
+        Eigen::MatrixXd A(m, m);
+        Eigen::VectorXd b(m);
+        for (Eigen::Index a = 0; a < m; ++a) {
+          b(a) = values[static_cast<size_t>(a)] - mean;
+          for (Eigen::Index e = 0; e < m; ++e) A(a, e) = basis(points[static_cast<size_t>(a)], points[static_cast<size_t>(e)]);
+        }
+        const Eigen::VectorXd alpha = A.fullPivHouseholderQr().solve(b);
+        double value = mean;
+        for (Eigen::Index e = 0; e < m; ++e) value += alpha(e) * basis(q, points[static_cast<size_t>(e)]);
+        const double x = d / h, w = std::pow(1 - x, 4) * (4 * x + 1);
+        weighted += w * value;
+        weights += w;
+      }
+    if (!every_hull_holds_q) {
+      ++skipped;
+      continue;
+    }
+    ASSERT_GT(weights, 0);
+    double got;
+    f.evaluate(std::span(&q, 1), std::span(&got, 1));
+    const double expected = weighted / weights;
+    EXPECT_NEAR(got, expected, 1e-8) << "query (" << q.x() << ", " << q.y() << ")";
+    worst = std::max(worst, std::abs(got - expected));
+    ++checked;
+  }
+  EXPECT_GT(checked, 100) << skipped << " queries lay outside some patch's hull";
+  std::printf("%d queries (%d outside some patch's hull, not checked): largest difference %.2e\n", checked, skipped, worst);
 }
 
 TEST(LocalMultiquadric, ApproachesTheGlobalInterpolantAsPatchesGrow) {
