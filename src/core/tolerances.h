@@ -15,6 +15,11 @@ inline constexpr double kPlanarityRelative = 1e-6;
 inline constexpr double kMaxCoordinate_m = 1e6;
 inline constexpr double kMaxEmission_w_m2 = 1e12;
 
+/// How far from 1 a glTF node's rotation quaternion may be in length. The glTF schema asks for
+/// unit quaternions and exporters write them in single precision (within ~1e-7); assimp 5.2
+/// applies one of any length as it stands, scaling the mesh by its squared length.
+inline constexpr double kGltfUnitQuaternion = 1e-3;
+
 /// Smallest area (relative to the squared longest edge) of a non-degenerate quad.
 inline constexpr double kDegenerateAreaRelative = 1e-9;
 

@@ -1,12 +1,18 @@
 #include "io/gltf_extras.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
+#include <optional>
+#include <set>
+#include <string_view>
 
 #include "core/error.h"
 #include "core/parse.h"
+#include "core/tolerances.h"
 #include "io/gltf_indices.h"
 #include "io/json_reader.h"
 
@@ -78,6 +84,122 @@ size_t primitive_faces(const json& doc, const json& primitive) {
   }
 }
 
+/// Required extensions radrecon reads, or may pass over because they touch only what it does not
+/// read (textures, how a viewer shades): the geometry and the two factors it takes are as the
+/// core specification says. Any other in extensionsRequired changes what the file means.
+constexpr std::array<std::string_view, 5> kRequiredExtensionsRead = {
+    "KHR_materials_emissive_strength", "KHR_texture_transform", "KHR_texture_basisu", "EXT_texture_webp",
+    "KHR_materials_unlit"};
+
+/// Refuses a required extension radrecon does not read (KHR_mesh_quantization's integer
+/// positions, read by assimp 5.2 as floats, gave a floor of 3e-89 m^2 with exit 0).
+void check_required_extensions(const JsonReader& r, const json& doc) {
+  if (!doc.contains("extensionsRequired")) return;
+  const json& required = doc["extensionsRequired"];
+  if (!required.is_array()) r.fail("extensionsRequired", "must be an array of strings");
+  for (size_t i = 0; i < required.size(); ++i) {
+    const std::string name = r.string(required[i], JsonReader::at("extensionsRequired", i));
+    if (std::find(kRequiredExtensionsRead.begin(), kRequiredExtensionsRead.end(), name) == kRequiredExtensionsRead.end())
+      r.fail(JsonReader::at("extensionsRequired", i),
+             "requires " + in_quotes(name) + ", which radrecon does not read (it reads the core glTF 2.0 geometry, "
+             "baseColorFactor, emissiveFactor and KHR_materials_emissive_strength): export without it (e.g. no "
+             "quantization or compression)");
+  }
+}
+
+/// The length of `field`'s array of numbers in node `where`, each finite, or refused.
+void check_numbers(const JsonReader& r, const json& node, const std::string& where, const char* field, size_t count) {
+  if (!node.contains(field)) return;
+  const json& a = node[field];
+  const std::string at = where + "." + field;
+  if (!a.is_array() || a.size() != count) r.fail(at, "must be an array of " + std::to_string(count) + " numbers");
+  for (size_t k = 0; k < count; ++k) r.number(a[k], JsonReader::at(at, k));
+}
+
+/// Refuses node transforms the schema forbids, which assimp 5.2 reads as something else without
+/// a word (a translation of strings as 0, a short scale or matrix as none, a rotation of any length
+/// as it stands): translation and scale of 3 numbers, rotation of 4 of unit length
+/// (tol::kGltfUnitQuaternion), matrix of 16, not both a matrix and any of the others; and morph
+/// targets given weight (by the mesh or the node), which assimp does not apply.
+void check_nodes(const JsonReader& r, const json& doc) {
+  if (!doc.contains("nodes")) return;
+  const json& nodes = doc["nodes"];
+  if (!nodes.is_array()) r.fail("nodes", "must be an array");
+  const json* meshes = doc.contains("meshes") && doc["meshes"].is_array() ? &doc["meshes"] : nullptr;
+  const auto weighted = [&](const json& weights) {
+    if (!weights.is_array()) return false;
+    for (const json& w : weights)
+      if (!w.is_number() || w.get<double>() != 0) return true;
+    return false;
+  };
+  for (size_t i = 0; i < nodes.size(); ++i) {
+    const std::string where = JsonReader::at("nodes", i);
+    const json& node = nodes[i];
+    if (!node.is_object()) r.fail(where, "must be an object");
+    check_numbers(r, node, where, "translation", 3);
+    check_numbers(r, node, where, "rotation", 4);
+    check_numbers(r, node, where, "scale", 3);
+    check_numbers(r, node, where, "matrix", 16);
+    if (node.contains("matrix") && (node.contains("translation") || node.contains("rotation") || node.contains("scale")))
+      r.fail(where, "has both a matrix and translation, rotation or scale (the glTF schema allows one or the other)");
+    if (node.contains("rotation")) {
+      double norm_sq = 0;
+      for (const json& q : node["rotation"]) norm_sq += q.get<double>() * q.get<double>();
+      if (!(std::abs(std::sqrt(norm_sq) - 1) <= tol::kGltfUnitQuaternion))
+        r.fail(where + ".rotation", "must be a unit quaternion, its length is " + format_number(std::sqrt(norm_sq)));
+    }
+    if (!node.contains("mesh") || !node["mesh"].is_number_unsigned() || meshes == nullptr) continue;
+    const size_t m = node["mesh"].get<size_t>();
+    if (m >= meshes->size() || !(*meshes)[m].is_object()) continue;  // assimp refuses it
+    const json& mesh = (*meshes)[m];
+    bool targets = false;
+    if (mesh.contains("primitives") && mesh["primitives"].is_array())
+      for (const json& primitive : mesh["primitives"]) targets = targets || (primitive.is_object() && primitive.contains("targets"));
+    if (targets && ((node.contains("weights") && weighted(node["weights"])) ||
+                    (!node.contains("weights") && mesh.contains("weights") && weighted(mesh["weights"]))))
+      r.fail(where, "shows mesh " + std::to_string(m) + " with morph targets of non-zero weight, which radrecon does not "
+                    "apply (it reads the base shape): apply the shape keys before export");
+  }
+}
+
+/// The meshes the default scene shows: those of the nodes reachable from it ("scene", else scene
+/// 0), each once however many nodes show it. assimp 5.2 reads these and no others (its objects
+/// load as the scene refers to them). Empty optional where the file has no scene (assimp refuses it).
+std::optional<std::set<size_t>> default_scene_meshes(const json& doc) {
+  if (!doc.contains("scenes") || !doc["scenes"].is_array() || doc["scenes"].empty()) return std::nullopt;
+  const size_t index = doc.contains("scene") && doc["scene"].is_number_unsigned() ? doc["scene"].get<size_t>() : 0;
+  if (index >= doc["scenes"].size() || !doc["scenes"][index].is_object()) return std::nullopt;
+  const json& scene = doc["scenes"][index];
+  const json* nodes = doc.contains("nodes") && doc["nodes"].is_array() ? &doc["nodes"] : nullptr;
+  std::set<size_t> meshes, seen;
+  std::vector<size_t> stack;
+  const auto push_all = [&](const json& list) {
+    if (!list.is_array()) return;
+    for (const json& n : list)
+      if (n.is_number_unsigned()) stack.push_back(n.get<size_t>());
+  };
+  if (scene.contains("nodes")) push_all(scene["nodes"]);
+  while (!stack.empty() && nodes != nullptr) {
+    const size_t n = stack.back();
+    stack.pop_back();
+    if (n >= nodes->size() || !seen.insert(n).second || !(*nodes)[n].is_object()) continue;
+    const json& node = (*nodes)[n];
+    if (node.contains("mesh") && node["mesh"].is_number_unsigned()) meshes.insert(node["mesh"].get<size_t>());
+    if (node.contains("children")) push_all(node["children"]);
+  }
+  return meshes;
+}
+
+/// Refuses a binary glTF with a buffer in a file of its own (a "uri"): assimp 5.2 reads its
+/// buffer views from the BIN chunk whatever the buffer ("Buffer view ... is out of range").
+void check_glb_buffers(const JsonReader& r, const json& doc) {
+  if (!doc.contains("buffers") || !doc["buffers"].is_array()) return;
+  for (size_t i = 0; i < doc["buffers"].size(); ++i)
+    if (doc["buffers"][i].is_object() && doc["buffers"][i].contains("uri"))
+      r.fail(JsonReader::at("buffers", i) + ".uri",
+             "a binary glTF (.glb) with a buffer in another file is not read: embed the buffer, or write a .gltf");
+}
+
 }  // namespace
 
 GltfExtras read_gltf_extras(const std::string& path) {
@@ -93,12 +215,20 @@ GltfExtras read_gltf_extras(const std::string& path) {
   const json& asset = r.member(doc, "asset", "");
   const std::string version = r.string(r.member(asset, "version", "asset"), "asset.version");
   if (version.rfind("2.", 0) != 0) r.fail("asset.version", "must be \"2.0\" (glTF 2.0), got \"" + version + "\"");
+  check_required_extensions(r, doc);
+  if (binary) check_glb_buffers(r, doc);
+  check_nodes(r, doc);
   check_gltf_indices(doc, bin, std::filesystem::path(path).parent_path().string(), path);
   GltfExtras extras;
-  if (doc.contains("meshes") && doc["meshes"].is_array())
-    for (const json& mesh : doc["meshes"])
+  if (doc.contains("meshes") && doc["meshes"].is_array()) {
+    const std::optional<std::set<size_t>> shown = default_scene_meshes(doc);
+    for (size_t m = 0; m < doc["meshes"].size(); ++m) {
+      const json& mesh = doc["meshes"][m];
+      if (shown && !shown->count(m)) continue;
       if (mesh.is_object() && mesh.contains("primitives") && mesh["primitives"].is_array())
         for (const json& primitive : mesh["primitives"]) extras.faces += primitive_faces(doc, primitive);
+    }
+  }
   std::vector<GltfMaterialFactors>& out = extras.materials;
   if (!doc.contains("materials")) return extras;
   const json& materials = doc["materials"];

@@ -102,6 +102,77 @@ TEST(MeshImportErrors, MtlFileOverTheInputSizeLimit) {
   EXPECT_NE(message.find("--max-file-bytes"), std::string::npos) << message;
 }
 
+TEST(MeshImportErrors, GltfRequiredExtensionsNodeTransformsMorphWeightsAndExternalGlbBuffers) {
+  // Each valid by the schema or not, each read by assimp 5.2 as something else with exit 0.
+  TempDir dir("mesh_bad");
+  std::string buffer;
+  const nlohmann::json g = testing_support::quad_gltf(buffer);
+  nlohmann::json quantized = g;  // int16 positions, which assimp read as floats (a floor of 3e-89 m^2)
+  quantized["extensionsRequired"] = {"KHR_mesh_quantization"};
+  EXPECT_TRUE(Refused(dir, "quant.gltf", testing_support::gltf_text(quantized, buffer),
+                      {"extensionsRequired[0]", "KHR_mesh_quantization", "does not read"}));
+  nlohmann::json strength = g;  // one it reads
+  strength["extensionsRequired"] = {"KHR_materials_emissive_strength"};
+  write_file((dir / "strength.gltf").string(), testing_support::gltf_text(strength, buffer));
+  EXPECT_NO_THROW(import_mesh((dir / "strength.gltf").string()));
+
+  const auto node_with = [&](const char* field, const nlohmann::json& value) {
+    nlohmann::json h = g;
+    h["nodes"][1][field] = value;
+    return testing_support::gltf_text(h, buffer);
+  };
+  EXPECT_TRUE(Refused(dir, "t.gltf", node_with("translation", {0, "x", 0}), {"nodes[1].translation[1]", "number"}));
+  EXPECT_TRUE(Refused(dir, "s.gltf", node_with("scale", {2}), {"nodes[1].scale", "array of 3 numbers"}));
+  EXPECT_TRUE(Refused(dir, "r.gltf", node_with("rotation", {0.7071, 0, 0}), {"nodes[1].rotation", "array of 4 numbers"}));
+  EXPECT_TRUE(Refused(dir, "q.gltf", node_with("rotation", {2, 0, 0, 2}), {"nodes[1].rotation", "unit quaternion", "2.828"}));
+  EXPECT_TRUE(Refused(dir, "m.gltf", node_with("matrix", nlohmann::json::array({1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0})),
+                      {"nodes[1].matrix", "16 numbers"}));
+  nlohmann::json both = g;  // node 1 has a translation already
+  both["nodes"][1]["matrix"] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+  EXPECT_TRUE(Refused(dir, "both.gltf", testing_support::gltf_text(both, buffer), {"nodes[1]", "both a matrix"}));
+  // A unit quaternion written in single precision is read.
+  write_file((dir / "unit.gltf").string(), node_with("rotation", {0.70710677, 0, 0, 0.70710677}));
+  EXPECT_NO_THROW(import_mesh((dir / "unit.gltf").string()));
+
+  nlohmann::json morph = g;  // a shape key at full weight: viewers move the quad, assimp does not
+  morph["meshes"][0]["primitives"][0]["targets"] = {{{"POSITION", 0}}};
+  morph["meshes"][0]["weights"] = {1.0};
+  EXPECT_TRUE(Refused(dir, "morph.gltf", testing_support::gltf_text(morph, buffer), {"nodes[0]", "morph targets", "shape keys"}));
+  morph["meshes"][0]["weights"] = {0.0};  // at rest: the base shape is what viewers show
+  write_file((dir / "rest.gltf").string(), testing_support::gltf_text(morph, buffer));
+  EXPECT_NO_THROW(import_mesh((dir / "rest.gltf").string()));
+
+  nlohmann::json external = g;  // assimp read the views from the BIN chunk whatever their buffer
+  external["buffers"][0]["uri"] = "quad.bin";
+  write_file((dir / "quad.bin").string(), buffer);
+  EXPECT_TRUE(Refused(dir, "external.glb", testing_support::glb_bytes(external, buffer), {"buffers[0].uri", "embed the buffer"}));
+}
+
+TEST(MeshImportErrors, GltfMeshesOutsideTheDefaultSceneAreNotCountedAgainstIt) {
+  // assimp 5.2 reads the default scene's meshes only: a mesh of another scene, of no node, or of
+  // a node in no scene was counted among the faces it should have read, and the file refused as
+  // "vertex indices out of range".
+  TempDir dir("mesh_scenes");
+  std::string buffer;
+  nlohmann::json g = testing_support::quad_gltf(buffer);
+  g["meshes"].push_back(g["meshes"][0]);
+  g["meshes"][1]["name"] = "elsewhere";
+  g["nodes"].push_back({{"mesh", 1}});
+  g["scenes"].push_back({{"nodes", {2}}});  // scene 1 shows mesh 1; the default, scene 0, does not
+  write_file((dir / "two.gltf").string(), testing_support::gltf_text(g, buffer));
+  const MeshImport m = import_mesh((dir / "two.gltf").string());
+  EXPECT_EQ(m.faces_read, 4u) << "the default scene's two nodes, two triangles each";
+  for (const Surface& s : m.surfaces) EXPECT_EQ(s.name.rfind("elsewhere", 0), std::string::npos) << s.name;
+  g["scenes"].erase(1);  // node 2 in no scene
+  write_file((dir / "orphan.gltf").string(), testing_support::gltf_text(g, buffer));
+  EXPECT_EQ(import_mesh((dir / "orphan.gltf").string()).faces_read, 4u);
+  g["scenes"].push_back({{"nodes", {2}}});
+  g["scene"] = 1;  // the default now: its one node shows mesh 1
+  write_file((dir / "one.gltf").string(), testing_support::gltf_text(g, buffer));
+  const MeshImport shown = import_mesh((dir / "one.gltf").string());
+  EXPECT_EQ(shown.faces_read, 2u) << "scene 1 shows mesh 1 once";
+}
+
 TEST(MeshImportErrors, PlacementBeyondTheSceneOrNotFinite) {
   TempDir dir("mesh_bad");
   write_file(dir / "tri.obj", std::string(kTriangle) + "f 1 2 3\n");
