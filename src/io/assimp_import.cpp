@@ -84,12 +84,11 @@ std::vector<Material> read_materials(const aiScene& scene, Format format, const 
     const std::string what = "material '" + name + "'";
     Material& mat = out[i];
     if (format == Format::kObj) {
-      if (!obj.defined.count(name)) continue;  // faces before any usemtl, or of an undefined one: the default
-      std::optional<Rgb> kd = colour_key(m, AI_MATKEY_COLOR_DIFFUSE), ke = colour_key(m, AI_MATKEY_COLOR_EMISSIVE);
-      if (const auto grey = obj.grey_kd.find(name); grey != obj.grey_kd.end()) kd = grey->second;
-      if (const auto grey = obj.grey_ke.find(name); grey != obj.grey_ke.end()) ke = grey->second;
-      if (kd) mat.reflectance = reflectance_from(*kd, path, what + " Kd", warnings);
-      if (ke) mat.emission_w_m2 = emission_from(*ke, path, what + " Ke");
+      // assimp reads no MTL file (io/obj_check.h): its materials are the `usemtl` names.
+      const auto found = obj.defined.find(name);
+      if (found == obj.defined.end()) continue;  // faces before any usemtl, or of an undefined one: the default
+      if (found->second.kd) mat.reflectance = reflectance_from(*found->second.kd, path, what + " Kd", warnings);
+      if (found->second.ke) mat.emission_w_m2 = emission_from(*found->second.ke, path, what + " Ke");
     } else if (format == Format::kGltf) {
       auto base = colour_key(m, AI_MATKEY_BASE_COLOR);
       if (!base) base = colour_key(m, AI_MATKEY_COLOR_DIFFUSE);
@@ -157,9 +156,11 @@ std::string clean_name(const std::string& raw) {
 
 class Builder {
  public:
+  /// `file_offset_m`: added to every vertex assimp read, before the node transforms (an OBJ moved
+  /// to the origin for assimp's floats, io/obj_check.h).
   Builder(const aiScene& scene, Format format, std::string path, const std::vector<GltfMaterialFactors>& gltf,
-          const ObjMaterials& obj, const MeshPlacement& placement, MeshImport& out)
-      : scene_(scene), format_(format), path_(std::move(path)), placement_(placement), out_(out) {
+          const ObjMaterials& obj, const MeshPlacement& placement, const Vec3& file_offset_m, MeshImport& out)
+      : scene_(scene), format_(format), path_(std::move(path)), placement_(placement), file_offset_m_(file_offset_m), out_(out) {
     stem_ = std::filesystem::path(path_).stem().string();
     materials_ = read_materials(scene, format, path_, gltf, obj, out.warnings);
     const double a = placement.rotate_x_deg * std::numbers::pi / 180.0;
@@ -203,7 +204,7 @@ class Builder {
     if (!node_linear.allFinite() || !node_translate.allFinite())
       throw UserError(path_, "mesh '" + base + "': its node transform is not finite");
     const Eigen::Matrix3d linear = placement_linear_ * node_linear;
-    const Vec3 translate = placement_linear_ * node_translate + placement_.translate_m;
+    const Vec3 translate = placement_linear_ * (node_linear * file_offset_m_ + node_translate) + placement_.translate_m;
     const double det = linear.determinant();
     if (!(std::abs(det) > 0) || !std::isfinite(det)) throw UserError(path_, "mesh '" + base + "': its transform is singular");
     const bool mirrored = det < 0;  // a mirroring transform turns counter-clockwise corners clockwise
@@ -301,6 +302,7 @@ class Builder {
   Format format_;
   std::string path_, stem_;
   const MeshPlacement& placement_;
+  Vec3 file_offset_m_;
   MeshImport& out_;
   std::vector<Material> materials_;
   Eigen::Matrix3d placement_linear_;
@@ -331,8 +333,9 @@ MeshImport import_mesh_assimp(const std::string& path, const MeshPlacement& plac
 
   MeshImport out;
   ObjMaterials obj;
+  ObjForAssimp obj_copy;  // what assimp reads of an OBJ
   if (*format == Format::kObj) {
-    check_obj_lines(path);
+    obj_copy = check_obj(path);
     obj = obj_materials(path);
     out.warnings = obj.warnings;
   }
@@ -341,8 +344,9 @@ MeshImport import_mesh_assimp(const std::string& path, const MeshPlacement& plac
   try {
     // No aiProcess_Triangulate: quads stay quads; larger polygons are cut here.
     const unsigned flags = aiProcess_JoinIdenticalVertices | aiProcess_ValidateDataStructure;
-    scene = ply ? importer.ReadFileFromMemory(ply->bytes.data(), ply->bytes.size(), flags, "ply")
-                : importer.ReadFile(path, flags);
+    if (ply) scene = importer.ReadFileFromMemory(ply->bytes.data(), ply->bytes.size(), flags, "ply");
+    else if (*format == Format::kObj) scene = importer.ReadFileFromMemory(obj_copy.text.data(), obj_copy.text.size(), flags, "obj");
+    else scene = importer.ReadFile(path, flags);
   } catch (const std::bad_alloc&) {
     throw;
   } catch (const std::exception& e) {
@@ -361,7 +365,7 @@ MeshImport import_mesh_assimp(const std::string& path, const MeshPlacement& plac
   if (*format == Format::kGltf && read < gltf.faces)
     throw UserError(path, "vertex indices out of range: its primitives declare " + std::to_string(gltf.faces) + " faces, " +
                               std::to_string(gltf.faces - read) + " of them with an index past their vertices");
-  Builder builder(*scene, *format, path, gltf.materials, obj, placement, out);
+  Builder builder(*scene, *format, path, gltf.materials, obj, placement, obj_copy.offset_m, out);
   builder.node(scene->mRootNode, aiMatrix4x4(), 0);
   builder.finish();
   if (out.degenerate_skipped > 0)

@@ -1,10 +1,10 @@
 #pragma once
 // What radrecon reads of an OBJ file and its MTL files itself, before and beside assimp 5.2 (used
-// by io/assimp_import.cpp): the lines assimp misreads or refuses without naming them, and the
-// material facts it drops.
+// by io/assimp_import.cpp): the lines assimp misreads or refuses without naming them, the
+// materials (assimp never sees the MTL files), and the copy of the OBJ that assimp reads.
 
 #include <map>
-#include <set>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,25 +12,43 @@
 
 namespace radrecon {
 
-/// The materials an OBJ's MTL files (`mtllib`) define (`newmtl`), their colours given as one
-/// value (`Kd 0.5`: grey, by the MTL format; assimp 5.2 reads it as red only), and a warning for
-/// each MTL file not beside the OBJ. assimp reads on without it, giving a material named by
-/// `usemtl` but defined nowhere Kd 0.6: radrecon gives such faces the default instead.
+/// A material an MTL file defines (`newmtl`): its `Kd` and `Ke` if given.
+struct ObjMaterial {
+  std::optional<Rgb> kd, ke;
+};
+
+/// The materials of an OBJ's MTL files (`mtllib`), by name, and a warning for each MTL file not
+/// beside the OBJ. radrecon reads them itself: assimp 5.2 read `Kd 0.5` as red only, the second
+/// file of `mtllib a.mtl b.mtl` not at all, a file named with a space as two, and refused
+/// Blender's `aniso` and `anisor` lines naming neither file nor line.
 struct ObjMaterials {
-  std::set<std::string> defined;
-  std::map<std::string, Rgb> grey_kd, grey_ke;  ///< material name -> its one-value Kd, Ke
+  std::map<std::string, ObjMaterial> defined;
   std::vector<std::string> warnings;
 };
 
-/// Refuses (UserError naming "path:line") an OBJ vertex (`v`) whose first three coordinates are
-/// not finite numbers, a face (`f`) of fewer than 3 corners, and a face (or line, or point) whose vertex index is 0 or names a vertex
-/// the file does not have (a negative one counting back from the vertices before it). assimp 5.2
-/// reads a coordinate it cannot parse as a smaller vertex count, and refuses an index out of
-/// range without the line, leaking memory doing so (LeakSanitizer, found by fuzzing).
-void check_obj_lines(const std::string& path);
+/// The OBJ as assimp is given it (ReadFileFromMemory): a UTF-8 byte-order mark dropped (assimp
+/// 5.2 read `\xEF\xBB\xBFmtllib` as an unknown line), `mtllib` lines made comments (radrecon reads
+/// the materials: ObjMaterials), and, for a model far from the origin against its size, every
+/// vertex moved by -offset_m, so that assimp's single-precision floats keep its detail (a lamp
+/// 5 cm wide at x = 300000 m came out 3.1 cm wide); the importer adds offset_m back in double.
+struct ObjForAssimp {
+  std::string text;
+  Vec3 offset_m = Vec3::Zero();
+};
+
+/// Reads and checks the OBJ, and makes its copy for assimp. Refuses (UserError naming
+/// "path:line") a vertex (`v`) whose first three coordinates are not finite numbers, a face (`f`)
+/// of fewer than 3 corners, and a face (or line, or point) whose vertex index is 0 or names a
+/// vertex the file does not have (a negative one counting back from the vertices before it).
+/// assimp 5.2 reads a coordinate it cannot parse as a smaller vertex count, and refuses an index
+/// out of range without the line, leaking memory doing so (LeakSanitizer, found by fuzzing).
+ObjForAssimp check_obj(const std::string& path);
 
 /// The OBJ's MTL files read for ObjMaterials, each within the input size limit
-/// (core/limits.h check_input_file_size()).
+/// (core/limits.h check_input_file_size()). `mtllib` names one file per word, or one named by
+/// the whole rest of its line where such a file exists (Blender writes `mtllib my mats.mtl`).
+/// Refuses (UserError naming "file.mtl:line") a `Kd` or `Ke` that is not one number (grey) or
+/// three finite ones (`Kd spectral`, `Kd xyz` included). Other MTL statements are passed over.
 ObjMaterials obj_materials(const std::string& path);
 
 }  // namespace radrecon

@@ -85,7 +85,15 @@ TEST(MeshImportErrors, ObjNegativeEmissionOrNonFiniteColourIsRefused) {
   write_file(dir / "neg.mtl", "newmtl m\nKd 0.5 0.5 0.5\nKe -1 0 0\n");
   EXPECT_TRUE(Refused(dir, "neg.obj", std::string("mtllib neg.mtl\n") + kTriangle + "usemtl m\nf 1 2 3\n", {"'m' Ke", ">= 0"}));
   write_file(dir / "nan.mtl", "newmtl m\nKd nan 0.5 0.5\n");
-  EXPECT_TRUE(Refused(dir, "nankd.obj", std::string("mtllib nan.mtl\n") + kTriangle + "usemtl m\nf 1 2 3\n", {"'m' Kd", "not finite"}));
+  EXPECT_TRUE(Refused(dir, "nankd.obj", std::string("mtllib nan.mtl\n") + kTriangle + "usemtl m\nf 1 2 3\n",
+                      {"nan.mtl:2", "Kd value 'nan'", "not a finite number"}));
+  // Named with its MTL file and line (assimp 5.2 named the OBJ alone, and refused Blender's aniso).
+  write_file(dir / "two.mtl", "newmtl m\naniso 0.0\nanisor 0.0\nKd 0.2 0.4\n");
+  EXPECT_TRUE(Refused(dir, "two.obj", std::string("mtllib two.mtl\n") + kTriangle + "usemtl m\nf 1 2 3\n",
+                      {"two.mtl:4", "Kd must be one number (grey) or three (r g b), got 2"}));
+  write_file(dir / "spectral.mtl", "newmtl m\nKd spectral x.rfl\n");
+  EXPECT_TRUE(Refused(dir, "spectral.obj", std::string("mtllib spectral.mtl\n") + kTriangle + "usemtl m\nf 1 2 3\n",
+                      {"spectral.mtl:2", "spectral colours are not read"}));
   write_file(dir / "hot.mtl", "newmtl m\nKe 1e300\n");  // one value: grey, and beyond 1e12 W/m^2
   EXPECT_TRUE(Refused(dir, "hot.obj", std::string("mtllib hot.mtl\n") + kTriangle + "usemtl m\nf 1 2 3\n", {"'m' Ke", "at most 1e+12"}));
 }
