@@ -1,5 +1,6 @@
 #include "io/assimp_import.h"
 
+#include <assimp/DefaultIOSystem.h>
 #include <assimp/Importer.hpp>
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
@@ -21,6 +22,7 @@
 #include "core/parse.h"
 #include "core/tolerances.h"
 #include "io/gltf_extras.h"
+#include "io/gltf_indices.h"
 #include "io/mesh_polygons.h"
 #include "io/obj_check.h"
 #include "io/ply_check.h"
@@ -153,6 +155,23 @@ std::string clean_name(const std::string& raw) {
   }
   return out;
 }
+
+/// assimp's own file access, with a glTF buffer's percent-encoded URI decoded (assimp 5.2 opens
+/// "my%20model.bin" as written): a file that does not exist as named is looked for decoded.
+class UriDecodingIOSystem final : public Assimp::DefaultIOSystem {
+ public:
+  bool Exists(const char* file) const override { return DefaultIOSystem::Exists(resolve(file).c_str()); }
+  Assimp::IOStream* Open(const char* file, const char* mode) override {
+    return DefaultIOSystem::Open(resolve(file).c_str(), mode);
+  }
+
+ private:
+  std::string resolve(const char* file) const {
+    if (DefaultIOSystem::Exists(file)) return file;
+    const std::string decoded = percent_decoded(file);
+    return DefaultIOSystem::Exists(decoded.c_str()) ? decoded : std::string(file);
+  }
+};
 
 class Builder {
  public:
@@ -340,6 +359,7 @@ MeshImport import_mesh_assimp(const std::string& path, const MeshPlacement& plac
     out.warnings = obj.warnings;
   }
   Assimp::Importer importer;
+  if (*format == Format::kGltf) importer.SetIOHandler(new UriDecodingIOSystem);  // the importer owns it
   const aiScene* scene = nullptr;
   try {
     // No aiProcess_Triangulate: quads stay quads; larger polygons are cut here.

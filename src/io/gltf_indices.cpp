@@ -68,7 +68,7 @@ class Buffers {
         if (comma != std::string::npos && uri.substr(0, comma).find(";base64") != std::string::npos)
           slot = base64_decode(uri.substr(comma + 1));
       } else if (uri.find("://") == std::string::npos) {
-        const std::string file = (std::filesystem::path(folder_) / uri).string();
+        const std::string file = gltf_uri_file(folder_, uri);
         std::error_code ec;
         if (std::filesystem::is_regular_file(file, ec)) {  // not a pipe or a device
           check_input_file_size(file);
@@ -193,6 +193,30 @@ void check_gltf_indices(const json& doc, const std::string& bin, const std::stri
       }
     }
   }
+}
+
+std::string percent_decoded(std::string_view uri) {
+  const auto hex = [](char c) {
+    return c >= '0' && c <= '9' ? c - '0' : c >= 'a' && c <= 'f' ? c - 'a' + 10 : c >= 'A' && c <= 'F' ? c - 'A' + 10 : -1;
+  };
+  std::string out;
+  out.reserve(uri.size());
+  for (size_t i = 0; i < uri.size(); ++i) {
+    if (uri[i] == '%' && i + 2 < uri.size() && hex(uri[i + 1]) >= 0 && hex(uri[i + 2]) >= 0) {
+      out += static_cast<char>(16 * hex(uri[i + 1]) + hex(uri[i + 2]));
+      i += 2;
+    } else {
+      out += uri[i];
+    }
+  }
+  return out;
+}
+
+std::string gltf_uri_file(const std::string& folder, const std::string& uri) {
+  const std::filesystem::path as_written = std::filesystem::path(folder) / uri;
+  const std::filesystem::path decoded = std::filesystem::path(folder) / percent_decoded(uri);
+  std::error_code ec;
+  return (std::filesystem::exists(decoded, ec) || !std::filesystem::exists(as_written, ec) ? decoded : as_written).string();
 }
 
 }  // namespace radrecon

@@ -305,6 +305,22 @@ TEST(MeshImport, BinaryGltfReadsTheSame) {
   check_glow_quads(import_mesh((dir / "glow.glb").string()));
 }
 
+TEST(MeshImport, GltfBufferNamedByAPercentEncodedUri) {
+  // Blender writes "my%20model.bin" for "my model.bin" (RFC 3986); assimp 5.2 opened it as written.
+  TempDir dir("mesh_gltf");
+  std::string buffer;
+  nlohmann::json g = testing_support::quad_gltf(buffer);
+  g["buffers"][0]["uri"] = "my%20model.bin";
+  write_file(dir / "my model.bin", buffer);
+  write_file(dir / "spaced.gltf", g.dump());
+  check_glow_quads(import_mesh((dir / "spaced.gltf").string()));
+  // A '%' that encodes nothing stays as written.
+  g["buffers"][0]["uri"] = "100%25 %zz.bin";
+  write_file(dir / "100% %zz.bin", buffer);
+  write_file(dir / "percent.gltf", g.dump());
+  check_glow_quads(import_mesh((dir / "percent.gltf").string()));
+}
+
 TEST(MeshImport, GltfStripsFansAndRepeatedIndicesAreFacesToo) {
   // The same four vertices as a strip (0 1 3 2: two triangles), a fan (0 1 2 3: two triangles)
   // and a list with a repeated index (0 1 2, 0 0 2: one degenerate triangle, skipped).
