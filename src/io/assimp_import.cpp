@@ -2,6 +2,7 @@
 
 #include <assimp/DefaultIOSystem.h>
 #include <assimp/Importer.hpp>
+#include <assimp/MemoryIOWrapper.h>
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -65,14 +66,6 @@ Rgb emission_from(const Rgb& c, const std::string& path, const std::string& what
   return c;
 }
 
-std::optional<Rgb> colour_key(const aiMaterial* m, const char* key, unsigned type, unsigned index) {
-  aiColor4D c;
-  if (m->Get(key, type, index, c) != aiReturn_SUCCESS) return std::nullopt;
-  return Rgb(c.r, c.g, c.b);
-}
-
-bool near(const Rgb& a, const Rgb& b) { return ((a - b).abs() <= 1e-6 * (1.0 + a.abs().max(b.abs()))).all(); }
-
 std::vector<Material> read_materials(const aiScene& scene, Format format, const std::string& path,
                                      const std::vector<GltfMaterialFactors>& gltf, const ObjMaterials& obj,
                                      std::vector<std::string>& warnings) {
@@ -92,29 +85,16 @@ std::vector<Material> read_materials(const aiScene& scene, Format format, const 
       if (found->second.kd) mat.reflectance = reflectance_from(*found->second.kd, path, what + " Kd", warnings);
       if (found->second.ke) mat.emission_w_m2 = emission_from(*found->second.ke, path, what + " Ke");
     } else if (format == Format::kGltf) {
-      auto base = colour_key(m, AI_MATKEY_BASE_COLOR);
-      if (!base) base = colour_key(m, AI_MATKEY_COLOR_DIFFUSE);
-      const Rgb emissive = colour_key(m, AI_MATKEY_COLOR_EMISSIVE).value_or(Rgb::Zero());
-      // assimp 5.2 drops KHR_materials_emissive_strength and renumbers the materials: find this
-      // one in the file by name (and by factors among materials of the same name), for its
-      // strength. Unnamed and not in the file: assimp's default material, for a primitive
-      // without one.
-      std::vector<const GltfMaterialFactors*> same;
-      for (const GltfMaterialFactors& f : gltf)
-        if (f.name == name) same.push_back(&f);
-      const auto strengths_differ = [&] {
-        for (const GltfMaterialFactors* f : same)
-          if (f->emissive_strength != same.front()->emissive_strength) return true;
-        return false;
-      };
-      if (name.empty() || strengths_differ())
-        std::erase_if(same, [&](const GltfMaterialFactors* f) { return !base || !near(*base, f->base_colour) || !near(emissive, f->emissive); });
-      if (same.empty() && name.empty()) continue;  // the default: 0.5 grey
-      if (strengths_differ())
-        throw UserError(path, "glTF materials named '" + name + "' with the same factors have different emissive strengths: give them distinct names");
-      const double strength = same.empty() ? 1.0 : same.front()->emissive_strength;
-      if (base) mat.reflectance = reflectance_from(*base, path, what + " baseColorFactor", warnings);
-      mat.emission_w_m2 = emission_from(emissive * strength, path, what + " emissiveFactor x emissiveStrength");
+      // The copy assimp read names each material by its index in the file (io/gltf_extras.h);
+      // another name is assimp's default material, for a primitive without one: 0.5 grey.
+      const long long index = gltf_material_index(name);
+      if (index < 0) continue;
+      RR_CHECK(static_cast<size_t>(index) < gltf.size(), "a glTF material tag past the file's materials");
+      const GltfMaterialFactors& f = gltf[static_cast<size_t>(index)];
+      const std::string field = f.name.empty() ? "materials[" + std::to_string(index) + "]" : "material '" + f.name + "'";
+      const std::string base = f.base_colour_field.substr(f.base_colour_field.find('.') + 1);
+      mat.reflectance = reflectance_from(f.base_colour, path, field + " " + base, warnings);
+      mat.emission_w_m2 = emission_from(f.emissive * f.emissive_strength, path, field + " emissiveFactor x emissiveStrength");
     }
     // PLY: no material; vertex colours per face (below), else the default.
   }
@@ -156,16 +136,22 @@ std::string clean_name(const std::string& raw) {
   return out;
 }
 
-/// assimp's own file access, with a glTF buffer's percent-encoded URI decoded (assimp 5.2 opens
+/// assimp's file access for a glTF: the file itself from radrecon's copy (GltfExtras::assimp_copy,
+/// which outlives it), the others from disk, a percent-encoded URI decoded (assimp 5.2 opens
 /// "my%20model.bin" as written): a file that does not exist as named is looked for decoded.
-class UriDecodingIOSystem final : public Assimp::DefaultIOSystem {
+class GltfIOSystem final : public Assimp::DefaultIOSystem {
  public:
-  bool Exists(const char* file) const override { return DefaultIOSystem::Exists(resolve(file).c_str()); }
+  GltfIOSystem(std::string path, const std::string& copy) : path_(std::move(path)), copy_(copy) {}
+  bool Exists(const char* file) const override { return is_copy(file) || DefaultIOSystem::Exists(resolve(file).c_str()); }
   Assimp::IOStream* Open(const char* file, const char* mode) override {
+    if (is_copy(file)) return new Assimp::MemoryIOStream(reinterpret_cast<const uint8_t*>(copy_.data()), copy_.size());
     return DefaultIOSystem::Open(resolve(file).c_str(), mode);
   }
 
  private:
+  bool is_copy(const char* file) const { return path_ == file; }
+  std::string path_;
+  const std::string& copy_;
   std::string resolve(const char* file) const {
     if (DefaultIOSystem::Exists(file)) return file;
     const std::string decoded = percent_decoded(file);
@@ -359,7 +345,7 @@ MeshImport import_mesh_assimp(const std::string& path, const MeshPlacement& plac
     out.warnings = obj.warnings;
   }
   Assimp::Importer importer;
-  if (*format == Format::kGltf) importer.SetIOHandler(new UriDecodingIOSystem);  // the importer owns it
+  if (*format == Format::kGltf) importer.SetIOHandler(new GltfIOSystem(path, gltf.assimp_copy));  // the importer owns it
   const aiScene* scene = nullptr;
   try {
     // No aiProcess_Triangulate: quads stay quads; larger polygons are cut here.

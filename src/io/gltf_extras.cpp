@@ -46,6 +46,29 @@ std::pair<std::string, std::string> glb_chunks(const std::string& bytes, const s
   return {bytes.substr(20, length), bin};
 }
 
+void append_u32(std::string& bytes, uint32_t v) {
+  for (int k = 0; k < 4; ++k) bytes += static_cast<char>((v >> (8 * k)) & 0xFFu);
+}
+
+/// A binary glTF of the JSON text and BIN chunk (none if empty), each padded to 4 bytes as the
+/// format asks (the JSON with spaces, the BIN with zeros).
+std::string glb_with_json(std::string json_text, std::string bin) {
+  while (json_text.size() % 4) json_text += ' ';
+  while (bin.size() % 4) bin += '\0';
+  std::string out = "glTF";
+  append_u32(out, 2);
+  append_u32(out, static_cast<uint32_t>(12 + 8 + json_text.size() + (bin.empty() ? 0 : 8 + bin.size())));
+  append_u32(out, static_cast<uint32_t>(json_text.size()));
+  append_u32(out, 0x4E4F534Au);
+  out += json_text;
+  if (!bin.empty()) {
+    append_u32(out, static_cast<uint32_t>(bin.size()));
+    append_u32(out, 0x004E4942u);
+    out += bin;
+  }
+  return out;
+}
+
 Rgb factor(const JsonReader& r, const json& j, const std::string& path, size_t needed, Rgb fallback) {
   if (!j.is_array() || j.size() < needed) r.fail(path, "must be an array of " + std::to_string(needed) + " numbers");
   Rgb out = fallback;
@@ -203,10 +226,10 @@ void check_glb_buffers(const JsonReader& r, const json& doc) {
 }  // namespace
 
 GltfExtras read_gltf_extras(const std::string& path) {
-  std::string text = read_text_file(path, "mesh file");
+  const std::string file = read_text_file(path, "mesh file");
   const bool binary = lower_extension(path) == ".glb";
-  std::string bin;
-  if (binary) std::tie(text, bin) = glb_chunks(text, path);
+  std::string text = file, bin;
+  if (binary) std::tie(text, bin) = glb_chunks(file, path);
   const JsonReader r(path);
   // A modelling tool's file: a key it repeats where radrecon reads nothing (extras, extensions)
   // is no reason to refuse it; the last value counts, as in every glTF reader.
@@ -230,18 +253,32 @@ GltfExtras read_gltf_extras(const std::string& path) {
     }
   }
   std::vector<GltfMaterialFactors>& out = extras.materials;
-  if (!doc.contains("materials")) return extras;
+  if (!doc.contains("materials")) {
+    extras.assimp_copy = file;
+    return extras;
+  }
   const json& materials = doc["materials"];
   if (!materials.is_array()) r.fail("materials", "must be an array");
+  json tagged = doc;
+  for (size_t i = 0; i < materials.size(); ++i)
+    if (tagged["materials"][i].is_object()) tagged["materials"][i]["name"] = gltf_material_tag(i);
+  extras.assimp_copy = binary ? glb_with_json(tagged.dump(), bin) : tagged.dump();
   for (size_t i = 0; i < materials.size(); ++i) {
     const std::string where = JsonReader::at("materials", i);
     const json& m = materials[i];
     if (!m.is_object()) r.fail(where, "must be an object");
     GltfMaterialFactors f;
     if (m.contains("name")) f.name = r.string(m["name"], where + ".name");
+    f.base_colour_field = where + ".pbrMetallicRoughness.baseColorFactor";
     if (m.contains("pbrMetallicRoughness") && m["pbrMetallicRoughness"].is_object() &&
         m["pbrMetallicRoughness"].contains("baseColorFactor"))
-      f.base_colour = factor(r, m["pbrMetallicRoughness"]["baseColorFactor"], where + ".pbrMetallicRoughness.baseColorFactor", 4, f.base_colour);
+      f.base_colour = factor(r, m["pbrMetallicRoughness"]["baseColorFactor"], f.base_colour_field, 4, f.base_colour);
+    if (m.contains("extensions") && m["extensions"].is_object() && m["extensions"].contains("KHR_materials_pbrSpecularGlossiness")) {
+      const json& e = m["extensions"]["KHR_materials_pbrSpecularGlossiness"];
+      f.base_colour_field = where + ".extensions.KHR_materials_pbrSpecularGlossiness.diffuseFactor";
+      if (!e.is_object()) r.fail(where + ".extensions.KHR_materials_pbrSpecularGlossiness", "must be an object");
+      f.base_colour = e.contains("diffuseFactor") ? factor(r, e["diffuseFactor"], f.base_colour_field, 4, Rgb::Ones()) : Rgb::Ones();
+    }
     if (m.contains("emissiveFactor")) f.emissive = factor(r, m["emissiveFactor"], where + ".emissiveFactor", 3, f.emissive);
     if (m.contains("extensions") && m["extensions"].is_object() && m["extensions"].contains("KHR_materials_emissive_strength")) {
       const std::string ext = where + ".extensions.KHR_materials_emissive_strength";
@@ -255,6 +292,19 @@ GltfExtras read_gltf_extras(const std::string& path) {
     out.push_back(f);
   }
   return extras;
+}
+
+std::string gltf_material_tag(size_t index) { return "radrecon#material#" + std::to_string(index); }
+
+long long gltf_material_index(const std::string& name) {
+  constexpr std::string_view kPrefix = "radrecon#material#";
+  if (!name.starts_with(kPrefix) || name.size() == kPrefix.size() || name.size() > kPrefix.size() + 18) return -1;
+  long long index = 0;
+  for (size_t k = kPrefix.size(); k < name.size(); ++k) {
+    if (name[k] < '0' || name[k] > '9') return -1;
+    index = 10 * index + (name[k] - '0');
+  }
+  return index;
 }
 
 }  // namespace radrecon

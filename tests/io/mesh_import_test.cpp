@@ -349,8 +349,8 @@ TEST(MeshImport, GltfStripsFansAndRepeatedIndicesAreFacesToo) {
 }
 
 TEST(MeshImport, GltfPrimitiveWithoutMaterialIsHalfGreyBesideAnUnnamedMaterial) {
-  // assimp names both the unnamed "glow" and its default material '': they are told apart by
-  // their factors.
+  // assimp 5.2 names both the unnamed "glow" and its default material '': the copy it reads
+  // names every material by its index (io/gltf_extras.h).
   TempDir dir("mesh_gltf");
   std::string buffer;
   nlohmann::json g = testing_support::quad_gltf(buffer);
@@ -367,6 +367,42 @@ TEST(MeshImport, GltfPrimitiveWithoutMaterialIsHalfGreyBesideAnUnnamedMaterial) 
   expect_near(named(m.surfaces, "quad:0").emission_w_m2, Rgb(8, 4, 2));
   expect_near(named(m.surfaces, "plain:0").reflectance, Rgb::Constant(0.5));
   expect_near(named(m.surfaces, "plain:0").emission_w_m2, Rgb::Zero());
+}
+
+TEST(MeshImport, GltfMaterialsFoundByIndexWhateverTheirNamesAndSpecularGlossinessDiffuse) {
+  // Two unnamed materials of the same factors and different strengths (refused before: assimp 5.2
+  // drops the strength and names both ''), and a third of the archived
+  // KHR_materials_pbrSpecularGlossiness, whose diffuseFactor is its colour (assimp gave its
+  // default baseColorFactor, white).
+  TempDir dir("mesh_gltf");
+  std::string buffer;
+  nlohmann::json g = testing_support::quad_gltf(buffer);
+  g["materials"][1].erase("name");
+  g["materials"][0] = g["materials"][1];
+  g["materials"][0]["extensions"]["KHR_materials_emissive_strength"]["emissiveStrength"] = 2;
+  g["materials"].push_back({{"extensions", {{"KHR_materials_pbrSpecularGlossiness", {{"diffuseFactor", {0.2, 0.3, 0.4, 1}}}}}}});
+  for (const int k : {1, 2}) {
+    nlohmann::json mesh = g["meshes"][0];
+    mesh["name"] = "quad" + std::to_string(k);
+    mesh["primitives"][0]["material"] = k == 1 ? 0 : 2;
+    g["meshes"].push_back(mesh);
+    g["nodes"].push_back({{"mesh", k}});
+    g["scenes"][0]["nodes"].push_back(static_cast<int>(g["nodes"].size()) - 1);
+  }
+  write_file(dir / "strengths.gltf", testing_support::gltf_text(g, buffer));
+  const MeshImport m = import_mesh((dir / "strengths.gltf").string());
+  expect_near(named(m.surfaces, "quad:0").emission_w_m2, Rgb(8, 4, 2));   // materials[1], strength 8
+  expect_near(named(m.surfaces, "quad1:0").emission_w_m2, Rgb(2, 1, 0.5)); // materials[0], strength 2
+  expect_near(named(m.surfaces, "quad1:0").reflectance, Rgb(0.4, 0.5, 0.6));
+  expect_near(named(m.surfaces, "quad2:0").reflectance, Rgb(0.2, 0.3, 0.4));
+  expect_near(named(m.surfaces, "quad2:0").emission_w_m2, Rgb::Zero());
+  // A material's name as the file has it in a warning (Kd of 1 and more clamped).
+  g["materials"][2] = {{"name", "white"}};
+  write_file(dir / "white.gltf", testing_support::gltf_text(g, buffer));
+  const MeshImport white = import_mesh((dir / "white.gltf").string());
+  ASSERT_FALSE(white.warnings.empty());
+  EXPECT_NE(white.warnings.front().find("material 'white' pbrMetallicRoughness.baseColorFactor"), std::string::npos)
+      << white.warnings.front();
 }
 
 TEST(MeshImport, MirroringNodeKeepsTheFrontInFront) {
