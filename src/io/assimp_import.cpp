@@ -162,10 +162,13 @@ class GltfIOSystem final : public Assimp::DefaultIOSystem {
 class Builder {
  public:
   /// `file_offset_m`: added to every vertex assimp read, before the node transforms (an OBJ moved
-  /// to the origin for assimp's floats, io/obj_check.h).
+  /// to the origin for assimp's floats, io/obj_check.h). `face_colours`: a PLY's, one per face of
+  /// the scene's one mesh, or null.
   Builder(const aiScene& scene, Format format, std::string path, const std::vector<GltfMaterialFactors>& gltf,
-          const ObjMaterials& obj, const MeshPlacement& placement, const Vec3& file_offset_m, MeshImport& out)
-      : scene_(scene), format_(format), path_(std::move(path)), placement_(placement), file_offset_m_(file_offset_m), out_(out) {
+          const ObjMaterials& obj, const MeshPlacement& placement, const Vec3& file_offset_m,
+          const std::vector<Rgb>* face_colours, MeshImport& out)
+      : scene_(scene), format_(format), path_(std::move(path)), placement_(placement), file_offset_m_(file_offset_m),
+        face_colours_(face_colours), out_(out) {
     stem_ = std::filesystem::path(path_).stem().string();
     materials_ = read_materials(scene, format, path_, gltf, obj, out.warnings);
     const double a = placement.rotate_x_deg * std::numbers::pi / 180.0;
@@ -190,8 +193,8 @@ class Builder {
   /// and one for the polygons of 5 or more corners off their plane.
   void finish() {
     if (colours_clamped_ > 0)
-      out_.warnings.push_back(path_ + ": the mean vertex colour of " + std::to_string(colours_clamped_) +
-                              " face(s) clamped into [0, 0.999] (a reflectance must lie in [0, 1))");
+      out_.warnings.push_back(path_ + ": the " + (face_colours_ != nullptr ? "colour" : "mean vertex colour") + " of " +
+                              std::to_string(colours_clamped_) + " face(s) clamped into [0, 0.999] (a reflectance must lie in [0, 1))");
     if (polygons_warped_ > 0)
       out_.warnings.push_back(path_ + ": " + std::to_string(polygons_warped_) + " polygon(s) of 5 or more corners not planar (up to " +
                               format_number(most_warped_) + " of their longest edge off their plane): cut into triangles through their corners");
@@ -260,6 +263,11 @@ class Builder {
         s.reflectance = mean.max(0.0).min(kMaxReflectance);
         colours_clamped_ += (s.reflectance != mean).any();
       }
+      if (face_colours_ != nullptr) {  // a PLY face's own colour, before its vertices'
+        const Rgb colour = (*face_colours_)[f];
+        s.reflectance = colour.max(0.0).min(kMaxReflectance);
+        colours_clamped_ += (s.reflectance != colour).any();
+      }
       s.emission_w_m2 = material.emission_w_m2;
       if (placement_.reflectance) s.reflectance = *placement_.reflectance;
       if (placement_.emission_w_m2) s.emission_w_m2 = *placement_.emission_w_m2;
@@ -308,6 +316,7 @@ class Builder {
   std::string path_, stem_;
   const MeshPlacement& placement_;
   Vec3 file_offset_m_;
+  const std::vector<Rgb>* face_colours_ = nullptr;  ///< a PLY's, by face of its one mesh (CheckedPly)
   MeshImport& out_;
   std::vector<Material> materials_;
   Eigen::Matrix3d placement_linear_;
@@ -371,7 +380,17 @@ MeshImport import_mesh_assimp(const std::string& path, const MeshPlacement& plac
   if (*format == Format::kGltf && read < gltf.faces)
     throw UserError(path, "vertex indices out of range: its primitives declare " + std::to_string(gltf.faces) + " faces, " +
                               std::to_string(gltf.faces - read) + " of them with an index past their vertices");
-  Builder builder(*scene, *format, path, gltf.materials, obj, placement, obj_copy.offset_m, out);
+  // A PLY's face colours, by face: assimp makes one mesh of its faces, in order, unless a
+  // material_index splits them.
+  const std::vector<Rgb>* face_colours = nullptr;
+  if (ply && !ply->face_colours.empty()) {
+    if (scene->mNumMeshes == 1 && scene->mMeshes[0] != nullptr && scene->mMeshes[0]->mNumFaces == ply->face_colours.size())
+      face_colours = &ply->face_colours;
+    else
+      out.warnings.push_back(path + ": its face colours are not read: its faces are split among " + std::to_string(scene->mNumMeshes) +
+                             " materials (their vertex colours, else 0.5 grey, are used)");
+  }
+  Builder builder(*scene, *format, path, gltf.materials, obj, placement, obj_copy.offset_m, face_colours, out);
   builder.node(scene->mRootNode, aiMatrix4x4(), 0);
   builder.finish();
   if (out.degenerate_skipped > 0)

@@ -1,10 +1,12 @@
 #include "io/ply_check.h"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <optional>
 #include <sstream>
 #include <string_view>
@@ -50,6 +52,51 @@ struct Element {
   /// 0 records) and returns early from `TextureFile`, reading later elements out of step.
   bool kept() const { return name == "vertex" || name == "face" || name == "tristrips" || name == "edge" || name == "material"; }
 };
+
+/// A colour value of type `t` in [0, 1] as PLY writers mean it: an integer over its type's
+/// largest value (255 for uchar), a real as it is.
+double colour_scale(double value, const ScalarType& t) {
+  if (t.is_real) return value;
+  const double largest = t.is_signed ? std::ldexp(1.0, 8 * static_cast<int>(t.bytes) - 1) - 1 : std::ldexp(1.0, 8 * static_cast<int>(t.bytes)) - 1;
+  return value / largest;
+}
+
+/// A binary scalar of type `t` at bytes[pos], in the file's byte order.
+double binary_scalar(const std::string& bytes, size_t pos, const ScalarType& t, bool big) {
+  uint64_t raw = 0;
+  for (size_t k = 0; k < t.bytes; ++k) raw = (raw << 8) | static_cast<unsigned char>(bytes[pos + (big ? k : t.bytes - 1 - k)]);
+  if (t.is_real) {
+    if (t.bytes == 4) {
+      float f;
+      const uint32_t r32 = static_cast<uint32_t>(raw);
+      std::memcpy(&f, &r32, 4);
+      return f;
+    }
+    double d;
+    std::memcpy(&d, &raw, 8);
+    return d;
+  }
+  if (t.is_signed && t.bytes < 8 && (raw >> (8 * t.bytes - 1)) != 0) return static_cast<double>(static_cast<int64_t>(raw - (uint64_t{1} << (8 * t.bytes))));
+  return static_cast<double>(raw);
+}
+
+/// The indices of the face element's scalar colour properties (red, green, blue, or
+/// diffuse_red...), or none.
+std::optional<std::array<size_t, 3>> face_colour_properties(const Element& e) {
+  if (e.name != "face") return std::nullopt;
+  std::array<size_t, 3> out{};
+  const char* channels[3] = {"red", "green", "blue"};
+  for (int c = 0; c < 3; ++c) {
+    bool found = false;
+    for (size_t k = 0; k < e.properties.size() && !found; ++k) {
+      const Property& p = e.properties[k];
+      const std::string name = p.line.substr(p.line.rfind(' ') + 1);
+      if (!p.count && (name == channels[c] || name == std::string("diffuse_") + channels[c])) out[static_cast<size_t>(c)] = k, found = true;
+    }
+    if (!found) return std::nullopt;
+  }
+  return out;
+}
 
 /// The integer an ASCII token spells in type `t` (decimal; a sign only for a signed type, as
 /// assimp reads an unsigned '+1' as 0), or none if it is not one or is out of the type's range.
@@ -229,7 +276,8 @@ CheckedPly check_ply(const std::string& path) {
   if (!binary) {
     // One record a line, each value a number of its property's type, written anew.
     std::vector<std::string_view> tokens;
-    for (const Element& e : elements)
+    for (const Element& e : elements) {
+      const std::optional<std::array<size_t, 3>> colours = face_colour_properties(e);
       for (size_t r = 0; r < e.count; ++r) {
         if (pos == bytes.size()) throw truncated(e, r);
         bool last = false;
@@ -253,7 +301,9 @@ CheckedPly check_ply(const std::string& path) {
           return "'" + std::string(token.substr(0, 24)) + (token.size() > 24 ? "...'" : "'");
         };
         const size_t record_start = out.bytes.size();
-        for (const Property& p : e.properties) {
+        Rgb colour = Rgb::Zero();
+        for (size_t pk = 0; pk < e.properties.size(); ++pk) {
+          const Property& p = e.properties[pk];
           long long items = 1;
           if (p.count) {
             const std::string_view token = next_token();
@@ -264,17 +314,24 @@ CheckedPly check_ply(const std::string& path) {
           }
           for (long long k = 0; k < items; ++k) {
             const std::string_view token = next_token();
+            double read = 0;
             if (p.item.is_real) {
               const std::optional<double> value = real_of(token);
               if (!value) throw bad(where + quoted(token) + " is not a finite number");
               append_value(out.bytes, *value);
+              read = *value;
             } else {
               const std::optional<long long> value = integer_of(token, p.item);
               if (!value) throw bad(where + quoted(token) + " is not an integer of its property's type");
               append_value(out.bytes, *value);
+              read = static_cast<double>(*value);
             }
+            if (colours)
+              for (int c = 0; c < 3; ++c)
+                if ((*colours)[static_cast<size_t>(c)] == pk) colour[c] = colour_scale(read, p.item);
           }
         }
+        if (colours) out.face_colours.push_back(colour);
         if (t != tokens.size()) throw bad(where + "has more values than its properties take");
         if (!e.kept()) {
           out.bytes.resize(record_start);
@@ -282,6 +339,7 @@ CheckedPly check_ply(const std::string& path) {
           out.bytes.back() = '\n';  // every record has a value: an element of no properties has none
         }
       }
+    }
     // Records past those the header declares: a header out of step with its data.
     while (pos < bytes.size()) {
       bool last = false;
@@ -292,12 +350,22 @@ CheckedPly check_ply(const std::string& path) {
     return out;
   }
   const bool big = format == "binary_big_endian";
-  for (const Element& e : elements)
+  for (const Element& e : elements) {
+    const std::optional<std::array<size_t, 3>> colours = face_colour_properties(e);
     for (size_t r = 0; r < e.count; ++r) {
       const size_t record_start = pos;
-      for (const Property& p : e.properties) {
+      Rgb colour = Rgb::Zero();
+      for (size_t pk = 0; pk < e.properties.size(); ++pk) {
+        const Property& p = e.properties[pk];
         if (!p.count) {
           if (bytes.size() - pos < p.item.bytes) throw truncated(e, r);
+          if (colours)
+            for (int c = 0; c < 3; ++c)
+              if ((*colours)[static_cast<size_t>(c)] == pk) {
+                const double value = binary_scalar(bytes, pos, p.item, big);
+                if (!std::isfinite(value)) throw bad("face " + std::to_string(r) + ": its colour is not finite");
+                colour[c] = colour_scale(value, p.item);
+              }
           pos += p.item.bytes;
           continue;
         }
@@ -316,7 +384,9 @@ CheckedPly check_ply(const std::string& path) {
         pos += n * p.item.bytes;
       }
       if (e.kept()) out.bytes.append(bytes, record_start, pos - record_start);
+      if (colours) out.face_colours.push_back(colour);
     }
+  }
   // Bytes past the records the header declares, other than line ends and blanks: a header out of
   // step with its data.
   if (bytes.find_first_not_of(" \t\r\n", pos) != std::string::npos)

@@ -9,6 +9,9 @@
 
 #include <cstddef>
 #include <string>
+#include <vector>
+
+#include "core/vec.h"
 
 namespace radrecon {
 
@@ -20,6 +23,10 @@ struct CheckedPly {
   /// (decimal integers, reals in their shortest round-trip form); binary copied byte for byte.
   std::string bytes;
   size_t faces = 0;  ///< the faces its header declares
+  /// Each face's colour, in file order, where the face element has scalar `red`, `green` and
+  /// `blue` properties (or `diffuse_red`...), which assimp 5.2 does not read: integers scaled by
+  /// their type's largest value (255 for uchar), reals as they are. Empty otherwise.
+  std::vector<Rgb> face_colours;
 };
 
 /// Reads the PLY file's header strictly and its data (ASCII or binary, either byte order)

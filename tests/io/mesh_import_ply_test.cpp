@@ -142,6 +142,53 @@ TEST(MeshImport, BinaryPlyInEitherByteOrder) {
   }
 }
 
+TEST(MeshImport, PlyFaceColoursAreTheFacesOwnAndWinOverVertexColours) {
+  // Two faces, their colours as the face element's properties (assimp 5.2 reads none: a face of
+  // red 200 came out 0.5 grey): uchar over 255, a second file with float diffuse_* and binary
+  // ushort over 65535, in either byte order.
+  TempDir dir("mesh_ply");
+  const std::string header = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+                             "property uchar red\nproperty uchar green\nproperty uchar blue\nelement face 2\n"
+                             "property list uchar int vertex_indices\n";
+  const std::string vertices = "0 0 0 0 0 0\n1 0 0 0 0 0\n1 1 0 0 0 0\n0 1 0 0 0 0\n";
+  write_file(dir / "uchar.ply", header + "property uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n" + vertices +
+                                    "3 0 1 2 200 20 20\n3 0 2 3 51 102 255\n");
+  const MeshImport m = import_mesh((dir / "uchar.ply").string());
+  ASSERT_EQ(m.surfaces.size(), 2u);
+  expect_near(m.surfaces[0].reflectance, Rgb(200, 20, 20) / 255.0);
+  expect_near(m.surfaces[1].reflectance, Rgb(0.2, 0.4, 0.999));  // 255 is 1: clamped, with a warning
+  ASSERT_EQ(m.warnings.size(), 1u);
+  EXPECT_NE(m.warnings[0].find("the colour of 1 face(s) clamped"), std::string::npos) << m.warnings[0];
+  write_file(dir / "float.ply", header + "property float diffuse_red\nproperty float diffuse_green\nproperty float diffuse_blue\n"
+                                    "end_header\n" + vertices + "3 0 1 2 0.25 0.5 0.75\n3 0 2 3 0.1 0.2 0.3\n");
+  const MeshImport f = import_mesh((dir / "float.ply").string());
+  ASSERT_EQ(f.surfaces.size(), 2u);
+  expect_near(f.surfaces[0].reflectance, Rgb(0.25, 0.5, 0.75));
+  expect_near(f.surfaces[1].reflectance, Rgb(0.1, 0.2, 0.3));
+  for (bool big : {false, true}) {
+    std::string bin = std::string("ply\nformat binary_") + (big ? "big" : "little") +
+                      "_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                      "element face 1\nproperty ushort red\nproperty list uchar int vertex_indices\nproperty ushort green\n"
+                      "property ushort blue\nend_header\n";
+    const auto put = [&](auto value) {
+      std::string raw;
+      testing_support::append_le(raw, value);
+      if (big) std::reverse(raw.begin(), raw.end());
+      bin += raw;
+    };
+    for (float v : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 1.f, 1.f, 0.f}) put(v);
+    put(uint16_t{13107});  // 0.2
+    bin += char(3);
+    for (int32_t i : {0, 1, 2}) put(i);
+    put(uint16_t{26214});  // 0.4
+    put(uint16_t{39321});  // 0.6
+    write_file(dir / "bin.ply", bin);
+    const MeshImport b = import_mesh((dir / "bin.ply").string());
+    ASSERT_EQ(b.surfaces.size(), 1u);
+    expect_near(b.surfaces[0].reflectance, Rgb(0.2, 0.4, 0.6));
+  }
+}
+
 TEST(MeshImport, BinaryPlyWhoseDataBeginsWithALineFeedByte) {
   // assimp 5.2, reading the file itself, dropped a first data byte of 0x0A after "end_header\n"
   // and read every value one byte late. x = 1.0000012f is stored as 0A 00 80 3F.
