@@ -100,6 +100,13 @@ write("obj_inf.obj", "v 0 0 0\nv inf 0 0\nv 1 1 0\nf 1 2 3\n")
 write("obj_no_light.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 3\n")
 write("gltf_bad_json.gltf", '{"asset": {"version": "2.0"}, "meshes": [')
 write("glb_truncated.glb", "glTF\x02\x00\x00\x00")
+# Read by assimp 5.2 as something else with exit 0 (an outside-in trial): integer positions as
+# floats (a floor of 3e-89 m^2), a rotation of length 2.83 as a scale of 8; an MTL colour of two
+# values refused naming the OBJ alone.
+write("gltf_required_ext.gltf", '{"asset": {"version": "2.0"}, "extensionsRequired": ["KHR_mesh_quantization"]}')
+write("gltf_rotation_2.gltf", '{"asset": {"version": "2.0"}, "nodes": [{"rotation": [2, 0, 0, 2]}]}')
+write("obj_mtl_two_values.mtl", "newmtl m\nKd 0.2 0.4\n")
+write("obj_mtl_two_values.obj", "mtllib obj_mtl_two_values.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nusemtl m\nf 1 2 3\n")
 # assimp 5.2 corrupted its heap after the first (a second format line) and allocated for 10^44
 # vertices on the second (an element named by digits): found by fuzz_mesh_ply, refused before it.
 write("ply_two_formats.ply", "ply\nformat ascii 1.0\nelement vertex 1\nformat binary_little_endian 1.0\nproperty float x\nend_header\n0\n")
