@@ -69,7 +69,7 @@ void run_interpolate(const InterpolateArgs& args) {
   // `format` is radrecon's own writer; unused for a georeferenced raster.
   const FileFormat format =
       geo_raster ? FileFormat::pfm : file_format(args.out, {FileFormat::csv, FileFormat::pfm, FileFormat::png}, "--out");
-  GeoRasterOptions geo_options{args.gdal_format, args.gdal_type == "float64", args.crs, args.nodata};
+  GeoRasterOptions geo_options{args.gdal_format, args.gdal_type == "float64", args.crs, args.nodata, {}};
   if (geo_raster) {
     if (!geotiff) {
       gdal_functions("--out").raster_driver(args.out, args.gdal_format, "--out");
@@ -113,6 +113,7 @@ void run_interpolate(const InterpolateArgs& args) {
   if (use_queries) inputs.push_back(args.queries);
   if (!args.barriers.empty()) inputs.push_back(args.barriers);
   refuse_overwriting_inputs(args.out, "--out", inputs);
+  geo_options.inputs = inputs;  // nor by a side file of a GDAL format
 
   // Barriers, samples, interpolant, queries.
   if (!args.barriers.empty()) params.barriers = read_barriers_file(args.barriers, "--barriers");
@@ -230,7 +231,8 @@ void run_interpolate(const InterpolateArgs& args) {
         geotiff_functions("--out").write(tmp, args.out, raster, values, samples.channels, geo_options, geotiff_crs);
       });
     } else if (geo_raster) {
-      gdal_functions("--out").write_raster(args.out, raster, values, samples.channels, geo_options);
+      for (const std::string& warning : gdal_functions("--out").write_raster(args.out, raster, values, samples.channels, geo_options))
+        std::fprintf(stderr, "radrecon: warning: %s\n", warning.c_str());
     } else switch (format) {
       case FileFormat::csv: write_values_csv(args.out, points, values, value_names); break;
       case FileFormat::png: write_raster_png(args.out, raster, values, samples.channels); break;

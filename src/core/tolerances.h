@@ -121,6 +121,12 @@ inline constexpr double kMaxSampleCoordinate = 1e100;
 /// largest double (1e308) made Shepard's sums infinite and the C1 methods' gradients NaN.
 inline constexpr double kMaxSampleValue = 1e100;
 
+/// A raster written through GDAL is read back (io/gdal_raster.h): a value may differ from what
+/// was written by this fraction of the band's largest magnitude, with a warning (a text format's
+/// decimal digits: ZMap writes 7 significant ones, about a 32-bit float's), and no more (a format
+/// that rounds to bytes or integers).
+inline constexpr double kRasterReadBackRelative = 1e-6;
+
 /// A grid solution's element (i, j) must start within this of (i / nu, j / nv) in (u, v): the
 /// files hold 17 significant digits, so only a misplaced element is farther.
 inline constexpr double kSolutionGridParameter = 1e-9;

@@ -16,8 +16,8 @@ namespace radrecon {
 struct GdalFunctions {
   std::string (*raster_driver)(const std::string& path, const std::string& format, const std::string& where);
   void (*check_crs)(const std::string& crs);
-  void (*write_raster)(const std::string& path, const Raster& raster, std::span<const double> values, int channels,
-                       const GeoRasterOptions& options);
+  std::vector<std::string> (*write_raster)(const std::string& path, const Raster& raster, std::span<const double> values,
+                                           int channels, const GeoRasterOptions& options);
   ScatteredSamples (*read_samples)(const std::string& path, std::vector<std::string>* value_names,
                                    const CsvColumns& columns);
   std::vector<Vec2> (*read_queries)(const std::string& path, const CsvColumns& columns);

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <memory>
 #include <mutex>
 #include <sstream>
 #include <vector>
@@ -16,6 +17,7 @@
 #include "core/check.h"
 #include "core/error.h"
 #include "core/parse.h"
+#include "core/tolerances.h"
 
 namespace radrecon {
 
@@ -68,7 +70,91 @@ void require_band_type(GDALDriver* d, const char* type, const std::string& where
                              "); write .tif, .asc, .nc or another format of floating-point bands");
 }
 
+/// The raster written at `file` (in its temporary folder) read back and compared with `image`,
+/// what was given to the driver: see write_raster_gdal(). Returns the warnings.
+std::vector<std::string> read_back(const std::string& path, const std::string& file, const std::string& driver,
+                                   GDALDataset& image, const GeoRasterOptions& options) {
+  const std::string its = "GDAL's " + driver + " driver ";
+  const std::string advice = ": write .tif, .asc, .nc or another format of floating-point bands";
+  std::unique_ptr<GDALDataset> back(GDALDataset::Open(file.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
+  if (!back) throw UserError(path, its + "wrote nothing GDAL can read back (" + QuietGdal::last_error() + ")" + advice);
+  const int width = image.GetRasterXSize(), height = image.GetRasterYSize(), bands = image.GetRasterCount();
+  if (back->GetRasterXSize() != width || back->GetRasterYSize() != height || back->GetRasterCount() != bands)
+    throw UserError(path, its + "wrote " + std::to_string(back->GetRasterXSize()) + " x " + std::to_string(back->GetRasterYSize()) +
+                              " pixels of " + std::to_string(back->GetRasterCount()) + " band(s) for " + std::to_string(width) +
+                              " x " + std::to_string(height) + " of " + std::to_string(bands) + advice);
+  std::vector<double> wrote(static_cast<size_t>(width)), read(static_cast<size_t>(width));
+  bool holes = false;       // whether any pixel is the no-data value
+  double most_off = 0;      // the largest difference read back, relative to its band's largest magnitude
+  int declared_has = 0;
+  const double declared = back->GetRasterBand(1)->GetNoDataValue(&declared_has);
+  for (int b = 1; b <= bands; ++b) {
+    GDALRasterBand* w = image.GetRasterBand(b);
+    GDALRasterBand* r = back->GetRasterBand(b);
+    const GDALDataType type = r->GetRasterDataType();
+    if (type != GDT_Float32 && type != GDT_Float64)
+      throw UserError(path, its + "wrote bands of " + GDALGetDataTypeName(type) + ", which round the values" + advice);
+    double largest = 0;  // the band's largest magnitude written, no-data aside
+    for (int j = 0; j < height; ++j) {
+      if (w->RasterIO(GF_Read, 0, j, width, 1, wrote.data(), width, 1, GDT_Float64, 0, 0) != CE_None)
+        throw UserError(path, its + "wrote a raster GDAL cannot read back (" + QuietGdal::last_error() + ")" + advice);
+      for (const double v : wrote)
+        if (v != options.nodata && std::isfinite(v)) largest = std::max(largest, std::abs(v));
+    }
+    for (int j = 0; j < height; ++j) {
+      if (w->RasterIO(GF_Read, 0, j, width, 1, wrote.data(), width, 1, GDT_Float64, 0, 0) != CE_None ||
+          r->RasterIO(GF_Read, 0, j, width, 1, read.data(), width, 1, GDT_Float64, 0, 0) != CE_None)
+        throw UserError(path, its + "wrote a raster GDAL cannot read back (" + QuietGdal::last_error() + ")" + advice);
+      for (int i = 0; i < width; ++i) {
+        const double expected = wrote[static_cast<size_t>(i)], got = read[static_cast<size_t>(i)];
+        const auto where = [&] {
+          return " (band " + std::to_string(b) + ", row " + std::to_string(j) + ", column " + std::to_string(i) + ": wrote " +
+                 format_number(expected) + ", reads " + format_number(got) + ")";
+        };
+        if (expected == options.nodata) {  // a point without a value: the format's own no-data value will do
+          holes = true;
+          if (!(got == expected || (declared_has && got == declared)))
+            throw UserError(path, its + "does not keep the points without a value" + where() + advice);
+          continue;
+        }
+        if (got == expected) continue;  // infinities too (a value beyond a float's range)
+        const double off = std::abs(got - expected);
+        if (!(off <= tol::kRasterReadBackRelative * largest))
+          throw UserError(path, its + "does not keep the values" + where() + advice);
+        if (largest > 0) most_off = std::max(most_off, off / largest);
+      }
+    }
+  }
+  std::vector<std::string> warnings;
+  double given[6], kept[6];
+  image.GetGeoTransform(given);
+  bool same = back->GetGeoTransform(kept) == CE_None;
+  for (int k = 0; k < 6 && same; ++k) same = std::abs(kept[k] - given[k]) <= 1e-9 * (std::abs(given[k]) + std::abs(given[1]) + std::abs(given[5]));
+  if (!same)
+    warnings.push_back(path + ": " + its + "keeps no georeferencing: the raster's domain is not in the file (.tif, .asc or .nc keep it)");
+  // Beyond the rounding of the band type itself (a 32-bit float's half ulp, 6e-8 relative).
+  if (most_off > (options.float64 ? 1e-15 : 6e-8))
+    warnings.push_back(path + ": " + its + "rounds the values, by up to " + format_number(most_off) +
+                       " of the largest (its decimal digits; .tif, .asc or .nc keep them as written)");
+  if (holes && !declared_has)
+    warnings.push_back(path + ": " + its + "declares no no-data value: the points without a value read as " +
+                       format_number(options.nodata) + " (.tif, .asc or .nc declare it)");
+  else if (holes && declared != options.nodata)
+    warnings.push_back(path + ": " + its + "writes its own no-data value, " + format_number(declared) + ", for --nodata " +
+                       format_number(options.nodata));
+  return warnings;
+}
+
 }  // namespace
+
+/// Drivers that create rasters but not a file of the values, refused before any work (the
+/// read-back of write_raster_gdal() would refuse them after it).
+const char* no_file_of_values(const std::string& driver) {
+  if (driver == "MEM") return "keeps the raster in memory and writes no file";
+  if (driver == "VRT") return "writes a description of other rasters, not values";
+  if (driver == "KMLSUPEROVERLAY") return "writes 8-bit colour tiles for Google Earth, not values";
+  return nullptr;
+}
 
 std::string gdal_raster_driver(const std::string& path, const std::string& format, const std::string& where) {
   std::string ext = lower_extension(path);
@@ -80,6 +166,8 @@ std::string gdal_raster_driver(const std::string& path, const std::string& forma
     GDALDriver* d = drivers->GetDriverByName(format.c_str());
     if (d == nullptr || !can_create_raster(d))
       throw UserError("--format", "'" + format + "' is no GDAL driver that creates rasters (gdalinfo --formats lists them)");
+    if (const char* why = no_file_of_values(d->GetDescription()))
+      throw UserError("--format", std::string("GDAL's ") + d->GetDescription() + " driver " + why + "; write .tif, .asc, .nc or another format of floating-point bands");
     require_band_type(d, "Float32", "--format");
     return format;
   }
@@ -92,6 +180,9 @@ std::string gdal_raster_driver(const std::string& path, const std::string& forma
     std::istringstream list(exts);
     for (std::string e; list >> e;) {
       if (ascii_lower(e) == ext && !ext.empty()) {
+        if (const char* why = no_file_of_values(d->GetDescription()))
+          throw UserError(where, std::string("GDAL's ") + d->GetDescription() + " driver " + why + " (." + ext +
+                                     "); write .tif, .asc, .nc or another format of floating-point bands");
         require_band_type(d, "Float32", where);
         return d->GetDescription();
       }
@@ -112,8 +203,8 @@ void check_gdal_crs(const std::string& crs) {
                                  QuietGdal::last_error());
 }
 
-void write_raster_gdal(const std::string& path, const Raster& raster, std::span<const double> values, int channels,
-                       const GeoRasterOptions& options) {
+std::vector<std::string> write_raster_gdal(const std::string& path, const Raster& raster, std::span<const double> values,
+                                           int channels, const GeoRasterOptions& options) {
   RR_CHECK(channels >= 1 && values.size() == static_cast<size_t>(raster.width) * raster.height * channels,
            "raster values do not match the raster");
   const std::string driver_name = gdal_raster_driver(path, options.format, "--out");
@@ -160,11 +251,28 @@ void write_raster_gdal(const std::string& path, const Raster& raster, std::span<
   try {
     std::unique_ptr<GDALDataset> file(driver->CreateCopy((tmp / out.filename()).c_str(), image.get(), FALSE, nullptr,
                                                           nullptr, nullptr));
-    if (!file) throw UserError(path, "GDAL's " + driver_name + " driver cannot write it: " + QuietGdal::last_error());
+    if (!file) {
+      std::string why = QuietGdal::last_error();  // the temporary folder is no name of the user's
+      for (size_t at; (at = why.find(tmp.filename().string() + "/")) != std::string::npos;) why.erase(at, tmp.filename().string().size() + 1);
+      throw UserError(path, "GDAL's " + driver_name + " driver cannot write it: " + why);
+    }
     file.reset();  // closes and flushes
     if (CPLGetLastErrorType() >= CE_Failure) throw UserError(path, "GDAL failed writing it: " + QuietGdal::last_error());
-    for (const fs::directory_entry& e : fs::directory_iterator(tmp)) fs::rename(e.path(), parent / e.path().filename());
+    std::vector<std::string> warnings = read_back(path, (tmp / out.filename()).string(), driver_name, *image, options);
+    // Every file written, checked before any is moved: none may land on an input.
+    std::vector<fs::path> written;
+    for (const fs::directory_entry& e : fs::directory_iterator(tmp)) written.push_back(e.path());
+    for (const fs::path& w : written) {
+      const fs::path to = parent / w.filename();
+      std::error_code ec;
+      for (const std::string& input : options.inputs)
+        if (fs::exists(to, ec) && fs::equivalent(to, input, ec))
+          throw UserError(path, "GDAL's " + driver_name + " driver writes '" + to.string() + "' beside it, which is the input file '" +
+                                    input + "'; refusing to overwrite it (name the output otherwise)");
+    }
+    for (const fs::path& w : written) fs::rename(w, parent / w.filename());
     fs::remove(tmp);
+    return warnings;
   } catch (...) {
     std::error_code ec;
     fs::remove_all(tmp, ec);

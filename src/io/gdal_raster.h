@@ -8,6 +8,7 @@
 
 #include <span>
 #include <string>
+#include <vector>
 
 #include "io/geo_raster.h"
 #include "io/raster.h"
@@ -26,8 +27,12 @@ void check_gdal_crs(const std::string& crs);
 /// Writes raster values (raster order: the y0 row first, `channels` per point) as a raster of
 /// `channels` bands, north-up (rows flipped), NaN written as options.nodata (the caller has
 /// refused a clash: refuse_nodata_clash()). Atomic: written in a temporary folder beside `path`,
-/// then moved (with any side files the format has).
-void write_raster_gdal(const std::string& path, const Raster& raster, std::span<const double> values, int channels,
-                       const GeoRasterOptions& options);
+/// then moved (with any side files the format has), none of them over one of options.inputs.
+/// Read back before it is moved: UserError if GDAL cannot read it (MEM writes no file, a VRT no
+/// values), or its size, bands or values are not what was written (KMLSUPEROVERLAY writes 8-bit
+/// tiles); a warning for each of the georeferencing and the no-data value it does not keep.
+/// Returns the warnings.
+std::vector<std::string> write_raster_gdal(const std::string& path, const Raster& raster, std::span<const double> values,
+                                           int channels, const GeoRasterOptions& options);
 
 }  // namespace radrecon

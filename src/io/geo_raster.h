@@ -7,6 +7,7 @@
 
 #include <span>
 #include <string>
+#include <vector>
 
 #include "core/parse.h"
 
@@ -21,6 +22,9 @@ struct GeoRasterOptions {
   bool float64 = false;  ///< bands of 64-bit floats, else 32-bit
   std::string crs;       ///< a coordinate reference system (EPSG:2193, WKT, PROJ), passed through; empty: none
   double nodata = kDefaultNoData;  ///< written for NaN and declared as each band's no-data value
+  /// The command's input files: a side file a format writes beside the output (an ENVI or ERS
+  /// header's data file, named like the output without its extension) may not be one of them.
+  std::vector<std::string> inputs;
 };
 
 /// UserError naming --nodata if a value equals `nodata` as the band stores both (rounded to a

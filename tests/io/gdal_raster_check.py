@@ -241,6 +241,40 @@ with tempfile.TemporaryDirectory() as tmp:
         check(r.returncode == 2 and words in r.stderr and not os.path.exists(out),
               f"{name} {extra}: exit {r.returncode}, {r.stderr.strip()}")
 
+    # Drivers that write no file of values, refused before any work (found by an outside-in
+    # trial: each exited 0): MEM writes nothing, a VRT describes other rasters, KML super-overlays
+    # are 8-bit colour tiles.
+    for name, extra, words in [("m.tif", ["--format", "MEM"], "MEM driver keeps the raster in memory"),
+                               ("v.vrt", [], "VRT driver writes a description of other rasters"),
+                               ("k.kmz", [], "KMLSUPEROVERLAY driver writes 8-bit colour tiles")]:
+        out = os.path.join(tmp, name)
+        r = run("--samples", samples, "--value", "mag", "--method", "linear", "--raster", "4x3", "--domain", "0,0,4,3",
+                *extra, "--out", out)
+        check(r.returncode == 2 and words in r.stderr and not os.path.exists(out),
+              f"{name} {extra}: exit {r.returncode}, {r.stderr.strip()}")
+
+    # Read back before it is moved into place: a format that keeps no georeferencing (FITS) or
+    # declares no no-data value (XYZ) is written with a warning saying so; one whose no-data value
+    # is its own (Golden Software's ASCII grid) too. The values read back are what was written.
+    for name, words in [("w.fits", "FITS driver keeps no georeferencing"),
+                        ("w.xyz", "XYZ driver declares no no-data value"),
+                        ("w.grd", "GSAG driver writes its own no-data value")]:
+        out = os.path.join(tmp, name)
+        r = run("--samples", samples, "--value", "mag", "--method", "linear", "--param", "outside=none", "--raster", "5x4",
+                "--domain", "-1,-1,5,4", "--out", out)
+        check(r.returncode == 0 and words in r.stderr and os.path.exists(out), f"{name}: exit {r.returncode}, {r.stderr.strip()}")
+
+    # A format's side file may not land on an input: ERS writes its data as the output's name
+    # without the extension, here the samples' own file. Refused after the work, nothing moved,
+    # the samples intact.
+    bare = os.path.join(tmp, "survey")
+    shutil.copyfile(samples, bare)
+    before = open(bare, "rb").read()
+    r = run("--samples", bare, "--value", "mag", "--method", "linear", "--raster", "4x3", "--domain", "0,0,4,3",
+            "--out", bare + ".ers")
+    check(r.returncode == 2 and "is the input file" in r.stderr and not os.path.exists(bare + ".ers")
+          and open(bare, "rb").read() == before, f"survey.ers: exit {r.returncode}, {r.stderr.strip()}")
+
     # An Arc/Info grid lists no Float64 band among its creation types, yet writes a Float64 band's
     # values in full: --type float64 is no refusal there.
     out = os.path.join(tmp, "g64.asc")
