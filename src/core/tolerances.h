@@ -232,10 +232,11 @@ inline constexpr double kFitCollinearRelative = 1e-8;
 inline constexpr double kMultiquadricIntegerGap = 1e-6;
 
 /// sibson-c1's gradient fit: the weighted normal matrix H of a sample's plane counts as singular
-/// (the sample's visible neighbours on one line through it: the plane is fitted along that line
-/// alone, with no gradient across it) when det H is below this
-/// fraction of trace(H)^2 (det / trace^2 is 1/4 for neighbours spread evenly around, and scales
-/// like the square of the spread's aspect ratio).
+/// when det H is below this fraction of trace(H)^2 (det / trace^2 is 1/4 for neighbours spread
+/// evenly around, and scales like the square of the spread's aspect ratio). Singular with the
+/// neighbours weighted by their coordinates, they are weighted by distance alone (a neighbour off
+/// the line may hold a coordinate of 1e-16); singular so too (the visible neighbours on one line
+/// through the sample), the plane is fitted along that line alone, with no gradient across it.
 inline constexpr double kGradientFitSingularRelative = 1e-12;
 
 /// RBFs with a linear polynomial (reconstruct/multiquadric_basis.h): a subset of samples whose

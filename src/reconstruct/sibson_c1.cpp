@@ -34,19 +34,34 @@ std::vector<double> fit_gradients(const Delaunay& dt, std::span<const Delaunay::
     if (!(scale > 0)) return;
     double h00 = 0, h01 = 0, h11 = 0;
     thread_local std::vector<double> r;
-    r.assign(C * 2, 0.0);
-    for (const auto& [j, lambda] : weights) {
-      if (barriers.blocks(points[i], points[j])) continue;
-      const Vec2 d = (points[j] - points[i]) / scale;
-      const double w = lambda / d.squaredNorm();
-      h00 += w * d.x() * d.x(), h01 += w * d.x() * d.y(), h11 += w * d.y() * d.y();
-      for (size_t c = 0; c < C; ++c) {
-        const double df = values[j * C + c] - values[i * C + c];
-        r[2 * c] += w * df * d.x(), r[2 * c + 1] += w * df * d.y();
+    // The normal equations with each neighbour weighted by its coordinate lambda_j / d_j^2, or
+    // (`by_distance`) by 1 / d_j^2 alone.
+    const auto normal_equations = [&](bool by_distance) {
+      h00 = h01 = h11 = 0;
+      r.assign(C * 2, 0.0);
+      for (const auto& [j, lambda] : weights) {
+        if (barriers.blocks(points[i], points[j])) continue;
+        const Vec2 d = (points[j] - points[i]) / scale;
+        const double w = (by_distance ? 1.0 : lambda) / d.squaredNorm();
+        h00 += w * d.x() * d.x(), h01 += w * d.x() * d.y(), h11 += w * d.y() * d.y();
+        for (size_t c = 0; c < C; ++c) {
+          const double df = values[j * C + c] - values[i * C + c];
+          r[2 * c] += w * df * d.x(), r[2 * c + 1] += w * df * d.y();
+        }
       }
-    }
-    const double det = h00 * h11 - h01 * h01, trace = h00 + h11;
+    };
+    normal_equations(false);
+    double det = h00 * h11 - h01 * h01, trace = h00 + h11;
     if (!(trace > 0)) return;  // no visible neighbour: gradient 0
+    if (!(det > tol::kGradientFitSingularRelative * trace * trace)) {
+      // Near-singular by the coordinates: a neighbour off the line may hold a coordinate of
+      // 1e-16 (a sample a rounding error inside the hull beside two on its edge, their three
+      // points collinear to 3e-17), which the fit must not lose, or a linear function's gradient
+      // across the line is lost (found by an outside-in trial: errors of 0.2 on survey tracks).
+      // The neighbours by their distance alone.
+      normal_equations(true);
+      det = h00 * h11 - h01 * h01, trace = h00 + h11;
+    }
     if (!(det > tol::kGradientFitSingularRelative * trace * trace)) {
       // The neighbours (nearly) on one line through p_i: the plane is fitted along that line
       // alone, H's larger eigenvector e (eigenvalue lambda), g = (e . r / lambda) e, and

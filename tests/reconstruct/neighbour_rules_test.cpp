@@ -214,6 +214,39 @@ TEST(SibsonC1, ASliverOfSamplesReproducesALinearFunctionWithinItsThickness) {
   }
 }
 
+TEST(SibsonC1, ASampleOnAHullEdgeWithANeighbourOfTinyCoordinateKeepsItsGradient) {
+  // Three samples collinear to 3e-17 on the hull, the middle one a rounding error inside it: its
+  // natural neighbour coordinate of the fourth sample, off the line, is ~1e-16, and the fit by
+  // coordinates is singular. The fit by distance alone keeps the gradient across the line
+  // (before, 2.014 for 2.192 inside the hull: found by an outside-in trial). Then survey tracks:
+  // 50 samples each on three lines, a linear function reproduced everywhere between them (it
+  // erred by 0.2).
+  auto f = [](const Vec2& p) { return 3 + 2 * p.x() - 5 * p.y(); };
+  ScatteredSamples s;
+  s.channels = 1;
+  s.points = {Vec2(1, 0.2), Vec2(0.5, 0.55), Vec2(0.75, 0.575), Vec2(1, 0.6)};
+  for (const Vec2& p : s.points) s.values.push_back(f(p));
+  const NaturalNeighbour c1(s, OutsideHull::none, {}, NeighbourRule::sibson_c1);
+  for (const Vec2& q : {Vec2(0.82185238, 0.49030307), Vec2(0.9, 0.5), Vec2(0.95, 0.3)})
+    EXPECT_NEAR(eval1(c1, q), f(q), 1e-12) << "at (" << q.x() << ", " << q.y() << ")";
+  ScatteredSamples tracks;
+  tracks.channels = 1;
+  for (int k = 0; k < 50; ++k) {
+    const double x = k / 49.0;
+    for (const Vec2& p : {Vec2(x, 0.2), Vec2(x, 0.5 + 0.1 * x), Vec2(x, 0.9 - 0.05 * x)}) {
+      tracks.points.push_back(p);
+      tracks.values.push_back(f(p));
+    }
+  }
+  const NaturalNeighbour on_tracks(tracks, OutsideHull::none, {}, NeighbourRule::sibson_c1);
+  std::mt19937 rng(39);
+  std::uniform_real_distribution<double> x(0.02, 0.98), y(0.21, 0.84);
+  for (int t = 0; t < 500; ++t) {
+    const Vec2 q(x(rng), y(rng));
+    EXPECT_NEAR(eval1(on_tracks, q), f(q), 1e-12) << "at (" << q.x() << ", " << q.y() << ")";
+  }
+}
+
 TEST(SibsonC1, FirstDerivativesAreContinuousAtTheSamplesAndAcrossEdges) {
   std::mt19937 rng(36);
   ScatteredSamples s = random_samples(200, rng);
