@@ -362,6 +362,12 @@ inline constexpr double kQuadMergeTurnRelative = 1e-6;
 /// rounding of it, inside or outside; inside, the Voronoi computation cancels catastrophically
 /// there (tests/reconstruct).
 inline constexpr double kHullEdgeBandRelative = 1e-9;
+
+/// A Delaunay face (linear, clough-tocher) whose height over its longest edge is below this
+/// fraction of that edge is a sliver: a query's barycentric coordinates by the inverse of its
+/// matrix err by about eps / (this ratio) (cancellation), projected onto the longest edge by the
+/// ratio itself; the two are equal near sqrt(eps), 1.5e-8.
+inline constexpr double kDelaunaySliverRelative = 1e-8;
 inline constexpr double kHullEdgeRounding = 64 * 2.220446049250313e-16;
 
 /// A PNG of a raster (io/raster.h) maps [min, max] of its finite values to black and white; when

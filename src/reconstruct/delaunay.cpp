@@ -77,6 +77,10 @@ DelaunayMesh::DelaunayMesh(std::span<const Vec2> points, const std::string& meth
     const double a = p1.x() - p0.x(), b = p2.x() - p0.x(), c = p1.y() - p0.y(), d = p2.y() - p0.y();
     const double det = a * d - b * c;  // > 0: a Delaunay face is counter-clockwise and not flat
     affine_[f] = {p0.x(), p0.y(), d / det, -b / det, -c / det, a / det};
+    // A sliver: its height over its longest edge (det over that edge squared) below the limit.
+    const std::array<double, 3> edge_sq = {(p2 - p1).squaredNorm(), (p0 - p2).squaredNorm(), (p1 - p0).squaredNorm()};
+    const int longest = static_cast<int>(std::max_element(edge_sq.begin(), edge_sq.end()) - edge_sq.begin());
+    if (!(std::abs(det) > tol::kDelaunaySliverRelative * edge_sq[static_cast<size_t>(longest)])) affine_[f].sliver_corner = longest;
     for (int k = 0; k < 3; ++k) {
       if (neighbours_[f][k] >= 0) continue;
       unsigned a_ = vertices_[f][(k + 1) % 3], b_ = vertices_[f][(k + 2) % 3];
@@ -89,8 +93,18 @@ DelaunayMesh::DelaunayMesh(std::span<const Vec2> points, const std::string& meth
 
 DelaunayMesh::~DelaunayMesh() = default;
 
+namespace {
+void on_edge(std::span<const Vec2> points, const std::array<unsigned, 3>& vertices, int k, const Vec2& q,
+             std::array<double, 3>& b);
+}  // namespace
+
 std::array<double, 3> DelaunayMesh::barycentric(size_t f, const Vec2& p) const {
   const Affine& t = affine_[f];
+  if (t.sliver_corner >= 0) {
+    std::array<double, 3> b;
+    on_edge(points_, vertices_[f], t.sliver_corner, p, b);
+    return b;
+  }
   const double dx = p.x() - t.x0, dy = p.y() - t.y0;
   const double b1 = t.m00 * dx + t.m01 * dy, b2 = t.m10 * dx + t.m11 * dy;
   return {1 - b1 - b2, b1, b2};

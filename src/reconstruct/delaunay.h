@@ -52,7 +52,10 @@ class DelaunayMesh {
   const std::array<unsigned, 3>& face(size_t f) const { return vertices_[f]; }
   /// The face across the edge opposite corner k of face f, or -1 when that edge is on the hull.
   std::int64_t neighbour(size_t f, int k) const { return neighbours_[f][k]; }
-  /// Barycentric coordinates of p with respect to face f (any p, inside the face or not).
+  /// Barycentric coordinates of p with respect to face f (any p, inside the face or not). On a
+  /// sliver, p's projection onto the longest edge, as on_edge() gives it: the inverse of a
+  /// sliver's matrix cancels catastrophically (linear's value on the edge of a face 3e-17 thick
+  /// erred by 0.02 for a linear function).
   std::array<double, 3> barycentric(size_t f, const Vec2& p) const;
 
   /// Where a query lands: a face and its barycentric coordinates there (summing to one).
@@ -106,9 +109,11 @@ class DelaunayMesh {
   std::vector<std::array<unsigned, 3>> vertices_;
   std::vector<std::array<std::int64_t, 3>> neighbours_;
   /// Per face: corner 0 and the inverse of the matrix [p1 - p0, p2 - p0], row-major, so that
-  /// (b1, b2) = inverse (q - p0).
+  /// (b1, b2) = inverse (q - p0); for a sliver (tol::kDelaunaySliverRelative), the corner
+  /// opposite its longest edge, onto which queries are projected instead (-1: none).
   struct Affine {
     double x0, y0, m00, m01, m10, m11;
+    int sliver_corner = -1;
   };
   std::vector<Affine> affine_;
 };
