@@ -4,7 +4,8 @@
 // system (n x n) cannot be solved. Patches are discs of radius h centred on a square grid of
 // spacing h over the samples' bounding box. Each patch interpolates every sample within 1.5 h of
 // its centre (at least kMinPatchSamples, with barriers at least k, topped up with the nearest
-// others) by an RBF with the global radii r_j and its own polynomial; h is chosen so that about
+// others; with a polynomial and no barriers, samples on one line, such as a survey track, take
+// the nearest sample off it too) by an RBF with the global radii r_j and its own polynomial; h is chosen so that about
 // k samples lie within 1.5 h on average. Without a polynomial a patch fits the deviations from its samples' mean and adds
 // the mean back, so that constants are reproduced (a multiquadric through 16 samples of terrain
 // at 900 m otherwise sags between them by tens of metres). The patches are blended with

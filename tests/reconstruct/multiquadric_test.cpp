@@ -293,6 +293,35 @@ TEST(LocalMultiquadric, ApproachesTheGlobalInterpolantAsPatchesGrow) {
   EXPECT_LT(k200, 2 * global);
 }
 
+TEST(LocalMultiquadric, PatchesOnSurveyTracksTakeASampleOffTheirLineAndReproduceLinearFunctions) {
+  // Samples on three tracks far apart against their spacing: each patch's disc holds one track,
+  // which determines no polynomial term across it. Every patch then gave way to none, and a
+  // linear function erred by up to 1.3 between the tracks (found by an outside-in trial); each
+  // patch now takes the nearest sample off its line. With a polynomial (thin-plate, multiquadric
+  // poly=1) the blend reproduces linear functions, as the global fit does.
+  auto f = [](const Vec2& p) { return 3 + 2 * p.x() - 5 * p.y(); };
+  ScatteredSamples s;
+  for (int k = 0; k < 50; ++k) {
+    const double x = k / 49.0;
+    for (const Vec2& p : {Vec2(x, 0.2), Vec2(x, 0.5 + 0.1 * x), Vec2(x, 0.9 - 0.05 * x)}) {
+      s.points.push_back(p);
+      s.values.push_back(f(p));
+    }
+  }
+  std::mt19937 rng(41);
+  std::uniform_real_distribution<double> x(0.02, 0.98), y(0.21, 0.84);
+  std::vector<Vec2> q(500);
+  for (Vec2& p : q) p = Vec2(x(rng), y(rng));
+  for (const RbfKernel& kernel : {RbfKernel::thin_plate(), RbfKernel::multiquadric(0.5, 1)})
+    for (const int k : {16, 32}) {
+      const LocalMultiquadric local(s, kernel, kernel.is_thin_plate() ? std::nullopt : std::optional<double>(0.1), k);
+      std::vector<double> v(q.size());
+      local.evaluate(q, v);
+      for (size_t t = 0; t < q.size(); ++t)
+        ASSERT_NEAR(v[t], f(q[t]), 1e-10) << kernel.name() << " k=" << k << " at " << q[t].transpose();
+    }
+}
+
 TEST(LocalMultiquadric, AnOffsetInTheValuesIsAddedUnchanged) {
   // Each patch fits the deviations from its samples' mean: f(values + c) = f(values) + c, and a
   // constant is reproduced exactly, inside the box and outside it (poly=0 and poly=1 alike).
