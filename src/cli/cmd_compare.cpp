@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "cli/commands.h"
+#include "core/check.h"
 #include "core/error.h"
 #include "core/image.h"
 #include "core/parse.h"
@@ -97,22 +98,41 @@ Comparison compare_pictures(const CompareArgs& args) {
   if (white <= 0) white = png ? 1.0 : largest_finite(b.values);
   if (!(white > 0)) white = 1;  // a black or empty reference
   const ImageShape shape{a.width, a.height, a.channels};
-  out.figures.norms = error_norms(a.values, b.values);
+  // Values missing (NaN: interpolate's no-data) in both pictures agree: left out of the norms, and
+  // 0 in both for SSIM and the gradients. Missing in one only, the figures are NaN.
+  std::vector<double> va = a.values, vb = b.values, kept_a, kept_b;
+  size_t missing_both = 0, missing_one = 0;
+  for (size_t k = 0; k < va.size(); ++k) {
+    const bool na = std::isnan(va[k]), nb = std::isnan(vb[k]);
+    if (na && nb) {
+      ++missing_both;
+      va[k] = vb[k] = 0;
+      continue;
+    }
+    missing_one += na || nb;
+    kept_a.push_back(va[k]), kept_b.push_back(vb[k]);
+  }
+  out.figures.norms = error_norms(kept_a, kept_b);
   // SSIM on what a viewer sees: a PNG's values as stored (already display values), linear
   // values tone-mapped and sRGB-encoded as the figures are.
   std::vector<double> da, db;
   if (png) {
-    da.resize(a.values.size()), db.resize(b.values.size());
-    for (size_t k = 0; k < da.size(); ++k) da[k] = tone_map(a.values[k], white), db[k] = tone_map(b.values[k], white);
+    da.resize(va.size()), db.resize(vb.size());
+    for (size_t k = 0; k < da.size(); ++k) da[k] = tone_map(va[k], white), db[k] = tone_map(vb[k], white);
   } else {
-    da = display_values(a.values, white), db = display_values(b.values, white);
+    da = display_values(va, white), db = display_values(vb, white);
   }
   out.figures.ssim = ssim(da, db, shape);
-  out.figures.gradient_l2 = gradient_l2(a.values, b.values, shape, 1, 1);
+  out.figures.gradient_l2 = gradient_l2(va, vb, shape, 1, 1);
   out.about = {{"kind", "pictures"}, {"width", a.width}, {"height", a.height}, {"channels", a.channels},
-               {"count", out.figures.norms.count}, {"white", white}};
+               {"count", out.figures.norms.count}, {"white", white}, {"missing_in_both", missing_both},
+               {"missing_in_one", missing_one}};
   out.summary = std::to_string(a.width) + " x " + std::to_string(a.height) + " pixels, " + std::to_string(a.channels) +
                 " channel(s); white " + format_number(white) + (png ? " (PNG values as stored)" : "");
+  if (missing_both > 0)
+    out.summary += "; " + std::to_string(missing_both) + " value(s) missing (NaN) in both, left out of the norms";
+  if (missing_one > 0)
+    out.summary += "; " + std::to_string(missing_one) + " value(s) missing in one picture only: the figures are NaN";
   if (!args.diff.empty()) {
     Image diff(a.width, a.height);
     for (int y = 0; y < a.height; ++y)
@@ -216,11 +236,17 @@ void run_compare(const CompareArgs& args) {
 
   // Thresholds: a figure that is not defined (or NaN) exceeds any threshold on it.
   std::vector<std::string> exceeded;
+  const Figures& f = c.figures;
+  const std::pair<const char*, std::optional<double>> rows[] = {
+      {"L1", f.norms.l1}, {"L2", f.norms.l2},     {"RMSE", f.norms.rmse},         {"Linf", f.norms.linf},
+      {"SSIM", f.ssim},   {"gradient_L2", f.gradient_l2}, {"overshoot", f.overshoot}};
   for (const Threshold& t : thresholds) {
-    const nlohmann::json j = figures_json(c.figures)[t.key];
-    const bool over = j.is_null() || (t.key == "SSIM" ? j.get<double>() < t.value : j.get<double>() > t.value);
-    if (over)
-      exceeded.push_back(t.key + " = " + (j.is_null() ? std::string("n/a") : format_number(j.get<double>())) +
+    const auto row = std::find_if(std::begin(rows), std::end(rows), [&](const auto& r) { return t.key == r.first; });
+    RR_CHECK(row != std::end(rows), "a threshold on a figure compare does not print");
+    const std::optional<double> v = row->second;
+    const bool over = !v || std::isnan(*v) || (t.key == "SSIM" ? *v < t.value : *v > t.value);
+    if (over)  // as the table prints it: n/a (not defined) or nan (a value missing in A or B)
+      exceeded.push_back(t.key + " = " + (v ? format_number(*v) : std::string("n/a")) +
                          (t.key == "SSIM" ? " is below " : " is above ") + format_number(t.value));
   }
   if (args.json) {
@@ -232,10 +258,6 @@ void run_compare(const CompareArgs& args) {
     std::printf("%s\n", j.dump(2).c_str());
   } else {
     std::printf("A: %s\nB: %s (reference)\n%s\n", args.a.c_str(), args.b.c_str(), c.summary.c_str());
-    const Figures& f = c.figures;
-    const std::pair<const char*, std::optional<double>> rows[] = {
-        {"L1", f.norms.l1}, {"L2", f.norms.l2},     {"RMSE", f.norms.rmse},         {"Linf", f.norms.linf},
-        {"SSIM", f.ssim},   {"gradient_L2", f.gradient_l2}, {"overshoot", f.overshoot}};
     for (const auto& [key, v] : rows)  // NaN (a NaN value in A or B) prints as nan
       std::printf("%-12s %s\n", key, v ? format_number(*v).c_str() : (std::string(key) == "overshoot" ? "n/a (no samples)" : "n/a"));
     if (!args.diff.empty()) std::printf("difference image: %s (scale %s)\n", args.diff.c_str(), format_number(args.scale).c_str());
@@ -258,7 +280,8 @@ void add_compare_command(CLI::App& app) {
       "finite-difference gradients); overshoot needs samples and is n/a here.\n"
       "Pictures: SSIM on display values, PFM/EXR as the figures show them (clamp(v / white, 0, 1), sRGB-encoded; "
       "white: --white, else the largest value of B), PNG values as stored (white 1); gradient_L2 with a pixel "
-      "spacing of 1. Solutions: norms over every element's values; SSIM and gradient_L2 over the grid sides, each an "
+      "spacing of 1; a value missing (NaN, interpolate's no-data) in both pictures is left out of the norms (0 in both "
+      "for SSIM and the gradients), one missing in one only makes the figures NaN. Solutions: norms over every element's values; SSIM and gradient_L2 over the grid sides, each an "
       "nu x nv picture (white: --white, else the side's largest value in B; spacing: the element size in metres), "
       "SSIM weighted by element count over the sides of at least 11 x 11, gradient_L2 over all grid-side elements; "
       "adaptive (quadtree) sides count in the norms only.\n"

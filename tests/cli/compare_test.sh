@@ -43,6 +43,12 @@ pfm('b.pfm', 20, 16, ref)
 pfm('a.pfm', 20, 16, a)
 pfm('small.pfm', 10, 16, ref)
 pfm('grey.pfm', 20, 16, lambda i, j, c: 1.0, magic=b'Pf', channels=1)
+# No value (NaN, as interpolate writes outside the hull with outside=none) in the first 4 columns;
+# the same with a known difference of 0.5 at (10, 8), and with values where b_hole has none.
+nan = float('nan')
+pfm('b_hole.pfm', 20, 16, lambda i, j, c: nan if i < 4 else ref(i, j, c), magic=b'Pf', channels=1)
+pfm('a_hole.pfm', 20, 16, lambda i, j, c: nan if i < 4 else ref(i, j, c) + (0.5 if (i, j) == (10, 8) else 0), magic=b'Pf', channels=1)
+pfm('full.pfm', 20, 16, ref, magic=b'Pf', channels=1)
 EOF
 
 # --- identical pictures ----------------------------------------------------------------------
@@ -52,6 +58,21 @@ grep -qE '^L1 +0$' same.stdout || fail "same: L1 is not 0: $(cat same.stdout)"
 grep -qE '^Linf +0$' same.stdout || fail "same: Linf is not 0: $(cat same.stdout)"
 grep -qE '^SSIM +1$' same.stdout || fail "same: SSIM is not 1: $(cat same.stdout)"
 grep -qE '^overshoot +n/a' same.stdout || fail "same: overshoot is not n/a: $(cat same.stdout)"
+
+# --- values missing in both: left out of the norms (a picture against itself: zeros, SSIM 1) --
+run holes b_hole.pfm b_hole.pfm --threshold RMSE=1e-12
+expect_rc holes 0
+grep -qE '^L1 +0$' holes.stdout && grep -qE '^SSIM +1$' holes.stdout || fail "holes: not 0 and 1: $(cat holes.stdout)"
+grep -qF '64 value(s) missing (NaN) in both' holes.stdout || fail "holes: the missing values not counted: $(cat holes.stdout)"
+run hole_diff a_hole.pfm b_hole.pfm --json
+expect_rc hole_diff 0
+check_json hole_diff "abs(j['Linf'] - 0.5) < 1e-15 and abs(j['L1'] - 0.5 / 256) < 1e-15 and j['count'] == 256 and j['missing_in_both'] == 64"
+# Missing in one only: the figures are NaN, and a threshold says nan as the table does.
+run hole_one b_hole.pfm full.pfm --threshold RMSE=1
+expect_rc hole_one 1
+grep -qE '^RMSE +nan$' hole_one.stdout || fail "hole_one: RMSE is not nan: $(cat hole_one.stdout)"
+grep -qF 'RMSE = nan is above 1' hole_one.stderr || fail "hole_one: threshold message: $(cat hole_one.stderr)"
+grep -qF '64 value(s) missing in one picture only' hole_one.stdout || fail "hole_one: not said: $(cat hole_one.stdout)"
 
 # --- a known difference: 960 values, |e| = 0.5 and 0.25 --------------------------------------
 run known a.pfm b.pfm --json
