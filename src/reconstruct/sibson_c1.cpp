@@ -88,31 +88,30 @@ std::vector<double> fit_gradients(const Delaunay& dt, std::span<const Delaunay::
 
 void farin_c1(std::span<const std::pair<unsigned, double>> coords, std::span<const Vec2> points,
               std::span<const double> values, std::span<const double> gradients, int channels, double* out) {
+  // Farin's cubic in the coordinates l: sum_i f_i l_i^3 + 3 sum_{i != j} b_iij l_i^2 l_j
+  // + 6 sum_{i < j < k} b_ijk l_i l_j l_k, with b_iij = f_i + g_i . (p_j - p_i) / 3 and b_ijk the
+  // mean of the six b_pq of the triple less half the mean of its three f. Summed over the triples
+  // by their pairs and singles, in O(m^2): each ordered pair (p, q) lies in the triples {p, q, r},
+  // r any other, whose l_r sum to S - l_p - l_q (S = sum l); each single p in the pairs {q, r} of
+  // the others, whose l_q l_r sum to ((S - l_p)^2 - (Q - l_p^2)) / 2 (Q = sum l^2). The triple
+  // loop was O(m^3): 26 s for 2000 samples on a circle, all of them natural neighbours.
   const size_t m = coords.size(), C = static_cast<size_t>(channels);
-  thread_local std::vector<double> b;  // b[i * m + j] = b_iij, i != j
-  b.resize(m * m);
+  double S = 0, Q = 0;
+  for (const auto& [k, l] : coords) S += l, Q += l * l;
   for (size_t c = 0; c < C; ++c) {
     auto f = [&](size_t i) { return values[coords[i].first * C + c]; };
-    for (size_t i = 0; i < m; ++i) {
-      const size_t gi = (coords[i].first * C + c) * 2;
-      const Vec2& pi = points[coords[i].first];
-      for (size_t j = 0; j < m; ++j)
-        if (j != i) {
-          const Vec2 d = points[coords[j].first] - pi;
-          b[i * m + j] = f(i) + (gradients[gi] * d.x() + gradients[gi + 1] * d.y()) / 3;
-        }
-    }
     double sum = 0;
     for (size_t i = 0; i < m; ++i) {
-      const double li = coords[i].second;
-      sum += f(i) * li * li * li;
+      const double li = coords[i].second, fi = f(i);
+      const size_t gi = (coords[i].first * C + c) * 2;
+      const Vec2& pi = points[coords[i].first];
+      sum += fi * li * li * li - fi * li * ((S - li) * (S - li) - (Q - li * li)) / 2;
       for (size_t j = 0; j < m; ++j)
-        if (j != i) sum += 3 * b[i * m + j] * li * li * coords[j].second;
-      for (size_t j = i + 1; j < m; ++j)
-        for (size_t k = j + 1; k < m; ++k) {
-          const double bijk = (b[i * m + j] + b[i * m + k] + b[j * m + i] + b[j * m + k] + b[k * m + i] + b[k * m + j]) / 4 -
-                              (f(i) + f(j) + f(k)) / 6;
-          sum += 6 * bijk * li * coords[j].second * coords[k].second;
+        if (j != i) {
+          const double lj = coords[j].second;
+          const Vec2 d = points[coords[j].first] - pi;
+          const double bij = fi + (gradients[gi] * d.x() + gradients[gi + 1] * d.y()) / 3;
+          sum += bij * li * lj * (3 * li + 1.5 * (S - li - lj));
         }
     }
     out[c] = sum;

@@ -37,7 +37,7 @@ std::vector<double> fit_gradients(const Delaunay& dt, std::span<const Delaunay::
 
 /// Farin's C1 form at the point whose coordinates are `coords` (pairs (sample index, lambda),
 /// summing to one) over `points` with `values` and `gradients` (fit_gradients' layout), per
-/// channel, into out.
+/// channel, into out. O(m^2) in the m coordinates (its sum over triples regrouped by pairs).
 void farin_c1(std::span<const std::pair<unsigned, double>> coords, std::span<const Vec2> points,
               std::span<const double> values, std::span<const double> gradients, int channels, double* out);
 
