@@ -289,12 +289,16 @@ void add_interpolate_command(CLI::App& app) {
                   "outside=nearest (default: the value at the nearest point of the convex hull) | none (NaN "
                   "outside the hull). natural-neighbour, laplace, sibson-c1: barrier-samples=on (default) | off: "
                   "with --barriers, also samples along both sides of each barrier. Others: no parameters");
+  // An empty name given (--value '') would mean the default silently.
+  const auto names_a_column = [](const std::string& v) { return v.empty() ? std::string("must name a column, got ''") : std::string(); };
   cmd->add_option("--x", args->x_column,
                   "Name of the x column of --samples and --queries (case-insensitive; default: the column named x, "
-                  "else the first)");
-  cmd->add_option("--y", args->y_column, "Name of the y column (default: the column named y, else the second)");
+                  "else the first)")
+      ->check(names_a_column);
+  cmd->add_option("--y", args->y_column, "Name of the y column (default: the column named y, else the second)")->check(names_a_column);
   cmd->add_option("--value", args->value_columns,
-                  "COL[,COL...]: the value columns of --samples, in this order (default: every column but x and y)");
+                  "COL[,COL...]: the value columns of --samples, in this order (default: every column but x and y)")
+      ->check(names_a_column);
   cmd->add_option("--queries", args->queries,
                   "Query points: a CSV table (x, y as for --samples; further columns ignored) or a vector source's "
                   "points; outputs keep its row "

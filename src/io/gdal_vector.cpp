@@ -30,6 +30,11 @@ class OgrLayer {
         GDALOpenEx(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
     const std::string reason = CPLGetLastErrorMsg();
     CPLPopErrorHandler();
+    std::error_code ec;
+    // A plain path (not a GDAL connection string such as PG:..., a URL or a /vsi... path) that
+    // names nothing: said so, rather than left to GDAL's "not recognized".
+    const bool plain = path.find(':') == std::string::npos && path.rfind("/vsi", 0) != 0;
+    if (!data_ && plain && !std::filesystem::exists(path, ec)) throw UserError(path, "no such file");
     if (!data_)
       throw UserError(path, "cannot open as a vector source" + (reason.empty() ? std::string() : ": " + reason));
     if (data_->GetLayerCount() < 1) throw UserError(path, "has no layer");

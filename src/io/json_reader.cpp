@@ -18,11 +18,12 @@
 namespace radrecon {
 
 std::string read_text_file(const std::string& path, const std::string& what) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw UserError(path, "is a folder, not a " + what);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw UserError(path, "cannot open " + what + ": " + std::strerror(errno));
   check_input_file_size(path);
   std::string text;
-  std::error_code ec;
   const auto size = std::filesystem::file_size(path, ec);
   if (!ec) text.reserve(static_cast<size_t>(size));
   std::vector<char> chunk(size_t{1} << 16);  // reads pipes too, within the file-size limit

@@ -44,6 +44,10 @@ class CsvTable {
   CsvTable(const std::string& path, size_t min_columns, const char* expected_header)
       : path_(path), text_(read_text_file(path, "CSV file")) {  // pipes too, within the file-size limit
     if (text_.compare(0, 3, "\xEF\xBB\xBF") == 0) pos_ = 3;  // a UTF-8 byte order mark
+    // Lines ended by carriage returns alone (classic Mac OS) read as one line: "no data rows".
+    if (text_.find('\n') == std::string::npos && text_.find('\r') != std::string::npos)
+      throw UserError(path, "its lines end in carriage returns alone (classic Mac OS text); end them in line feeds "
+                            "(e.g. tr '\\r' '\\n')");
 
     std::string_view line;
     const size_t header_pos = pos_;
@@ -74,8 +78,15 @@ class CsvTable {
   }
 
   /// The column named `name` (case-insensitive), for option `option`; UserError if none is.
+  /// The column named `name`, which names one column (UserError naming `option` otherwise: a
+  /// second 'x' became a value column named x, beside the first read as x).
   size_t column(const std::string& name, const std::string& option) const {
     const std::optional<size_t> c = find(name);
+    size_t named = 0;
+    for (const std::string& h : header_) named += ascii_lower(h) == ascii_lower(name);
+    if (named > 1)
+      throw UserError(option, path_ + " has " + std::to_string(named) + " columns named " + in_quotes(name) +
+                                  " (names are matched without case); rename all but one");
     if (!c) {
       std::string names;
       for (const std::string& h : header_) names += (names.empty() ? "" : ", ") + h;
@@ -216,8 +227,8 @@ namespace {
 
 /// The x and y columns: the named ones, else those named x and y, else the first two.
 std::pair<size_t, size_t> xy_columns(const CsvTable& table, const CsvColumns& columns) {
-  const size_t x = !columns.x.empty() ? table.column(columns.x, "--x") : table.find("x").value_or(0);
-  const size_t y = !columns.y.empty() ? table.column(columns.y, "--y") : table.find("y").value_or(1);
+  const size_t x = !columns.x.empty() ? table.column(columns.x, "--x") : table.find("x") ? table.column("x", "--x") : 0;
+  const size_t y = !columns.y.empty() ? table.column(columns.y, "--y") : table.find("y") ? table.column("y", "--y") : 1;
   if (x == y) throw UserError("--x/--y", "x and y are the same column ('" + table.header()[x] + "')");
   return {x, y};
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <set>
 
 #include "core/check.h"
 #include "core/error.h"
@@ -114,11 +115,14 @@ std::string rbf_patch_problem(double k) {
 MethodParams parse_params(Method method, const std::vector<std::string>& settings, const std::string& field) {
   // `field` is the caller's location of the settings; each parameter is named after it.
   MethodParams p;
+  std::set<std::string> given;
   for (const std::string& s : settings) {
     const auto eq = s.find('=');
     if (eq == std::string::npos || eq == 0) throw UserError(field, "expected NAME=VALUE, got '" + s + "'");
     const std::string name = s.substr(0, eq), value = s.substr(eq + 1);
     const std::string where = field + " " + name;
+    // A parameter given twice is a slip (the last one silently won).
+    if (!given.insert(name).second) throw UserError(where, "given twice; give it once");
     if (method == Method::shepard && name == "mu") {
       p.shepard_mu = parse_number(value, where);
       if (!(p.shepard_mu > 0)) throw UserError(where, "must be > 0");

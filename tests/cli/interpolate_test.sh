@@ -333,4 +333,9 @@ grep -q nan "$TMP/no_border_nn.csv" || fail "no_border_nn: every point had a val
 refuse border_constant "--border-samples" "$TMP/b7.csv" --samples "$S" --method constant --border-samples --queries "$Q"
 refuse domain_without_border "--domain" "$TMP/b8.csv" --samples "$S" --method shepard --domain 0,0,1,1 --queries "$Q"
 
+# --- an empty column name given is refused, not read as the default (every column) ------------
+run empty_value --samples "$TMP/scattered.csv" --value "" --method shepard --queries "$TMP/queries.csv" --out "$TMP/empty_value.csv"
+expect_rc empty_value 2 && expect_stderr_has empty_value "must name a column"
+[ -e "$TMP/empty_value.csv" ] && fail "empty_value: wrote an output"
+
 finish interpolate_test

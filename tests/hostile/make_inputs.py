@@ -25,6 +25,10 @@ write("header_only.csv", "x,y,v\n")
 write("nan_value.csv", "x,y,v\n0,0,1\n1,0,nan\n0,1,2\n")
 write("inf_value.csv", "x,y,v\n0,0,1\n1,0,inf\n0,1,2\n")
 write("nan_coordinate.csv", "x,y,v\n0,0,1\nnan,0,1\n0,1,2\n")
+# Found by an outside-in trial: a second x became a value column named x; carriage returns alone
+# read as one line ("no data rows").
+write("duplicate_header.csv", "x,X,y,v\n0,0,0,1\n1,1,0,2\n0,0,1,3\n")
+write("cr_only.csv", "x,y,v\r0,0,1\r1,0,2\r0,1,3\r")
 write("text_value.csv", "x,y,v\n0,0,1\n1,0,one\n0,1,2\n")
 write("short_row.csv", "x,y,v\n0,0,1\n1,0\n0,1,2\n")
 write("truncated.csv", "x,y,v\n0,0,1\n1,0,2\n0,1,")
