@@ -76,11 +76,45 @@ std::vector<std::string> settings_of(const py::kwargs& params) {
   return out;
 }
 
+/// Whether `o` is a path: a str or an os.PathLike (pathlib.Path).
+bool is_path(const py::handle& o) { return py::isinstance<py::str>(o) || py::hasattr(o, "__fspath__"); }
+std::string path_of(const py::handle& o) {
+  return py::module_::import("os").attr("fspath")(o).cast<std::string>();  // bytes paths: refused as not a str
+}
+
+/// `o` as a sequence of `count` numbers (a tuple, list or array; not a string), each a whole
+/// number if `whole` (not a bool); UserError naming `field` with what is expected otherwise. pybind
+/// gave a TypeError of its own ("incompatible function arguments") for raster=(2.5, 3) or "4x3".
+std::vector<double> numbers_of(const py::handle& o, size_t count, bool whole, const std::string& field,
+                               const std::string& expected) {
+  const auto refuse = [&] { throw UserError(field, expected + ", got " + py::repr(o).cast<std::string>()); };
+  if (py::isinstance<py::str>(o) || py::isinstance<py::bytes>(o)) refuse();
+  PyObject* list = PySequence_List(o.ptr());  // a tuple, list, array or any iterable
+  if (list == nullptr) {
+    PyErr_Clear();
+    refuse();
+  }
+  const py::list items = py::reinterpret_steal<py::list>(list);
+  if (items.size() != count) refuse();
+  std::vector<double> out;
+  for (const py::handle item : items) {
+    if (PyBool_Check(item.ptr()) || py::isinstance<py::str>(item)) refuse();
+    const double v = PyFloat_AsDouble(item.ptr());
+    if (v == -1 && PyErr_Occurred()) {
+      PyErr_Clear();
+      refuse();
+    }
+    if (whole && !(v == std::floor(v) && std::abs(v) < 1e15)) refuse();
+    out.push_back(v);
+  }
+  return out;
+}
+
 /// Barriers from a file (GeoJSON, or any OGR line source through GDAL) or a sequence of (k, 2)
 /// polylines.
 Barriers barriers_of(const py::object& barriers) {
   if (barriers.is_none()) return {};
-  if (py::isinstance<py::str>(barriers)) return read_barriers_file(barriers.cast<std::string>(), "barriers");
+  if (is_path(barriers)) return read_barriers_file(path_of(barriers), "barriers");
   std::vector<Polyline> lines;
   size_t index = 0;
   for (const py::handle item : barriers) {
@@ -103,8 +137,21 @@ Barriers barriers_of(const py::object& barriers) {
 }
 
 py::array interpolate(const Doubles& points, const Doubles& values, const std::optional<Doubles>& queries,
-                      const std::optional<std::pair<int, int>>& raster, const std::optional<std::array<double, 4>>& domain,
-                      const std::string& method_text, const py::object& barriers, const py::kwargs& kwargs) {
+                      const py::object& raster_arg, const py::object& domain_arg, const std::string& method_text,
+                      const py::object& barriers, const py::kwargs& kwargs) {
+  std::optional<std::pair<int, int>> raster;
+  std::optional<std::array<double, 4>> domain;
+  if (!raster_arg.is_none()) {
+    const std::vector<double> r = numbers_of(raster_arg, 2, true, "raster", "(width, height), two whole numbers, is expected");
+    if (r[0] < 1 || r[1] < 1 || r[0] > kMaxRasterSide || r[1] > kMaxRasterSide)
+      throw UserError("raster", "(" + format_number(r[0]) + ", " + format_number(r[1]) + ") is out of range: 1 <= width, height <= " +
+                                    std::to_string(kMaxRasterSide));
+    raster = std::pair<int, int>(static_cast<int>(r[0]), static_cast<int>(r[1]));
+  }
+  if (!domain_arg.is_none()) {
+    const std::vector<double> d = numbers_of(domain_arg, 4, false, "domain", "(x0, y0, x1, y1), four numbers, is expected");
+    domain = std::array<double, 4>{d[0], d[1], d[2], d[3]};
+  }
   check_points(points, "points");
   const auto n = static_cast<size_t>(points.shape(0));
   if (values.ndim() < 1 || values.ndim() > 2 || static_cast<size_t>(values.shape(0)) != n)

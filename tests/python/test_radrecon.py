@@ -200,6 +200,29 @@ def test_bad_arrays_are_named():
         radrecon.interpolate(p, big, queries=p)
 
 
+def test_raster_and_domain_of_the_wrong_shape_or_kind_are_named(tmp_path):
+    # pybind's own TypeError ("incompatible function arguments") before: found by an outside-in
+    # trial. Arrays and lists serve as well as tuples; a path-like object names a barrier file.
+    rng = np.random.default_rng(7)
+    points = rng.uniform(0, 1, (40, 2))
+    values = 3 + 2 * points[:, 0] - 5 * points[:, 1]
+    for raster, domain, field in [((2.5, 3), (0, 0, 1, 1), "raster"), ((4, 3, 1), (0, 0, 1, 1), "raster"),
+                                  ("4x3", (0, 0, 1, 1), "raster"), ((True, 3), (0, 0, 1, 1), "raster"),
+                                  (5, (0, 0, 1, 1), "raster"), ((4, 3), (0, 0, 1, 1, 1), "domain"),
+                                  ((4, 3), (0, 0, "1", 1), "domain")]:
+        with pytest.raises(radrecon.Error, match="^" + field + ": "):
+            radrecon.interpolate(points, values, raster=raster, domain=domain, method="linear")
+    grid = radrecon.interpolate(points, values, raster=np.array([4, 3]), domain=[0.2, 0.2, 0.8, 0.8], method="linear")
+    x = 0.2 + 0.15 * (np.arange(4) + 0.5)
+    y = 0.2 + 0.2 * (np.arange(3) + 0.5)
+    assert np.allclose(grid, 3 + 2 * x[None, :] - 5 * y[:, None], atol=1e-12)
+    fault = tmp_path / "fault.geojson"
+    fault.write_text('{"type": "LineString", "coordinates": [[0.5, -1], [0.5, 2]]}')
+    as_path = radrecon.interpolate(points, values, queries=np.array([[0.2, 0.5]]), barriers=fault)
+    as_text = radrecon.interpolate(points, values, queries=np.array([[0.2, 0.5]]), barriers=str(fault))
+    assert as_path[0] == as_text[0]
+
+
 def test_duplicates_are_merged_with_a_warning():
     p = np.array([[0, 0], [1, 0], [0, 1], [1, 1], [1, 1]], dtype=float)
     v = np.array([0, 1, 1, 2, 4], dtype=float)
