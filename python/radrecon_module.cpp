@@ -217,6 +217,7 @@ py::array interpolate(const Doubles& points, const Doubles& values, const std::o
   py::array_t<double> out(shape);
   double* result = out.mutable_data();
   const size_t count = raster ? static_cast<size_t>(grid.width) * grid.height : at.size();
+  WarningCollector warnings;  // the library's warnings, raised as Python's below
   {
     py::gil_scoped_release release;
     const InterpolantResult interpolant = make_point_interpolant(method, samples, params);
@@ -229,6 +230,8 @@ py::array interpolate(const Doubles& points, const Doubles& values, const std::o
       else interpolant.value()->evaluate(std::span<const Vec2>(at).subspan(first, batch), out_batch);
     }
   }
+  for (const std::string& w : warnings.messages())
+    if (PyErr_WarnEx(PyExc_UserWarning, w.c_str(), 1) != 0) throw py::error_already_set();  // warnings turned into errors
   return out;
 }
 

@@ -9,6 +9,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace radrecon {
 
@@ -23,6 +24,25 @@ class UserError : public std::runtime_error {
   /// `what` says what is wrong with it.
   UserError(const std::string& where, const std::string& what);
   explicit UserError(const std::string& what);
+};
+
+/// Says a warning to the user: "radrecon: warning: MESSAGE" on stderr, or, while a
+/// WarningCollector lives on the calling thread, into it (the Python module raises them as
+/// Python warnings, which a program can catch or filter).
+void warn(const std::string& message);
+
+/// Collects the warnings of this thread while it lives (nested: the innermost collects).
+class WarningCollector {
+ public:
+  WarningCollector();
+  ~WarningCollector();
+  WarningCollector(const WarningCollector&) = delete;
+  WarningCollector& operator=(const WarningCollector&) = delete;
+  const std::vector<std::string>& messages() const { return messages_; }
+
+ private:
+  std::vector<std::string> messages_;
+  std::vector<std::string>* outer_;
 };
 
 }  // namespace radrecon

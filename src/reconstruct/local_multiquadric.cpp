@@ -12,6 +12,7 @@
 #include <Eigen/LU>
 
 #include "core/check.h"
+#include "core/error.h"
 #include "core/parallel.h"
 #include "core/tolerances.h"
 #include "reconstruct/convex_hull.h"
@@ -166,9 +167,11 @@ void LocalMultiquadric::check_patches() const {
   }
   const double worst = reciprocal_condition();
   if (!(worst > 0) || !std::isfinite(worst)) throw ReconstructionError("a local " + kernel_.name() + " system is singular");
-  if (worst < tol::kPoorConditioning)
-    std::fprintf(stderr, "radrecon: warning: a local %s system is poorly conditioned (reciprocal condition %.2e)\n",
-                 kernel_.name().c_str(), worst);
+  if (worst < tol::kPoorConditioning) {
+    char condition[32];
+    std::snprintf(condition, sizeof condition, "%.2e", worst);
+    warn("a local " + kernel_.name() + " system is poorly conditioned (reciprocal condition " + condition + ")");
+  }
 }
 
 void LocalMultiquadric::evaluate(std::span<const Vec2> points, std::span<double> out) const {

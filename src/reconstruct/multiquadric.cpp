@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 
 #include "core/check.h"
+#include "core/error.h"
 #include "core/parallel.h"
 #include "core/tolerances.h"
 #include "reconstruct/kdtree.h"
@@ -41,9 +42,11 @@ Multiquadric::Multiquadric(const ScatteredSamples& samples, const RbfKernel& ker
   for (size_t i = 0; i < n; ++i) all[i] = static_cast<unsigned>(i);
   fit_ = fit_rbf(points_, r_sq_, samples.values, channels_, kernel_, std::move(all));
   rcond_ = fit_.rcond;
-  if (rcond_ < tol::kPoorConditioning)
-    std::fprintf(stderr, "radrecon: warning: %s system is poorly conditioned (reciprocal condition %.2e); "
-                         "results may be inaccurate\n", name.c_str(), rcond_);
+  if (rcond_ < tol::kPoorConditioning) {
+    char condition[32];
+    std::snprintf(condition, sizeof condition, "%.2e", rcond_);
+    warn(name + " system is poorly conditioned (reciprocal condition " + condition + "); results may be inaccurate");
+  }
   if (!barriers_.empty()) {
     values_ = samples.values;
     visibility_ = std::make_unique<PointVisibility>(points_, barriers_);

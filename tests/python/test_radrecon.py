@@ -233,6 +233,16 @@ def test_duplicates_are_merged_with_a_warning():
     assert got[0] == 3.0
 
 
+def test_a_poorly_conditioned_system_is_a_python_warning():
+    # It went to stderr past Python's warnings (an outside-in trial). A multiquadric of a large
+    # radius over close samples: the reciprocal condition falls below 1e-12.
+    rng = np.random.default_rng(9)
+    points = rng.uniform(0, 1, (60, 2))
+    values = np.sin(points[:, 0])
+    with pytest.warns(UserWarning, match="poorly conditioned"):
+        radrecon.interpolate(points, values, queries=np.array([[0.5, 0.5]]), method="multiquadric", r=50)
+
+
 def test_the_gil_is_released_during_the_work():
     # While one thread interpolates, another must be able to run Python code: a call that held
     # the GIL would leave the counter at (almost) nothing until it returned.
