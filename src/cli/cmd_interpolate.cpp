@@ -195,11 +195,13 @@ void run_interpolate(const InterpolateArgs& args) {
   Progress progress("interpolate", args.quiet);
   double querying_s = 0;  // the batches' time (the streamed PFM's share of its run)
   // The values of points [first, first + out.size() / channels) into `out`.
+  size_t with_value = 0;  // values that are not NaN
   const auto evaluate_batch = [&](size_t first, std::span<double> out) {
     const auto batch_start = Clock::now();
     const size_t count = out.size() / channels;
     if (!use_queries) interpolant.value()->evaluate_raster(raster, first, count, out);  // every output alike
     else interpolant.value()->evaluate(std::span(points).subspan(first, count), out);
+    with_value += static_cast<size_t>(std::count_if(out.begin(), out.end(), [](double v) { return !std::isnan(v); }));
     progress.update(static_cast<double>(first + count) / point_count, "the query points");
     querying_s += seconds_since(batch_start);
   };
@@ -241,6 +243,10 @@ void run_interpolate(const InterpolateArgs& args) {
     }
     writing_s = seconds_since(write_start);
   }
+  // Written, as asked, but said: a raster of no-data alone is seldom what was meant.
+  if (with_value == 0 && point_count > 0)
+    warn(args.out + ": no point has a value (all are outside the samples' hull with outside=none, beyond the radius, "
+                    "or behind barriers from every sample)");
   if (!args.quiet)
     std::fprintf(stderr,
                  "interpolate: wrote %s (%zu points) in %.3f s (reading and checking %.3f s, building %.3f s, "
