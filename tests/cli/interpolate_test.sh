@@ -339,7 +339,7 @@ expect_rc empty_value 2 && expect_stderr_has empty_value "must name a column"
 [ -e "$TMP/empty_value.csv" ] && fail "empty_value: wrote an output"
 
 # --- a raster of no values at all is written, with a warning ----------------------------------
-run no_value --samples "$TMP/scattered.csv" --method linear --param outside=none --raster 3x2 --domain 50,50,60,60 \
+run no_value --samples "$TMP/scattered1.csv" --method linear --param outside=none --raster 3x2 --domain 50,50,60,60 \
   --out "$TMP/no_value.pfm" --quiet
 expect_rc no_value 0 && expect_stderr_has no_value "no point has a value"
 
