@@ -76,10 +76,16 @@ std::vector<std::string> settings_of(const py::kwargs& params) {
   return out;
 }
 
+/// The library's warnings collected (core/error.h) as Python UserWarnings; with the GIL held.
+void raise_warnings(const WarningCollector& warnings) {
+  for (const std::string& w : warnings.messages())
+    if (PyErr_WarnEx(PyExc_UserWarning, w.c_str(), 1) != 0) throw py::error_already_set();  // warnings turned into errors
+}
+
 /// Whether `o` is a path: a str or an os.PathLike (pathlib.Path).
 bool is_path(const py::handle& o) { return py::isinstance<py::str>(o) || py::hasattr(o, "__fspath__"); }
 std::string path_of(const py::handle& o) {
-  return py::module_::import("os").attr("fspath")(o).cast<std::string>();  // bytes paths: refused as not a str
+  return py::module_::import("os").attr("fspath")(o).cast<std::string>();  // a PathLike's bytes: the name's bytes
 }
 
 /// `o` as a sequence of `count` numbers (a tuple, list or array; not a string), each a whole
@@ -115,6 +121,7 @@ std::vector<double> numbers_of(const py::handle& o, size_t count, bool whole, co
 Barriers barriers_of(const py::object& barriers) {
   if (barriers.is_none()) return {};
   if (is_path(barriers)) return read_barriers_file(path_of(barriers), "barriers");
+  if (py::isinstance<py::bytes>(barriers)) throw UserError("barriers", "a file name as bytes: give a str or a pathlib.Path");
   std::vector<Polyline> lines;
   size_t index = 0;
   for (const py::handle item : barriers) {
@@ -230,8 +237,7 @@ py::array interpolate(const Doubles& points, const Doubles& values, const std::o
       else interpolant.value()->evaluate(std::span<const Vec2>(at).subspan(first, batch), out_batch);
     }
   }
-  for (const std::string& w : warnings.messages())
-    if (PyErr_WarnEx(PyExc_UserWarning, w.c_str(), 1) != 0) throw py::error_already_set();  // warnings turned into errors
+  raise_warnings(warnings);
   return out;
 }
 
@@ -377,12 +383,16 @@ Raises radrecon.Error (a ValueError) for refused input.)doc");
     if (leaves_on) settings.leaves_on = *leaves_on;
     settings.shadow_barriers = shadow_barriers;
     check_settings(settings);
-    py::gil_scoped_release release;
-    const Scene scene = load_scene(scene_spec);
     PySolution out;
-    static_cast<Solution&>(out) = solve_scene(scene, mesh, settings, "mesh");
-    // Absolute: the working folder may change between solve() and save().
-    for (const std::string& file : scene_input_files(scene_spec)) out.inputs.push_back(std::filesystem::absolute(file).string());
+    WarningCollector warnings;  // the library's (a model's clamped colours, ...), raised as Python's below
+    {
+      py::gil_scoped_release release;
+      const Scene scene = load_scene(scene_spec);
+      static_cast<Solution&>(out) = solve_scene(scene, mesh, settings, "mesh");
+      // Absolute: the working folder may change between solve() and save().
+      for (const std::string& file : scene_input_files(scene_spec)) out.inputs.push_back(std::filesystem::absolute(file).string());
+    }
+    raise_warnings(warnings);
     return out;
   }, py::arg("scene") = "paper", py::arg("mesh") = "grid:16", py::arg("residual") = py::none(),
      py::arg("patches") = py::none(), py::arg("leaves_on") = py::none(), py::arg("clusters") = py::none(),

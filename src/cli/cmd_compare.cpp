@@ -139,7 +139,7 @@ Comparison compare_pictures(const CompareArgs& args) {
       for (int x = 0; x < a.width; ++x)
         for (int c = 0; c < 3; ++c) {
           const size_t k = (static_cast<size_t>(y) * a.width + x) * a.channels + std::min(c, a.channels - 1);
-          diff.at(x, y)[c] = std::clamp(0.5 + args.scale * (a.values[k] - b.values[k]) / white, 0.0, 1.0);
+          diff.at(x, y)[c] = std::clamp(0.5 + args.scale * (va[k] - vb[k]) / white, 0.0, 1.0);  // missing in both: mid-grey
         }
     write_png(args.diff, diff, false);  // linear: zero is mid-grey (128)
   }

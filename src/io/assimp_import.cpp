@@ -141,7 +141,8 @@ std::string clean_name(const std::string& raw) {
 /// "my%20model.bin" as written): a file that does not exist as named is looked for decoded.
 class GltfIOSystem final : public Assimp::DefaultIOSystem {
  public:
-  GltfIOSystem(std::string path, const std::string& copy) : path_(std::move(path)), copy_(copy) {}
+  GltfIOSystem(std::string path, const std::string& copy)
+      : path_(std::move(path)), folder_(std::filesystem::path(path_).parent_path().string()), copy_(copy) {}
   bool Exists(const char* file) const override { return is_copy(file) || DefaultIOSystem::Exists(resolve(file).c_str()); }
   Assimp::IOStream* Open(const char* file, const char* mode) override {
     if (is_copy(file)) return new Assimp::MemoryIOStream(reinterpret_cast<const uint8_t*>(copy_.data()), copy_.size());
@@ -150,13 +151,16 @@ class GltfIOSystem final : public Assimp::DefaultIOSystem {
 
  private:
   bool is_copy(const char* file) const { return path_ == file; }
-  std::string path_;
-  const std::string& copy_;
+  /// A file in the glTF's folder by the URI after it, as radrecon's index check opens it
+  /// (gltf_uri_file(): one rule for both); any other as named.
   std::string resolve(const char* file) const {
-    if (DefaultIOSystem::Exists(file)) return file;
-    const std::string decoded = percent_decoded(file);
-    return DefaultIOSystem::Exists(decoded.c_str()) ? decoded : std::string(file);
+    const std::string name(file);
+    const std::string prefix = folder_.empty() ? std::string() : folder_ + "/";
+    if (name.compare(0, prefix.size(), prefix) != 0) return name;
+    return gltf_uri_file(folder_, name.substr(prefix.size()));
   }
+  std::string path_, folder_;
+  const std::string& copy_;
 };
 
 class Builder {
@@ -244,7 +248,7 @@ class Builder {
                                      ") m after placement, outside the +-" + format_number(tol::kMaxCoordinate_m) +
                                      " m of a scene");
         corners.push_back(p);
-        if (vertex_colours) {
+        if (vertex_colours && face_colours_ == nullptr) {
           const aiColor4D& c = mesh.mColors[0][idx];
           colour_sum += Rgb(c.r, c.g, c.b);
         }
@@ -257,7 +261,7 @@ class Builder {
       }
       Surface s;
       s.reflectance = material.reflectance;
-      if (vertex_colours) {
+      if (vertex_colours && face_colours_ == nullptr) {
         const Rgb mean = colour_sum / face.mNumIndices;
         if (!mean.allFinite()) throw UserError(path_, "mesh '" + base + "' face " + std::to_string(f) + ": vertex colours not finite");
         s.reflectance = mean.max(0.0).min(kMaxReflectance);

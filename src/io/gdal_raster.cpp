@@ -84,6 +84,9 @@ std::vector<std::string> read_back(const std::string& path, const std::string& f
                               " pixels of " + std::to_string(back->GetRasterCount()) + " band(s) for " + std::to_string(width) +
                               " x " + std::to_string(height) + " of " + std::to_string(bands) + advice);
   std::vector<double> wrote(static_cast<size_t>(width)), read(static_cast<size_t>(width));
+  // The no-data value as the staged band holds it (a float32 band rounds it, as
+  // refuse_nodata_clash() takes it).
+  const double nodata = options.float64 ? options.nodata : static_cast<double>(static_cast<float>(options.nodata));
   bool holes = false;       // whether any pixel is the no-data value
   double most_off = 0;      // the largest difference read back, relative to its band's largest magnitude
   int declared_has = 0;
@@ -99,7 +102,7 @@ std::vector<std::string> read_back(const std::string& path, const std::string& f
       if (w->RasterIO(GF_Read, 0, j, width, 1, wrote.data(), width, 1, GDT_Float64, 0, 0) != CE_None)
         throw UserError(path, its + "wrote a raster GDAL cannot read back (" + QuietGdal::last_error() + ")" + advice);
       for (const double v : wrote)
-        if (v != options.nodata && std::isfinite(v)) largest = std::max(largest, std::abs(v));
+        if (v != nodata && std::isfinite(v)) largest = std::max(largest, std::abs(v));
     }
     for (int j = 0; j < height; ++j) {
       if (w->RasterIO(GF_Read, 0, j, width, 1, wrote.data(), width, 1, GDT_Float64, 0, 0) != CE_None ||
@@ -111,7 +114,7 @@ std::vector<std::string> read_back(const std::string& path, const std::string& f
           return " (band " + std::to_string(b) + ", row " + std::to_string(j) + ", column " + std::to_string(i) + ": wrote " +
                  format_number(expected) + ", reads " + format_number(got) + ")";
         };
-        if (expected == options.nodata) {  // a point without a value: the format's own no-data value will do
+        if (expected == nodata) {  // a point without a value: the format's own no-data value will do
           holes = true;
           if (!(got == expected || (declared_has && got == declared)))
             throw UserError(path, its + "does not keep the points without a value" + where() + advice);
@@ -139,13 +142,11 @@ std::vector<std::string> read_back(const std::string& path, const std::string& f
   if (holes && !declared_has)
     warnings.push_back(path + ": " + its + "declares no no-data value: the points without a value read as " +
                        format_number(options.nodata) + " (.tif, .asc or .nc declare it)");
-  else if (holes && declared != options.nodata)
+  else if (holes && declared != nodata && declared != options.nodata)
     warnings.push_back(path + ": " + its + "writes its own no-data value, " + format_number(declared) + ", for --nodata " +
                        format_number(options.nodata));
   return warnings;
 }
-
-}  // namespace
 
 /// Drivers that create rasters but not a file of the values, refused before any work (the
 /// read-back of write_raster_gdal() would refuse them after it).
@@ -155,6 +156,8 @@ const char* no_file_of_values(const std::string& driver) {
   if (driver == "KMLSUPEROVERLAY") return "writes 8-bit colour tiles for Google Earth, not values";
   return nullptr;
 }
+
+}  // namespace
 
 std::string gdal_raster_driver(const std::string& path, const std::string& format, const std::string& where) {
   std::string ext = lower_extension(path);

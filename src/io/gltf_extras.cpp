@@ -110,9 +110,9 @@ size_t primitive_faces(const json& doc, const json& primitive) {
 /// Required extensions radrecon reads, or may pass over because they touch only what it does not
 /// read (textures, how a viewer shades): the geometry and the two factors it takes are as the
 /// core specification says. Any other in extensionsRequired changes what the file means.
-constexpr std::array<std::string_view, 5> kRequiredExtensionsRead = {
-    "KHR_materials_emissive_strength", "KHR_texture_transform", "KHR_texture_basisu", "EXT_texture_webp",
-    "KHR_materials_unlit"};
+constexpr std::array<std::string_view, 6> kRequiredExtensionsRead = {
+    "KHR_materials_emissive_strength", "KHR_materials_pbrSpecularGlossiness", "KHR_texture_transform",
+    "KHR_texture_basisu", "EXT_texture_webp", "KHR_materials_unlit"};
 
 /// Refuses a required extension radrecon does not read (KHR_mesh_quantization's integer
 /// positions, read by assimp 5.2 as floats, gave a floor of 3e-89 m^2 with exit 0).
@@ -125,8 +125,8 @@ void check_required_extensions(const JsonReader& r, const json& doc) {
     if (std::find(kRequiredExtensionsRead.begin(), kRequiredExtensionsRead.end(), name) == kRequiredExtensionsRead.end())
       r.fail(JsonReader::at("extensionsRequired", i),
              "requires " + in_quotes(name) + ", which radrecon does not read (it reads the core glTF 2.0 geometry, "
-             "baseColorFactor, emissiveFactor and KHR_materials_emissive_strength): export without it (e.g. no "
-             "quantization or compression)");
+             "baseColorFactor, emissiveFactor, KHR_materials_emissive_strength and the diffuseFactor of "
+             "KHR_materials_pbrSpecularGlossiness): export without it (e.g. no quantization or compression)");
   }
 }
 

@@ -213,8 +213,9 @@ std::string percent_decoded(std::string_view uri) {
 }
 
 std::string gltf_uri_file(const std::string& folder, const std::string& uri) {
-  const std::filesystem::path as_written = std::filesystem::path(folder) / uri;
-  const std::filesystem::path decoded = std::filesystem::path(folder) / percent_decoded(uri);
+  const std::filesystem::path base = folder.empty() ? std::filesystem::path() : std::filesystem::path(folder);
+  const std::filesystem::path as_written = base / uri;
+  const std::filesystem::path decoded = base / percent_decoded(uri);
   std::error_code ec;
   return (std::filesystem::exists(decoded, ec) || !std::filesystem::exists(as_written, ec) ? decoded : as_written).string();
 }

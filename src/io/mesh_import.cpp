@@ -30,8 +30,8 @@ MeshImport import_mesh(const std::string& path, const MeshPlacement& placement) 
 }
 
 void print_warnings(const std::vector<std::string>& warnings, size_t limit) {
-  for (size_t i = 0; i < warnings.size() && i < limit; ++i) std::fprintf(stderr, "radrecon: warning: %s\n", warnings[i].c_str());
-  if (warnings.size() > limit) std::fprintf(stderr, "radrecon: warning: ... and %zu more warnings\n", warnings.size() - limit);
+  for (size_t i = 0; i < warnings.size() && i < limit; ++i) warn(warnings[i]);
+  if (warnings.size() > limit) warn("... and " + std::to_string(warnings.size() - limit) + " more warnings");
 }
 
 }  // namespace radrecon

@@ -56,6 +56,12 @@ std::vector<std::string> line_words(const std::string& line) {
   return out;
 }
 
+/// A vertex coordinate checked by check_obj(): its value, or for one that underflows (1e-400)
+/// what strtod reads, 0 or a subnormal.
+double vertex_coordinate(const std::string& word, NumberStatus status, double value) {
+  return status == NumberStatus::ok ? value : std::strtod(word.c_str(), nullptr);
+}
+
 }  // namespace
 
 ObjForAssimp check_obj(const std::string& path) {
@@ -83,7 +89,8 @@ ObjForAssimp check_obj(const std::string& path) {
         if (status == NumberStatus::out_of_range && !std::isfinite(std::strtod(words[k].c_str(), nullptr)))
           throw UserError(at, "vertex coordinate " + in_quotes(words[k]) + " is out of a double's range");
         if (status == NumberStatus::not_a_number) throw UserError(at, "vertex coordinate " + in_quotes(words[k]) + " is not a number");
-        if (status == NumberStatus::ok) lo[static_cast<int>(k)] = std::min(lo[static_cast<int>(k)], value), hi[static_cast<int>(k)] = std::max(hi[static_cast<int>(k)], value);
+        const double read = vertex_coordinate(words[k], status, value);  // as assimp's copy takes it
+        lo[static_cast<int>(k)] = std::min(lo[static_cast<int>(k)], read), hi[static_cast<int>(k)] = std::max(hi[static_cast<int>(k)], read);
       }
       continue;
     }
@@ -132,8 +139,10 @@ ObjForAssimp check_obj(const std::string& path) {
       for (size_t k = 0; k < words.size(); ++k) {
         moved += ' ';
         double value = 0;
-        if (k < 3 && parse_double(words[k], value) == NumberStatus::ok) {
-          const auto [end, ec] = std::to_chars(number, number + sizeof number, value - out.offset_m[static_cast<int>(k)]);
+        const NumberStatus status = parse_double(words[k], value);
+        if (k < 3) {  // checked above: a finite number, or one that underflows
+          const double shifted = vertex_coordinate(words[k], status, value) - out.offset_m[static_cast<int>(k)];
+          const auto [end, ec] = std::to_chars(number, number + sizeof number, shifted);
           moved.append(number, end);
         } else {
           moved += words[k];

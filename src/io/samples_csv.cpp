@@ -262,9 +262,7 @@ ScatteredSamples read_samples_csv(const std::string& path, std::vector<std::stri
   }
   const size_t before = s.points.size();
   const size_t removed = merge_duplicate_points(s);
-  if (removed > 0)
-    std::fprintf(stderr, "radrecon: warning: %s: %s\n", path.c_str(),
-                 merged_samples_message(removed, before, s.points.size()).c_str());
+  if (removed > 0) warn(path + ": " + merged_samples_message(removed, before, s.points.size()));
   return s;
 }
 

@@ -1,7 +1,5 @@
 #include "reconstruct/local_multiquadric.h"
 
-#include "reconstruct/rbf_system.h"
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -38,6 +36,10 @@ constexpr double kSupportSlack = 1e-12;
 /// (LocalMultiquadric::candidate_slack_). A patch passed over then lies farther than h from
 /// the query, where its weight is 0.
 constexpr double kCandidateSlack = 1e-6;
+
+/// A patch on one line looks for a sample off it among the nearest this many times its own
+/// samples (survey tracks: the next track lies within a few times a patch's reach).
+constexpr size_t kOffLineSearch = 16;
 
 /// Wendland's C2 function of t = d / h, zero for t >= 1.
 inline double wendland(double t) {
@@ -90,6 +92,15 @@ LocalMultiquadric::LocalMultiquadric(const ScatteredSamples& samples, const RbfK
   // Each patch: the samples in its disc (one radius search), or the kk nearest when the disc
   // holds fewer. (The kk nearest are taken from a search of 2k, where ties at the kk-th distance
   // go to the lowest indices, kdtree.h.)
+  // Whether the samples span a plane at all: if not, no patch looks for a sample off its line.
+  bool spans_plane = false;
+  if (kernel_.poly && barriers_.empty()) {
+    std::vector<unsigned> all(n);
+    for (size_t i = 0; i < n; ++i) all[i] = static_cast<unsigned>(i);
+    RbfFit frame;
+    rbf_system::polynomial_frame(points_, all, frame);
+    spans_plane = frame.terms == 3;
+  }
   parallel_for_with_scratch<NearestScratch>(0, static_cast<std::int64_t>(patches_.size()), [&](std::int64_t pk, NearestScratch& s) {
     Patch& patch = patches_[static_cast<size_t>(pk)];
     const int i = static_cast<int>(pk % nx_), j = static_cast<int>(pk / nx_);
@@ -113,13 +124,17 @@ LocalMultiquadric::LocalMultiquadric(const ScatteredSamples& samples, const RbfK
     // every patch on the tracks gave way to none, and a linear function erred by 1.3 between
     // them (found by an outside-in trial). The patch takes the nearest sample off its line too,
     // so that its samples span a plane, as the global fit's do.
-    if (kernel_.poly && barriers_.empty() && patch.samples.size() < n) {
+    if (kernel_.poly && barriers_.empty() && spans_plane && patch.samples.size() < n) {
       RbfFit frame;
       rbf_system::polynomial_frame(points_, patch.samples, frame);
       if (frame.terms == 2) {
         const Vec2 along = frame.axis1.normalized();
         const double length = 1 / frame.axis1.norm();  // the spread along the line
-        for (size_t want = std::min(n, 2 * patch.samples.size() + 1);; want = std::min(n, 2 * want)) {
+        // Among the nearest kOffLineSearch times the patch's samples at most: past them the
+        // patch gives way as before (one stray sample far off a line of thousands cost every
+        // patch a search of them all: minutes).
+        const size_t most = std::min(n, kOffLineSearch * patch.samples.size());
+        for (size_t want = std::min(most, 2 * patch.samples.size() + 1);; want = std::min(most, 2 * want)) {
           s.indices.resize(want);
           s.dist_sq.resize(want);
           tree.nearest(patch.center, static_cast<int>(want), s.indices, s.dist_sq);
@@ -133,7 +148,7 @@ LocalMultiquadric::LocalMultiquadric(const ScatteredSamples& samples, const RbfK
             farthest_sq = std::max(farthest_sq, s.dist_sq[off]);
             break;
           }
-          if (want == n) break;  // every sample on one line: the fit gives way, as before
+          if (want == most) break;  // none near enough: the fit gives way, as before
         }
       }
     }

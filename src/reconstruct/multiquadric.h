@@ -8,9 +8,10 @@
 //   the bending energy among the interpolants); no shape parameter, independent of the unit of
 //   length.
 // Solved densely by LU with partial pivoting (Eigen). A poorly conditioned system (reciprocal
-// condition estimate below kPoorConditioning) is reported on stderr. Defined everywhere: outside
-// the samples' hull the multiquadric grows like d^(2 mu) (without a polynomial) and the
-// thin-plate spline is its linear polynomial plus a term growing like log d.
+// condition estimate below kPoorConditioning) is a warning (core/error.h warn(): stderr, or a
+// Python UserWarning). Defined everywhere: outside the samples' hull the multiquadric grows like
+// d^(2 mu) (without a polynomial) and the thin-plate spline is its linear polynomial plus a term
+// growing like log d.
 //
 // With barriers (barriers.h): a query's value is the RBF through the samples it sees (the same
 // radii r_j; its own polynomial), each such subset's system solved once and shared by every

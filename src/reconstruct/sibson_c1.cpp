@@ -89,8 +89,8 @@ std::vector<double> fit_gradients(const Delaunay& dt, std::span<const Delaunay::
 void farin_c1(std::span<const std::pair<unsigned, double>> coords, std::span<const Vec2> points,
               std::span<const double> values, std::span<const double> gradients, int channels, double* out) {
   // Farin's cubic in the coordinates l: sum_i f_i l_i^3 + 3 sum_{i != j} b_iij l_i^2 l_j
-  // + 6 sum_{i < j < k} b_ijk l_i l_j l_k, with b_iij = f_i + g_i . (p_j - p_i) / 3 and b_ijk the
-  // mean of the six b_pq of the triple less half the mean of its three f. Summed over the triples
+  // + 6 sum_{i < j < k} b_ijk l_i l_j l_k, with b_iij = f_i + g_i . (p_j - p_i) / 3 and b_ijk a
+  // quarter of the sum of the six b_pq of the triple less a sixth of f_i + f_j + f_k. Summed over the triples
   // by their pairs and singles, in O(m^2): each ordered pair (p, q) lies in the triples {p, q, r},
   // r any other, whose l_r sum to S - l_p - l_q (S = sum l); each single p in the pairs {q, r} of
   // the others, whose l_q l_r sum to ((S - l_p)^2 - (Q - l_p^2)) / 2 (Q = sum l^2). The triple

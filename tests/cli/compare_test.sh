@@ -64,6 +64,11 @@ run holes b_hole.pfm b_hole.pfm --threshold RMSE=1e-12
 expect_rc holes 0
 grep -qE '^L1 +0$' holes.stdout && grep -qE '^SSIM +1$' holes.stdout || fail "holes: not 0 and 1: $(cat holes.stdout)"
 grep -qF '64 value(s) missing (NaN) in both' holes.stdout || fail "holes: the missing values not counted: $(cat holes.stdout)"
+# Missing in both is no difference: mid-grey, as a picture against itself (it was drawn black).
+run hole_grey b_hole.pfm b_hole.pfm --diff hole_grey.png
+run same_grey b.pfm b.pfm --diff same_grey.png
+expect_rc hole_grey 0 && expect_rc same_grey 0
+cmp -s hole_grey.png same_grey.png || fail "hole_grey: the difference image is not mid-grey where both are missing"
 run hole_diff a_hole.pfm b_hole.pfm --json
 expect_rc hole_diff 0
 check_json hole_diff "abs(j['Linf'] - 0.5) < 1e-15 and abs(j['L1'] - 0.5 / 256) < 1e-15 and j['count'] == 256 and j['missing_in_both'] == 64"

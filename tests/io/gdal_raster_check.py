@@ -264,6 +264,15 @@ with tempfile.TemporaryDirectory() as tmp:
                 "--domain", "-1,-1,5,4", "--out", out)
         check(r.returncode == 0 and words in r.stderr and os.path.exists(out), f"{name}: exit {r.returncode}, {r.stderr.strip()}")
 
+    # A --nodata that a 32-bit float cannot hold (0.1) is looked for as the band holds it. A GSAG
+    # grid then writes the holes as the value 0.1 (not as its own no-data value), which would read
+    # as data: refused, nothing written (it passed with exit 0).
+    out = os.path.join(tmp, "n.grd")
+    r = run("--samples", samples, "--value", "mag", "--method", "linear", "--param", "outside=none", "--raster", "5x4",
+            "--domain", "-1,-1,5,4", "--nodata", "0.1", "--out", out)
+    check(r.returncode == 2 and "does not keep the points without a value" in r.stderr and not os.path.exists(out),
+          f"n.grd --nodata 0.1: exit {r.returncode}, {r.stderr.strip()}")
+
     # A format's side file may not land on an input: ERS writes its data as the output's name
     # without the extension, here the samples' own file. Refused after the work, nothing moved,
     # the samples intact.

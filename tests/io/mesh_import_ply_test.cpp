@@ -150,7 +150,9 @@ TEST(MeshImport, PlyFaceColoursAreTheFacesOwnAndWinOverVertexColours) {
   const std::string header = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
                              "property uchar red\nproperty uchar green\nproperty uchar blue\nelement face 2\n"
                              "property list uchar int vertex_indices\n";
-  const std::string vertices = "0 0 0 0 0 0\n1 0 0 0 0 0\n1 1 0 0 0 0\n0 1 0 0 0 0\n";
+  // White vertex colours (clamped, were they read): the faces' own win, and only a face's own
+  // colour out of range counts as clamped.
+  const std::string vertices = "0 0 0 255 255 255\n1 0 0 255 255 255\n1 1 0 255 255 255\n0 1 0 255 255 255\n";
   write_file(dir / "uchar.ply", header + "property uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n" + vertices +
                                     "3 0 1 2 200 20 20\n3 0 2 3 51 102 255\n");
   const MeshImport m = import_mesh((dir / "uchar.ply").string());

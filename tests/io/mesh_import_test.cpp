@@ -214,7 +214,7 @@ TEST(MeshImport, ObjFarFromTheOriginKeepsItsDetailInDouble) {
   write_file(dir / "site.mtl", "newmtl lamp\nKe 100\n");
   write_file(dir / "site.obj",
              "mtllib site.mtl\nv 300000.02 0.02 3 # a corner\nv 300000.07 0.02 3\nv 300000.07 0.07 3\nv 300000.02 0.07 3\n"
-             "v 299990 -10 0\nv 300010 -10 0\nv 300010 10 0\nv 299990 10 0\n"
+             "v 299990 -10 0\nv 300010 -10 0\nv 300010 10 1e-400\nv 299990 10 0\n"
              "usemtl lamp\nf 4 3 2 1\nusemtl none\nf 5 6 7 8\n");
   MeshPlacement back;
   back.translate_m = Vec3(-300000, 0, 0);
@@ -225,6 +225,9 @@ TEST(MeshImport, ObjFarFromTheOriginKeepsItsDetailInDouble) {
   EXPECT_NEAR(lamp.corners[3].x(), 0.02, 1e-8);
   EXPECT_NEAR(lamp.corners[1].y(), 0.07, 1e-8);
   EXPECT_NEAR(m.surfaces[1].area_m2(), 400, kFloat * 400);
+  // A coordinate that underflows (1e-400, read as 0) is moved with the others: it stayed at 0 in
+  // assimp's copy and landed 1.5 m off.
+  for (const Vec3& c : m.surfaces[1].corners) EXPECT_NEAR(c.z(), 0, 1e-8);
 }
 
 TEST(MeshImport, ObjPolygonOffItsPlaneIsCutThroughItsCornersWithAWarning) {
@@ -319,6 +322,13 @@ TEST(MeshImport, GltfBufferNamedByAPercentEncodedUri) {
   write_file(dir / "100% %zz.bin", buffer);
   write_file(dir / "percent.gltf", g.dump());
   check_glow_quads(import_mesh((dir / "percent.gltf").string()));
+  // In a folder whose own name holds '%20': only the URI is decoded, by radrecon's check and by
+  // assimp alike (assimp's file system decoded the whole path, folder included).
+  std::filesystem::create_directories(dir / "dir%20x");
+  g["buffers"][0]["uri"] = "c%20d.bin";
+  write_file(dir / "dir%20x" / "c d.bin", buffer);
+  write_file(dir / "dir%20x" / "in.gltf", g.dump());
+  check_glow_quads(import_mesh((dir / "dir%20x" / "in.gltf").string()));
 }
 
 TEST(MeshImport, GltfStripsFansAndRepeatedIndicesAreFacesToo) {

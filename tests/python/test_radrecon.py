@@ -243,6 +243,17 @@ def test_a_poorly_conditioned_system_is_a_python_warning():
         radrecon.interpolate(points, values, queries=np.array([[0.5, 0.5]]), method="multiquadric", r=50)
 
 
+def test_a_models_warnings_are_python_warnings(tmp_path):
+    # A model's clamped colour went to stderr past Python's warnings (the review). An OBJ of a lamp
+    # over a floor of Kd 1 (clamped to 0.999).
+    (tmp_path / "m.mtl").write_text("newmtl white\nKd 1 1 1\nnewmtl lamp\nKd 0\nKe 10\n")
+    (tmp_path / "m.obj").write_text("mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                                    "v 0 0 1\nv 0 1 1\nv 1 1 1\nv 1 0 1\n"
+                                    "usemtl white\nf 1 2 3 4\nusemtl lamp\nf 5 6 7 8\n")
+    with pytest.warns(UserWarning, match="clamped"):
+        radrecon.solve(str(tmp_path / "m.obj"), "grid:2")
+
+
 def test_the_gil_is_released_during_the_work():
     # While one thread interpolates, another must be able to run Python code: a call that held
     # the GIL would leave the counter at (almost) nothing until it returned.

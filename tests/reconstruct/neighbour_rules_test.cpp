@@ -162,8 +162,9 @@ TEST(SibsonC1, FittedGradientsAgreeWithCgalsSibsonFitting) {
 TEST(SibsonC1, FarinsFormSummedByPairsEqualsItsSumOverTriples) {
   // farin_c1() sums the cubic's triple terms by pairs and singles (O(m^2); the triple loop took
   // 26 s for 2000 samples on a circle, all natural neighbours of the query). Against the
-  // definition summed triple by triple: b_iij = f_i + g_i . (p_j - p_i) / 3, b_ijk the mean of
-  // the six b_pq less half the mean of f_i, f_j, f_k, random coordinates summing to one.
+  // definition summed triple by triple: b_iij = f_i + g_i . (p_j - p_i) / 3, b_ijk a quarter of
+  // the sum of the six b_pq less a sixth of f_i + f_j + f_k (Farin 1990), random coordinates
+  // summing to one.
   std::mt19937 rng(43);
   std::uniform_real_distribution<double> u(-1, 1), w(0.01, 1);
   for (const int m : {1, 2, 3, 5, 12}) {
