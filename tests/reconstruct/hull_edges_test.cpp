@@ -6,7 +6,9 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "reconstruct/methods.h"
@@ -33,6 +35,24 @@ std::vector<std::pair<size_t, size_t>> hull_edges(const std::vector<Vec2>& p) {
   return out;
 }
 
+/// Every triangulation method, each on the hull the same way.
+constexpr std::array<Method, 5> kTriangulationMethods = {Method::natural_neighbour, Method::sibson_c1, Method::laplace,
+                                                         Method::linear, Method::clough_tocher};
+
+/// The method's values at q with outside=none; NaN everywhere (and a failure) if it cannot be made.
+std::vector<double> values_with_no_outside(Method m, const ScatteredSamples& s, const std::vector<Vec2>& q) {
+  MethodParams params;
+  params.outside = OutsideHull::none;
+  const InterpolantResult interpolant = make_scattered_interpolant(m, s, params);
+  std::vector<double> v(q.size(), std::numeric_limits<double>::quiet_NaN());
+  if (!interpolant) {
+    ADD_FAILURE() << method_name(m) << ": " << interpolant.reason();
+    return v;
+  }
+  interpolant.value()->evaluate(q, v);
+  return v;
+}
+
 TEST(HullEdges, EveryTriangulationMethodReproducesALinearFunctionOnEveryHullEdge) {
   std::mt19937 rng(2026);
   std::uniform_real_distribution<double> u(0, 1);
@@ -54,14 +74,8 @@ TEST(HullEdges, EveryTriangulationMethodReproducesALinearFunctionOnEveryHullEdge
     std::vector<Vec2> q;
     for (const auto& [i, j] : edges)
       for (int k = 1; k < 16; ++k) q.push_back(s.points[i] + (k / 16.0) * (s.points[j] - s.points[i]));
-    for (const Method m : {Method::natural_neighbour, Method::sibson_c1, Method::laplace, Method::linear,
-                           Method::clough_tocher}) {
-      MethodParams params;
-      params.outside = OutsideHull::none;
-      const InterpolantResult interpolant = make_scattered_interpolant(m, s, params);
-      ASSERT_TRUE(interpolant) << interpolant.reason();
-      std::vector<double> v(q.size());
-      interpolant.value()->evaluate(q, v);
+    for (const Method m : kTriangulationMethods) {
+      const std::vector<double> v = values_with_no_outside(m, s, q);
       for (size_t k = 0; k < q.size(); ++k) {
         const double expected = f(q[k] - offset);
         // Far from the origin the coordinates carry ~1e-9 m of rounding (5.4e6 m x 2^-52), which
@@ -89,13 +103,8 @@ TEST(HullEdges, ALineThroughASliverFaceOfThreeSamplesCollinearToRounding) {
   for (const Vec2& p : s.points) s.values.push_back(f(p));
   std::vector<Vec2> q;
   for (int k = 0; k <= 996; ++k) q.push_back(s.points[1] + (k / 996.0) * (s.points[3] - s.points[1]));
-  for (const Method m : {Method::natural_neighbour, Method::sibson_c1, Method::laplace, Method::linear, Method::clough_tocher}) {
-    MethodParams params;
-    params.outside = OutsideHull::none;
-    const InterpolantResult interpolant = make_scattered_interpolant(m, s, params);
-    ASSERT_TRUE(interpolant) << interpolant.reason();
-    std::vector<double> v(q.size());
-    interpolant.value()->evaluate(q, v);
+  for (const Method m : kTriangulationMethods) {
+    const std::vector<double> v = values_with_no_outside(m, s, q);
     for (size_t k = 0; k < q.size(); ++k) {
       ASSERT_FALSE(std::isnan(v[k])) << method_name(m) << " at " << q[k].transpose();
       ASSERT_NEAR(v[k], f(q[k]), 1e-12) << method_name(m) << " at " << q[k].transpose();
