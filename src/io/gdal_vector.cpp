@@ -39,6 +39,10 @@ class OgrLayer {
       throw UserError(path, "cannot open as a vector source" + (reason.empty() ? std::string() : ": " + reason));
     if (data_->GetLayerCount() < 1) throw UserError(path, "has no layer");
     layer_ = data_->GetLayer(0);
+    // The first layer is read (docs/interpolate.md); the others, said so rather than left unseen.
+    if (data_->GetLayerCount() > 1)
+      warn(path + ": " + std::to_string(data_->GetLayerCount()) + " layers; the first, '" + layer_->GetName() +
+           "', is read (the others are not)");
   }
 
   OGRLayer& layer() { return *layer_; }

@@ -182,6 +182,16 @@ with tempfile.TemporaryDirectory() as tmp:
         check(r.returncode == 0, f"GeoPackage samples with {name} barriers ({r.stderr.strip()})")
         outputs[name] = open(out).read() if r.returncode == 0 else None
     check(outputs["gpkg"] is not None and outputs["gpkg"] == outputs["geojson"], "OGR and GeoJSON barriers agree")
+    # A source of several layers: the first is read, and a warning says so (it was silent).
+    two = line_layer("two.gpkg", "LINESTRING (2.2 -1, 2.2 4)")
+    ds = ogr.Open(two, 1)
+    ds.CreateLayer("more", geom_type=ogr.wkbLineString)
+    ds = None
+    out = os.path.join(tmp, "nn_two.csv")
+    r = run("--samples", gpkg, "--method", "natural-neighbour", "--raster", "8x6", "--domain", "0,0,4,3",
+            "--barriers", two, "--out", out)
+    check(r.returncode == 0 and "2 layers; the first, 'faults', is read" in r.stderr
+          and open(out).read() == outputs["gpkg"], f"two layers: exit {r.returncode}, {r.stderr.strip()}")
     # A barrier beyond the largest coordinate is refused through OGR as through GeoJSON.
     far = line_layer("far.gpkg", "LINESTRING (2.2 -1, 2.2 1e200)")
     out = os.path.join(tmp, "nn_far.csv")
