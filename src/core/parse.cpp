@@ -2,7 +2,9 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <limits>
 
 #include "core/error.h"
 
@@ -13,7 +15,16 @@ NumberStatus parse_double(std::string_view f, double& v) {
   if (!d.empty() && d.front() == '+') d.remove_prefix(1);
   if (d.empty() || d.front() == '+' || (f.front() == '+' && d.front() == '-')) return NumberStatus::not_a_number;
   const auto [end, ec] = std::from_chars(d.data(), d.data() + d.size(), v);
-  if (ec == std::errc::result_out_of_range) return NumberStatus::out_of_range;
+  if (ec == std::errc::result_out_of_range && end == d.data() + d.size()) {
+    // from_chars leaves `v` alone both for a magnitude too large and for one too small for a
+    // double. Too small is no error: "1e-400" is read as strtod rounds it (0 or a subnormal,
+    // with its sign); too large is.
+    const std::string text(d);
+    const double rounded = std::strtod(text.c_str(), nullptr);
+    if (!std::isfinite(rounded) || std::abs(rounded) >= std::numeric_limits<double>::min()) return NumberStatus::out_of_range;
+    v = rounded;
+    return NumberStatus::ok;
+  }
   if (ec != std::errc() || end != d.data() + d.size()) return NumberStatus::not_a_number;
   return std::isfinite(v) ? NumberStatus::ok : NumberStatus::not_finite;
 }

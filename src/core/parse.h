@@ -12,7 +12,9 @@ namespace radrecon {
 enum class NumberStatus { ok, not_a_number, out_of_range, not_finite };
 
 /// Parses all of `text` as a decimal floating-point number ("4", "-2.5", "3e-4", a leading '+'
-/// allowed; not "4x", " 4", "nan", "inf"). On ok, `value` holds a finite double.
+/// allowed; not "4x", " 4", "nan", "inf"). On ok, `value` holds a finite double: a magnitude too
+/// small for a double ("1e-400") rounds to 0 or a subnormal, as strtod does; out_of_range means
+/// too large ("1e400").
 NumberStatus parse_double(std::string_view text, double& value);
 
 /// The finite number that is the whole of `text`, or nullopt.

@@ -3,7 +3,6 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -56,12 +55,6 @@ std::vector<std::string> line_words(const std::string& line) {
   return out;
 }
 
-/// A vertex coordinate checked by check_obj(): its value, or for one that underflows (1e-400)
-/// what strtod reads, 0 or a subnormal.
-double vertex_coordinate(const std::string& word, NumberStatus status, double value) {
-  return status == NumberStatus::ok ? value : std::strtod(word.c_str(), nullptr);
-}
-
 }  // namespace
 
 ObjForAssimp check_obj(const std::string& path) {
@@ -85,12 +78,10 @@ ObjForAssimp check_obj(const std::string& path) {
         double value = 0;
         const NumberStatus status = parse_double(words[k], value);
         if (status == NumberStatus::not_finite) throw UserError(at, "vertex coordinate " + in_quotes(words[k]) + " is not finite");
-        // Out of range: too large (refused), or so small that it reads as 0 or a subnormal.
-        if (status == NumberStatus::out_of_range && !std::isfinite(std::strtod(words[k].c_str(), nullptr)))
+        if (status == NumberStatus::out_of_range)
           throw UserError(at, "vertex coordinate " + in_quotes(words[k]) + " is out of a double's range");
         if (status == NumberStatus::not_a_number) throw UserError(at, "vertex coordinate " + in_quotes(words[k]) + " is not a number");
-        const double read = vertex_coordinate(words[k], status, value);  // as assimp's copy takes it
-        lo[static_cast<int>(k)] = std::min(lo[static_cast<int>(k)], read), hi[static_cast<int>(k)] = std::max(hi[static_cast<int>(k)], read);
+        lo[static_cast<int>(k)] = std::min(lo[static_cast<int>(k)], value), hi[static_cast<int>(k)] = std::max(hi[static_cast<int>(k)], value);
       }
       continue;
     }
@@ -139,9 +130,9 @@ ObjForAssimp check_obj(const std::string& path) {
       for (size_t k = 0; k < words.size(); ++k) {
         moved += ' ';
         double value = 0;
-        const NumberStatus status = parse_double(words[k], value);
-        if (k < 3) {  // checked above: a finite number, or one that underflows
-          const double shifted = vertex_coordinate(words[k], status, value) - out.offset_m[static_cast<int>(k)];
+        if (k < 3) {  // checked above: a finite number (one that underflows reads as 0 or a subnormal)
+          parse_double(words[k], value);
+          const double shifted = value - out.offset_m[static_cast<int>(k)];
           const auto [end, ec] = std::to_chars(number, number + sizeof number, shifted);
           moved.append(number, end);
         } else {

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -123,6 +124,17 @@ TEST(SamplesIo, RefusesMalformedSamplesNamingFileAndLine) {
   expect_samples_refused("x,y,B\n0,0,1\n1,0,\xff\xfe\n", 3, "'\\xff\\xfe' is not a number");
   expect_samples_refused("x,y,B\n0,0,1\n1,0,\xc3\xa9t\xc3\xa9\n", 3, "'\xc3\xa9t\xc3\xa9' is not a number");  // UTF-8 as it is
   expect_samples_refused("x,y,B\n0,0,1e101\n", 2, "column 3 (B): '1e101' is beyond the largest value, 1e+100");
+  expect_samples_refused("x,y,B\n0,0,1\n1,0,1e400\n", 3, "column 3 (B): '1e400' is out of the range of a double");
+}
+
+// A value too small for a double is no error: it reads as the nearest double, 0 (an outside-in
+// trial's 1e-400 was refused as out of range).
+TEST(SamplesIo, ReadsAValueThatUnderflowsAsZero) {
+  SamplesIoFiles files;
+  const ScatteredSamples s = read_samples_csv(files.write("s.csv", "x,y,B\n0,0,1e-400\n1,-1e-400,2\n0,1,5e-324\n"), nullptr, {});
+  ASSERT_EQ(s.points.size(), 3u);
+  EXPECT_EQ(s.values, (std::vector<double>{0, 2, std::numeric_limits<double>::denorm_min()}));
+  EXPECT_EQ(s.points[1], Vec2(1, 0));
 }
 
 // The files people have: a header that does not start with x,y (columns chosen by name), R's
