@@ -77,8 +77,8 @@ void run_interpolate(const InterpolateArgs& args) {
     }
     if (args.gdal_type != "float32" && args.gdal_type != "float64")
       throw UserError("--type", "'" + args.gdal_type + "' is no band type; float32 or float64");
-    if (!std::isfinite(args.nodata)) throw UserError("--nodata", "must be a finite number");
-  } else if (!args.crs.empty() || args.gdal_type != "float32" || args.nodata != kDefaultNoData) {
+    if (std::isinf(args.nodata)) throw UserError("--nodata", "must be a finite number or nan");
+  } else if (!args.crs.empty() || args.gdal_type != "float32" || !(args.nodata == kDefaultNoData)) {
     throw UserError("--crs/--type/--nodata", "apply to GDAL rasters (e.g. --out map.tif), not to " + ext + " files");
   }
   const bool use_queries = !args.queries.empty(), use_raster = !args.raster.empty();
@@ -331,7 +331,7 @@ void add_interpolate_command(CLI::App& app) {
                   "PROJ); default: none");
   cmd->add_option("--nodata", args->nodata,
                   "GDAL rasters: the value written where a method gives none (NaN), declared as the bands' no-data "
-                  "value (default -9999)");
+                  "value (default -9999; nan keeps NaN and declares it)");
   cmd->add_option("--barriers", args->barriers,
                   "Barrier lines: a GeoJSON file (LineString, MultiLineString, Polygon/MultiPolygon rings; a "
                   "geometry, Feature or FeatureCollection), or any GDAL vector source of lines (.gpkg, .shp, ...); "

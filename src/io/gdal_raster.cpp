@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <sstream>
@@ -77,7 +78,9 @@ std::vector<std::string> read_back(const std::string& path, const std::string& f
   const std::string its = "GDAL's " + driver + " driver ";
   const std::string advice = ": write .tif, .asc, .nc or another format of floating-point bands";
   std::unique_ptr<GDALDataset> back(GDALDataset::Open(file.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
-  if (!back) throw UserError(path, its + "wrote nothing GDAL can read back (" + QuietGdal::last_error() + ")" + advice);
+  if (!back)
+    throw UserError(path, its + "wrote nothing GDAL can read back (" + QuietGdal::last_error() + ")" +
+                              (std::isnan(options.nodata) ? "; it may not read NaN, which --nodata a number avoids" : "") + advice);
   const int width = image.GetRasterXSize(), height = image.GetRasterYSize(), bands = image.GetRasterCount();
   if (back->GetRasterXSize() != width || back->GetRasterYSize() != height || back->GetRasterCount() != bands)
     throw UserError(path, its + "wrote " + std::to_string(back->GetRasterXSize()) + " x " + std::to_string(back->GetRasterYSize()) +
@@ -85,10 +88,11 @@ std::vector<std::string> read_back(const std::string& path, const std::string& f
                               " x " + std::to_string(height) + " of " + std::to_string(bands) + advice);
   std::vector<double> wrote(static_cast<size_t>(width)), read(static_cast<size_t>(width));
   // The no-data value as the staged band holds it (a float32 band rounds it, as
-  // refuse_nodata_clash() takes it).
+  // refuse_nodata_clash() takes it); NaN matches NaN.
   const double nodata = options.float64 ? options.nodata : static_cast<double>(static_cast<float>(options.nodata));
-  bool holes = false;       // whether any pixel is the no-data value
-  double most_off = 0;      // the largest difference read back, relative to its band's largest magnitude
+  const auto same_value = [](double a, double b) { return a == b || (std::isnan(a) && std::isnan(b)); };
+  bool holes = false;   // whether any pixel is the no-data value
+  double most_off = 0;  // the largest difference read back, relative to its band's largest magnitude
   int declared_has = 0;
   const double declared = back->GetRasterBand(1)->GetNoDataValue(&declared_has);
   for (int b = 1; b <= bands; ++b) {
@@ -97,36 +101,36 @@ std::vector<std::string> read_back(const std::string& path, const std::string& f
     const GDALDataType type = r->GetRasterDataType();
     if (type != GDT_Float32 && type != GDT_Float64)
       throw UserError(path, its + "wrote bands of " + GDALGetDataTypeName(type) + ", which round the values" + advice);
-    double largest = 0;  // the band's largest magnitude written, no-data aside
-    for (int j = 0; j < height; ++j) {
-      if (w->RasterIO(GF_Read, 0, j, width, 1, wrote.data(), width, 1, GDT_Float64, 0, 0) != CE_None)
-        throw UserError(path, its + "wrote a raster GDAL cannot read back (" + QuietGdal::last_error() + ")" + advice);
-      for (const double v : wrote)
-        if (v != nodata && std::isfinite(v)) largest = std::max(largest, std::abs(v));
-    }
+    // One pass: the band's largest magnitude written (no-data aside) and the largest difference
+    // read back, with where it is, judged against the largest magnitude at the end.
+    double largest = 0, worst_off = 0;
+    std::string worst;  // where the largest difference is, for the message
+    const auto at = [&](int i, int j, double expected, double got) {
+      return " (band " + std::to_string(b) + ", row " + std::to_string(j) + ", column " + std::to_string(i) + ": wrote " +
+             format_number(expected) + ", reads " + format_number(got) + ")";
+    };
     for (int j = 0; j < height; ++j) {
       if (w->RasterIO(GF_Read, 0, j, width, 1, wrote.data(), width, 1, GDT_Float64, 0, 0) != CE_None ||
           r->RasterIO(GF_Read, 0, j, width, 1, read.data(), width, 1, GDT_Float64, 0, 0) != CE_None)
         throw UserError(path, its + "wrote a raster GDAL cannot read back (" + QuietGdal::last_error() + ")" + advice);
       for (int i = 0; i < width; ++i) {
         const double expected = wrote[static_cast<size_t>(i)], got = read[static_cast<size_t>(i)];
-        const auto where = [&] {
-          return " (band " + std::to_string(b) + ", row " + std::to_string(j) + ", column " + std::to_string(i) + ": wrote " +
-                 format_number(expected) + ", reads " + format_number(got) + ")";
-        };
-        if (expected == nodata) {  // a point without a value: the format's own no-data value will do
+        if (same_value(expected, nodata)) {  // a point without a value: the format's own no-data value will do
           holes = true;
-          if (!(got == expected || (declared_has && got == declared)))
-            throw UserError(path, its + "does not keep the points without a value" + where() + advice);
+          if (!(same_value(got, expected) || (declared_has && same_value(got, declared))))
+            throw UserError(path, its + "does not keep the points without a value" + at(i, j, expected, got) + advice);
           continue;
         }
+        if (std::isfinite(expected)) largest = std::max(largest, std::abs(expected));
         if (got == expected) continue;  // infinities too (a value beyond a float's range)
-        const double off = std::abs(got - expected);
-        if (!(off <= tol::kRasterReadBackRelative * largest))
-          throw UserError(path, its + "does not keep the values" + where() + advice);
-        if (largest > 0) most_off = std::max(most_off, off / largest);
+        const double off = std::isnan(got) ? std::numeric_limits<double>::infinity() : std::abs(got - expected);
+        if (off > worst_off || worst.empty()) worst_off = off, worst = at(i, j, expected, got);
       }
     }
+    if (worst.empty()) continue;
+    if (!(worst_off <= tol::kRasterReadBackRelative * largest))
+      throw UserError(path, its + "does not keep the values" + worst + advice);
+    if (largest > 0) most_off = std::max(most_off, worst_off / largest);
   }
   std::vector<std::string> warnings;
   double given[6], kept[6];
@@ -142,7 +146,7 @@ std::vector<std::string> read_back(const std::string& path, const std::string& f
   if (holes && !declared_has)
     warnings.push_back(path + ": " + its + "declares no no-data value: the points without a value read as " +
                        format_number(options.nodata) + " (.tif, .asc or .nc declare it)");
-  else if (holes && declared != nodata && declared != options.nodata)
+  else if (holes && !same_value(declared, nodata) && !same_value(declared, options.nodata))
     warnings.push_back(path + ": " + its + "writes its own no-data value, " + format_number(declared) + ", for --nodata " +
                        format_number(options.nodata));
   return warnings;

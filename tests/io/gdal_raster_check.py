@@ -8,6 +8,7 @@ formats, GDAL's: the two must give the same file content.
 Usage: gdal_raster_check.py /path/to/radrecon   (exit 77: python3-gdal or gdalinfo missing)
 """
 import json
+import math
 import os
 import shutil
 import subprocess
@@ -282,6 +283,43 @@ with tempfile.TemporaryDirectory() as tmp:
             "--domain", "-1,-1,5,4", "--nodata", "0.1", "--out", out)
     check(r.returncode == 2 and "does not keep the points without a value" in r.stderr and not os.path.exists(out),
           f"n.grd --nodata 0.1: exit {r.returncode}, {r.stderr.strip()}")
+
+    # --nodata nan: the holes stay NaN and each band declares NaN, by radrecon's own GeoTIFF
+    # writer and through GDAL alike; the values inside the hull are f's. A driver that cannot read
+    # its own NaN back (XYZ) is refused with nothing written.
+    for name, crs in [("nan.tif", "EPSG:2193"), ("nan_gdal.tif", "+proj=longlat +ellps=GRS80 +no_defs +type=crs"),
+                      ("nan.nc", ""), ("nan.asc", "")]:
+        out = os.path.join(tmp, name)
+        r = run("--samples", samples, "--x", "long", "--y", "lat", "--value", "mag", "--method", "linear",
+                "--param", "outside=none", "--raster", f"{W}x{H}", "--domain", domain, "--nodata", "nan",
+                *(["--crs", crs] if crs else []), "--out", out)
+        check(r.returncode == 0, f"{name} --nodata nan: exit {r.returncode}, {r.stderr.strip()}")
+        if r.returncode != 0:
+            continue
+        o = gdal.Open(out)
+        nd = o.GetRasterBand(1).GetNoDataValue()
+        check(nd is not None and math.isnan(nd), f"{name}: declared no-data {nd}")
+        b = o.GetRasterBand(1).ReadAsArray()
+        holes = 0
+        for row in range(H):
+            y = y1 - (row + 0.5) * (y1 - y0) / H
+            for col in range(W):
+                x = x0 + (col + 0.5) * (x1 - x0) / W
+                if 0 <= x <= 4 and 0 <= y <= 3:
+                    check(abs(b[row, col] - f(x, y)) <= 1e-5 * 20, f"{name}: value at ({x}, {y}): {b[row, col]}")
+                else:
+                    holes += 1
+                    check(math.isnan(b[row, col]), f"{name}: NaN outside the hull at ({x}, {y}): {b[row, col]}")
+        check(holes > 0, f"{name}: holes")
+    out = os.path.join(tmp, "nan.xyz")
+    r = run("--samples", samples, "--value", "mag", "--method", "linear", "--param", "outside=none", "--raster", "5x4",
+            "--domain", "-1,-1,5,4", "--nodata", "nan", "--out", out)
+    check(r.returncode == 2 and "it may not read NaN" in r.stderr and not os.path.exists(out),
+          f"nan.xyz: exit {r.returncode}, {r.stderr.strip()}")
+    for bad in ["inf", "-inf"]:
+        r = run("--samples", samples, "--value", "mag", "--method", "linear", "--raster", "4x3", "--domain", "0,0,4,3",
+                "--nodata", bad, "--out", os.path.join(tmp, "inf.tif"))
+        check(r.returncode == 2 and "--nodata: must be a finite number or nan" in r.stderr, f"--nodata {bad}: {r.stderr.strip()}")
 
     # A format's side file may not land on an input: ERS writes its data as the output's name
     # without the extension, here the samples' own file. Refused after the work, nothing moved,
