@@ -62,15 +62,17 @@ std::vector<Vec2> as_vec2(const Doubles& a) {
   return out;
 }
 
-/// Keyword arguments as the NAME=VALUE settings of --param (True/False as on/off).
+/// Keyword arguments as the NAME=VALUE settings of --param (True/False as on/off for
+/// barrier_samples, the one switch; elsewhere as Python writes them, so that mu=True is refused
+/// as 'True', not as 'on').
 std::vector<std::string> settings_of(const py::kwargs& params) {
   std::vector<std::string> out;
   for (const auto& [key, value] : params) {
-    std::string text;
-    if (py::isinstance<py::bool_>(value)) text = value.cast<bool>() ? "on" : "off";
-    else text = py::str(value).cast<std::string>();
     std::string name = py::str(key).cast<std::string>();
     if (name == "barrier_samples") name = "barrier-samples";  // a keyword cannot hold a hyphen
+    std::string text;
+    if (py::isinstance<py::bool_>(value) && name == "barrier-samples") text = value.cast<bool>() ? "on" : "off";
+    else text = py::str(value).cast<std::string>();
     out.push_back(name + "=" + text);
   }
   return out;
@@ -352,16 +354,24 @@ Raises radrecon.Error (a ValueError) for refused input.)doc");
          "metres, radiosity (n, 3) W/m^2, area (n,) m^2, cell (n, 4) its (u0, v0, u1, v1), triangle (n,), shape "
          "(n names: box, lower or upper half of the cell); per side length_u_m, length_v_m, shear_m (its (s, t) "
          "frame), barriers and excluded (lists of (k, 2) polylines in (s, t) metres)")
-      .def("save", [](const PySolution& s, const std::string& path) {
+      .def("save", [](const PySolution& s, const py::object& path_arg) {
+        if (!is_path(path_arg))
+          throw UserError("path", "expected a file name (str or os.PathLike), got " + py::repr(path_arg).cast<std::string>());
+        const std::string path = path_of(path_arg);
         check_output_file(path, "path");
         refuse_overwriting_inputs(path, "path", s.inputs);
         py::gil_scoped_release release;
         write_solution_json(path, s);
       }, py::arg("path"), "Write the solution JSON that `radrecon solve --out` writes.");
 
-  m.def("solve", [](const std::string& scene_spec, const std::string& mesh, std::optional<double> residual,
+  m.def("solve", [](const py::object& scene_arg, const std::string& mesh, std::optional<double> residual,
                     std::optional<long long> patches, std::optional<std::string> leaves_on, std::optional<bool> clusters,
                     std::optional<double> far_field_error, bool shadow_barriers) {
+    // A file by str or os.PathLike, or a built-in scene's name.
+    if (!is_path(scene_arg))
+      throw UserError("scene", "expected a file name (str or os.PathLike) or 'paper' or 'cornell', got " +
+                                   py::repr(scene_arg).cast<std::string>());
+    const std::string scene_spec = path_of(scene_arg);
     // As the command line: options the mesh does not use are refused, not ignored.
     std::vector<std::string> grid_only_given;
     if (residual) grid_only_given.emplace_back("residual");
@@ -394,13 +404,13 @@ Raises radrecon.Error (a ValueError) for refused input.)doc");
     }
     raise_warnings(warnings);
     return out;
-  }, py::arg("scene") = "paper", py::arg("mesh") = "grid:16", py::arg("residual") = py::none(),
+  }, py::arg("scene") = py::str("paper"), py::arg("mesh") = "grid:16", py::arg("residual") = py::none(),
      py::arg("patches") = py::none(), py::arg("leaves_on") = py::none(), py::arg("clusters") = py::none(),
      py::arg("far_field_error") = py::none(), py::arg("shadow_barriers") = false,
      R"doc(Solve a scene's radiosity, as `radrecon solve` does.
 
-scene: a scene JSON file, a mesh file (.obj, .gltf, .glb, .ply) with emitters, or 'paper' or
-'cornell'. mesh: grid:N, quadtree:LEAVES or quadtree-eps:E. For grid:N only (refused with the
+scene: a scene JSON file, a mesh file (.obj, .gltf, .glb, .ply) with emitters (str or
+os.PathLike), or 'paper' or 'cornell'. mesh: grid:N, quadtree:LEAVES or quadtree-eps:E. For grid:N only (refused with the
 others, as on the command line): residual (default 1e-4); patches: shooting patches along the
 longest edge (None: the default, 4); clusters (default True): a model's many small
 triangles shoot in clusters (radrecon solve --clusters); far_field_error (default 0.02): the far

@@ -165,6 +165,9 @@ def test_refusals_carry_the_command_lines_messages(tmp_path):
     with pytest.raises(radrecon.Error) as e:
         radrecon.interpolate(line, line[:, 0], queries=line, method="natural-neighbour")
     assert str(e.value).endswith(cli_error(tmp_path, line, line[:, 0], "--method", "natural-neighbour"))
+    # A bool given to a number is refused as Python wrote it (it read 'on').
+    with pytest.raises(radrecon.Error, match="params mu: expected a finite number, got 'True'"):
+        radrecon.interpolate(p, v, queries=p, method="shepard", mu=True)
     with pytest.raises(radrecon.Error, match="unknown method 'kriging'"):
         radrecon.interpolate(p, v, queries=p, method="kriging")
     assert issubclass(radrecon.Error, ValueError)
@@ -363,6 +366,16 @@ def test_a_solution_does_not_overwrite_its_scene(tmp_path):
         os.chdir(here)
     assert scene.read_bytes() == before
     solution.save(str(tmp_path / "solution.json"))
+    # A pathlib.Path for the scene and for save() (both took a str only), the same solution.
+    by_path = radrecon.solve(scene, "grid:2")
+    with pytest.raises(radrecon.Error, match="is the input file"):
+        by_path.save(scene)
+    by_path.save(tmp_path / "by_path.json")
+    assert json.load(open(tmp_path / "by_path.json"))["surfaces"] == json.load(open(tmp_path / "solution.json"))["surfaces"]
+    with pytest.raises(radrecon.Error, match=r"^scene: expected a file name \(str or os.PathLike\)"):
+        radrecon.solve(3)
+    with pytest.raises(radrecon.Error, match=r"^path: expected a file name"):
+        by_path.save(None)
 
 
 def test_solve_takes_the_far_field_bound_and_shadow_barriers_as_the_command_line(tmp_path):
