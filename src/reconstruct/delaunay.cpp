@@ -1,6 +1,7 @@
 #include "reconstruct/delaunay.h"
 
 #include <algorithm>
+#include <map>
 #include <utility>
 
 #include <CGAL/Delaunay_triangulation_2.h>
@@ -9,6 +10,7 @@
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include "core/tolerances.h"
+#include "reconstruct/hull_chain.h"
 #include "reconstruct/interpolant.h"
 #include "reconstruct/kdtree.h"
 
@@ -29,13 +31,16 @@ struct DelaunayMesh::Impl {
   Delaunay dt;
   std::vector<Delaunay::Face_handle> handles;             ///< by face index
   std::vector<std::pair<std::int64_t, int>> vertex_face;  ///< by sample: a face and its corner there
-  /// A hull edge: its samples a < b, the face inside it and that face's corner opposite it.
+  /// A hull edge (split at the samples on it up to rounding: hull_chain.h): its samples a < b,
+  /// the face inside it and that face's corner opposite it.
   struct HullEdge {
     unsigned a, b;
     std::int64_t face;
     int corner;
   };
   std::vector<HullEdge> hull;
+  /// By CGAL's hull edge (its ends in counter-clockwise order): its pieces in `hull`, [begin, end).
+  std::map<std::pair<unsigned, unsigned>, std::pair<size_t, size_t>> pieces;
   std::unique_ptr<KdTree2> tree;
 };
 
@@ -81,13 +86,17 @@ DelaunayMesh::DelaunayMesh(std::span<const Vec2> points, const std::string& meth
     const std::array<double, 3> edge_sq = {(p2 - p1).squaredNorm(), (p0 - p2).squaredNorm(), (p1 - p0).squaredNorm()};
     const int longest = static_cast<int>(std::max_element(edge_sq.begin(), edge_sq.end()) - edge_sq.begin());
     if (!(std::abs(det) > tol::kDelaunaySliverRelative * edge_sq[static_cast<size_t>(longest)])) affine_[f].sliver_corner = longest;
-    for (int k = 0; k < 3; ++k) {
-      if (neighbours_[f][k] >= 0) continue;
-      unsigned a_ = vertices_[f][(k + 1) % 3], b_ = vertices_[f][(k + 2) % 3];
-      if (b_ < a_) std::swap(a_, b_);
-      m.hull.push_back({a_, b_, static_cast<std::int64_t>(f), k});
-    }
   }
+  const Delaunay::Vertex_handle infinite = m.dt.infinite_vertex();
+  auto fc = m.dt.incident_faces(infinite), done = fc;
+  std::vector<HullChainEdge<Delaunay::Face_handle>> chain;
+  do {
+    const int i = fc->index(infinite);
+    const size_t begin = chain.size();
+    hull_chain(m.dt, fc, points_, chain);
+    m.pieces[{fc->vertex(Delaunay::ccw(i))->info(), fc->vertex(Delaunay::cw(i))->info()}] = {begin, chain.size()};
+  } while (++fc != done);
+  for (const auto& e : chain) m.hull.push_back({std::min(e.a, e.b), std::max(e.a, e.b), e.inner->info(), e.corner});
   m.tree = std::make_unique<KdTree2>(points_);
 }
 
@@ -178,23 +187,24 @@ bool DelaunayMesh::locate(const Vec2& q, OutsideHull outside, std::int64_t& hint
       hint = out.face;
       return true;
     case Delaunay::OUTSIDE_CONVEX_HULL: {
-      // Outside by rounding only: on the hull edge of the infinite face found, or of one of its
-      // two neighbours (the edges at that edge's ends), whichever is nearest.
+      // Outside by rounding only: on a piece of the hull edge of the infinite face found, or of
+      // one of its two neighbours (the edges at that edge's ends), whichever is nearest.
       const Delaunay::Vertex_handle infinite = m.dt.infinite_vertex();
       const int i = f->index(infinite);
       double best_bands = 1;
-      Delaunay::Face_handle on;
+      const Impl::HullEdge* on = nullptr;
       for (const Delaunay::Face_handle& g : {f, f->neighbor(Delaunay::ccw(i)), f->neighbor(Delaunay::cw(i))}) {
         const int gi = g->index(infinite);
-        const auto& pa = g->vertex(Delaunay::ccw(gi))->point();
-        const auto& pb = g->vertex(Delaunay::cw(gi))->point();
-        const double bands = hull_edge_distance(Vec2(pa.x(), pa.y()), Vec2(pb.x(), pb.y()), q).in_bands;
-        if (bands <= best_bands) best_bands = bands, on = g;
+        const auto [begin, end] = m.pieces.at({g->vertex(Delaunay::ccw(gi))->info(), g->vertex(Delaunay::cw(gi))->info()});
+        for (size_t k = begin; k < end; ++k) {
+          const Impl::HullEdge& e = m.hull[k];
+          const double bands = hull_edge_distance(points_[e.a], points_[e.b], q).in_bands;
+          if (bands <= best_bands) best_bands = bands, on = &e;
+        }
       }
-      if (on != Delaunay::Face_handle()) {
-        const int gi = on->index(infinite);
-        out.face = on->neighbor(gi)->info();
-        on_edge(points_, vertices_[static_cast<size_t>(out.face)], m.dt.mirror_index(on, gi), q, out.b);
+      if (on != nullptr) {
+        out.face = on->face;
+        on_edge(points_, vertices_[static_cast<size_t>(out.face)], on->corner, q, out.b);
         hint = out.face;
         return true;
       }

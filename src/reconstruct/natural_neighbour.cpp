@@ -30,17 +30,21 @@ NaturalNeighbour::NaturalNeighbour(const ScatteredSamples& samples, OutsideHull 
   if (!impl_->barriers.empty() && n <= kMaxWholeVisibleSamples &&
       n * impl_->barriers.segments().size() <= kMaxWholeVisiblePairs)
     impl_->visibility = std::make_unique<PointVisibility>(impl_->points, impl_->barriers);
-  // Hull edges: the finite edges of the infinite faces.
+  // Hull edges: the finite edges of the infinite faces, split at the samples on them up to
+  // rounding (hull_chain.h), each with the height over it of the finite triangle on it.
   auto inf = impl_->dt.infinite_vertex();
   auto fc = impl_->dt.incident_faces(inf), done = fc;
+  std::vector<HullChainEdge<Delaunay::Face_handle>> chain;
   do {
     const int i = fc->index(inf);
-    impl_->hull_edges.emplace_back(fc->vertex(Delaunay::ccw(i))->info(), fc->vertex(Delaunay::cw(i))->info());
-    // The height over the edge of the finite triangle on it (its vertex across the edge).
-    const Vec2 a = impl_->points[impl_->hull_edges.back().first], b = impl_->points[impl_->hull_edges.back().second];
-    const Vec2 c = impl_->points[fc->neighbor(i)->vertex(impl_->dt.mirror_index(fc, i))->info()];
-    impl_->hull_edge_height_m.push_back(std::abs(cross(b - a, c - a)) / (b - a).norm());
+    const size_t begin = chain.size();
+    hull_chain(impl_->dt, fc, impl_->points, chain);
+    impl_->hull_pieces[{fc->vertex(Delaunay::ccw(i))->info(), fc->vertex(Delaunay::cw(i))->info()}] = {begin, chain.size()};
   } while (++fc != done);
+  for (const auto& e : chain) {
+    impl_->hull_edges.emplace_back(e.a, e.b);
+    impl_->hull_edge_height_m.push_back(e.height_m);
+  }
   impl_->hull_edges_at.assign(n, {-1, -1});
   for (size_t e = 0; e < impl_->hull_edges.size(); ++e)
     for (const unsigned end : {impl_->hull_edges[e].first, impl_->hull_edges[e].second}) {

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <limits>
+#include <map>
 #include <memory>
 #include <vector>
 
@@ -13,6 +14,7 @@
 #include "core/once.h"
 #include "core/tolerances.h"
 #include "reconstruct/delaunay.h"
+#include "reconstruct/hull_chain.h"
 #include "reconstruct/kdtree.h"
 #include "reconstruct/natural_neighbour.h"
 #include "reconstruct/nn_delaunay.h"
@@ -35,6 +37,9 @@ struct NaturalNeighbour::Impl {
   std::vector<std::pair<unsigned, unsigned>> hull_edges;  ///< sample indices
   std::vector<std::array<int, 2>> hull_edges_at;          ///< by sample: its hull edges' indices, or -1
   std::vector<double> hull_edge_height_m;                 ///< by hull edge: its triangle's height over it
+  /// By CGAL's hull edge (its ends counter-clockwise): its pieces in hull_edges, [begin, end)
+  /// (split at the samples on it up to rounding: hull_chain.h).
+  std::map<std::pair<unsigned, unsigned>, std::pair<size_t, size_t>> hull_pieces;
   std::vector<Vec2> points;
   std::vector<Delaunay::Vertex_handle> vertex_of;  ///< by sample index
   /// The samples' k-d tree, to start walks near a query and to find the samples one sees past
@@ -148,16 +153,22 @@ struct NaturalNeighbour::Impl {
   bool near_hull_edge(const Vec2& q, const Delaunay::Face_handle& f, std::vector<std::pair<unsigned, double>>& out) const {
     double best_excess = 0, best_t = 0;
     int best = -1;
+    const auto consider = [&](int e) {
+      if (e < 0 || e == best) return;
+      auto [ia, ib] = hull_edges[static_cast<size_t>(e)];
+      if (ib < ia) std::swap(ia, ib);
+      const HullEdgeDistance d = hull_edge_distance(points[ia], points[ib], q, hull_edge_height_m[static_cast<size_t>(e)]);
+      if (d.in_bands <= 1 && (best < 0 || d.in_bands < best_excess)) best = e, best_excess = d.in_bands, best_t = d.t;
+    };
     for (int k = 0; k < 3; ++k) {
       const Delaunay::Vertex_handle v = f->vertex(k);
-      if (dt.is_infinite(v)) continue;
-      for (const int e : hull_edges_at[v->info()]) {
-        if (e < 0 || e == best) continue;
-        auto [ia, ib] = hull_edges[static_cast<size_t>(e)];
-        if (ib < ia) std::swap(ia, ib);
-        const HullEdgeDistance d = hull_edge_distance(points[ia], points[ib], q, hull_edge_height_m[static_cast<size_t>(e)]);
-        if (d.in_bands <= 1 && (best < 0 || d.in_bands < best_excess)) best = e, best_excess = d.in_bands, best_t = d.t;
+      if (dt.is_infinite(v)) {
+        // Outside: every piece of the face's hull edge (its ends hold only the first and last).
+        const auto [begin, end] = hull_pieces.at({f->vertex(Delaunay::ccw(k))->info(), f->vertex(Delaunay::cw(k))->info()});
+        for (size_t e = begin; e < end; ++e) consider(static_cast<int>(e));
+        continue;
       }
+      for (const int e : hull_edges_at[v->info()]) consider(e);
     }
     if (best < 0) return false;
     auto [ia, ib] = hull_edges[static_cast<size_t>(best)];
@@ -196,12 +207,13 @@ struct NaturalNeighbour::Impl {
       for (auto e = dt.finite_edges_begin(); e != dt.finite_edges_end(); ++e)
         edges.emplace_back(e->first->vertex(Delaunay::cw(e->second))->info(), e->first->vertex(Delaunay::ccw(e->second))->info());
     } else {
+      // The hull through every sample on it up to rounding (hull_chain.h).
       const auto inf = dt.infinite_vertex();
       auto fc = dt.incident_faces(inf), done = fc;
-      do {
-        const int i = fc->index(inf);
-        edges.emplace_back(fc->vertex(Delaunay::ccw(i))->info(), fc->vertex(Delaunay::cw(i))->info());
-      } while (++fc != done);
+      std::vector<HullChainEdge<Delaunay::Face_handle>> chain;
+      do hull_chain(dt, fc, points, chain);
+      while (++fc != done);
+      for (const auto& e : chain) edges.emplace_back(e.a, e.b);
     }
     nearest_on_edges(q, edges, out);
   }

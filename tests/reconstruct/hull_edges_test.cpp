@@ -112,5 +112,51 @@ TEST(HullEdges, ALineThroughASliverFaceOfThreeSamplesCollinearToRounding) {
   }
 }
 
+/// Values along a row that are no linear function: the hull rule must take them sample by sample.
+double g(const Vec2& p) { return 10 * (p.x() - 0.4) * (p.x() - 0.4); }
+
+TEST(HullEdges, ARowOfSamplesOnTheHullUpToRoundingIsTakenSampleBySample) {
+  // 23 samples meant to lie on one line (as a triangle's centroids along its hypotenuse), each
+  // a rounding error inside or outside it, and samples inside. CGAL's exact predicates made one
+  // hull edge from one end of the row to the other over those just inside, and the value at the
+  // nearest point of the hull blended the row's two ends: an export's texels by the red wall's
+  // hypotenuse erred by 32 of 255 levels (an outside-in trial). On the hull between two
+  // neighbouring samples of the row, linear, natural-neighbour and laplace are linear between
+  // the two (their coordinates on a hull edge), inside by rounding or outside.
+  const Vec2 a(0.1, 0.7), b(0.83, 0.05);
+  const int row = 23;
+  ScatteredSamples s;
+  s.channels = 1;
+  for (int k = 0; k < row; ++k) s.points.push_back(a + (k / 22.0) * (b - a));
+  for (const Vec2& p : s.points) s.values.push_back(g(p));
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j) {
+      const Vec2 p(0.02 + 0.1 * i, 0.02 + 0.1 * j);
+      if ((p - a).x() * (b - a).y() - (p - a).y() * (b - a).x() < -0.01) s.points.push_back(p), s.values.push_back(f(p));
+    }
+  const Vec2 outward = Vec2((b - a).y(), -(b - a).x()).normalized();
+  std::vector<Vec2> on, off;
+  std::vector<double> expected;
+  for (int k = 0; k + 1 < row; ++k) {
+    const Vec2 mid = s.points[k] + 0.5 * (s.points[k + 1] - s.points[k]);
+    on.push_back(mid);
+    off.push_back(mid + 1e-3 * outward);
+    expected.push_back(0.5 * (s.values[k] + s.values[k + 1]));
+  }
+  for (const Method m : {Method::linear, Method::natural_neighbour, Method::laplace}) {
+    const std::vector<double> v = values_with_no_outside(m, s, on);
+    MethodParams nearest;
+    nearest.outside = OutsideHull::nearest;
+    const InterpolantResult beyond = make_scattered_interpolant(m, s, nearest);
+    ASSERT_TRUE(beyond) << beyond.reason();
+    std::vector<double> w(off.size());
+    beyond.value()->evaluate(off, w);
+    for (size_t k = 0; k < on.size(); ++k) {
+      EXPECT_NEAR(v[k], expected[k], 1e-9) << method_name(m) << " on the row between samples " << k << " and " << k + 1;
+      EXPECT_NEAR(w[k], expected[k], 1e-9) << method_name(m) << " beyond the row between samples " << k << " and " << k + 1;
+    }
+  }
+}
+
 }  // namespace hull_edges_test
 }  // namespace radrecon
