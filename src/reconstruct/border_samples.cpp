@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -93,17 +94,18 @@ struct FitScratch {
   Eigen::Vector3d x;
 };
 
-/// The value at p by the rule of border_samples.h into out[0, channels); false when p sees no
-/// interior sample.
+/// The value at p by the rule of border_samples.h into out[0, channels), and its plane's slope
+/// into slope[0, 2 channels) (d/dx, d/dy per channel; 0 where the value is the nearest
+/// sample's); false when p sees no interior sample.
 bool fit_value(const Vec2& p, const ScatteredSamples& interior, const KdTree2& tree, const Barriers& barriers,
-               size_t k, FitScratch& s, double* out) {
+               size_t k, FitScratch& s, double* out, double* slope) {
   const int C = interior.channels;
   const size_t found = nearest_visible(tree, interior.points, barriers, p, k, s.visible);
   if (found == 0) return false;
   const std::vector<unsigned>& idx = s.visible.idx;
   const std::vector<double>& dist_sq = s.visible.dist_sq;
   const double* v0 = &interior.values[static_cast<size_t>(idx[0]) * C];
-  for (int c = 0; c < C; ++c) out[c] = v0[c];
+  for (int c = 0; c < C; ++c) out[c] = v0[c], slope[2 * c] = slope[2 * c + 1] = 0;
   if (found < 3) return true;
   // Collinear: every neighbour within tol::kFitCollinearRelative of the extent from the line
   // through the nearest and the one farthest from it.
@@ -144,6 +146,7 @@ bool fit_value(const Vec2& p, const ScatteredSamples& interior, const KdTree2& t
   for (int c = 0; c < C; ++c) {
     s.x = qr.solve(s.b.col(c));
     out[c] = v0[c] + s.x(0);
+    slope[2 * c] = s.x(1) / r, slope[2 * c + 1] = s.x(2) / r;  // the plane in offsets over r
   }
   return true;
 }
@@ -271,13 +274,15 @@ Result<ScatteredSamples> with_border_samples(const ScatteredSamples& interior, c
   // Values, in parallel; then the candidates that see a sample, without those within delta of
   // an earlier one (a hash grid of delta cells: such a one is in the 3 x 3 cells around).
   const size_t k = std::min(n, static_cast<size_t>(settings.fit_neighbours));
-  std::vector<double> values(candidates.size() * static_cast<size_t>(C));
+  std::vector<double> values(candidates.size() * static_cast<size_t>(C)), slopes(2 * values.size());
   std::vector<char> has_value(candidates.size(), 0);
   parallel_for_with_scratch<FitScratch>(0, static_cast<std::int64_t>(candidates.size()), [&](std::int64_t i, FitScratch& s) {
     const size_t j = static_cast<size_t>(i);
-    has_value[j] = fit_value(candidates[j], interior, tree, barriers, k, s, &values[j * C]);
+    has_value[j] = fit_value(candidates[j], interior, tree, barriers, k, s, &values[j * C], &slopes[2 * j * C]);
   });
   ScatteredSamples out = interior;
+  // The interior samples' slopes as given (unknown if not), then the border samples' planes'.
+  if (out.slopes.size() != out.values.size() * 2) out.slopes.assign(out.values.size() * 2, std::numeric_limits<double>::quiet_NaN());
   const auto cell = [&](const Vec2& p) {
     return std::pair(static_cast<std::int64_t>(std::floor((p.x() - domain.x0) / delta)),
                      static_cast<std::int64_t>(std::floor((p.y() - domain.y0) / delta)));
@@ -300,6 +305,8 @@ Result<ScatteredSamples> with_border_samples(const ScatteredSamples& interior, c
     out.points.push_back(p);
     out.values.insert(out.values.end(), values.begin() + static_cast<std::ptrdiff_t>(j * C),
                       values.begin() + static_cast<std::ptrdiff_t>((j + 1) * C));
+    out.slopes.insert(out.slopes.end(), slopes.begin() + static_cast<std::ptrdiff_t>(2 * j * C),
+                      slopes.begin() + static_cast<std::ptrdiff_t>(2 * (j + 1) * C));
   }
   return out;
 }

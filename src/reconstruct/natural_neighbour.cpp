@@ -51,9 +51,14 @@ NaturalNeighbour::NaturalNeighbour(const ScatteredSamples& samples, OutsideHull 
       std::array<int, 2>& at = impl_->hull_edges_at[end];
       (at[0] < 0 ? at[0] : at[1]) = static_cast<int>(e);
     }
-  if (rule == NeighbourRule::sibson_c1)
+  if (rule == NeighbourRule::sibson_c1) {
     impl_->gradients = nn::fit_gradients(impl_->dt, impl_->vertex_of, impl_->points, impl_->values, impl_->channels,
                                          impl_->barriers);
+    // A slope the samples carry (a border sample's plane: samples.h) is taken as it is.
+    if (samples.slopes.size() == impl_->gradients.size())
+      for (size_t k = 0; k < samples.slopes.size(); ++k)
+        if (std::isfinite(samples.slopes[k])) impl_->gradients[k] = samples.slopes[k];
+  }
 }
 
 NaturalNeighbour::~NaturalNeighbour() = default;

@@ -97,7 +97,13 @@ TEST(BorderSamples, EveryAddedSampleReproducesALinearFunction) {
         for (int c = 0; c < 2; ++c)
           ASSERT_NEAR(out.values[2 * k + c], linear(p, c), 1e-12 * 10)
               << "sample at (" << p.transpose() << "), channel " << c << ", spacing " << spacing << ", walls " << walls;
+        // Each carries its plane's slope, the linear function's gradient.
+        ASSERT_EQ(out.slopes.size(), out.values.size() * 2);
+        const double gradient[2][2] = {{2, -5}, {0.5, 4}};
+        for (int c = 0; c < 2; ++c)
+          for (int d = 0; d < 2; ++d) ASSERT_NEAR(out.slopes[(2 * k + c) * 2 + d], gradient[c][d], 1e-9) << p.transpose();
       }
+      for (size_t k = 0; k < interior.values.size() * 2; ++k) ASSERT_TRUE(std::isnan(out.slopes[k]));  // not known
       EXPECT_GE(out.points.size() - interior.points.size(), 18u);  // 2 x (6 + 3) at 0.37
       EXPECT_EQ(beside_barrier > 0, walls);
     }
@@ -292,6 +298,7 @@ TEST(BorderSamples, FewOrCollinearNeighboursGiveTheNearestValue) {
   for (size_t k = 1; k < 5; ++k) {
     EXPECT_EQ(r1.value().values[2 * k], 7.0);
     EXPECT_EQ(r1.value().values[2 * k + 1], 8.0);
+    for (int d = 0; d < 4; ++d) EXPECT_EQ(r1.value().slopes[4 * k + d], 0.0);  // a constant's slope
   }
   // Three samples on a line (values linear along it): the nearest one's value, not a plane.
   const ScatteredSamples line = sampled({{0.2, 0.5}, {0.5, 0.5}, {0.8, 0.5}}, 1, [](const Vec2& p, int) { return 10 * p.x(); });

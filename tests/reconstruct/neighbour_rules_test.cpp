@@ -13,6 +13,7 @@
 #include <CGAL/interpolation_functions.h>
 #include <CGAL/sibson_gradient_fitting.h>
 
+#include "reconstruct/methods.h"
 #include "reconstruct/natural_neighbour.h"
 #include "reconstruct/sibson_c1.h"
 #include "support/voronoi.h"
@@ -289,6 +290,28 @@ TEST(SibsonC1, ASampleOnAHullEdgeWithANeighbourOfTinyCoordinateKeepsItsGradient)
     const Vec2 q(x(rng), y(rng));
     EXPECT_NEAR(eval1(on_tracks, q), f(q), 1e-12) << "at (" << q.x() << ", " << q.y() << ")";
   }
+}
+
+TEST(SibsonC1, BarrierSamplesKeepTheSlopesTheirValuesWereFittedWith) {
+  // An outside-in trial's data: four samples of v = 0.1 x + 0.2 y and three barriers meeting
+  // in a narrow wedge. Barrier samples a millionth of a metre apart on two barriers, their values
+  // from different neighbours (or the nearest sample's, seeing fewer than three), made a fitted
+  // slope of about 1e5 and values of -314 to -524 next to them (natural-neighbour: 0.906-0.911).
+  // Each barrier sample now carries its plane's slope (0 where its value is the nearest
+  // sample's), and the values stay within the data's trend.
+  ScatteredSamples s;
+  s.channels = 1;
+  s.points = {{0.125, 3.375}, {3.875, 2.375}, {3.25, 3.75}, {3.75, 3.75}};
+  for (const Vec2& p : s.points) s.values.push_back(0.1 * p.x() + 0.2 * p.y());
+  MethodParams params;
+  const std::vector<Polyline> walls = {{{2.6, 2.6}, {3, 3}}, {{2.6, 2.6}, {3, 3.6666667}}, {{0, 3}, {3, 3}}};
+  params.barriers = Barriers::from_polylines(walls).value();
+  const InterpolantResult f = make_scattered_interpolant(Method::sibson_c1, s, params);
+  ASSERT_TRUE(f) << f.reason();
+  const std::vector<Vec2> q = {{3.05, 3.0}, {3.05, 3.01}, {3.1, 3.0}};
+  std::vector<double> v(q.size());
+  f.value()->evaluate(q, v);
+  for (size_t k = 0; k < q.size(); ++k) EXPECT_NEAR(v[k], 0.1 * q[k].x() + 0.2 * q[k].y(), 0.01) << q[k].transpose();
 }
 
 TEST(SibsonC1, FirstDerivativesAreContinuousAtTheSamplesAndAcrossEdges) {
