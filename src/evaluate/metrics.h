@@ -58,8 +58,10 @@ double gradient_l2(std::span<const double> a, std::span<const double> reference,
 /// coordinate, NaturalNeighbour::coordinates(): on a hull edge its two ends); outside the hull, of
 /// the two samples of the hull edge nearest to q (hull edges join consecutive samples along the
 /// hull, collinear ones included) and the 3 samples nearest to q. With barriers, the natural
-/// neighbours are those over the samples q sees (natural_neighbour.h); outside the hull of what q
-/// sees, the hull edge and nearest samples are still taken over all samples. Per channel:
+/// neighbours are those over the samples q sees (natural_neighbour.h), and the nearest sample q
+/// sees with them (on the hull of what q sees they may leave it out); outside the hull of what q
+/// sees, the nearest hull edge of all samples (its ends that q sees) and the 3 nearest samples
+/// that q sees (a point that sees none has no range). Per channel:
 ///   overshoot = max over points and channels of max(0, a - max, min - a),
 /// in the values' unit (W/m^2). 0 for a method that stays within its neighbours' range (any
 /// convex combination of them).

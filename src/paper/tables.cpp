@@ -41,7 +41,7 @@ const char* const kMetricsRule =
     "al. 2004, 11 x 11 Gaussian window, sigma 1.5; 1 = identical). Gradient L2: the mean squared difference of "
     "the finite-difference gradients, (W/m^2/m)^2: it sees Mach bands and ringing. Overshoot: the largest amount "
     "(W/m^2) by which the reconstruction leaves the range of the data samples around a point (its natural "
-    "neighbours among the cell or leaf centres; with barriers, among those it sees).";
+    "neighbours among the cell or leaf centres; with barriers, among those it sees, and the nearest it sees).";
 
 const char* const kBorderRule =
     "the methods that take points and barriers (shepard, multiquadric, thin-plate, natural-neighbour, laplace, "
