@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cstdio>
 #include <exception>
 #include <string_view>
@@ -31,6 +32,38 @@ bool cpu_runs_this_build() {
 #endif
 #endif
   return true;
+}
+
+}  // namespace
+
+namespace {
+
+/// The words CLI11 could not place, worded as every refusal is ("radrecon: error: WHERE: WHAT"),
+/// those before the command radrecon's own, those after it the command's; CLI11's own `what`
+/// when there are none. `missing`: a required option or command CLI11 found missing ("" if
+/// none), said after them (a misspelt option leaves the one it meant missing), or alone when
+/// nothing is misspelt. Returns the exit code.
+int refuse_extras(const CLI::App& app, const std::string& what, std::string missing) {
+  std::vector<std::string> extras = app.remaining(false);
+  std::string command = "radrecon";
+  if (extras.empty())
+    for (const CLI::App* sub : app.get_subcommands()) {
+      command += " " + sub->get_name();
+      extras = sub->remaining(false);
+    }
+  std::string words;
+  for (const std::string& word : extras) words += (words.empty() ? "" : " ") + word;
+  if (words.empty() && !missing.empty()) {
+    std::fprintf(stderr, "radrecon: error: %s\nRun with --help for more information.\n", missing.c_str());
+    return radrecon::kUserErrorExitCode;
+  }
+  if (words.empty()) words = what;
+  if (missing.size() > 1 && std::isupper(static_cast<unsigned char>(missing[0])) &&
+      !std::isupper(static_cast<unsigned char>(missing[1])))
+    missing[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(missing[0])));  // "A subcommand ..."
+  std::fprintf(stderr, "radrecon: error: %s: not an option or argument of '%s' ('%s --help' lists them)%s\n", words.c_str(),
+               command.c_str(), command.c_str(), missing.empty() ? "" : ("; and " + missing).c_str());
+  return radrecon::kUserErrorExitCode;
 }
 
 }  // namespace
@@ -86,22 +119,10 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ExtrasError& e) {
-    // CLI11 says "The following argument was not expected: --foo"; worded as every refusal is,
-    // the unexpected words first: those before the command are radrecon's own, those after it
-    // the command's.
-    std::vector<std::string> extras = app.remaining(false);
-    std::string command = "radrecon";
-    if (extras.empty())
-      for (const CLI::App* sub : app.get_subcommands()) {
-        command += " " + sub->get_name();
-        extras = sub->remaining(false);
-      }
-    std::string words;
-    for (const std::string& word : extras) words += (words.empty() ? "" : " ") + word;
-    if (words.empty()) words = e.what();
-    std::fprintf(stderr, "radrecon: error: %s: not an option or argument of '%s' ('%s --help' lists them)\n",
-                 words.c_str(), command.c_str(), command.c_str());
-    return radrecon::kUserErrorExitCode;
+    return refuse_extras(app, e.what(), "");
+  } catch (const CLI::RequiredError& e) {
+    // A misspelt option (--ouy) leaves the one it meant missing: the misspelling first.
+    return refuse_extras(app, "", e.what());
   } catch (const CLI::ParseError& e) {
     // As every refusal is worded (docs/cli.md): "radrecon: error: WHERE: WHAT".
     std::fprintf(stderr, "radrecon: error: %s\nRun with --help for more information.\n", e.what());

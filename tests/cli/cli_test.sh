@@ -156,6 +156,12 @@ expect_stderr_has option_twice "radrecon: error: --scene: "
 run no_command
 expect_rc no_command 2
 expect_stderr_has no_command "radrecon: error: A subcommand is required"
+# A misspelt option leaves the one it meant missing: the misspelling is named first (it was
+# hidden behind "--out is required"; an outside-in trial).
+run misspelt solve --scene paper --mesh grid:4 --ouy "$TMP/misspelt.json" --quiet
+expect_rc misspelt 2
+expect_stderr_has misspelt "radrecon: error: --ouy $TMP/misspelt.json: not an option or argument of 'radrecon solve'"
+expect_stderr_has misspelt "; and --out is required"
 # NaN passes CLI11's ranges: each command that takes --residual refuses it itself (paper and
 # cornell aborted on the solver's internal check).
 for command in solve paper cornell; do
