@@ -30,9 +30,13 @@ std::unique_ptr<SolutionReconstruction> reconstruct_solution(const Scene& scene,
   if (!recon->fallbacks().empty() && recon->fallbacks().size() == solution.surfaces.size())
     throw UserError(solution_path, method_name_text + " cannot reconstruct any side of this solution (" +
                                        recon->fallbacks().front().reason + "); use constant, or a solution it fits");
+  // Sides drawn piecewise constant (fallbacks) are not reconstructed across their barriers.
+  const auto fell_back = [&](const std::string& name) {
+    return std::any_of(recon->fallbacks().begin(), recon->fallbacks().end(), [&](const Fallback& f) { return f.side == name; });
+  };
   if (!no_barriers && !takes_barriers(method))
     for (const SurfaceSolution& side : solution.surfaces)
-      if (!side.barriers.empty()) {
+      if (!side.barriers.empty() && !fell_back(side.name)) {
         std::fprintf(stderr, "radrecon: warning: %s takes no barriers: sides with barriers (e.g. %s) are reconstructed "
                              "across them\n", method_name_text.c_str(), side.name.c_str());
         break;

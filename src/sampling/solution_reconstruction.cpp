@@ -1,5 +1,6 @@
 #include "sampling/solution_reconstruction.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -184,7 +185,13 @@ SolutionReconstruction::SolutionReconstruction(const Scene& scene, const Solutio
     s.shear_m = surface.shear_m();
     InterpolantResult built = reconstruct_side(s, method, params, sampling);
     if (!built) {
-      fallbacks_.push_back({side.name, built.reason()});
+      // Data of one value (a lamp of one leaf): piecewise constant is what any method gives it,
+      // no fallback to speak of.
+      const auto same = [&](const SolutionElement& e) {
+        return (e.radiosity_w_m2 == side.elements.front().radiosity_w_m2).all();
+      };
+      if (side.elements.empty() || !std::all_of(side.elements.begin(), side.elements.end(), same))
+        fallbacks_.push_back({side.name, built.reason()});
       built = reconstruct_side(s, Method::constant, params, SideSampling{.barriers = false});
       if (!built) throw UserError(source, "surface '" + side.name + "': " + built.reason());
     }

@@ -42,7 +42,8 @@ struct Fallback {
 class SolutionReconstruction {
  public:
   /// Every side by reconstruct_side(). A side the method cannot serve falls back to piecewise
-  /// constant and is listed with the reason in fallbacks(). The solution's sides must be the
+  /// constant and is listed with the reason in fallbacks(), unless all its elements hold one
+  /// value (piecewise constant is then exact). The solution's sides must be the
   /// sides of `scene`, every one, with its edge lengths: UserError naming `source` (the
   /// solution's file) otherwise.
   SolutionReconstruction(const Scene& scene, const Solution& solution, Method method, const MethodParams& params,

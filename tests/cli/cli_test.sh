@@ -269,6 +269,30 @@ red = [struct.unpack_from("<f", body, 12 * k)[0] for k in range(w * h)]
 bright = sum(1 for v in red if v > 20)
 assert red[30 * w + 30] == 40.0 and 24 * 24 <= bright <= 26 * 26, (red[30 * w + 30], bright)
 PY
+# A side of one value (the paper's lamp, one leaf) is drawn piecewise constant with no warning:
+# any method gives it that (every render of a quadtree solution warned of it).
+run quadtree_lamp_solve solve --scene paper --mesh quadtree:49 --out "$TMP/q49.json" --quiet
+expect_rc quadtree_lamp_solve 0
+run quadtree_lamp render --scene paper --solution "$TMP/q49.json" --camera view --size 40x30 --method natural-neighbour \
+  --out "$TMP/q49.png" --quiet
+expect_rc quadtree_lamp 0
+expect_stderr_lacks quadtree_lamp "light"
+# A method without barriers warns that it reconstructs across them only for sides it reconstructs:
+# gouraud draws triangles' sides piecewise constant, and said so after a warning that it drew
+# the floor across its barriers.
+cat >"$TMP/tri_floor.json" <<'EOF'
+{"surfaces": [{"name": "floor", "corners": [[0, 0, 0], [4, 0, 0], [0, 4, 0]], "reflectance": 0.5},
+ {"name": "wall", "corners": [[1, 0.5, 0], [1, 0.5, 1], [1, 2.5, 1], [1, 2.5, 0]], "reflectance": 0.5, "two_sided": true},
+ {"name": "light", "corners": [[0.2, 0.2, 2], [0.2, 1.2, 2], [1.2, 1.2, 2], [1.2, 0.2, 2]], "reflectance": 0, "emission": 40}],
+ "cameras": [{"name": "c", "eye": [2, -3, 3], "target": [1, 1, 0]}]}
+EOF
+run tri_floor_solve solve --scene "$TMP/tri_floor.json" --mesh grid:8 --out "$TMP/tri_floor_s.json" --quiet
+expect_rc tri_floor_solve 0
+run tri_floor_gouraud render --scene "$TMP/tri_floor.json" --solution "$TMP/tri_floor_s.json" --camera c --size 40x30 \
+  --method gouraud --out "$TMP/tri_floor.png" --quiet
+expect_rc tri_floor_gouraud 0
+expect_stderr_has tri_floor_gouraud "gouraud cannot reconstruct side floor"
+expect_stderr_lacks tri_floor_gouraud "takes no barriers"
 # A coarse quadtree's one ceiling leaf centred under the lamp lying on it: no sample outside the
 # lamp, so Shepard falls back to piecewise constant (the leaf's value) instead of failing.
 run coplanar_coarse solve --scene "$TMP/coplanar.json" --mesh quadtree-eps:10 --out "$TMP/coplanar_q.json" --quiet

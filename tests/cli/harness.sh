@@ -34,6 +34,11 @@ expect_stderr_has() {  # NAME TEXT
     fail "$1: stderr does not mention '$2'; stderr: $(head -c 500 "$TMP/$1.stderr")"
   fi
 }
+expect_stderr_lacks() {  # NAME TEXT
+  if grep -qF -- "$2" "$TMP/$1.stderr"; then
+    fail "$1: stderr mentions '$2'; stderr: $(head -c 500 "$TMP/$1.stderr")"
+  fi
+}
 expect_stderr_nonempty() {  # NAME
   if [ ! -s "$TMP/$1.stderr" ]; then fail "$1: no message on stderr"; fi
 }
