@@ -150,9 +150,9 @@ void run_cornell(const CornellArgs& args) {
       const SolutionReconstruction recon(scene, solution, m, params, "solution", sampling);
       linear = shade(scene, hits, [&](SideRef side) { return recon.side(side); });
       std::string sides;
-      for (const Fallback& f : recon.fallbacks()) sides += (sides.empty() ? "" : ", ") + f.side;
-      if (!sides.empty())
-        panel.note = "drawn piecewise constant on " + sides + " (" + recon.fallbacks().front().reason + ")";
+      const std::vector<Fallback> fallbacks = recon.notable_fallbacks();
+      for (const Fallback& f : fallbacks) sides += (sides.empty() ? "" : ", ") + f.side;
+      if (!sides.empty()) panel.note = "drawn piecewise constant on " + sides + " (" + fallbacks.front().reason + ")";
     } catch (const UserError& e) {
       panel.note = std::string("not drawn: ") + e.what();
       panel.file.clear();

@@ -42,7 +42,7 @@ std::unique_ptr<SolutionReconstruction> reconstruct_solution(const Scene& scene,
         break;
       }
   // A model of thousands of triangles may have thousands such sides: the first few by name.
-  const std::vector<Fallback>& fallbacks = recon->fallbacks();
+  const std::vector<Fallback> fallbacks = recon->notable_fallbacks();
   for (size_t k = 0; k < std::min(fallbacks.size(), kNamedFallbacks); ++k)
     std::fprintf(stderr, "radrecon: warning: %s: %s cannot reconstruct side %s (%s); drawn piecewise constant\n",
                  solution_path.c_str(), method_name_text.c_str(), fallbacks[k].side.c_str(), fallbacks[k].reason.c_str());

@@ -14,7 +14,7 @@ std::vector<Fallback> render_paper_views(const Scene& scene, const std::vector<C
     const Image linear = shade(scene, cameras[k], [&](SideRef side) { return recon.side(side); });
     write_png(dir / (stem + "_" + scene.cameras[k].name + ".png"), tone_mapped(linear, white_w_m2), true);
   }
-  return recon.fallbacks();
+  return recon.notable_fallbacks();
 }
 
 }  // namespace radrecon

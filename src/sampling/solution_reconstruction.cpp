@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 
 #include "core/error.h"
@@ -185,13 +186,10 @@ SolutionReconstruction::SolutionReconstruction(const Scene& scene, const Solutio
     s.shear_m = surface.shear_m();
     InterpolantResult built = reconstruct_side(s, method, params, sampling);
     if (!built) {
-      // Data of one value (a lamp of one leaf): piecewise constant is what any method gives it,
-      // no fallback to speak of.
       const auto same = [&](const SolutionElement& e) {
         return (e.radiosity_w_m2 == side.elements.front().radiosity_w_m2).all();
       };
-      if (side.elements.empty() || !std::all_of(side.elements.begin(), side.elements.end(), same))
-        fallbacks_.push_back({side.name, built.reason()});
+      fallbacks_.push_back({side.name, built.reason(), std::all_of(side.elements.begin(), side.elements.end(), same)});
       built = reconstruct_side(s, Method::constant, params, SideSampling{.barriers = false});
       if (!built) throw UserError(source, "surface '" + side.name + "': " + built.reason());
     }
@@ -202,5 +200,11 @@ SolutionReconstruction::SolutionReconstruction(const Scene& scene, const Solutio
 SolutionReconstruction::~SolutionReconstruction() = default;
 
 const Interpolant* SolutionReconstruction::side(SideRef side) const { return sides_[side.slot()].get(); }
+
+std::vector<Fallback> SolutionReconstruction::notable_fallbacks() const {
+  std::vector<Fallback> out;
+  std::copy_if(fallbacks_.begin(), fallbacks_.end(), std::back_inserter(out), [](const Fallback& f) { return !f.exact; });
+  return out;
+}
 
 }  // namespace radrecon

@@ -37,13 +37,15 @@ InterpolantResult reconstruct_side(const SurfaceSolution& side, Method method, c
 struct Fallback {
   std::string side;    ///< the side's name
   std::string reason;  ///< e.g. "natural-neighbour interpolation needs at least 3 samples, got 1"
+  /// All the side's elements hold one value (a lamp of one leaf): piecewise constant is what any
+  /// method would draw, nothing to warn of.
+  bool exact = false;
 };
 
 class SolutionReconstruction {
  public:
   /// Every side by reconstruct_side(). A side the method cannot serve falls back to piecewise
-  /// constant and is listed with the reason in fallbacks(), unless all its elements hold one
-  /// value (piecewise constant is then exact). The solution's sides must be the
+  /// constant and is listed with the reason in fallbacks(). The solution's sides must be the
   /// sides of `scene`, every one, with its edge lengths: UserError naming `source` (the
   /// solution's file) otherwise.
   SolutionReconstruction(const Scene& scene, const Solution& solution, Method method, const MethodParams& params,
@@ -53,6 +55,8 @@ class SolutionReconstruction {
   /// The side's reconstruction, or null if the solution has no such side.
   const Interpolant* side(SideRef side) const;
   const std::vector<Fallback>& fallbacks() const { return fallbacks_; }
+  /// The fallbacks worth a warning: those not exact.
+  std::vector<Fallback> notable_fallbacks() const;
 
  private:
   std::vector<std::unique_ptr<Interpolant>> sides_;  ///< by SideRef::slot()
