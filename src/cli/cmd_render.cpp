@@ -111,8 +111,12 @@ void render_and_write(const RenderArgs& args, const Scene& scene, const Camera& 
         if (idx && (scene.surfaces[*idx].emission_w_m2 > 0).any()) continue;
         for (const SolutionElement& e : s.elements) white = std::max(white, e.radiosity_w_m2.maxCoeff());
       }
-      if (white <= 0) white = 1;
-      white_note = white_text(white) + " (no lit surface in sight: the largest of the solution's)";
+      if (white > 0) {
+        white_note = white_text(white) + " (no lit surface in sight: the largest of the solution's)";
+      } else {
+        white = 1;
+        white_note = white_text(white) + " (no surface of the solution is lit: every reflecting surface is black)";
+      }
     }
     rendering.reflecting = {};
     // Tone-mapped in place: the display image takes no second 24 bytes a pixel.

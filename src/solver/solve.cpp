@@ -158,7 +158,16 @@ Solution with_barriers(const Scene& scene, Solution sol, bool shadow_lines_too) 
 Solution solve_scene(const Scene& scene, const std::string& spec, const SolveSettings& settings,
                      const std::string& where) {
   check_settings(settings);
-  return with_barriers(scene, solve_by_spec(scene, spec, settings, where), settings.shadow_barriers);
+  Solution sol = with_barriers(scene, solve_by_spec(scene, spec, settings, where), settings.shadow_barriers);
+  // Power emitted and none absorbed: no light reaches a surface, which is a scene facing the
+  // wrong way far more often than an intended one (a lamp facing the sky, a floor upside down).
+  const SolveStats& st = sol.stats;
+  if ((st.emitted_w > 0).any() && !(st.absorbed_w > 0).any())
+    warn("no light reaches any surface: all " + format_number(st.emitted_w.maxCoeff()) +
+         " W emitted left the scene. A surface emits and reflects on its front, the side its corners run "
+         "counter-clockwise around: check that the lights face the surfaces and the surfaces face the lights "
+         "(or make them two_sided)");
+  return sol;
 }
 
 }  // namespace radrecon

@@ -271,7 +271,7 @@ assert red[30 * w + 30] == 40.0 and 24 * 24 <= bright <= 26 * 26, (red[30 * w + 
 PY
 # A side of one value (the paper's lamp, one leaf) is drawn piecewise constant with no warning:
 # any method gives it that (every render of a quadtree solution warned of it).
-run quadtree_lamp_solve solve --scene paper --mesh quadtree:49 --out "$TMP/q49.json" --quiet
+run quadtree_lamp_solve solve --scene paper --mesh quadtree:49 --out "$TMP/q49.json"
 expect_rc quadtree_lamp_solve 0
 run quadtree_lamp render --scene paper --solution "$TMP/q49.json" --camera view --size 40x30 --method natural-neighbour \
   --out "$TMP/q49.png" --quiet
@@ -293,6 +293,20 @@ run tri_floor_gouraud render --scene "$TMP/tri_floor.json" --solution "$TMP/tri_
 expect_rc tri_floor_gouraud 0
 expect_stderr_has tri_floor_gouraud "gouraud cannot reconstruct side floor"
 expect_stderr_lacks tri_floor_gouraud "takes no barriers"
+# A lamp facing away from the floor: exit 0 (a scene may be meant so) with a warning that no
+# light reaches any surface, and the render says its white point is no lit surface's.
+cat >"$TMP/away.json" <<'EOF'
+{"surfaces": [{"name": "floor", "corners": [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], "reflectance": 0.5},
+ {"name": "lamp", "corners": [[0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]], "reflectance": 0, "emission": 10}],
+ "cameras": [{"name": "c", "eye": [0.5, -2, 2], "target": [0.5, 0.5, 0]}]}
+EOF
+run away solve --scene "$TMP/away.json" --mesh grid:4 --out "$TMP/away_s.json" --quiet
+expect_rc away 0
+expect_stderr_has away "warning: no light reaches any surface: all 10 W emitted left the scene"
+run away_render render --scene "$TMP/away.json" --solution "$TMP/away_s.json" --camera c --size 40x30 --out "$TMP/away.png"
+expect_rc away_render 0
+expect_stderr_has away_render "no surface of the solution is lit"
+expect_stderr_lacks quadtree_lamp_solve "no light reaches"
 # A coarse quadtree's one ceiling leaf centred under the lamp lying on it: no sample outside the
 # lamp, so Shepard falls back to piecewise constant (the leaf's value) instead of failing.
 run coplanar_coarse solve --scene "$TMP/coplanar.json" --mesh quadtree-eps:10 --out "$TMP/coplanar_q.json" --quiet
