@@ -39,7 +39,8 @@ LightmapAtlas bake_lightmaps(const Scene& scene, const Solution& solution, const
                              int texels_along_longest, const std::string& where) {
   RR_CHECK(texels_along_longest >= 2, "a lightmap needs 2 texels along the longest edge");
   double longest_m = 0;
-  for (const SurfaceSolution& s : solution.surfaces) longest_m = std::max({longest_m, s.length_u_m, s.length_v_m});
+  for (const SurfaceSolution& s : solution.surfaces)
+    longest_m = std::max(longest_m, mesh_extent_m(s.frame(), s.triangle));
   RR_CHECK(longest_m > 0, "a solution of no extent");
   const double texels_per_metre = texels_along_longest / longest_m;
   LightmapAtlas atlas;

@@ -83,7 +83,7 @@ MeshSurface mesh_side(const Surface& s, size_t index, bool back, int nu, int nv,
 
 double longest_edge_m(const Scene& scene) {
   double longest_m = 0;
-  for (const Surface& t : scene.surfaces) longest_m = std::max({longest_m, t.length_u_m(), t.length_v_m()});
+  for (const Surface& t : scene.surfaces) longest_m = std::max(longest_m, t.extent_m());
   return longest_m;
 }
 

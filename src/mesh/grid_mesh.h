@@ -61,7 +61,7 @@ struct Mesh {
 };
 
 struct GridMeshOptions {
-  /// >= 1: elements of 1/divisions of the scene's longest quad edge or triangle base or height
+  /// >= 1: elements of 1/divisions of the scene's longest quad edge or triangle edge
   /// (longest_edge_m()). Every surface gets elements of (about) that size: a quad
   /// round(edge length / element size) along each edge, a triangle round(longest edge / (sqrt 2 x
   /// element size)) along every edge (its cells about as wide as a square element's diagonal);
@@ -74,8 +74,8 @@ struct GridMeshOptions {
   int max_patches = 4;
 };
 
-/// The largest length_u_m() or length_v_m() of the scene's surfaces (a quad's mean of opposite
-/// edges, a triangle's base or height), metres: grid:N's elements are 1/N of it.
+/// The largest extent_m() of the scene's surfaces (a quad's longer mean edge, a triangle's
+/// longest edge), metres: grid:N's elements are 1/N of it.
 double longest_edge_m(const Scene& scene);
 
 /// Elements along u and v of one surface under `options` (the rule of GridMeshOptions), given

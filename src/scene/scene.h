@@ -3,7 +3,9 @@
 // cameras.
 // All lengths in metres; emission is exitance in W/m^2.
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <optional>
 #include <span>
 #include <string>
@@ -26,6 +28,16 @@ struct SurfaceFrame {
     return {(st.x() - v * shear_m) / length_u_m, v};
   }
 };
+
+/// A surface's extent as meshing and texel densities take it, metres, from its frame: a quad's
+/// longer mean edge; a triangle's longest edge. Not a triangle's base or height, which depend on
+/// which corner is listed first (a floor listed from another corner made every element of the
+/// scene 1.4 times smaller).
+inline double mesh_extent_m(const SurfaceFrame& f, bool triangle) {
+  if (!triangle) return std::max(f.length_u_m, f.length_v_m);
+  // Corners (0, 0), (length_u, 0), (shear, length_v) in (s, t).
+  return std::max({f.length_u_m, std::hypot(f.shear_m, f.length_v_m), std::hypot(f.length_u_m - f.shear_m, f.length_v_m)});
+}
 
 /// A planar convex polygon of 3 or 4 corners, counter-clockwise seen from the front.
 ///
@@ -70,6 +82,8 @@ struct Surface {
   /// Quad: mean length of the two v edges (corner 0->3 and 1->2); triangle: its height over
   /// edge 0->1. Metres.
   double length_v_m() const;
+  /// The length grid:N divides (mesh_extent_m()), metres.
+  double extent_m() const { return mesh_extent_m({length_u_m(), length_v_m(), shear_m()}, is_triangle()); }
   /// Triangle: the component of edge 0->2 along edge 0->1, metres; quad: 0. With the two lengths
   /// it maps (u,v) to the metric coordinates (s, t) (SurfaceSolution::st()).
   double shear_m() const;

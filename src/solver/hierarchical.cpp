@@ -15,6 +15,7 @@
 #include "core/parallel.h"
 #include "core/progress.h"
 #include "core/tolerances.h"
+#include "mesh/grid_mesh.h"
 #include "mesh/quadtree.h"
 #include "scene/side.h"
 #include "solver/bvh.h"
@@ -438,9 +439,7 @@ Solution solve_hierarchical(const Scene& scene, const HierarchicalOptions& optio
 /// The minimum element size of `options`, or its default: a fraction of the longest edge.
 double min_element_size_m(const Scene& scene, const HierarchicalOptions& options) {
   if (options.min_size_m > 0) return options.min_size_m;
-  double longest = 0;
-  for (const Surface& s : scene.surfaces) longest = std::max({longest, s.length_u_m(), s.length_v_m()});
-  return longest * tol::kMinElementFraction;
+  return longest_edge_m(scene) * tol::kMinElementFraction;
 }
 
 }  // namespace radrecon

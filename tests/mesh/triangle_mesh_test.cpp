@@ -131,6 +131,32 @@ TEST(TriangleGridMesh, AQuadCutAlongItsDiagonalMeshesAsItsGridOfSquaresCutInTwo)
   }
 }
 
+TEST(TriangleGridMesh, TheMeshDoesNotDependOnWhichCornerIsListedFirst) {
+  // A right triangle of legs 4 m beside a wall: listed from its right-angled corner, its base
+  // (edge 0 -> 1) is a leg; from another corner, the hypotenuse. grid:N's element size came from
+  // the base or the height, so one listing meshed the whole scene with 256 floor elements and
+  // the other with 121 (an outside-in trial). Now 1/N of the longest edge, 5.66 m, either way.
+  using testing_support::quad;
+  const Vec3 a(0, 0, 0), b(4, 0, 0), c(0, 4, 0);
+  std::vector<size_t> counts;
+  for (const std::array<Vec3, 3>& corners : {std::array{a, b, c}, std::array{b, c, a}, std::array{c, a, b}}) {
+    Scene scene;
+    Surface floor;
+    floor.name = "floor";
+    floor.set_triangle(corners[0], corners[1], corners[2]);
+    scene.surfaces = {floor, quad("wall", {1, 0.5, 0}, {1, 0.5, 1}, {1, 2.5, 1}, {1, 2.5, 0}, 0.5)};
+    EXPECT_NEAR(longest_edge_m(scene), 4 * std::sqrt(2.0), 1e-12);
+    const Mesh mesh = make_grid_mesh(scene, {16, 1});
+    // The floor: round(5.66 / (sqrt 2 x 5.66 / 16)) = 11 cells along every edge, 121 elements;
+    // the wall 2 m x 1 m: round(2 / 0.354) x round(1 / 0.354) = 6 x 3.
+    EXPECT_EQ(mesh.surfaces[0].elements.size(), 121u);
+    EXPECT_EQ(mesh.surfaces[1].elements.size(), 18u);
+    counts.push_back(mesh.element_count());
+  }
+  EXPECT_EQ(counts[0], counts[1]);
+  EXPECT_EQ(counts[1], counts[2]);
+}
+
 TEST(TriangleGridMesh, IsTheRegularSubdivisionIntoNSquaredEqualTriangles) {
   Scene scene;
   scene.surfaces = {triangle()};
@@ -138,13 +164,16 @@ TEST(TriangleGridMesh, IsTheRegularSubdivisionIntoNSquaredEqualTriangles) {
   const Mesh mesh = make_grid_mesh(scene, {9, 1});
   ASSERT_EQ(mesh.surfaces.size(), 1u);
   const MeshSurface& m = mesh.surfaces[0];
-  // The longest edge, 2.18 m, against a square element's diagonal: round(2.18 / (sqrt 2 x 2.04 / 9)) = 7.
-  ASSERT_EQ(m.nu, 7);
-  ASSERT_EQ(m.elements.size(), 49u);
-  EXPECT_EQ(grid_element_count(scene, {9, 1}), 49u);
+  // Elements of 1/9 of the longest edge, 2.18 m (edge 1 -> 2), that edge against a square
+  // element's diagonal: round(2.18 / (sqrt 2 x 2.18 / 9)) = round(6.36) = 6.
+  const double longest_m = (s.corners[2] - s.corners[1]).norm();
+  ASSERT_NEAR(longest_m, 2.1794, 1e-4);
+  ASSERT_EQ(m.nu, 6);
+  ASSERT_EQ(m.elements.size(), 36u);
+  EXPECT_EQ(grid_element_count(scene, {9, 1}), 36u);
   Vec3 moment = Vec3::Zero();
   for (const MeshElement& e : m.elements) {
-    EXPECT_NEAR(e.area_m2, s.area_m2() / 49, 1e-14);
+    EXPECT_NEAR(e.area_m2, s.area_m2() / 36, 1e-14);
     EXPECT_EQ(e.corner_count(), 3);
     moment += e.area_m2 * e.center;
     // Front side: counter-clockwise about the surface's normal.
@@ -153,9 +182,9 @@ TEST(TriangleGridMesh, IsTheRegularSubdivisionIntoNSquaredEqualTriangles) {
   const Vec3 centroid = (s.corners[0] + s.corners[1] + s.corners[2]) / 3;
   EXPECT_NEAR((moment / s.area_m2() - centroid).norm(), 0, 1e-14);
   // Cells beyond the hypotenuse hold nothing; on it, only a lower half.
-  EXPECT_EQ(m.cell_elements(6, 0).second - m.cell_elements(6, 0).first, 1u);
-  EXPECT_EQ(m.cell_elements(6, 1).second - m.cell_elements(6, 1).first, 0u);
-  EXPECT_EQ(m.cell_elements(2, 3).second - m.cell_elements(2, 3).first, 2u);
+  EXPECT_EQ(m.cell_elements(5, 0).second - m.cell_elements(5, 0).first, 1u);
+  EXPECT_EQ(m.cell_elements(5, 1).second - m.cell_elements(5, 1).first, 0u);
+  EXPECT_EQ(m.cell_elements(1, 3).second - m.cell_elements(1, 3).first, 2u);
 }
 
 TEST(TriangleQuadtree, SplitsIntoFourCongruentTrianglesAndLocatesEveryPoint) {
