@@ -1,8 +1,10 @@
 #include "paper/report.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <sstream>
 
@@ -47,20 +49,41 @@ struct Column {
   std::function<double(const ReportRow&)> value;
   bool larger_is_better = false;
   bool paper = false;
+  bool marks_best = true;  ///< its best entry is marked (not for figures of other tables, shown beside)
 };
 
-void table(std::ostringstream& html, const std::string& caption, const std::vector<ReportRow>& rows) {
-  const std::vector<Column> columns = {
+/// A table of `rows`; the paper's columns where it has figures, and with `without` (Table 3's
+/// tables: the same methods without barriers, Table 1 or 2) their L1, L2, Linf and SSIM beside,
+/// as table3.md has them.
+void table(std::ostringstream& html, const std::string& caption, const std::vector<ReportRow>& rows,
+           const std::vector<ReportRow>* without = nullptr) {
+  std::vector<Column> columns = {
       {"L1", [](const ReportRow& r) { return r.figures.norms.l1; }},
       {"L2 (MSE)", [](const ReportRow& r) { return r.figures.norms.l2; }},
       {"RMSE", [](const ReportRow& r) { return r.figures.norms.rmse; }},
       {"Linf", [](const ReportRow& r) { return r.figures.norms.linf; }},
       {"SSIM", [](const ReportRow& r) { return value_or_nan(r.figures.ssim); }, true},
       {"gradient L2", [](const ReportRow& r) { return value_or_nan(r.figures.gradient_l2); }},
-      {"overshoot", [](const ReportRow& r) { return value_or_nan(r.figures.overshoot); }},
-      {"paper L1", [](const ReportRow& r) { return r.paper[0]; }, false, true},
-      {"paper L2", [](const ReportRow& r) { return r.paper[1]; }, false, true},
-      {"paper Linf", [](const ReportRow& r) { return r.paper[2]; }, false, true}};
+      {"overshoot", [](const ReportRow& r) { return value_or_nan(r.figures.overshoot); }}};
+  if (std::any_of(rows.begin(), rows.end(), [](const ReportRow& r) { return !std::isnan(r.paper[0]); })) {
+    columns.push_back({"paper L1", [](const ReportRow& r) { return r.paper[0]; }, false, true});
+    columns.push_back({"paper L2", [](const ReportRow& r) { return r.paper[1]; }, false, true});
+    columns.push_back({"paper Linf", [](const ReportRow& r) { return r.paper[2]; }, false, true});
+  }
+  if (without != nullptr) {
+    // The same method's row without barriers; NaN (shown as a dash) if it has none.
+    const auto beside = [without](const std::function<double(const ReportRow&)>& f) {
+      return [without, f](const ReportRow& r) {
+        for (const ReportRow& w : *without)
+          if (w.method == r.method) return f(w);
+        return std::numeric_limits<double>::quiet_NaN();
+      };
+    };
+    columns.push_back({"without barriers: L1", beside([](const ReportRow& r) { return r.figures.norms.l1; }), false, false, false});
+    columns.push_back({"L2", beside([](const ReportRow& r) { return r.figures.norms.l2; }), false, false, false});
+    columns.push_back({"Linf", beside([](const ReportRow& r) { return r.figures.norms.linf; }), false, false, false});
+    columns.push_back({"SSIM", beside([](const ReportRow& r) { return value_or_nan(r.figures.ssim); }), true, false, false});
+  }
   std::vector<RankedMethod> ranked;
   for (const ReportRow& r : rows)
     ranked.push_back({r.method, {r.figures.norms.l1, r.figures.norms.l2, r.figures.norms.linf}, r.paper});
@@ -72,7 +95,7 @@ void table(std::ostringstream& html, const std::string& caption, const std::vect
   for (const Column& c : columns) {
     std::vector<double> values;
     for (const ReportRow& r : rows) values.push_back(c.value(r));
-    best.push_back(best_index(values, c.larger_is_better));
+    best.push_back(c.marks_best ? best_index(values, c.larger_is_better) : -1);
   }
   html << "<table><caption>" << caption << "</caption>\n<tr><th>method</th>";
   for (const Column& c : columns) html << "<th" << (c.paper ? " class=paper" : "") << ">" << c.heading << "</th>";
@@ -157,11 +180,11 @@ void write_report(const std::filesystem::path& dir, const ReportContent& c) {
   if (barriers) {
     html << "<p>Table 3: the same data and methods with the scene's barriers; no sample's influence crosses a wall's "
             "foot.</p>\n";
-    table(html, "Table 3a: grid data with barriers", c.grid_barriers);
-    table(html, "Table 3b: quadtree data with barriers", c.quadtree_barriers);
+    table(html, "Table 3a: grid data with barriers", c.grid_barriers, &c.table1);
+    table(html, "Table 3b: quadtree data with barriers", c.quadtree_barriers, &c.table2);
     if (!c.grid_border.empty()) {
-      table(html, "Table 3c: grid data with barriers and border samples", c.grid_border);
-      table(html, "Table 3d: quadtree data with barriers and border samples", c.quadtree_border);
+      table(html, "Table 3c: grid data with barriers and border samples", c.grid_border, &c.table1);
+      table(html, "Table 3d: quadtree data with barriers and border samples", c.quadtree_border, &c.table2);
     }
   }
   html << "<p>Methods without paper columns are those the paper cites without running (gouraud, clough-tocher, "

@@ -112,5 +112,27 @@ TEST(Report, TablesMarkTheBestEntryAndGiveBothRankings) {
   EXPECT_NE(html.find("the scenes differ"), std::string::npos);
 }
 
+TEST(Report, Table3PutsEachMethodsFiguresWithoutBarriersBesideItsOwn) {
+  // The paper has no Table 3: its columns were there, empty. Beside each method now its own
+  // Table 1 row's L1, L2, Linf and SSIM, as table3.md has them; a method Table 1 lacks, blank.
+  const double nan = std::nan("");
+  ReportContent c = content();
+  c.grid_barriers = {row("constant", 0.025, 0.0015, 0.45, {nan, nan, nan}, true),
+                     row("thin-plate", 0.015, 0.001, 0.35, {nan, nan, nan}, false)};
+  c.quadtree_barriers = {row("shepard", 0.04, 0.004, 0.6, {nan, nan, nan}, true)};
+  const std::string html = written_report(c);
+  const size_t at = html.find("<caption>Table 3a");
+  ASSERT_NE(at, std::string::npos);
+  const std::string table3a = html.substr(at, html.find("</table>", at) - at);
+  EXPECT_EQ(table3a.find("paper L1"), std::string::npos);
+  EXPECT_NE(table3a.find("<th>without barriers: L1</th><th>L2</th><th>Linf</th><th>SSIM</th>"), std::string::npos);
+  // constant: 0.025 | 0.0015 | 0.0387 | 0.45 | 0.975 | (no gradient L2) | (no overshoot), then Table 1's
+  // 0.03 | 0.002 | 0.5 | 0.97.
+  EXPECT_NE(table3a.find("<td>0.03</td><td>0.002</td><td>0.5</td><td>0.97</td></tr>"), std::string::npos) << table3a;
+  EXPECT_NE(table3a.find("<tr><td>thin-plate</td>"), std::string::npos);
+  EXPECT_EQ(count(table3a, "<td></td><td></td><td></td><td></td></tr>"), 1u);  // thin-plate: not in Table 1
+  EXPECT_NE(html.find("<td>0.05</td><td>0.005</td><td>0.7</td><td>0.95</td></tr>"), std::string::npos);  // Table 3b
+}
+
 }  // namespace report_test
 }  // namespace radrecon
