@@ -166,6 +166,9 @@ std::vector<Polyline> polylines(const JsonReader& r, const json& j, const std::s
       const json& pt = j[b][i];
       if (!pt.is_array() || pt.size() != 2) r.fail(pp, "must be a point [s, t]");
       line.emplace_back(r.number(pt[0], JsonReader::at(pp, 0)), r.number(pt[1], JsonReader::at(pp, 1)));
+      // A barrier's segment of no length blocks nothing and fails every reconstruction of the
+      // side (each fell back to piecewise constant with a warning): refused where it is.
+      if (i > 0 && line[i] == line[i - 1]) r.fail(pp, "repeats the point before it (a segment of zero length)");
     }
     out.push_back(std::move(line));
   }
@@ -259,6 +262,8 @@ Solution read_solution_json(const std::filesystem::path& path) {
       // gradients overflow); a solve's own stay far below (emission at most 1e12 W/m^2).
       if ((el.radiosity_w_m2.abs() > tol::kMaxSampleValue).any())
         r.fail(ep + ".radiosity", "beyond the largest value, " + format_number(tol::kMaxSampleValue));
+      // Radiosity is emitted plus reflected power per area: never negative (a solve's is >= 0).
+      if ((el.radiosity_w_m2 < 0).any()) r.fail(ep + ".radiosity", "must not be negative (W/m^2)");
       out.elements.push_back(el);
     }
     sol.surfaces.push_back(std::move(out));

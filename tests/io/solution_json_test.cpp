@@ -138,6 +138,14 @@ TEST_F(SolutionFiles, MalformedFilesAreRefusedWithTheFieldOrLine) {
   const std::string huge = R"({"u0": 0, "v0": 0, "u1": 1, "v1": 1, "center": [0,0,0], "area": 1, "radiosity": [1,1e308,1]})";
   EXPECT_NE(refusal(R"({"surfaces": [)" + side("a", "[1, 1]", huge) + "]}").find("surfaces[0].elements[0].radiosity: beyond the largest value"),
             std::string::npos);
+  // Negative radiosity (a hand-edited file) rendered with exit 0: refused where it is.
+  const std::string negative = R"({"u0": 0, "v0": 0, "u1": 1, "v1": 1, "center": [0,0,0], "area": 1, "radiosity": [1,-1e-9,1]})";
+  EXPECT_NE(refusal(R"({"surfaces": [)" + side("a", "[1, 1]", negative) + "]}").find("surfaces[0].elements[0].radiosity: must not be negative"),
+            std::string::npos);
+  // A barrier segment of zero length: every method fell back to piecewise constant on the side.
+  const std::string zero_barrier = R"({"surfaces": [{"name": "a", "length_u_m": 1, "length_v_m": 1, "barriers": [[[0, 0], [1, 1]], [[0.5, 0], [0.5, 0], [0.5, 1]]], "elements": [)" +
+                                   element + "]}]}";
+  EXPECT_NE(refusal(zero_barrier).find("surfaces[0].barriers[1][1]: repeats the point before it"), std::string::npos);
   // No sides: render and export had drawn nothing with exit 0, or aborted.
   EXPECT_NE(refusal(R"({"scene": "paper", "surfaces": []})").find("surfaces: must be a non-empty array"), std::string::npos);
   // Excluded regions are optional; when present, polygons of at least 3 points [s, t].
