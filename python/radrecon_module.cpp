@@ -55,6 +55,25 @@ void check_points(const Doubles& a, const std::string& what) {
   }
 }
 
+/// `o` as an array of doubles (any numeric dtype, layout or nesting of sequences NumPy takes),
+/// or UserError naming `what`: pybind's own TypeError for queries="abc" printed every argument's
+/// whole array (23,605 characters) and named none of them.
+Doubles doubles_of(const py::handle& o, const std::string& what) {
+  const auto refuse = [&] {
+    std::string shown = py::repr(o).cast<std::string>();
+    if (shown.size() > 60) shown = shown.substr(0, 57) + "...";
+    throw UserError(what, "an array of numbers is expected, got " + shown + " (" +
+                              py::str(py::type::of(o).attr("__name__")).cast<std::string>() + ")");
+  };
+  if (py::isinstance<py::str>(o) || py::isinstance<py::bytes>(o) || o.is_none()) refuse();
+  Doubles a = Doubles::ensure(o);
+  if (!a) {
+    PyErr_Clear();
+    refuse();
+  }
+  return a;
+}
+
 /// The points of an (n, 2) array as Vec2 (a copy: 16 bytes a point, small beside the work).
 std::vector<Vec2> as_vec2(const Doubles& a) {
   std::vector<Vec2> out(static_cast<size_t>(a.shape(0)));
@@ -124,12 +143,18 @@ Barriers barriers_of(const py::object& barriers) {
   if (barriers.is_none()) return {};
   if (is_path(barriers)) return read_barriers_file(path_of(barriers), "barriers");
   if (py::isinstance<py::bytes>(barriers)) throw UserError("barriers", "a file name as bytes: give a str or a pathlib.Path");
+  if (!py::isinstance<py::iterable>(barriers))
+    throw UserError("barriers", "a file name (str or pathlib.Path) or a sequence of (k, 2) polylines is expected, got " +
+                                    py::repr(barriers).cast<std::string>());
   std::vector<Polyline> lines;
   size_t index = 0;
   for (const py::handle item : barriers) {
     const Doubles line = Doubles::ensure(item);
     const std::string what = "barriers[" + std::to_string(index++) + "]";
-    if (!line) throw UserError(what, "a polyline is an array of shape (k, 2)");
+    if (!line) {
+      PyErr_Clear();
+      throw UserError(what, "a polyline is an array of shape (k, 2)");
+    }
     check_points(line, what);
     // Checked here so that messages count from 0, as Python does (the library's count from 1).
     if (line.shape(0) < 2) throw UserError(what, "a line needs 2 points, got " + std::to_string(line.shape(0)));
@@ -145,9 +170,16 @@ Barriers barriers_of(const py::object& barriers) {
   return std::move(b).value();
 }
 
-py::array interpolate(const Doubles& points, const Doubles& values, const std::optional<Doubles>& queries,
-                      const py::object& raster_arg, const py::object& domain_arg, const std::string& method_text,
+py::array interpolate(const py::object& points_arg, const py::object& values_arg, const py::object& queries_arg,
+                      const py::object& raster_arg, const py::object& domain_arg, const py::object& method_arg,
                       const py::object& barriers, const py::kwargs& kwargs) {
+  const Doubles points = doubles_of(points_arg, "points"), values = doubles_of(values_arg, "values");
+  const std::optional<Doubles> queries =
+      queries_arg.is_none() ? std::nullopt : std::optional<Doubles>(doubles_of(queries_arg, "queries"));
+  if (!py::isinstance<py::str>(method_arg))
+    throw UserError("method", "a method's name is expected (radrecon.methods() lists them), got " +
+                                  py::repr(method_arg).cast<std::string>());
+  const std::string method_text = method_arg.cast<std::string>();
   std::optional<std::pair<int, int>> raster;
   std::optional<std::array<double, 4>> domain;
   if (!raster_arg.is_none()) {

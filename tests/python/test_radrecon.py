@@ -201,6 +201,17 @@ def test_bad_arrays_are_named():
     big[5] = -1e308
     with pytest.raises(radrecon.Error, match=r"values\[5\]: -1e\+308 is beyond the largest value, 1e\+100"):
         radrecon.interpolate(p, big, queries=p)
+    # Arguments of the wrong kind, named, in a message of one line (pybind's TypeError printed
+    # every argument's whole array and named none; an outside-in trial).
+    for kwargs, pattern in [(dict(queries="abc"), r"^queries: an array of numbers is expected, got 'abc' \(str\)$"),
+                            (dict(queries=[["a", "b"]]), r"^queries: an array of numbers is expected"),
+                            (dict(queries=p, method=None), r"^method: a method's name is expected .* got None$"),
+                            (dict(queries=p, barriers=5), r"^barriers: a file name .* is expected, got 5$")]:
+        with pytest.raises(radrecon.Error, match=pattern) as e:
+            radrecon.interpolate(p, v, **kwargs)
+        assert len(str(e.value)) < 200
+    with pytest.raises(radrecon.Error, match=r"^points: an array of numbers is expected, got None"):
+        radrecon.interpolate(None, v, queries=p)
 
 
 def test_raster_and_domain_of_the_wrong_shape_or_kind_are_named(tmp_path):
