@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <set>
 
@@ -374,16 +375,37 @@ std::string border_samples_problem(Method method) {
   return "applies to the scattered methods that interpolate, not " + method_name(method) + " (which uses the data as it is)";
 }
 
+namespace {
+
+/// `v` to two significant digits ("2.4e-08"), for a message.
+std::string two_digits(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2g", v);
+  return text;
+}
+
+}  // namespace
+
 InterpolantResult make_point_interpolant(Method method, const ScatteredSamples& samples, const MethodParams& params) {
   if (const std::string problem = point_method_problem(method); !problem.empty()) return Failure{problem};
   if (!is_grid_method(method)) return make_scattered_interpolant(method, samples, params);
   const std::optional<GridNodes> grid = as_regular_grid(samples);
   if (!grid) {
     const DistinctCoordinates d = count_distinct_coordinates(samples);
+    // The counts of a whole grid, spaced unevenly: say so (float32 coordinates, rounded to 6e-8,
+    // looked like a grid with the wrong counts).
+    std::string spacing;
+    for (const auto& [axis, off] : {std::pair{"x", d.x_uneven}, std::pair{"y", d.y_uneven}})
+      if (off > tol::kGridCoordinateRelative && spacing.empty())
+        spacing = "; the " + std::string(axis) + " values are unevenly spaced: one lies " + two_digits(off) +
+                  " of their extent from its equally spaced place, beyond the tolerance of " +
+                  format_number(tol::kGridCoordinateRelative) +
+                  " (coordinates rounded to 32-bit floats stray by about 6e-8: give 64-bit ones)";
     return Failure{method_name(method) + " needs samples on a regular grid: every combination of nx equally spaced "
                                          "x values and ny equally spaced y values (nx, ny >= 2), each exactly once; found " +
                    std::to_string(samples.points.size()) + " samples, " + std::to_string(d.x) + " distinct x, " +
-                   std::to_string(d.y) + " distinct y; use a scattered method (e.g. natural-neighbour, linear, shepard)"};
+                   std::to_string(d.y) + " distinct y" + spacing +
+                   "; use a scattered method (e.g. natural-neighbour, linear, shepard)"};
   }
   return make_nodal_interpolant(method, *grid, params);
 }

@@ -111,7 +111,16 @@ std::string merged_samples_message(std::size_t removed, std::size_t before, std:
 // --- regular grids ----------------------------------------------------------------------------
 
 DistinctCoordinates count_distinct_coordinates(const ScatteredSamples& samples) {
-  return {axis_of(samples, 0).distinct.size(), axis_of(samples, 1).distinct.size()};
+  const auto uneven = [](const Axis& a) {
+    const size_t n = a.distinct.size();
+    if (n < 2 || !(a.hi > a.lo)) return 0.0;
+    const double d = (a.hi - a.lo) / static_cast<double>(n - 1);
+    double most = 0;
+    for (size_t i = 0; i < n; ++i) most = std::max(most, std::abs(a.distinct[i] - (a.lo + static_cast<double>(i) * d)));
+    return most / (a.hi - a.lo);
+  };
+  const Axis ax = axis_of(samples, 0), ay = axis_of(samples, 1);
+  return {ax.distinct.size(), ay.distinct.size(), uneven(ax), uneven(ay)};
 }
 
 std::optional<GridNodes> as_regular_grid(const ScatteredSamples& s) {

@@ -27,9 +27,12 @@ std::string merged_samples_message(std::size_t removed, std::size_t before, std:
 /// returned row by row from y0 upward (GridNodes' layout) with the samples' channels.
 std::optional<GridNodes> as_regular_grid(const ScatteredSamples& samples);
 
-/// Distinct-coordinate counts reported when samples are not a grid (the same tolerance).
+/// Distinct-coordinate counts reported when samples are not a grid (the same tolerance), and
+/// how far the distinct values of each axis stray from equal spacing: the largest distance of one
+/// from its place x0 + i (x1 - x0) / (nx - 1), as a fraction of the extent (0 for fewer than 2).
 struct DistinctCoordinates {
   std::size_t x = 0, y = 0;
+  double x_uneven = 0, y_uneven = 0;
 };
 DistinctCoordinates count_distinct_coordinates(const ScatteredSamples& samples);
 

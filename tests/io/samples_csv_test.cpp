@@ -20,6 +20,7 @@
 #include "core/error.h"
 #include "core/parse.h"
 #include "io/raster.h"
+#include "reconstruct/methods.h"
 #include "reconstruct/sample_set.h"
 
 namespace radrecon {
@@ -284,6 +285,19 @@ TEST(SamplesIo, RejectsIncompleteOrUnevenGrids) {
   const DistinctCoordinates d = count_distinct_coordinates(missing);
   EXPECT_EQ(d.x, 4u);
   EXPECT_EQ(d.y, 3u);
+  // How uneven: y = 0, 1, 3 has 1 (the middle one's place is 1.5) of its extent 3 off, a half.
+  const DistinctCoordinates uneven = count_distinct_coordinates(grid({0, 1, 2, 3}, {0, 1, 3}));
+  EXPECT_EQ(uneven.x_uneven, 0.0);
+  EXPECT_NEAR(uneven.y_uneven, 0.5 / 3, 1e-15);
+  // The message says so: 32-bit coordinates 0, 0.1, 0.2, 0.3 (0.2f lies 1.66e-8 of the extent
+  // 0.3f from its place, two thirds of it) looked like a whole grid of the wrong kind.
+  const InterpolantResult r =
+      make_point_interpolant(Method::bilinear, grid({0, 1, 2}, {0, double(0.1f), double(0.2f), double(0.3f)}), {});
+  ASSERT_FALSE(r);
+  EXPECT_NE(r.reason().find("12 samples, 3 distinct x, 4 distinct y; the y values are unevenly spaced: one lies 1.7e-08 of "
+                            "their extent from its equally spaced place, beyond the tolerance of 1e-09"),
+            std::string::npos)
+      << r.reason();
 }
 
 TEST(SamplesIo, ReadsQueriesIgnoringExtraColumns) {
