@@ -285,7 +285,7 @@ void add_interpolate_command(CLI::App& app) {
   cmd->add_option("--param", args->params,
                   "NAME=VALUE, repeatable. shepard: mu (> 0, default 4): weights 1/d^mu; k (integer >= 0, "
                   "default 0): the k nearest samples, 0 = all; radius (m, > 0; default none): only samples within it; "
-                  "min_points (default 1): fewer samples within the radius give no value (gdal_grid's invdistnn). "
+                  "min_points (default 1; with radius only): fewer samples within the radius give no value (gdal_grid's invdistnn). "
                   "multiquadric: mu (nonzero, not within 1e-6 (relative) of a positive integer; default 0.5): basis "
                   "(d^2 + r^2)^mu; r (> 0, default: per sample, the distance to its nearest other sample "
                   "(Eck)); k (0 = one global system, default; >= 3: local patches of ~k samples blended, for large "

@@ -173,6 +173,9 @@ MethodParams parse_params(Method method, const std::vector<std::string>& setting
       throw UserError(where, "unknown parameter for method " + method_name(method));
     }
   }
+  // min_points counts the samples within the radius: alone it did nothing, in silence.
+  if (given.contains("min_points") && !p.search_radius_m)
+    throw UserError(field + " min_points", "goes with radius (the least number of samples within it); give radius=R too");
   return p;
 }
 
@@ -190,7 +193,6 @@ std::string describe_params(Method method, const MethodParams& p) {
   switch (method) {
     case Method::shepard:
       std::snprintf(buf, sizeof buf, "mu=%g, k=%s", p.shepard_mu, p.shepard_k ? std::to_string(p.shepard_k).c_str() : "all");
-      if (!p.search_radius_m && p.min_points != 1) return std::string(buf) + ", min_points=" + std::to_string(p.min_points);
       return std::string(buf) + radius_text(p);
     case Method::multiquadric:
       if (p.multiquadric_r) std::snprintf(buf, sizeof buf, "mu=%g, r=%g m", p.multiquadric_mu, *p.multiquadric_r);
