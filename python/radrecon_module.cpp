@@ -172,7 +172,7 @@ Barriers barriers_of(const py::object& barriers) {
 
 py::array interpolate(const py::object& points_arg, const py::object& values_arg, const py::object& queries_arg,
                       const py::object& raster_arg, const py::object& domain_arg, const py::object& method_arg,
-                      const py::object& barriers, const py::kwargs& kwargs) {
+                      const py::object& barriers, bool border_samples, const py::kwargs& kwargs) {
   const Doubles points = doubles_of(points_arg, "points"), values = doubles_of(values_arg, "values");
   const std::optional<Doubles> queries =
       queries_arg.is_none() ? std::nullopt : std::optional<Doubles>(doubles_of(queries_arg, "queries"));
@@ -253,6 +253,13 @@ py::array interpolate(const py::object& points_arg, const py::object& values_arg
     check_points(*queries, "queries");
     at = as_vec2(*queries);
     shape = {queries->shape(0)};
+  }
+  if (border_samples) {
+    // On the raster's domain (checked above), else the samples' bounding box (as --border-samples).
+    std::optional<Rect> on;
+    if (domain) on = Rect{(*domain)[0], (*domain)[1], (*domain)[2], (*domain)[3]};
+    const Result<size_t> added = add_border_samples(method, samples, on, params);
+    if (!added) throw UserError("border_samples", added.reason());
   }
   if (values.ndim() == 2) shape.push_back(channels);
   py::array_t<double> out(shape);
@@ -363,13 +370,15 @@ PYBIND11_MODULE(radrecon, m) {
 
   m.def("interpolate", &interpolate, py::arg("points"), py::arg("values"), py::arg("queries") = py::none(),
         py::arg("raster") = py::none(), py::arg("domain") = py::none(), py::arg("method") = "natural-neighbour",
-        py::arg("barriers") = py::none(),
+        py::arg("barriers") = py::none(), py::arg("border_samples") = false,
         R"doc(Interpolate scattered 2-D samples, as `radrecon interpolate` does.
 
 points: (n, 2) coordinates; values: (n,) or (n, c). Either queries: (m, 2) points, giving (m,)
 or (m, c); or raster=(width, height) with domain=(x0, y0, x1, y1), giving (height, width) or
 (height, width, c) values at the cells' centres, row 0 the y0 row. method: any of methods().
-barriers: a GeoJSON (or other OGR) file of lines, or a sequence of (k, 2) polylines. Further
+barriers: a GeoJSON (or other OGR) file of lines, or a sequence of (k, 2) polylines.
+border_samples: as --border-samples, samples on the border of domain (else of the samples'
+bounding box) and beside the barriers, each a plane fitted to the samples it sees. Further
 keywords are the method's parameters as in --param (k=32, mu=2, outside="none", radius=...).
 NaN where a method has no value. Samples at the same point are merged (a UserWarning).
 Raises radrecon.Error (a ValueError) for refused input.)doc");

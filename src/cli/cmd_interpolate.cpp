@@ -27,7 +27,6 @@
 #include "io/paths.h"
 #include "io/raster.h"
 #include "io/samples_csv.h"
-#include "reconstruct/border_samples.h"
 #include "reconstruct/methods.h"
 #include "reconstruct/sample_set.h"
 
@@ -140,18 +139,10 @@ void run_interpolate(const InterpolateArgs& args) {
   }
   if (args.border_samples) {
     // On --domain (the raster's), else the samples' bounding box.
-    Rect domain = raster.domain;
-    if (args.domain.empty()) {
-      Vec2 lo = samples.points[0], hi = lo;
-      for (const Vec2& p : samples.points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-      domain = Rect{lo.x(), lo.y(), hi.x(), hi.y()};
-    }
-    Result<ScatteredSamples> bordered = with_border_samples(samples, domain, params.barriers);
-    if (!bordered) throw UserError(args.samples, "border samples: " + bordered.reason());
-    const size_t added = bordered.value().points.size() - samples.points.size();
-    samples = std::move(bordered).value();
-    params.barrier_samples = false;  // added with the border's
-    if (!args.quiet) std::fprintf(stderr, "interpolate: %zu border samples added\n", added);
+    const Result<size_t> added =
+        add_border_samples(*method, samples, args.domain.empty() ? std::nullopt : std::optional<Rect>(raster.domain), params);
+    if (!added) throw UserError(args.samples, "border samples: " + added.reason());
+    if (!args.quiet) std::fprintf(stderr, "interpolate: %zu border samples added\n", added.value());
   }
   if (!geo_raster && format == FileFormat::pfm && samples.channels != 1 && samples.channels != 3)
     throw UserError("--out", "PFM needs 1 or 3 value columns (greyscale or colour); " + args.samples + " has " +

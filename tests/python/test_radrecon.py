@@ -120,6 +120,30 @@ def test_same_values_as_the_command_line(tmp_path):
     assert np.max(np.abs(ours - cli)) <= 1e-15 * np.max(np.abs(cli))  # the CSV keeps 17 digits
 
 
+def test_border_samples_as_the_command_line_reproduce_a_plane_to_the_domains_edge(tmp_path):
+    # Samples inside [0.2, 0.8]^2 of a plane: without border samples natural-neighbour takes the
+    # nearest hull point's value beyond the hull (1.7 off at the corners); with them, planes
+    # fitted at the border of the domain, the plane everywhere. The command line's
+    # --border-samples gives the same values (Python had no such keyword; an outside-in trial).
+    rng = np.random.default_rng(3)
+    p = rng.uniform(0.2, 0.8, (60, 2))
+    v = 3 + 2 * p[:, 0] - 5 * p[:, 1]
+    ours = radrecon.interpolate(p, v, raster=(20, 20), domain=(0, 0, 1, 1), method="natural-neighbour",
+                                border_samples=True)
+    x, y = np.meshgrid((np.arange(20) + 0.5) / 20, (np.arange(20) + 0.5) / 20)
+    assert np.max(np.abs(ours - (3 + 2 * x - 5 * y))) < 1e-12
+    plain = radrecon.interpolate(p, v, raster=(20, 20), domain=(0, 0, 1, 1), method="natural-neighbour")
+    assert np.max(np.abs(plain - (3 + 2 * x - 5 * y))) > 0.5
+    np.savetxt(tmp_path / "s.csv", np.column_stack([p, v]), delimiter=",", header="x,y,v", comments="", fmt="%.17g")
+    subprocess.run([RADRECON_BIN, "interpolate", "--samples", str(tmp_path / "s.csv"), "--raster", "20x20", "--domain",
+                    "0,0,1,1", "--method", "natural-neighbour", "--border-samples", "--out", str(tmp_path / "o.csv"),
+                    "--quiet"], check=True)
+    cli = np.loadtxt(tmp_path / "o.csv", delimiter=",", skiprows=1)[:, 2].reshape(20, 20)
+    assert np.array_equal(cli, ours)
+    with pytest.raises(radrecon.Error, match="^border_samples: applies to the scattered methods that interpolate"):
+        radrecon.interpolate(p, v, queries=p, method="constant", border_samples=True)
+
+
 def test_no_influence_across_a_barrier():
     rng = np.random.default_rng(5)
     p = rng.random((400, 2))
