@@ -8,6 +8,7 @@
 #include <limits>
 #include <optional>
 #include <sstream>
+#include <string_view>
 
 #include "core/error.h"
 #include "core/limits.h"
@@ -62,12 +63,18 @@ ObjForAssimp check_obj(const std::string& path) {
   std::string line;
   long long vertices = 0, line_no = 0;
   std::vector<std::pair<long long, long long>> positive;  // (index, line) checked at the end
-  std::vector<std::string> lines;  // the file, for assimp's copy
+  ObjForAssimp out;  // its text: the file as assimp reads it, built as it is read (one copy)
+  std::error_code size_error;
+  const auto file_bytes = std::filesystem::file_size(path, size_error);
+  if (!size_error) out.text.reserve(static_cast<size_t>(file_bytes) + 64);
   Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
   while (std::getline(in, line)) {
     ++line_no;
     drop_bom(line, line_no);
-    lines.push_back(line);
+    // assimp's copy: its materials are radrecon's to read (obj_materials()), so no mtllib.
+    if (after_keyword(line, "mtllib")) out.text.append("# ");
+    out.text += line;
+    out.text += '\n';
     if (line.size() < 2 || !std::isspace(static_cast<unsigned char>(line[1]))) continue;
     const std::string at = path + ":" + std::to_string(line_no);
     if (line[0] == 'v') {
@@ -112,38 +119,42 @@ ObjForAssimp check_obj(const std::string& path) {
     if (index > vertices)
       throw UserError(path + ":" + std::to_string(at),
                       "vertex index " + std::to_string(index) + " out of range (" + std::to_string(vertices) + " vertices)");
-  ObjForAssimp out;
   // Far from the origin against its size (its box's centre farther than the box's diagonal):
-  // moved to the origin for assimp's floats.
+  // moved to the origin for assimp's floats, the vertex lines rewritten (a second copy, for such
+  // files only).
   if (vertices > 0 && (0.5 * (lo + hi)).norm() > (hi - lo).norm()) out.offset_m = 0.5 * (lo + hi);
-  size_t bytes = 0;
-  for (const std::string& l : lines) bytes += l.size() + 1;
-  out.text.reserve(bytes);
+  if (out.offset_m == Vec3::Zero()) return out;
+  std::string moved_text;
+  moved_text.reserve(out.text.size() + out.text.size() / 4);
   char number[32];
-  for (std::string& l : lines) {
-    if (after_keyword(l, "mtllib")) {
-      l.insert(l.find_first_not_of(" \t"), "# ");
-    } else if (out.offset_m != Vec3::Zero() && l.size() >= 2 && l[0] == 'v' && std::isspace(static_cast<unsigned char>(l[1]))) {
-      const std::string comment = l.find('#') == std::string::npos ? "" : l.substr(l.find('#'));
-      const std::vector<std::string> words = line_words(l.substr(1));
-      std::string moved = "v";
-      for (size_t k = 0; k < words.size(); ++k) {
-        moved += ' ';
-        double value = 0;
-        if (k < 3) {  // checked above: a finite number (one that underflows reads as 0 or a subnormal)
-          parse_double(words[k], value);
-          const double shifted = value - out.offset_m[static_cast<int>(k)];
-          const auto [end, ec] = std::to_chars(number, number + sizeof number, shifted);
-          moved.append(number, end);
-        } else {
-          moved += words[k];
-        }
-      }
-      l = moved + (comment.empty() ? "" : " " + comment);
+  for (size_t start = 0; start < out.text.size();) {
+    const size_t end = out.text.find('\n', start);
+    const std::string_view l(out.text.data() + start, end - start);
+    start = end + 1;
+    if (!(l.size() >= 2 && l[0] == 'v' && std::isspace(static_cast<unsigned char>(l[1])))) {
+      moved_text.append(l);
+      moved_text += '\n';
+      continue;
     }
-    out.text += l;
-    out.text += '\n';
+    const size_t hash = l.find('#');
+    const std::vector<std::string> words = line_words(std::string(l.substr(1)));
+    moved_text += 'v';
+    for (size_t k = 0; k < words.size(); ++k) {
+      moved_text += ' ';
+      if (k < 3) {  // checked above: a finite number (one that underflows reads as 0 or a subnormal)
+        double value = 0;
+        parse_double(words[k], value);
+        const double shifted = value - out.offset_m[static_cast<int>(k)];
+        const auto [last, ec] = std::to_chars(number, number + sizeof number, shifted);
+        moved_text.append(number, last);
+      } else {
+        moved_text += words[k];
+      }
+    }
+    if (hash != std::string_view::npos) moved_text.append(" ").append(l.substr(hash));
+    moved_text += '\n';
   }
+  out.text = std::move(moved_text);
   return out;
 }
 
