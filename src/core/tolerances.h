@@ -365,9 +365,19 @@ inline constexpr double kHullEdgeBandRelative = 1e-9;
 
 /// A Delaunay face (linear, clough-tocher) whose height over its longest edge is below this
 /// fraction of that edge is a sliver: a query's barycentric coordinates by the inverse of its
-/// matrix err by about eps / (this ratio) (cancellation), projected onto the longest edge by the
-/// ratio itself; the two are equal near sqrt(eps), 1.5e-8.
+/// matrix err by about eps / (this ratio) (cancellation), projected onto its two short edges (the
+/// polyline along the longest) by the ratio itself; the two are equal near sqrt(eps), 1.5e-8.
 inline constexpr double kDelaunaySliverRelative = 1e-8;
+
+/// A sample within this fraction of a hull edge's length from its line, between its ends, lies on
+/// it up to rounding (reconstruct/hull_chain.h): the edge is split there. Samples computed on one
+/// line (a triangle's centroids along its hypotenuse) stray from it by a few ulps, some 1e-16 of
+/// its length; a sample a millionth off is no rounding. Whether a query lies on the hull is judged
+/// against the unsplit edge, its band (kHullEdgeBandRelative) widened by the depth of the samples
+/// it was split at, so that the split takes no query off the hull.
+inline constexpr double kHullChainRelative = 1e-12;
+
+/// The rounding part of the hull band above, times the coordinates' magnitude (64 ulps).
 inline constexpr double kHullEdgeRounding = 64 * 2.220446049250313e-16;
 
 /// A PNG of a raster (io/raster.h) maps [min, max] of its finite values to black and white; when

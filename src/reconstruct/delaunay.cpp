@@ -39,8 +39,9 @@ struct DelaunayMesh::Impl {
     int corner;
   };
   std::vector<HullEdge> hull;
-  /// By CGAL's hull edge (its ends in counter-clockwise order): its pieces in `hull`, [begin, end).
-  std::map<std::pair<unsigned, unsigned>, std::pair<size_t, size_t>> pieces;
+  std::unique_ptr<HullChains<Delaunay>> chains;  ///< CGAL's hull edges and their pieces
+  /// By sample: the infinite faces of the hull edges it ends (two), or of the one it splits.
+  std::vector<std::array<Delaunay::Face_handle, 2>> hull_at;
   std::unique_ptr<KdTree2> tree;
 };
 
@@ -87,16 +88,19 @@ DelaunayMesh::DelaunayMesh(std::span<const Vec2> points, const std::string& meth
     const int longest = static_cast<int>(std::max_element(edge_sq.begin(), edge_sq.end()) - edge_sq.begin());
     if (!(std::abs(det) > tol::kDelaunaySliverRelative * edge_sq[static_cast<size_t>(longest)])) affine_[f].sliver_corner = longest;
   }
-  const Delaunay::Vertex_handle infinite = m.dt.infinite_vertex();
-  auto fc = m.dt.incident_faces(infinite), done = fc;
-  std::vector<HullChainEdge<Delaunay::Face_handle>> chain;
+  m.chains = std::make_unique<HullChains<Delaunay>>(m.dt, points_);
+  m.hull_at.assign(n, {});
+  auto fc = m.dt.incident_faces(m.dt.infinite_vertex()), done = fc;
   do {
-    const int i = fc->index(infinite);
-    const size_t begin = chain.size();
-    hull_chain(m.dt, fc, points_, chain);
-    m.pieces[{fc->vertex(Delaunay::ccw(i))->info(), fc->vertex(Delaunay::cw(i))->info()}] = {begin, chain.size()};
+    const int i = fc->index(m.dt.infinite_vertex());
+    for (const int end : {Delaunay::ccw(i), Delaunay::cw(i)}) {
+      auto& at = m.hull_at[fc->vertex(end)->info()];
+      (at[0] == Delaunay::Face_handle() ? at[0] : at[1]) = fc;
+    }
+    const auto pieces = m.chains->of(fc, i);
+    for (size_t k = 1; k < pieces.size(); ++k) m.hull_at[pieces[k].a] = {fc, Delaunay::Face_handle()};
   } while (++fc != done);
-  for (const auto& e : chain) m.hull.push_back({std::min(e.a, e.b), std::max(e.a, e.b), e.inner->info(), e.corner});
+  for (const auto& e : m.chains->pieces) m.hull.push_back({std::min(e.a, e.b), std::max(e.a, e.b), e.inner->info(), e.corner});
   m.tree = std::make_unique<KdTree2>(points_);
 }
 
@@ -110,9 +114,18 @@ void on_edge(std::span<const Vec2> points, const std::array<unsigned, 3>& vertic
 std::array<double, 3> DelaunayMesh::barycentric(size_t f, const Vec2& p) const {
   const Affine& t = affine_[f];
   if (t.sliver_corner >= 0) {
-    std::array<double, 3> b;
-    on_edge(points_, vertices_[f], t.sliver_corner, p, b);
-    return b;
+    // The sliver as the polyline through its corners along its longest edge: p projected onto
+    // the short edge on its side of the middle corner (whose foot lies between the longest
+    // edge's ends), so that a row of samples a rounding error off one line is interpolated
+    // sample by sample, not between the row's far ends.
+    const int k = t.sliver_corner;
+    const std::array<unsigned, 3>& v = vertices_[f];
+    const Vec2 &a = points_[v[(k + 1) % 3]], &b = points_[v[(k + 2) % 3]], &c = points_[v[k]];
+    const Vec2 ab = b - a;
+    const double tc = (c - a).dot(ab), tp = (p - a).dot(ab);
+    std::array<double, 3> out;
+    on_edge(points_, v, tp <= tc ? (k + 2) % 3 : (k + 1) % 3, p, out);  // (a, c) lies opposite b's corner
+    return out;
   }
   const double dx = p.x() - t.x0, dy = p.y() - t.y0;
   const double b1 = t.m00 * dx + t.m01 * dy, b2 = t.m10 * dx + t.m11 * dy;
@@ -145,10 +158,10 @@ void on_edge(std::span<const Vec2> points, const std::array<unsigned, 3>& vertic
 
 }  // namespace
 
-HullEdgeDistance hull_edge_distance(const Vec2& a, const Vec2& b, const Vec2& q, double height_m) {
+HullEdgeDistance hull_edge_distance(const Vec2& a, const Vec2& b, const Vec2& q, double height_m, double slack_m) {
   const Vec2 ab = b - a;
   const double t = std::clamp((q - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
-  const double band = tol::kHullEdgeBandRelative * std::min(ab.norm(), height_m) +
+  const double band = slack_m + tol::kHullEdgeBandRelative * std::min(ab.norm(), height_m) +
                       tol::kHullEdgeRounding * std::max({a.cwiseAbs().maxCoeff(), b.cwiseAbs().maxCoeff(), q.cwiseAbs().maxCoeff()});
   return {(a + t * ab - q).norm() / band, t};
 }
@@ -156,6 +169,33 @@ HullEdgeDistance hull_edge_distance(const Vec2& a, const Vec2& b, const Vec2& q,
 bool DelaunayMesh::locate(const Vec2& q, OutsideHull outside, std::int64_t& hint, Location& out) const {
   if (!q.allFinite()) return false;
   const Impl& m = *impl_;
+  // q on the piece of a hull edge nearest to it (hull_chain.h): the coordinates of its face there.
+  const auto on_piece = [&](std::span<const HullChainEdge<Delaunay::Face_handle>> pieces, const Vec2& p, Location& at) {
+    const auto [piece, t] = HullChains<Delaunay>::nearest(pieces, points_, p);
+    at.face = piece->inner->info();
+    on_edge(points_, vertices_[static_cast<size_t>(at.face)], piece->corner, p, at.b);
+  };
+  // Whether q lies on a hull edge at a vertex of face g up to rounding (the edge's band widened
+  // by the depth of its pieces); then q on its nearest piece, into `out`.
+  const auto near_hull = [&](const Delaunay::Face_handle& g) {
+    double best_bands = 1;
+    Delaunay::Face_handle on;
+    for (int k = 0; k < 3; ++k)
+      for (const Delaunay::Face_handle& e : m.hull_at[g->vertex(k)->info()]) {
+        if (e == Delaunay::Face_handle()) continue;
+        const int ei = e->index(m.dt.infinite_vertex());
+        const auto& pa = e->vertex(Delaunay::ccw(ei))->point();
+        const auto& pb = e->vertex(Delaunay::cw(ei))->point();
+        const double bands = hull_edge_distance(Vec2(pa.x(), pa.y()), Vec2(pb.x(), pb.y()), q,
+                                                std::numeric_limits<double>::infinity(), m.chains->depth_m(e, ei))
+                                 .in_bands;
+        if (bands <= best_bands) best_bands = bands, on = e;
+      }
+    if (on == Delaunay::Face_handle()) return false;
+    on_piece(m.chains->of(on, on->index(m.dt.infinite_vertex())), q, out);
+    hint = out.face;
+    return true;
+  };
   const Point p(q.x(), q.y());
   Delaunay::Locate_type lt;
   int li;
@@ -171,7 +211,15 @@ bool DelaunayMesh::locate(const Vec2& q, OutsideHull outside, std::int64_t& hint
       return true;
     }
     case Delaunay::EDGE: {
-      // On an edge: the face of smaller index among its (one or two) finite faces.
+      // On a hull edge: its nearest piece (hull_chain.h).
+      if (m.dt.is_infinite(f) || m.dt.is_infinite(f->neighbor(li))) {
+        const Delaunay::Face_handle outer = m.dt.is_infinite(f) ? f : f->neighbor(li);
+        on_piece(m.chains->of(outer, outer->index(m.dt.infinite_vertex())), q, out);
+        hint = out.face;
+        return true;
+      }
+      if (near_hull(f)) return true;  // near a hull edge, up to rounding: its nearest piece
+      // On an inner edge: the face of smaller index among its two.
       const Delaunay::Face_handle g = f->neighbor(li);
       std::int64_t face = f->info();
       int corner = li;
@@ -182,29 +230,31 @@ bool DelaunayMesh::locate(const Vec2& q, OutsideHull outside, std::int64_t& hint
       return true;
     }
     case Delaunay::FACE:
+      // Inside, on a hull edge up to rounding (between it and the samples it was split at):
+      // the nearest piece.
+      if (near_hull(f)) return true;
       out.face = f->info();
       out.b = barycentric(static_cast<size_t>(out.face), q);
       hint = out.face;
       return true;
     case Delaunay::OUTSIDE_CONVEX_HULL: {
-      // Outside by rounding only: on a piece of the hull edge of the infinite face found, or of
-      // one of its two neighbours (the edges at that edge's ends), whichever is nearest.
+      // Outside by rounding only: on the hull edge of the infinite face found, or of one of its
+      // two neighbours (the edges at that edge's ends), whichever is nearest; its value on that
+      // edge's nearest piece.
       const Delaunay::Vertex_handle infinite = m.dt.infinite_vertex();
       const int i = f->index(infinite);
       double best_bands = 1;
-      const Impl::HullEdge* on = nullptr;
+      Delaunay::Face_handle on;
       for (const Delaunay::Face_handle& g : {f, f->neighbor(Delaunay::ccw(i)), f->neighbor(Delaunay::cw(i))}) {
         const int gi = g->index(infinite);
-        const auto [begin, end] = m.pieces.at({g->vertex(Delaunay::ccw(gi))->info(), g->vertex(Delaunay::cw(gi))->info()});
-        for (size_t k = begin; k < end; ++k) {
-          const Impl::HullEdge& e = m.hull[k];
-          const double bands = hull_edge_distance(points_[e.a], points_[e.b], q).in_bands;
-          if (bands <= best_bands) best_bands = bands, on = &e;
-        }
+        const auto& pa = g->vertex(Delaunay::ccw(gi))->point();
+        const auto& pb = g->vertex(Delaunay::cw(gi))->point();
+        const double depth_m = m.chains->depth_m(g, gi);
+        const double bands = hull_edge_distance(Vec2(pa.x(), pa.y()), Vec2(pb.x(), pb.y()), q, std::numeric_limits<double>::infinity(), depth_m).in_bands;
+        if (bands <= best_bands) best_bands = bands, on = g;
       }
-      if (on != nullptr) {
-        out.face = on->face;
-        on_edge(points_, vertices_[static_cast<size_t>(out.face)], on->corner, q, out.b);
+      if (on != Delaunay::Face_handle()) {
+        on_piece(m.chains->of(on, on->index(infinite)), q, out);
         hint = out.face;
         return true;
       }

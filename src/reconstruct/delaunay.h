@@ -28,14 +28,16 @@ namespace radrecon {
 /// plus tol::kHullEdgeRounding of the coordinates' magnitude. A point computed on a
 /// hull edge as a + t (b - a) lands within that of it, a little inside or outside the hull; the
 /// triangulation methods give it the value on the edge (never NaN, never a far-off value from
-/// catastrophic cancellation). Returns the distance in units of that band (<= 1: on the edge) and
-/// the parameter t in [0, 1] of q's nearest point a + t (b - a).
+/// catastrophic cancellation). `slack_m` widens the band by the depth of the samples the edge was
+/// split at (hull_chain.h): a point between the edge and them is on the hull too. Returns the
+/// distance in units of that band (<= 1: on the edge) and the parameter t in [0, 1] of q's
+/// nearest point a + t (b - a).
 struct HullEdgeDistance {
   double in_bands = 0;
   double t = 0;
 };
 HullEdgeDistance hull_edge_distance(const Vec2& a, const Vec2& b, const Vec2& q,
-                                    double height_m = std::numeric_limits<double>::infinity());
+                                    double height_m = std::numeric_limits<double>::infinity(), double slack_m = 0);
 
 class DelaunayMesh {
  public:
@@ -53,9 +55,11 @@ class DelaunayMesh {
   /// The face across the edge opposite corner k of face f, or -1 when that edge is on the hull.
   std::int64_t neighbour(size_t f, int k) const { return neighbours_[f][k]; }
   /// Barycentric coordinates of p with respect to face f (any p, inside the face or not). On a
-  /// sliver, p's projection onto the longest edge, as on_edge() gives it: the inverse of a
-  /// sliver's matrix cancels catastrophically (linear's value on the edge of a face 3e-17 thick
-  /// erred by 0.02 for a linear function).
+  /// sliver, p's projection onto the short edge on its side of the middle corner (the sliver as
+  /// the polyline along its longest edge), as on_edge() gives it: the inverse of a sliver's
+  /// matrix cancels catastrophically (linear's value on the edge of a face 3e-17 thick erred by
+  /// 0.02 for a linear function), and the longest edge would blend two samples across the
+  /// middle one.
   std::array<double, 3> barycentric(size_t f, const Vec2& p) const;
 
   /// Where a query lands: a face and its barycentric coordinates there (summing to one).
@@ -68,9 +72,10 @@ class DelaunayMesh {
   /// order (exactly: the value there is the sample's); on an edge shared by two faces, the face
   /// of smaller index, with coordinate 0 opposite the edge and the others linear along it (from
   /// the end of smaller sample index). On a hull edge up to rounding (hull_edge_distance()), inside
-/// or outside: that edge, as an edge. Outside the hull: with OutsideHull::nearest, the point of
-  /// the hull nearest to q, located the same way on its hull edge (ties: the edge of smaller
-  /// sample indices); with OutsideHull::none, or for a non-finite q, false. `hint` is a face
+  /// or outside: the nearest piece of that edge split at the samples on it up to rounding
+  /// (hull_chain.h), as an edge. Outside the hull: with OutsideHull::nearest, the point of the
+  /// hull (through those samples) nearest to q, located the same way on its piece (ties: the
+  /// piece of smaller sample indices); with OutsideHull::none, or for a non-finite q, false. `hint` is a face
   /// index to start the walk from (-1: anywhere), updated to the face found: it changes the
   /// speed only, never the result.
   bool locate(const Vec2& q, OutsideHull outside, std::int64_t& hint, Location& out) const;

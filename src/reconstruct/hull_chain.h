@@ -5,11 +5,16 @@
 // one end of the row to the other over the samples just inside, and the value "at the nearest
 // point of the hull" blended the row's two ends (an export's texels by a triangle's hypotenuse
 // erred by 32 of 255 levels). Each such edge is split at those samples, which lie under it in a
-// fan of slivers: the faces inside it whose vertex across it is within
-// tol::kDelaunaySliverRelative of its length from its line.
+// fan of slivers: the faces inside it whose vertex across it is within tol::kHullChainRelative
+// of its length from its line. Whether a query is on the hull up to rounding is still judged
+// against CGAL's edge (hull_edge_distance(), delaunay.h); its value is then taken on the
+// nearest piece.
 // Internal to reconstruct/: CGAL's types stay out of the public headers.
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <map>
 #include <span>
 #include <utility>
 #include <vector>
@@ -19,13 +24,13 @@
 
 namespace radrecon {
 
-/// One edge of the hull as hull_chain() gives it.
+/// A piece of a hull edge as hull_chain() gives it.
 template <class Face_handle>
 struct HullChainEdge {
-  unsigned a = 0, b = 0;  ///< sample indices, counter-clockwise around the hull (a, then b)
-  Face_handle inner;      ///< the finite face on the edge
-  int corner = 0;         ///< that face's corner across the edge
-  double height_m = 0;    ///< that corner's distance from the edge's line
+  unsigned a = 0, b = 0;  ///< sample indices, in the order of the hull edge's ends (a, then b)
+  Face_handle inner;      ///< the finite face on the piece
+  int corner = 0;         ///< that face's corner across the piece
+  double height_m = 0;    ///< that corner's distance from the piece's line
 };
 
 /// The hull edge of `infinite_face` (a face of `dt` at its infinite vertex) split at the samples
@@ -56,7 +61,7 @@ void hull_chain(const DT& dt, typename DT::Face_handle infinite_face, std::span<
       const Vec2 pc = points[c->info()];
       const auto along = [&](const Vec2& x) { return (x - a0).dot(ab) / length_sq; };
       const double t = along(pc);
-      const bool on_line = std::abs(cross(ab, pc - a0)) <= tol::kDelaunaySliverRelative * length_sq;
+      const bool on_line = std::abs(cross(ab, pc - a0)) <= tol::kHullChainRelative * length_sq;  // |cross| = distance x length
       if (on_line && t > along(pa) && t < along(pb)) {
         const Face_handle before = p.inner->neighbor(ib), after = p.inner->neighbor(ia);  // across (a, c), (c, b)
         if (!dt.is_infinite(before) && !dt.is_infinite(after)) {
@@ -71,5 +76,63 @@ void hull_chain(const DT& dt, typename DT::Face_handle infinite_face, std::span<
     out.push_back({p.a->info(), p.b->info(), p.inner, ic, height_m});
   }
 }
+
+/// Every hull edge of `dt` (a 2-D triangulation) split by hull_chain(): the pieces, hull edge by
+/// hull edge, and by each hull edge (its ends as the infinite face has them: ccw(i), cw(i)) the
+/// range of its pieces.
+template <class DT>
+struct HullChains {
+  /// A hull edge's pieces, [begin, end) in `pieces`, and the largest distance of their ends from
+  /// its line, metres (0 when it is whole).
+  struct Range {
+    size_t begin = 0, end = 0;
+    double depth_m = 0;
+  };
+  std::vector<HullChainEdge<typename DT::Face_handle>> pieces;
+  std::map<std::pair<unsigned, unsigned>, Range> of_edge;
+
+  explicit HullChains(const DT& dt, std::span<const Vec2> points) {
+    const auto inf = dt.infinite_vertex();
+    auto fc = dt.incident_faces(inf), done = fc;
+    do {
+      Range r{pieces.size(), 0, 0};
+      hull_chain(dt, fc, points, pieces);
+      r.end = pieces.size();
+      const int i = fc->index(inf);
+      const Vec2 a = points[fc->vertex(DT::ccw(i))->info()], ab = points[fc->vertex(DT::cw(i))->info()] - a;
+      for (size_t k = r.begin + 1; k < r.end; ++k)
+        r.depth_m = std::max(r.depth_m, std::abs(cross(ab, points[pieces[k].a] - a)) / ab.norm());
+      of_edge[key(fc, i)] = r;
+    } while (++fc != done);
+  }
+
+  /// The pieces of the hull edge of infinite face f, whose infinite vertex is its corner i.
+  std::span<const HullChainEdge<typename DT::Face_handle>> of(typename DT::Face_handle f, int i) const {
+    const Range& r = of_edge.at(key(f, i));
+    return std::span(pieces).subspan(r.begin, r.end - r.begin);
+  }
+  /// How far inside the hull edge of infinite face f its pieces' ends lie, metres.
+  double depth_m(typename DT::Face_handle f, int i) const { return of_edge.at(key(f, i)).depth_m; }
+
+  /// The piece of `range` nearest to q, and the parameter t in [0, 1] of q's nearest point on it,
+  /// from its end a (ties: the first in the range).
+  static std::pair<const HullChainEdge<typename DT::Face_handle>*, double> nearest(
+      std::span<const HullChainEdge<typename DT::Face_handle>> range, std::span<const Vec2> points, const Vec2& q) {
+    double best = std::numeric_limits<double>::infinity(), best_t = 0;
+    const HullChainEdge<typename DT::Face_handle>* found = range.empty() ? nullptr : &range.front();
+    for (const auto& e : range) {
+      const Vec2 a = points[e.a], ab = points[e.b] - a;
+      const double t = std::clamp((q - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+      const double d = (a + t * ab - q).squaredNorm();
+      if (d < best) best = d, best_t = t, found = &e;
+    }
+    return {found, best_t};
+  }
+
+ private:
+  static std::pair<unsigned, unsigned> key(typename DT::Face_handle f, int i) {
+    return {f->vertex(DT::ccw(i))->info(), f->vertex(DT::cw(i))->info()};
+  }
+};
 
 }  // namespace radrecon

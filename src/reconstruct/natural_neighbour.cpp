@@ -30,27 +30,36 @@ NaturalNeighbour::NaturalNeighbour(const ScatteredSamples& samples, OutsideHull 
   if (!impl_->barriers.empty() && n <= kMaxWholeVisibleSamples &&
       n * impl_->barriers.segments().size() <= kMaxWholeVisiblePairs)
     impl_->visibility = std::make_unique<PointVisibility>(impl_->points, impl_->barriers);
-  // Hull edges: the finite edges of the infinite faces, split at the samples on them up to
-  // rounding (hull_chain.h), each with the height over it of the finite triangle on it.
+  // Hull edges: the finite edges of the infinite faces, each with the height over it of the
+  // finite triangle on it, and split at the samples on it up to rounding (hull_chain.h).
+  const HullChains<Delaunay> chains(impl_->dt, impl_->points);
+  for (const auto& e : chains.pieces) impl_->hull_pieces.emplace_back(e.a, e.b);
   auto inf = impl_->dt.infinite_vertex();
   auto fc = impl_->dt.incident_faces(inf), done = fc;
-  std::vector<HullChainEdge<Delaunay::Face_handle>> chain;
   do {
     const int i = fc->index(inf);
-    const size_t begin = chain.size();
-    hull_chain(impl_->dt, fc, impl_->points, chain);
-    impl_->hull_pieces[{fc->vertex(Delaunay::ccw(i))->info(), fc->vertex(Delaunay::cw(i))->info()}] = {begin, chain.size()};
+    const unsigned a = fc->vertex(Delaunay::ccw(i))->info(), b = fc->vertex(Delaunay::cw(i))->info();
+    const Vec2 pa = impl_->points[a], pb = impl_->points[b];
+    const Vec2 c = impl_->points[fc->neighbor(i)->vertex(impl_->dt.mirror_index(fc, i))->info()];
+    impl_->hull_edges.emplace_back(a, b);
+    impl_->hull_edge_height_m.push_back(std::abs(cross(pb - pa, c - pa)) / (pb - pa).norm());
+    const auto range = chains.of(fc, i);
+    const size_t begin = static_cast<size_t>(range.data() - chains.pieces.data());
+    impl_->hull_edge_pieces.emplace_back(begin, begin + range.size());
+    impl_->hull_edge_depth_m.push_back(chains.depth_m(fc, i));
   } while (++fc != done);
-  for (const auto& e : chain) {
-    impl_->hull_edges.emplace_back(e.a, e.b);
-    impl_->hull_edge_height_m.push_back(e.height_m);
-  }
+  // By sample: the hull edges it ends, two; or the one it splits, one (it is no vertex of CGAL's
+  // hull), so that a query in a face at it finds the edge.
   impl_->hull_edges_at.assign(n, {-1, -1});
-  for (size_t e = 0; e < impl_->hull_edges.size(); ++e)
+  for (size_t e = 0; e < impl_->hull_edges.size(); ++e) {
     for (const unsigned end : {impl_->hull_edges[e].first, impl_->hull_edges[e].second}) {
       std::array<int, 2>& at = impl_->hull_edges_at[end];
+      RR_CHECK(at[1] < 0, "a sample at more than two hull edges");
       (at[0] < 0 ? at[0] : at[1]) = static_cast<int>(e);
     }
+    const auto [begin, end] = impl_->hull_edge_pieces[e];
+    for (size_t k = begin + 1; k < end; ++k) impl_->hull_edges_at[impl_->hull_pieces[k].first] = {static_cast<int>(e), -1};
+  }
   if (rule == NeighbourRule::sibson_c1) {
     impl_->gradients = nn::fit_gradients(impl_->dt, impl_->vertex_of, impl_->points, impl_->values, impl_->channels,
                                          impl_->barriers);
@@ -65,7 +74,7 @@ NaturalNeighbour::~NaturalNeighbour() = default;
 
 int NaturalNeighbour::channels() const { return impl_->channels; }
 
-const std::vector<std::pair<unsigned, unsigned>>& NaturalNeighbour::hull_edges() const { return impl_->hull_edges; }
+const std::vector<std::pair<unsigned, unsigned>>& NaturalNeighbour::hull_edges() const { return impl_->hull_pieces; }
 
 std::vector<std::pair<unsigned, double>> NaturalNeighbour::coordinates(const Vec2& q) const {
   Impl::Scratch scratch;
@@ -143,7 +152,7 @@ void NaturalNeighbour::evaluate_raster(const Raster& raster, size_t first, size_
       point_count < kFaceRasterLeastPointsPerFace * static_cast<double>(impl_->dt.number_of_faces()))
     return Interpolant::evaluate_raster(raster, first, count, out);
   const SibsonRaster& faces = impl_->raster.get([&] {
-    return std::make_unique<SibsonRaster>(impl_->dt, impl_->points, impl_->values, impl_->channels, impl_->hull_edges);
+    return std::make_unique<SibsonRaster>(impl_->dt, impl_->points, impl_->values, impl_->channels, impl_->hull_pieces);
   });
   if (!faces.usable()) return Interpolant::evaluate_raster(raster, first, count, out);
   std::vector<size_t> unserved;

@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <array>
 #include <limits>
-#include <map>
 #include <memory>
 #include <vector>
 
@@ -34,12 +33,17 @@ struct NaturalNeighbour::Impl {
   OutsideHull outside = OutsideHull::nearest;
   NeighbourRule rule = NeighbourRule::sibson;
   std::vector<double> gradients;  ///< sibson-c1: per sample and channel, d/ds and d/dt (sibson_c1.h)
-  std::vector<std::pair<unsigned, unsigned>> hull_edges;  ///< sample indices
-  std::vector<std::array<int, 2>> hull_edges_at;          ///< by sample: its hull edges' indices, or -1
-  std::vector<double> hull_edge_height_m;                 ///< by hull edge: its triangle's height over it
-  /// By CGAL's hull edge (its ends counter-clockwise): its pieces in hull_edges, [begin, end)
-  /// (split at the samples on it up to rounding: hull_chain.h).
-  std::map<std::pair<unsigned, unsigned>, std::pair<size_t, size_t>> hull_pieces;
+  /// CGAL's hull edges (sample indices; whether a query lies on the hull up to rounding is
+  /// judged against them), by sample the indices of the two it ends or the one it splits, and the
+  /// height over each of the triangle on it.
+  std::vector<std::pair<unsigned, unsigned>> hull_edges;
+  std::vector<std::array<int, 2>> hull_edges_at;
+  std::vector<double> hull_edge_height_m;
+  /// The hull through every sample on it up to rounding (hull_chain.h): the hull edges' pieces,
+  /// and by hull edge its pieces' range [begin, end). A query's value on the hull is taken on them.
+  std::vector<std::pair<unsigned, unsigned>> hull_pieces;
+  std::vector<std::pair<size_t, size_t>> hull_edge_pieces;
+  std::vector<double> hull_edge_depth_m;  ///< by hull edge: how far inside it its pieces' ends lie
   std::vector<Vec2> points;
   std::vector<Delaunay::Vertex_handle> vertex_of;  ///< by sample index
   /// The samples' k-d tree, to start walks near a query and to find the samples one sees past
@@ -151,31 +155,24 @@ struct NaturalNeighbour::Impl {
   /// delaunay.h): then the coordinates of its nearest point on the nearest such edge, into `out`
   /// (ends in sample order).
   bool near_hull_edge(const Vec2& q, const Delaunay::Face_handle& f, std::vector<std::pair<unsigned, double>>& out) const {
-    double best_excess = 0, best_t = 0;
+    double best_excess = 0;
     int best = -1;
-    const auto consider = [&](int e) {
-      if (e < 0 || e == best) return;
-      auto [ia, ib] = hull_edges[static_cast<size_t>(e)];
-      if (ib < ia) std::swap(ia, ib);
-      const HullEdgeDistance d = hull_edge_distance(points[ia], points[ib], q, hull_edge_height_m[static_cast<size_t>(e)]);
-      if (d.in_bands <= 1 && (best < 0 || d.in_bands < best_excess)) best = e, best_excess = d.in_bands, best_t = d.t;
-    };
     for (int k = 0; k < 3; ++k) {
       const Delaunay::Vertex_handle v = f->vertex(k);
-      if (dt.is_infinite(v)) {
-        // Outside: every piece of the face's hull edge (its ends hold only the first and last).
-        const auto [begin, end] = hull_pieces.at({f->vertex(Delaunay::ccw(k))->info(), f->vertex(Delaunay::cw(k))->info()});
-        for (size_t e = begin; e < end; ++e) consider(static_cast<int>(e));
-        continue;
+      if (dt.is_infinite(v)) continue;
+      for (const int e : hull_edges_at[v->info()]) {
+        if (e < 0 || e == best) continue;
+        auto [ia, ib] = hull_edges[static_cast<size_t>(e)];
+        if (ib < ia) std::swap(ia, ib);
+        const HullEdgeDistance d = hull_edge_distance(points[ia], points[ib], q, hull_edge_height_m[static_cast<size_t>(e)],
+                                                      hull_edge_depth_m[static_cast<size_t>(e)]);
+        if (d.in_bands <= 1 && (best < 0 || d.in_bands < best_excess)) best = e, best_excess = d.in_bands;
       }
-      for (const int e : hull_edges_at[v->info()]) consider(e);
     }
     if (best < 0) return false;
-    auto [ia, ib] = hull_edges[static_cast<size_t>(best)];
-    if (ib < ia) std::swap(ia, ib);
-    out.clear();
-    out.emplace_back(ia, 1 - best_t);
-    out.emplace_back(ib, best_t);
+    // The value on the edge's nearest piece (the edge itself when it is whole).
+    const auto [begin, end] = hull_edge_pieces[static_cast<size_t>(best)];
+    nearest_on_edges(q, std::span(hull_pieces).subspan(begin, end - begin), out);
     return true;
   }
 
@@ -208,12 +205,7 @@ struct NaturalNeighbour::Impl {
         edges.emplace_back(e->first->vertex(Delaunay::cw(e->second))->info(), e->first->vertex(Delaunay::ccw(e->second))->info());
     } else {
       // The hull through every sample on it up to rounding (hull_chain.h).
-      const auto inf = dt.infinite_vertex();
-      auto fc = dt.incident_faces(inf), done = fc;
-      std::vector<HullChainEdge<Delaunay::Face_handle>> chain;
-      do hull_chain(dt, fc, points, chain);
-      while (++fc != done);
-      for (const auto& e : chain) edges.emplace_back(e.a, e.b);
+      for (const auto& e : HullChains<Delaunay>(dt, points).pieces) edges.emplace_back(e.a, e.b);
     }
     nearest_on_edges(q, edges, out);
   }
@@ -242,7 +234,7 @@ struct NaturalNeighbour::Impl {
     if (coordinates(q, hint, s)) {
       if (barriers.empty() || all_visible(q, s.coords)) return Kind::coordinates;
     } else {
-      nearest_on_edges(q, hull_edges, s.coords);
+      nearest_on_edges(q, hull_pieces, s.coords);
       // Outside the hull: its nearest point, if nothing hides it (or its edge) from q.
       if (barriers.empty()) return Kind::on_hull;
       Vec2 nearest = Vec2::Zero();

@@ -99,6 +99,11 @@ double ConflictZone::sibson(const Vec2& q, std::vector<std::pair<unsigned, doubl
 
 double hole_coordinates(const Delaunay& dt, const Point& p, const std::vector<Delaunay::Edge>& hole,
                         NeighbourRule rule, std::vector<std::pair<unsigned, double>>& out) {
+  // A conflict zone reaching the infinite vertex (a point on the hull that the hull rules did not
+  // catch) has no coordinates: its vertex carries no sample, and CGAL's hole overload would hand
+  // out its unset index.
+  for (const auto& [face, i] : hole)
+    if (dt.is_infinite(face->vertex(Delaunay::ccw(i))) || dt.is_infinite(face->vertex(Delaunay::cw(i)))) return 0;
   if (rule == NeighbourRule::laplace) return laplace(p, hole, out);
   const auto result = CGAL::natural_neighbor_coordinates_2(dt, p, std::back_inserter(out), VertexIndex(), hole.begin(),
                                                            hole.end());

@@ -50,6 +50,7 @@ inline Vec2 circumcentre_from(const Vec2& p, const Vec2& a, const Vec2& b) {
 ///   Laplace: weight_i = |e_i| / |p - x_i|, e_i the edge of p's Voronoi cell facing sample i
 ///            (Belikov & Semenov 1997; Sugihara 1999: non-Sibsonian coordinates). Its ends are the
 ///            circumcentres of the triangles (p, a, b) over the two boundary edges at x_i.
+/// Returns the weights' sum, 0 when there are none (a hole reaching the infinite vertex).
 double hole_coordinates(const Delaunay& dt, const Point& p, const std::vector<Delaunay::Edge>& hole,
                         NeighbourRule rule, std::vector<std::pair<unsigned, double>>& out);
 

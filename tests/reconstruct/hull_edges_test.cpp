@@ -137,12 +137,14 @@ TEST(HullEdges, ARowOfSamplesOnTheHullUpToRoundingIsTakenSampleBySample) {
   const Vec2 outward = Vec2((b - a).y(), -(b - a).x()).normalized();
   std::vector<Vec2> on, off;
   std::vector<double> expected;
-  for (int k = 0; k + 1 < row; ++k) {
-    const Vec2 mid = s.points[k] + 0.5 * (s.points[k + 1] - s.points[k]);
-    on.push_back(mid);
-    off.push_back(mid + 1e-3 * outward);
-    expected.push_back(0.5 * (s.values[k] + s.values[k + 1]));
-  }
+  for (int k = 0; k + 1 < row; ++k)
+    for (int j = 1; j < 100; ++j) {  // 99 points between each two, at fractions no power of two divides
+      const double f = j / 100.0;
+      const Vec2 p = s.points[k] + f * (s.points[k + 1] - s.points[k]);
+      on.push_back(p);
+      off.push_back(p + 1e-3 * outward);
+      expected.push_back((1 - f) * s.values[k] + f * s.values[k + 1]);
+    }
   for (const Method m : {Method::linear, Method::natural_neighbour, Method::laplace}) {
     const std::vector<double> v = values_with_no_outside(m, s, on);
     MethodParams nearest;
@@ -152,8 +154,30 @@ TEST(HullEdges, ARowOfSamplesOnTheHullUpToRoundingIsTakenSampleBySample) {
     std::vector<double> w(off.size());
     beyond.value()->evaluate(off, w);
     for (size_t k = 0; k < on.size(); ++k) {
-      EXPECT_NEAR(v[k], expected[k], 1e-9) << method_name(m) << " on the row between samples " << k << " and " << k + 1;
-      EXPECT_NEAR(w[k], expected[k], 1e-9) << method_name(m) << " beyond the row between samples " << k << " and " << k + 1;
+      ASSERT_NEAR(v[k], expected[k], 1e-9) << method_name(m) << " on the row at " << on[k].transpose();
+      ASSERT_NEAR(w[k], expected[k], 1e-9) << method_name(m) << " beyond the row at " << off[k].transpose();
+    }
+  }
+}
+
+TEST(HullEdges, APointOnAHullEdgeOverASampleJustInsideItGetsTheEdgesValue) {
+  // A review's case: a sample 5e-9 inside the hull edge (0, 0)-(1, 0), far beyond rounding, so
+  // the edge stays whole. Points on the edge get its linear value and never a conflict zone that
+  // reaches the infinite vertex (which read an unset sample index: a crash, or another sample's
+  // value); sibson-c1 gets a finite value. Points 1e-10 outside get the edge's value from linear
+  // (its band there is the edge's), NaN or the edge's value from the others (outside=none).
+  ScatteredSamples s;
+  s.channels = 1;
+  s.points = {{0, 0}, {1, 0}, {0.5, 5e-9}, {0, 1}, {1, 1}, {0.5, 0.6}};
+  for (const Vec2& p : s.points) s.values.push_back(f(p));
+  std::vector<Vec2> q;
+  for (int k = 1; k < 100; ++k) q.emplace_back(k / 100.0, 0);
+  for (const Method m : kTriangulationMethods) {
+    const std::vector<double> v = values_with_no_outside(m, s, q);
+    for (size_t k = 0; k < q.size(); ++k) {
+      ASSERT_TRUE(std::isfinite(v[k])) << method_name(m) << " at " << q[k].transpose();
+      if (m != Method::sibson_c1 && m != Method::clough_tocher)
+        ASSERT_NEAR(v[k], f(q[k]), 1e-9) << method_name(m) << " at " << q[k].transpose();
     }
   }
 }
