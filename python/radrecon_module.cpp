@@ -211,9 +211,16 @@ py::array interpolate(const py::object& points_arg, const py::object& values_arg
     throw UserError("queries/raster", queries ? "give either queries or raster, not both"
                                               : "give the query points: queries=(m, 2) array, or raster=(width, height) with "
                                                 "domain=(x0, y0, x1, y1)");
-  if (raster.has_value() != domain.has_value())
-    throw UserError("domain", raster ? "raster needs domain=(x0, y0, x1, y1), the rectangle it covers"
-                                     : "domain goes with raster");
+  if (raster && !domain) throw UserError("domain", "raster needs domain=(x0, y0, x1, y1), the rectangle it covers");
+  if (domain && !raster && !border_samples)
+    throw UserError("domain", "domain goes with raster (or with border_samples: the border they go on)");
+  if (domain) {
+    const auto& d = *domain;
+    const auto within = [](double v) { return std::abs(v) <= tol::kMaxSampleCoordinate; };  // false for NaN
+    if (!(within(d[0]) && within(d[1]) && within(d[2]) && within(d[3]) && d[2] > d[0] && d[3] > d[1]))
+      throw UserError("domain", "(x0, y0, x1, y1) with x1 > x0 and y1 > y0, each of magnitude at most " +
+                                    format_number(tol::kMaxSampleCoordinate) + ", is expected");
+  }
   const Method method = method_by_name(method_text, "method");
   if (const std::string problem = point_method_problem(method); !problem.empty()) throw UserError("method", problem);
   MethodParams params = parse_params(method, settings_of(kwargs), "params");
@@ -240,11 +247,7 @@ py::array interpolate(const py::object& points_arg, const py::object& values_arg
         static_cast<double>(w) * h > static_cast<double>(limit_value(Limit::raster_points)))
       throw UserError("raster", "(" + std::to_string(w) + ", " + std::to_string(h) + ") is out of range: 1 <= width, height <= " +
                                     std::to_string(kMaxRasterSide) + ", at most " + std::to_string(limit_value(Limit::raster_points)) + " cells");
-    const auto& d = *domain;
-    const auto within = [](double v) { return std::abs(v) <= tol::kMaxSampleCoordinate; };  // false for NaN
-    if (!(within(d[0]) && within(d[1]) && within(d[2]) && within(d[3]) && d[2] > d[0] && d[3] > d[1]))
-      throw UserError("domain", "(x0, y0, x1, y1) with x1 > x0 and y1 > y0, each of magnitude at most " +
-                                    format_number(tol::kMaxSampleCoordinate) + ", is expected");
+    const auto& d = *domain;  // checked above
     grid.width = w;
     grid.height = h;
     grid.domain = Rect{d[0], d[1], d[2], d[3]};
@@ -377,8 +380,9 @@ points: (n, 2) coordinates; values: (n,) or (n, c). Either queries: (m, 2) point
 or (m, c); or raster=(width, height) with domain=(x0, y0, x1, y1), giving (height, width) or
 (height, width, c) values at the cells' centres, row 0 the y0 row. method: any of methods().
 barriers: a GeoJSON (or other OGR) file of lines, or a sequence of (k, 2) polylines.
-border_samples: as --border-samples, samples on the border of domain (else of the samples'
-bounding box) and beside the barriers, each a plane fitted to the samples it sees. Further
+border_samples: as --border-samples, samples on the border of domain (with queries too, as
+--domain with --queries; else of the samples' bounding box) and beside the barriers, each a
+plane fitted to the samples it sees. Further
 keywords are the method's parameters as in --param (k=32, mu=2, outside="none", radius=...).
 NaN where a method has no value. Samples at the same point are merged (a UserWarning).
 Raises radrecon.Error (a ValueError) for refused input.)doc");

@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <limits>
 
+#include <locale.h>  // strtod_l: POSIX
+
 #include "core/error.h"
 
 namespace radrecon {
@@ -19,8 +21,10 @@ NumberStatus parse_double(std::string_view f, double& v) {
     // from_chars leaves `v` alone both for a magnitude too large and for one too small for a
     // double. Too small is no error: "1e-400" is read as strtod rounds it (0 or a subnormal,
     // with its sign); too large is.
+    // In the C locale whatever the process's (a decimal comma would stop at the point).
+    static const locale_t c_numeric = newlocale(LC_NUMERIC_MASK, "C", static_cast<locale_t>(nullptr));
     const std::string text(d);
-    const double rounded = std::strtod(text.c_str(), nullptr);
+    const double rounded = strtod_l(text.c_str(), nullptr, c_numeric);
     if (!std::isfinite(rounded) || std::abs(rounded) >= std::numeric_limits<double>::min()) return NumberStatus::out_of_range;
     v = rounded;
     return NumberStatus::ok;

@@ -110,7 +110,7 @@ std::optional<NeighbourRanges> neighbour_ranges(const ScatteredSamples& samples,
       const size_t found = nearest_visible(tree, samples.points, barriers, q, static_cast<size_t>(nearest), s.visible);
       s.neighbours.insert(s.neighbours.end(), s.visible.idx.begin(), s.visible.idx.begin() + static_cast<std::ptrdiff_t>(found));
     }
-    if (s.neighbours.empty()) {  // q sees no sample: no range, no overshoot counted there
+    if (s.neighbours.empty()) {  // q sees no sample: no range (a method's NaN there makes the figure NaN)
       for (int c = 0; c < C; ++c) {
         ranges.lo[static_cast<size_t>(p) * C + c] = -std::numeric_limits<double>::infinity();
         ranges.hi[static_cast<size_t>(p) * C + c] = std::numeric_limits<double>::infinity();

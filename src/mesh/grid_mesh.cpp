@@ -97,8 +97,7 @@ std::pair<int, int> grid_divisions(double longest_m, const Surface& s, const Gri
     // The regular subdivision, n cells along every edge: its cells' longest edge about the square
     // element's diagonal, so a square cut along its diagonal meshes as the square's grid, each
     // cell cut in two.
-    nu = nv = count(std::max({(s.corners[1] - s.corners[0]).norm(), (s.corners[2] - s.corners[1]).norm(),
-                              (s.corners[0] - s.corners[2]).norm()}) / std::numbers::sqrt2);
+    nu = nv = count(s.extent_m() / std::numbers::sqrt2);  // its longest edge
   }
   if (s.max_divisions && std::max(nu, nv) > *s.max_divisions) {
     const double scale = double(*s.max_divisions) / std::max(nu, nv);

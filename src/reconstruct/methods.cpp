@@ -379,6 +379,10 @@ std::string border_samples_problem(Method method) {
 
 namespace {
 
+/// How far from equal spacing 32-bit coordinates may stray, as a fraction of their extent (a
+/// float's 6e-8, with margin): the message's hint about them, not a tolerance.
+constexpr double kFloat32Stray = 1e-6;
+
 /// `v` to two significant digits ("2.4e-08"), for a message.
 std::string two_digits(double v) {
   char text[32];
@@ -402,7 +406,7 @@ InterpolantResult make_point_interpolant(Method method, const ScatteredSamples& 
         spacing = "; the " + std::string(axis) + " values are unevenly spaced: one lies " + two_digits(off) +
                   " of their extent from its equally spaced place, beyond the tolerance of " +
                   format_number(tol::kGridCoordinateRelative) +
-                  " (coordinates rounded to 32-bit floats stray by about 6e-8: give 64-bit ones)";
+                  (off < kFloat32Stray ? " (coordinates rounded to 32-bit floats stray by about 6e-8: give 64-bit ones)" : "");
     return Failure{method_name(method) + " needs samples on a regular grid: every combination of nx equally spaced "
                                          "x values and ny equally spaced y values (nx, ny >= 2), each exactly once; found " +
                    std::to_string(samples.points.size()) + " samples, " + std::to_string(d.x) + " distinct x, " +

@@ -64,9 +64,10 @@ NaturalNeighbour::NaturalNeighbour(const ScatteredSamples& samples, OutsideHull 
     impl_->gradients = nn::fit_gradients(impl_->dt, impl_->vertex_of, impl_->points, impl_->values, impl_->channels,
                                          impl_->barriers);
     // A slope the samples carry (a border sample's plane: samples.h) is taken as it is.
-    if (samples.slopes.size() == impl_->gradients.size())
-      for (size_t k = 0; k < samples.slopes.size(); ++k)
-        if (std::isfinite(samples.slopes[k])) impl_->gradients[k] = samples.slopes[k];
+    RR_CHECK(samples.slopes.empty() || samples.slopes.size() == impl_->gradients.size(),
+             "sample slopes do not match the values");
+    for (size_t k = 0; k < samples.slopes.size(); ++k)
+      if (std::isfinite(samples.slopes[k])) impl_->gradients[k] = samples.slopes[k];
   }
 }
 

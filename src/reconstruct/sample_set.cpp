@@ -91,7 +91,7 @@ std::size_t merge_duplicate_points(ScatteredSamples& s) {
     same[r] = same[r] && s.points[k] == s.points[r];
     for (size_t c = 0; c < ch; ++c) sum[r * ch + c] += s.values[k * ch + c];
   }
-  ScatteredSamples merged;
+  ScatteredSamples merged;  // slopes unknown (samples.h): a merged point's is no one sample's
   merged.channels = s.channels;
   for (size_t k = 0; k < n; ++k) {
     if (rep[k] != k) continue;

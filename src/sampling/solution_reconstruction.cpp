@@ -90,12 +90,10 @@ InterpolantResult reconstruct_unmasked(const SurfaceSolution& s, Method method, 
   if (grid && !s.excluded.empty() && point_method)
     return make_scattered_interpolant(method, outside_regions(grid_cells(s).centres(), s.excluded), params);
   if (sampling.border_samples && point_method && !s.triangle) {  // border samples frame a quad's sides
-    const ScatteredSamples samples = outside_regions(grid ? grid_cells(s).centres() : element_centres(s), s.excluded);
-    Result<ScatteredSamples> bordered =
-        with_border_samples(samples, Rect{0, 0, s.length_u_m, s.length_v_m}, params.barriers);
-    if (!bordered) return Failure{"its border samples: " + bordered.reason()};
-    params.barrier_samples = false;  // added with the border's
-    return make_scattered_interpolant(method, bordered.value(), params);
+    ScatteredSamples samples = outside_regions(grid ? grid_cells(s).centres() : element_centres(s), s.excluded);
+    const Result<size_t> added = add_border_samples(method, samples, Rect{0, 0, s.length_u_m, s.length_v_m}, params);
+    if (!added) return Failure{"its border samples: " + added.reason()};
+    return make_scattered_interpolant(method, samples, params);
   }
   if (is_cell_method(method) && !s.excluded.empty()) {
     // The cells under excluded regions are holes (NaN): no value there, no influence outside.

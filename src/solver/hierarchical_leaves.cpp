@@ -57,7 +57,7 @@ Solution solve_hierarchical_leaves(const Scene& scene, const std::string& side, 
     if (leaves > 1 && (surface.reflectance == 0).all())
       throw UserError(field, std::to_string(leaves) + " leaves on '" + side + "' cannot be reached: a black side (reflectance 0) "
                                  "is never split, its radiosity being its uniform emission; count another side with --leaves-on");
-    const double side_size = std::max(surface.length_u_m(), surface.length_v_m());
+    const double side_size = surface.extent_m();  // as the quadtree sizes its root (a triangle's longest edge)
     double most = 1;
     for (double size = side_size; size >= 2 * min_size && most <= leaves; size /= 2) most *= 4;
     if (leaves > most)

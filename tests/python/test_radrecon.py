@@ -140,6 +140,13 @@ def test_border_samples_as_the_command_line_reproduce_a_plane_to_the_domains_edg
                     "--quiet"], check=True)
     cli = np.loadtxt(tmp_path / "o.csv", delimiter=",", skiprows=1)[:, 2].reshape(20, 20)
     assert np.array_equal(cli, ours)
+    # With queries, on the domain given (as --domain with --queries): the plane there too (the
+    # raster's own evaluation sums in another order: equal to rounding).
+    q = np.column_stack([x.ravel(), y.ravel()])
+    at_queries = radrecon.interpolate(p, v, queries=q, domain=(0, 0, 1, 1), method="natural-neighbour", border_samples=True)
+    assert np.max(np.abs(at_queries - (3 + 2 * q[:, 0] - 5 * q[:, 1]))) < 1e-12
+    with pytest.raises(radrecon.Error, match="^domain: domain goes with raster"):
+        radrecon.interpolate(p, v, queries=q, domain=(0, 0, 1, 1))
     with pytest.raises(radrecon.Error, match="^border_samples: applies to the scattered methods that interpolate"):
         radrecon.interpolate(p, v, queries=p, method="constant", border_samples=True)
 
