@@ -249,8 +249,9 @@ bool DelaunayMesh::locate(const Vec2& q, OutsideHull outside, std::int64_t& hint
         const int gi = g->index(infinite);
         const auto& pa = g->vertex(Delaunay::ccw(gi))->point();
         const auto& pb = g->vertex(Delaunay::cw(gi))->point();
-        const double depth_m = m.chains->depth_m(g, gi);
-        const double bands = hull_edge_distance(Vec2(pa.x(), pa.y()), Vec2(pb.x(), pb.y()), q, std::numeric_limits<double>::infinity(), depth_m).in_bands;
+        const double bands = hull_edge_distance(Vec2(pa.x(), pa.y()), Vec2(pb.x(), pb.y()), q,
+                                                std::numeric_limits<double>::infinity(), m.chains->depth_m(g, gi))
+                                 .in_bands;
         if (bands <= best_bands) best_bands = bands, on = g;
       }
       if (on != Delaunay::Face_handle()) {

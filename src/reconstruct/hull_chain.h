@@ -30,7 +30,6 @@ struct HullChainEdge {
   unsigned a = 0, b = 0;  ///< sample indices, in the order of the hull edge's ends (a, then b)
   Face_handle inner;      ///< the finite face on the piece
   int corner = 0;         ///< that face's corner across the piece
-  double height_m = 0;    ///< that corner's distance from the piece's line
 };
 
 /// The hull edge of `infinite_face` (a face of `dt` at its infinite vertex) split at the samples
@@ -56,8 +55,8 @@ void hull_chain(const DT& dt, typename DT::Face_handle infinite_face, std::span<
     pending.pop_back();
     const int ia = p.inner->index(p.a), ib = p.inner->index(p.b), ic = 3 - ia - ib;
     const Vertex_handle c = p.inner->vertex(ic);
-    const Vec2 pa = points[p.a->info()], pb = points[p.b->info()];
     if (!dt.is_infinite(c)) {
+      const Vec2 pa = points[p.a->info()], pb = points[p.b->info()];
       const Vec2 pc = points[c->info()];
       const auto along = [&](const Vec2& x) { return (x - a0).dot(ab) / length_sq; };
       const double t = along(pc);
@@ -71,9 +70,7 @@ void hull_chain(const DT& dt, typename DT::Face_handle infinite_face, std::span<
         }
       }
     }
-    const Vec2 edge = pb - pa;
-    const double height_m = dt.is_infinite(c) ? 0.0 : std::abs(cross(edge, points[c->info()] - pa)) / edge.norm();
-    out.push_back({p.a->info(), p.b->info(), p.inner, ic, height_m});
+    out.push_back({p.a->info(), p.b->info(), p.inner, ic});
   }
 }
 
