@@ -345,7 +345,10 @@ py::dict stats_dict(const SolveStats& s) {
   d["shots"] = s.shots;
   d["patches"] = s.patches;
   d["elements"] = s.elements;
-  d["links"] = s.links;
+  if (s.method == "hierarchical") {  // as the file has them (io/solution_json.cpp)
+    d["links"] = s.links;
+    d["epsilon_w"] = s.epsilon_w;
+  }
   d["emitted_w"] = rgb(s.emitted_w);
   d["absorbed_w"] = rgb(s.absorbed_w);
   d["unshot_w"] = rgb(s.unshot_w);

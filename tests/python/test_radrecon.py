@@ -370,6 +370,10 @@ def test_solution_arrays_hold_what_the_file_holds(tmp_path):
     sol.save(str(path))
     doc = json.load(open(path))
     assert sol.stats["patches"] == doc["stats"]["patches"] > 0
+    # The statistics' keys are the file's (a grid solve has no links, a hierarchical one its epsilon).
+    for solution in (sol, radrecon.solve("paper", "quadtree:49")):
+        solution.save(tmp_path / "stats.json")
+        assert set(solution.stats) == set(json.load(open(tmp_path / "stats.json"))["stats"])
     by_name = {s["name"]: s for s in doc["surfaces"]}
     for side in sol.surfaces:
         saved = by_name[side["name"]]
