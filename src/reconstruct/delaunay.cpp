@@ -175,21 +175,25 @@ bool DelaunayMesh::locate(const Vec2& q, OutsideHull outside, std::int64_t& hint
     at.face = piece->inner->info();
     on_edge(points_, vertices_[static_cast<size_t>(at.face)], piece->corner, p, at.b);
   };
-  // Whether q lies on a hull edge at a vertex of face g up to rounding (the edge's band widened
-  // by the depth of its pieces); then q on its nearest piece, into `out`.
+  // q's distance from the hull edge of infinite face e in units of its band, widened by the depth
+  // of its pieces (<= 1: on it up to rounding).
+  const auto bands_to = [&](const Delaunay::Face_handle& e) {
+    const int ei = e->index(m.dt.infinite_vertex());
+    const auto& pa = e->vertex(Delaunay::ccw(ei))->point();
+    const auto& pb = e->vertex(Delaunay::cw(ei))->point();
+    return hull_edge_distance(Vec2(pa.x(), pa.y()), Vec2(pb.x(), pb.y()), q, std::numeric_limits<double>::infinity(),
+                              m.chains->depth_m(e, ei))
+        .in_bands;
+  };
+  // Whether q lies on a hull edge at a vertex of face g up to rounding; then q on its nearest
+  // piece, into `out`.
   const auto near_hull = [&](const Delaunay::Face_handle& g) {
     double best_bands = 1;
     Delaunay::Face_handle on;
     for (int k = 0; k < 3; ++k)
       for (const Delaunay::Face_handle& e : m.hull_at[g->vertex(k)->info()]) {
         if (e == Delaunay::Face_handle()) continue;
-        const int ei = e->index(m.dt.infinite_vertex());
-        const auto& pa = e->vertex(Delaunay::ccw(ei))->point();
-        const auto& pb = e->vertex(Delaunay::cw(ei))->point();
-        const double bands = hull_edge_distance(Vec2(pa.x(), pa.y()), Vec2(pb.x(), pb.y()), q,
-                                                std::numeric_limits<double>::infinity(), m.chains->depth_m(e, ei))
-                                 .in_bands;
-        if (bands <= best_bands) best_bands = bands, on = e;
+        if (const double bands = bands_to(e); bands <= best_bands) best_bands = bands, on = e;
       }
     if (on == Delaunay::Face_handle()) return false;
     on_piece(m.chains->of(on, on->index(m.dt.infinite_vertex())), q, out);
@@ -245,15 +249,8 @@ bool DelaunayMesh::locate(const Vec2& q, OutsideHull outside, std::int64_t& hint
       const int i = f->index(infinite);
       double best_bands = 1;
       Delaunay::Face_handle on;
-      for (const Delaunay::Face_handle& g : {f, f->neighbor(Delaunay::ccw(i)), f->neighbor(Delaunay::cw(i))}) {
-        const int gi = g->index(infinite);
-        const auto& pa = g->vertex(Delaunay::ccw(gi))->point();
-        const auto& pb = g->vertex(Delaunay::cw(gi))->point();
-        const double bands = hull_edge_distance(Vec2(pa.x(), pa.y()), Vec2(pb.x(), pb.y()), q,
-                                                std::numeric_limits<double>::infinity(), m.chains->depth_m(g, gi))
-                                 .in_bands;
-        if (bands <= best_bands) best_bands = bands, on = g;
-      }
+      for (const Delaunay::Face_handle& g : {f, f->neighbor(Delaunay::ccw(i)), f->neighbor(Delaunay::cw(i))})
+        if (const double bands = bands_to(g); bands <= best_bands) best_bands = bands, on = g;
       if (on != Delaunay::Face_handle()) {
         on_piece(m.chains->of(on, on->index(infinite)), q, out);
         hint = out.face;
