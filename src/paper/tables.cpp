@@ -45,9 +45,10 @@ const char* const kMetricsRule =
 
 const char* const kBorderRule =
     "the methods that take points and barriers (shepard, multiquadric, thin-plate, natural-neighbour, laplace, "
-    "sibson-c1) also take samples on the ground's border and on both sides of each wall foot, at the samples' "
-    "spacing, each the value at its point of the weighted least-squares plane through the 6 nearest samples it "
-    "sees (constant and the grid methods use the data as it is, and are left out of Tables 3c and 3d)";
+    "sibson-c1) also take samples on the ground's border and on both sides of each wall foot (thin-plate on the "
+    "border only), at the samples' spacing, each the value at its point of the weighted least-squares plane "
+    "through the 6 nearest samples it sees (constant and the grid methods use the data as it is, and are left "
+    "out of Tables 3c and 3d)";
 
 std::string format_3g(double v) {
   char buf[32];

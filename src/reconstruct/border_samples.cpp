@@ -202,6 +202,7 @@ Result<ScatteredSamples> with_border_samples(const ScatteredSamples& interior, c
   const double mx = parts(width, h), my = parts(height, h);
   double total = 2 * (mx + my);
   for (const BarrierSegment& s : barriers.segments()) {
+    if (!settings.beside_barriers) break;
     double t0 = 0, t1 = 1;
     if (!clip(s, domain, t0, t1)) continue;
     const Vec2 d = s.b - s.a;

@@ -53,6 +53,9 @@ struct BorderSampleSettings {
   int fit_neighbours = 6;
   /// Samples on the domain's border; false: along the barriers only.
   bool on_domain_border = true;
+  /// Samples on both sides of each barrier; false: on the domain's border only (their values
+  /// still fitted from the samples each sees).
+  bool beside_barriers = true;
 };
 
 
