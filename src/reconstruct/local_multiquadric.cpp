@@ -3,14 +3,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <numbers>
 
 #include <Eigen/LU>
 
 #include "core/check.h"
-#include "core/error.h"
 #include "core/parallel.h"
 #include "core/tolerances.h"
 #include "reconstruct/convex_hull.h"
@@ -182,11 +180,7 @@ void LocalMultiquadric::check_patches() const {
   }
   const double worst = reciprocal_condition();
   if (!(worst > 0) || !std::isfinite(worst)) throw ReconstructionError("a local " + kernel_.name() + " system is singular");
-  if (worst < tol::kPoorConditioning) {
-    char condition[32];
-    std::snprintf(condition, sizeof condition, "%.2e", worst);
-    warn("a local " + kernel_.name() + " system is poorly conditioned (reciprocal condition " + condition + ")");
-  }
+  rbf_system::warn_if_poorly_conditioned(worst, "a local " + kernel_.name() + " system");
 }
 
 void LocalMultiquadric::evaluate(std::span<const Vec2> points, std::span<double> out) const {

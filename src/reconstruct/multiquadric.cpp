@@ -1,7 +1,6 @@
 #include "reconstruct/multiquadric.h"
 
 #include <cmath>
-#include <cstdio>
 #include <algorithm>
 #include <bit>
 #include <cstdint>
@@ -12,10 +11,10 @@
 #include <Eigen/Core>
 
 #include "core/check.h"
-#include "core/error.h"
 #include "core/parallel.h"
 #include "core/tolerances.h"
 #include "reconstruct/kdtree.h"
+#include "reconstruct/rbf_system.h"
 #include "reconstruct/multiquadric_basis.h"
 
 namespace radrecon {
@@ -42,11 +41,7 @@ Multiquadric::Multiquadric(const ScatteredSamples& samples, const RbfKernel& ker
   for (size_t i = 0; i < n; ++i) all[i] = static_cast<unsigned>(i);
   fit_ = fit_rbf(points_, r_sq_, samples.values, channels_, kernel_, std::move(all));
   rcond_ = fit_.rcond;
-  if (rcond_ < tol::kPoorConditioning) {
-    char condition[32];
-    std::snprintf(condition, sizeof condition, "%.2e", rcond_);
-    warn(name + " system is poorly conditioned (reciprocal condition " + condition + "); results may be inaccurate");
-  }
+  rbf_system::warn_if_poorly_conditioned(rcond_, name + " system", "; results may be inaccurate");
   if (!barriers_.empty()) {
     values_ = samples.values;
     visibility_ = std::make_unique<PointVisibility>(points_, barriers_);

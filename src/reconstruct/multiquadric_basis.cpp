@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstdio>
 #include <optional>
 #include <string>
 
@@ -12,6 +13,7 @@
 #include "core/simd.h"
 
 #include "core/check.h"
+#include "core/error.h"
 #include "core/parallel.h"
 #include "core/parse.h"
 #include "core/tolerances.h"
@@ -162,6 +164,13 @@ void set_coefficients(std::span<const double> r_sq, int channels, const RbfKerne
 void check_factorisation(double rcond, const RbfKernel& kernel) {
   if (!(rcond > 0) || !std::isfinite(rcond))
     throw ReconstructionError("the " + kernel.name() + " system is singular (duplicate samples?)");
+}
+
+void warn_if_poorly_conditioned(double rcond, const std::string& system, const std::string& suffix) {
+  if (!(rcond < tol::kPoorConditioning)) return;
+  char condition[32];
+  std::snprintf(condition, sizeof condition, "%.2e", rcond);
+  warn(system + " is poorly conditioned (reciprocal condition " + condition + ")" + suffix);
 }
 
 }  // namespace rbf_system

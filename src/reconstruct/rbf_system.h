@@ -4,6 +4,7 @@
 // reconstruct/multiquadric_basis.cpp and reconstruct/rbf_near_fit.cpp.
 
 #include <span>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -36,5 +37,9 @@ void set_coefficients(std::span<const double> r_sq, int channels, const RbfKerne
 
 /// Refuses a factorisation whose reciprocal condition number is 0 or not finite.
 void check_factorisation(double rcond, const RbfKernel& kernel);
+
+/// Warns (warn(), core/error.h) "SYSTEM is poorly conditioned (reciprocal condition R)SUFFIX"
+/// when rcond is below tol::kPoorConditioning.
+void warn_if_poorly_conditioned(double rcond, const std::string& system, const std::string& suffix = "");
 
 }  // namespace radrecon::rbf_system
