@@ -103,13 +103,15 @@ struct HullChains {
     } while (++fc != done);
   }
 
-  /// The pieces of the hull edge of infinite face f, whose infinite vertex is its corner i.
+  /// The range of the hull edge of infinite face f, whose infinite vertex is its corner i.
+  const Range& range(typename DT::Face_handle f, int i) const { return of_edge.at(key(f, i)); }
+  /// Its pieces.
   std::span<const HullChainEdge<typename DT::Face_handle>> of(typename DT::Face_handle f, int i) const {
-    const Range& r = of_edge.at(key(f, i));
+    const Range& r = range(f, i);
     return std::span(pieces).subspan(r.begin, r.end - r.begin);
   }
-  /// How far inside the hull edge of infinite face f its pieces' ends lie, metres.
-  double depth_m(typename DT::Face_handle f, int i) const { return of_edge.at(key(f, i)).depth_m; }
+  /// How far inside it its pieces' ends lie, metres.
+  double depth_m(typename DT::Face_handle f, int i) const { return range(f, i).depth_m; }
 
   /// The piece of `range` nearest to q, and the parameter t in [0, 1] of q's nearest point on it,
   /// from its end a (ties: the first in the range).

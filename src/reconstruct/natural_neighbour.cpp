@@ -43,10 +43,9 @@ NaturalNeighbour::NaturalNeighbour(const ScatteredSamples& samples, OutsideHull 
     const Vec2 c = impl_->points[fc->neighbor(i)->vertex(impl_->dt.mirror_index(fc, i))->info()];
     impl_->hull_edges.emplace_back(a, b);
     impl_->hull_edge_height_m.push_back(std::abs(cross(pb - pa, c - pa)) / (pb - pa).norm());
-    const auto range = chains.of(fc, i);
-    const size_t begin = static_cast<size_t>(range.data() - chains.pieces.data());
-    impl_->hull_edge_pieces.emplace_back(begin, begin + range.size());
-    impl_->hull_edge_depth_m.push_back(chains.depth_m(fc, i));
+    const auto& range = chains.range(fc, i);
+    impl_->hull_edge_pieces.emplace_back(range.begin, range.end);
+    impl_->hull_edge_depth_m.push_back(range.depth_m);
   } while (++fc != done);
   // By sample: the hull edges it ends, two; or the one it splits, one (it is no vertex of CGAL's
   // hull), so that a query in a face at it finds the edge.
