@@ -89,6 +89,8 @@ DelaunayMesh::DelaunayMesh(std::span<const Vec2> points, const std::string& meth
     if (!(std::abs(det) > tol::kDelaunaySliverRelative * edge_sq[static_cast<size_t>(longest)])) affine_[f].sliver_corner = longest;
   }
   m.chains = std::make_unique<HullChains<Delaunay>>(m.dt, points_);
+  // By sample: the hull edges it ends, two; or, no vertex of CGAL's hull, the one it splits (a
+  // thin set's hull vertex within rounding of the edge across it keeps its own two).
   m.hull_at.assign(n, {});
   auto fc = m.dt.incident_faces(m.dt.infinite_vertex()), done = fc;
   do {
@@ -97,8 +99,11 @@ DelaunayMesh::DelaunayMesh(std::span<const Vec2> points, const std::string& meth
       auto& at = m.hull_at[fc->vertex(end)->info()];
       (at[0] == Delaunay::Face_handle() ? at[0] : at[1]) = fc;
     }
-    const auto pieces = m.chains->of(fc, i);
-    for (size_t k = 1; k < pieces.size(); ++k) m.hull_at[pieces[k].a] = {fc, Delaunay::Face_handle()};
+  } while (++fc != done);
+  do {
+    const auto pieces = m.chains->of(fc, fc->index(m.dt.infinite_vertex()));
+    for (size_t k = 1; k < pieces.size(); ++k)
+      if (auto& at = m.hull_at[pieces[k].a]; at[0] == Delaunay::Face_handle()) at[0] = fc;
   } while (++fc != done);
   for (const auto& e : m.chains->pieces) m.hull.push_back({std::min(e.a, e.b), std::max(e.a, e.b), e.inner->info(), e.corner});
   m.tree = std::make_unique<KdTree2>(points_);

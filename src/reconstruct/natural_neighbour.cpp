@@ -47,17 +47,22 @@ NaturalNeighbour::NaturalNeighbour(const ScatteredSamples& samples, OutsideHull 
     impl_->hull_edge_pieces.emplace_back(range.begin, range.end);
     impl_->hull_edge_depth_m.push_back(range.depth_m);
   } while (++fc != done);
-  // By sample: the hull edges it ends, two; or the one it splits, one (it is no vertex of CGAL's
-  // hull), so that a query in a face at it finds the edge.
+  // By sample: the hull edges it ends, two; or, no vertex of CGAL's hull, the one it splits, so
+  // that a query in a face at it finds the edge. (A thin set's hull vertex may lie within
+  // rounding of the hull edge across it too: it keeps its own two.)
   impl_->hull_edges_at.assign(n, {-1, -1});
-  for (size_t e = 0; e < impl_->hull_edges.size(); ++e) {
+  for (size_t e = 0; e < impl_->hull_edges.size(); ++e)
     for (const unsigned end : {impl_->hull_edges[e].first, impl_->hull_edges[e].second}) {
       std::array<int, 2>& at = impl_->hull_edges_at[end];
       RR_CHECK(at[1] < 0, "a sample at more than two hull edges");
       (at[0] < 0 ? at[0] : at[1]) = static_cast<int>(e);
     }
+  for (size_t e = 0; e < impl_->hull_edges.size(); ++e) {
     const auto [begin, end] = impl_->hull_edge_pieces[e];
-    for (size_t k = begin + 1; k < end; ++k) impl_->hull_edges_at[impl_->hull_pieces[k].first] = {static_cast<int>(e), -1};
+    for (size_t k = begin + 1; k < end; ++k) {
+      std::array<int, 2>& at = impl_->hull_edges_at[impl_->hull_pieces[k].first];
+      if (at[0] < 0) at[0] = static_cast<int>(e);
+    }
   }
   if (rule == NeighbourRule::sibson_c1) {
     impl_->gradients = nn::fit_gradients(impl_->dt, impl_->vertex_of, impl_->points, impl_->values, impl_->channels,

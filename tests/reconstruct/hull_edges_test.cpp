@@ -182,5 +182,37 @@ TEST(HullEdges, APointOnAHullEdgeOverASampleJustInsideItGetsTheEdgesValue) {
   }
 }
 
+TEST(HullEdges, AThinSetWhoseHullVerticesLieOnTheEdgesAcrossIsTriangulated) {
+  // A fuzzer's input: ten samples of v = x on the line y = 2x, two of them a few ulps off it.
+  // The hull is two long edges, each split at samples on the other side's hull within rounding:
+  // a hull vertex also split the edge across, and an internal check that no sample ends more
+  // than two hull edges failed (an abort). Each method builds and is near v = x on the line;
+  // clough-tocher may refuse the set instead, naming why (its gradient equations are singular).
+  ScatteredSamples s;
+  s.channels = 1;
+  for (const auto& [x, y] : std::vector<std::pair<double, double>>{
+           {0.0, 0.0}, {0.1111111111111111, 0.2222222222222222}, {0.2222222222222221, 0.4444444444444444},
+           {0.3333333333333333, 0.6666666666666666}, {0.4444444444444444, 0.8888888888888888},
+           {0.5555555555555556, 1.1111111111111112}, {0.6666666666666666, 1.3333333333333333},
+           {0.7777777777777778, 1.5555555555511112}, {0.8888888888888888, 1.7777777777777777}, {1.0, 2.0}}) {
+    s.points.emplace_back(x, y);
+    s.values.push_back(x);
+  }
+  std::vector<Vec2> q;
+  for (int k = 1; k < 20; ++k) q.emplace_back(k / 20.0, k / 10.0);
+  for (const Method m : kTriangulationMethods) {
+    MethodParams nearest;
+    const InterpolantResult f = make_scattered_interpolant(m, s, nearest);
+    if (m == Method::clough_tocher && !f) {
+      EXPECT_NE(f.reason().find("singular"), std::string::npos) << f.reason();
+      continue;
+    }
+    ASSERT_TRUE(f) << method_name(m) << ": " << f.reason();
+    std::vector<double> v(q.size());
+    f.value()->evaluate(q, v);
+    for (size_t k = 0; k < q.size(); ++k) EXPECT_NEAR(v[k], q[k].x(), 1e-3) << method_name(m) << " at " << q[k].transpose();
+  }
+}
+
 }  // namespace hull_edges_test
 }  // namespace radrecon
