@@ -78,7 +78,8 @@ std::optional<NeighbourRanges> neighbour_ranges(const ScatteredSamples& samples,
                                                 const Barriers& barriers = {});
 
 /// The overshoot of `approx` (the ranges' points.size() * channels values, point-major); NaN when
-/// a value is NaN.
+/// a value is NaN at a point with a range (a point that sees no sample has none, and may have no
+/// value).
 double overshoot(const NeighbourRanges& ranges, std::span<const double> approx);
 
 /// Both steps at once.

@@ -110,7 +110,7 @@ std::optional<NeighbourRanges> neighbour_ranges(const ScatteredSamples& samples,
       const size_t found = nearest_visible(tree, samples.points, barriers, q, static_cast<size_t>(nearest), s.visible);
       s.neighbours.insert(s.neighbours.end(), s.visible.idx.begin(), s.visible.idx.begin() + static_cast<std::ptrdiff_t>(found));
     }
-    if (s.neighbours.empty()) {  // q sees no sample: no range (a method's NaN there makes the figure NaN)
+    if (s.neighbours.empty()) {  // q sees no sample: no range (a method's NaN there is no overshoot)
       for (int c = 0; c < C; ++c) {
         ranges.lo[static_cast<size_t>(p) * C + c] = -std::numeric_limits<double>::infinity();
         ranges.hi[static_cast<size_t>(p) * C + c] = std::numeric_limits<double>::infinity();
@@ -127,7 +127,12 @@ double overshoot(const NeighbourRanges& ranges, std::span<const double> approx) 
   double result = 0;
   for (size_t k = 0; k < approx.size(); ++k) {
     const double v = approx[k];
-    if (std::isnan(v)) return std::numeric_limits<double>::quiet_NaN();
+    if (std::isnan(v)) {
+      // A point that sees no sample has no range and, rightly, no value: it leaves nothing.
+      if (ranges.lo[k] == -std::numeric_limits<double>::infinity() && ranges.hi[k] == std::numeric_limits<double>::infinity())
+        continue;
+      return std::numeric_limits<double>::quiet_NaN();
+    }
     result = std::max({result, v - ranges.hi[k], ranges.lo[k] - v});
   }
   return result;

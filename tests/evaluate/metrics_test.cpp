@@ -277,6 +277,25 @@ TEST(Overshoot, TheNearestVisibleSampleIsAlwaysWithinTheRange) {
   EXPECT_EQ(overshoot(*ranges, nearest_seen), 0.0);
 }
 
+TEST(Overshoot, APointThatSeesNoSampleMayHaveNoValue) {
+  // Four samples inside a closed square of barriers, one query outside it: the query sees no
+  // sample, so it has no range, and a method's NaN there (no value) leaves the figure to the
+  // other points: here 0.5 above the range [1, 4] of the natural neighbours of (0.5, 0.5).
+  ScatteredSamples s;
+  s.points = {{0.25, 0.25}, {0.75, 0.25}, {0.75, 0.75}, {0.25, 0.75}};
+  s.values = {1, 2, 3, 4};
+  const Barriers box =
+      Barriers::from_polylines(std::vector<Polyline>{{{0.1, 0.1}, {0.9, 0.1}, {0.9, 0.9}, {0.1, 0.9}, {0.1, 0.1}}}).value();
+  const std::vector<Vec2> q = {{0.5, 0.5}, {2, 2}};
+  const std::optional<NeighbourRanges> ranges = neighbour_ranges(s, q, box);
+  ASSERT_TRUE(ranges);
+  EXPECT_EQ(ranges->lo[1], -std::numeric_limits<double>::infinity());
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_NEAR(overshoot(*ranges, std::vector<double>{4.5, nan}), 0.5, 1e-15);
+  // A NaN where the point has a range is still a NaN figure.
+  EXPECT_TRUE(std::isnan(overshoot(*ranges, std::vector<double>{nan, 1.0})));
+}
+
 TEST(Overshoot, OutsideTheHullUsesTheNearestHullEdgeAndTheNearestSamples) {
   const ScatteredSamples s = square_with_centre();
   // Below the square: edge (0,0)-(1,0) and nearest samples (0,0), (1,0), centre: [1, 3].
