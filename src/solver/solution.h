@@ -71,4 +71,14 @@ struct Solution {
   const SurfaceSolution* find(const std::string& name) const;
 };
 
+/// Sets every negative radiosity value of the solution to 0, as a solution file requires
+/// (radiosity is emitted plus reflected power per area). Only a far field's truncation can give
+/// one (solver/far_field.h), none in the solves measured. Returns how many values were set and the
+/// most negative of them (0 when none), W/m^2.
+struct NegativeRadiosity {
+  size_t count = 0;
+  double most_negative_w_m2 = 0;
+};
+NegativeRadiosity clamp_negative_radiosity(Solution& solution);
+
 }  // namespace radrecon

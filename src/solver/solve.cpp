@@ -159,6 +159,10 @@ Solution solve_scene(const Scene& scene, const std::string& spec, const SolveSet
                      const std::string& where) {
   check_settings(settings);
   Solution sol = with_barriers(scene, solve_by_spec(scene, spec, settings, where), settings.shadow_barriers);
+  if (const NegativeRadiosity negative = clamp_negative_radiosity(sol); negative.count > 0)
+    warn(std::to_string(negative.count) + " radiosity values below zero (down to " +
+         format_number(negative.most_negative_w_m2) +
+         " W/m^2, the far field's truncation) were set to 0; a smaller --far-field-error avoids them");
   // Power emitted and none absorbed: no light reaches a surface, which is a scene facing the
   // wrong way far more often than an intended one (a lamp facing the sky, a floor upside down).
   const SolveStats& st = sol.stats;

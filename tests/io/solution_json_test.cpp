@@ -70,6 +70,28 @@ TEST_F(SolutionFiles, WhatIsWrittenReadsBack) {
   EXPECT_NE(text.find("\"converged\": false"), std::string::npos);
 }
 
+TEST_F(SolutionFiles, NegativeRadiosityIsClampedToZeroAndThenReadsBack) {
+  // A solution file refuses negative radiosity; solve_scene() sets any a solver gave to 0 first.
+  Solution sol = two_element_grid();
+  sol.surfaces[0].elements[0].radiosity_w_m2 = Rgb(-1e-17, 0.25, -0.5);
+  EXPECT_NE(refusal([&] {
+              write_solution_json(dir_ / "negative.json", sol);
+              std::ifstream in(dir_ / "negative.json");
+              return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+            }()),
+            "");
+  const NegativeRadiosity found = clamp_negative_radiosity(sol);
+  EXPECT_EQ(found.count, 2u);
+  EXPECT_EQ(found.most_negative_w_m2, -0.5);
+  write_solution_json(dir_ / "clamped.json", sol);
+  const Solution back = read_solution_json(dir_ / "clamped.json");
+  EXPECT_EQ(back.surfaces[0].elements[0].radiosity_w_m2[0], 0.0);
+  EXPECT_EQ(back.surfaces[0].elements[0].radiosity_w_m2[1], 0.25);
+  EXPECT_EQ(back.surfaces[0].elements[0].radiosity_w_m2[2], 0.0);
+  EXPECT_EQ(back.surfaces[0].elements[1].radiosity_w_m2[2], 9.0);  // the rest as it was
+  EXPECT_EQ(clamp_negative_radiosity(sol).count, 0u);
+}
+
 // The elements' numbers are printf's text, %.17g for the rectangle and %.9g for the rest
 // (std::to_chars writes them): element by element against snprintf, over magnitudes from
 // subnormal to huge, both signs, integers and fractions, across the buffer's flushes.
