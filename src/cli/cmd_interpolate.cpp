@@ -112,7 +112,12 @@ void run_interpolate(const InterpolateArgs& args) {
   if (use_queries) inputs.push_back(args.queries);
   if (!args.barriers.empty()) inputs.push_back(args.barriers);
   refuse_overwriting_inputs(args.out, "--out", inputs);
-  geo_options.inputs = inputs;  // nor by a side file of a GDAL format
+  // nor by a file a GDAL format writes beside the output (a .prj, an ENVI header), such as a
+  // vector source's own (a shapefile's .prj beside the .shp).
+  geo_options.inputs = inputs;
+  for (const std::string& input : inputs)
+    if (is_ogr_vector_path(input))
+      for (std::string& file : gdal_functions(input).source_files(input)) geo_options.inputs.push_back(std::move(file));
 
   // Barriers, samples, interpolant, queries.
   if (!args.barriers.empty()) params.barriers = read_barriers_file(args.barriers, "--barriers");

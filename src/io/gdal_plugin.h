@@ -22,6 +22,7 @@ struct GdalFunctions {
                                    const CsvColumns& columns);
   std::vector<Vec2> (*read_queries)(const std::string& path, const CsvColumns& columns);
   std::vector<Polyline> (*read_barriers)(const std::string& path);
+  std::vector<std::string> (*source_files)(const std::string& path);
 };
 
 /// The name of the symbol the plugin exports: `const void* ()`, the address of its GdalFunctions.

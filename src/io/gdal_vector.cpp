@@ -18,12 +18,17 @@ namespace radrecon {
 
 namespace {
 
+/// GDAL's drivers, registered on first use.
+void register_drivers() {
+  static std::once_flag once;
+  std::call_once(once, [] { GDALAllRegister(); });
+}
+
 /// The first layer of the vector source at `path`, opened read-only.
 class OgrLayer {
  public:
   explicit OgrLayer(const std::string& path) : path_(path) {
-    static std::once_flag once;
-    std::call_once(once, [] { GDALAllRegister(); });
+    register_drivers();
     CPLPushErrorHandler(CPLQuietErrorHandler);
     CPLErrorReset();
     data_.reset(static_cast<GDALDataset*>(
@@ -198,6 +203,22 @@ std::vector<Polyline> read_ogr_barriers(const std::string& path) {
   }
   if (lines.empty()) throw UserError(path, "holds no barrier line");
   return lines;
+}
+
+std::vector<std::string> ogr_source_files(const std::string& path) {
+  register_drivers();
+  CPLPushErrorHandler(CPLQuietErrorHandler);
+  std::unique_ptr<GDALDataset> data(
+      static_cast<GDALDataset*>(GDALOpenEx(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
+  CPLPopErrorHandler();
+  std::vector<std::string> files;
+  if (data)
+    if (char** list = data->GetFileList()) {
+      for (char** f = list; *f != nullptr; ++f) files.emplace_back(*f);
+      CSLDestroy(list);
+    }
+  if (files.empty()) files.push_back(path);
+  return files;
 }
 
 }  // namespace radrecon

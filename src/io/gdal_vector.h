@@ -26,4 +26,8 @@ std::vector<Vec2> read_queries_ogr(const std::string& path, const CsvColumns& co
 /// The barrier lines of the source's first layer; UserError for a point feature or none at all.
 std::vector<Polyline> read_ogr_barriers(const std::string& path);
 
+/// Every file of the vector source (GDALDataset::GetFileList(): a shapefile's .shp, .shx, .dbf,
+/// .prj, ...), so that no output lands on one; just `path` if GDAL cannot open it.
+std::vector<std::string> ogr_source_files(const std::string& path);
+
 }  // namespace radrecon

@@ -332,6 +332,29 @@ with tempfile.TemporaryDirectory() as tmp:
     check(r.returncode == 2 and "is the input file" in r.stderr and not os.path.exists(bare + ".ers")
           and open(bare, "rb").read() == before, f"survey.ers: exit {r.returncode}, {r.stderr.strip()}")
 
+    # Nor on a file of a vector source: a shapefile's .prj beside the .shp, which the EHdr (.bil)
+    # driver writes under the output's name when given a CRS. Refused, the .prj intact.
+    from osgeo import ogr, osr
+    shp = os.path.join(tmp, "pts.shp")
+    ds = ogr.GetDriverByName("ESRI Shapefile").CreateDataSource(shp)
+    wgs84 = osr.SpatialReference()
+    wgs84.ImportFromEPSG(4326)
+    layer = ds.CreateLayer("pts", srs=wgs84, geom_type=ogr.wkbPoint)
+    layer.CreateField(ogr.FieldDefn("mag", ogr.OFTReal))
+    for j in range(3):
+        for i in range(4):
+            feature = ogr.Feature(layer.GetLayerDefn())
+            feature.SetGeometry(ogr.CreateGeometryFromWkt(f"POINT ({i} {j})"))
+            feature.SetField("mag", f(i, j))
+            layer.CreateFeature(feature)
+    ds = None
+    prj = os.path.join(tmp, "pts.prj")
+    before = open(prj, "rb").read()
+    r = run("--samples", shp, "--value", "mag", "--method", "linear", "--raster", "4x3", "--domain", "0,0,3,2",
+            "--crs", "EPSG:2193", "--out", os.path.join(tmp, "pts.bil"))
+    check(r.returncode == 2 and "pts.prj" in r.stderr and not os.path.exists(os.path.join(tmp, "pts.bil"))
+          and open(prj, "rb").read() == before, f"pts.bil beside pts.shp: exit {r.returncode}, {r.stderr.strip()}")
+
     # An Arc/Info grid lists no Float64 band among its creation types, yet writes a Float64 band's
     # values in full: --type float64 is no refusal there.
     out = os.path.join(tmp, "g64.asc")
