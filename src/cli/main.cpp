@@ -66,6 +66,32 @@ int refuse_extras(const CLI::App& app, const std::string& what, std::string miss
   return radrecon::kUserErrorExitCode;
 }
 
+/// Checks on every option's text before CLI11 converts it, each refusal worded as every refusal
+/// is ("radrecon: error: --opt: ..."): an empty value, which would otherwise mean the default
+/// silently (--barriers "$UNSET" ran without barriers); and a number option's text that is no
+/// number (CLI11's own words, "Could not convert: --nodata = abc", name no rule).
+void check_option_texts(CLI::App& app) {
+  const CLI::Validator not_empty(
+      [](std::string& text) { return text.empty() ? std::string("must not be empty (leave the option out for its default)") : std::string(); },
+      "");
+  for (CLI::App* command : app.get_subcommands([](CLI::App*) { return true; }))
+    for (CLI::Option* option : command->get_options()) {
+      if (option->get_type_size() == 0) continue;  // a flag
+      option->check(not_empty);
+      const std::string type = option->get_type_name();
+      const bool whole = type.rfind("INT", 0) == 0 || type.rfind("UINT", 0) == 0;
+      if (whole || type.rfind("FLOAT", 0) == 0)
+        option->check(CLI::Validator(
+            [whole](std::string& text) {
+              double number = 0;
+              long long integer = 0;
+              if (whole ? CLI::detail::lexical_cast(text, integer) : CLI::detail::lexical_cast(text, number)) return std::string();
+              return std::string(whole ? "must be a whole number" : "must be a number") + ", got '" + text + "'";
+            },
+            ""));
+    }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -110,6 +136,7 @@ int main(int argc, char** argv) {
   if (named != kCommands.end()) named->add(app);
   else
     for (const Command& c : kCommands) c.add(app);
+  check_option_texts(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

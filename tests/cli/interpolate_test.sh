@@ -338,6 +338,14 @@ run empty_value --samples "$TMP/scattered.csv" --value "" --method shepard --que
 expect_rc empty_value 2 && expect_stderr_has empty_value "must name a column"
 [ -e "$TMP/empty_value.csv" ] && fail "empty_value: wrote an output"
 
+# --- an empty value of any option is refused (--barriers "$UNSET" ran without barriers), and a
+# number option's text that is no number is refused in radrecon's words, naming the option --------
+run empty_barriers --samples "$TMP/scattered.csv" --barriers "" --method linear --queries "$TMP/queries.csv" --out "$TMP/empty_barriers.csv"
+expect_rc empty_barriers 2 && expect_stderr_has empty_barriers "radrecon: error: --barriers: must not be empty"
+[ -e "$TMP/empty_barriers.csv" ] && fail "empty_barriers: wrote an output"
+run nodata_text --samples "$TMP/scattered.csv" --nodata abc --method linear --queries "$TMP/queries.csv" --out "$TMP/nodata_text.csv"
+expect_rc nodata_text 2 && expect_stderr_has nodata_text "radrecon: error: --nodata: must be a number, got 'abc'"
+
 # --- a raster of no values at all is written, with a warning ----------------------------------
 run no_value --samples "$TMP/scattered1.csv" --method linear --param outside=none --raster 3x2 --domain 50,50,60,60 \
   --out "$TMP/no_value.pfm" --quiet
