@@ -137,11 +137,24 @@ std::vector<double> numbers_of(const py::handle& o, size_t count, bool whole, co
   return out;
 }
 
+/// `o` as a flag: True or False (a numpy bool too); UserError naming `field` otherwise. pybind's
+/// own TypeError printed every argument, the arrays whole, and named none.
+bool flag_of(const py::handle& o, const std::string& field) {
+  if (PyBool_Check(o.ptr())) return o.ptr() == Py_True;
+  if (py::hasattr(o, "dtype") && py::str(o.attr("dtype")).cast<std::string>() == "bool" && py::len(o.attr("shape")) == 0)
+    return o.attr("item")().ptr() == Py_True;
+  throw UserError(field, "True or False is expected, got " + py::repr(o).cast<std::string>());
+}
+
 /// Barriers from a file (GeoJSON, or any OGR line source through GDAL) or a sequence of (k, 2)
 /// polylines.
 Barriers barriers_of(const py::object& barriers) {
   if (barriers.is_none()) return {};
-  if (is_path(barriers)) return read_barriers_file(path_of(barriers), "barriers");
+  if (is_path(barriers)) {
+    const std::string path = path_of(barriers);
+    if (path.empty()) throw UserError("barriers", "an empty file name (None: no barriers)");
+    return read_barriers_file(path, "barriers");
+  }
   if (py::isinstance<py::bytes>(barriers)) throw UserError("barriers", "a file name as bytes: give a str or a pathlib.Path");
   if (!py::isinstance<py::iterable>(barriers))
     throw UserError("barriers", "a file name (str or pathlib.Path) or a sequence of (k, 2) polylines is expected, got " +
@@ -172,7 +185,8 @@ Barriers barriers_of(const py::object& barriers) {
 
 py::array interpolate(const py::object& points_arg, const py::object& values_arg, const py::object& queries_arg,
                       const py::object& raster_arg, const py::object& domain_arg, const py::object& method_arg,
-                      const py::object& barriers, bool border_samples, const py::kwargs& kwargs) {
+                      const py::object& barriers, const py::object& border_samples_arg, const py::kwargs& kwargs) {
+  const bool border_samples = flag_of(border_samples_arg, "border_samples");
   const Doubles points = doubles_of(points_arg, "points"), values = doubles_of(values_arg, "values");
   const std::optional<Doubles> queries =
       queries_arg.is_none() ? std::nullopt : std::optional<Doubles>(doubles_of(queries_arg, "queries"));
@@ -376,7 +390,7 @@ PYBIND11_MODULE(radrecon, m) {
 
   m.def("interpolate", &interpolate, py::arg("points"), py::arg("values"), py::arg("queries") = py::none(),
         py::arg("raster") = py::none(), py::arg("domain") = py::none(), py::arg("method") = "natural-neighbour",
-        py::arg("barriers") = py::none(), py::arg("border_samples") = false,
+        py::arg("barriers") = py::none(), py::arg("border_samples") = py::bool_(false),
         R"doc(Interpolate scattered 2-D samples, as `radrecon interpolate` does.
 
 points: (n, 2) coordinates; values: (n,) or (n, c). Either queries: (m, 2) points, giving (m,)
@@ -413,8 +427,11 @@ Raises radrecon.Error (a ValueError) for refused input.)doc");
       }, py::arg("path"), "Write the solution JSON that `radrecon solve --out` writes.");
 
   m.def("solve", [](const py::object& scene_arg, const std::string& mesh, std::optional<double> residual,
-                    std::optional<long long> patches, std::optional<std::string> leaves_on, std::optional<bool> clusters,
-                    std::optional<double> far_field_error, bool shadow_barriers) {
+                    std::optional<long long> patches, std::optional<std::string> leaves_on, const py::object& clusters_arg,
+                    std::optional<double> far_field_error, const py::object& shadow_barriers_arg) {
+    const std::optional<bool> clusters =
+        clusters_arg.is_none() ? std::nullopt : std::optional<bool>(flag_of(clusters_arg, "clusters"));
+    const bool shadow_barriers = flag_of(shadow_barriers_arg, "shadow_barriers");
     // A file by str or os.PathLike, or a built-in scene's name.
     if (!is_path(scene_arg))
       throw UserError("scene", "expected a file name (str or os.PathLike) or 'paper' or 'cornell', got " +
@@ -454,7 +471,7 @@ Raises radrecon.Error (a ValueError) for refused input.)doc");
     return out;
   }, py::arg("scene") = py::str("paper"), py::arg("mesh") = "grid:16", py::arg("residual") = py::none(),
      py::arg("patches") = py::none(), py::arg("leaves_on") = py::none(), py::arg("clusters") = py::none(),
-     py::arg("far_field_error") = py::none(), py::arg("shadow_barriers") = false,
+     py::arg("far_field_error") = py::none(), py::arg("shadow_barriers") = py::bool_(false),
      R"doc(Solve a scene's radiosity, as `radrecon solve` does.
 
 scene: a scene JSON file, a mesh file (.obj, .gltf, .glb, .ply) with emitters (str or

@@ -268,6 +268,28 @@ def test_raster_and_domain_of_the_wrong_shape_or_kind_are_named(tmp_path):
     assert as_path[0] == as_text[0]
 
 
+def test_flags_and_an_empty_barrier_file_name_are_named():
+    # pybind's TypeError printed the arrays whole and named no argument for border_samples="yes";
+    # barriers="" said "no such file" without naming the argument (an outside-in trial).
+    rng = np.random.default_rng(8)
+    points = rng.uniform(0, 1, (30, 2))
+    values = points[:, 0] + points[:, 1]
+    for kwargs, field in [({"border_samples": "yes"}, "border_samples"), ({"border_samples": 1}, "border_samples"),
+                          ({"barriers": ""}, "barriers")]:
+        with pytest.raises(radrecon.Error, match="^" + field + ": ") as caught:
+            radrecon.interpolate(points, values, queries=points[:3], method="natural-neighbour", **kwargs)
+        assert len(str(caught.value)) < 200
+    with pytest.raises(radrecon.Error, match="^shadow_barriers: True or False"):
+        radrecon.solve("paper", "grid:4", shadow_barriers="yes")
+    with pytest.raises(radrecon.Error, match="^clusters: True or False"):
+        radrecon.solve("paper", "grid:4", clusters=1)
+    # numpy's bool is a flag as Python's is: the same values.
+    q = rng.uniform(0.1, 0.9, (5, 2))
+    a = radrecon.interpolate(points, values, queries=q, domain=(0, 0, 1, 1), border_samples=np.bool_(True))
+    b = radrecon.interpolate(points, values, queries=q, domain=(0, 0, 1, 1), border_samples=True)
+    assert np.array_equal(a, b)
+
+
 def test_duplicates_are_merged_with_a_warning():
     p = np.array([[0, 0], [1, 0], [0, 1], [1, 1], [1, 1]], dtype=float)
     v = np.array([0, 1, 1, 2, 4], dtype=float)
