@@ -77,6 +77,10 @@ void run_interpolate(const InterpolateArgs& args) {
     if (args.gdal_type != "float32" && args.gdal_type != "float64")
       throw UserError("--type", "'" + args.gdal_type + "' is no band type; float32 or float64");
     if (std::isinf(args.nodata)) throw UserError("--nodata", "must be a finite number or nan");
+    if (!geo_options.float64 && std::abs(args.nodata) > std::numeric_limits<float>::max())
+      throw UserError("--nodata", format_number(args.nodata) + " is beyond the range of 32-bit floats (" +
+                                      format_number(std::numeric_limits<float>::max()) +
+                                      "), where a float32 band holds it as infinity: choose a smaller one, or --type float64");
   } else if (!args.crs.empty() || args.gdal_type != "float32" || !(args.nodata == kDefaultNoData)) {
     throw UserError("--crs/--type/--nodata", "apply to GDAL rasters (e.g. --out map.tif), not to " + ext + " files");
   }

@@ -1,5 +1,6 @@
 #include "io/gdal_raster.h"
 
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -76,12 +77,26 @@ void require_band_type(GDALDriver* d, const char* type, const std::string& where
 std::vector<std::string> read_back(const std::string& path, const std::string& file, const std::string& driver,
                                    GDALDataset& image, const GeoRasterOptions& options) {
   const std::string its = "GDAL's " + driver + " driver ";
-  const std::string advice = ": write .tif, .asc, .nc or another format of floating-point bands";
+  const int width = image.GetRasterXSize(), height = image.GetRasterYSize(), bands = image.GetRasterCount();
+  // Formats known to keep floating-point bands, the output's own left out; several bands need one
+  // that stores them as bands of one raster.
+  std::string advice = ": write ";
+  {
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    std::vector<std::string> formats = bands > 1 ? std::vector<std::string>{".tif", ".img"} : std::vector<std::string>{".tif", ".asc", ".nc"};
+    std::erase(formats, ext);
+    for (size_t k = 0; k < formats.size(); ++k) advice += (k ? ", " : "") + formats[k];
+    advice += bands > 1 ? " or another format of several floating-point bands, or one value column at a time (--value)"
+                        : " or another format of floating-point bands";
+  }
   std::unique_ptr<GDALDataset> back(GDALDataset::Open(file.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
   if (!back)
     throw UserError(path, its + "wrote nothing GDAL can read back (" + QuietGdal::last_error() + ")" +
                               (std::isnan(options.nodata) ? "; it may not read NaN, which --nodata a number avoids" : "") + advice);
-  const int width = image.GetRasterXSize(), height = image.GetRasterYSize(), bands = image.GetRasterCount();
+  if (back->GetRasterCount() == 0 && back->GetMetadata("SUBDATASETS") != nullptr)
+    throw UserError(path, its + "stores the " + std::to_string(bands) +
+                              " value columns as separate variables (subdatasets), not as the bands of one raster" + advice);
   if (back->GetRasterXSize() != width || back->GetRasterYSize() != height || back->GetRasterCount() != bands)
     throw UserError(path, its + "wrote " + std::to_string(back->GetRasterXSize()) + " x " + std::to_string(back->GetRasterYSize()) +
                               " pixels of " + std::to_string(back->GetRasterCount()) + " band(s) for " + std::to_string(width) +
@@ -105,6 +120,7 @@ std::vector<std::string> read_back(const std::string& path, const std::string& f
     // read back, with where it is, judged against the largest magnitude at the end.
     double largest = 0, worst_off = 0;
     std::string worst;  // where the largest difference is, for the message
+    bool beyond_float = false;  // whether it is a value a float32 band holds as infinity
     const auto at = [&](int i, int j, double expected, double got) {
       return " (band " + std::to_string(b) + ", row " + std::to_string(j) + ", column " + std::to_string(i) + ": wrote " +
              format_number(expected) + ", reads " + format_number(got) + ")";
@@ -124,12 +140,16 @@ std::vector<std::string> read_back(const std::string& path, const std::string& f
         if (std::isfinite(expected)) largest = std::max(largest, std::abs(expected));
         if (got == expected) continue;  // infinities too (a value beyond a float's range)
         const double off = std::isnan(got) ? std::numeric_limits<double>::infinity() : std::abs(got - expected);
-        if (off > worst_off || worst.empty()) worst_off = off, worst = at(i, j, expected, got);
+        if (off > worst_off || worst.empty()) worst_off = off, worst = at(i, j, expected, got), beyond_float = std::isinf(expected);
       }
     }
     if (worst.empty()) continue;
     if (!(worst_off <= tol::kRasterReadBackRelative * largest))
-      throw UserError(path, its + "does not keep the values" + worst + advice);
+      throw UserError(path, its + "does not keep the values" + worst +
+                                (beyond_float ? "; a value beyond a 32-bit float's range is infinity in a float32 band, "
+                                                "which this format does not keep"
+                                              : "") +
+                                advice);
     if (largest > 0) most_off = std::max(most_off, worst_off / largest);
   }
   std::vector<std::string> warnings;

@@ -355,6 +355,30 @@ with tempfile.TemporaryDirectory() as tmp:
     check(r.returncode == 2 and "pts.prj" in r.stderr and not os.path.exists(os.path.join(tmp, "pts.bil"))
           and open(prj, "rb").read() == before, f"pts.bil beside pts.shp: exit {r.returncode}, {r.stderr.strip()}")
 
+    # netCDF stores two value columns as two variables, not two bands of one raster: refused with
+    # formats that keep several bands as the advice, nothing written.
+    out = os.path.join(tmp, "two.nc")
+    r = run("--samples", samples, "--x", "long", "--y", "lat", "--method", "linear", "--raster", "4x3", "--domain",
+            "0,0,4,3", "--out", out)
+    check(r.returncode == 2 and "separate variables" in r.stderr and "write .tif, .img" in r.stderr
+          and not os.path.exists(out), f"two.nc: exit {r.returncode}, {r.stderr.strip()}")
+    # Beyond the range of 32-bit floats a float32 band holds infinity (kept above): a --nodata
+    # there would be infinity too, and is refused before the work; a format that cannot hold
+    # infinity (the Arc/Info grid writes the largest float) is refused saying so, with the formats
+    # that can. --type float64 keeps the value in a GeoTIFF.
+    r = run("--samples", samples, "--value", "mag", "--method", "linear", "--raster", "4x3", "--domain", "0,0,4,3",
+            "--nodata", "1e39", "--out", os.path.join(tmp, "n39.tif"))
+    check(r.returncode == 2 and "--nodata: 1e+39 is beyond the range of 32-bit floats" in r.stderr,
+          f"--nodata 1e39: exit {r.returncode}, {r.stderr.strip()}")
+    r = run("--samples", huge, "--method", "constant", "--raster", "2x2", "--domain", "0,0,1,1",
+            "--out", os.path.join(tmp, "huge.asc"))
+    check(r.returncode == 2 and "beyond a 32-bit float's range is infinity" in r.stderr and "write .tif, .nc" in r.stderr
+          and not os.path.exists(os.path.join(tmp, "huge.asc")), f"huge.asc: exit {r.returncode}, {r.stderr.strip()}")
+    r = run("--samples", huge, "--method", "constant", "--raster", "2x2", "--domain", "0,0,1,1", "--type", "float64",
+            "--crs", "EPSG:2193", "--out", os.path.join(tmp, "huge64.tif"))
+    check(r.returncode == 0 and gdal.Open(os.path.join(tmp, "huge64.tif")).ReadAsArray()[1][0] == 1e39,
+          f"huge64.tif: exit {r.returncode}, {r.stderr.strip()}")
+
     # An Arc/Info grid lists no Float64 band among its creation types, yet writes a Float64 band's
     # values in full: --type float64 is no refusal there.
     out = os.path.join(tmp, "g64.asc")
