@@ -235,7 +235,7 @@ py::array interpolate(const py::object& points_arg, const py::object& values_arg
       throw UserError("domain", "(x0, y0, x1, y1) with x1 > x0 and y1 > y0, each of magnitude at most " +
                                     format_number(tol::kMaxSampleCoordinate) + ", is expected");
   }
-  const Method method = method_by_name(method_text, "method");
+  const Method method = method_by_name(method_text, "method", [](Method m) { return point_method_problem(m).empty(); });
   if (const std::string problem = point_method_problem(method); !problem.empty()) throw UserError("method", problem);
   MethodParams params = parse_params(method, settings_of(kwargs), "params");
   params.barriers = barriers_of(barriers);

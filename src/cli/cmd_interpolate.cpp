@@ -104,7 +104,8 @@ void run_interpolate(const InterpolateArgs& args) {
     raster.height = size.height;
     if (args.domain.empty()) throw UserError("--domain", "--raster needs --domain x0,y0,x1,y1 (the rectangle it covers)");
   }
-  const std::optional<Method> method = method_by_name(args.method, "--method");
+  const std::optional<Method> method =
+      method_by_name(args.method, "--method", [](Method m) { return point_method_problem(m).empty(); });
   MethodParams params = parse_params(*method, args.params, "--param");
   if (const std::string problem = point_method_problem(*method); !problem.empty()) throw UserError("--method", problem);
   if (const std::string problem = args.barriers.empty() ? "" : barriers_problem(*method); !problem.empty())

@@ -12,6 +12,7 @@
 
 #include <cpl_conv.h>
 #include <cpl_error.h>
+#include <cpl_string.h>
 #include <gdal_frmts.h>
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
@@ -61,12 +62,20 @@ bool can_create_raster(GDALDriver* d) {
 /// a word. Only for Float32: the list is Create()'s, and a driver that writes through CreateCopy()
 /// alone may hold more (an Arc/Info grid lists no Float64, yet writes a Float64 band's values in
 /// full), or less (XYZ lists nothing).
-void require_band_type(GDALDriver* d, const char* type, const std::string& where) {
+/// Whether the driver lists `type` among its band types, or lists none (CreateCopy() then refuses
+/// what it cannot write).
+bool writes_band_type(GDALDriver* d, const char* type) {
   const char* types = d->GetMetadataItem(GDAL_DMD_CREATIONDATATYPES);
-  if (types == nullptr) return;  // not listed: CreateCopy() refuses what it cannot write
+  if (types == nullptr) return true;
   std::istringstream list(types);
   for (std::string t; list >> t;)
-    if (t == type) return;
+    if (t == type) return true;
+  return false;
+}
+
+void require_band_type(GDALDriver* d, const char* type, const std::string& where) {
+  if (writes_band_type(d, type)) return;
+  const char* types = d->GetMetadataItem(GDAL_DMD_CREATIONDATATYPES);
   throw UserError(where, std::string("GDAL's ") + d->GetDescription() + " driver writes bands of " + types +
                              " only, which would round the values to them (radrecon writes " + type +
                              "); write .tif, .asc, .nc or another format of floating-point bands");
@@ -213,7 +222,10 @@ std::string gdal_raster_driver(const std::string& path, const std::string& forma
         require_band_type(d, "Float32", where);
         return d->GetDescription();
       }
-      if (known.find(" ." + e + ",") == std::string::npos) known += " ." + e + ",";
+      // The extensions that would be written: radrecon's own (.png) and the refused left out.
+      if (no_file_of_values(d->GetDescription()) == nullptr && writes_band_type(d, "Float32") &&
+          ascii_lower(e) != "png" && known.find(" ." + e + ",") == std::string::npos)
+        known += " ." + e + ",";
     }
   }
   throw UserError(where, "unknown output extension '" + std::filesystem::path(path).extension().string() +
@@ -276,7 +288,10 @@ std::vector<std::string> write_raster_gdal(const std::string& path, const Raster
   if (mkdtemp(pattern.data()) == nullptr) throw UserError(path, "cannot create a temporary folder beside it");
   const fs::path tmp(pattern);
   try {
-    std::unique_ptr<GDALDataset> file(driver->CreateCopy((tmp / out.filename()).c_str(), image.get(), FALSE, nullptr,
+    // MRF compresses by PNG by default, which takes no floating-point bands: DEFLATE, lossless.
+    CPLStringList creation;
+    if (driver_name == "MRF") creation.SetNameValue("COMPRESS", "DEFLATE");
+    std::unique_ptr<GDALDataset> file(driver->CreateCopy((tmp / out.filename()).c_str(), image.get(), FALSE, creation.List(),
                                                           nullptr, nullptr));
     if (!file) {
       std::string why = QuietGdal::last_error();  // the temporary folder is no name of the user's

@@ -41,7 +41,10 @@ class OgrLayer {
     const bool plain = path.find(':') == std::string::npos && path.rfind("/vsi", 0) != 0;
     if (!data_ && plain && !std::filesystem::exists(path, ec)) throw UserError(path, "no such file");
     if (!data_)
-      throw UserError(path, "cannot open as a vector source" + (reason.empty() ? std::string() : ": " + reason));
+      throw UserError(path, "cannot open as a vector source" + (reason.empty() ? std::string() : ": " + reason) +
+                                (plain ? " (a CSV or XYZ table is read as one only under the names .csv, .txt, .xyz, .dat, "
+                                         ".tsv or no extension: rename it if it is one)"
+                                       : ""));
     if (data_->GetLayerCount() < 1) throw UserError(path, "has no layer");
     layer_ = data_->GetLayer(0);
     // The first layer is read (docs/interpolate.md); the others, said so rather than left unseen.

@@ -115,9 +115,15 @@ class CsvTable {
     std::vector<std::string_view> fields;
     while (next_line(line)) {
       split(line, fields);
-      if (fields.size() != header_.size())
-        throw UserError(where(), "the row has " + std::to_string(fields.size()) + " fields, the header has " +
-                                     std::to_string(header_.size()));
+      if (fields.size() != header_.size()) {
+        // The header decides the separator: a row of the other kind reads as one field, or many.
+        const bool other = comma_ ? line.find(',') == std::string_view::npos : line.find(',') != std::string_view::npos;
+        throw UserError(where(), "the row has " + std::to_string(fields.size()) + (fields.size() == 1 ? " field" : " fields") +
+                                     ", the header has " + std::to_string(header_.size()) +
+                                     (other ? std::string("; the header's separator (") + (comma_ ? "commas" : "spaces") +
+                                                  ") decides the table's, and this row uses " + (comma_ ? "spaces" : "commas")
+                                            : ""));
+      }
       row(fields);
       ++rows;
     }

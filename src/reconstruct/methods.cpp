@@ -416,10 +416,11 @@ InterpolantResult make_point_interpolant(Method method, const ScatteredSamples& 
   return make_nodal_interpolant(method, *grid, params);
 }
 
-Method method_by_name(const std::string& name, const std::string& where) {
+Method method_by_name(const std::string& name, const std::string& where, bool (*listed)(Method)) {
   if (const std::optional<Method> m = parse_method(name)) return *m;
   std::string names;
-  for (Method m : all_methods()) names += (names.empty() ? "" : ", ") + method_name(m);
+  for (Method m : all_methods())
+    if (listed == nullptr || listed(m)) names += (names.empty() ? "" : ", ") + method_name(m);
   throw UserError(where, "unknown method '" + name + "'; valid methods: " + names);
 }
 

@@ -38,8 +38,9 @@ enum class Method {
 /// natural-neighbour, linear, clough-tocher, sibson-c1, laplace, thin-plate, gouraud, hermite.
 std::string method_name(Method m);
 std::optional<Method> parse_method(const std::string& name);
-/// parse_method(), with an unknown name refused: UserError naming `where` and listing the methods.
-Method method_by_name(const std::string& name, const std::string& where);
+/// parse_method(), with an unknown name refused: UserError naming `where` and listing the methods
+/// (those `listed` accepts, if given: the ones the command takes).
+Method method_by_name(const std::string& name, const std::string& where, bool (*listed)(Method) = nullptr);
 /// Every method: the paper's Table 1 order, then the new ones.
 std::vector<Method> all_methods();
 /// The six methods the paper ran (its Table 1).

@@ -103,9 +103,10 @@ std::size_t merge_duplicate_points(ScatteredSamples& s) {
 }
 
 std::string merged_samples_message(std::size_t removed, std::size_t before, std::size_t after) {
-  return std::to_string(removed) + (removed == 1 ? " sample repeats" : " samples repeat") +
-         " the point of an earlier one (or lie within 1e-9 of the samples' extent of it); merged, their values "
-         "averaged (" + std::to_string(before) + " samples -> " + std::to_string(after) + " points)";
+  const bool one = removed == 1;
+  return std::to_string(removed) + (one ? " sample repeats" : " samples repeat") + " the point of an earlier one (or " +
+         (one ? "lies" : "lie") + " within 1e-9 of the samples' extent of it, or of a sample merged with it); merged, " +
+         "their values averaged (" + std::to_string(before) + " samples -> " + std::to_string(after) + " points)";
 }
 
 // --- regular grids ----------------------------------------------------------------------------

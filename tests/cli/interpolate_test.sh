@@ -346,6 +346,16 @@ expect_rc empty_barriers 2 && expect_stderr_has empty_barriers "radrecon: error:
 run nodata_text --samples "$TMP/scattered.csv" --nodata abc --method linear --queries "$TMP/queries.csv" --out "$TMP/nodata_text.csv"
 expect_rc nodata_text 2 && expect_stderr_has nodata_text "radrecon: error: --nodata: must be a number, got 'abc'"
 
+# --- refusals that say what to do: the header's separator decides the rows'; a table under an
+# extension read through OGR; the methods and extensions listed are those this command takes ----
+printf 'x y v\n0,0,1\n1,0,2\n0,1,3\n' > "$TMP/spaced_header.csv"
+refuse spaced_header "the row has 1 field, the header has 3; the header's separator (spaces)" "$TMP/sh.csv" \
+  --samples "$TMP/spaced_header.csv" --method linear --queries "$Q"
+cp "$TMP/scattered1.csv" "$TMP/table.asc"
+refuse table_asc "rename it if it is one" "$TMP/ta.csv" --samples "$TMP/table.asc" --method linear --queries "$Q"
+refuse no_gouraud "valid methods: constant" "$TMP/ng.csv" --samples "$S" --method nosuch --queries "$Q"
+if grep -q "gouraud" "$TMP/no_gouraud.stderr"; then fail "no_gouraud: interpolate listed gouraud, which it refuses"; fi
+
 # --- a raster of no values at all is written, with a warning ----------------------------------
 run no_value --samples "$TMP/scattered1.csv" --method linear --param outside=none --raster 3x2 --domain 50,50,60,60 \
   --out "$TMP/no_value.pfm" --quiet

@@ -275,6 +275,16 @@ with tempfile.TemporaryDirectory() as tmp:
                 "--domain", "-1,-1,5,4", "--out", out)
         check(r.returncode == 0 and words in r.stderr and os.path.exists(out), f"{name}: exit {r.returncode}, {r.stderr.strip()}")
 
+    # MRF compresses by PNG unless told otherwise, which refuses floating-point bands ("Can't
+    # create"): written with DEFLATE, its values read back as written.
+    out = os.path.join(tmp, "w.mrf")
+    r = run("--samples", samples, "--value", "mag", "--method", "linear", "--raster", "5x4", "--domain", "0,0,4,3",
+            "--out", out)
+    check(r.returncode == 0 and os.path.exists(out), f"w.mrf: exit {r.returncode}, {r.stderr.strip()}")
+    if r.returncode == 0:
+        b = gdal.Open(out).ReadAsArray()
+        check(abs(b[0, 0] - f(0.4, 2.625)) < 1e-5, f"w.mrf: the top-left cell {b[0, 0]}")
+
     # A --nodata that a 32-bit float cannot hold (0.1) is looked for as the band holds it. A GSAG
     # grid then writes the holes as the value 0.1 (not as its own no-data value), which would read
     # as data: refused, nothing written (it passed with exit 0).
