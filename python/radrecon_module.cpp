@@ -257,10 +257,12 @@ py::array interpolate(const py::object& points_arg, const py::object& values_arg
   std::vector<py::ssize_t> shape;
   if (raster) {
     const auto [w, h] = *raster;
+    // As the command line's limit: a cell counts once for each value column.
     if (w < 1 || h < 1 || w > kMaxRasterSide || h > kMaxRasterSide ||
-        static_cast<double>(w) * h > static_cast<double>(limit_value(Limit::raster_points)))
+        static_cast<double>(w) * h * samples.channels > static_cast<double>(limit_value(Limit::raster_points)))
       throw UserError("raster", "(" + std::to_string(w) + ", " + std::to_string(h) + ") is out of range: 1 <= width, height <= " +
-                                    std::to_string(kMaxRasterSide) + ", at most " + std::to_string(limit_value(Limit::raster_points)) + " cells");
+                                    std::to_string(kMaxRasterSide) + ", at most " + std::to_string(limit_value(Limit::raster_points)) +
+                                    " cells, each counted once for each value column (" + std::to_string(samples.channels) + ")");
     const auto& d = *domain;  // checked above
     grid.width = w;
     grid.height = h;

@@ -17,7 +17,7 @@ namespace {
 constexpr std::array<LimitSpec, std::size(kAllLimits)> kSpecs = {{
     // The memory and time per unit: docs/scaling.md.
     {"--max-samples", "samples", 10'000'000, "about 270 bytes a sample with its triangulation: some 2.7 GB"},
-    {"--max-raster-points", "points", 100'000'000, "about 26 bytes a point and its value: some 2.6 GB"},
+    {"--max-raster-points", "points", 100'000'000, "about 26 bytes a point and its value (a point counts once for each value column): some 2.6 GB"},
     {"--max-rays", "rays", 1LL << 32, "8192 x 8192 pixels at 8 x 8 rays: some 25 minutes on two cores"},
     {"--max-elements", "elements", 10'000'000, "about 900 bytes an element (a solve's peak memory: 870-880 on the paper scene, grid:200 to grid:800): some 9 GB, and the progressive solver's kept views of its patches, 128 MiB at most"},
     {"--max-leaves", "leaves", 10'000'000, "the links (--max-links) grow faster than the leaves"},

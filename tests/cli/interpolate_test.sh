@@ -356,6 +356,15 @@ refuse table_asc "rename it if it is one" "$TMP/ta.csv" --samples "$TMP/table.as
 refuse no_gouraud "valid methods: constant" "$TMP/ng.csv" --samples "$S" --method nosuch --queries "$Q"
 if grep -q "gouraud" "$TMP/no_gouraud.stderr"; then fail "no_gouraud: interpolate listed gouraud, which it refuses"; fi
 
+# --- the raster-points limit counts a point once for each value column (the memory goes with the
+# values: 10 samples of 20,000 columns took 3.4 GB on a 100 x 100 raster within the limit) -----
+printf 'x,y,a,b,c\n0,0,1,2,3\n1,0,1,2,3\n0,1,1,2,3\n' > "$TMP/three_columns.csv"
+refuse columns_count "400 points of 3 value columns make 1200 points, beyond the limit of 1000" "$TMP/cc.csv" \
+  --samples "$TMP/three_columns.csv" --method constant --raster 20x20 --domain 0,0,1,1 --max-raster-points 1000
+run columns_fit --samples "$TMP/three_columns.csv" --method constant --raster 20x20 --domain 0,0,1,1 \
+  --max-raster-points 1200 --out "$TMP/cf.csv" --quiet
+expect_rc columns_fit 0
+
 # --- a raster of no values at all is written, with a warning ----------------------------------
 run no_value --samples "$TMP/scattered1.csv" --method linear --param outside=none --raster 3x2 --domain 50,50,60,60 \
   --out "$TMP/no_value.pfm" --quiet
