@@ -296,7 +296,7 @@ void add_interpolate_command(CLI::App& app) {
                   "min_points (default 1; with radius only): fewer samples within the radius give no value (gdal_grid's invdistnn). "
                   "multiquadric: mu (nonzero, not within 1e-6 (relative) of a positive integer; default 0.5): basis "
                   "(d^2 + r^2)^mu; r (> 0, default: per sample, the distance to its nearest other sample "
-                  "(Eck)); k (0 = one global system, default; >= 3: local patches of ~k samples blended, for large "
+                  "(Eck)); k (0 = one global system of at most 8000 samples, default; >= 3: local patches of ~k samples blended, for large "
                   "sample sets); poly (0 default | 1: add a linear polynomial, reproducing linear functions); "
                   "radius, min_points: no value where fewer than min_points (default 1) samples lie within the "
                   "radius. thin-plate: k, radius, min_points (as multiquadric). natural-neighbour, laplace, sibson-c1, linear, clough-tocher: "
@@ -336,7 +336,15 @@ void add_interpolate_command(CLI::App& app) {
   cmd->add_option("--type", args->gdal_type, "GDAL rasters: band type, float32 (default) or float64");
   cmd->add_option("--crs", args->crs,
                   "GDAL rasters: the samples' coordinate reference system, written into the file (EPSG:2193, WKT or "
-                  "PROJ); default: none");
+                  "PROJ); default: none")
+      // Without the white space at its ends: gdalsrsinfo's WKT begins with a new line.
+      ->transform(CLI::Validator(
+          [](std::string& text) {
+            const size_t first = text.find_first_not_of(" \t\r\n"), last = text.find_last_not_of(" \t\r\n");
+            text = first == std::string::npos ? std::string() : text.substr(first, last - first + 1);
+            return std::string();
+          },
+          ""));
   cmd->add_option("--nodata", args->nodata,
                   "GDAL rasters: the value written where a method gives none (NaN), declared as the bands' no-data "
                   "value (default -9999; nan keeps NaN and declares it)");

@@ -125,11 +125,25 @@ ScatteredSamples read_samples_ogr(const std::string& path, std::vector<std::stri
   OgrLayer src(path);
   std::vector<int> value_fields;
   for (const std::string& name : columns.values) value_fields.push_back(src.field(name, "--value"));
-  if (columns.values.empty())
+  if (columns.values.empty()) {
+    // Every numeric field but the coordinates': those --x and --y name, and fields named x or y,
+    // which (beside a point geometry, as ogr2ogr keeps a CSV's columns) would repeat the output's
+    // own x and y columns.
+    std::string left_out;
     for (int k = 0; k < src.fields().GetFieldCount(); ++k) {
       const std::string name = ascii_lower(src.fields().GetFieldDefn(k)->GetNameRef());
-      if (src.numeric(k) && name != ascii_lower(columns.x) && name != ascii_lower(columns.y)) value_fields.push_back(k);
+      if (!src.numeric(k) || name == ascii_lower(columns.x) || name == ascii_lower(columns.y)) continue;
+      if (name == "x" || name == "y") {
+        left_out += (left_out.empty() ? "" : ", ") + std::string(src.fields().GetFieldDefn(k)->GetNameRef());
+        continue;
+      }
+      value_fields.push_back(k);
     }
+    if (!left_out.empty() && !value_fields.empty())
+      warn(path + ": the fields " + left_out + " are not interpolated: they are named as the output's coordinate "
+                  "columns (x, y), the points' coordinates coming from " +
+           (columns.x.empty() ? std::string("their geometry") : "--x and --y") + " (--value names the fields to interpolate)");
+  }
   if (value_fields.empty()) {
     std::string found;  // the fields there are, with their types (a number written as a string is text)
     for (int k = 0; k < src.fields().GetFieldCount(); ++k) {

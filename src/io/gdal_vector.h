@@ -2,7 +2,8 @@
 // Samples, query points and barrier lines from any vector source GDAL's OGR reads: GeoPackage,
 // Shapefile, GeoJSON, FlatGeobuf, GML, KML, ... (`ogrinfo --formats`). The first layer is read.
 // Samples and queries: each feature's point geometry is (x, y), or the fields --x and --y name;
-// the values are the numeric fields --value names, else every numeric field (other than x, y).
+// the values are the numeric fields --value names, else every numeric field but the coordinates'
+// (those --x and --y name, and fields named x or y).
 // Barriers: LineString and MultiLineString features, and the rings of Polygon and MultiPolygon
 // features. Coordinates are taken as they are stored (no reprojection). These functions live in
 // the GDAL plugin (io/gdal_plugin.h); the program calls them through gdal_functions().

@@ -73,8 +73,13 @@ class CsvTable {
     if (header_.size() < min_columns)
       throw UserError(where(), "the header " + in_quotes(line) + " has " + std::to_string(header_.size()) +
                                    " column" + (header_.size() == 1 ? "" : "s") + "; expected " + expected_header);
-    for (size_t c = 0; c < header_.size(); ++c)
+    for (size_t c = 0; c < header_.size(); ++c) {
       if (header_[c].empty()) throw UserError(where(), "column " + std::to_string(c + 1) + " of the header has no name");
+      // A name in quotes loses them (unquoted()); a quote left is one without its pair.
+      if (header_[c].find('"') != std::string::npos)
+        throw UserError(where(), "column " + std::to_string(c + 1) + " of the header, " + in_quotes(header_[c]) +
+                                     ", has a double quote without its pair (names are plain or in one pair of quotes)");
+    }
   }
 
   /// The column named `name` (case-insensitive), for option `option`; UserError if none is.

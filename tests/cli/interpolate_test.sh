@@ -356,6 +356,10 @@ refuse table_asc "rename it if it is one" "$TMP/ta.csv" --samples "$TMP/table.as
 refuse no_gouraud "valid methods: constant" "$TMP/ng.csv" --samples "$S" --method nosuch --queries "$Q"
 if grep -q "gouraud" "$TMP/no_gouraud.stderr"; then fail "no_gouraud: interpolate listed gouraud, which it refuses"; fi
 
+printf 'x,y,"z\n0,0,1\n1,0,2\n0,1,3\n' > "$TMP/half_quoted.csv"
+refuse half_quoted "column 3 of the header, '\"z', has a double quote without its pair" "$TMP/hq.csv" \
+  --samples "$TMP/half_quoted.csv" --method linear --queries "$Q"
+
 # --- the raster-points limit counts a point once for each value column (the memory goes with the
 # values: 10 samples of 20,000 columns took 3.4 GB on a 100 x 100 raster within the limit) -----
 printf 'x,y,a,b,c\n0,0,1,2,3\n1,0,1,2,3\n0,1,1,2,3\n' > "$TMP/three_columns.csv"

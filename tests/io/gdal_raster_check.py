@@ -209,6 +209,41 @@ with tempfile.TemporaryDirectory() as tmp:
             x, y, v = map(float, row.split(","))
             check(abs(v - f(x, y)) < 1e-12 * 20, f"GeoPackage samples: value at ({x}, {y}) {v} vs {f(x, y)}")
 
+    # A point layer that keeps x and y as fields beside its geometry (ogr2ogr from a CSV): those
+    # fields are not interpolated (they would repeat the output's x, y columns), with a warning.
+    xy = os.path.join(tmp, "xy.gpkg")
+    ds = ogr.GetDriverByName("GPKG").CreateDataSource(xy)
+    layer = ds.CreateLayer("pts", geom_type=ogr.wkbPoint)
+    for name in ["x", "y", "mag"]:
+        layer.CreateField(ogr.FieldDefn(name, ogr.OFTReal))
+    for j in range(3):
+        for i in range(4):
+            feature = ogr.Feature(layer.GetLayerDefn())
+            feature.SetGeometry(ogr.CreateGeometryFromWkt(f"POINT ({i} {j})"))
+            feature.SetField("x", i)
+            feature.SetField("y", j)
+            feature.SetField("mag", f(i, j))
+            layer.CreateFeature(feature)
+    ds = None
+    out = os.path.join(tmp, "xy_linear.csv")
+    r = subprocess.run([RADRECON, "interpolate", "--samples", xy, "--method", "linear", "--raster", "4x3", "--domain",
+                        "0,0,3,2", "--out", out], capture_output=True, text=True)
+    check(r.returncode == 0 and open(out).readline().strip() == "x,y,mag" and "the fields x, y are not interpolated" in r.stderr,
+          f"x, y fields: exit {r.returncode}, {r.stderr.strip()}")
+
+    # A WKT as gdalsrsinfo prints it, a new line first, and an EPSG code after a space: the white
+    # space at the ends of --crs is dropped (both were refused).
+    r = run("--samples", samples, "--value", "mag", "--method", "linear", "--raster", "4x3", "--domain", "0,0,4,3",
+            "--crs", " EPSG:2193", "--out", os.path.join(tmp, "spaced.tif"))
+    check(r.returncode == 0, f"--crs ' EPSG:2193': exit {r.returncode}, {r.stderr.strip()}")
+    nztm = osr.SpatialReference()
+    nztm.ImportFromEPSG(2193)
+    wkt = "\n" + nztm.ExportToPrettyWkt() + "\n"
+    out = os.path.join(tmp, "wkt.img")
+    r = run("--samples", samples, "--value", "mag", "--method", "linear", "--raster", "4x3", "--domain", "0,0,4,3",
+            "--crs", wkt, "--out", out)
+    check(r.returncode == 0 and "New Zealand" in gdal.Open(out).GetProjection(), f"--crs '\\n WKT': exit {r.returncode}, {r.stderr.strip()}")
+
     # Refusals: exit 2, a message naming the option, nothing written.
     for args, words, name in [
         (["--crs", "EPSG:999999999"], "--crs", "bad.tif"),
@@ -223,7 +258,7 @@ with tempfile.TemporaryDirectory() as tmp:
         check(r.returncode == 2 and words in r.stderr, f"{args}: exit {r.returncode}, {r.stderr.strip()}")
         check(not os.path.exists(out), f"{args}: nothing written")
     # A CRS that PROJ reads but GDAL refuses (a bare name) is refused for a GeoTIFF as for any format.
-    for crs in ["WGS 84", " EPSG:2193"]:
+    for crs in ["WGS 84"]:
         out = os.path.join(tmp, "named.tif")
         r = run("--samples", samples, "--value", "mag", "--method", "linear", "--raster", "4x3", "--domain",
                 "0,0,4,3", "--crs", crs, "--out", out)
