@@ -8,6 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "io/gltf_uri.h"
+
 namespace radrecon {
 
 /// Checks that every accessor fits its buffer view and every view its buffer (UserError naming
@@ -19,13 +21,5 @@ namespace radrecon {
 /// UserError "PATH: meshes[i].primitives[j]: vertex index K out of range (N vertices)"; also for
 /// a line loop of fewer than 2 indices, which assimp 5.2 reads past.
 void check_gltf_indices(const nlohmann::json& doc, const std::string& bin, const std::string& folder, const std::string& path);
-
-/// A relative URI's percent-encoding decoded (RFC 3986: "my%20model.bin" names "my model.bin", as
-/// Blender writes it); a '%' not followed by two hex digits is kept as it is.
-std::string percent_decoded(std::string_view uri);
-
-/// The file a glTF buffer's relative URI names in `folder`: its decoded name (percent_decoded()),
-/// or the name as written where only such a file exists (assimp 5.2 opens that one).
-std::string gltf_uri_file(const std::string& folder, const std::string& uri);
 
 }  // namespace radrecon

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "io/gltf_uri.h"
 #include "io/json_reader.h"
 #include "io/mesh_import.h"
 #include "scene/default_camera.h"
@@ -183,6 +184,7 @@ std::vector<std::string> model_companion_files(const std::filesystem::path& mode
   }
   const std::filesystem::path dir = model.parent_path();
   if (ext == ".obj") {
+    if (text.compare(0, 3, "\xEF\xBB\xBF") == 0) text.erase(0, 3);  // a UTF-8 byte order mark, as the reader skips it
     std::istringstream lines(text);
     std::string line;
     while (std::getline(lines, line)) {
@@ -203,7 +205,12 @@ std::vector<std::string> model_companion_files(const std::filesystem::path& mode
   for (const auto& buffer : gltf["buffers"])
     if (buffer.is_object() && buffer.contains("uri") && buffer["uri"].is_string()) {
       const std::string uri = buffer["uri"].get<std::string>();
-      if (!uri.empty() && uri.rfind("data:", 0) != 0) out.push_back((dir / uri).string());
+      // The file the reader opens (percent-decoded: "my%20model.bin" is "my model.bin"), and the
+      // name as written: refusing one too many is harmless.
+      if (!uri.empty() && uri.rfind("data:", 0) != 0) {
+        out.push_back(gltf_uri_file(dir.string(), uri));
+        out.push_back((dir / uri).string());
+      }
     }
   return out;
 }

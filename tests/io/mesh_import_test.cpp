@@ -205,6 +205,25 @@ TEST(MeshImport, ObjMaterialsFromEveryMtllibWithSpacesByteOrderMarksAndBlendersS
   expect_near(spaced.surfaces.at(0).reflectance, Rgb(0.1, 0.2, 0.3));
 }
 
+TEST(MeshImport, ASceneKeepsAsInputsTheCompanionFilesTheReaderOpens) {
+  // No output may overwrite them (found by an outside-in trial: `--out "my model.bin"` replaced
+  // the buffer of a glTF naming it "my%20model.bin", and `--out bom.mtl` the MTL of an OBJ whose
+  // `mtllib` line follows a byte-order mark).
+  TempDir dir("mesh_inputs");
+  write_file(dir / "bom.obj", "\xEF\xBB\xBFmtllib bom.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 3\n");
+  write_file(dir / "pct.gltf", R"({"asset": {"version": "2.0"}, "buffers": [{"uri": "my%20model.bin", "byteLength": 4},
+                                   {"uri": "data:application/octet-stream;base64,AAAA", "byteLength": 3}]})");
+  write_file(dir / "my model.bin", "abcd");
+  const auto has = [](const std::vector<std::string>& files, const std::filesystem::path& f) {
+    return std::any_of(files.begin(), files.end(), [&](const std::string& g) { return std::filesystem::path(g) == f; });
+  };
+  const std::vector<std::string> obj = scene_input_files((dir / "bom.obj").string());
+  EXPECT_TRUE(has(obj, dir / "bom.mtl"));
+  const std::vector<std::string> gltf = scene_input_files((dir / "pct.gltf").string());
+  EXPECT_TRUE(has(gltf, dir / "my model.bin"));
+  EXPECT_EQ(std::count_if(gltf.begin(), gltf.end(), [](const std::string& g) { return g.find("data:") != std::string::npos; }), 0);
+}
+
 TEST(MeshImport, ObjFarFromTheOriginKeepsItsDetailInDouble) {
   // A lamp 5 cm wide at x = 300000 m (a georeferenced model): assimp's single-precision floats
   // rounded its corners to 3.1 cm apart (37.5% of its power lost). The copy assimp reads is moved
