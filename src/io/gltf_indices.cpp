@@ -1,5 +1,7 @@
 #include "io/gltf_indices.h"
 
+#include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -142,6 +144,37 @@ void check_gltf_accessors(const json& doc, const std::string& path) {
   }
 }
 
+/// A POSITION accessor is of VEC3 FLOAT, as the glTF 2.0 spec requires (assimp 5.2 read a VEC3
+/// of UNSIGNED_SHORT as floats: a floor 5.6e-45 m long; a VEC2 or a NaN as faces of no area,
+/// dropped with a warning), and its values are finite.
+void check_positions(const json& doc, Buffers& buffers, size_t accessor, const std::string& path) {
+  const json& a = doc["accessors"][accessor];
+  const std::string where = "accessors[" + std::to_string(accessor) + "]";
+  if (!a.is_object()) return;
+  if (!(a.contains("type") && a["type"] == "VEC3" && count_of(a, "componentType") == size_t{5126}))
+    throw UserError(path, where + ": a POSITION accessor must be of type VEC3 and componentType 5126 (FLOAT), got " +
+                              (a.contains("type") ? a["type"].dump() : std::string("no type")) + " of " +
+                              (a.contains("componentType") ? a["componentType"].dump() : std::string("no componentType")) +
+                              " (quantized positions, KHR_mesh_quantization, are not read)");
+  const json* view = element(doc, "bufferViews", count_of(a, "bufferView"));
+  const std::optional<size_t> count = count_of(a, "count");
+  if (view == nullptr || !count || a.contains("sparse")) return;
+  const std::optional<size_t> buffer_index = count_of(*view, "buffer");
+  const std::string* bytes = buffer_index ? buffers.get(*buffer_index) : nullptr;
+  const size_t stride = count_of(*view, "byteStride").value_or(12);
+  const size_t start = count_of(*view, "byteOffset").value_or(0) + count_of(a, "byteOffset").value_or(0);
+  // Fits its view and buffer (check_gltf_accessors()), if the bytes are there as declared.
+  if (bytes == nullptr || *count == 0 || start > bytes->size() || (*count - 1) * stride + 12 > bytes->size() - start) return;
+  for (size_t k = 0; k < *count; ++k)
+    for (size_t c = 0; c < 3; ++c) {
+      float v;
+      std::memcpy(&v, bytes->data() + start + k * stride + 4 * c, sizeof v);  // little-endian, as the spec's
+      if (!std::isfinite(v))
+        throw UserError(path, where + ": vertex " + std::to_string(k) + " has a coordinate that is not finite (" +
+                                  std::to_string(v) + ")");
+    }
+}
+
 }  // namespace
 
 void check_gltf_indices(const json& doc, const std::string& bin, const std::string& folder, const std::string& path) {
@@ -165,6 +198,7 @@ void check_gltf_indices(const json& doc, const std::string& bin, const std::stri
           throw UserError(path, "meshes[" + std::to_string(m) + "].primitives[" + std::to_string(p) + "]: " + std::to_string(*count) +
                                     (indices != nullptr ? " indices" : " vertices without indices") +
                                     " for triangles (mode 4), not a multiple of 3");
+      if (positions != nullptr) check_positions(doc, buffers, count_of(primitive["attributes"], "POSITION").value(), path);
       if (positions == nullptr || indices == nullptr || !indices->is_object() || indices->contains("sparse")) continue;
       const std::optional<size_t> vertices = count_of(*positions, "count"), count = count_of(*indices, "count");
       // A line loop of one index: assimp 5.2 reads a second one past its end (an assertion ends

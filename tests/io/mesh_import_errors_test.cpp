@@ -3,6 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
+#include <limits>
+
 #include <initializer_list>
 #include <string>
 
@@ -154,6 +157,29 @@ TEST(MeshImportErrors, GltfRequiredExtensionsNodeTransformsMorphWeightsAndExtern
   external["buffers"][0]["uri"] = "quad.bin";
   write_file((dir / "quad.bin").string(), buffer);
   EXPECT_TRUE(Refused(dir, "external.glb", testing_support::glb_bytes(external, buffer), {"buffers[0].uri", "embed the buffer"}));
+}
+
+TEST(MeshImportErrors, GltfPositionsOfAnotherFormatOrNotFiniteAreRefused) {
+  // Each read by assimp 5.2 with exit 0 (an outside-in trial): VEC3 of UNSIGNED_SHORT without the
+  // quantization extension read as floats (a floor 5.6e-45 m long); a VEC2 and a NaN vertex made
+  // faces of no area, dropped with a warning.
+  TempDir dir("mesh_bad");
+  std::string buffer;
+  const nlohmann::json g = testing_support::quad_gltf(buffer);
+  nlohmann::json u16 = g;
+  u16["accessors"][0]["componentType"] = 5123;
+  EXPECT_TRUE(Refused(dir, "u16.gltf", testing_support::gltf_text(u16, buffer),
+                      {"accessors[0]", "VEC3", "5126 (FLOAT)", "5123"}));
+  nlohmann::json vec2 = g;
+  vec2["accessors"][0]["type"] = "VEC2";
+  EXPECT_TRUE(Refused(dir, "vec2.gltf", testing_support::gltf_text(vec2, buffer), {"accessors[0]", "\"VEC2\""}));
+  std::string nan_buffer = buffer;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  std::memcpy(nan_buffer.data() + 2 * 12 + 4, &nan, sizeof nan);  // vertex 2's y
+  EXPECT_TRUE(Refused(dir, "nan.gltf", testing_support::gltf_text(g, nan_buffer), {"accessors[0]", "vertex 2", "not finite"}));
+  EXPECT_TRUE(Refused(dir, "nan.glb", testing_support::glb_bytes(g, nan_buffer), {"accessors[0]", "vertex 2", "not finite"}));
+  write_file((dir / "fine.gltf").string(), testing_support::gltf_text(g, buffer));
+  EXPECT_NO_THROW(import_mesh((dir / "fine.gltf").string()));
 }
 
 TEST(MeshImportErrors, GltfMeshesOutsideTheDefaultSceneAreNotCountedAgainstIt) {
