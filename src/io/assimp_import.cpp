@@ -103,7 +103,9 @@ std::vector<Material> read_materials(const aiScene& scene, Format format, const 
 
 void check_finite_vertex(const aiVector3D& v, const std::string& path, const std::string& mesh, unsigned index) {
   if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
-    throw UserError(path, "mesh '" + mesh + "' vertex " + std::to_string(index) + " has a coordinate that is not finite (" +
+    throw UserError(path, "mesh '" + mesh + "' vertex " + std::to_string(index) +
+                              " has a coordinate that is not finite, or beyond single precision's range (3.4e38) in which the "
+                              "model reader holds it (" +
                               std::to_string(v.x) + ", " + std::to_string(v.y) + ", " + std::to_string(v.z) + ")");
 }
 

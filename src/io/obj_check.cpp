@@ -72,10 +72,14 @@ ObjForAssimp check_obj(const std::string& path) {
     ++line_no;
     drop_bom(line, line_no);
     // assimp's copy: its materials are radrecon's to read (obj_materials()), so no mtllib.
-    if (after_keyword(line, "mtllib")) out.text.append("# ");
+    // A statement that only begins with f ("foo bar"): assimp 5.2 read it as a face ("Invalid face
+    // index", no line); unknown statements are skipped, as OBJ readers skip them.
+    const bool unknown_f = line.size() >= 2 && line[0] == 'f' && !std::isspace(static_cast<unsigned char>(line[1]));
+    if (after_keyword(line, "mtllib") || unknown_f) out.text.append("# ");
     out.text += line;
     out.text += '\n';
-    if (line.size() < 2 || !std::isspace(static_cast<unsigned char>(line[1]))) continue;
+    // A keyword of one letter, then white space or the line's end (a bare "f").
+    if (line.empty() || (line.size() >= 2 && !std::isspace(static_cast<unsigned char>(line[1])))) continue;
     const std::string at = path + ":" + std::to_string(line_no);
     if (line[0] == 'v') {
       ++vertices;
@@ -88,6 +92,9 @@ ObjForAssimp check_obj(const std::string& path) {
         if (status == NumberStatus::out_of_range)
           throw UserError(at, "vertex coordinate " + in_quotes(words[k]) + " is out of a double's range");
         if (status == NumberStatus::not_a_number) throw UserError(at, "vertex coordinate " + in_quotes(words[k]) + " is not a number");
+        if (std::abs(value) > std::numeric_limits<float>::max())
+          throw UserError(at, "vertex coordinate " + in_quotes(words[k]) +
+                                  " is beyond single precision's range (3.4e38), in which the model reader holds it");
         lo[static_cast<int>(k)] = std::min(lo[static_cast<int>(k)], value), hi[static_cast<int>(k)] = std::max(hi[static_cast<int>(k)], value);
       }
       continue;
@@ -100,15 +107,18 @@ ObjForAssimp check_obj(const std::string& path) {
     if (line[0] == 'f' && corners.size() < 3 && !continued)
       throw UserError(at, "a face of " + std::to_string(corners.size()) + " corner" + (corners.size() == 1 ? "" : "s") +
                               "; a face ('f') needs 3 or more (lines are 'l', points 'p', which are skipped)");
-    for (const std::string& word : corners) {
+    for (const std::string& corner : corners) {
+      const std::string word = corner.ends_with('\\') ? corner.substr(0, corner.size() - 1) : corner;
+      if (word.empty()) continue;  // the line goes on in the next
       long long index = 0;
+      size_t used = 0;
       try {
-        size_t used = 0;
         index = std::stoll(word, &used);
-        if (used < word.size() && word[used] != '/') continue;
       } catch (const std::exception&) {
-        continue;  // not a number: assimp's to refuse
+        used = 0;
       }
+      if (used == 0 || (used < word.size() && word[used] != '/'))
+        throw UserError(at, "corner " + in_quotes(word) + " is no vertex index (v, v/vt, v//vn or v/vt/vn)");
       const long long absolute = index < 0 ? vertices + 1 + index : index;
       if (index == 0 || absolute < 1)
         throw UserError(at, "vertex index " + std::to_string(index) + " out of range (" + std::to_string(vertices) + " vertices before it)");

@@ -77,6 +77,14 @@ TEST(MeshImportErrors, ObjIndicesOutOfRangeAndNonFiniteCoordinates) {
   EXPECT_TRUE(Refused(dir, "word.obj", "v 0 0 0\nv 2 abc 0\nv 1 1 0\nf 1 2 3\n", {"word.obj:2", "'abc' is not a number"}));
   EXPECT_TRUE(Refused(dir, "short.obj", "v 0 0 0\nv 2 0\nv 1 1 0\nf 1 2 3\n", {"short.obj:2", "needs 3 coordinates"}));
   EXPECT_TRUE(Refused(dir, "big.obj", "v 0 0 0\nv 1e999 0 0\nv 1 1 0\nf 1 2 3\n", {"big.obj:2", "out of a double's range"}));
+  // Beyond a float's range the reader's single precision made it infinite ("not finite", no line).
+  EXPECT_TRUE(Refused(dir, "float.obj", "v 0 0 0\nv 3.5e38 0 0\nv 1 1 0\nf 1 2 3\n", {"float.obj:2", "beyond single precision"}));
+  // A bare 'f' was accepted, a corner that is no index refused by assimp without a line, and a
+  // statement that only begins with f ("foo") read as a face: refused, and skipped.
+  EXPECT_TRUE(Refused(dir, "bare.obj", std::string(kTriangle) + "f\nf 1 2 3\n", {"bare.obj:4", "a face of 0 corners"}));
+  EXPECT_TRUE(Refused(dir, "x.obj", std::string(kTriangle) + "f 1 2 3 x\n", {"x.obj:4", "corner 'x' is no vertex index"}));
+  write_file(dir / "foo.obj", std::string(kTriangle) + "foo bar\nf 1 2 3\n");
+  EXPECT_EQ(import_mesh((dir / "foo.obj").string()).surfaces.size(), 1u);
   // A coordinate too small for a double is 0, as any reader takes it.
   write_file(dir / "tiny.obj", "v 0 0 1e-999\nv 1 0 0\nv 1 1 0\nf 1 2 3\n");
   EXPECT_EQ(import_mesh((dir / "tiny.obj").string()).surfaces.size(), 1u);
