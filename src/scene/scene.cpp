@@ -306,6 +306,14 @@ std::vector<std::string> regularise_surfaces(Scene& scene, const std::string& so
     Surface a = s, b = s;
     a.name = s.name + ".a";
     b.name = s.name + ".b";
+    // A half named as another surface of the file: said of that one, by its own index (the
+    // duplicate-name check after the split counts the halves).
+    for (size_t other = 0; other < scene.surfaces.size(); ++other)
+      if (scene.surfaces[other].name == a.name || scene.surfaces[other].name == b.name)
+        throw UserError(source + ": surfaces[" + std::to_string(other) + "].name",
+                        "'" + scene.surfaces[other].name + "' is the name of a half of surfaces[" + std::to_string(index) +
+                            "] '" + s.name + "', " + (warped ? "a quad off its plane" : "a quad that is not convex") +
+                            " split into two triangles: rename one of them");
     a.set_triangle(c(0), c(1), c(2));
     b.set_triangle(c(0), c(2), c(3));
     warnings.push_back(where + (warped ? ": a quad " + metres(off) + " off its plane" : std::string(": a quad that is not convex")) +

@@ -224,6 +224,16 @@ TEST(SceneJson, SplitsANonPlanarQuadIntoTwoTriangles) {
   EXPECT_TRUE(scene.surfaces[1].is_triangle());
 }
 
+TEST(SceneJson, AHalfNamedAsAnotherSurfaceIsSaidOfThatSurface) {
+  // Counted after the split, the duplicate was said of surfaces[2] in a file of two (an
+  // outside-in trial): the surface of that name is named by its own index.
+  json doc = ValidScene();
+  doc["surfaces"][0]["corners"][3] = json::array({0, 1, 0.5});
+  doc["surfaces"][1]["name"] = "floor.b";
+  EXPECT_TRUE(RefusedMentioning(doc.dump(), {"surfaces[1].name", "'floor.b' is the name of a half of surfaces[0] 'floor'",
+                                             "off its plane"}));
+}
+
 TEST(SceneJson, ReadsATriangle) {
   json doc = ValidScene();
   doc["surfaces"][0]["corners"] = json::parse("[[0,0,0],[1,0,0],[0,1,0]]");
