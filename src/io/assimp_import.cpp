@@ -24,6 +24,7 @@
 #include "core/tolerances.h"
 #include "io/gltf_extras.h"
 #include "io/gltf_indices.h"
+#include "io/json_reader.h"
 #include "io/mesh_polygons.h"
 #include "io/obj_check.h"
 #include "io/ply_check.h"
@@ -340,9 +341,10 @@ MeshImport import_mesh_assimp(const std::string& path, const MeshPlacement& plac
   if (!(placement.scale > 0) || !std::isfinite(placement.scale)) throw UserError(path, "scale must be a finite number > 0");
   if (!std::isfinite(placement.rotate_x_deg) || !placement.translate_m.allFinite())
     throw UserError(path, "rotate_x_deg and translate must be finite");
+  require_regular_file(path, "mesh file");
   std::error_code ec;
   const auto size = std::filesystem::file_size(path, ec);
-  if (ec || !std::filesystem::is_regular_file(path, ec)) throw UserError(path, "cannot open mesh file");
+  if (ec) throw UserError(path, "cannot open mesh file: " + ec.message());
   if (size == 0) throw UserError(path, "empty mesh file");
   check_input_file_size(path);
   std::optional<CheckedPly> ply;  // assimp reads its canonical copy, not the file

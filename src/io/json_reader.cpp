@@ -35,6 +35,17 @@ std::string read_text_file(const std::string& path, const std::string& what) {
   return text;
 }
 
+void require_regular_file(const std::string& path, const std::string& what) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw UserError(path, "is a folder, not a " + what);
+  if (std::filesystem::is_regular_file(path, ec)) {
+    if (std::ifstream(path, std::ios::binary)) return;
+    throw UserError(path, "cannot open " + what + ": " + std::strerror(errno));
+  }
+  if (std::filesystem::exists(path, ec)) throw UserError(path, "is not a regular file (a pipe or a device), not a " + what);
+  throw UserError(path, "cannot open " + what + ": " + (ec ? ec.message() : std::string(std::strerror(ENOENT))));
+}
+
 namespace {
 
 /// The 1-based line of byte `offset` of `text`.

@@ -16,6 +16,10 @@ namespace radrecon {
 /// cannot be read.
 std::string read_text_file(const std::string& path, const std::string& what);
 
+/// UserError naming `path` unless it is a regular file that can be opened, saying why: a folder,
+/// no such file (the system's reason), a pipe or a device. `what`: e.g. "mesh file".
+void require_regular_file(const std::string& path, const std::string& what);
+
 /// Deepest nesting of arrays and objects in a JSON document read: none of radrecon's formats, nor
 /// glTF, comes near it, and assimp's glTF reader recurses once a level (200,000 levels overflowed
 /// the stack).

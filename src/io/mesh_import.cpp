@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "io/assimp_import.h"
+#include "io/json_reader.h"
 #include "io/plugin.h"
 
 namespace radrecon {
@@ -21,8 +22,7 @@ void set_mesh_importer(MeshImporter importer) { g_importer = importer; }
 MeshImport import_mesh(const std::string& path, const MeshPlacement& placement) {
   // What needs no reader, before loading it.
   if (!mesh_format(path)) throw UserError(path, "unknown mesh format (expected .obj, .gltf, .glb or .ply)");
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw UserError(path, "cannot open mesh file");
+  require_regular_file(path, "mesh file");
   if (const MeshImporter importer = g_importer.load()) return importer(path, placement);
   static const PluginSpec kPlugin{"libradrecon_assimp.so", kAssimpPluginEntry, "RADRECON_ASSIMP_PLUGIN",
                                   "the model reader (assimp)"};
