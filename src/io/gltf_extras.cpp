@@ -142,7 +142,8 @@ void check_numbers(const JsonReader& r, const json& node, const std::string& whe
 /// Refuses node transforms the schema forbids, which assimp 5.2 reads as something else without
 /// a word (a translation of strings as 0, a short scale or matrix as none, a rotation of any length
 /// as it stands): translation and scale of 3 numbers, rotation of 4 of unit length
-/// (tol::kGltfUnitQuaternion), matrix of 16, not both a matrix and any of the others; and morph
+/// (tol::kGltfUnitQuaternion), matrix of 16 with (0, 0, 0, 1) as its bottom row, not both a matrix
+/// and any of the others; and morph
 /// targets given weight (by the mesh or the node), which assimp does not apply.
 void check_nodes(const JsonReader& r, const json& doc) {
   if (!doc.contains("nodes")) return;
@@ -165,6 +166,16 @@ void check_nodes(const JsonReader& r, const json& doc) {
     check_numbers(r, node, where, "matrix", 16);
     if (node.contains("matrix") && (node.contains("translation") || node.contains("rotation") || node.contains("scale")))
       r.fail(where, "has both a matrix and translation, rotation or scale (the glTF schema allows one or the other)");
+    // Column-major: elements 3, 7, 11 and 15 are the bottom row, (0, 0, 0, 1) in any transform the
+    // spec allows (one of translation, rotation and scale); assimp ignored another (a w of 2).
+    if (node.contains("matrix")) {
+      const json& m = node["matrix"];
+      if (m[3].get<double>() != 0 || m[7].get<double>() != 0 || m[11].get<double>() != 0 || m[15].get<double>() != 1)
+        r.fail(where + ".matrix", "its bottom row must be (0, 0, 0, 1) (elements 3, 7, 11, 15, column-major), got (" +
+                                      format_number(m[3].get<double>()) + ", " + format_number(m[7].get<double>()) + ", " +
+                                      format_number(m[11].get<double>()) + ", " + format_number(m[15].get<double>()) +
+                                      "): a projection is no placement");
+    }
     if (node.contains("rotation")) {
       double norm_sq = 0;
       for (const json& q : node["rotation"]) norm_sq += q.get<double>() * q.get<double>();

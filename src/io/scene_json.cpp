@@ -151,7 +151,9 @@ Scene load_mesh_scene(const std::string& path) {
   for (const Surface& s : scene.surfaces) emits = emits || (s.emission_w_m2 > 0).any();
   if (!emits) print_warnings(model.warnings, 20);  // they may say why: an MTL file not found
   if (!emits)
-    throw UserError(path, "the model has no emitting face (no OBJ Ke, no glTF emissiveFactor): write a scene JSON "
+    throw UserError(path, std::string(lower_extension(path) == ".ply" ? "a PLY model has no emission (the format holds none)"
+                                                                       : "the model has no emitting face (no OBJ Ke, no glTF emissiveFactor)") +
+                              ": write a scene JSON "
                           "with \"meshes\": [{\"file\": \"" + std::filesystem::path(path).filename().string() +
                           "\"}] and a light in \"surfaces\" (docs/formats.md, Meshes)");
   for (const std::string& warning : regularise_surfaces(scene, path)) model.warnings.push_back(warning);

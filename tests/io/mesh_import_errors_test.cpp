@@ -149,6 +149,17 @@ TEST(MeshImportErrors, GltfRequiredExtensionsNodeTransformsMorphWeightsAndExtern
   nlohmann::json both = g;  // node 1 has a translation already
   both["nodes"][1]["matrix"] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
   EXPECT_TRUE(Refused(dir, "both.gltf", testing_support::gltf_text(both, buffer), {"nodes[1]", "both a matrix"}));
+  // A projective bottom row (a w of 2), which assimp ignored; node 1's translation as a matrix.
+  const auto node_matrix = [&](const nlohmann::json& m) {
+    nlohmann::json h = g;
+    h["nodes"][1].erase("translation");
+    h["nodes"][1]["matrix"] = m;
+    return testing_support::gltf_text(h, buffer);
+  };
+  EXPECT_TRUE(Refused(dir, "w.gltf", node_matrix({1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 2, 2}),
+                      {"nodes[1].matrix", "bottom row must be (0, 0, 0, 1)", "got (0, 0, 0, 2)"}));
+  write_file((dir / "affine.gltf").string(), node_matrix({1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 2, 1}));
+  EXPECT_NO_THROW(import_mesh((dir / "affine.gltf").string()));
   // A unit quaternion written in single precision is read.
   write_file((dir / "unit.gltf").string(), node_with("rotation", {0.70710677, 0, 0, 0.70710677}));
   EXPECT_NO_THROW(import_mesh((dir / "unit.gltf").string()));

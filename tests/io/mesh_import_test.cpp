@@ -510,7 +510,9 @@ TEST(MeshImport, LoadSceneTakesAModelWithAnEmitterAndRefusesOneWithout) {
   write_file(dir / "square.ply", testing_support::coloured_square_ply());
   const std::string message = testing_support::user_error_message([&] { load_scene((dir / "square.ply").string()); });
   EXPECT_NE(message.find("square.ply"), std::string::npos) << message;
-  EXPECT_NE(message.find("no emitting face"), std::string::npos) << message;
+  // A PLY holds no emission at all: said so, not pointed at OBJ's Ke or glTF's emissiveFactor.
+  EXPECT_NE(message.find("a PLY model has no emission"), std::string::npos) << message;
+  EXPECT_EQ(message.find("emissiveFactor"), std::string::npos) << message;
   EXPECT_NE(message.find("\"meshes\""), std::string::npos) << message;
 }
 
