@@ -14,6 +14,7 @@
 #include "cli/solution_methods.h"
 #include "core/check.h"
 #include "core/error.h"
+#include "core/progress.h"
 #include "core/parse.h"
 #include "export/gltf.h"
 #include "export/lightmap.h"
@@ -73,12 +74,16 @@ void run_export(const ExportArgs& args) {
   const Solution solution = read_solution_json(args.solution);
   const auto recon = reconstruct_solution(scene, solution, args.solution, args.method, args.params, args.no_barriers,
                                           args.border_samples);
-  const LightmapAtlas atlas = bake_lightmaps(scene, solution, *recon, args.texels, "--texels");
+  Progress progress("export", args.quiet);
+  const LightmapAtlas atlas = bake_lightmaps(scene, solution, *recon, args.texels, "--texels", &progress);
   const double white = args.white > 0 ? args.white : lightmap_white(scene, atlas);
   const nlohmann::json extras = {{"method", args.method}, {"params", args.params}, {"solution", solution.mesh},
                                  {"scene", solution.scene}};
+  progress.note("writing the lightmap (" + std::to_string(atlas.radiosity_w_m2.width()) + " x " +
+                std::to_string(atlas.radiosity_w_m2.height()) + " texels) as PNG into " + args.out);
   write_lightmapped_glb(args.out, scene, solution, atlas, white, extras);
   if (!args.exr.empty()) write_exr(args.exr, atlas.radiosity_w_m2);
+  progress.done();
   if (!args.quiet) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::fprintf(stderr, "export: wrote %s (%zu sides, lightmap %dx%d at %.4g texels/m, white %.4g W/m^2%s)%s%s in %.2f s\n",

@@ -161,8 +161,8 @@ int main(int argc, char** argv) {
     return radrecon::kUserErrorExitCode;
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr,
-                 "radrecon: error: out of memory; no output was left half-written. Ask for less: a smaller raster, image or mesh, "
-                 "fewer samples, or local patches (--param k=...)\n");
+                 "radrecon: error: out of memory; no output was left half-written. Ask for less: a smaller raster, image, "
+                 "lightmap (--texels) or mesh, fewer samples, or local patches (--param k=...)\n");
     return radrecon::kOutOfMemoryExitCode;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "radrecon: error: %s\n", e.what());

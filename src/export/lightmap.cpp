@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <string>
+#include <vector>
 
 #include "core/error.h"
 #include "reconstruct/interpolant.h"
@@ -29,22 +31,17 @@ Vec2 texel_point(const Surface& surface, double a, double b) {
   return uv ? *uv : Vec2(a, b);  // a point of the quad's plane inside it: always found
 }
 
-}  // namespace
+/// The tiles of an atlas of `texels` along the scene's longest edge (`longest_m`) and its size;
+/// whether it fits in the largest texture (fits()), else the first side too large alone.
+struct Packing {
+  std::vector<LightmapTile> tiles;
+  int width = 0, height = 0;
+  std::string too_large_side, too_large_size;  ///< a side that alone exceeds it: its name, "W x H"
+  bool fits() const { return too_large_side.empty() && width <= kMaxLightmapSide && height <= kMaxLightmapSide; }
+};
 
-Vec2 LightmapAtlas::texture_coordinate(const LightmapTile& tile, double u, double v) const {
-  return {(tile.x0 + u * tile.width) / radiosity_w_m2.width(), (tile.y0 + v * tile.height) / radiosity_w_m2.height()};
-}
-
-LightmapAtlas bake_lightmaps(const Scene& scene, const Solution& solution, const SolutionReconstruction& reconstruction,
-                             int texels_along_longest, const std::string& where) {
-  RR_CHECK(texels_along_longest >= 2, "a lightmap needs 2 texels along the longest edge");
-  double longest_m = 0;
-  for (const SurfaceSolution& s : solution.surfaces)
-    longest_m = std::max(longest_m, mesh_extent_m(s.frame(), s.triangle));
-  RR_CHECK(longest_m > 0, "a solution of no extent");
-  const double texels_per_metre = texels_along_longest / longest_m;
-  LightmapAtlas atlas;
-  atlas.texels_per_metre = texels_per_metre;
+Packing pack(const Scene& scene, const Solution& solution, int texels_along_longest, double longest_m) {
+  Packing out;
   constexpr int g = kLightmapGutter;
   // Tile sizes, then shelves: tallest first (ties in the solution's order), rows of the width
   // that makes the atlas about square.
@@ -62,40 +59,70 @@ LightmapAtlas bake_lightmaps(const Scene& scene, const Solution& solution, const
     const double w = std::ceil(texels_along_longest * (s.length_u_m / longest_m)),
                  h = std::ceil(texels_along_longest * (s.length_v_m / longest_m));
     if (!(w + 2 * g <= kMaxLightmapSide && h + 2 * g <= kMaxLightmapSide)) {
-      const int fits = static_cast<int>(texels_along_longest * static_cast<double>(kMaxLightmapSide - 2 * g) / std::max(w, h));
-      throw UserError(where, "side '" + s.name + "' would need " + std::to_string(static_cast<long long>(w)) + " x " +
-                                 std::to_string(static_cast<long long>(h)) + " texels and a gutter of " + std::to_string(g) +
-                                 " around them, more than the largest texture (" + std::to_string(kMaxLightmapSide) +
-                                 " texels a side); at most about " + std::to_string(fits) + " fit");
+      out.too_large_side = s.name;
+      out.too_large_size = std::to_string(static_cast<long long>(w)) + " x " + std::to_string(static_cast<long long>(h));
+      return out;
     }
     t.width = std::max(2, static_cast<int>(w));
     t.height = std::max(2, static_cast<int>(h));
     area += static_cast<double>(t.width + 2 * g) * (t.height + 2 * g);
     widest = std::max(widest, t.width + 2 * g);
-    atlas.tiles.push_back(t);
+    out.tiles.push_back(t);
   }
-  std::vector<size_t> order(atlas.tiles.size());
+  std::vector<size_t> order(out.tiles.size());
   std::iota(order.begin(), order.end(), size_t{0});
-  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return atlas.tiles[a].height > atlas.tiles[b].height; });
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return out.tiles[a].height > out.tiles[b].height; });
   const int row_width = std::max(widest, static_cast<int>(std::ceil(std::sqrt(area))));
-  int x = 0, y = 0, shelf = 0, atlas_width = 0;
+  int x = 0, y = 0, shelf = 0;
   for (const size_t k : order) {
-    LightmapTile& t = atlas.tiles[k];
+    LightmapTile& t = out.tiles[k];
     if (x + t.width + 2 * g > row_width) x = 0, y += shelf, shelf = 0;
     t.x0 = x + g;
     t.y0 = y + g;
     x += t.width + 2 * g;
     shelf = std::max(shelf, t.height + 2 * g);
-    atlas_width = std::max(atlas_width, x);
+    out.width = std::max(out.width, x);
   }
-  const int atlas_height = y + shelf;
-  if (atlas_width > kMaxLightmapSide || atlas_height > kMaxLightmapSide) {
-    const int fits = static_cast<int>(texels_along_longest * static_cast<double>(kMaxLightmapSide) /
-                                      std::max(atlas_width, atlas_height));
-    throw UserError(where, "the atlas would be " + std::to_string(atlas_width) + " x " + std::to_string(atlas_height) +
-                               " texels, more than the largest texture (" + std::to_string(kMaxLightmapSide) +
-                               " a side); at most about " + std::to_string(fits) + " fit");
+  out.height = y + shelf;
+  return out;
+}
+
+}  // namespace
+
+Vec2 LightmapAtlas::texture_coordinate(const LightmapTile& tile, double u, double v) const {
+  return {(tile.x0 + u * tile.width) / radiosity_w_m2.width(), (tile.y0 + v * tile.height) / radiosity_w_m2.height()};
+}
+
+LightmapAtlas bake_lightmaps(const Scene& scene, const Solution& solution, const SolutionReconstruction& reconstruction,
+                             int texels_along_longest, const std::string& where, Progress* progress) {
+  RR_CHECK(texels_along_longest >= 2, "a lightmap needs 2 texels along the longest edge");
+  double longest_m = 0;
+  for (const SurfaceSolution& s : solution.surfaces)
+    longest_m = std::max(longest_m, mesh_extent_m(s.frame(), s.triangle));
+  RR_CHECK(longest_m > 0, "a solution of no extent");
+  const double texels_per_metre = texels_along_longest / longest_m;
+  LightmapAtlas atlas;
+  atlas.texels_per_metre = texels_per_metre;
+  Packing packing = pack(scene, solution, texels_along_longest, longest_m);
+  if (!packing.fits()) {
+    // The most texels that fit, found by halving (the gutters and shelves make it no proportion).
+    int lo = 1, hi = texels_along_longest;  // pack(lo) fits (or lo is 1: none does), pack(hi) does not
+    while (hi - lo > 1) {
+      const int mid = lo + (hi - lo) / 2;
+      (pack(scene, solution, mid, longest_m).fits() ? lo : hi) = mid;
+    }
+    const std::string most = lo >= 2 ? "; at most " + std::to_string(lo) + " fit" : "";
+    if (!packing.too_large_side.empty())
+      throw UserError(where, "side '" + packing.too_large_side + "' would need " + packing.too_large_size +
+                                 " texels and a gutter of " + std::to_string(kLightmapGutter) +
+                                 " around them, more than the largest texture (" + std::to_string(kMaxLightmapSide) +
+                                 " texels a side)" + most);
+    throw UserError(where, "the atlas would be " + std::to_string(packing.width) + " x " + std::to_string(packing.height) +
+                               " texels, more than the largest texture (" + std::to_string(kMaxLightmapSide) + " a side)" +
+                               most);
   }
+  atlas.tiles = std::move(packing.tiles);
+  const int atlas_width = packing.width, atlas_height = packing.height;
   atlas.radiosity_w_m2 = Image(atlas_width, atlas_height);
   Image& img = atlas.radiosity_w_m2;
   for (int j = 0; j < atlas_height; ++j)
@@ -105,6 +132,8 @@ LightmapAtlas bake_lightmaps(const Scene& scene, const Solution& solution, const
   // gutter texel repeats the nearest texel of the tile.
   std::vector<Vec2> points;
   std::vector<double> values;
+  double texels = 0, filled = 0;
+  for (const LightmapTile& t : atlas.tiles) texels += static_cast<double>(t.width) * t.height;
   for (const LightmapTile& t : atlas.tiles) {
     const SurfaceSolution& s = solution.surfaces[t.solution_side];
     const Surface& surface = scene.surfaces[t.side.surface];
@@ -121,6 +150,8 @@ LightmapAtlas bake_lightmaps(const Scene& scene, const Solution& solution, const
           points.push_back(frame.st(texel_point(surface, (i + 0.5) / t.width, (j + 0.5) / t.height)));
       values.assign(points.size() * static_cast<size_t>(channels), 0.0);
       f->evaluate(points, values);
+      filled += static_cast<double>(points.size());
+      if (progress != nullptr) progress->update(filled / texels, "the lightmap's texels filled");
       for (int j = j0; j < j1; ++j)
         for (int i = 0; i < t.width; ++i) {
           const size_t k = static_cast<size_t>(j - j0) * t.width + i;
@@ -131,6 +162,7 @@ LightmapAtlas bake_lightmaps(const Scene& scene, const Solution& solution, const
           }
         }
     }
+    constexpr int g = kLightmapGutter;
     for (int j = -g; j < t.height + g; ++j)
       for (int i = -g; i < t.width + g; ++i)
         if (i < 0 || j < 0 || i >= t.width || j >= t.height)

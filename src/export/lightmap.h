@@ -16,6 +16,8 @@
 // no value (behind barriers, under excluded regions) a texel holds 0.
 
 #include <string>
+
+#include "core/progress.h"
 #include <vector>
 
 #include "core/image.h"
@@ -49,8 +51,9 @@ struct LightmapAtlas {
 
 /// Lays out and fills the atlas with `texels_along_longest` (>= 2) texels along the longest
 /// surface edge of the solution, every side at that density. Throws UserError naming `where`
-/// when the atlas would exceed kMaxLightmapSide, with the setting that would fit.
+/// when the atlas would exceed kMaxLightmapSide, with the most texels that would fit. `progress`
+/// (may be null) hears the share of texels filled.
 LightmapAtlas bake_lightmaps(const Scene& scene, const Solution& solution, const SolutionReconstruction& reconstruction,
-                             int texels_along_longest, const std::string& where);
+                             int texels_along_longest, const std::string& where, Progress* progress = nullptr);
 
 }  // namespace radrecon

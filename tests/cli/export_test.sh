@@ -65,8 +65,11 @@ run wrong_scene --scene paper --solution box.json --out b.glb
 expect_rc wrong_scene 2 && expect_stderr_has wrong_scene "box.json"
 expect_no_output wrong_scene b.glb
 run too_fine --scene cornell --solution box.json --texels 10000 --out b.glb
-expect_rc too_fine 2 && expect_stderr_has too_fine "--texels: the atlas would be" && expect_stderr_has too_fine "at most about"
+expect_rc too_fine 2 && expect_stderr_has too_fine "--texels: the atlas would be" && expect_stderr_has too_fine "at most 6442 fit"
 expect_no_output too_fine b.glb
+# The most that fit, exactly (a proportion of 10000 had offered 7798, which was refused): one more is not.
+run one_more --scene cornell --solution box.json --texels 6443 --out b.glb
+expect_rc one_more 2 && expect_stderr_has one_more "at most 6442 fit"
 # The largest --texels leaves room for a tile's gutters (16384 had been offered and could not work).
 run beyond_texture --scene cornell --solution box.json --texels 16384 --out b.glb
 expect_rc beyond_texture 2 && expect_stderr_has beyond_texture "--texels: Value 16384 not in range 2 to 16380"
