@@ -17,13 +17,15 @@ void Progress::done() {
   line_open_ = false;
 }
 
-void Progress::update(double fraction, const std::string& what) {
+void Progress::update(double fraction, const std::string& what,
+                      std::optional<std::chrono::steady_clock::time_point> stage_start) {
   const auto now = std::chrono::steady_clock::now();
   if (quiet_ || fraction <= 0 || fraction >= 1 || now - last_ < kProgressInterval) return;
   last_ = now;
   const double elapsed = std::chrono::duration<double>(now - start_).count();
+  const double stage = std::chrono::duration<double>(now - stage_start.value_or(start_)).count();
   std::fprintf(stderr, "%s%s: %.0f%% of %s, %.0f s elapsed, about %.0f s left%s", terminal_ ? "\r" : "",
-               label_.c_str(), 100 * fraction, what.c_str(), elapsed, elapsed * (1 - fraction) / fraction,
+               label_.c_str(), 100 * fraction, what.c_str(), elapsed, stage * (1 - fraction) / fraction,
                terminal_ ? "\033[K" : "\n");
   std::fflush(stderr);
   line_open_ = terminal_;

@@ -5,6 +5,7 @@
 // `radrecon paper`'s two concurrent stages under a mutex).
 
 #include <chrono>
+#include <optional>
 #include <string>
 
 namespace radrecon {
@@ -22,8 +23,10 @@ class Progress {
   Progress& operator=(const Progress&) = delete;
 
   /// Reports the fraction done (0..1) of `what` with the time elapsed and the time left, if the
-  /// last report is kProgressInterval old.
-  void update(double fraction, const std::string& what);
+  /// last report is kProgressInterval old. The time left is judged from `stage_start`, when `what`
+  /// began (default: when the progress did; a later stage of a longer run gives its own).
+  void update(double fraction, const std::string& what,
+              std::optional<std::chrono::steady_clock::time_point> stage_start = std::nullopt);
   /// Reports `what` (a stage whose share done is unknown: "refinement pass 3, 1200 links") with
   /// the time elapsed, as update() does.
   void note(const std::string& what);
