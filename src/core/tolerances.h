@@ -293,6 +293,10 @@ inline constexpr double kRepeatedCornerRelative = 1e-9;
 /// 1/32 agree there to 0.5%).
 inline constexpr double kMidpointReceiverRatio = 1.0 / 16;
 
+/// A polygon's ear-clipped triangles (io/mesh_polygons.h triangulate_polygon()) must add up to its
+/// area (Newell's) within this fraction: else it crosses itself and is refused.
+inline constexpr double kTriangulationAreaRelative = 1e-9;
+
 /// The far-field correction of progressive refinement (solver/far_field.cpp
 /// far_field_radiosity()) divides by the cosines at both ends of the kernel: at grazing angles,
 /// below this cosine, the block shoots with its mean radiosity alone.

@@ -93,9 +93,12 @@ std::vector<std::array<int, 3>> triangulate_polygon(std::span<const Vec3> corner
     for (int k = 0; k < m && !cut; ++k) {
       const int a = left[(k + m - 1) % m], b = left[k], c = left[(k + 1) % m];
       if (cross(a, b, c) <= 0) continue;  // reflex or straight corner: not an ear
+      // A corner at the place of one of the ear's own is no obstacle: a weakly simple polygon
+      // (a ring and its hole, joined by an edge walked there and back) visits such places twice.
       bool empty = true;
       for (int q : left)
-        if (q != a && q != b && q != c && in_triangle(p[q], p[a], p[b], p[c])) empty = false;
+        if (q != a && q != b && q != c && p[q] != p[a] && p[q] != p[b] && p[q] != p[c] && in_triangle(p[q], p[a], p[b], p[c]))
+          empty = false;
       if (!empty) continue;
       out.push_back({a, b, c});
       left.erase(left.begin() + k);
@@ -105,6 +108,11 @@ std::vector<std::array<int, 3>> triangulate_polygon(std::span<const Vec3> corner
   }
   if (cross(left[0], left[1], left[2]) <= 0) return {};
   out.push_back({left[0], left[1], left[2]});
+  // The ears cover the polygon exactly once: their areas add up to its own (Newell's), else the
+  // polygon crosses itself in a way the cuts did not see.
+  double area = 0;
+  for (const auto& [a, b, c] : out) area += 0.5 * cross(a, b, c);
+  if (!(std::abs(area - 0.5 * normal.norm()) <= tol::kTriangulationAreaRelative * 0.5 * normal.norm())) return {};
   return out;
 }
 

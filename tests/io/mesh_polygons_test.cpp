@@ -137,6 +137,30 @@ TEST(TriangulatePolygon, ConcaveLShapeIsCoveredByCounterClockwiseTrianglesOfItsA
   EXPECT_TRUE(triangulate_polygon(std::vector<Vec3>{{0, 0, 0}, {1, 0, 0}, {2, 0, 0}}).empty());
 }
 
+TEST(TriangulatePolygon, ARingAndItsHoleJoinedByAnEdgeWalkedTwiceIsCoveredOnceAndACrossingOneRefused) {
+  // A weakly simple polygon, as assimp's sample concave_polygon.obj holds one: the 4 x 4 square,
+  // the edge to its 2 x 2 hole, the hole clockwise, and back. Every ear had a corner at the place
+  // of one of its own inside it, so none was cut ("crosses itself"). Its area: 16 - 4 = 12.
+  const std::vector<Vec3> ring = {{0, 0, 0}, {4, 0, 0}, {4, 4, 0}, {0, 4, 0}, {0, 0, 0},
+                                  {1, 1, 0}, {1, 3, 0}, {3, 3, 0}, {3, 1, 0}, {1, 1, 0}};
+  const auto tris = triangulate_polygon(ring);
+  ASSERT_EQ(tris.size(), 8u);  // n - 2
+  double area = 0;
+  for (const auto& t : tris) {
+    const double signed_twice = (ring[t[1]] - ring[t[0]]).cross(ring[t[2]] - ring[t[0]]).z();
+    EXPECT_GT(signed_twice, 0);
+    area += 0.5 * signed_twice;
+    // No triangle reaches into the hole: its centroid lies outside (1, 3) x (1, 3).
+    const Vec3 c = (ring[t[0]] + ring[t[1]] + ring[t[2]]) / 3;
+    EXPECT_FALSE(c.x() > 1 && c.x() < 3 && c.y() > 1 && c.y() < 3) << c.transpose();
+  }
+  EXPECT_NEAR(area, 12.0, kExact);
+  // A bow tie crosses itself: refused, not cut into triangles of the wrong area.
+  EXPECT_TRUE(triangulate_polygon(std::vector<Vec3>{{0, 0, 0}, {2, 2, 0}, {2, 0, 0}, {0, 2, 0}}).empty());
+  // A figure eight of a counter-clockwise and a clockwise loop meeting at a corner: refused.
+  EXPECT_TRUE(triangulate_polygon(std::vector<Vec3>{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {2, 2, 0}, {2, 1, 0}, {1, 1, 0}, {0, 1, 0}}).empty());
+}
+
 TEST(DropRepeatedCorners, APolygonClosedOnItsFirstCornerOrWithACornerTwiceLosesTheRepeats) {
   const Vec3 a(0, 0, 0), b(2, 0, 0), c(2, 1, 0), d(1, 1.5, 0), e(0, 1, 0);
   std::vector<Vec3> closed = {a, b, c, d, e, a};  // `f 1 2 3 4 5 1`
