@@ -117,6 +117,7 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
   RR_CHECK(emitted_sum > 0, "the scene emits no light");
   size_t shots = 0;
   Progress progress(options.progress_label, options.progress_label.empty());
+  ConvergencePace pace(options.residual);
   std::vector<Gathered> gain;  // per receiving element of the shot, in the order of `jobs`
   std::vector<ReceivingSide> jobs;
   // The shooter trees' blocks, reused from shot to shot: made once, for the largest patch's tree
@@ -155,11 +156,12 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
       if (cluster_unshot_w[c] > best_w) best_cluster = static_cast<int>(c), best_w = cluster_unshot_w[c];
     residual = unshot_total.sum() / emitted_sum;
     if (residual > 0 && residual < 1) {
-      // The residual falls about geometrically: its logarithm measures the way done.
+      // The residual falls about geometrically, more slowly as the solve goes on: the time left
+      // at the pace of late (ConvergencePace).
       char what[96];
       std::snprintf(what, sizeof what, "the way to a residual of %.0e (%zu shots, unshot %.2e of emitted)",
                     options.residual, shots, residual);
-      progress.update(std::log(residual) / std::log(options.residual), what);
+      progress.update(pace.share_done(residual), what);
     }
     if (residual < options.residual) {
       converged = true;
