@@ -77,7 +77,9 @@ void run_interpolate(const InterpolateArgs& args) {
     if (args.gdal_type != "float32" && args.gdal_type != "float64")
       throw UserError("--type", "'" + args.gdal_type + "' is no band type; float32 or float64");
     if (std::isinf(args.nodata)) throw UserError("--nodata", "must be a finite number or nan");
-    if (!geo_options.float64 && std::abs(args.nodata) > std::numeric_limits<float>::max())
+    // Beyond the largest float once rounded to one (-3.4028235e38, numpy's printing of the
+    // lowest float, rounds to it and is fine).
+    if (!geo_options.float64 && std::isinf(static_cast<float>(args.nodata)))
       throw UserError("--nodata", format_number(args.nodata) + " is beyond the range of 32-bit floats (" +
                                       format_number(std::numeric_limits<float>::max()) +
                                       "), where a float32 band holds it as infinity: choose a smaller one, or --type float64");
@@ -112,17 +114,16 @@ void run_interpolate(const InterpolateArgs& args) {
     throw UserError("--barriers", problem);
   if (const std::string problem = args.border_samples ? border_samples_problem(*method) : ""; !problem.empty())
     throw UserError("--border-samples", problem);
-  // No input is ever overwritten, and an unwritable output is refused before any work.
-  std::vector<std::string> inputs = {args.samples};
-  if (use_queries) inputs.push_back(args.queries);
-  if (!args.barriers.empty()) inputs.push_back(args.barriers);
+  // No input is ever overwritten, every file of a vector source included (a VRT's table, a
+  // shapefile's .prj), by the output or by a file a GDAL format writes beside it (a .prj, an ENVI
+  // header); and an unwritable output is refused before any work.
+  std::vector<std::string> inputs;
+  for (const auto& [input, option] : {std::pair{args.samples, "--samples"}, std::pair{args.queries, "--queries"},
+                                      std::pair{args.barriers, "--barriers"}})
+    if (!input.empty())
+      for (std::string& file : vector_input_files(input, option)) inputs.push_back(std::move(file));
   refuse_overwriting_inputs(args.out, "--out", inputs);
-  // nor by a file a GDAL format writes beside the output (a .prj, an ENVI header), such as a
-  // vector source's own (a shapefile's .prj beside the .shp).
   geo_options.inputs = inputs;
-  for (const std::string& input : inputs)
-    if (is_ogr_vector_path(input))
-      for (std::string& file : gdal_functions(input).source_files(input)) geo_options.inputs.push_back(std::move(file));
 
   // Barriers, samples, interpolant, queries.
   if (!args.barriers.empty()) params.barriers = read_barriers_file(args.barriers, "--barriers");
@@ -157,6 +158,22 @@ void run_interpolate(const InterpolateArgs& args) {
   if (!geo_raster && format == FileFormat::pfm && samples.channels != 1 && samples.channels != 3)
     throw UserError("--out", "PFM needs 1 or 3 value columns (greyscale or colour); " + args.samples + " has " +
                                  std::to_string(samples.channels) + "; write .csv instead");
+  // The query points of a file, read before any work (an input), so that the limits are
+  // checked first: a point counts once for each value column, as the memory goes with the values
+  // (10 samples of 20,000 columns on a 100 x 100 raster took 3.4 GB within the limit of points).
+  std::vector<Vec2> points =
+      !use_queries ? std::vector<Vec2>()
+      : is_ogr_vector_path(args.queries) ? gdal_functions("--queries").read_queries(args.queries, {args.x_column, args.y_column, {}})
+                                         : read_queries_csv(args.queries, {args.x_column, args.y_column, {}});
+  if (use_queries)
+    check_limit(Limit::raster_points, static_cast<long long>(points.size()), args.queries, "holds",
+                "query points count as raster points");
+  const size_t point_count = use_queries ? points.size() : static_cast<size_t>(raster.width) * raster.height;
+  if (samples.channels > 1)
+    check_limit(Limit::raster_points, static_cast<long long>(point_count) * samples.channels,
+                use_queries ? args.queries : "--raster",
+                std::to_string(point_count) + " points of " + std::to_string(samples.channels) + " value columns make",
+                "a point counts once for each value column: fewer points, or fewer columns (--value)");
   using Clock = std::chrono::steady_clock;
   const auto seconds_since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
   const double reading_s = seconds_since(start);
@@ -164,28 +181,12 @@ void run_interpolate(const InterpolateArgs& args) {
   const InterpolantResult interpolant = make_point_interpolant(*method, samples, params);
   const double building_s = seconds_since(build_start);
   if (!interpolant) throw UserError(args.samples, interpolant.reason());
-  // The query points: read from a file (input, untimed), or the raster's cell centres (timed
-  // with the interpolation below, as the Python module's raster is), made batch by batch unless
-  // a CSV output lists them all: W3's 4,000,000 would take 64 MB.
+  // A raster's cell centres (timed with the interpolation below, as the Python module's raster
+  // is), made batch by batch unless a CSV output lists them all: W3's 4,000,000 would take 64 MB.
   const auto raster_start = Clock::now();
   const bool csv_out = !geo_raster && format == FileFormat::csv;
   const bool raster_batches = !use_queries && !csv_out;
-  const std::vector<Vec2> points =
-      raster_batches ? std::vector<Vec2>()
-      : !use_queries ? raster_points(raster)
-      : is_ogr_vector_path(args.queries) ? gdal_functions("--queries").read_queries(args.queries, {args.x_column, args.y_column, {}})
-                                         : read_queries_csv(args.queries, {args.x_column, args.y_column, {}});
-  const size_t point_count = raster_batches ? static_cast<size_t>(raster.width) * raster.height : points.size();
-  if (use_queries)
-    check_limit(Limit::raster_points, static_cast<long long>(points.size()), args.queries, "holds",
-                "query points count as raster points");
-  // The memory goes with the values: a point counts once for each value column (10 samples of
-  // 20,000 columns on a 100 x 100 raster took 3.4 GB within the limit of points).
-  if (samples.channels > 1)
-    check_limit(Limit::raster_points, static_cast<long long>(point_count) * samples.channels,
-                use_queries ? args.queries : "--raster",
-                std::to_string(point_count) + " points of " + std::to_string(samples.channels) + " value columns make",
-                "a point counts once for each value column: fewer points, or fewer columns (--value)");
+  if (!use_queries && !raster_batches) points = raster_points(raster);
 
   const std::string description = describe_params(*method, params);
   if (!args.quiet)
@@ -303,16 +304,12 @@ void add_interpolate_command(CLI::App& app) {
                   "outside=nearest (default: the value at the nearest point of the convex hull) | none (NaN "
                   "outside the hull). natural-neighbour, laplace, sibson-c1: barrier-samples=on (default) | off: "
                   "with --barriers, also samples along both sides of each barrier. Others: no parameters");
-  // An empty name given (--value '') would mean the default silently.
-  const auto names_a_column = [](const std::string& v) { return v.empty() ? std::string("must name a column, got ''") : std::string(); };
   cmd->add_option("--x", args->x_column,
                   "Name of the x column of --samples and --queries (case-insensitive; default: the column named x, "
-                  "else the first)")
-      ->check(names_a_column);
-  cmd->add_option("--y", args->y_column, "Name of the y column (default: the column named y, else the second)")->check(names_a_column);
+                  "else the first)");
+  cmd->add_option("--y", args->y_column, "Name of the y column (default: the column named y, else the second)");
   cmd->add_option("--value", args->value_columns,
-                  "COL[,COL...]: the value columns of --samples, in this order (default: every column but x and y)")
-      ->check(names_a_column);
+                  "COL[,COL...]: the value columns of --samples, in this order (default: every column but x and y)");
   cmd->add_option("--queries", args->queries,
                   "Query points: a CSV table (x, y as for --samples; further columns ignored) or a vector source's "
                   "points; outputs keep its row "
@@ -341,7 +338,8 @@ void add_interpolate_command(CLI::App& app) {
       ->transform(CLI::Validator(
           [](std::string& text) {
             const size_t first = text.find_first_not_of(" \t\r\n"), last = text.find_last_not_of(" \t\r\n");
-            text = first == std::string::npos ? std::string() : text.substr(first, last - first + 1);
+            if (first == std::string::npos) return std::string("must not be blank (leave the option out for no CRS)");
+            text = text.substr(first, last - first + 1);
             return std::string();
           },
           ""));

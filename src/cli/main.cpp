@@ -66,29 +66,33 @@ int refuse_extras(const CLI::App& app, const std::string& what, std::string miss
   return radrecon::kUserErrorExitCode;
 }
 
-/// Checks on every option's text before CLI11 converts it, each refusal worded as every refusal
-/// is ("radrecon: error: --opt: ..."): an empty value, which would otherwise mean the default
-/// silently (--barriers "$UNSET" ran without barriers); and a number option's text that is no
-/// number (CLI11's own words, "Could not convert: --nodata = abc", name no rule).
+/// Checks on every option's text before CLI11 converts it or any check of the command's own
+/// runs, each refusal worded as every refusal is ("radrecon: error: --opt: ..."): an empty value,
+/// which would otherwise mean the default silently (--barriers "$UNSET" ran without barriers);
+/// and a number option's text that is no number at all (CLI11's words, "Could not convert:
+/// --nodata = abc" or "Value abc not in range 1 to 100000", name no rule). A number out of an
+/// option's range, or a fraction for a count, is left to the option's own check.
 void check_option_texts(CLI::App& app) {
-  const CLI::Validator not_empty(
-      [](std::string& text) { return text.empty() ? std::string("must not be empty (leave the option out for its default)") : std::string(); },
-      "");
   for (CLI::App* command : app.get_subcommands([](CLI::App*) { return true; }))
     for (CLI::Option* option : command->get_options()) {
       if (option->get_type_size() == 0) continue;  // a flag
-      option->check(not_empty);
       const std::string type = option->get_type_name();
-      const bool whole = type.rfind("INT", 0) == 0 || type.rfind("UINT", 0) == 0;
-      if (whole || type.rfind("FLOAT", 0) == 0)
-        option->check(CLI::Validator(
-            [whole](std::string& text) {
+      if (type.rfind("INT", 0) == 0 || type.rfind("UINT", 0) == 0 || type.rfind("FLOAT", 0) == 0)
+        option->transform(CLI::Validator(
+            [](std::string& text) {
               double number = 0;
-              long long integer = 0;
-              if (whole ? CLI::detail::lexical_cast(text, integer) : CLI::detail::lexical_cast(text, number)) return std::string();
-              return std::string(whole ? "must be a whole number" : "must be a number") + ", got '" + text + "'";
+              return text.empty() || CLI::detail::lexical_cast(text, number) ? std::string()
+                                                                              : "must be a number, got '" + text + "'";
             },
             ""));
+      // transform() puts a check first: this one runs before the number's.
+      const bool has_default = !option->get_required() && option->nonpositional();
+      option->transform(CLI::Validator(
+          [has_default](std::string& text) {
+            if (!text.empty()) return std::string();
+            return std::string("must not be empty") + (has_default ? " (leave the option out for its default)" : "");
+          },
+          ""));
     }
 }
 

@@ -15,4 +15,14 @@ bool is_ogr_vector_path(const std::string& path) {
   return !(ext.empty() || ext == ".csv" || ext == ".txt" || ext == ".xyz" || ext == ".dat" || ext == ".tsv");
 }
 
+std::vector<std::string> vector_input_files(const std::string& path, const std::string& what) {
+  // A table, or a format of one file by its definition: no need to open it twice.
+  const std::string ext = lower_extension(path);
+  if (!is_ogr_vector_path(path) || ext == ".geojson" || ext == ".json" || ext == ".gpkg" || ext == ".fgb")
+    return {path};
+  std::vector<std::string> files = gdal_functions(what).source_files(path);
+  files.push_back(path);  // as given, whatever GDAL lists
+  return files;
+}
+
 }  // namespace radrecon

@@ -36,4 +36,10 @@ const GdalFunctions& gdal_functions(const std::string& what);
 /// .csv, .txt, .xyz, .dat and .tsv (and none).
 bool is_ogr_vector_path(const std::string& path);
 
+/// Every file of an input that may be a vector source, for the outputs that may not land on one:
+/// `path` itself, and for a source of several files (a shapefile's .shx, .dbf and .prj; a VRT's
+/// sources) those GDAL lists (GdalFunctions::source_files; `what` names the option needing GDAL).
+/// A table, GeoJSON, GeoPackage or FlatGeobuf is one file: not opened.
+std::vector<std::string> vector_input_files(const std::string& path, const std::string& what);
+
 }  // namespace radrecon

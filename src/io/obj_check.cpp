@@ -92,7 +92,7 @@ ObjForAssimp check_obj(const std::string& path) {
         if (status == NumberStatus::out_of_range)
           throw UserError(at, "vertex coordinate " + in_quotes(words[k]) + " is out of a double's range");
         if (status == NumberStatus::not_a_number) throw UserError(at, "vertex coordinate " + in_quotes(words[k]) + " is not a number");
-        if (std::abs(value) > std::numeric_limits<float>::max())
+        if (std::isinf(static_cast<float>(value)))  // beyond the largest float once rounded to one
           throw UserError(at, "vertex coordinate " + in_quotes(words[k]) +
                                   " is beyond single precision's range (3.4e38), in which the model reader holds it");
         lo[static_cast<int>(k)] = std::min(lo[static_cast<int>(k)], value), hi[static_cast<int>(k)] = std::max(hi[static_cast<int>(k)], value);

@@ -178,6 +178,9 @@ std::vector<std::string> model_companion_files(const std::filesystem::path& mode
   std::vector<std::string> out;
   const std::string ext = lower_extension(model.string());
   if (ext != ".obj" && ext != ".gltf") return out;
+  // Not a pipe or a device (a FIFO hung here, /dev/zero read 2 GB): the reader refuses those.
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(model, ec)) return out;
   std::string text;
   try {
     text = read_text_file(model.string(), "model file");
@@ -226,6 +229,9 @@ std::vector<std::string> scene_input_files(const std::string& file_or_builtin) {
   if (is_mesh_file(file_or_builtin)) {
     models.emplace_back(file_or_builtin);
   } else {
+    // A scene from a pipe is read once, by load_scene(): its meshes are not looked for here.
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(file_or_builtin, ec)) return out;
     std::string text;
     try {
       text = read_text_file(file_or_builtin, "scene file");

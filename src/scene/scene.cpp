@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 #include <set>
+#include <unordered_map>
 
 #include "core/error.h"
 #include "core/parse.h"
@@ -250,6 +251,7 @@ std::vector<std::string> regularise_surfaces(Scene& scene, const std::string& so
   std::vector<std::string> warnings;
   std::vector<Surface> out;
   out.reserve(scene.surfaces.size());
+  std::unordered_map<std::string, size_t> index_by_name;  // the file's names (the first of each), made at the first split
   for (size_t index = 0; index < scene.surfaces.size(); ++index) {
     Surface& s = scene.surfaces[index];
     const std::string where = source + ": surfaces[" + std::to_string(index) + "] '" + s.name + "'";
@@ -308,11 +310,13 @@ std::vector<std::string> regularise_surfaces(Scene& scene, const std::string& so
     b.name = s.name + ".b";
     // A half named as another surface of the file: said of that one, by its own index (the
     // duplicate-name check after the split counts the halves).
-    for (size_t other = 0; other < scene.surfaces.size(); ++other)
-      if (scene.surfaces[other].name == a.name || scene.surfaces[other].name == b.name)
-        throw UserError(source + ": surfaces[" + std::to_string(other) + "].name",
-                        "'" + scene.surfaces[other].name + "' is the name of a half of surfaces[" + std::to_string(index) +
-                            "] '" + s.name + "', " + (warped ? "a quad off its plane" : "a quad that is not convex") +
+    if (index_by_name.empty())
+      for (size_t k = 0; k < scene.surfaces.size(); ++k) index_by_name.emplace(scene.surfaces[k].name, k);
+    for (const std::string* half : {&a.name, &b.name})
+      if (const auto other = index_by_name.find(*half); other != index_by_name.end())
+        throw UserError(source + ": surfaces[" + std::to_string(other->second) + "].name",
+                        "'" + *half + "' is the name of a half of surfaces[" + std::to_string(index) + "] '" + s.name +
+                            "', " + (warped ? "a quad off its plane" : "a quad that is not convex") +
                             " split into two triangles: rename one of them");
     a.set_triangle(c(0), c(1), c(2));
     b.set_triangle(c(0), c(2), c(3));

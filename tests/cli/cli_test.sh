@@ -94,6 +94,16 @@ ground = [s for s in doc["surfaces"] if s["name"] == "ground"][0]
 sys.exit(0 if len(ground["elements"]) == 100 and doc["stats"]["method"] == "hierarchical" else 1)
 EOF
 
+# --- every command's options: an empty value refused (a required one offered no default), and a
+# number option's text that is no number refused in radrecon's words before its range check -------
+run patches_text solve --scene paper --mesh grid:4 --patches abc --out "$TMP/pt.json"
+expect_rc patches_text 2 && expect_stderr_has patches_text "radrecon: error: --patches: must be a number, got 'abc'"
+run empty_positional compare "" "$TMP/solution.json"
+expect_rc empty_positional 2 && expect_stderr_has empty_positional "must not be empty"
+if grep -q "leave the option out" "$TMP/empty_positional.stderr"; then fail "empty_positional: offered a default it has not"; fi
+run empty_optional solve --scene paper --mesh "" --out "$TMP/em.json"
+expect_rc empty_optional 2 && expect_stderr_has empty_optional "--mesh: must not be empty (leave the option out for its default)"
+
 # --- no input overwritten, outputs checked before any work ---------------------------------
 cp "$TMP/solution.json" "$TMP/sol_copy.json"
 ln -s "$TMP/sol_copy.json" "$TMP/sol_link.png"  # an image name that is the solution

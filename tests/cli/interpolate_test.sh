@@ -335,7 +335,7 @@ refuse domain_without_border "--domain" "$TMP/b8.csv" --samples "$S" --method sh
 
 # --- an empty column name given is refused, not read as the default (every column) ------------
 run empty_value --samples "$TMP/scattered.csv" --value "" --method shepard --queries "$TMP/queries.csv" --out "$TMP/empty_value.csv"
-expect_rc empty_value 2 && expect_stderr_has empty_value "must name a column"
+expect_rc empty_value 2 && expect_stderr_has empty_value "radrecon: error: --value: must not be empty"
 [ -e "$TMP/empty_value.csv" ] && fail "empty_value: wrote an output"
 
 # --- an empty value of any option is refused (--barriers "$UNSET" ran without barriers), and a

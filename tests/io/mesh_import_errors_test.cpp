@@ -2,6 +2,7 @@
 // or inconsistent model file is a UserError naming the file and what is wrong, never a crash.
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <cstring>
 #include <limits>
@@ -54,6 +55,20 @@ TEST(MeshImportErrors, UnknownExtensionEmptyAndMissingFiles) {
   const std::string message = testing_support::user_error_message([&] { import_mesh((dir / "absent.ply").string()); });
   EXPECT_NE(message.find("absent.ply"), std::string::npos) << message;
   EXPECT_NE(message.find("cannot open"), std::string::npos) << message;
+  EXPECT_NE(message.find("No such file or directory"), std::string::npos) << message;  // the system's reason
+  // A folder, a pipe and a device say what they are; none is read (a FIFO hung the scene's list of
+  // input files, /dev/zero read 2 GB), and the list holds the model alone.
+  std::filesystem::create_directory(dir / "folder.obj");
+  EXPECT_NE(testing_support::user_error_message([&] { import_mesh((dir / "folder.obj").string()); }).find("is a folder"),
+            std::string::npos);
+  ASSERT_EQ(::mkfifo((dir / "pipe.obj").c_str(), 0600), 0);
+  EXPECT_EQ(scene_input_files((dir / "pipe.obj").string()), std::vector<std::string>{(dir / "pipe.obj").string()});
+  EXPECT_NE(testing_support::user_error_message([&] { import_mesh((dir / "pipe.obj").string()); }).find("a pipe or a device"),
+            std::string::npos);
+  std::filesystem::create_symlink("/dev/zero", dir / "zero.gltf");
+  EXPECT_EQ(scene_input_files((dir / "zero.gltf").string()).size(), 1u);
+  EXPECT_NE(testing_support::user_error_message([&] { import_mesh((dir / "zero.gltf").string()); }).find("a pipe or a device"),
+            std::string::npos);
 }
 
 TEST(MeshImportErrors, ObjIndicesOutOfRangeAndNonFiniteCoordinates) {
