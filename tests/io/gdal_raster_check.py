@@ -424,6 +424,23 @@ with tempfile.TemporaryDirectory() as tmp:
     check(r.returncode == 0 and gdal.Open(os.path.join(tmp, "huge64.tif")).ReadAsArray()[1][0] == 1e39,
           f"huge64.tif: exit {r.returncode}, {r.stderr.strip()}")
 
+    # The lowest float as numpy prints it rounds to the lowest float, no infinity: accepted.
+    r = run("--samples", samples, "--value", "mag", "--method", "linear", "--raster", "4x3", "--domain", "0,0,4,3",
+            "--nodata", "-3.4028235e38", "--out", os.path.join(tmp, "lowest.tif"))
+    check(r.returncode == 0, f"--nodata -3.4028235e38: exit {r.returncode}, {r.stderr.strip()}")
+    # An OGR VRT over a CSV: the CSV is a file of the source, and --out may not replace it.
+    table = os.path.join(tmp, "vrt_table.csv")
+    shutil.copyfile(samples, table)
+    before = open(table, "rb").read()
+    vrt = os.path.join(tmp, "pts.vrt")
+    with open(vrt, "w") as v:
+        v.write('<OGRVRTDataSource><OGRVRTLayer name="vrt_table"><SrcDataSource relativeToVRT="1">vrt_table.csv</SrcDataSource>'
+                '<GeometryType>wkbPoint</GeometryType><GeometryField encoding="PointFromColumns" x="long" y="lat"/>'
+                '<Field name="mag" type="Real"/></OGRVRTLayer></OGRVRTDataSource>')
+    r = run("--samples", vrt, "--value", "mag", "--method", "linear", "--queries", samples, "--out", table)
+    check(r.returncode == 2 and "refusing to overwrite" in r.stderr and open(table, "rb").read() == before,
+          f"--out over a VRT's table: exit {r.returncode}, {r.stderr.strip()}")
+
     # An Arc/Info grid lists no Float64 band among its creation types, yet writes a Float64 band's
     # values in full: --type float64 is no refusal there.
     out = os.path.join(tmp, "g64.asc")
