@@ -133,15 +133,16 @@ ScatteredSamples read_samples_ogr(const std::string& path, std::vector<std::stri
     for (int k = 0; k < src.fields().GetFieldCount(); ++k) {
       const std::string name = ascii_lower(src.fields().GetFieldDefn(k)->GetNameRef());
       if (!src.numeric(k) || name == ascii_lower(columns.x) || name == ascii_lower(columns.y)) continue;
-      if (name == "x" || name == "y") {
+      if (repeats_a_coordinate_name(name)) {
         left_out += (left_out.empty() ? "" : ", ") + std::string(src.fields().GetFieldDefn(k)->GetNameRef());
         continue;
       }
       value_fields.push_back(k);
     }
     if (!left_out.empty() && !value_fields.empty())
-      warn(path + ": the fields " + left_out + " are not interpolated: they are named as the output's coordinate "
-                  "columns (x, y), the points' coordinates coming from " +
+      warn(path + (left_out.find(',') == std::string::npos ? ": the field " + left_out + " is not interpolated: it is"
+                                                            : ": the fields " + left_out + " are not interpolated: they are") +
+           " named as the output's coordinate columns (x, y), the points' coordinates coming from " +
            (columns.x.empty() ? std::string("their geometry") : "--x and --y") + " (--value names the fields to interpolate)");
   }
   if (value_fields.empty()) {

@@ -253,9 +253,25 @@ ScatteredSamples read_samples_csv(const std::string& path, std::vector<std::stri
   const size_t xc = xy.first, yc = xy.second;
   std::vector<size_t> value_columns;
   for (const std::string& name : columns.values) value_columns.push_back(table.column(name, "--value"));
-  if (columns.values.empty())
-    for (size_t c = 0; c < table.header().size(); ++c)
-      if (c != xc && c != yc) value_columns.push_back(c);
+  if (columns.values.empty()) {
+    std::string left_out;
+    for (size_t c = 0; c < table.header().size(); ++c) {
+      if (c == xc || c == yc) continue;
+      if (repeats_a_coordinate_name(table.header()[c])) {
+        left_out += (left_out.empty() ? "" : ", ") + table.header()[c];
+        continue;
+      }
+      value_columns.push_back(c);
+    }
+    if (value_columns.empty())
+      throw UserError(path, "has no value column: its columns besides --x and --y are named x or y (" + left_out +
+                                "); name the ones to interpolate with --value");
+    if (!left_out.empty())
+      warn(path + (left_out.find(',') == std::string::npos ? ": the column " + left_out + " is not interpolated: it is"
+                                                            : ": the columns " + left_out + " are not interpolated: they are") +
+           " named as the output's coordinate columns (x, y), the points' coordinates coming from --x and --y (--value "
+           "names the columns to interpolate)");
+  }
   ScatteredSamples s;
   s.channels = static_cast<int>(value_columns.size());
   const size_t rows = std::min<size_t>(table.remaining_lines(), static_cast<size_t>(limit_value(Limit::samples)) + 1);

@@ -23,6 +23,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/vec.h"
@@ -43,6 +44,13 @@ struct CsvColumns {
   std::string x, y;
   std::vector<std::string> values;
 };
+
+/// Whether a column (or a vector source's field) that is not the coordinates' own is left out of
+/// the default value columns (no --value): one named x or y, any case, whose values would be
+/// written under the output's own x and y (a header "x,y,x,v", which radrecon refuses to read).
+inline bool repeats_a_coordinate_name(std::string_view name) {
+  return name.size() == 1 && (name[0] == 'x' || name[0] == 'X' || name[0] == 'y' || name[0] == 'Y');
+}
 
 ScatteredSamples read_samples_csv(const std::string& path, std::vector<std::string>* value_names,
                                   const CsvColumns& columns = {});

@@ -360,6 +360,13 @@ printf 'x,y,"z\n0,0,1\n1,0,2\n0,1,3\n' > "$TMP/half_quoted.csv"
 refuse half_quoted "column 3 of the header, '\"z', has a double quote without its pair" "$TMP/hq.csv" \
   --samples "$TMP/half_quoted.csv" --method linear --queries "$Q"
 
+# --- a column named x beside --x lon is not a value column by default: its values would be written
+# under the output's own x (a header x,y,x,v, which radrecon refuses to read back) ------------------
+printf 'lon,lat,x,v\n0,0,7,1\n1,0,7,2\n0,1,7,3\n' > "$TMP/lonlat.csv"
+run lonlat --samples "$TMP/lonlat.csv" --x lon --y lat --method linear --raster 2x2 --domain 0,0,1,1 --out "$TMP/lonlat_out.csv"
+expect_rc lonlat 0 && expect_stderr_has lonlat "the column x is not interpolated"
+[ "$(head -1 "$TMP/lonlat_out.csv")" = "x,y,v" ] || fail "lonlat: header $(head -1 "$TMP/lonlat_out.csv")"
+
 # --- the raster-points limit counts a point once for each value column (the memory goes with the
 # values: 10 samples of 20,000 columns took 3.4 GB on a 100 x 100 raster within the limit) -----
 printf 'x,y,a,b,c\n0,0,1,2,3\n1,0,1,2,3\n0,1,1,2,3\n' > "$TMP/three_columns.csv"
