@@ -73,13 +73,18 @@ class CsvTable {
     if (header_.size() < min_columns)
       throw UserError(where(), "the header " + in_quotes(line) + " has " + std::to_string(header_.size()) +
                                    " column" + (header_.size() == 1 ? "" : "s") + "; expected " + expected_header);
-    for (size_t c = 0; c < header_.size(); ++c) {
+    for (size_t c = 0; c < header_.size(); ++c)
       if (header_[c].empty()) throw UserError(where(), "column " + std::to_string(c + 1) + " of the header has no name");
-      // A name in quotes loses them (unquoted()); a quote left is one without its pair.
-      if (header_[c].find('"') != std::string::npos)
-        throw UserError(where(), "column " + std::to_string(c + 1) + " of the header, " + in_quotes(header_[c]) +
-                                     ", has a double quote without its pair (names are plain or in one pair of quotes)");
-    }
+    header_line_ = line_number_;
+  }
+
+  /// Refuses a column the command uses whose name keeps a double quote: a name in quotes loses
+  /// them (unquoted()), so one left is a quote without its pair, or one within the name.
+  void check_name(size_t c) const {
+    if (header_[c].find('"') != std::string::npos)
+      throw UserError(path_ + ":" + std::to_string(std::max<size_t>(header_line_, 1)),
+                      "column " + std::to_string(c + 1) + " of the header, " + in_quotes(header_[c]) +
+                          ", has a double quote in its name (names are plain or in one pair of double quotes)");
   }
 
   /// The column named `name` (case-insensitive), for option `option`; UserError if none is.
@@ -214,6 +219,7 @@ class CsvTable {
   bool comma_ = true;
   size_t pos_ = 0;
   size_t line_number_ = 0;
+  size_t header_line_ = 1;  ///< the header's line (blank and '#' lines may come first)
   std::vector<std::string> header_;
 };
 
@@ -272,6 +278,7 @@ ScatteredSamples read_samples_csv(const std::string& path, std::vector<std::stri
            " named as the output's coordinate columns (x, y), the points' coordinates coming from --x and --y (--value "
            "names the columns to interpolate)");
   }
+  for (const size_t c : value_columns) table.check_name(c);  // each becomes an output column's name
   ScatteredSamples s;
   s.channels = static_cast<int>(value_columns.size());
   const size_t rows = std::min<size_t>(table.remaining_lines(), static_cast<size_t>(limit_value(Limit::samples)) + 1);

@@ -357,8 +357,12 @@ refuse no_gouraud "valid methods: constant" "$TMP/ng.csv" --samples "$S" --metho
 if grep -q "gouraud" "$TMP/no_gouraud.stderr"; then fail "no_gouraud: interpolate listed gouraud, which it refuses"; fi
 
 printf 'x,y,"z\n0,0,1\n1,0,2\n0,1,3\n' > "$TMP/half_quoted.csv"
-refuse half_quoted "column 3 of the header, '\"z', has a double quote without its pair" "$TMP/hq.csv" \
+refuse half_quoted "column 3 of the header, '\"z', has a double quote in its name" "$TMP/hq.csv" \
   --samples "$TMP/half_quoted.csv" --method linear --queries "$Q"
+# A query table's further columns are ignored, whatever their names.
+printf 'x,y,label 5"\n0.5,0.5,a\n' > "$TMP/quoted_label.csv"
+run quoted_label --samples "$S" --method linear --queries "$TMP/quoted_label.csv" --out "$TMP/ql.csv" --quiet
+expect_rc quoted_label 0
 
 # --- a column named x beside --x lon is not a value column by default: its values would be written
 # under the output's own x (a header x,y,x,v, which radrecon refuses to read back) ------------------
