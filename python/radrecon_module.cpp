@@ -152,7 +152,8 @@ Barriers barriers_of(const py::object& barriers) {
   if (barriers.is_none()) return {};
   if (is_path(barriers)) {
     const std::string path = path_of(barriers);
-    if (path.empty()) throw UserError("barriers", "an empty file name (None: no barriers)");
+    // pathlib.Path("") is "." : the working folder read as a vector source, no barriers meant.
+    if (path.empty() || path == ".") throw UserError("barriers", "an empty file name (None: no barriers)");
     return read_barriers_file(path, "barriers");
   }
   if (py::isinstance<py::bytes>(barriers)) throw UserError("barriers", "a file name as bytes: give a str or a pathlib.Path");
@@ -270,6 +271,11 @@ py::array interpolate(const py::object& points_arg, const py::object& values_arg
     shape = {h, w};
   } else {
     check_points(*queries, "queries");
+    // As the command line's limit: a query counts once for each value column.
+    if (static_cast<double>(queries->shape(0)) * samples.channels > static_cast<double>(limit_value(Limit::raster_points)))
+      throw UserError("queries", std::to_string(queries->shape(0)) + " points of " + std::to_string(samples.channels) +
+                                     " value columns are beyond the limit of " + std::to_string(limit_value(Limit::raster_points)) +
+                                     " (a point counts once for each value column)");
     at = as_vec2(*queries);
     shape = {queries->shape(0)};
   }

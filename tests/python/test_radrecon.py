@@ -5,6 +5,7 @@ and the command line for the same input (same values, same messages). Run by cte
 
 import json
 import os
+import pathlib
 import subprocess
 import threading
 import warnings
@@ -275,7 +276,7 @@ def test_flags_and_an_empty_barrier_file_name_are_named():
     points = rng.uniform(0, 1, (30, 2))
     values = points[:, 0] + points[:, 1]
     for kwargs, field in [({"border_samples": "yes"}, "border_samples"), ({"border_samples": 1}, "border_samples"),
-                          ({"barriers": ""}, "barriers")]:
+                          ({"barriers": ""}, "barriers"), ({"barriers": pathlib.Path("")}, "barriers")]:
         with pytest.raises(radrecon.Error, match="^" + field + ": ") as caught:
             radrecon.interpolate(points, values, queries=points[:3], method="natural-neighbour", **kwargs)
         assert len(str(caught.value)) < 200
