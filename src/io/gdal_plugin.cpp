@@ -1,5 +1,7 @@
 #include "io/gdal_plugin.h"
 
+#include <algorithm>
+
 #include "core/parse.h"
 #include "io/plugin.h"
 
@@ -12,7 +14,7 @@ const GdalFunctions& gdal_functions(const std::string& what) {
 
 bool is_ogr_vector_path(const std::string& path) {
   const std::string ext = lower_extension(path);
-  return !(ext.empty() || ext == ".csv" || ext == ".txt" || ext == ".xyz" || ext == ".dat" || ext == ".tsv");
+  return !ext.empty() && std::find(kTableExtensions.begin(), kTableExtensions.end(), ext) == kTableExtensions.end();
 }
 
 std::vector<std::string> vector_input_files(const std::string& path, const std::string& what) {

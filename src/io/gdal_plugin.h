@@ -3,7 +3,9 @@
 // io/gdal_vector.h) are built into libradrecon_gdal.so, beside the executable, and loaded on
 // first use.
 
+#include <array>
 #include <span>
+#include <string_view>
 #include <string>
 #include <vector>
 
@@ -32,8 +34,12 @@ inline constexpr const char* kGdalPluginEntry = "radrecon_gdal_functions";
 /// name its path). UserError naming `what` (the option that needs GDAL) when it cannot be loaded.
 const GdalFunctions& gdal_functions(const std::string& what);
 
+/// The extensions of a file read as a CSV or XYZ table (besides none); any other is read through
+/// OGR (is_ogr_vector_path()).
+inline constexpr std::array<std::string_view, 5> kTableExtensions = {".csv", ".txt", ".xyz", ".dat", ".tsv"};
+
 /// Whether `path` is read through OGR rather than as a native CSV/XYZ table: any extension but
-/// .csv, .txt, .xyz, .dat and .tsv (and none).
+/// kTableExtensions (and none).
 bool is_ogr_vector_path(const std::string& path);
 
 /// Every file of an input that may be a vector source, for the outputs that may not land on one:

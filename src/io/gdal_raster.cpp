@@ -8,6 +8,7 @@
 #include <memory>
 #include <mutex>
 #include <sstream>
+#include <string_view>
 #include <vector>
 
 #include <cpl_conv.h>
@@ -57,28 +58,33 @@ bool can_create_raster(GDALDriver* d) {
          (d->GetMetadataItem(GDAL_DCAP_CREATE) != nullptr || d->GetMetadataItem(GDAL_DCAP_CREATECOPY) != nullptr);
 }
 
-/// Refuses a driver that cannot write bands of `type` (its creation data types, where it lists
-/// them): GDAL would round the values into its own type (Byte for GIF, JPEG, XPM and PNG) without
-/// a word. Only for Float32: the list is Create()'s, and a driver that writes through CreateCopy()
-/// alone may hold more (an Arc/Info grid lists no Float64, yet writes a Float64 band's values in
-/// full), or less (XYZ lists nothing).
-/// Whether the driver lists `type` among its band types, or lists none (CreateCopy() then refuses
-/// what it cannot write).
-bool writes_band_type(GDALDriver* d, const char* type) {
+/// The advice of a refusal for the format: formats known to keep floating-point bands.
+constexpr const char* kFloatFormatsAdvice = "; write .tif, .asc, .nc or another format of floating-point bands";
+
+/// Whether the driver may write bands of `type`: it lists it among its band types
+/// (GDAL_DMD_CREATIONDATATYPES), or lists none and is not one of those known to write integers
+/// alone (CALS's 1-bit, BLX's 16-bit). XYZ, Leveller, ZMap and others list none, yet write floats.
+bool lists_band_type(GDALDriver* d, const char* type) {
   const char* types = d->GetMetadataItem(GDAL_DMD_CREATIONDATATYPES);
-  if (types == nullptr) return true;
+  if (types == nullptr) return std::string_view(d->GetDescription()) != "CALS" && std::string_view(d->GetDescription()) != "BLX";
   std::istringstream list(types);
   for (std::string t; list >> t;)
     if (t == type) return true;
   return false;
 }
 
+/// Refuses a driver that cannot write bands of `type` (its creation data types, where it lists
+/// them): GDAL would round the values into its own type (Byte for GIF, JPEG, XPM and PNG) without
+/// a word. Only for Float32: the list is Create()'s, and a driver that writes through CreateCopy()
+/// alone may hold more (an Arc/Info grid lists no Float64, yet writes a Float64 band's values in
+/// full), or less (XYZ lists nothing; the read-back judges what it wrote).
 void require_band_type(GDALDriver* d, const char* type, const std::string& where) {
-  if (writes_band_type(d, type)) return;
+  if (lists_band_type(d, type)) return;
   const char* types = d->GetMetadataItem(GDAL_DMD_CREATIONDATATYPES);
-  throw UserError(where, std::string("GDAL's ") + d->GetDescription() + " driver writes bands of " + types +
-                             " only, which would round the values to them (radrecon writes " + type +
-                             "); write .tif, .asc, .nc or another format of floating-point bands");
+  throw UserError(where, std::string("GDAL's ") + d->GetDescription() + " driver writes bands of " +
+                             (types != nullptr ? types : "integers") +
+                             " only, which would round the values to them (radrecon writes " + type + ")" +
+                             kFloatFormatsAdvice);
 }
 
 /// The raster written at `file` (in its temporary folder) read back and compared with `image`,
@@ -203,7 +209,7 @@ std::string gdal_raster_driver(const std::string& path, const std::string& forma
     if (d == nullptr || !can_create_raster(d))
       throw UserError("--format", "'" + format + "' is no GDAL driver that creates rasters (gdalinfo --formats lists them)");
     if (const char* why = no_file_of_values(d->GetDescription()))
-      throw UserError("--format", std::string("GDAL's ") + d->GetDescription() + " driver " + why + "; write .tif, .asc, .nc or another format of floating-point bands");
+      throw UserError("--format", std::string("GDAL's ") + d->GetDescription() + " driver " + why + kFloatFormatsAdvice);
     require_band_type(d, "Float32", "--format");
     return format;
   }
@@ -217,13 +223,13 @@ std::string gdal_raster_driver(const std::string& path, const std::string& forma
     for (std::string e; list >> e;) {
       if (ascii_lower(e) == ext && !ext.empty()) {
         if (const char* why = no_file_of_values(d->GetDescription()))
-          throw UserError(where, std::string("GDAL's ") + d->GetDescription() + " driver " + why + " (." + ext +
-                                     "); write .tif, .asc, .nc or another format of floating-point bands");
+          throw UserError(where, std::string("GDAL's ") + d->GetDescription() + " driver " + why + " (." + ext + ")" +
+                                     kFloatFormatsAdvice);
         require_band_type(d, "Float32", where);
         return d->GetDescription();
       }
       // The extensions that would be written: radrecon's own (.png) and the refused left out.
-      if (no_file_of_values(d->GetDescription()) == nullptr && writes_band_type(d, "Float32") &&
+      if (no_file_of_values(d->GetDescription()) == nullptr && lists_band_type(d, "Float32") &&
           ascii_lower(e) != "png" && known.find(" ." + e + ",") == std::string::npos)
         known += " ." + e + ",";
     }

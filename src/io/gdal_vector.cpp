@@ -13,10 +13,18 @@
 #include "core/error.h"
 #include "core/parse.h"
 #include "core/tolerances.h"
+#include "io/gdal_plugin.h"
 
 namespace radrecon {
 
 namespace {
+
+/// kTableExtensions, as a list for a message: ".csv, .txt, ..., .tsv".
+std::string table_names() {
+  std::string out;
+  for (const std::string_view e : kTableExtensions) out += (out.empty() ? "" : ", ") + std::string(e);
+  return out;
+}
 
 /// GDAL's drivers, registered on first use.
 void register_drivers() {
@@ -42,9 +50,9 @@ class OgrLayer {
     if (!data_ && plain && !std::filesystem::exists(path, ec)) throw UserError(path, "no such file");
     if (!data_)
       throw UserError(path, "cannot open as a vector source" + (reason.empty() ? std::string() : ": " + reason) +
-                                (plain ? " (a CSV or XYZ table is read as one only under the names .csv, .txt, .xyz, .dat, "
-                                         ".tsv or no extension: rename it if it is one)"
-                                       : ""));
+                                (plain ? " (a CSV or XYZ table is read as one only under the names " + table_names() +
+                                             " or no extension: rename it if it is one)"
+                                       : std::string()));
     if (data_->GetLayerCount() < 1) throw UserError(path, "has no layer");
     layer_ = data_->GetLayer(0);
     // The first layer is read (docs/interpolate.md); the others, said so rather than left unseen.

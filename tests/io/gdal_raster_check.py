@@ -251,12 +251,20 @@ with tempfile.TemporaryDirectory() as tmp:
         (["--format", "NoSuchDriver"], "--format", "x.tif"),
         (["--type", "int8"], "--type", "t.tif"),
         ([], "unknown output extension", "x.nosuchext"),
+        ([], "CALS driver writes bands of integers only", "x.cal"),  # lists no band types: it crashed the message
     ]:
         out = os.path.join(tmp, name)
         r = run("--samples", samples, "--value", "mag", "--method", "linear", "--raster", "4x3", "--domain",
                 "0,0,4,3", "--out", out, *args)
         check(r.returncode == 2 and words in r.stderr, f"{args}: exit {r.returncode}, {r.stderr.strip()}")
         check(not os.path.exists(out), f"{args}: nothing written")
+    # The extensions an unknown one is told of are those that write floats: not radrecon's own .png
+    # again, nor .vrt, .jpg, .kml or .cal, each refused.
+    r = run("--samples", samples, "--value", "mag", "--method", "linear", "--raster", "4x3", "--domain", "0,0,4,3",
+            "--out", os.path.join(tmp, "x.nosuchext"))
+    offered = r.stderr.split("through GDAL")[-1]
+    check(all(f" {e}," not in offered and f" {e} " not in offered for e in [".png", ".vrt", ".jpg", ".kml", ".cal"])
+          and " .tif," in offered and " .xyz," in offered, f"offered extensions: {offered.strip()}")
     # A CRS that PROJ reads but GDAL refuses (a bare name) is refused for a GeoTIFF as for any format.
     for crs in ["WGS 84"]:
         out = os.path.join(tmp, "named.tif")

@@ -97,6 +97,7 @@ TEST(MeshImportErrors, ObjIndicesOutOfRangeAndNonFiniteCoordinates) {
   // A bare 'f' was accepted, a corner that is no index refused by assimp without a line, and a
   // statement that only begins with f ("foo") read as a face: refused, and skipped.
   EXPECT_TRUE(Refused(dir, "bare.obj", std::string(kTriangle) + "f\nf 1 2 3\n", {"bare.obj:4", "a face of 0 corners"}));
+  EXPECT_TRUE(Refused(dir, "bare_v.obj", std::string(kTriangle) + "v\nf 1 2 3\n", {"bare_v.obj:4", "needs 3 coordinates, it has 0"}));
   EXPECT_TRUE(Refused(dir, "x.obj", std::string(kTriangle) + "f 1 2 3 x\n", {"x.obj:4", "corner 'x' is no vertex index"}));
   write_file(dir / "foo.obj", std::string(kTriangle) + "foo bar\nf 1 2 3\n");
   EXPECT_EQ(import_mesh((dir / "foo.obj").string()).surfaces.size(), 1u);
