@@ -39,6 +39,20 @@ TEST(Rankings, SpearmanMatchesHandComputedValues) {
   EXPECT_NEAR(compare_rankings(table, 0).spearman, -1.0, 1e-15);
 }
 
+TEST(Rankings, SpearmanGivesTiesTheMeanOfTheRanksTheySpan) {
+  // The paper's three Linf values tied at 0.329 (an outside-in trial): mid-ranks (1, 3, 3, 3, 5)
+  // against (1, 2, 3, 4, 5), as scipy.stats.spearmanr ranks them: cov 8, variances 10 and 8,
+  // rho = 8 / sqrt(80) = 2 / sqrt(5). The shown ranks keep the better rank (1, 2, 2, 2, 5).
+  const std::vector<RankedMethod> table = {{"a", {1, 0, 0}, {0.3, 1, 1}},
+                                           {"b", {2, 0, 0}, {0.329, 1, 1}},
+                                           {"c", {3, 0, 0}, {0.329, 1, 1}},
+                                           {"d", {4, 0, 0}, {0.329, 1, 1}},
+                                           {"e", {5, 0, 0}, {0.5, 1, 1}}};
+  const RankingComparison c = compare_rankings(table, 0);
+  EXPECT_EQ(c.paper, (std::vector<int>{1, 2, 2, 2, 5}));
+  EXPECT_NEAR(c.spearman, 2 / std::sqrt(5.0), 1e-15);
+}
+
 TEST(Rankings, BestIndexSkipsNanAndKnowsWhichEndIsBest) {
   EXPECT_EQ(best_index({0.3, kNan, 0.1, 0.2}), 2);
   EXPECT_EQ(best_index({0.3, kNan, 0.1, 0.2}, true), 0);
