@@ -6,11 +6,12 @@
 
 namespace radrecon {
 
-const char* const kRankingReasons =
-    "The values cannot match and the rankings need not: the scenes differ (the paper describes its scene in words "
-    "and a picture only; ours is a reconstruction of it, docs/method.md), our grid values are point samples of the "
-    "radiosity at the cell centres where the paper's may be cell averages, and the paper does not say how its "
-    "reference solution was computed (ours: progressive refinement on a 400 x 400 grid).";
+std::string ranking_reasons(const std::string& reference_grid) {
+  return "The values cannot match and the rankings need not: the scenes differ (the paper describes its scene in words "
+         "and a picture only; ours is a reconstruction of it, docs/method.md), our grid values are point samples of the "
+         "radiosity at the cell centres where the paper's may be cell averages, and the paper does not say how its "
+         "reference solution was computed (ours: progressive refinement on a " + reference_grid + " grid).";
+}
 
 std::vector<int> ranks_ascending(const std::vector<double>& values) {
   std::vector<int> rank(values.size(), 0);

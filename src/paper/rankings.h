@@ -43,7 +43,8 @@ int best_index(const std::vector<double>& values, bool larger_is_better = false)
 /// same place, the rank correlation.
 std::string ranking_paragraph(const std::string& table_name, const std::vector<RankedMethod>& table);
 
-/// The known reasons the values and rankings differ from the paper's, in words.
-extern const char* const kRankingReasons;
+/// The known reasons the values and rankings differ from the paper's, in words, for a reference
+/// solution on a grid of `reference_grid` ("400 x 400") elements on the ground.
+std::string ranking_reasons(const std::string& reference_grid);
 
 }  // namespace radrecon

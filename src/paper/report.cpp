@@ -91,11 +91,14 @@ void table(std::ostringstream& html, const std::string& caption, const std::vect
   for (int norm = 0; norm < 3; ++norm) ranks.push_back(compare_rankings(ranked, norm));
   const bool has_paper = !ranks[0].methods.empty();
 
-  std::vector<int> best;
+  // Each column's best value, marked wherever it occurs (ties alike: four methods share an
+  // overshoot of 0), NaN where the column marks none.
+  std::vector<double> best;
   for (const Column& c : columns) {
     std::vector<double> values;
     for (const ReportRow& r : rows) values.push_back(c.value(r));
-    best.push_back(c.marks_best ? best_index(values, c.larger_is_better) : -1);
+    const int b = c.marks_best ? best_index(values, c.larger_is_better) : -1;
+    best.push_back(b >= 0 ? values[static_cast<size_t>(b)] : std::nan(""));
   }
   html << "<table><caption>" << caption << "</caption>\n<tr><th>method</th>";
   for (const Column& c : columns) html << "<th" << (c.paper ? " class=paper" : "") << ">" << c.heading << "</th>";
@@ -105,7 +108,7 @@ void table(std::ostringstream& html, const std::string& caption, const std::vect
   for (size_t i = 0; i < rows.size(); ++i) {
     html << "<tr><td>" << html_escaped(rows[i].method) << "</td>";
     for (size_t c = 0; c < columns.size(); ++c) {
-      const std::vector<std::string> classes = {columns[c].paper ? "paper" : "", best[c] == static_cast<int>(i) ? "best" : ""};
+      const std::vector<std::string> classes = {columns[c].paper ? "paper" : "", columns[c].value(rows[i]) == best[c] ? "best" : ""};
       const std::string cls = classes[0] + (classes[0].empty() || classes[1].empty() ? "" : " ") + classes[1];
       html << "<td" << (cls.empty() ? "" : " class=\"" + cls + "\"") << ">" << num(columns[c].value(rows[i])) << "</td>";
     }
@@ -137,7 +140,7 @@ void write_report(const std::filesystem::path& dir, const ReportContent& c) {
   const std::vector<ReportRow> reference_rows = {reference};
   const std::vector<std::string> all = {"_view", "_closeup", "_ground", "_difference"};
   std::vector<FigureSection> sections = {
-      {"Fig. 2: the reference solution", "the 400 x 400 solution", &reference_rows, {"_view", "_closeup", "_ground"}, false},
+      {"Fig. 2: the reference solution", "the " + c.reference_grid + " solution", &reference_rows, {"_view", "_closeup", "_ground"}, false},
       {"Fig. 3: grid data", "grid data", &c.table1, all},
       {"Fig. 4: quadtree data", "quadtree data", &c.table2, all}};
   const bool barriers = !c.grid_barriers.empty();
@@ -176,7 +179,7 @@ void write_report(const std::filesystem::path& dir, const ReportContent& c) {
        << "methods it ran, 1 = smallest error.</p>\n";
   table(html, "Table 1: reconstruction of grid data", c.table1);
   table(html, "Table 2: reconstruction of quadtree data", c.table2);
-  html << "<p class=ranking>" << html_escaped(kRankingReasons) << "</p>\n";
+  html << "<p class=ranking>" << html_escaped(ranking_reasons(c.reference_grid)) << "</p>\n";
   if (barriers) {
     html << "<p>Table 3: the same data and methods with the scene's barriers; no sample's influence crosses a wall's "
             "foot.</p>\n";

@@ -221,6 +221,7 @@ ReportContent report_content(const PaperRun& run, int rays_per_pixel) {
     return out;
   };
   ReportContent report;
+  report.reference_grid = std::to_string(run.at.width) + " x " + std::to_string(run.at.height);
   report.white_w_m2 = white;
   report.rays_per_pixel = rays_per_pixel;
   report.table1 = rows(run.table1, published_table1(), "fig3");

@@ -84,6 +84,19 @@ TEST(Report, EveryFigureHasHeadingsCaptionsAndScales) {
   EXPECT_NE(html.find("no view: the views show the paper's own methods"), std::string::npos) << "linear has no views";
 }
 
+TEST(Report, TiesForBestAreAllMarkedAndTheReferenceGridIsTheRunsOwn) {
+  // Two methods share the best L1 (0.01): both marked (the first alone was). A reference of 16 x
+  // 16 is named so in Fig. 2 and the ranking note (both said 400 x 400 whatever the run).
+  ReportContent c = content();
+  c.table1[0].figures.norms.l1 = 0.01;
+  c.reference_grid = "16 x 16";
+  const std::string html = written_report(c);
+  EXPECT_EQ(count(html, "<td class=\"best\">0.01</td>"), 2u);
+  EXPECT_NE(html.find("the 16 x 16 solution"), std::string::npos);
+  EXPECT_NE(html.find("progressive refinement on a 16 x 16 grid"), std::string::npos);
+  EXPECT_EQ(html.find("400 x 400"), std::string::npos);
+}
+
 TEST(Report, TheComparisonViewListsEveryPictureOfTheFigures) {
   const std::string html = written_report(content());
   std::set<std::string> figures, listed;
