@@ -57,9 +57,11 @@ bool clip_to_quad(const Surface& quad, Vec3& a, Vec3& b) {
     else t1 = std::min(t1, t);
   }
   if (!(t0 < t1)) return false;
+  // An end the quad does not cut stays as it is: a0 + 1 * (b - a0) rounds (the paper's wall foot
+  // ended at y = 0.6000000000000001 for 0.6, and its corner let a sight line through).
   const Vec3 a0 = a;
-  a = a0 + t0 * d;
-  b = a0 + t1 * d;
+  if (t0 > 0) a = a0 + t0 * d;
+  if (t1 < 1) b = a0 + t1 * d;
   return true;
 }
 

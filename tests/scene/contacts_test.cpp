@@ -74,6 +74,13 @@ TEST(ContactLines, ThePaperGroundHasExactlyTheTwoWallFeet) {
   ASSERT_EQ(lines.size(), 2u);
   expect_segment(lines[0], {2.6, 0.6}, {2.6, 2.6});  // wall1's foot (scene order: wall1, wall2)
   expect_segment(lines[1], {0.6, 2.6}, {2.6, 2.6});  // wall2's foot
+  // To the last bit, as docs/method.md says: an end the ground does not cut is the wall's own
+  // corner (it was 0.6000000000000001, and a sight line through the corner passed; an outside-in
+  // trial's brute force put constant's Table 3a L1 at .020626, the tool at .020639).
+  EXPECT_EQ(lines[0].a, Vec2(2.6, 0.6));
+  EXPECT_EQ(lines[0].b, Vec2(2.6, 2.6));
+  EXPECT_EQ(lines[1].a, Vec2(0.6, 2.6));
+  EXPECT_EQ(lines[1].b, Vec2(2.6, 2.6));
   // The walls meet the ground and each other only along their own borders; the light touches
   // nothing.
   for (const char* side : {"wall1/front", "wall1/back", "wall2/front", "wall2/back", "light"})
