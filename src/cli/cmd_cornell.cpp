@@ -14,6 +14,7 @@
 #include "core/parse.h"
 #include "io/atomic_file.h"
 #include "io/image_io.h"
+#include "io/output_folder.h"
 #include "io/paths.h"
 #include "io/scene_json.h"
 #include "io/solution_json.h"
@@ -82,6 +83,9 @@ std::string page(const Scene& scene, const Camera& camera, const std::string& me
   return html.str();
 }
 
+/// The file of the output folder that lists the files its run wrote (io/output_folder.h).
+constexpr const char* kCornellManifest = ".radrecon-cornell-files";
+
 void run_cornell(const CornellArgs& args) {
   using clock = std::chrono::steady_clock;
   const auto start = clock::now();
@@ -111,6 +115,11 @@ void run_cornell(const CornellArgs& args) {
   for (const std::string& file : {std::string("solution.json"), std::string("index.html")})
     refuse_overwriting_inputs((dir / file).string(), "--out", inputs);
   for (Method m : all_methods()) refuse_overwriting_inputs((dir / (stem + method_name(m) + ".png")).string(), "--out", inputs);
+  // An earlier run's pictures (of another scene or camera) do not stay beside this run's.
+  OutputFolderRun folder(dir, kCornellManifest);
+  if (folder.removed() > 0 && !args.quiet)
+    std::fprintf(stderr, "cornell: removed the %zu files of the earlier run in %s (listed in its %s)\n", folder.removed(),
+                 args.out.c_str(), kCornellManifest);
 
   SolveSettings settings;
   settings.residual = args.residual;
@@ -166,6 +175,7 @@ void run_cornell(const CornellArgs& args) {
     panels.push_back(panel);
   }
   write_text_file(dir / "index.html", page(scene, *camera, args.mesh, elements, white, args.samples, panels));
+  folder.finish();
   if (!args.quiet)
     std::fprintf(stderr, "cornell: wrote %s in %.1f s\n", (dir / "index.html").string().c_str(), seconds_since(start));
 }

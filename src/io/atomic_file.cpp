@@ -4,10 +4,12 @@
 #include <csignal>
 #include <cstring>
 #include <fstream>
+#include <mutex>
 #include <string>
 #include <system_error>
 #include <unistd.h>
 
+#include "core/check.h"
 #include "core/error.h"
 
 namespace radrecon {
@@ -69,6 +71,34 @@ void remove_temporary_files_on_signals() {
   }
 }
 
+namespace {
+
+/// The live WrittenFiles' list and callback, null when none.
+std::mutex g_written_mutex;
+std::vector<std::filesystem::path>* g_written = nullptr;
+std::function<void(const std::filesystem::path&)> g_on_write;
+
+}  // namespace
+
+WrittenFiles::WrittenFiles(std::function<void(const std::filesystem::path&)> on_write) {
+  const std::lock_guard<std::mutex> lock(g_written_mutex);
+  RR_CHECK(g_written == nullptr, "one WrittenFiles at a time");
+  g_written = new std::vector<std::filesystem::path>();
+  g_on_write = std::move(on_write);
+}
+
+WrittenFiles::~WrittenFiles() {
+  const std::lock_guard<std::mutex> lock(g_written_mutex);
+  delete g_written;
+  g_written = nullptr;
+  g_on_write = nullptr;
+}
+
+std::vector<std::filesystem::path> WrittenFiles::paths() const {
+  const std::lock_guard<std::mutex> lock(g_written_mutex);
+  return *g_written;
+}
+
 void write_file_atomically(const std::filesystem::path& requested,
                            const std::function<void(const std::filesystem::path&)>& write) {
   namespace fs = std::filesystem;
@@ -103,6 +133,10 @@ void write_file_atomically(const std::filesystem::path& requested,
     fs::remove(tmp, ec);
     throw UserError(path.string(), "cannot write: " + ec.message());
   }
+  const std::lock_guard<std::mutex> lock(g_written_mutex);
+  if (g_written == nullptr) return;
+  g_written->push_back(requested);
+  if (g_on_write) g_on_write(requested);
 }
 
 void write_text_file(const std::filesystem::path& path, const std::string& text) {

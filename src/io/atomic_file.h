@@ -7,6 +7,7 @@
 #include <functional>
 #include <span>
 #include <string>
+#include <vector>
 
 namespace radrecon {
 
@@ -15,6 +16,20 @@ namespace radrecon {
 /// Creates the parent folders of `path`.
 void write_file_atomically(const std::filesystem::path& path,
                            const std::function<void(const std::filesystem::path&)>& write);
+
+/// While one lives, every file write_file_atomically() completes (from any thread) is recorded:
+/// the files a run writes (io/output_folder.h). At most one at a time.
+class WrittenFiles {
+ public:
+  /// `on_write`, if given, is called with each path as it is recorded (under a lock: one call at a
+  /// time).
+  explicit WrittenFiles(std::function<void(const std::filesystem::path&)> on_write = {});
+  ~WrittenFiles();
+  WrittenFiles(const WrittenFiles&) = delete;
+  WrittenFiles& operator=(const WrittenFiles&) = delete;
+  /// The paths written so far, as requested (not through their symbolic links), in order.
+  std::vector<std::filesystem::path> paths() const;
+};
 
 /// From the call on, SIGINT, SIGTERM and SIGHUP first remove the temporary files that
 /// write_file_atomically() has open (at most kMaxPendingFiles at a time), then end the process

@@ -18,6 +18,7 @@
 #include "core/progress.h"
 #include "core/thread_pool.h"
 #include "io/image_io.h"
+#include "io/output_folder.h"
 #include "io/paths.h"
 #include "io/solution_json.h"
 #include "paper/data_sets.h"
@@ -92,38 +93,15 @@ class JobList {
   std::vector<std::function<void()>> queues_[2];
 };
 
-/// Removes what an earlier run into the folder wrote and this one will not write again: Table 3
-/// and Fig. 5-8 without barriers, Fig. 7-8 without border samples (the tables and the report
-/// are rewritten whole). Else they would stand beside the new results as if they were of them.
-/// Returns how many files it removed.
-size_t remove_stale_outputs(const PaperOptions& opt) {
-  namespace fs = std::filesystem;
-  std::vector<fs::path> stale;
-  std::error_code ec;
-  if (!opt.barriers && fs::is_regular_file(opt.out_dir / "table3.md", ec)) stale.push_back(opt.out_dir / "table3.md");
-  const std::vector<std::string> prefixes =
-      !opt.barriers ? std::vector<std::string>{"fig5_", "fig6_", "fig7_", "fig8_"}
-      : !opt.border_samples ? std::vector<std::string>{"fig7_", "fig8_"} : std::vector<std::string>{};
-  if (!prefixes.empty() && fs::is_directory(opt.out_dir / "figures", ec))
-    for (const fs::directory_entry& e : fs::directory_iterator(opt.out_dir / "figures", ec)) {
-      const std::string name = e.path().filename().string();
-      if (!e.is_regular_file(ec) || e.path().extension() != ".png") continue;
-      for (const std::string& p : prefixes)
-        if (name.starts_with(p)) stale.push_back(e.path());
-    }
-  for (const fs::path& f : stale)
-    if (!fs::remove(f, ec) && ec) throw UserError(f.string(), "cannot remove this output of an earlier run: " + ec.message());
-  return stale.size();
-}
-
 }  // namespace
 
 void run_paper(const PaperOptions& opt, const std::string& out_where) {
   namespace fs = std::filesystem;
   check_output_folder(opt.out_dir.string(), out_where);  // before any work
-  if (const size_t removed = remove_stale_outputs(opt); removed > 0 && opt.progress)
-    std::fprintf(stderr, "paper: removed %zu file%s of an earlier run in %s that this run does not write (Table 3 or "
-                         "Fig. 5-8)\n", removed, removed == 1 ? "" : "s", opt.out_dir.string().c_str());
+  OutputFolderRun folder(opt.out_dir, kPaperManifest);
+  if (folder.removed() > 0 && opt.progress)
+    std::fprintf(stderr, "paper: removed the %zu files of the earlier run in %s (listed in its %s) before writing this "
+                         "run's\n", folder.removed(), opt.out_dir.string().c_str(), kPaperManifest);
   Stopwatch clock;
   const Scene scene = paper_scene();
   PaperDataSets data;
@@ -306,6 +284,7 @@ void run_paper(const PaperOptions& opt, const std::string& out_where) {
   ReportContent report = report_content(run, opt.view_samples * opt.view_samples);
   for (const auto& notes : view_notes) report.notes.insert(report.notes.end(), notes.begin(), notes.end());
   write_report(opt.out_dir, report);
+  folder.finish();  // the manifest last: a folder without one holds no whole run
   const double t_tables = clock.lap();
 
   if (opt.progress)

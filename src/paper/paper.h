@@ -12,6 +12,9 @@
 
 namespace radrecon {
 
+/// The file of an output folder that lists the files its run wrote (io/output_folder.h).
+inline constexpr const char* kPaperManifest = ".radrecon-paper-files";
+
 struct PaperOptions {
   std::filesystem::path out_dir = "out/paper";
   int reference_divisions = 400;  ///< reference grid on the ground (elements per edge)

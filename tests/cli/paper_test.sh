@@ -38,10 +38,13 @@ EOF
 # --- run again into the same folder without barriers: nothing of the first run's Table 3 -------
 [ -s "$TMP/paper/table3.md" ] && [ -s "$TMP/paper/figures/fig5_natural-neighbour_difference.png" ] ||
   fail "paper: the run with barriers wrote no Table 3 or Fig. 5"
+echo mine > "$TMP/paper/figures/fig5_my_sketch.png"  # a file of the user's, named like a figure
 run again paper --out "$TMP/paper" --reference 32 --no-barriers
 expect_rc again 0 && expect_stderr_has again "removed"
+[ -s "$TMP/paper/figures/fig5_my_sketch.png" ] || fail "again: removed a file the earlier run did not write"
+grep -qx "table1.md" "$TMP/paper/.radrecon-paper-files" || fail "again: the manifest does not list table1.md"
 [ -e "$TMP/paper/table3.md" ] && fail "again: table3.md of the earlier run is left beside the new tables"
-ls "$TMP/paper/figures" | grep -q '^fig[5-8]_' && fail "again: Fig. 5-8 of the earlier run are left"
+ls "$TMP/paper/figures" | grep -v fig5_my_sketch | grep -q '^fig[5-8]_' && fail "again: Fig. 5-8 of the earlier run are left"
 [ -s "$TMP/paper/table1.md" ] || fail "again: no table1.md"
 
 finish paper_test
