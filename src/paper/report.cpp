@@ -181,8 +181,8 @@ void write_report(const std::filesystem::path& dir, const ReportContent& c) {
   table(html, "Table 2: reconstruction of quadtree data", c.table2);
   html << "<p class=ranking>" << html_escaped(ranking_reasons(c.reference_grid)) << "</p>\n";
   if (barriers) {
-    html << "<p>Table 3: the same data and methods with the scene's barriers; no sample's influence crosses a wall's "
-            "foot.</p>\n";
+    html << "<p>Table 3: the same data and methods with the scene's barriers: "
+         << html_escaped(c.barrier_rule.empty() ? "no sample's influence crosses a wall's foot" : c.barrier_rule) << ".</p>\n";
     table(html, "Table 3a: grid data with barriers", c.grid_barriers, &c.table1);
     table(html, "Table 3b: quadtree data with barriers", c.quadtree_barriers, &c.table2);
     if (!c.grid_border.empty()) {

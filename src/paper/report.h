@@ -26,6 +26,7 @@ struct ReportContent {
   std::vector<std::string> settings;  ///< one line each, shown as a list
   std::vector<std::string> notes;     ///< e.g. fallbacks of the renderer
   std::string reference_grid = "400 x 400";  ///< the reference solution's ground elements, "W x H"
+  std::string barrier_rule;  ///< how Table 3's barriers are taken, in words (barrier_rule())
   double white_w_m2 = 1;              ///< the radiosity every picture shows as white
   int rays_per_pixel = 1;             ///< of the views
 };

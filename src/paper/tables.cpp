@@ -30,11 +30,18 @@ const PublishedTable& published_table2() {
   return table;
 }
 
-const char* const kBarrierRule =
-    "the ground's contact lines with the walls (the solution's barriers): a sample counts for a point only if "
-    "the segment between them crosses no wall foot; constant is the nearest visible sample, bilinear, "
-    "bicubic and hermite take each node's value from the cells the point sees; linear, clough-tocher and gouraud take "
-    "no barriers and are left out";
+std::string barrier_rule(bool shadow_lines) {
+  return std::string(shadow_lines ? "the ground's contact lines with the walls and the direct light's shadow lines (its "
+                                    "D1 and D2 discontinuities, --shadow-barriers; docs/method.md)"
+                                  : "the ground's contact lines with the walls") +
+         " (the solution's barriers): a sample counts for a point only if the segment between them crosses no "
+         "barrier; constant is the nearest visible sample, bilinear, bicubic and hermite take each node's value from "
+         "the cells the point sees; linear, clough-tocher and gouraud take no barriers and are left out" +
+         (shadow_lines ? ". Shadow lines cut the ground into regions, some of which hold no sample: a point there has no "
+                         "value, and a method's norms over the ground are then n/a (radiosity is continuous across "
+                         "those lines, which is why they are not used by default)"
+                       : "");
+}
 
 const char* const kMetricsRule =
     "SSIM: mean structural similarity of the ground figure (sRGB display values) with the reference's (Wang et "
@@ -51,6 +58,7 @@ const char* const kBorderRule =
     "out of Tables 3c and 3d)";
 
 std::string format_3g(double v) {
+  if (std::isnan(v)) return "n/a";  // as the report's tables spell it (errors.json: null)
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.3g", v);
   return buf;
@@ -137,7 +145,7 @@ void write_tables(const std::filesystem::path& dir, const PaperRun& run) {
       {"linear", describe_params(Method::linear, run.params)},
       {"clough-tocher", describe_params(Method::clough_tocher, run.params)},
       {"metrics", kMetricsRule},
-      {"barriers", kBarrierRule}, {"border_samples", kBorderRule}};
+      {"barriers", barrier_rule(run.options.shadow_barriers)}, {"border_samples", kBorderRule}};
   write_text_file(dir / "errors.json", errors.dump(2) + "\n");
 
   const std::string common =
@@ -193,13 +201,13 @@ std::string barrier_table(const std::string& title, const std::vector<MethodResu
 void write_table3(const std::filesystem::path& dir, const PaperRun& run) {
   write_text_file(dir / "table3.md",
                   "# Table 3: errors with the scene's barriers\n\n" +
-                      barrier_table("Grid data (" + run.data.grid.mesh + ")", run.grid_barriers, run.table1) +
-                      barrier_table("Quadtree data (" + run.data.quadtree.mesh + ")", run.quadtree_barriers, run.table2) +
+                      barrier_table("Table 3a: grid data (" + run.data.grid.mesh + ")", run.grid_barriers, run.table1) +
+                      barrier_table("Table 3b: quadtree data (" + run.data.quadtree.mesh + ")", run.quadtree_barriers, run.table2) +
                       (run.grid_border.empty()
                            ? std::string()
-                           : barrier_table("Grid data with border samples", run.grid_border, run.table1) +
-                                 barrier_table("Quadtree data with border samples", run.quadtree_border, run.table2)) +
-                      "Barriers: " + kBarrierRule + "." +
+                           : barrier_table("Table 3c: grid data with border samples", run.grid_border, run.table1) +
+                                 barrier_table("Table 3d: quadtree data with border samples", run.quadtree_border, run.table2)) +
+                      "Barriers: " + barrier_rule(run.options.shadow_barriers) + "." +
                       (run.grid_border.empty() ? std::string() : std::string(" Border samples: ") + kBorderRule + ".") +
                       " Same data, methods, settings and norms as Tables 1 and 2.\n");
 }
@@ -222,6 +230,7 @@ ReportContent report_content(const PaperRun& run, int rays_per_pixel) {
   };
   ReportContent report;
   report.reference_grid = std::to_string(run.at.width) + " x " + std::to_string(run.at.height);
+  report.barrier_rule = barrier_rule(run.options.shadow_barriers);
   report.white_w_m2 = white;
   report.rays_per_pixel = rays_per_pixel;
   report.table1 = rows(run.table1, published_table1(), "fig3");

@@ -36,8 +36,9 @@ struct PaperRun {
 /// Writes DIR/errors.json, DIR/table1.md, DIR/table2.md and (with barriers) DIR/table3.md.
 void write_tables(const std::filesystem::path& dir, const PaperRun& run);
 
-/// How the paper's data sets with barriers are reconstructed, in words.
-extern const char* const kBarrierRule;
+/// How the paper's data sets with barriers are reconstructed, in words; with the light's shadow
+/// lines among the barriers too if `shadow_lines` (paper --shadow-barriers).
+std::string barrier_rule(bool shadow_lines);
 /// How border samples are added, in words.
 extern const char* const kBorderRule;
 /// What SSIM, gradient L2 and overshoot measure, in words.

@@ -3,6 +3,7 @@
 // every image listed in the comparison view, the best entry of a column marked.
 
 #include "paper/report.h"
+#include "paper/tables.h"
 
 #include <gtest/gtest.h>
 
@@ -95,6 +96,24 @@ TEST(Report, TiesForBestAreAllMarkedAndTheReferenceGridIsTheRunsOwn) {
   EXPECT_NE(html.find("the 16 x 16 solution"), std::string::npos);
   EXPECT_NE(html.find("progressive refinement on a 16 x 16 grid"), std::string::npos);
   EXPECT_EQ(html.find("400 x 400"), std::string::npos);
+}
+
+TEST(Report, Table3SaysWhichBarriersAndTheMarkdownSpellsAMissingNormAsTheReportDoes) {
+  // A --shadow-barriers run was recorded nowhere (an outside-in trial): the rule says so, and why
+  // norms are missing; Markdown wrote "nan" where the report shows "n/a".
+  const std::string with_lines = barrier_rule(true), without = barrier_rule(false);
+  EXPECT_NE(with_lines.find("shadow lines"), std::string::npos);
+  EXPECT_NE(with_lines.find("n/a"), std::string::npos);
+  EXPECT_EQ(without.find("shadow"), std::string::npos);
+  EXPECT_EQ(format_3g(std::nan("")), "n/a");
+  EXPECT_EQ(format_3g(0.0123456), "0.0123");
+  ReportContent c = content();
+  c.grid_barriers = {row("constant", 0.02, 0.001, 0.6, {NAN, NAN, NAN}, false)};
+  c.quadtree_barriers = c.grid_barriers;
+  c.barrier_rule = with_lines;
+  EXPECT_NE(written_report(c).find("with the scene's barriers: the ground's contact lines with the walls and the direct "
+                                   "light's shadow lines"),
+            std::string::npos);
 }
 
 TEST(Report, TheComparisonViewListsEveryPictureOfTheFigures) {
