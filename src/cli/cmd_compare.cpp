@@ -96,7 +96,8 @@ Comparison compare_pictures(const CompareArgs& args) {
   const bool png = b.format == FileFormat::png;
   double white = args.white;
   if (white <= 0) white = png ? 1.0 : largest_finite(b.values);
-  if (!(white > 0)) white = 1;  // a black or empty reference
+  const bool dark_reference = !(white > 0);
+  if (dark_reference) white = 1;  // a black or empty reference
   const ImageShape shape{a.width, a.height, a.channels};
   // Values missing (NaN: interpolate's no-data) in both pictures agree: left out of the norms, and
   // 0 in both for SSIM and the gradients. Missing in one only, the figures are NaN.
@@ -137,7 +138,9 @@ Comparison compare_pictures(const CompareArgs& args) {
                {"count", out.figures.norms.count}, {"white", white}, {"missing_in_both", missing_both},
                {"missing_in_one", missing_one}};
   out.summary = std::to_string(a.width) + " x " + std::to_string(a.height) + " pixels, " + std::to_string(a.channels) +
-                " channel(s); white " + format_number(white) + (png ? " (PNG values as stored)" : "");
+                " channel(s); white " + format_number(white) +
+                (png ? (args.white > 0 ? " (PNG values divided by --white)" : " (PNG values as stored)")
+                     : dark_reference ? " (B has no value above 0)" : "");
   if (missing_both > 0)
     out.summary += "; " + std::to_string(missing_both) + " value(s) missing (NaN) in both, left out of the norms";
   if (missing_one > 0)
@@ -209,7 +212,7 @@ Comparison compare_solutions(const CompareArgs& args) {
     nan = nan || std::isnan(g);
     grad_sum += g * sa.elements.size(), grad_count += sa.elements.size();
     double white = args.white > 0 ? args.white : largest_finite(side_b);
-    if (!(white > 0)) white = 1;
+    if (!(white > 0)) white = 1;  // a dark side: as for pictures
     const std::optional<double> q = ssim(display_values(side_a, white), display_values(side_b, white), shape);
     if (q) ssim_sum += *q * sa.elements.size(), ssim_count += sa.elements.size(), ++ssim_sides;
   }
@@ -288,7 +291,8 @@ void add_compare_command(CLI::App& app) {
       "picture and the channels; n/a below 11 x 11) and gradient_L2 (mean squared difference of the "
       "finite-difference gradients); overshoot needs samples and is n/a here.\n"
       "Pictures: SSIM on display values, PFM/EXR as the figures show them (clamp(v / white, 0, 1), sRGB-encoded; "
-      "white: --white, else the largest value of B), PNG values as stored (white 1); gradient_L2 with a pixel "
+      "white: --white, else the largest value of B, 1 if none is above 0), PNG values as stored (white 1; with "
+      "--white, divided by it); gradient_L2 with a pixel "
       "spacing of 1; a value missing (NaN, interpolate's no-data) in both pictures is left out of the norms (0 in both "
       "for SSIM and the gradients), one missing in one only makes the figures NaN. Solutions: norms over every element's values; SSIM and gradient_L2 over the grid sides, each an "
       "nu x nv picture (white: --white, else the side's largest value in B; spacing: the element size in metres), "

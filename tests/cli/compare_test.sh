@@ -182,6 +182,11 @@ expect_rc pngs 0
 check_json pngs "j['white'] == 1 and 0 < j['L1'] < 1 and j['channels'] == 3"
 run png_same nn.png nn.png --json
 check_json png_same "j['L1'] == 0 and j['SSIM'] == 1"
+# --white with PNGs divides their values, and the summary says so (it said "as stored").
+run png_white sh.png nn.png --white 0.5
+expect_rc png_white 0
+grep -qF "white 0.5 (PNG values divided by --white)" "$TMP/png_white.stdout" ||
+  fail "png_white: the summary does not say --white divides the PNG values: $(cat "$TMP/png_white.stdout")"
 run mixed sh.pfm nn.png
 expect_rc mixed 2
 expect_stderr_has mixed "same kind"
