@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <string_view>
@@ -77,12 +78,16 @@ void check_option_texts(CLI::App& app) {
     for (CLI::Option* option : command->get_options()) {
       if (option->get_type_size() == 0) continue;  // a flag
       const std::string type = option->get_type_name();
-      if (type.rfind("INT", 0) == 0 || type.rfind("UINT", 0) == 0 || type.rfind("FLOAT", 0) == 0)
+      const bool whole = type.rfind("INT", 0) == 0 || type.rfind("UINT", 0) == 0;
+      if (whole || type.rfind("FLOAT", 0) == 0)
         option->transform(CLI::Validator(
-            [](std::string& text) {
+            [whole](std::string& text) {
               double number = 0;
-              return text.empty() || CLI::detail::lexical_cast(text, number) ? std::string()
-                                                                              : "must be a number, got '" + text + "'";
+              if (text.empty()) return std::string();
+              if (!CLI::detail::lexical_cast(text, number)) return "must be a number, got '" + text + "'";
+              if (whole && std::isfinite(number) && number != std::floor(number))
+                return "must be a whole number, got '" + text + "'";  // CLI11: "Value 2.5 not in range 1 to 16"
+              return std::string();
             },
             ""));
       // transform() puts a check first: this one runs before the number's.
