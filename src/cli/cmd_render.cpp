@@ -93,6 +93,13 @@ void render_and_write(const RenderArgs& args, const Scene& scene, const Camera& 
                       const RenderProgress& progress) {
   Rendering rendering = render(scene, camera, [&](SideRef side) { return recon.side(side); }, options, progress);
   Image& img = rendering.image;
+  if (rendering.rays_without_value > 0)
+    std::fprintf(stderr,
+                 "radrecon: warning: %zu of the %zu rays (%.2g%%) met points where %s gives no value (outside the "
+                 "samples' hull with outside=none, beyond a radius, or cut off by barriers); they are drawn black\n",
+                 rendering.rays_without_value, rendering.rays,
+                 100.0 * static_cast<double>(rendering.rays_without_value) / static_cast<double>(rendering.rays),
+                 args.method.c_str());
   std::string white_note;
   if (format == FileFormat::pfm) {
     write_pfm(args.out, img);

@@ -313,7 +313,7 @@ void shade(const Scene& scene, const CameraHits& traced, const SideReconstructio
   // Radiosity per ray (the background where a ray met nothing, black on a side without a
   // reconstruction); and whether the ray met a reflecting side.
   std::vector<double> radiosity(rays * 3);
-  std::vector<std::uint8_t> reflecting(rays, 0);
+  std::vector<std::uint8_t> reflecting(rays, 0), without_value(rays, 0);
   parallel_for(0, static_cast<std::int64_t>(rays), [&](std::int64_t k) {
     for (int c = 0; c < 3; ++c) radiosity[static_cast<size_t>(k) * 3 + c] = options.background_w_m2[c];
   });
@@ -333,10 +333,13 @@ void shade(const Scene& scene, const CameraHits& traced, const SideReconstructio
       for (int c = 0; c < 3; ++c) {
         const double v = f != nullptr ? values[static_cast<size_t>(j) * 3 + c] : 0.0;  // no reconstruction: black
         radiosity[k * 3 + c] = std::isfinite(v) ? v : 0.0;
+        if (!std::isfinite(v)) without_value[k] = 1;
       }
       reflecting[k] = reflects;
     });
   }
+  out.rays += rays;
+  out.rays_without_value += static_cast<std::size_t>(std::count(without_value.begin(), without_value.end(), 1));
   // Box filter over each pixel's rays.
   const PixelRect& rect = traced.pixels;
   const int rect_w = rect.x_end - rect.x_begin;

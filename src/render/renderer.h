@@ -98,6 +98,9 @@ struct Rendering {
   /// Per pixel, row by row: 1 when every ray of the pixel met a side that does not emit and has a
   /// reconstruction (not the background, a light, or a side drawn black), else 0.
   std::vector<std::uint8_t> reflecting;
+  /// Rays that met a side at a point where its reconstruction has no value (NaN: outside=none,
+  /// beyond a radius, cut off by barriers), drawn black; and all rays traced.
+  std::size_t rays_without_value = 0, rays = 0;
 };
 
 /// Linear radiosity (W/m^2 per channel) of every pixel of `hits` (all of the image): the mean

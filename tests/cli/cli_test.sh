@@ -94,6 +94,15 @@ ground = [s for s in doc["surfaces"] if s["name"] == "ground"][0]
 sys.exit(0 if len(ground["elements"]) == 100 and doc["stats"]["method"] == "hierarchical" else 1)
 EOF
 
+# --- rays that meet points where the method has no value are drawn black, with a warning that
+# counts them (they were drawn black in silence) ---------------------------------------------
+run no_value_render render --scene paper --solution "$TMP/solution.json" --camera view --method natural-neighbour \
+  --param outside=none --size 32x24 --out "$TMP/nv.pfm" --quiet
+expect_rc no_value_render 0 && expect_stderr_has no_value_render "where natural-neighbour gives no value"
+run value_render render --scene paper --solution "$TMP/solution.json" --camera view --method natural-neighbour \
+  --size 32x24 --out "$TMP/v.pfm" --quiet
+expect_rc value_render 0 && expect_stderr_lacks value_render "gives no value"
+
 # --- every command's options: an empty value refused (a required one offered no default), and a
 # number option's text that is no number refused in radrecon's words before its range check -------
 run patches_text solve --scene paper --mesh grid:4 --patches abc --out "$TMP/pt.json"
