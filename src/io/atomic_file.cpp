@@ -28,6 +28,11 @@ PendingSlot g_pending[kMaxPendingFiles];
 void remove_pending_then_raise(int signal_number) {
   for (PendingSlot& slot : g_pending)
     if (slot.ready.load()) ::unlink(slot.path);
+  // Said, not only shown by the exit code (write(2) is safe in a handler; fprintf is not).
+  const char* what = signal_number == SIGINT    ? "\nradrecon: interrupted (SIGINT); no file was left half-written\n"
+                     : signal_number == SIGTERM ? "radrecon: terminated (SIGTERM); no file was left half-written\n"
+                                                : "radrecon: hung up (SIGHUP); no file was left half-written\n";
+  [[maybe_unused]] const ssize_t written = ::write(STDERR_FILENO, what, std::strlen(what));
   std::signal(signal_number, SIG_DFL);
   std::raise(signal_number);
 }

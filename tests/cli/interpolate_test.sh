@@ -259,13 +259,15 @@ fi
 # Interrupted while streaming a large PFM (64,000,000 points, seconds of work): exit 130, and
 # neither the output nor its temporary file is left.
 "$RADRECON" interpolate --samples "$TMP/scattered1.csv" --method shepard --raster 8000x8000 --domain 0,0,1,1 \
-  --out "$TMP/interrupted.pfm" --quiet >/dev/null 2>&1 &
+  --out "$TMP/interrupted.pfm" --quiet >/dev/null 2>"$TMP/interrupted.stderr" &
 pid=$!
 for _ in $(seq 50); do ls "$TMP"/interrupted.pfm.tmp* >/dev/null 2>&1 && break; sleep 0.1; done
 kill -INT "$pid"
 wait "$pid"
 rc=$?
 [ "$rc" = 130 ] || fail "interrupted: exit code $rc, expected 130 (SIGINT)"
+grep -qF "radrecon: interrupted (SIGINT); no file was left half-written" "$TMP/interrupted.stderr" ||
+  fail "interrupted: said nothing: $(cat "$TMP/interrupted.stderr")"
 if ls "$TMP"/interrupted.pfm* >/dev/null 2>&1; then fail "interrupted: left $(ls "$TMP"/interrupted.pfm*)"; fi
 
 # An output that existed before a refused run is left as it was.
