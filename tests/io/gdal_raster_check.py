@@ -146,20 +146,26 @@ with tempfile.TemporaryDirectory() as tmp:
 
     # Samples from a GeoPackage of points (OGR), with a barrier line from a GeoPackage and the
     # same line from GeoJSON: the two barrier readers agree, and the values match f.
-    from osgeo import ogr
-    gpkg = os.path.join(tmp, "points.gpkg")
-    ds = ogr.GetDriverByName("GPKG").CreateDataSource(gpkg)
-    layer = ds.CreateLayer("soundings", geom_type=ogr.wkbPoint)
-    layer.CreateField(ogr.FieldDefn("mag", ogr.OFTReal))
-    layer.CreateField(ogr.FieldDefn("name", ogr.OFTString))
-    for j in range(4):
-        for i in range(5):
-            feature = ogr.Feature(layer.GetLayerDefn())
-            feature.SetGeometry(ogr.CreateGeometryFromWkt(f"POINT ({i} {j})"))
-            feature.SetField("mag", f(i, j))
-            feature.SetField("name", f"p{i}{j}")
-            layer.CreateFeature(feature)
-    ds = None
+    from osgeo import ogr, osr
+
+    def point_layer(path, driver, layer_name, nx, ny, fields, srs=None):
+        """A vector source of the nx x ny points (i, j), each with fields {name: (OGR type, value(i, j))}."""
+        ds = ogr.GetDriverByName(driver).CreateDataSource(path)
+        layer = ds.CreateLayer(layer_name, srs=srs, geom_type=ogr.wkbPoint)
+        for name, (kind, _) in fields.items():
+            layer.CreateField(ogr.FieldDefn(name, kind))
+        for j in range(ny):
+            for i in range(nx):
+                feature = ogr.Feature(layer.GetLayerDefn())
+                feature.SetGeometry(ogr.CreateGeometryFromWkt(f"POINT ({i} {j})"))
+                for name, (_, value) in fields.items():
+                    feature.SetField(name, value(i, j))
+                layer.CreateFeature(feature)
+        ds = None
+        return path
+
+    gpkg = point_layer(os.path.join(tmp, "points.gpkg"), "GPKG", "soundings", 5, 4,
+                       {"mag": (ogr.OFTReal, f), "name": (ogr.OFTString, lambda i, j: f"p{i}{j}")})
     def line_layer(name, wkt):
         """A GeoPackage of one line feature, for --barriers."""
         path = os.path.join(tmp, name)
@@ -211,20 +217,8 @@ with tempfile.TemporaryDirectory() as tmp:
 
     # A point layer that keeps x and y as fields beside its geometry (ogr2ogr from a CSV): those
     # fields are not interpolated (they would repeat the output's x, y columns), with a warning.
-    xy = os.path.join(tmp, "xy.gpkg")
-    ds = ogr.GetDriverByName("GPKG").CreateDataSource(xy)
-    layer = ds.CreateLayer("pts", geom_type=ogr.wkbPoint)
-    for name in ["x", "y", "mag"]:
-        layer.CreateField(ogr.FieldDefn(name, ogr.OFTReal))
-    for j in range(3):
-        for i in range(4):
-            feature = ogr.Feature(layer.GetLayerDefn())
-            feature.SetGeometry(ogr.CreateGeometryFromWkt(f"POINT ({i} {j})"))
-            feature.SetField("x", i)
-            feature.SetField("y", j)
-            feature.SetField("mag", f(i, j))
-            layer.CreateFeature(feature)
-    ds = None
+    xy = point_layer(os.path.join(tmp, "xy.gpkg"), "GPKG", "pts", 4, 3,
+                     {"x": (ogr.OFTReal, lambda i, j: i), "y": (ogr.OFTReal, lambda i, j: j), "mag": (ogr.OFTReal, f)})
     out = os.path.join(tmp, "xy_linear.csv")
     r = subprocess.run([RADRECON, "interpolate", "--samples", xy, "--method", "linear", "--raster", "4x3", "--domain",
                         "0,0,3,2", "--out", out], capture_output=True, text=True)
@@ -387,20 +381,9 @@ with tempfile.TemporaryDirectory() as tmp:
 
     # Nor on a file of a vector source: a shapefile's .prj beside the .shp, which the EHdr (.bil)
     # driver writes under the output's name when given a CRS. Refused, the .prj intact.
-    from osgeo import ogr, osr
-    shp = os.path.join(tmp, "pts.shp")
-    ds = ogr.GetDriverByName("ESRI Shapefile").CreateDataSource(shp)
     wgs84 = osr.SpatialReference()
     wgs84.ImportFromEPSG(4326)
-    layer = ds.CreateLayer("pts", srs=wgs84, geom_type=ogr.wkbPoint)
-    layer.CreateField(ogr.FieldDefn("mag", ogr.OFTReal))
-    for j in range(3):
-        for i in range(4):
-            feature = ogr.Feature(layer.GetLayerDefn())
-            feature.SetGeometry(ogr.CreateGeometryFromWkt(f"POINT ({i} {j})"))
-            feature.SetField("mag", f(i, j))
-            layer.CreateFeature(feature)
-    ds = None
+    shp = point_layer(os.path.join(tmp, "pts.shp"), "ESRI Shapefile", "pts", 4, 3, {"mag": (ogr.OFTReal, f)}, wgs84)
     prj = os.path.join(tmp, "pts.prj")
     before = open(prj, "rb").read()
     r = run("--samples", shp, "--value", "mag", "--method", "linear", "--raster", "4x3", "--domain", "0,0,3,2",
