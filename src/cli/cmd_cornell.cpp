@@ -115,16 +115,15 @@ void run_cornell(const CornellArgs& args) {
   for (const std::string& file : {std::string("solution.json"), std::string("index.html")})
     refuse_overwriting_inputs((dir / file).string(), "--out", inputs);
   for (Method m : all_methods()) refuse_overwriting_inputs((dir / (stem + method_name(m) + ".png")).string(), "--out", inputs);
-  // An earlier run's pictures (of another scene or camera) do not stay beside this run's.
-  OutputFolderRun folder(dir, kCornellManifest);
-  if (folder.removed() > 0 && !args.quiet)
-    std::fprintf(stderr, "cornell: removed the %zu files of the earlier run in %s (listed in its %s)\n", folder.removed(),
-                 args.out.c_str(), kCornellManifest);
 
   SolveSettings settings;
   settings.residual = args.residual;
   settings.progress_label = args.quiet ? "" : "cornell";
   const Solution solution = solve_scene(scene, args.mesh, settings, "--mesh");
+  // The input is checked and solved: an earlier run's files (another scene's or camera's pictures)
+  // go now, before this run writes any; a refused run left them as they were.
+  OutputFolderRun folder(dir, kCornellManifest, inputs);
+  if (const std::string done = folder.summary(); !done.empty() && !args.quiet) std::fprintf(stderr, "cornell: %s\n", done.c_str());
   write_solution_json(dir / "solution.json", solution);
   size_t elements = 0;
   for (const SurfaceSolution& s : solution.surfaces) elements += s.elements.size();

@@ -85,8 +85,10 @@ void check_option_texts(CLI::App& app) {
               double number = 0;
               if (text.empty()) return std::string();
               if (!CLI::detail::lexical_cast(text, number)) return "must be a number, got '" + text + "'";
-              if (whole && std::isfinite(number) && number != std::floor(number))
-                return "must be a whole number, got '" + text + "'";  // CLI11: "Value 2.5 not in range 1 to 16"
+              if (!whole) return std::string();
+              // CLI11 said "Value 2.5 not in range 1 to 16", and the same of "3.0" and "1e1".
+              if (!std::isfinite(number) || number != std::floor(number)) return "must be a whole number, got '" + text + "'";
+              if (std::abs(number) < 1e18) text = std::to_string(static_cast<long long>(number));  // "3.0", "1e1": their digits
               return std::string();
             },
             ""));

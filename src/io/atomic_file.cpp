@@ -28,10 +28,12 @@ PendingSlot g_pending[kMaxPendingFiles];
 void remove_pending_then_raise(int signal_number) {
   for (PendingSlot& slot : g_pending)
     if (slot.ready.load()) ::unlink(slot.path);
-  // Said, not only shown by the exit code (write(2) is safe in a handler; fprintf is not).
-  const char* what = signal_number == SIGINT    ? "\nradrecon: interrupted (SIGINT); no file was left half-written\n"
-                     : signal_number == SIGTERM ? "radrecon: terminated (SIGTERM); no file was left half-written\n"
-                                                : "radrecon: hung up (SIGHUP); no file was left half-written\n";
+  // Said, not only shown by the exit code (write(2) is safe in a handler; fprintf is not). A
+  // closed pipe on stderr would raise SIGPIPE and end the process as that signal: ignored.
+  const char* what = signal_number == SIGINT    ? "\nradrecon: interrupted (SIGINT); no output was left half-written under its name\n"
+                     : signal_number == SIGTERM ? "radrecon: terminated (SIGTERM); no output was left half-written under its name\n"
+                                                : "radrecon: hung up (SIGHUP); no output was left half-written under its name\n";
+  std::signal(SIGPIPE, SIG_IGN);
   [[maybe_unused]] const ssize_t written = ::write(STDERR_FILENO, what, std::strlen(what));
   std::signal(signal_number, SIG_DFL);
   std::raise(signal_number);
@@ -133,15 +135,20 @@ void write_file_atomically(const std::filesystem::path& requested,
     fs::remove(tmp, ec);
     throw;
   }
+  {
+    // Recorded before it takes its name: an interruption between the two leaves no file of the
+    // run unlisted (a listed name that is absent is nothing to remove).
+    const std::lock_guard<std::mutex> lock(g_written_mutex);
+    if (g_written != nullptr) {
+      g_written->push_back(requested);
+      if (g_on_write) g_on_write(requested);
+    }
+  }
   fs::rename(tmp, path, ec);
   if (ec) {
     fs::remove(tmp, ec);
     throw UserError(path.string(), "cannot write: " + ec.message());
   }
-  const std::lock_guard<std::mutex> lock(g_written_mutex);
-  if (g_written == nullptr) return;
-  g_written->push_back(requested);
-  if (g_on_write) g_on_write(requested);
 }
 
 void write_text_file(const std::filesystem::path& path, const std::string& text) {

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "io/atomic_file.h"
 
@@ -17,12 +18,21 @@ namespace radrecon {
 class OutputFolderRun {
  public:
   /// Removes the files the folder's manifest `manifest_name` lists (those that exist, only within
-  /// the folder), then lists in it every file this run writes within the folder, as it is
-  /// written (so an interrupted run's are removed by the next). UserError naming a file that
-  /// cannot be removed.
-  OutputFolderRun(const std::filesystem::path& dir, const std::string& manifest_name);
-  /// How many files of an earlier run the constructor removed.
+  /// the folder), but not one of `inputs` (the run's own) nor one changed since the manifest was
+  /// written (someone else's now), then lists in the manifest every file this run writes within
+  /// the folder through write_file_atomically(), as it is written (so an interrupted run's are
+  /// removed by the next). To be made once the run's input is checked, before its first write:
+  /// a refused run leaves the earlier results alone. UserError naming a file that cannot be
+  /// removed.
+  OutputFolderRun(const std::filesystem::path& dir, const std::string& manifest_name,
+                  const std::vector<std::string>& inputs = {});
+  /// How many files of an earlier run the constructor removed, and how many it kept (inputs,
+  /// files changed since).
   size_t removed() const { return removed_; }
+  size_t kept() const { return kept_; }
+  /// What the constructor did, for the command's stderr ("" when it removed and kept nothing):
+  /// "removed the 3 files of the earlier run in DIR (listed in its MANIFEST)".
+  std::string summary() const;
   /// Rewrites the manifest whole, sorted: the files written since the constructor within the
   /// folder.
   void finish();
@@ -33,7 +43,7 @@ class OutputFolderRun {
 
   std::filesystem::path dir_;
   std::string manifest_name_;
-  size_t removed_ = 0;
+  size_t removed_ = 0, kept_ = 0;
   std::ofstream manifest_;  ///< appended to as files are written
   std::optional<WrittenFiles> written_;
 };

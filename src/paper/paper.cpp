@@ -98,10 +98,15 @@ class JobList {
 void run_paper(const PaperOptions& opt, const std::string& out_where) {
   namespace fs = std::filesystem;
   check_output_folder(opt.out_dir.string(), out_where);  // before any work
-  OutputFolderRun folder(opt.out_dir, kPaperManifest);
-  if (folder.removed() > 0 && opt.progress)
-    std::fprintf(stderr, "paper: removed the %zu files of the earlier run in %s (listed in its %s) before writing this "
-                         "run's\n", folder.removed(), opt.out_dir.string().c_str(), kPaperManifest);
+  {
+    // A folder of an earlier run that listed nothing (radrecon before 2026-12-07): its files stay.
+    std::error_code ec;
+    if (!fs::exists(opt.out_dir / kPaperManifest, ec) && fs::exists(opt.out_dir / "errors.json", ec) && opt.progress)
+      std::fprintf(stderr, "radrecon: warning: %s holds an earlier run's results without the list of its files (%s): "
+                           "this run rewrites its own, and any other (Table 3 or Fig. 5-8 of a run with barriers) stays; "
+                           "remove the folder for a clean run\n", opt.out_dir.string().c_str(), kPaperManifest);
+  }
+  std::optional<OutputFolderRun> folder;  // made once the data sets are solved (below)
   Stopwatch clock;
   const Scene scene = paper_scene();
   PaperDataSets data;
@@ -188,6 +193,11 @@ void run_paper(const PaperOptions& opt, const std::string& out_where) {
   std::vector<CameraHits> cameras;
   for (std::vector<CameraHits>& camera : traced) cameras.push_back(join_bands(camera));
   clock.lap();
+
+  // The data sets are solved (a limit or a refusal would have ended the run): the earlier run's
+  // files go now, before this run writes any; a refused run left them as they were.
+  folder.emplace(opt.out_dir, kPaperManifest);  // no input to keep: the scene is built in
+  if (const std::string done = folder->summary(); !done.empty() && opt.progress) std::fprintf(stderr, "paper: %s\n", done.c_str());
 
   // Tables 1 and 2 with the ground figures (Fig. 1-4).
   const EvaluationGrid at = evaluation_grid(data.reference);
@@ -284,7 +294,7 @@ void run_paper(const PaperOptions& opt, const std::string& out_where) {
   ReportContent report = report_content(run, opt.view_samples * opt.view_samples);
   for (const auto& notes : view_notes) report.notes.insert(report.notes.end(), notes.begin(), notes.end());
   write_report(opt.out_dir, report);
-  folder.finish();  // the manifest last: a folder without one holds no whole run
+  folder->finish();  // sorted and whole
   const double t_tables = clock.lap();
 
   if (opt.progress)

@@ -62,11 +62,19 @@ RankingComparison compare_rankings(const std::vector<RankedMethod>& table, int n
     }
     return r;
   };
-  const std::vector<double> ro = mid_ranks(ours), rp = mid_ranks(paper);
+  // Over the methods with a figure of ours too (NaN ranks nowhere: mid_ranks() would rank it 0.5).
+  std::vector<double> ours_ranked, paper_ranked;
+  for (size_t i = 0; i < n; ++i)
+    if (!std::isnan(ours[i])) ours_ranked.push_back(ours[i]), paper_ranked.push_back(paper[i]);
+  if (ours_ranked.size() < 2) {
+    out.spearman = std::nan("");
+    return out;
+  }
+  const std::vector<double> ro = mid_ranks(ours_ranked), rp = mid_ranks(paper_ranked);
   const auto mean = [](const std::vector<double>& r) { return std::accumulate(r.begin(), r.end(), 0.0) / r.size(); };
   const double mo = mean(ro), mp = mean(rp);
   double cov = 0, vo = 0, vp = 0;
-  for (size_t i = 0; i < n; ++i) {
+  for (size_t i = 0; i < ro.size(); ++i) {
     cov += (ro[i] - mo) * (rp[i] - mp);
     vo += (ro[i] - mo) * (ro[i] - mo);
     vp += (rp[i] - mp) * (rp[i] - mp);

@@ -109,6 +109,10 @@ run patches_text solve --scene paper --mesh grid:4 --patches abc --out "$TMP/pt.
 expect_rc patches_text 2 && expect_stderr_has patches_text "radrecon: error: --patches: must be a number, got 'abc'"
 run fraction_count render --scene paper --solution "$TMP/solution.json" --camera view --samples 2.5 --out "$TMP/fc.png"
 expect_rc fraction_count 2 && expect_stderr_has fraction_count "radrecon: error: --samples: must be a whole number, got '2.5'"
+run infinite_count render --scene paper --solution "$TMP/solution.json" --camera view --samples inf --out "$TMP/ic.png"
+expect_rc infinite_count 2 && expect_stderr_has infinite_count "--samples: must be a whole number, got 'inf'"
+run written_count render --scene paper --solution "$TMP/solution.json" --camera view --samples 2.0 --size 8x6 --out "$TMP/wc.png" --quiet
+expect_rc written_count 0  # a whole number written as "2.0" or "2e0" is that number
 run empty_positional compare "" "$TMP/solution.json"
 expect_rc empty_positional 2 && expect_stderr_has empty_positional "must not be empty"
 if grep -q "leave the option out" "$TMP/empty_positional.stderr"; then fail "empty_positional: offered a default it has not"; fi

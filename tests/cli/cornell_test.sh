@@ -83,4 +83,17 @@ expect_rc bad_rbf_k 2 && expect_stderr_has bad_rbf_k "--rbf-k: must be 0 (one gl
 run bad_scene "${SMALL[@]}" --scene missing.json --out bad3
 expect_rc bad_scene 2 && expect_stderr_has bad_scene "missing.json"
 
+# --- the folder's earlier run: a refused run leaves it whole; the next run removes its pictures
+# (another camera's) and nothing of the user's, and lists its own ---------------------------------
+echo mine > blocks/notes.txt
+run refused_into_blocks "${SMALL[@]}" --mesh grid:bogus --out blocks
+expect_rc refused_into_blocks 2
+[ -s blocks/cornell_blocks_bilinear.png ] || fail "refused_into_blocks: the earlier run's pictures went"
+run published_into_blocks "${SMALL[@]}" --out blocks
+expect_rc published_into_blocks 0
+[ -e blocks/cornell_blocks_bilinear.png ] && fail "published_into_blocks: the other camera's pictures stayed"
+[ -s blocks/notes.txt ] || fail "published_into_blocks: removed a file of the user's"
+[ "$(sort blocks/.radrecon-cornell-files)" = "$(cd blocks && find . -type f ! -name notes.txt ! -name .radrecon-cornell-files | sed 's|^\./||' | sort)" ] ||
+  fail "published_into_blocks: the list is not the files written: $(cat blocks/.radrecon-cornell-files)"
+
 finish cornell_test

@@ -266,7 +266,7 @@ kill -INT "$pid"
 wait "$pid"
 rc=$?
 [ "$rc" = 130 ] || fail "interrupted: exit code $rc, expected 130 (SIGINT)"
-grep -qF "radrecon: interrupted (SIGINT); no file was left half-written" "$TMP/interrupted.stderr" ||
+grep -qF "radrecon: interrupted (SIGINT); no output was left half-written under its name" "$TMP/interrupted.stderr" ||
   fail "interrupted: said nothing: $(cat "$TMP/interrupted.stderr")"
 if ls "$TMP"/interrupted.pfm* >/dev/null 2>&1; then fail "interrupted: left $(ls "$TMP"/interrupted.pfm*)"; fi
 

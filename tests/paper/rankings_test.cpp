@@ -51,6 +51,11 @@ TEST(Rankings, SpearmanGivesTiesTheMeanOfTheRanksTheySpan) {
   const RankingComparison c = compare_rankings(table, 0);
   EXPECT_EQ(c.paper, (std::vector<int>{1, 2, 2, 2, 5}));
   EXPECT_NEAR(c.spearman, 2 / std::sqrt(5.0), 1e-15);
+  // A method without a figure of ours is left out of rho (it would have ranked first): the other
+  // four, (1, 2, 3, 4) against mid-ranks (1, 3, 3, 3): cov 3, variances 5 and 3, rho = 3 / sqrt(15).
+  std::vector<RankedMethod> missing = table;
+  missing[4].ours[0] = kNan;
+  EXPECT_NEAR(compare_rankings(missing, 0).spearman, 3 / std::sqrt(15.0), 1e-15);
 }
 
 TEST(Rankings, BestIndexSkipsNanAndKnowsWhichEndIsBest) {
