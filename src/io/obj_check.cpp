@@ -71,6 +71,14 @@ ObjForAssimp check_obj(const std::string& path) {
   while (std::getline(in, line)) {
     ++line_no;
     drop_bom(line, line_no);
+    // assimp 5.2 ends a line at a NUL, a form feed or a carriage return too, where this check
+    // reads on: the statements after one would reach assimp unchecked (an "l 0" after NULs
+    // crashed it, found by fuzzing). No OBJ text holds them (a line's closing CR aside).
+    const std::string_view body(line.data(), line.size() - (!line.empty() && line.back() == '\r' ? 1 : 0));
+    if (const size_t bad = body.find_first_of(std::string_view("\0\f\r", 3)); bad != std::string_view::npos)
+      throw UserError(path + ":" + std::to_string(line_no),
+                      std::string("a ") + (body[bad] == '\0' ? "NUL byte" : body[bad] == '\f' ? "form feed" : "carriage return") +
+                          " within the line (byte " + std::to_string(bad + 1) + "): not OBJ text");
     // assimp's copy: its materials are radrecon's to read (obj_materials()), so no mtllib.
     // A statement that only begins with f ("foo bar"): assimp 5.2 read it as a face ("Invalid face
     // index", no line); unknown statements are skipped, as OBJ readers skip them.

@@ -99,6 +99,12 @@ TEST(MeshImportErrors, ObjIndicesOutOfRangeAndNonFiniteCoordinates) {
   EXPECT_TRUE(Refused(dir, "bare.obj", std::string(kTriangle) + "f\nf 1 2 3\n", {"bare.obj:4", "a face of 0 corners"}));
   EXPECT_TRUE(Refused(dir, "bare_v.obj", std::string(kTriangle) + "v\nf 1 2 3\n", {"bare_v.obj:4", "needs 3 coordinates, it has 0"}));
   EXPECT_TRUE(Refused(dir, "x.obj", std::string(kTriangle) + "f 1 2 3 x\n", {"x.obj:4", "corner 'x' is no vertex index"}));
+  // A NUL ends a line for assimp, not for the check: "l 0" after NULs crashed assimp (fuzzing).
+  EXPECT_TRUE(Refused(dir, "nul.obj", std::string(kTriangle) + "f 1 2 3\n" + std::string("x\0l 0 ", 6) + "\n",
+                      {"nul.obj:5", "a NUL byte within the line (byte 2)"}));
+  EXPECT_TRUE(Refused(dir, "ff.obj", std::string(kTriangle) + "f 1 2\f3\n", {"ff.obj:4", "form feed"}));
+  write_file(dir / "crlf.obj", "v 0 0 0\r\nv 1 0 0\r\nv 1 1 0\r\nf 1 2 3\r\n");  // a closing CR is fine
+  EXPECT_EQ(import_mesh((dir / "crlf.obj").string()).surfaces.size(), 1u);
   write_file(dir / "foo.obj", std::string(kTriangle) + "foo bar\nf 1 2 3\n");
   EXPECT_EQ(import_mesh((dir / "foo.obj").string()).surfaces.size(), 1u);
   // A coordinate too small for a double is 0, as any reader takes it.
