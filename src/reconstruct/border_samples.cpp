@@ -16,6 +16,7 @@
 #include "core/parse.h"
 #include "core/tolerances.h"
 #include "reconstruct/kdtree.h"
+#include "reconstruct/methods.h"
 
 namespace radrecon {
 
@@ -310,6 +311,30 @@ Result<ScatteredSamples> with_border_samples(const ScatteredSamples& interior, c
                       slopes.begin() + static_cast<std::ptrdiff_t>(2 * (j + 1) * C));
   }
   return out;
+}
+
+Result<size_t> add_border_samples(Method method, ScatteredSamples& samples, const std::optional<Rect>& domain,
+                                  MethodParams& params) {
+  if (const std::string problem = border_samples_problem(method); !problem.empty()) return Failure{problem};
+  if (samples.points.empty()) return Failure{"no samples"};
+  Rect on = domain.value_or(Rect{});
+  if (!domain) {
+    Vec2 lo = samples.points[0], hi = lo;
+    for (const Vec2& p : samples.points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+    on = Rect{lo.x(), lo.y(), hi.x(), hi.y()};
+  }
+  // The thin-plate spline takes none beside the barriers: past a barrier's free end a point sees
+  // the two beside it, 2e-6 of the domain apart and of different values, and the spline through
+  // both swung to -303..333 for data in [0, 1.04] (its system's reciprocal condition 1e-13).
+  // Its fits over what each point sees keep influence from crossing a barrier without them.
+  BorderSampleSettings settings;
+  settings.beside_barriers = method != Method::thin_plate;
+  Result<ScatteredSamples> bordered = with_border_samples(samples, on, params.barriers, settings);
+  if (!bordered) return Failure{bordered.reason()};
+  const size_t added = bordered.value().points.size() - samples.points.size();
+  samples = std::move(bordered).value();
+  params.barrier_samples = false;  // added with the border's
+  return added;
 }
 
 }  // namespace radrecon

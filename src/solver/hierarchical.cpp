@@ -457,10 +457,4 @@ Solution solve_hierarchical(const Scene& scene, const HierarchicalOptions& optio
   return std::move(*sol);
 }
 
-/// The minimum element size of `options`, or its default: a fraction of the longest edge.
-double min_element_size_m(const Scene& scene, const HierarchicalOptions& options) {
-  if (options.min_size_m > 0) return options.min_size_m;
-  return longest_edge_m(scene) * tol::kMinElementFraction;
-}
-
 }  // namespace radrecon

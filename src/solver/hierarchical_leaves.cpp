@@ -10,6 +10,8 @@
 #include "core/error.h"
 #include "core/limits.h"
 #include "core/progress.h"
+#include "core/tolerances.h"
+#include "mesh/grid_mesh.h"
 #include "scene/side.h"
 #include "solver/hierarchical.h"
 
@@ -141,6 +143,12 @@ Solution solve_hierarchical_leaves(const Scene& scene, const std::string& side, 
   if (!label.empty())
     std::fprintf(stderr, "%s: epsilon %.4g W gives %d leaves on %s\n", label.c_str(), lo, leaves, side.c_str());
   return sol;
+}
+
+/// The minimum element size of `options`, or its default: a fraction of the longest edge.
+double min_element_size_m(const Scene& scene, const HierarchicalOptions& options) {
+  if (options.min_size_m > 0) return options.min_size_m;
+  return longest_edge_m(scene) * tol::kMinElementFraction;
 }
 
 }  // namespace radrecon
