@@ -242,7 +242,7 @@ void run_interpolate(const InterpolateArgs& args) {
         geotiff_functions("--out").write(tmp, args.out, raster, values, samples.channels, geo_options, geotiff_crs);
       });
     } else if (geo_raster) {
-      for (const std::string& warning : gdal_functions("--out").write_raster(args.out, raster, values, samples.channels, geo_options))
+      for (const std::string& warning : write_gdal_raster(args.out, raster, values, samples.channels, geo_options))
         std::fprintf(stderr, "radrecon: warning: %s\n", warning.c_str());
     } else switch (format) {
       case FileFormat::csv: write_values_csv(args.out, points, values, value_names); break;

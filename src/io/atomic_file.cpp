@@ -3,6 +3,8 @@
 #include <atomic>
 #include <csignal>
 #include <cstring>
+#include <dirent.h>
+#include <fcntl.h>
 #include <fstream>
 #include <mutex>
 #include <string>
@@ -16,18 +18,47 @@ namespace radrecon {
 
 namespace {
 
-/// The temporary files being written: a slot holds its path's characters while in use (the
-/// handler reads them, so they are copied into storage that no thread frees).
+/// The temporary files and folders being written: a slot holds its path's characters while in
+/// use (the handler reads them, so they are copied into storage that no thread frees).
 struct PendingSlot {
   std::atomic<bool> in_use{false};
   std::atomic<bool> ready{false};
+  bool folder = false;  ///< a folder: its files are removed, then it
   char path[4096] = {};
 };
 PendingSlot g_pending[kMaxPendingFiles];
 
+/// Removes the folder `path` and the files in it (not folders within), with async-signal-safe
+/// calls only: the entries are read by getdents64 into a buffer on the stack, and read again from
+/// the start while a pass removes any (removing while reading may skip an entry).
+void remove_folder_from_handler(const char* path) {
+  const int fd = ::open(path, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd >= 0) {
+    alignas(dirent64) char entries[4096];
+    for (bool removed = true; removed;) {
+      removed = false;
+      if (::lseek(fd, 0, SEEK_SET) != 0) break;
+      for (ssize_t n; (n = ::getdents64(fd, entries, sizeof(entries))) > 0;)
+        for (ssize_t at = 0; at < n;) {
+          const auto* entry = reinterpret_cast<const dirent64*>(entries + at);
+          at += entry->d_reclen;
+          const char* name = entry->d_name;
+          if (std::strcmp(name, ".") != 0 && std::strcmp(name, "..") != 0 && ::unlinkat(fd, name, 0) == 0) removed = true;
+        }
+    }
+    ::close(fd);
+  }
+  ::rmdir(path);
+}
+
 void remove_pending_then_raise(int signal_number) {
   for (PendingSlot& slot : g_pending)
-    if (slot.ready.load()) ::unlink(slot.path);
+    if (slot.ready.load()) {
+      if (slot.folder)
+        remove_folder_from_handler(slot.path);
+      else
+        ::unlink(slot.path);
+    }
   // Said, not only shown by the exit code (write(2) is safe in a handler; fprintf is not). A
   // closed pipe on stderr would raise SIGPIPE and end the process as that signal: ignored.
   const char* what = signal_number == SIGINT    ? "\nradrecon: interrupted (SIGINT); no output was left half-written under its name\n"
@@ -39,41 +70,37 @@ void remove_pending_then_raise(int signal_number) {
   std::raise(signal_number);
 }
 
-/// Tracks `tmp` for the handler while alive (if a slot is free and the path fits).
-class PendingFile {
- public:
-  explicit PendingFile(const std::filesystem::path& tmp) {
-    const std::string& text = tmp.native();
-    if (text.size() >= sizeof(PendingSlot::path)) return;
-    for (PendingSlot& candidate : g_pending) {
-      bool expected = false;
-      if (candidate.in_use.compare_exchange_strong(expected, true)) {
-        std::memcpy(candidate.path, text.c_str(), text.size() + 1);
-        candidate.ready.store(true);
-        slot_ = &candidate;
-        return;
-      }
+}  // namespace
+
+TemporaryPath::TemporaryPath(const std::filesystem::path& tmp, Kind kind) {
+  const std::string& text = tmp.native();
+  if (text.size() >= sizeof(PendingSlot::path)) return;
+  for (PendingSlot& candidate : g_pending) {
+    bool expected = false;
+    if (candidate.in_use.compare_exchange_strong(expected, true)) {
+      std::memcpy(candidate.path, text.c_str(), text.size() + 1);
+      candidate.folder = kind == Kind::folder;
+      candidate.ready.store(true);
+      slot_ = &candidate;
+      return;
     }
   }
-  ~PendingFile() {
-    if (!slot_) return;
-    slot_->ready.store(false);
-    slot_->in_use.store(false);
-  }
-  PendingFile(const PendingFile&) = delete;
-  PendingFile& operator=(const PendingFile&) = delete;
+}
 
- private:
-  PendingSlot* slot_ = nullptr;
-};
-
-}  // namespace
+TemporaryPath::~TemporaryPath() {
+  if (!slot_) return;
+  auto* slot = static_cast<PendingSlot*>(slot_);
+  slot->ready.store(false);
+  slot->in_use.store(false);
+}
 
 void remove_temporary_files_on_signals() {
   for (const int signal_number : {SIGINT, SIGTERM, SIGHUP}) {
     struct sigaction action = {};
     action.sa_handler = remove_pending_then_raise;
+    // One handler at a time: a second signal waits until the first has cleaned up and ended.
     sigemptyset(&action.sa_mask);
+    for (const int blocked : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&action.sa_mask, blocked);
     ::sigaction(signal_number, &action, nullptr);
   }
 }
@@ -128,7 +155,7 @@ void write_file_atomically(const std::filesystem::path& requested,
   }
   fs::path tmp = path;
   tmp += ".tmp" + std::to_string(::getpid());
-  const PendingFile pending(tmp);  // removed by a signal until renamed or removed below
+  const TemporaryPath pending(tmp, TemporaryPath::Kind::file);  // removed by a signal until renamed or removed below
   try {
     write(tmp);
   } catch (...) {

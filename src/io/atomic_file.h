@@ -32,15 +32,31 @@ class WrittenFiles {
 };
 
 /// From the call on, SIGINT, SIGTERM and SIGHUP first remove the temporary files that
-/// write_file_atomically() has open (at most kMaxPendingFiles at a time), then end the process
-/// as the signal would have: an interrupted long write (a streamed raster, a render) leaves no
-/// `.tmpPID` file behind. For programs that own their signals (radrecon's command line), not
-/// for a library loaded into another (the Python module).
+/// write_file_atomically() has open and the folders that live TemporaryPath objects name (at most
+/// kMaxPendingFiles at a time), then end the process as the signal would have: an interrupted
+/// long write (a streamed raster, a render, a GDAL raster's folder) leaves no `.tmpPID` file or
+/// `.radrecon-gdal-XXXXXX` folder behind. For programs that own their signals (radrecon's command
+/// line), not for a library loaded into another (the Python module).
 void remove_temporary_files_on_signals();
 
-/// Temporary files write_file_atomically() tracks for the signal handler at once; more are
-/// written as usual, untracked.
+/// Temporary files and folders tracked for the signal handler at once; more are written as
+/// usual, untracked.
 inline constexpr int kMaxPendingFiles = 16;
+
+/// While alive, names a temporary file or folder for the signal handler of
+/// remove_temporary_files_on_signals() to remove (a folder with the files in it; nothing if all
+/// kMaxPendingFiles slots are taken or the path is over 4,095 bytes). It removes nothing itself.
+class TemporaryPath {
+ public:
+  enum class Kind { file, folder };
+  TemporaryPath(const std::filesystem::path& tmp, Kind kind);
+  ~TemporaryPath();
+  TemporaryPath(const TemporaryPath&) = delete;
+  TemporaryPath& operator=(const TemporaryPath&) = delete;
+
+ private:
+  void* slot_ = nullptr;  ///< the handler's slot, opaque here
+};
 
 /// Writes `text` to `path` atomically.
 void write_text_file(const std::filesystem::path& path, const std::string& text);

@@ -18,8 +18,8 @@ namespace radrecon {
 struct GdalFunctions {
   std::string (*raster_driver)(const std::string& path, const std::string& format, const std::string& where);
   void (*check_crs)(const std::string& crs);
-  std::vector<std::string> (*write_raster)(const std::string& path, const Raster& raster, std::span<const double> values,
-                                           int channels, const GeoRasterOptions& options);
+  std::vector<std::string> (*write_raster)(const std::string& path, const std::string& staging, const Raster& raster,
+                                           std::span<const double> values, int channels, const GeoRasterOptions& options);
   ScatteredSamples (*read_samples)(const std::string& path, std::vector<std::string>* value_names,
                                    const CsvColumns& columns);
   std::vector<Vec2> (*read_queries)(const std::string& path, const CsvColumns& columns);
@@ -33,6 +33,12 @@ inline constexpr const char* kGdalPluginEntry = "radrecon_gdal_functions";
 /// The plugin's functions, loaded on the first call (plugin_table(); $RADRECON_GDAL_PLUGIN may
 /// name its path). UserError naming `what` (the option that needs GDAL) when it cannot be loaded.
 const GdalFunctions& gdal_functions(const std::string& what);
+
+/// Writes a raster through GDAL (GdalFunctions::write_raster) atomically: in a fresh folder
+/// `.radrecon-gdal-XXXXXX` beside `path`, removed after, or by a signal (TemporaryPath,
+/// io/atomic_file.h), with what it holds. Returns the warnings.
+std::vector<std::string> write_gdal_raster(const std::string& path, const Raster& raster, std::span<const double> values,
+                                           int channels, const GeoRasterOptions& options);
 
 /// The extensions of a file read as a CSV or XYZ table (besides none); any other is read through
 /// OGR (is_ogr_vector_path()).

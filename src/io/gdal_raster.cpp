@@ -248,8 +248,8 @@ void check_gdal_crs(const std::string& crs) {
                                  QuietGdal::last_error());
 }
 
-std::vector<std::string> write_raster_gdal(const std::string& path, const Raster& raster, std::span<const double> values,
-                                           int channels, const GeoRasterOptions& options) {
+std::vector<std::string> write_raster_gdal(const std::string& path, const std::string& staging, const Raster& raster,
+                                           std::span<const double> values, int channels, const GeoRasterOptions& options) {
   RR_CHECK(channels >= 1 && values.size() == static_cast<size_t>(raster.width) * raster.height * channels,
            "raster values do not match the raster");
   const std::string driver_name = gdal_raster_driver(path, options.format, "--out");
@@ -285,47 +285,38 @@ std::vector<std::string> write_raster_gdal(const std::string& path, const Raster
         throw UserError(path, "GDAL cannot fill the raster: " + QuietGdal::last_error());
     }
   }
-  // Written in a fresh folder beside the output, then moved: no half-written file under the
-  // output's name, and side files (e.g. an ENVI header) move along.
+  // Written in the caller's fresh folder beside the output, then moved: no half-written file
+  // under the output's name, and side files (e.g. an ENVI header) move along.
   namespace fs = std::filesystem;
   const fs::path out(path);
   const fs::path parent = out.has_parent_path() ? out.parent_path() : fs::path(".");
-  std::string pattern = (parent / ".radrecon-gdal-XXXXXX").string();
-  if (mkdtemp(pattern.data()) == nullptr) throw UserError(path, "cannot create a temporary folder beside it");
-  const fs::path tmp(pattern);
-  try {
-    // MRF compresses by PNG by default, which takes no floating-point bands: DEFLATE, lossless.
-    CPLStringList creation;
-    if (driver_name == "MRF") creation.SetNameValue("COMPRESS", "DEFLATE");
-    std::unique_ptr<GDALDataset> file(driver->CreateCopy((tmp / out.filename()).c_str(), image.get(), FALSE, creation.List(),
-                                                          nullptr, nullptr));
-    if (!file) {
-      std::string why = QuietGdal::last_error();  // the temporary folder is no name of the user's
-      for (size_t at; (at = why.find(tmp.filename().string() + "/")) != std::string::npos;) why.erase(at, tmp.filename().string().size() + 1);
-      throw UserError(path, "GDAL's " + driver_name + " driver cannot write it: " + why);
-    }
-    file.reset();  // closes and flushes
-    if (CPLGetLastErrorType() >= CE_Failure) throw UserError(path, "GDAL failed writing it: " + QuietGdal::last_error());
-    std::vector<std::string> warnings = read_back(path, (tmp / out.filename()).string(), driver_name, *image, options);
-    // Every file written, checked before any is moved: none may land on an input.
-    std::vector<fs::path> written;
-    for (const fs::directory_entry& e : fs::directory_iterator(tmp)) written.push_back(e.path());
-    for (const fs::path& w : written) {
-      const fs::path to = parent / w.filename();
-      std::error_code ec;
-      for (const std::string& input : options.inputs)
-        if (fs::exists(to, ec) && fs::equivalent(to, input, ec))
-          throw UserError(path, "GDAL's " + driver_name + " driver writes '" + to.string() + "' beside it, which is the input file '" +
-                                    input + "'; refusing to overwrite it (name the output otherwise)");
-    }
-    for (const fs::path& w : written) fs::rename(w, parent / w.filename());
-    fs::remove(tmp);
-    return warnings;
-  } catch (...) {
-    std::error_code ec;
-    fs::remove_all(tmp, ec);
-    throw;
+  const fs::path tmp(staging);
+  // MRF compresses by PNG by default, which takes no floating-point bands: DEFLATE, lossless.
+  CPLStringList creation;
+  if (driver_name == "MRF") creation.SetNameValue("COMPRESS", "DEFLATE");
+  std::unique_ptr<GDALDataset> file(driver->CreateCopy((tmp / out.filename()).c_str(), image.get(), FALSE, creation.List(),
+                                                        nullptr, nullptr));
+  if (!file) {
+    std::string why = QuietGdal::last_error();  // the temporary folder is no name of the user's
+    for (size_t at; (at = why.find(tmp.filename().string() + "/")) != std::string::npos;) why.erase(at, tmp.filename().string().size() + 1);
+    throw UserError(path, "GDAL's " + driver_name + " driver cannot write it: " + why);
   }
+  file.reset();  // closes and flushes
+  if (CPLGetLastErrorType() >= CE_Failure) throw UserError(path, "GDAL failed writing it: " + QuietGdal::last_error());
+  std::vector<std::string> warnings = read_back(path, (tmp / out.filename()).string(), driver_name, *image, options);
+  // Every file written, checked before any is moved: none may land on an input.
+  std::vector<fs::path> written;
+  for (const fs::directory_entry& e : fs::directory_iterator(tmp)) written.push_back(e.path());
+  for (const fs::path& w : written) {
+    const fs::path to = parent / w.filename();
+    std::error_code ec;
+    for (const std::string& input : options.inputs)
+      if (fs::exists(to, ec) && fs::equivalent(to, input, ec))
+        throw UserError(path, "GDAL's " + driver_name + " driver writes '" + to.string() + "' beside it, which is the input file '" +
+                                  input + "'; refusing to overwrite it (name the output otherwise)");
+  }
+  for (const fs::path& w : written) fs::rename(w, parent / w.filename());
+  return warnings;
 }
 
 }  // namespace radrecon

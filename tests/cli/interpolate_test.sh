@@ -256,19 +256,23 @@ if ! { ldd "$RADRECON" 2>/dev/null | grep -q libasan || nm -D "$RADRECON" 2>/dev
   rm -f "$TMP/streamed.pfm"
 fi
 
-# Interrupted while streaming a large PFM (64,000,000 points, seconds of work): exit 130, and
-# neither the output nor its temporary file is left.
-"$RADRECON" interpolate --samples "$TMP/scattered1.csv" --method shepard --raster 8000x8000 --domain 0,0,1,1 \
-  --out "$TMP/interrupted.pfm" --quiet >/dev/null 2>"$TMP/interrupted.stderr" &
-pid=$!
-for _ in $(seq 50); do ls "$TMP"/interrupted.pfm.tmp* >/dev/null 2>&1 && break; sleep 0.1; done
-kill -INT "$pid"
-wait "$pid"
-rc=$?
-[ "$rc" = 130 ] || fail "interrupted: exit code $rc, expected 130 (SIGINT)"
-grep -qF "radrecon: interrupted (SIGINT); no output was left half-written under its name" "$TMP/interrupted.stderr" ||
-  fail "interrupted: said nothing: $(cat "$TMP/interrupted.stderr")"
-if ls "$TMP"/interrupted.pfm* >/dev/null 2>&1; then fail "interrupted: left $(ls "$TMP"/interrupted.pfm*)"; fi
+# Interrupted (SIGINT) or hung up (SIGHUP) while streaming a large PFM (64,000,000 points, seconds
+# of work): exit 128 + the signal's number, said, and neither the output nor its temporary file is
+# left. (SIGTERM's case is tests/io/gdal_raster_check.py's, during a GDAL write.)
+for case in "INT 130 interrupted (SIGINT)" "HUP 129 hung up (SIGHUP)"; do
+  read -r sig code said <<<"$case"
+  "$RADRECON" interpolate --samples "$TMP/scattered1.csv" --method shepard --raster 8000x8000 --domain 0,0,1,1 \
+    --out "$TMP/interrupted.pfm" --quiet >/dev/null 2>"$TMP/interrupted.stderr" &
+  pid=$!
+  for _ in $(seq 50); do ls "$TMP"/interrupted.pfm.tmp* >/dev/null 2>&1 && break; sleep 0.1; done
+  kill -"$sig" "$pid"
+  wait "$pid"
+  rc=$?
+  [ "$rc" = "$code" ] || fail "SIG$sig: exit code $rc, expected $code"
+  grep -qF "radrecon: $said; no output was left half-written under its name" "$TMP/interrupted.stderr" ||
+    fail "SIG$sig: said nothing: $(cat "$TMP/interrupted.stderr")"
+  if ls "$TMP"/interrupted.pfm* >/dev/null 2>&1; then fail "SIG$sig: left $(ls "$TMP"/interrupted.pfm*)"; fi
+done
 
 # An output that existed before a refused run is left as it was.
 echo "keep me" >"$TMP/keep.csv"

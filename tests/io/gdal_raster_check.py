@@ -14,6 +14,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import time
 
 try:
     from osgeo import gdal, osr
@@ -447,6 +448,26 @@ with tempfile.TemporaryDirectory() as tmp:
     check(r.returncode == 2 and "not_a_folder" in r.stderr, f"unwritable GeoTIFF: exit {r.returncode}, {r.stderr.strip()}")
     check([e for e in os.listdir(tmp) if e.startswith(".radrecon-gdal") or ".tmp" in e] == [],
           "no temporary file or folder left behind")
+
+    # Terminated while GDAL writes (an MRF of 9 million DEFLATE-compressed points takes seconds):
+    # exit by SIGTERM, said, and neither the output, its side files nor the temporary folder left.
+    sig_dir = os.path.join(tmp, "terminated")
+    os.mkdir(sig_dir)
+    proc = subprocess.Popen([RADRECON, "interpolate", "--samples", samples, "--value", "mag", "--method", "shepard",
+                             "--raster", "3000x3000", "--domain", "0,0,4,3", "--out", os.path.join(sig_dir, "big.mrf"),
+                             "--quiet"], stderr=subprocess.PIPE, text=True)
+    seen = []
+    for _ in range(3000):  # up to a minute for the values, then for the folder's first file
+        seen = [e for e in os.listdir(sig_dir) if e.startswith(".radrecon-gdal")]
+        if (seen and os.listdir(os.path.join(sig_dir, seen[0]))) or proc.poll() is not None:
+            break
+        time.sleep(0.02)
+    proc.terminate()
+    err = proc.communicate()[1]
+    check(bool(seen) and proc.returncode == -15, f"terminated MRF: exit {proc.returncode}, folder seen: {seen}; {err.strip()}")
+    check("radrecon: terminated (SIGTERM); no output was left half-written under its name" in err,
+          f"terminated MRF said: {err.strip()}")
+    check(os.listdir(sig_dir) == [], f"terminated MRF left {os.listdir(sig_dir)}")
 
 print("gdal_raster_check:", "FAILED" if failures else "passed", f"({len(failures)} failures)")
 sys.exit(1 if failures else 0)
