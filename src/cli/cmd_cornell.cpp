@@ -156,11 +156,19 @@ void run_cornell(const CornellArgs& args) {
     std::optional<Image> linear;  // the method's picture, if it can reconstruct the solution
     try {
       const SolutionReconstruction recon(scene, solution, m, params, "solution", sampling);
-      linear = shade(scene, hits, [&](SideRef side) { return recon.side(side); });
+      Rendering r{Image(view.width, view.height), std::vector<std::uint8_t>(static_cast<size_t>(view.width) * view.height, 0)};
+      shade(scene, hits, [&](SideRef side) { return recon.side(side); }, r);
+      linear = std::move(r.image);
       std::string sides;
       const std::vector<Fallback> fallbacks = recon.notable_fallbacks();
       for (const Fallback& f : fallbacks) sides += (sides.empty() ? "" : ", ") + f.side;
       if (!sides.empty()) panel.note = "drawn piecewise constant on " + sides + " (" + fallbacks.front().reason + ")";
+      if (r.rays_without_value > 0) {
+        char text[160];
+        std::snprintf(text, sizeof text, "%zu of the %zu rays (%.1f%%) met points where it gives no value: drawn black",
+                      r.rays_without_value, r.rays, 100.0 * static_cast<double>(r.rays_without_value) / static_cast<double>(r.rays));
+        panel.note += (panel.note.empty() ? "" : "; ") + std::string(text);
+      }
     } catch (const UserError& e) {
       panel.note = std::string("not drawn: ") + e.what();
       panel.file.clear();

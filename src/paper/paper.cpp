@@ -255,9 +255,12 @@ void run_paper(const PaperOptions& opt, const std::string& out_where) {
                    const std::string& only_camera = "") {
     std::vector<std::string>& notes = view_notes.emplace_back();
     jobs.add(1, [&, m, sampling, stem, only_camera] {
-      for (const Fallback& f : render_paper_views(scene, cameras, sol, m, params, sampling, at.white_w_m2, figures,
-                                                  stem, only_camera))
+      const PaperViews drawn = render_paper_views(scene, cameras, sol, m, params, sampling, at.white_w_m2, figures, stem, only_camera);
+      for (const Fallback& f : drawn.fallbacks)
         notes.push_back(stem + ": " + f.side + " drawn piecewise constant, as " + method_name(m) + " cannot serve it: " + f.reason);
+      if (drawn.rays_without_value > 0)
+        notes.push_back(stem + ": " + std::to_string(drawn.rays_without_value) + " of the " + std::to_string(drawn.rays) + " rays met points where " +
+                        method_name(m) + " gives no value, drawn black");
       done(stem);
     });
   };

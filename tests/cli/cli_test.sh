@@ -96,12 +96,27 @@ EOF
 
 # --- rays that meet points where the method has no value are drawn black, with a warning that
 # counts them (they were drawn black in silence) ---------------------------------------------
+# One ray a pixel: the count must be the pixels black in the first picture and lit in the second.
 run no_value_render render --scene paper --solution "$TMP/solution.json" --camera view --method natural-neighbour \
-  --param outside=none --size 32x24 --out "$TMP/nv.pfm" --quiet
+  --param outside=none --size 32x24 --samples 1 --out "$TMP/nv.pfm" --quiet
 expect_rc no_value_render 0 && expect_stderr_has no_value_render "where natural-neighbour gives no value"
 run value_render render --scene paper --solution "$TMP/solution.json" --camera view --method natural-neighbour \
-  --size 32x24 --out "$TMP/v.pfm" --quiet
+  --size 32x24 --samples 1 --out "$TMP/v.pfm" --quiet
 expect_rc value_render 0 && expect_stderr_lacks value_render "gives no value"
+python3 - "$TMP/nv.pfm" "$TMP/v.pfm" "$TMP/no_value_render.stderr" <<'EOF' || fail "no_value_render: the warning's count is not the pixels it drew black"
+import re, struct, sys
+def pixels(path):
+    data = open(path, "rb").read()
+    header = data.split(b"\n", 3)
+    w, h = map(int, header[1].split())
+    body = header[3]
+    n = w * h * (3 if header[0] == b"PF" else 1)
+    return [struct.unpack_from("<" + "f" * 3, body, 12 * p) for p in range(w * h)] if n == 3 * w * h else None
+nv, v = pixels(sys.argv[1]), pixels(sys.argv[2])
+black = sum(1 for a, b in zip(nv, v) if all(c == 0 for c in a) and any(c > 0 for c in b))
+said = re.search(r"warning: (\d+) of the (\d+) rays", open(sys.argv[3]).read())
+sys.exit(0 if said and int(said.group(1)) == black > 0 and int(said.group(2)) == 32 * 24 else 1)
+EOF
 
 # --- every command's options: an empty value refused (a required one offered no default), and a
 # number option's text that is no number refused in radrecon's words before its range check -------
