@@ -1,6 +1,8 @@
 #pragma once
 // Small fixed-size vector types shared by every module (Eigen underneath).
 
+#include <algorithm>
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <vector>
@@ -19,5 +21,13 @@ using Polyline = std::vector<Vec2>;
 /// The plane's cross product a x b = ax by - ay bx: twice the signed area of the triangle
 /// (0, a, b), positive when b lies counter-clockwise of a.
 inline double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+/// The parameter t in [0, 1] of the point a + t (b - a) of the segment [a, b] nearest to q (q's
+/// projection onto the segment's line, clamped to its ends); 0 when a = b.
+inline double nearest_on_segment_t(const Vec2& q, const Vec2& a, const Vec2& b) {
+  const Vec2 ab = b - a;
+  const double length_sq = ab.squaredNorm();
+  return length_sq > 0 ? std::clamp((q - a).dot(ab) / length_sq, 0.0, 1.0) : 0.0;
+}
 
 }  // namespace radrecon

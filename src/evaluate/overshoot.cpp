@@ -28,7 +28,7 @@ std::pair<unsigned, unsigned> nearest_edge(const Vec2& q, const std::vector<Vec2
   std::pair<unsigned, unsigned> best_edge = edges.front();
   for (const auto& e : edges) {
     const Vec2 a = points[e.first], ab = points[e.second] - a;
-    const double t = std::clamp((q - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+    const double t = nearest_on_segment_t(q, a, points[e.second]);
     const double d = (a + t * ab - q).squaredNorm();
     if (d < best) best = d, best_edge = e;
   }

@@ -185,9 +185,7 @@ namespace {
 /// The distance from q to the closed segment s: to the point of s nearest q (its projection onto
 /// the segment's line, clamped to the end points).
 double distance_to_segment(const Vec2& q, const BarrierSegment& s) {
-  const Vec2 d = s.b - s.a;
-  const double t = std::clamp((q - s.a).dot(d) / d.squaredNorm(), 0.0, 1.0);
-  return (q - (s.a + t * d)).norm();
+  return (q - (s.a + nearest_on_segment_t(q, s.a, s.b) * (s.b - s.a))).norm();
 }
 
 }  // namespace

@@ -61,9 +61,7 @@ double parts(double length, double h) {
 }
 
 double distance_sq_to_segment(const Vec2& p, const BarrierSegment& s) {
-  const Vec2 d = s.b - s.a;
-  const double t = std::clamp((p - s.a).dot(d) / d.squaredNorm(), 0.0, 1.0);
-  return (s.a + t * d - p).squaredNorm();
+  return (s.a + nearest_on_segment_t(p, s.a, s.b) * (s.b - s.a) - p).squaredNorm();
 }
 
 /// The part of segment s inside the closed rectangle (Liang-Barsky), as parameters t0 < t1 of

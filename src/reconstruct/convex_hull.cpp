@@ -16,13 +16,7 @@ namespace {
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 
 /// The point of the segment [a, b] nearest to q.
-Vec2 nearest_on_segment(const Vec2& a, const Vec2& b, const Vec2& q) {
-  const Vec2 d = b - a;
-  const double len_sq = d.squaredNorm();
-  if (len_sq == 0) return a;
-  const double t = std::clamp((q - a).dot(d) / len_sq, 0.0, 1.0);
-  return a + t * d;
-}
+Vec2 nearest_on_segment(const Vec2& a, const Vec2& b, const Vec2& q) { return a + nearest_on_segment_t(q, a, b) * (b - a); }
 
 }  // namespace
 

@@ -154,8 +154,7 @@ void on_edge(std::span<const Vec2> points, const std::array<unsigned, 3>& vertic
   int ca = (k + 1) % 3, cb = (k + 2) % 3;
   if (vertices[cb] < vertices[ca]) std::swap(ca, cb);
   const Vec2 &pa = points[vertices[ca]], &pb = points[vertices[cb]];
-  const Vec2 ab = pb - pa;
-  const double t = std::clamp((q - pa).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+  const double t = nearest_on_segment_t(q, pa, pb);
   b[k] = 0;
   b[ca] = 1 - t;
   b[cb] = t;
@@ -266,9 +265,8 @@ bool DelaunayMesh::locate(const Vec2& q, OutsideHull outside, std::int64_t& hint
       const Impl::HullEdge* nearest = nullptr;
       for (const Impl::HullEdge& e : m.hull) {
         const Vec2 &a = points_[e.a], &b = points_[e.b];
-        const Vec2 ab = b - a;
-        const double t = std::clamp((q - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
-        const double d = (a + t * ab - q).squaredNorm();
+        const double t = nearest_on_segment_t(q, a, b);
+        const double d = (a + t * (b - a) - q).squaredNorm();
         if (d < best || (nearest && d == best && std::pair(e.a, e.b) < std::pair(nearest->a, nearest->b))) best = d, nearest = &e;
       }
       if (!nearest) return false;  // q so far away that every distance overflowed

@@ -121,7 +121,7 @@ struct HullChains {
     const HullChainEdge<typename DT::Face_handle>* found = range.empty() ? nullptr : &range.front();
     for (const auto& e : range) {
       const Vec2 a = points[e.a], ab = points[e.b] - a;
-      const double t = std::clamp((q - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+      const double t = nearest_on_segment_t(q, a, points[e.b]);
       const double d = (a + t * ab - q).squaredNorm();
       if (d < best) best = d, best_t = t, found = &e;
     }

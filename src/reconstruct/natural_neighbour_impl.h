@@ -185,9 +185,8 @@ struct NaturalNeighbour::Impl {
     for (auto e : edges) {
       if (e.second < e.first) std::swap(e.first, e.second);
       const Vec2 a = points[e.first], b = points[e.second];
-      const Vec2 ab = b - a;
-      const double t = ab.squaredNorm() > 0 ? std::clamp((q - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
-      const double d = (a + t * ab - q).squaredNorm();
+      const double t = nearest_on_segment_t(q, a, b);
+      const double d = (a + t * (b - a) - q).squaredNorm();
       if (d < best || (d == best && e < best_edge)) best = d, best_t = t, best_edge = e;
     }
     out.clear();
