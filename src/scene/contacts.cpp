@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <optional>
 #include <set>
 #include <span>
@@ -139,9 +140,22 @@ bool same_region(const Polyline& a, const Polyline& b, double join_m) {
   return true;
 }
 
+/// Which halves of the side, left and right of a contact line's direction a -> b in (s, t), the
+/// surfaces standing on the line face: a one-sided surface the half it faces, a two-sided one
+/// both, a surface lying flat on the side neither.
+struct SeenFrom {
+  bool left = false, right = false, both = false;
+  /// Whether the half to the left (or right) is seen. Two one-sided surfaces back to back on one
+  /// line (two boxes side by side, touching) hide each other: neither half is seen through them.
+  bool sees(bool left_half) const { return both || (left_half ? left && !right : right && !left); }
+  SeenFrom reversed() const { return {right, left, both}; }
+  void add(const SeenFrom& o) { left = left || o.left, right = right || o.right, both = both || o.both; }
+};
+
 /// Everything contacts.h computes for one side, in its (s, t) metres.
 struct SideContacts {
   std::vector<Segment2> lines;    ///< contact_lines()
+  std::vector<SeenFrom> seen;     ///< per line, from which half the surfaces standing on it see the side
   std::vector<Polyline> covered;  ///< regions under the surfaces lying on the side, surface order
 };
 
@@ -156,19 +170,28 @@ SideContacts side_contacts(const Scene& scene, SideRef side, std::span<const siz
     return (std::abs(x) <= border && std::abs(y) <= border) || (std::abs(x - 1) <= border && std::abs(y - 1) <= border);
   };
   SideContacts out;
-  // A segment from parameters ua to ub, unless along the surface's border, zero-length or a repeat.
-  const auto add_line = [&](const Vec2& ua, const Vec2& ub) {
+  // A segment from parameters ua to ub, unless along the surface's border, zero-length or a repeat
+  // (whose halves seen are added to the first's).
+  const auto add_line = [&](const Vec2& ua, const Vec2& ub, SeenFrom seen) {
     if (on_border(ua.x(), ub.x()) || on_border(ua.y(), ub.y())) return;  // along an edge u or v = 0 or 1
     if (s.is_triangle() && std::abs(ua.sum() - 1) <= border && std::abs(ub.sum() - 1) <= border) return;  // hypotenuse
     Vec2 pa = frame.st(ua), pb = frame.st(ub);
     if (pa == pb) return;
-    if (lexicographically_less(pb, pa)) std::swap(pa, pb);
-    for (const Segment2& l : out.lines)
-      if (((l.a - pa).norm() <= join_m && (l.b - pb).norm() <= join_m) ||
-          ((l.a - pb).norm() <= join_m && (l.b - pa).norm() <= join_m))
+    if (lexicographically_less(pb, pa)) std::swap(pa, pb), seen = seen.reversed();
+    for (size_t k = 0; k < out.lines.size(); ++k) {
+      const Segment2& l = out.lines[k];
+      const bool same = (l.a - pa).norm() <= join_m && (l.b - pb).norm() <= join_m;
+      if (same || ((l.a - pb).norm() <= join_m && (l.b - pa).norm() <= join_m)) {
+        out.seen[k].add(same ? seen : seen.reversed());
         return;
+      }
+    }
     out.lines.push_back({pa, pb});
+    out.seen.push_back(seen);
   };
+  // (s, t) turns counter-clockwise about the surface's front normal (scene.h): left of a
+  // direction d in the side's plane is along front x d.
+  const Vec3 st_up = s.normal();
   for (const size_t k : candidates) {
     if (k == side.surface) continue;
     const Surface& t = scene.surfaces[k];
@@ -182,7 +205,7 @@ SideContacts side_contacts(const Scene& scene, SideRef side, std::span<const siz
       for (size_t i = 0; i < region->size(); ++i) {
         const Vec2& a = (*region)[i];
         const Vec2& b = (*region)[(i + 1) % region->size()];
-        add_line(frame.uv(a), frame.uv(b));
+        add_line(frame.uv(a), frame.uv(b), SeenFrom{});
       }
       out.covered.push_back(std::move(*region));
       continue;
@@ -202,14 +225,16 @@ SideContacts side_contacts(const Scene& scene, SideRef side, std::span<const siz
     if (!plane_section(t.corners, dist, a, b) || !clip_to_quad(s, a, b)) continue;
     const std::optional<Vec2> ua = s.parameters(a), ub = s.parameters(b);
     if (!ua || !ub) continue;
-    add_line(*ua, *ub);
+    const double facing_left = t.normal().dot(st_up.cross(b - a));
+    add_line(*ua, *ub, SeenFrom{facing_left > 0, facing_left < 0, t.two_sided});
   }
   return out;
 }
 
 /// The bounded faces of the graph of `lines` joined at their end points (within `join_m`), after
-/// removing dangling lines, as regions (as_region()).
-std::vector<Polyline> enclosed_regions(const std::vector<Segment2>& lines, double join_m) {
+/// removing dangling lines, as regions (as_region()), but those that a surface standing on one
+/// of their lines faces (`seen`, per line): the inside of a closed room, not the foot of a block.
+std::vector<Polyline> enclosed_regions(const std::vector<Segment2>& lines, const std::vector<SeenFrom>& seen, double join_m) {
   std::vector<Vec2> nodes;
   const auto node_of = [&](const Vec2& p) {
     for (size_t i = 0; i < nodes.size(); ++i)
@@ -218,9 +243,12 @@ std::vector<Polyline> enclosed_regions(const std::vector<Segment2>& lines, doubl
     return nodes.size() - 1;
   };
   std::set<std::pair<size_t, size_t>> edges;
-  for (const Segment2& l : lines) {
-    const size_t i = node_of(l.a), j = node_of(l.b);
-    if (i != j) edges.insert(std::minmax(i, j));
+  std::map<std::pair<size_t, size_t>, SeenFrom> edge_seen;  ///< halves seen, of the direction low -> high node
+  for (size_t k = 0; k < lines.size(); ++k) {
+    const size_t i = node_of(lines[k].a), j = node_of(lines[k].b);
+    if (i == j) continue;
+    edges.insert(std::minmax(i, j));
+    edge_seen[std::minmax(i, j)].add(i < j ? seen[k] : seen[k].reversed());
   }
   // Dangling lines bound no area: remove every edge at a node of degree 1, until none is left.
   for (bool pruned = true; pruned;) {
@@ -255,17 +283,21 @@ std::vector<Polyline> enclosed_regions(const std::vector<Segment2>& lines, doubl
     for (size_t k0 = 0; k0 < around[start].size(); ++k0) {
       if (walked[start][k0]) continue;
       Polyline face;
+      bool faced = false;  // a surface standing on its outline faces it
       size_t node = start, k = k0;
       while (!walked[node][k]) {
         walked[node][k] = true;
         face.push_back(nodes[node]);
         const size_t next = around[node][k];
+        // The face lies left of node -> next.
+        const SeenFrom& e = edge_seen[std::minmax(node, next)];
+        faced = faced || e.sees(node < next);
         const std::vector<size_t>& nb = around[next];
         const size_t back = static_cast<size_t>(std::find(nb.begin(), nb.end(), node) - nb.begin());
         k = (back + nb.size() - 1) % nb.size();
         node = next;
       }
-      if (twice_signed_area(face) <= 0) continue;  // the unbounded face
+      if (twice_signed_area(face) <= 0 || faced) continue;  // the unbounded face, or one seen
       if (std::optional<Polyline> region = as_region(std::move(face), join_m)) out.push_back(std::move(*region));
     }
   return out;
@@ -323,7 +355,7 @@ SideContactSet ContactFinder::at(SideRef side) const {
     out.excluded.push_back(std::move(region));
   };
   for (Polyline& r : contacts.covered) add(std::move(r));
-  for (Polyline& r : enclosed_regions(contacts.lines, join_m)) add(std::move(r));
+  for (Polyline& r : enclosed_regions(contacts.lines, contacts.seen, join_m)) add(std::move(r));
   out.lines = std::move(contacts.lines);
   return out;
 }

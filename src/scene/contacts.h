@@ -54,8 +54,12 @@ bool lies_on(const Surface& other, const Surface& base);
 ///     region). Lines are joined at their end points only: lines crossing in their middles, or
 ///     one ending in the middle of another, close no loop, nor do lines dropped along the
 ///     quad's border (a box standing in a corner of the floor, or the walls of a closed box on
-///     its bottom, enclose nothing). Enclosure is read from the lines alone: four walls without
-///     a roof enclose their yard too.
+///     its bottom, enclose nothing). An area that a surface standing on one of its lines faces
+///     (its front half-space holds it; a two-sided surface faces both ways) is seen, not
+///     enclosed: the floor of a room whose walls face in, even standing inside the floor's edge.
+///     Two one-sided surfaces back to back on one line (boxes touching) hide each other. Beyond
+///     that, enclosure is read from the lines alone: four walls facing out without a roof
+///     enclose their yard too.
 /// Collinear vertices (within tol::kContactJoinRelative) are dropped, and so are regions no wider
 /// than that (a coplanar neighbour touching the side along its border). A quad side that is not a
 /// parallelogram maps the vertices exactly and joins them by straight lines in (s, t).
