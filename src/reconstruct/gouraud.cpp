@@ -305,6 +305,29 @@ Gouraud::Gouraud(const CellSamples& input) : channels_(input.channels) {
     leaf_triangles_.push_back(static_cast<int>(triangles_.size()));
   }
   index_.build(leaves_, min_w * 0.5, min_h * 0.5);
+
+  // 5. Each hole leaf's candidates for the nearest leaf outside the holes of its points: those
+  // within d + its diagonal, d the distance from it to the nearest such leaf (a point of the hole
+  // leaf is within d + diagonal of that one, and farther from any leaf beyond the bound).
+  std::vector<int> open;
+  for (size_t k = 0; k < leaves_.size(); ++k)
+    if (!leaf_holes_[k]) open.push_back(static_cast<int>(k));
+  hole_candidates_first_.assign(leaves_.size() + 1, 0);
+  for (size_t h = 0; h < leaves_.size(); ++h) {
+    if (leaf_holes_[h] && !open.empty()) {
+      const Rect& r = leaves_[h];
+      const auto gap = [&](int leaf) {
+        const Rect& o = leaves_[static_cast<size_t>(leaf)];
+        return std::hypot(std::max({0.0, o.x0 - r.x1, r.x0 - o.x1}), std::max({0.0, o.y0 - r.y1, r.y0 - o.y1}));
+      };
+      double nearest = std::numeric_limits<double>::infinity();
+      for (const int leaf : open) nearest = std::min(nearest, gap(leaf));
+      const double bound = nearest + std::hypot(r.x1 - r.x0, r.y1 - r.y0);
+      for (const int leaf : open)
+        if (gap(leaf) <= bound) hole_candidates_.push_back(leaf);
+    }
+    hole_candidates_first_[h + 1] = static_cast<int>(hole_candidates_.size());
+  }
 }
 
 int Gouraud::locate(const Vec2& p) const {
@@ -329,12 +352,26 @@ void Gouraud::evaluate(std::span<const Vec2> points, std::span<double> out) cons
       for (int c = 0; c < C; ++c) o[c] = std::numeric_limits<double>::quiet_NaN();
       return;
     }
-    const Vec2 p(std::clamp(q.x(), bounds_.x0, bounds_.x1), std::clamp(q.y(), bounds_.y0, bounds_.y1));
-    const int leaf = locate(p);
+    Vec2 p(std::clamp(q.x(), bounds_.x0, bounds_.x1), std::clamp(q.y(), bounds_.y0, bounds_.y1));
+    int leaf = locate(p);
     RR_CHECK_GE(leaf, 0, "a point of the domain is in no leaf");
     if (leaf_holes_[static_cast<size_t>(leaf)]) {
-      for (int c = 0; c < C; ++c) o[c] = std::numeric_limits<double>::quiet_NaN();
-      return;
+      // The value at the nearest point of the leaves outside the holes (the lowest leaf of a tie).
+      const int first = hole_candidates_first_[static_cast<size_t>(leaf)], end = hole_candidates_first_[static_cast<size_t>(leaf) + 1];
+      if (first == end) {  // every leaf a hole
+        for (int c = 0; c < C; ++c) o[c] = std::numeric_limits<double>::quiet_NaN();
+        return;
+      }
+      double best_sq = std::numeric_limits<double>::infinity();
+      Vec2 best_point = p;
+      for (int i = first; i < end; ++i) {
+        const int candidate = hole_candidates_[static_cast<size_t>(i)];
+        const Rect& r = leaves_[static_cast<size_t>(candidate)];
+        const Vec2 on(std::clamp(p.x(), r.x0, r.x1), std::clamp(p.y(), r.y0, r.y1));
+        const double d_sq = (on - p).squaredNorm();
+        if (d_sq < best_sq) best_sq = d_sq, best_point = on, leaf = candidate;
+      }
+      p = best_point;
     }
     // The leaf's triangle that contains p: the one whose smallest barycentric coordinate is
     // largest (>= 0 up to round-off; on a shared edge either triangle gives the same value).

@@ -32,11 +32,14 @@
 // or an overlap otherwise), have finite values or NaN, and be balanceable without splitting a
 // leaf into pieces narrower than half the narrowest cell (always true of a quadtree's leaves).
 //
-// Holes: a cell with a NaN value (in any channel) has no data, e.g. a region the caller
-// excludes (the floor under a box). It takes part in the tiling and the balance but in no
-// vertex mean; a point that only holes contain (inside one, or on its part of the domain's
-// border, after clamping) gets NaN, a point on a hole's outline the value of the cells outside.
-// So the values outside a hole do not depend on what lies under it.
+// Holes: a cell with a NaN value (in any channel) has no data, e.g. a cell whose centre lies in a
+// region the caller excludes (the floor under a box). It takes part in the tiling and the
+// balance but in no vertex mean; a point that only holes contain (inside one, or on its part of
+// the domain's border, after clamping) gets the value at its nearest point of the cells that are
+// not holes (of the lowest leaf, on a tie), NaN if every cell is one; a point on a hole's outline
+// the value of the cells outside. So the values outside a hole do not depend on what lies under
+// it, and the part of a hole cell that the caller does not exclude (a cell half under a lamp
+// lying on a ceiling) continues its neighbours; the caller masks what it excludes.
 
 #include <array>
 #include <vector>
@@ -80,6 +83,9 @@ class Gouraud final : public Interpolant {
   std::vector<int> leaf_cells_;
   std::vector<char> leaf_holes_;     ///< the leaf's cell has a NaN value
   std::vector<int> leaf_triangles_;  ///< leaf k owns triangles [leaf_triangles_[k], [k + 1])
+  /// Per hole leaf, the leaves outside the holes that may hold its points' nearest point:
+  /// hole_candidates_[hole_candidates_first_[k] .. [k + 1]) (none for other leaves).
+  std::vector<int> hole_candidates_first_, hole_candidates_;
   std::vector<Vec2> vertices_;
   std::vector<double> vertex_values_;
   size_t corner_count_ = 0;
