@@ -76,6 +76,12 @@ void run_export(const ExportArgs& args) {
                                           args.border_samples);
   Progress progress("export", args.quiet);
   const LightmapAtlas atlas = bake_lightmaps(scene, solution, *recon, args.texels, "--texels", &progress);
+  if (atlas.texels_without_value > 0)
+    std::fprintf(stderr,
+                 "radrecon: warning: %zu of the %zu texels (%.1f%%) lie where %s gives no value (outside the samples' hull "
+                 "with outside=none, beyond a radius, or cut off by barriers); they hold 0 (black)\n",
+                 atlas.texels_without_value, atlas.texels,
+                 100.0 * static_cast<double>(atlas.texels_without_value) / static_cast<double>(atlas.texels), args.method.c_str());
   const double white = args.white > 0 ? args.white : lightmap_white(scene, atlas);
   const nlohmann::json extras = {{"method", args.method}, {"params", args.params}, {"solution", solution.mesh},
                                  {"scene", solution.scene}};

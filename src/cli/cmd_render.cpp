@@ -96,7 +96,7 @@ void render_and_write(const RenderArgs& args, const Scene& scene, const Camera& 
   if (rendering.rays_without_value > 0)
     std::fprintf(stderr,
                  "radrecon: warning: %zu of the %zu rays (%.1f%%) met points where %s gives no value (outside the "
-                 "samples' hull with outside=none, beyond a radius, or cut off by barriers); they are drawn black\n",
+                 "samples' hull with outside=none, beyond a radius, cut off by barriers, or in a region excluded as hidden); they are drawn black\n",
                  rendering.rays_without_value, rendering.rays,
                  100.0 * static_cast<double>(rendering.rays_without_value) / static_cast<double>(rendering.rays),
                  args.method.c_str());

@@ -151,15 +151,19 @@ LightmapAtlas bake_lightmaps(const Scene& scene, const Solution& solution, const
       values.assign(points.size() * static_cast<size_t>(channels), 0.0);
       f->evaluate(points, values);
       filled += static_cast<double>(points.size());
+      atlas.texels += points.size();
       if (progress != nullptr) progress->update(filled / texels, "the lightmap's texels filled");
       for (int j = j0; j < j1; ++j)
         for (int i = 0; i < t.width; ++i) {
           const size_t k = static_cast<size_t>(j - j0) * t.width + i;
           Rgb& c = img.at(t.x0 + i, t.y0 + j);
+          bool without_value = false;
           for (int ch = 0; ch < 3; ++ch) {
             const double v = values[k * channels + std::min(ch, channels - 1)];
             c[ch] = std::isfinite(v) ? v : 0.0;
+            without_value = without_value || !std::isfinite(v);
           }
+          if (without_value && !in_excluded_region(s.excluded, points[k])) ++atlas.texels_without_value;
         }
     }
     constexpr int g = kLightmapGutter;

@@ -13,7 +13,8 @@
 // bilinear (u, v) of that point, which differs. Around each tile a gutter of kLightmapGutter texels repeats its
 // border texels, so filtering at a tile's edge never reads a neighbour. A triangle's texels
 // beyond its hypotenuse hold the value at the nearest point of the triangle. Where a method has
-// no value (behind barriers, under excluded regions) a texel holds 0.
+// no value (behind barriers, under excluded regions) a texel holds 0; `export` warns of those
+// outside excluded regions.
 
 #include <string>
 
@@ -44,6 +45,10 @@ struct LightmapAtlas {
   Image radiosity_w_m2{1, 1};  ///< linear, W/m^2 per channel; row 0 the first row of the image
   std::vector<LightmapTile> tiles;
   double texels_per_metre = 0;
+  /// Texels of the tiles (gutters aside), and those where the method gave no value outside the
+  /// sides' excluded regions (outside=none, beyond a radius, cut off by barriers): they hold 0.
+  /// Texels in an excluded region (hidden) hold 0 too, and are not counted.
+  size_t texels = 0, texels_without_value = 0;
 
   /// The texture coordinate of the side's parameters (u, v), in [0, 1]^2 of the atlas.
   Vec2 texture_coordinate(const LightmapTile& tile, double u, double v) const;

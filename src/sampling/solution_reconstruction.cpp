@@ -27,11 +27,6 @@ bool inside(const Polyline& polygon, const Vec2& p) {
   return in;
 }
 
-bool excluded(const std::vector<Polyline>& regions, const Vec2& p) {
-  for (const Polyline& r : regions)
-    if (inside(r, p)) return true;
-  return false;
-}
 
 /// An interpolant that has no value (NaN) inside the side's excluded regions.
 class OutsideExcluded final : public Interpolant {
@@ -43,7 +38,7 @@ class OutsideExcluded final : public Interpolant {
     inner_->evaluate(points, out);
     const size_t C = static_cast<size_t>(channels());
     for (size_t k = 0; k < points.size(); ++k)
-      if (points[k].allFinite() && excluded(regions_, points[k]))
+      if (points[k].allFinite() && in_excluded_region(regions_, points[k]))
         for (size_t c = 0; c < C; ++c) out[k * C + c] = std::numeric_limits<double>::quiet_NaN();
   }
 
@@ -58,7 +53,7 @@ ScatteredSamples outside_regions(const ScatteredSamples& all, const std::vector<
   ScatteredSamples kept;
   kept.channels = all.channels;
   for (size_t k = 0; k < all.points.size(); ++k)
-    if (!excluded(regions, all.points[k])) {
+    if (!in_excluded_region(regions, all.points[k])) {
       kept.points.push_back(all.points[k]);
       kept.values.insert(kept.values.end(), all.values.begin() + static_cast<std::ptrdiff_t>(k * all.channels),
                          all.values.begin() + static_cast<std::ptrdiff_t>((k + 1) * all.channels));
@@ -99,7 +94,7 @@ InterpolantResult reconstruct_unmasked(const SurfaceSolution& s, Method method, 
     // The cells under excluded regions are holes (NaN): no value there, no influence outside.
     CellSamples cells = grid ? to_cells(grid_cells(s)) : element_cells(s);
     for (size_t k = 0; k < cells.cells.size(); ++k)
-      if (excluded(s.excluded, cells.cells[k].center()))
+      if (in_excluded_region(s.excluded, cells.cells[k].center()))
         for (int c = 0; c < cells.channels; ++c) cells.values[k * cells.channels + c] = std::numeric_limits<double>::quiet_NaN();
     return make_cell_interpolant(method, cells, params);
   }
@@ -134,6 +129,12 @@ void check_in_place(const SurfaceSolution& side, const Surface& surface, const s
 }
 
 }  // namespace
+
+bool in_excluded_region(const std::vector<Polyline>& regions, const Vec2& st) {
+  for (const Polyline& r : regions)
+    if (inside(r, st)) return true;
+  return false;
+}
 
 InterpolantResult reconstruct_side(const SurfaceSolution& s, Method method, const MethodParams& params,
                                    const SideSampling& sampling) {

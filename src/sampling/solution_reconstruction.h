@@ -26,6 +26,11 @@ struct SideSampling {
   bool border_samples = false;
 };
 
+/// Whether the point (s, t) of a side, metres, lies in one of its excluded regions
+/// (SurfaceSolution::excluded: under a surface lying on the side, or enclosed by surfaces standing
+/// on it), where every reconstruction has no value.
+bool in_excluded_region(const std::vector<Polyline>& regions, const Vec2& st);
+
 /// One side's reconstruction by `method` from its solution: grid sides as grid data
 /// (make_grid_interpolant), adaptive sides as scattered data (their leaves for constant, the leaf
 /// centres otherwise), with the side's barriers if `sampling` says so. A Failure when the method

@@ -194,5 +194,36 @@ TEST(Lightmap, TheLongestSideGetsExactlyTheTexelsAsked) {
   }
 }
 
+TEST(Lightmap, CountsTheTexelsWhereTheMethodGivesNoValue) {
+  // natural-neighbour with outside=none has no value outside the hull of a side's element centres,
+  // here the rectangle of the extreme centres: the count is the texels whose point lies outside it
+  // (counted from the tile's geometry), and they hold 0.
+  const Scene scene = lit_quad("floor", {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0)},
+                               {Vec3(0.3, 0.3, 1), Vec3(0.3, 0.7, 1), Vec3(0.7, 0.7, 1), Vec3(0.7, 0.3, 1)});
+  const Solution solution = solve_scene(scene, "grid:4", SolveSettings{}, "mesh");
+  MethodParams params;
+  params.outside = OutsideHull::none;
+  const SolutionReconstruction recon(scene, solution, Method::natural_neighbour, params, "test");
+  const LightmapAtlas atlas = bake_lightmaps(scene, solution, recon, 30, "test");
+  size_t expected = 0, texels = 0;
+  for (const LightmapTile& t : atlas.tiles) {
+    const SurfaceSolution& side = solution.surfaces[t.solution_side];
+    Vec2 low = Vec2::Constant(1e9), high = Vec2::Constant(-1e9);
+    for (const SolutionElement& e : side.elements) low = low.cwiseMin(side.centroid_st(e)), high = high.cwiseMax(side.centroid_st(e));
+    for (int j = 0; j < t.height; ++j)
+      for (int i = 0; i < t.width; ++i) {
+        const Vec2 st((i + 0.5) / t.width * side.length_u_m, (j + 0.5) / t.height * side.length_v_m);
+        ASSERT_FALSE(st.x() == low.x() || st.x() == high.x() || st.y() == low.y() || st.y() == high.y());
+        const bool outside = (st.array() < low.array()).any() || (st.array() > high.array()).any();
+        expected += outside;
+        ++texels;
+        if (outside) EXPECT_EQ(atlas.radiosity_w_m2.at(t.x0 + i, t.y0 + j)[0], 0.0);
+      }
+  }
+  EXPECT_EQ(atlas.texels, texels);
+  EXPECT_GT(expected, 100u);
+  EXPECT_EQ(atlas.texels_without_value, expected);
+}
+
 }  // namespace gltf_export_test
 }  // namespace radrecon
