@@ -171,6 +171,11 @@ inline constexpr double kContactJoinRelative = 1e-6;
 /// never the floor on the plate), and two equal ones up to round-off (a duplicated quad, its
 /// corners listed in another order) cover neither.
 inline constexpr double kLyingSmallerRelative = 1e-6;
+/// An area enclosed by surfaces standing on a side, one of which faces it (or is two-sided), is
+/// hidden only if no light reaches it: the solver keeps it excluded while every element of the
+/// side inside it has a radiosity at most this fraction of the solution's brightest (exact
+/// shadows give 0 inside a closed box, up to round-off), solver/solve.cpp.
+inline constexpr double kEnclosedLitRelative = 1e-9;
 
 /// Scattered samples count as the nodes of a regular grid when their coordinates lie within
 /// this fraction of the samples' extent from the grid lines: far above the round-off of

@@ -10,23 +10,11 @@
 #include "core/tolerances.h"
 #include "reconstruct/border_samples.h"
 #include "sampling/surface_samples.h"
+#include "scene/contacts.h"
 
 namespace radrecon {
 
 namespace {
-
-/// Whether p lies inside the polygon (crossing number; a point on its outline may count either
-/// way: the outline is a barrier, and the renderer never sees the covered floor).
-bool inside(const Polyline& polygon, const Vec2& p) {
-  bool in = false;
-  for (size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
-    const Vec2 &a = polygon[i], &b = polygon[j];
-    if ((a.y() > p.y()) != (b.y() > p.y()) && p.x() < a.x() + (p.y() - a.y()) / (b.y() - a.y()) * (b.x() - a.x()))
-      in = !in;
-  }
-  return in;
-}
-
 
 /// An interpolant that has no value (NaN) inside the side's excluded regions.
 class OutsideExcluded final : public Interpolant {
@@ -132,7 +120,7 @@ void check_in_place(const SurfaceSolution& side, const Surface& surface, const s
 
 bool in_excluded_region(const std::vector<Polyline>& regions, const Vec2& st) {
   for (const Polyline& r : regions)
-    if (inside(r, st)) return true;
+    if (in_region(r, st)) return true;
   return false;
 }
 

@@ -232,9 +232,11 @@ SideContacts side_contacts(const Scene& scene, SideRef side, std::span<const siz
 }
 
 /// The bounded faces of the graph of `lines` joined at their end points (within `join_m`), after
-/// removing dangling lines, as regions (as_region()), but those that a surface standing on one
-/// of their lines faces (`seen`, per line): the inside of a closed room, not the foot of a block.
-std::vector<Polyline> enclosed_regions(const std::vector<Segment2>& lines, const std::vector<SeenFrom>& seen, double join_m) {
+/// removing dangling lines, as regions (as_region()): into `hidden`, or into `faced` if a
+/// surface standing on one of their lines faces them (`seen`, per line: the inside of a closed
+/// room, not the foot of a block).
+void enclosed_regions(const std::vector<Segment2>& lines, const std::vector<SeenFrom>& seen, double join_m,
+                      std::vector<Polyline>& hidden, std::vector<Polyline>& faced_out) {
   std::vector<Vec2> nodes;
   const auto node_of = [&](const Vec2& p) {
     for (size_t i = 0; i < nodes.size(); ++i)
@@ -278,7 +280,6 @@ std::vector<Polyline> enclosed_regions(const std::vector<Segment2>& lines, const
     });
   std::vector<std::vector<bool>> walked(nodes.size());
   for (size_t i = 0; i < nodes.size(); ++i) walked[i].assign(around[i].size(), false);
-  std::vector<Polyline> out;
   for (size_t start = 0; start < nodes.size(); ++start)
     for (size_t k0 = 0; k0 < around[start].size(); ++k0) {
       if (walked[start][k0]) continue;
@@ -297,10 +298,9 @@ std::vector<Polyline> enclosed_regions(const std::vector<Segment2>& lines, const
         k = (back + nb.size() - 1) % nb.size();
         node = next;
       }
-      if (twice_signed_area(face) <= 0 || faced) continue;  // the unbounded face, or one seen
-      if (std::optional<Polyline> region = as_region(std::move(face), join_m)) out.push_back(std::move(*region));
+      if (twice_signed_area(face) <= 0) continue;  // the unbounded face
+      if (std::optional<Polyline> region = as_region(std::move(face), join_m)) (faced ? faced_out : hidden).push_back(std::move(*region));
     }
-  return out;
 }
 
 }  // namespace
@@ -354,8 +354,13 @@ SideContactSet ContactFinder::at(SideRef side) const {
       if (same_region(r, region, join_m)) return;
     out.excluded.push_back(std::move(region));
   };
+  std::vector<Polyline> hidden, faced;
+  enclosed_regions(contacts.lines, contacts.seen, join_m, hidden, faced);
   for (Polyline& r : contacts.covered) add(std::move(r));
-  for (Polyline& r : enclosed_regions(contacts.lines, contacts.seen, join_m)) add(std::move(r));
+  for (Polyline& r : hidden) add(std::move(r));
+  const size_t before = out.excluded.size();
+  for (Polyline& r : faced) add(std::move(r));
+  out.faced = out.excluded.size() - before;
   out.lines = std::move(contacts.lines);
   return out;
 }
@@ -363,7 +368,19 @@ SideContactSet ContactFinder::at(SideRef side) const {
 std::vector<Segment2> contact_lines(const Scene& scene, SideRef side) { return ContactFinder(scene).at(side).lines; }
 
 std::vector<Polyline> excluded_regions(const Scene& scene, SideRef side) {
-  return ContactFinder(scene).at(side).excluded;
+  SideContactSet set = ContactFinder(scene).at(side);
+  set.excluded.resize(set.excluded.size() - set.faced);
+  return set.excluded;
+}
+
+bool in_region(const Polyline& region, const Vec2& st) {
+  bool in = false;
+  for (size_t i = 0, j = region.size() - 1; i < region.size(); j = i++) {
+    const Vec2 &a = region[i], &b = region[j];
+    if ((a.y() > st.y()) != (b.y() > st.y()) && st.x() < a.x() + (st.y() - a.y()) / (b.y() - a.y()) * (b.x() - a.x()))
+      in = !in;
+  }
+  return in;
 }
 
 }  // namespace radrecon

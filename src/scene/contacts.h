@@ -55,20 +55,30 @@ bool lies_on(const Surface& other, const Surface& base);
 ///     one ending in the middle of another, close no loop, nor do lines dropped along the
 ///     quad's border (a box standing in a corner of the floor, or the walls of a closed box on
 ///     its bottom, enclose nothing). An area that a surface standing on one of its lines faces
-///     (its front half-space holds it; a two-sided surface faces both ways) is seen, not
-///     enclosed: the floor of a room whose walls face in, even standing inside the floor's edge.
-///     Two one-sided surfaces back to back on one line (boxes touching) hide each other. Beyond
-///     that, enclosure is read from the lines alone: four walls facing out without a roof
+///     (its front half-space holds it; a two-sided surface faces both ways) may be seen (the
+///     floor of a room whose walls face in, even standing inside the floor's edge) or not (the
+///     inside of a closed two-sided box): geometry alone cannot tell, and it is left out here
+///     (ContactFinder::at() lists it as `faced`; the solver keeps it only if no light reaches
+///     it). Two one-sided surfaces back to back on one line (boxes touching) hide each other.
+///     Beyond that, enclosure is read from the lines alone: four walls facing out without a roof
 ///     enclose their yard too.
 /// Collinear vertices (within tol::kContactJoinRelative) are dropped, and so are regions no wider
 /// than that (a coplanar neighbour touching the side along its border). A quad side that is not a
 /// parallelogram maps the vertices exactly and joins them by straight lines in (s, t).
 std::vector<Polyline> excluded_regions(const Scene& scene, SideRef side);
 
-/// A side's contact_lines() and excluded_regions() together.
+/// Whether the point (s, t) lies inside the closed polygon `region` (crossing number; a point on
+/// its outline may count either way).
+bool in_region(const Polyline& region, const Vec2& st);
+
+/// A side's contact_lines() and excluded_regions() together, and the enclosed areas that a
+/// surface standing on their outline faces.
 struct SideContactSet {
   std::vector<Segment2> lines;
+  /// excluded_regions(), then the faced enclosed areas (faced.size() of them, last): each may be
+  /// seen or hidden, as light reaches it or not.
   std::vector<Polyline> excluded;
+  size_t faced = 0;
 };
 
 /// The contacts of many sides of one scene: the surfaces' bounding boxes are made once, and a

@@ -1,5 +1,7 @@
 #include "solver/solve.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <unordered_map>
@@ -133,9 +135,32 @@ Solution solve_by_spec(const Scene& scene, const std::string& spec, const SolveS
 }
 
 
+/// Whether light reaches the enclosed area `region` of `side`: an element of the side inside it
+/// is brighter than tol::kEnclosedLitRelative of `brightest_w_m2`. Inside: every corner of the
+/// element in the region; where no element is (a coarse mesh), the element's centroid.
+bool lit(const SurfaceSolution& side, const Polyline& region, double brightest_w_m2) {
+  const double dark_w_m2 = tol::kEnclosedLitRelative * brightest_w_m2;
+  const SurfaceFrame frame = side.frame();
+  bool any_whole = false, lit_whole = false, lit_centred = false;
+  for (const SolutionElement& e : side.elements) {
+    const std::array<Vec2, 4> corners = e.vertices();
+    bool whole = true;
+    for (int k = 0; k < e.vertex_count(); ++k) whole = whole && in_region(region, frame.st(corners[static_cast<size_t>(k)]));
+    const bool bright = e.radiosity_w_m2.maxCoeff() > dark_w_m2;
+    if (whole) any_whole = true, lit_whole = lit_whole || bright;
+    else if (in_region(region, side.centroid_st(e))) lit_centred = lit_centred || bright;
+  }
+  return any_whole ? lit_whole : lit_centred;
+}
+
 /// Every side's contact lines (scene/contacts.h) as its barriers, its shadow lines
-/// (scene/shadow_lines.h) too if asked, and its excluded regions.
+/// (scene/shadow_lines.h) too if asked, and its excluded regions: those the geometry hides, and
+/// the enclosed areas faced by a surface standing on their outline that no light reaches (the
+/// foot of a closed two-sided box; not the floor of a lit room whose walls stand inside its edge).
 Solution with_barriers(const Scene& scene, Solution sol, bool shadow_lines_too) {
+  double brightest_w_m2 = 0;
+  for (const SurfaceSolution& side : sol.surfaces)
+    for (const SolutionElement& e : side.elements) brightest_w_m2 = std::max(brightest_w_m2, e.radiosity_w_m2.maxCoeff());
   std::unordered_map<std::string, SideRef> sides;  // by name: one look-up a side, not a scan
   for (size_t k = 0; k < scene.surfaces.size(); ++k)
     for (bool back : {false, true})
@@ -148,7 +173,10 @@ Solution with_barriers(const Scene& scene, Solution sol, bool shadow_lines_too) 
     for (const Segment2& c : found.lines) side.barriers.push_back({c.a, c.b});
     if (shadow_lines_too)
       for (const Segment2& c : shadow_lines(scene, ref->second)) side.barriers.push_back({c.a, c.b});
-    side.excluded = std::move(found.excluded);
+    side.excluded.clear();
+    const size_t faced_from = found.excluded.size() - found.faced;
+    for (size_t k = 0; k < found.excluded.size(); ++k)
+      if (k < faced_from || !lit(side, found.excluded[k], brightest_w_m2)) side.excluded.push_back(std::move(found.excluded[k]));
   }
   return sol;
 }

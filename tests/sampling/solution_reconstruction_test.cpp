@@ -65,6 +65,39 @@ TEST(SideReconstruction, TheFloorUnderABoxIsNeitherSampleNorQuery) {
   }
 }
 
+TEST(SolveScene, AnEnclosureAWallFacesIsExcludedOnlyWhereNoLightReachesIt) {
+  // The box's walls two-sided, or one of them facing in: they face the floor under the box, but
+  // the box is closed and no light reaches there; it stays excluded, as under a box of walls
+  // facing out. (Two-sided, it had samples of 0 that methods without barriers blended outside.)
+  for (const int variant : {0, 1, 2}) {
+    Scene scene = box_on_floor();
+    if (variant == 1)
+      for (size_t k = 2; k <= 6; ++k) scene.surfaces[k].two_sided = true;
+    if (variant == 2) scene.surfaces[3] = quad("x1", {2, 1, 0}, {2, 1, 1}, {2, 2, 1}, {2, 2, 0}, 0.5);  // facing in
+    const Solution solution = solve_scene(scene, "grid:16", SolveSettings{}, "test");
+    const SurfaceSolution& floor = require_surface(solution, "floor", "test");
+    ASSERT_EQ(floor.excluded.size(), 1u) << variant;
+    EXPECT_TRUE(in_excluded_region(floor.excluded, {1.5, 1.5})) << variant;
+  }
+  // A closed room, its walls facing in and standing 1e-7 m inside the floor's edge, its ceiling a
+  // lamp: the floor is lit, and none of it is excluded, however coarse the mesh (grid:2 has no
+  // element wholly inside the walls).
+  const double a = 1e-7, b = 1 - 1e-7;
+  Scene room;
+  room.surfaces.push_back(quad("floor", {0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, 0.5));
+  room.surfaces.push_back(quad("lamp", {a, a, 1}, {a, b, 1}, {b, b, 1}, {b, a, 1}, 0.5, 10));
+  room.surfaces.push_back(quad("south", {a, a, 0}, {a, a, 1}, {b, a, 1}, {b, a, 0}, 0.5));
+  room.surfaces.push_back(quad("east", {b, a, 0}, {b, a, 1}, {b, b, 1}, {b, b, 0}, 0.5));
+  room.surfaces.push_back(quad("north", {b, b, 0}, {b, b, 1}, {a, b, 1}, {a, b, 0}, 0.5));
+  room.surfaces.push_back(quad("west", {a, b, 0}, {a, b, 1}, {a, a, 1}, {a, a, 0}, 0.5));
+  for (const char* mesh : {"grid:8", "grid:2"}) {
+    const Solution solution = solve_scene(room, mesh, SolveSettings{}, "test");
+    const SurfaceSolution& floor = require_surface(solution, "floor", "test");
+    EXPECT_EQ(floor.barriers.size(), 4u) << mesh;
+    EXPECT_TRUE(floor.excluded.empty()) << mesh;
+  }
+}
+
 TEST(SideReconstruction, ATrianglesSideReconstructsInItsMetricFrame) {
   // A light over a floor of two triangles; a triangle's (s, t) is an isometry of its plane: the
   // distance between two element centroids in (s, t) is their distance in space.
