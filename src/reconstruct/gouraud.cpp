@@ -306,28 +306,39 @@ Gouraud::Gouraud(const CellSamples& input) : channels_(input.channels) {
   }
   index_.build(leaves_, min_w * 0.5, min_h * 0.5);
 
-  // 5. Each hole leaf's candidates for the nearest leaf outside the holes of its points: those
-  // within d + its diagonal, d the distance from it to the nearest such leaf (a point of the hole
-  // leaf is within d + diagonal of that one, and farther from any leaf beyond the bound).
-  std::vector<int> open;
-  for (size_t k = 0; k < leaves_.size(); ++k)
-    if (!leaf_holes_[k]) open.push_back(static_cast<int>(k));
-  hole_candidates_first_.assign(leaves_.size() + 1, 0);
-  for (size_t h = 0; h < leaves_.size(); ++h) {
-    if (leaf_holes_[h] && !open.empty()) {
-      const Rect& r = leaves_[h];
-      const auto gap = [&](int leaf) {
-        const Rect& o = leaves_[static_cast<size_t>(leaf)];
-        return std::hypot(std::max({0.0, o.x0 - r.x1, r.x0 - o.x1}), std::max({0.0, o.y0 - r.y1, r.y0 - o.y1}));
-      };
-      double nearest = std::numeric_limits<double>::infinity();
-      for (const int leaf : open) nearest = std::min(nearest, gap(leaf));
-      const double bound = nearest + std::hypot(r.x1 - r.x0, r.y1 - r.y0);
-      for (const int leaf : open)
-        if (gap(leaf) <= bound) hole_candidates_.push_back(leaf);
+  any_open_ = std::find(leaf_holes_.begin(), leaf_holes_.end(), 0) != leaf_holes_.end();
+}
+
+int Gouraud::nearest_open_leaf(const Vec2& p, Vec2& on) const {
+  // Rings of buckets around p's, outwards: a leaf in ring r + 1 is at least r bucket widths
+  // away, so the search ends once that exceeds the best distance found.
+  const double bw = (index_.bounds.x1 - index_.bounds.x0) / index_.nx, bh = (index_.bounds.y1 - index_.bounds.y0) / index_.ny;
+  const int b = index_.bucket(p), bx = b % index_.nx, by = b / index_.nx;
+  double best_sq = std::numeric_limits<double>::infinity();
+  int best = -1;
+  for (int r = 0; r <= std::max(index_.nx, index_.ny); ++r) {
+    const double reach = (r - 1) * std::min(bw, bh);  // the least distance to a bucket of ring r
+    if (r > 0 && reach > 0 && reach * reach > best_sq) break;
+    for (int j = by - r; j <= by + r; ++j) {
+      if (j < 0 || j >= index_.ny) continue;
+      const bool edge_row = j == by - r || j == by + r;
+      for (int i = bx - r; i <= bx + r; i += edge_row ? 1 : 2 * r) {
+        if (i >= 0 && i < index_.nx) {
+          const size_t bucket = static_cast<size_t>(j) * index_.nx + i;
+          for (int k = index_.first[bucket]; k < index_.first[bucket + 1]; ++k) {
+            const int leaf = index_.items[static_cast<size_t>(k)];
+            if (leaf_holes_[static_cast<size_t>(leaf)]) continue;
+            const Rect& rect = leaves_[static_cast<size_t>(leaf)];
+            const Vec2 q(std::clamp(p.x(), rect.x0, rect.x1), std::clamp(p.y(), rect.y0, rect.y1));
+            const double d_sq = (q - p).squaredNorm();
+            if (d_sq < best_sq || (d_sq == best_sq && leaf < best)) best_sq = d_sq, best = leaf, on = q;
+          }
+        }
+        if (r == 0) break;
+      }
     }
-    hole_candidates_first_[h + 1] = static_cast<int>(hole_candidates_.size());
   }
+  return best;
 }
 
 int Gouraud::locate(const Vec2& p) const {
@@ -356,22 +367,13 @@ void Gouraud::evaluate(std::span<const Vec2> points, std::span<double> out) cons
     int leaf = locate(p);
     RR_CHECK_GE(leaf, 0, "a point of the domain is in no leaf");
     if (leaf_holes_[static_cast<size_t>(leaf)]) {
-      // The value at the nearest point of the leaves outside the holes (the lowest leaf of a tie).
-      const int first = hole_candidates_first_[static_cast<size_t>(leaf)], end = hole_candidates_first_[static_cast<size_t>(leaf) + 1];
-      if (first == end) {  // every leaf a hole
+      if (!any_open_) {  // every leaf a hole
         for (int c = 0; c < C; ++c) o[c] = std::numeric_limits<double>::quiet_NaN();
         return;
       }
-      double best_sq = std::numeric_limits<double>::infinity();
-      Vec2 best_point = p;
-      for (int i = first; i < end; ++i) {
-        const int candidate = hole_candidates_[static_cast<size_t>(i)];
-        const Rect& r = leaves_[static_cast<size_t>(candidate)];
-        const Vec2 on(std::clamp(p.x(), r.x0, r.x1), std::clamp(p.y(), r.y0, r.y1));
-        const double d_sq = (on - p).squaredNorm();
-        if (d_sq < best_sq) best_sq = d_sq, best_point = on, leaf = candidate;
-      }
-      p = best_point;
+      Vec2 on = p;
+      leaf = nearest_open_leaf(p, on);  // the value at the nearest point of the leaves outside the holes
+      p = on;
     }
     // The leaf's triangle that contains p: the one whose smallest barycentric coordinate is
     // largest (>= 0 up to round-off; on a shared edge either triangle gives the same value).

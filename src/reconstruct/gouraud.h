@@ -39,7 +39,10 @@
 // not holes (of the lowest leaf, on a tie), NaN if every cell is one; a point on a hole's outline
 // the value of the cells outside. So the values outside a hole do not depend on what lies under
 // it, and the part of a hole cell that the caller does not exclude (a cell half under a lamp
-// lying on a ceiling) continues its neighbours; the caller masks what it excludes.
+// lying on a ceiling) takes its neighbours' values at the hole's outline; the caller masks what it
+// excludes. (That extension is continuous but for the points equidistant from two parts of a
+// concave hole's outline, deep inside it.) The nearest point is searched in rings of buckets
+// around the point: the cost grows with its distance from the nearest cell that is no hole.
 
 #include <array>
 #include <vector>
@@ -76,6 +79,9 @@ class Gouraud final : public Interpolant {
   };
   /// The leaf containing p (already clamped into the domain).
   int locate(const Vec2& p) const;
+  /// The leaf that is no hole nearest to p (the lowest of a tie; some must exist), and in `on`
+  /// its point nearest to p.
+  int nearest_open_leaf(const Vec2& p, Vec2& on) const;
 
   int channels_ = 1;
   Rect bounds_{};
@@ -83,9 +89,7 @@ class Gouraud final : public Interpolant {
   std::vector<int> leaf_cells_;
   std::vector<char> leaf_holes_;     ///< the leaf's cell has a NaN value
   std::vector<int> leaf_triangles_;  ///< leaf k owns triangles [leaf_triangles_[k], [k + 1])
-  /// Per hole leaf, the leaves outside the holes that may hold its points' nearest point:
-  /// hole_candidates_[hole_candidates_first_[k] .. [k + 1]) (none for other leaves).
-  std::vector<int> hole_candidates_first_, hole_candidates_;
+  bool any_open_ = false;             ///< some leaf is no hole
   std::vector<Vec2> vertices_;
   std::vector<double> vertex_values_;
   size_t corner_count_ = 0;

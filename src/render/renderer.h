@@ -99,7 +99,8 @@ struct Rendering {
   /// reconstruction (not the background, a light, or a side drawn black), else 0.
   std::vector<std::uint8_t> reflecting;
   /// Rays that met a side at a point where its reconstruction has no value (NaN: outside=none,
-  /// beyond a radius, cut off by barriers), drawn black; and all rays traced.
+  /// beyond a radius, cut off by barriers, in an excluded region), drawn black; and all rays
+  /// traced.
   std::size_t rays_without_value = 0, rays = 0;
 };
 

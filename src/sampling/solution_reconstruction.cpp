@@ -22,12 +22,22 @@ class OutsideExcluded final : public Interpolant {
   OutsideExcluded(std::unique_ptr<Interpolant> inner, std::vector<Polyline> regions)
       : inner_(std::move(inner)), regions_(std::move(regions)) {}
   int channels() const override { return inner_->channels(); }
+  /// The inner interpolant sees only the points outside the regions: what it would give inside
+  /// them is never asked (gouraud would search for the nearest cell outside its holes).
   void evaluate(std::span<const Vec2> points, std::span<double> out) const override {
-    inner_->evaluate(points, out);
     const size_t C = static_cast<size_t>(channels());
+    std::vector<Vec2> outside;
+    std::vector<size_t> at;  // their indices in `points`
     for (size_t k = 0; k < points.size(); ++k)
       if (points[k].allFinite() && in_excluded_region(regions_, points[k]))
         for (size_t c = 0; c < C; ++c) out[k * C + c] = std::numeric_limits<double>::quiet_NaN();
+      else
+        outside.push_back(points[k]), at.push_back(k);
+    if (at.size() == points.size()) return inner_->evaluate(points, out);
+    std::vector<double> values(outside.size() * C);
+    inner_->evaluate(outside, values);
+    for (size_t i = 0; i < at.size(); ++i)
+      for (size_t c = 0; c < C; ++c) out[at[i] * C + c] = values[i * C + c];
   }
 
  private:
@@ -80,11 +90,17 @@ InterpolantResult reconstruct_unmasked(const SurfaceSolution& s, Method method, 
   }
   if (is_cell_method(method) && !s.excluded.empty()) {
     // The cells under excluded regions are holes (NaN): no value there, no influence outside.
+    // Every cell centred under one (a coarse quadtree's one ceiling leaf under a lamp): the cells
+    // as they are, the regions masked, as constant does below.
     CellSamples cells = grid ? to_cells(grid_cells(s)) : element_cells(s);
+    const CellSamples unmasked = cells;
+    size_t holes = 0;
     for (size_t k = 0; k < cells.cells.size(); ++k)
-      if (in_excluded_region(s.excluded, cells.cells[k].center()))
+      if (in_excluded_region(s.excluded, cells.cells[k].center())) {
+        ++holes;
         for (int c = 0; c < cells.channels; ++c) cells.values[k * cells.channels + c] = std::numeric_limits<double>::quiet_NaN();
-    return make_cell_interpolant(method, cells, params);
+      }
+    return make_cell_interpolant(method, holes == cells.cells.size() ? unmasked : cells, params);
   }
   if (grid) return make_grid_interpolant(method, grid_cells(s), params);
   if ((method == Method::constant && params.barriers.empty()) || is_cell_method(method))

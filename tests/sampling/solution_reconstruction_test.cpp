@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "sampling/solution_reconstruction.h"
@@ -96,6 +97,23 @@ TEST(SolveScene, AnEnclosureAWallFacesIsExcludedOnlyWhereNoLightReachesIt) {
     EXPECT_EQ(floor.barriers.size(), 4u) << mesh;
     EXPECT_TRUE(floor.excluded.empty()) << mesh;
   }
+}
+
+TEST(SideReconstruction, GouraudOnASideWhoseEveryCellIsCentredInAnExcludedRegionDrawsTheCells) {
+  // A region over every cell centre but not the whole side (a coarse quadtree's one ceiling leaf
+  // under a lamp lying on it): the cells are drawn as they are outside the region, as constant
+  // draws them, not left without a value; inside it, no value.
+  const Solution solution = solve_scene(box_on_floor(), "grid:2", SolveSettings{}, "test");
+  SurfaceSolution floor = require_surface(solution, "floor", "test");
+  ASSERT_EQ(floor.elements.size(), 4u);
+  floor.excluded = {{{0.1, 0.1}, {3.9, 0.1}, {3.9, 3.9}, {0.1, 3.9}}};
+  const auto gouraud = reconstruct_side(floor, Method::gouraud, {}, SideSampling{});
+  ASSERT_TRUE(gouraud.ok()) << gouraud.reason();
+  // The corner (0, 0) lies in one cell: the vertex mean there is that cell's value.
+  const SolutionElement& corner_cell = *std::find_if(floor.elements.begin(), floor.elements.end(),
+                                                      [](const SolutionElement& e) { return e.u0 == 0 && e.v0 == 0; });
+  EXPECT_NEAR(at(*gouraud.value(), {0, 0}), corner_cell.radiosity_w_m2[0], 1e-12);
+  EXPECT_TRUE(std::isnan(at(*gouraud.value(), {2, 2})));
 }
 
 TEST(SideReconstruction, ATrianglesSideReconstructsInItsMetricFrame) {
