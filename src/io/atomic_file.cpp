@@ -1,11 +1,13 @@
 #include "io/atomic_file.h"
 
 #include <atomic>
+#include <cerrno>
 #include <csignal>
+#include <cstdarg>
+#include <cstdio>
 #include <cstring>
 #include <dirent.h>
 #include <fcntl.h>
-#include <fstream>
 #include <mutex>
 #include <string>
 #include <system_error>
@@ -171,11 +173,83 @@ void write_file_atomically(const std::filesystem::path& requested,
       if (g_on_write) g_on_write(requested);
     }
   }
-  fs::rename(tmp, path, ec);
-  if (ec) {
+  try {
+    move_into_place(tmp, path);
+  } catch (...) {
     fs::remove(tmp, ec);
-    throw UserError(path.string(), "cannot write: " + ec.message());
+    throw;
   }
+}
+
+void move_into_place(const std::filesystem::path& tmp, const std::filesystem::path& path) {
+  if (::rename(tmp.c_str(), path.c_str()) != 0)
+    throw output_error(path.string(), errno, " (moving the finished file into place)");
+}
+
+UserError output_error(const std::string& shown_as, int error, const std::string& detail) {
+  return UserError(shown_as, std::string("cannot write: ") + std::strerror(error) + detail);
+}
+
+namespace {
+/// What OutputFile gathers before a write(2).
+constexpr size_t kOutputBuffer = size_t{1} << 16;
+}  // namespace
+
+OutputFile::OutputFile(const std::filesystem::path& tmp, std::string shown_as) : shown_as_(std::move(shown_as)) {
+  fd_ = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  if (fd_ < 0) throw output_error(shown_as_, errno, " (creating its temporary file)");
+  buffer_.reserve(kOutputBuffer);
+}
+
+OutputFile::~OutputFile() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+void OutputFile::write_through(const char* data, size_t size) {
+  while (size > 0) {
+    const ssize_t n = ::write(fd_, data, size);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) throw output_error(shown_as_, n < 0 ? errno : EIO);
+    data += n;
+    size -= static_cast<size_t>(n);
+  }
+}
+
+void OutputFile::flush() {
+  write_through(buffer_.data(), buffer_.size());
+  buffer_.clear();
+}
+
+void OutputFile::write(const void* data, size_t size) {
+  if (buffer_.size() + size > kOutputBuffer) flush();
+  if (size < kOutputBuffer) buffer_.append(static_cast<const char*>(data), size);
+  else write_through(static_cast<const char*>(data), size);  // large: straight from the caller's memory
+}
+
+void OutputFile::print(const char* format, ...) {
+  char small[256];
+  std::va_list args;
+  va_start(args, format);
+  const int n = std::vsnprintf(small, sizeof(small), format, args);
+  va_end(args);
+  RR_CHECK(n >= 0, "an output's format is invalid");
+  if (static_cast<size_t>(n) < sizeof(small)) {
+    write(small, static_cast<size_t>(n));
+    return;
+  }
+  std::string text(static_cast<size_t>(n) + 1, '\0');
+  va_start(args, format);
+  std::vsnprintf(text.data(), text.size(), format, args);
+  va_end(args);
+  text.pop_back();
+  write(text);
+}
+
+void OutputFile::close() {
+  flush();
+  const int fd = fd_;
+  fd_ = -1;
+  if (::close(fd) != 0 && errno != EINTR) throw output_error(shown_as_, errno);
 }
 
 void write_text_file(const std::filesystem::path& path, const std::string& text) {
@@ -184,10 +258,9 @@ void write_text_file(const std::filesystem::path& path, const std::string& text)
 
 void write_binary_file(const std::filesystem::path& path, std::span<const std::uint8_t> bytes) {
   write_file_atomically(path, [&](const std::filesystem::path& tmp) {
-    std::ofstream out(tmp, std::ios::binary);
-    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-    out.close();  // the last bytes are flushed here: a full disk shows now
-    if (!out) throw UserError(path.string(), "cannot write");
+    OutputFile out(tmp, path.string());
+    out.write(bytes.data(), bytes.size());
+    out.close();  // the last bytes are written here: a full disk shows now
   });
 }
 

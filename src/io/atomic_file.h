@@ -2,18 +2,22 @@
 // Output files appear whole or not at all: content goes to a temporary file beside the target,
 // which is renamed over it only once complete.
 
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
+
+#include "core/error.h"
 
 namespace radrecon {
 
 /// Calls write(tmp_path) to produce the file, then renames tmp_path to `path`. On any exception
 /// the temporary file is removed and the exception propagates; `path` is left untouched.
-/// Creates the parent folders of `path`.
+/// Creates the parent folders of `path`. A failed rename throws output_error().
 void write_file_atomically(const std::filesystem::path& path,
                            const std::function<void(const std::filesystem::path&)>& write);
 
@@ -58,11 +62,46 @@ class TemporaryPath {
   void* slot_ = nullptr;  ///< the handler's slot, opaque here
 };
 
+/// Renames the finished file `tmp` to `path` (the name itself: a symbolic link there is replaced,
+/// not followed); output_error() naming `path` if the system refuses, `tmp` left to the caller.
+void move_into_place(const std::filesystem::path& tmp, const std::filesystem::path& path);
+
+/// The one wording of an output that cannot be written: UserError naming `shown_as` (the output as
+/// the user named it, not its temporary file), "cannot write: " and the system's reason for
+/// `error`, an errno value taken right after the failing call ("No space left on device"), then
+/// `detail` (" (...)" or "").
+UserError output_error(const std::string& shown_as, int error, const std::string& detail = "");
+
+/// An output file written by write_file_atomically()'s callback: buffered writes straight to the
+/// file, every failure (a full disk, a file-size limit, a failing close) an output_error() naming
+/// `shown_as`, with the reason of the call that failed.
+class OutputFile {
+ public:
+  /// Creates or truncates `tmp`.
+  OutputFile(const std::filesystem::path& tmp, std::string shown_as);
+  ~OutputFile();  ///< closes the file unchecked if close() was not reached (an exception)
+  OutputFile(const OutputFile&) = delete;
+  OutputFile& operator=(const OutputFile&) = delete;
+  void write(const void* data, size_t size);
+  void write(std::string_view text) { write(text.data(), text.size()); }
+  /// Appends printf's formatting of the arguments.
+  void print(const char* format, ...) __attribute__((format(printf, 2, 3)));
+  /// Writes what is buffered and closes the file: the last bytes' failure shows here at the latest.
+  void close();
+
+ private:
+  void write_through(const char* data, size_t size);
+  void flush();
+  int fd_ = -1;
+  std::string shown_as_;
+  std::string buffer_;
+};
+
 /// Writes `text` to `path` atomically.
 void write_text_file(const std::filesystem::path& path, const std::string& text);
 
 /// Writes `bytes` to `path` atomically; a failed write, the final flush's included (a full
-/// disk), throws UserError naming `path`.
+/// disk), throws output_error() naming `path`.
 void write_binary_file(const std::filesystem::path& path, std::span<const std::uint8_t> bytes);
 
 }  // namespace radrecon

@@ -1,6 +1,7 @@
 #include "io/gdal_plugin.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cstdlib>
 #include <filesystem>
 
@@ -23,10 +24,23 @@ std::vector<std::string> write_gdal_raster(const std::string& path, const Raster
   const fs::path out(path);
   const fs::path parent = out.has_parent_path() ? out.parent_path() : fs::path(".");
   std::string pattern = (parent / ".radrecon-gdal-XXXXXX").string();
-  if (mkdtemp(pattern.data()) == nullptr) throw UserError(path, "cannot create a temporary folder beside it");
+  if (mkdtemp(pattern.data()) == nullptr) throw output_error(path, errno, " (creating a temporary folder beside it)");
   const TemporaryPath pending(pattern, TemporaryPath::Kind::folder);
   try {
     std::vector<std::string> warnings = gdal.write_raster(path, pattern, raster, values, channels, options);
+    // The raster and its side files, each checked before any is moved: a folder (or a device)
+    // under one of their names would stop the move half-way.
+    std::vector<fs::path> names;
+    for (const fs::directory_entry& e : fs::directory_iterator(pattern)) names.push_back(e.path().filename());
+    std::sort(names.begin(), names.end());
+    for (const fs::path& name : names) {
+      std::error_code ec;
+      const fs::file_status there = fs::status(parent / name, ec);
+      if (fs::exists(there) && !fs::is_regular_file(there))
+        throw UserError((parent / name).string(), std::string(fs::is_directory(there) ? "is a folder" : "is not a regular file") +
+                                                      ", where the raster " + path + " has a file of its own; refusing to replace it");
+    }
+    for (const fs::path& name : names) move_into_place(fs::path(pattern) / name, parent / name);
     fs::remove(pattern);
     return warnings;
   } catch (...) {

@@ -36,7 +36,9 @@ const GdalFunctions& gdal_functions(const std::string& what);
 
 /// Writes a raster through GDAL (GdalFunctions::write_raster) atomically: in a fresh folder
 /// `.radrecon-gdal-XXXXXX` beside `path`, removed after, or by a signal (TemporaryPath,
-/// io/atomic_file.h), with what it holds. Returns the warnings.
+/// io/atomic_file.h), with what it holds. Its files are then moved beside `path`, each renamed
+/// (move_into_place()) once none has a folder or another non-file under its name there. Returns
+/// the warnings.
 std::vector<std::string> write_gdal_raster(const std::string& path, const Raster& raster, std::span<const double> values,
                                            int channels, const GeoRasterOptions& options);
 

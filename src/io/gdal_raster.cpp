@@ -1,6 +1,7 @@
 #include "io/gdal_raster.h"
 
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -285,7 +286,7 @@ std::vector<std::string> write_raster_gdal(const std::string& path, const std::s
         throw UserError(path, "GDAL cannot fill the raster: " + QuietGdal::last_error());
     }
   }
-  // Written in the caller's fresh folder beside the output, then moved: no half-written file
+  // Written in the caller's fresh folder beside the output, which moves it: no half-written file
   // under the output's name, and side files (e.g. an ENVI header) move along.
   namespace fs = std::filesystem;
   const fs::path out(path);
@@ -294,28 +295,28 @@ std::vector<std::string> write_raster_gdal(const std::string& path, const std::s
   // MRF compresses by PNG by default, which takes no floating-point bands: DEFLATE, lossless.
   CPLStringList creation;
   if (driver_name == "MRF") creation.SetNameValue("COMPRESS", "DEFLATE");
+  errno = 0;  // a failing write's reason, which GDAL's words may leave out (with_failed_write_reason())
   std::unique_ptr<GDALDataset> file(driver->CreateCopy((tmp / out.filename()).c_str(), image.get(), FALSE, creation.List(),
                                                         nullptr, nullptr));
   if (!file) {
-    std::string why = QuietGdal::last_error();  // the temporary folder is no name of the user's
+    std::string why = with_failed_write_reason(QuietGdal::last_error());
+    // The temporary folder is no name of the user's.
     for (size_t at; (at = why.find(tmp.filename().string() + "/")) != std::string::npos;) why.erase(at, tmp.filename().string().size() + 1);
     throw UserError(path, "GDAL's " + driver_name + " driver cannot write it: " + why);
   }
   file.reset();  // closes and flushes
-  if (CPLGetLastErrorType() >= CE_Failure) throw UserError(path, "GDAL failed writing it: " + QuietGdal::last_error());
+  if (CPLGetLastErrorType() >= CE_Failure)
+    throw UserError(path, "GDAL failed writing it: " + with_failed_write_reason(QuietGdal::last_error()));
   std::vector<std::string> warnings = read_back(path, (tmp / out.filename()).string(), driver_name, *image, options);
-  // Every file written, checked before any is moved: none may land on an input.
-  std::vector<fs::path> written;
-  for (const fs::directory_entry& e : fs::directory_iterator(tmp)) written.push_back(e.path());
-  for (const fs::path& w : written) {
-    const fs::path to = parent / w.filename();
+  // Every file written, checked before the caller moves any: none may land on an input.
+  for (const fs::directory_entry& e : fs::directory_iterator(tmp)) {
+    const fs::path to = parent / e.path().filename();
     std::error_code ec;
     for (const std::string& input : options.inputs)
       if (fs::exists(to, ec) && fs::equivalent(to, input, ec))
         throw UserError(path, "GDAL's " + driver_name + " driver writes '" + to.string() + "' beside it, which is the input file '" +
                                   input + "'; refusing to overwrite it (name the output otherwise)");
   }
-  for (const fs::path& w : written) fs::rename(w, parent / w.filename());
   return warnings;
 }
 

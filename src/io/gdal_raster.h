@@ -26,10 +26,11 @@ void check_gdal_crs(const std::string& crs);
 
 /// Writes raster values (raster order: the y0 row first, `channels` per point) as a raster of
 /// `channels` bands, north-up (rows flipped), NaN written as options.nodata (the caller has
-/// refused a clash: refuse_nodata_clash()). Written in the empty folder `staging` beside `path`,
-/// then moved (with any side files the format has), none of them over one of options.inputs;
-/// the caller makes and removes `staging` (write_gdal_raster() in io/gdal_plugin.h).
-/// Read back before it is moved: UserError if GDAL cannot read it (MEM writes no file, a VRT no
+/// refused a clash: refuse_nodata_clash()). Written in the empty folder `staging` beside `path`
+/// (with any side files the format has), UserError if any of them would land on one of
+/// options.inputs; the caller makes `staging`, moves its files beside `path` and removes it
+/// (write_gdal_raster() in io/gdal_plugin.h).
+/// Read back in `staging`: UserError if GDAL cannot read it (MEM writes no file, a VRT no
 /// values), or its size, bands or values are not what was written (KMLSUPEROVERLAY writes 8-bit
 /// tiles); a warning for each of the georeferencing and the no-data value it does not keep.
 /// Returns the warnings.

@@ -405,4 +405,37 @@ run unwritable solve --scene paper --mesh grid:2 --out /proc/nonexistent/x.json 
 expect_rc unwritable 2
 expect_stderr_has unwritable "/proc/nonexistent"
 
+# A write that fails after the work (a full disk; here a file-size limit of 8 KiB, its signal
+# ignored so that the write itself fails, with EFBIG) says so with the system's reason, for each
+# writer, and leaves nothing: exit code 2.
+limited() {  # NAME ARGS...: run under `ulimit -f 8`, SIGXFSZ ignored
+  local name=$1
+  shift
+  (trap '' XFSZ; ulimit -f 8; exec "$RADRECON" "$@") >"$TMP/$name.stdout" 2>"$TMP/$name.stderr"
+  echo $? >"$TMP/$name.rc"
+}
+awk 'BEGIN { print "x,y"; for (k = 0; k < 1000; k++) printf "%.17g,%.17g\n", k / 1000, 1 - k / 1000 }' >"$TMP/many_queries.csv"
+printf 'x,y,v\n0,0,1\n1,0,2\n0,1,3\n1,1,4\n' >"$TMP/four.csv"
+limited efbig_json solve --scene paper --mesh grid:8 --out "$TMP/efbig.json" --quiet
+limited efbig_csv interpolate --samples "$TMP/four.csv" --queries "$TMP/many_queries.csv" --method shepard \
+  --out "$TMP/efbig.csv" --quiet
+limited efbig_png render --scene paper --solution "$TMP/solution.json" --camera view --size 640x480 --out "$TMP/efbig.png" --quiet
+limited efbig_pfm render --scene paper --solution "$TMP/solution.json" --camera view --size 64x48 --out "$TMP/efbig.pfm" --quiet
+limited efbig_glb export --scene paper --solution "$TMP/solution.json" --out "$TMP/efbig.glb" --quiet
+for ext in json csv png pfm glb; do
+  expect_rc "efbig_$ext" 2
+  expect_stderr_has "efbig_$ext" "radrecon: error: $TMP/efbig.$ext: cannot write: File too large"
+  expect_no_output "efbig_$ext" "$TMP/efbig.$ext"
+done
+# A GeoTIFF (libtiff) and an Arc/Info grid (GDAL): the libraries' words, and the system's reason.
+for ext in tif asc; do
+  limited "efbig_$ext" interpolate --samples "$TMP/four.csv" --raster 100x100 --domain 0,0,1,1 --method shepard \
+    --out "$TMP/efbig.$ext" --quiet
+  expect_rc "efbig_$ext" 2
+  expect_stderr_has "efbig_$ext" "radrecon: error: $TMP/efbig.$ext: "
+  expect_stderr_has "efbig_$ext" "File too large"
+  expect_no_output "efbig_$ext" "$TMP/efbig.$ext"
+done
+if compgen -G "$TMP/.radrecon-gdal-*" >/dev/null; then fail "efbig_asc: the temporary folder is left"; fi
+
 finish cli_test

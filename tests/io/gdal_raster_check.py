@@ -449,6 +449,33 @@ with tempfile.TemporaryDirectory() as tmp:
     check([e for e in os.listdir(tmp) if e.startswith(".radrecon-gdal") or ".tmp" in e] == [],
           "no temporary file or folder left behind")
 
+    # A file GDAL wrote that cannot be moved into place: a folder where the EHdr driver's header
+    # goes is refused before any file is moved, naming it; a rename the system refuses (an
+    # immutable file, where chattr can make one) says the system's reason, naming the output and
+    # not the temporary folder (it was an exit 1 "filesystem error" naming both). Exit 2, the
+    # temporary folder removed.
+    moved = os.path.join(tmp, "moved")
+    os.mkdir(moved)
+    os.makedirs(os.path.join(moved, "m.hdr", "inside"))
+    r = run("--samples", samples, "--value", "mag", "--method", "linear", "--raster", "4x3", "--domain", "0,0,4,3",
+            "--out", os.path.join(moved, "m.bil"))
+    check(r.returncode == 2 and os.path.join(moved, "m.hdr") + ": is a folder" in r.stderr
+          and not os.path.exists(os.path.join(moved, "m.bil")) and ".radrecon-gdal" not in r.stderr,
+          f"m.bil beside a folder m.hdr: exit {r.returncode}, {r.stderr.strip()}")
+    immutable = os.path.join(moved, "imm.asc")
+    open(immutable, "w").write("earlier\n")
+    if shutil.which("chattr") and subprocess.run(["chattr", "+i", immutable], capture_output=True).returncode == 0:
+        try:
+            r = run("--samples", samples, "--value", "mag", "--method", "linear", "--raster", "4x3", "--domain",
+                    "0,0,4,3", "--out", immutable)
+        finally:
+            subprocess.run(["chattr", "-i", immutable])
+        check(r.returncode == 2 and f"radrecon: error: {immutable}: cannot write: Operation not permitted" in r.stderr
+              and ".radrecon-gdal" not in r.stderr and open(immutable).read() == "earlier\n",
+              f"imm.asc immutable: exit {r.returncode}, {r.stderr.strip()}")
+    check([e for e in os.listdir(moved) if e.startswith(".radrecon-gdal")] == [],
+          f"a temporary folder left beside m.bil or imm.asc: {os.listdir(moved)}")
+
     # Terminated while GDAL writes (an MRF of 9 million DEFLATE-compressed points takes seconds):
     # exit by SIGTERM, said, and neither the output, its side files nor the temporary folder left.
     sig_dir = os.path.join(tmp, "terminated")
