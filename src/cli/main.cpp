@@ -4,6 +4,7 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <string_view>
@@ -120,6 +121,10 @@ int main(int argc, char** argv) {
   }
   radrecon::keep_freed_memory();
   radrecon::remove_temporary_files_on_signals();
+  // A file-size limit (ulimit -f) met by a write: the write fails with EFBIG, which every writer
+  // reports and cleans up after, instead of SIGXFSZ ending the process silently with the
+  // temporary files left. The command line only: the Python module leaves its host's signals be.
+  std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{
       "radrecon: computes radiosity on a scene (progressive refinement on regular grids, hierarchical radiosity "
       "on quadtrees) and reconstructs a smooth radiosity function across each patch (bilinear, bicubic, "
