@@ -98,6 +98,12 @@ TemporaryPath::~TemporaryPath() {
 
 void remove_temporary_files_on_signals() {
   for (const int signal_number : {SIGINT, SIGTERM, SIGHUP}) {
+    // A signal ignored on entry stays ignored, as the caller meant (nohup, a shell's trap '' or
+    // its background job's SIGINT): handling it would let it end the process.
+    struct sigaction inherited = {};
+    if (::sigaction(signal_number, nullptr, &inherited) == 0 && !(inherited.sa_flags & SA_SIGINFO) &&
+        inherited.sa_handler == SIG_IGN)
+      continue;
     struct sigaction action = {};
     action.sa_handler = remove_pending_then_raise;
     // One handler at a time: a second signal waits until the first has cleaned up and ended.

@@ -40,7 +40,8 @@ class WrittenFiles {
 /// kMaxPendingFiles at a time), then end the process as the signal would have: an interrupted
 /// long write (a streamed raster, a render, a GDAL raster's folder) leaves no `.tmpPID` file or
 /// `.radrecon-gdal-XXXXXX` folder behind. For programs that own their signals (radrecon's command
-/// line), not for a library loaded into another (the Python module).
+/// line), not for a library loaded into another (the Python module). A signal ignored when this
+/// is called (nohup's SIGHUP, a shell's `trap ''`) is left ignored.
 void remove_temporary_files_on_signals();
 
 /// Temporary files and folders tracked for the signal handler at once; more are written as
