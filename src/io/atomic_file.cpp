@@ -53,7 +53,15 @@ void remove_folder_from_handler(const char* path) {
   ::rmdir(path);
 }
 
+/// Whether a thread runs the handler: it runs once per process. sa_mask holds the other signals
+/// off the thread that runs it alone, and another thread can take one meanwhile (`timeout -s HUP`
+/// sends two): that one waits for the first to end the process.
+std::atomic<bool> g_handling{false};
+static_assert(std::atomic<bool>::is_always_lock_free, "lock-free: async-signal-safe");
+
 void remove_pending_then_raise(int signal_number) {
+  if (g_handling.exchange(true))
+    for (;;) ::pause();
   for (PendingSlot& slot : g_pending)
     if (slot.ready.load()) {
       if (slot.folder)
@@ -106,7 +114,7 @@ void remove_temporary_files_on_signals() {
       continue;
     struct sigaction action = {};
     action.sa_handler = remove_pending_then_raise;
-    // One handler at a time: a second signal waits until the first has cleaned up and ended.
+    // One handler at a time on this thread; on other threads, g_handling holds a second off.
     sigemptyset(&action.sa_mask);
     for (const int blocked : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&action.sa_mask, blocked);
     ::sigaction(signal_number, &action, nullptr);

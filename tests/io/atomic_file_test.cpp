@@ -3,9 +3,18 @@
 
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <sys/syscall.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <csignal>
 #include <cstdint>
 #include <filesystem>
+#include <fstream>
 #include <string>
+#include <thread>
 
 #include "core/error.h"
 #include "io/atomic_file.h"
@@ -62,6 +71,61 @@ TEST(WriteBinaryFile, WritesTheBytes) {
   const std::uint8_t bytes[] = {1, 2, 3, 0, 255};
   write_binary_file(target, bytes);
   EXPECT_EQ(fs::file_size(target), 5u);
+}
+
+/// How many threads of process `pid` are in the system call `number` (/proc/PID/task/*/syscall).
+int threads_in_syscall(pid_t pid, long number) {
+  int count = 0;
+  for (const fs::directory_entry& task : fs::directory_iterator("/proc/" + std::to_string(pid) + "/task")) {
+    std::ifstream in(task.path() / "syscall");
+    long got = -1;
+    if (in >> got && got == number) ++count;
+  }
+  return count;
+}
+
+// Two threads taking a signal each, as `timeout -s HUP` may make them: the handler runs once, one
+// message (it was said twice). A child process, its stderr a pipe filled up first, so that a
+// handler's message waits in write(2) until the parent reads: after both signals, one thread is
+// in write(2) (it was both), and the process ends by the signal with one message.
+TEST(RemoveTemporaryFilesOnSignals, RunsOnceWhenTwoThreadsTakeASignal) {
+  int err[2];
+  ASSERT_EQ(::pipe(err), 0);
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    ::dup2(err[1], STDERR_FILENO);
+    ::close(err[0]);
+    ::close(err[1]);
+    ::fcntl(STDERR_FILENO, F_SETFL, O_NONBLOCK);
+    const char fill[512] = {};
+    while (::write(STDERR_FILENO, fill, sizeof fill) > 0) {}
+    ::fcntl(STDERR_FILENO, F_SETFL, 0);
+    remove_temporary_files_on_signals();
+    std::thread second([] {
+      std::this_thread::sleep_for(std::chrono::milliseconds(200));
+      std::raise(SIGHUP);  // this thread's, while the main thread's handler waits to write
+    });
+    std::raise(SIGHUP);
+    ::_exit(3);  // not reached
+  }
+  ::close(err[1]);
+  int writing = 0;
+  for (int tries = 0; tries < 50 && writing < 2; ++tries) {  // long enough for both signals
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    if (tries >= 25) writing = threads_in_syscall(child, SYS_write);
+  }
+  EXPECT_EQ(writing, 1) << "threads running the handler at once";
+  std::string said;
+  char buffer[4096];
+  for (ssize_t n; (n = ::read(err[0], buffer, sizeof buffer)) > 0;) said.append(buffer, static_cast<size_t>(n));
+  ::close(err[0]);
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGHUP) << status;
+  size_t messages = 0;
+  for (size_t at = 0; (at = said.find("radrecon: hung up (SIGHUP)", at)) != std::string::npos; ++at) ++messages;
+  EXPECT_EQ(messages, 1u);
 }
 
 }  // namespace atomic_file_test
