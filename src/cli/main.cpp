@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
@@ -104,6 +105,20 @@ void check_option_texts(CLI::App& app) {
     }
 }
 
+/// Whether what the command printed on stdout (compare's figures) reached it: a full disk,
+/// /dev/full or a closed stdout show only when the buffer is written, here if not before. Says so
+/// if not. Not for --help and --version, whose output is CLI11's.
+bool stdout_written() {
+  errno = 0;
+  const bool flushed = std::fflush(stdout) == 0;
+  const int error = errno;
+  if (flushed && !std::ferror(stdout)) return true;
+  const std::string said = error != 0 ? radrecon::output_error("standard output", error).what()
+                                      : std::string("standard output: cannot write");
+  std::fprintf(stderr, "radrecon: error: %s\n", said.c_str());
+  return false;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -171,7 +186,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "radrecon: error: %s\nRun with --help for more information.\n", e.what());
     return radrecon::kUserErrorExitCode;
   } catch (const radrecon::cli::ExitStatus& e) {
-    return e.code;
+    return stdout_written() ? e.code : radrecon::kUserErrorExitCode;
   } catch (const radrecon::UserError& e) {
     std::fprintf(stderr, "radrecon: error: %s\n", e.what());
     return radrecon::kUserErrorExitCode;
@@ -184,5 +199,5 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "radrecon: error: %s\n", e.what());
     return 1;
   }
-  return 0;
+  return stdout_written() ? 0 : radrecon::kUserErrorExitCode;
 }
