@@ -2,6 +2,9 @@
 // metrics of evaluate/metrics.h, a difference image, thresholds for scripts (after pbrt's
 // `imgtool diff`).
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
@@ -245,6 +248,13 @@ void run_compare(const CompareArgs& args) {
     file_format(args.diff, {FileFormat::png}, "--diff");
     refuse_overwriting_inputs(args.diff, "--diff", {args.a, args.b});
     check_output_file(args.diff, "--diff");
+    // Nor the file stdout goes to (--diff /dev/stdout > d.png): the figures would be written into
+    // the picture, or the picture over the figures.
+    struct stat out = {}, diff = {};
+    if (::fstat(STDOUT_FILENO, &out) == 0 && S_ISREG(out.st_mode) && ::stat(args.diff.c_str(), &diff) == 0 &&
+        out.st_dev == diff.st_dev && out.st_ino == diff.st_ino)
+      throw UserError("--diff", "'" + args.diff + "' is the file standard output goes to, where the figures are printed; "
+                                "give the difference image its own file");
   }
   const Comparison c = solutions ? compare_solutions(args) : compare_pictures(args);
 

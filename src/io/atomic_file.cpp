@@ -11,10 +11,13 @@
 #include <mutex>
 #include <string>
 #include <system_error>
+#include <utility>
+#include <vector>
 #include <unistd.h>
 
 #include "core/check.h"
 #include "core/error.h"
+#include "io/paths.h"
 
 namespace radrecon {
 
@@ -123,10 +126,27 @@ void remove_temporary_files_on_signals() {
 
 namespace {
 
-/// The live WrittenFiles' list and callback, null when none.
+/// The live WrittenFiles' list and callback, null when none; and each file it lists, as
+/// requested and as written (symbolic links followed, canonical).
 std::mutex g_written_mutex;
 std::vector<std::filesystem::path>* g_written = nullptr;
 std::function<void(const std::filesystem::path&)> g_on_write;
+std::vector<std::pair<std::filesystem::path, std::filesystem::path>> g_written_to;
+
+/// Within a run that lists its files: refuses a write of `requested`, written at `path`, that
+/// lands on a file the run wrote under another name (a link among the outputs of an existing
+/// folder), before it is made. Under g_written_mutex.
+void refuse_writing_twice(const std::filesystem::path& requested, const std::filesystem::path& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path target = fs::weakly_canonical(path, ec);
+  const bool linked = fs::hard_link_count(path, ec) > 1 && !ec;
+  for (const auto& [name, earlier] : g_written_to)
+    if (name != requested && (earlier == target || (linked && fs::equivalent(earlier, path, ec))))
+      throw UserError(requested.string(), "is the same file as '" + name.string() +
+                                              "', written earlier in this run; give each output its own file");
+  g_written_to.emplace_back(requested, target);
+}
 
 }  // namespace
 
@@ -135,6 +155,7 @@ WrittenFiles::WrittenFiles(std::function<void(const std::filesystem::path&)> on_
   RR_CHECK(g_written == nullptr, "one WrittenFiles at a time");
   g_written = new std::vector<std::filesystem::path>();
   g_on_write = std::move(on_write);
+  g_written_to.clear();
 }
 
 WrittenFiles::~WrittenFiles() {
@@ -142,6 +163,7 @@ WrittenFiles::~WrittenFiles() {
   delete g_written;
   g_written = nullptr;
   g_on_write = nullptr;
+  g_written_to.clear();
 }
 
 std::vector<std::filesystem::path> WrittenFiles::paths() const {
@@ -153,18 +175,16 @@ void write_file_atomically(const std::filesystem::path& requested,
                            const std::function<void(const std::filesystem::path&)>& write) {
   namespace fs = std::filesystem;
   std::error_code ec;
-  fs::path path = requested;
   // Replace only regular files: never a folder, device or pipe; through a symlink, its target.
-  for (int hops = 0; fs::is_symlink(path, ec); ++hops) {
-    if (hops == 40) throw UserError(requested.string(), "too many levels of symbolic links");
-    const fs::path target = fs::read_symlink(path, ec);
-    if (ec) throw UserError(requested.string(), "cannot read the symbolic link: " + ec.message());
-    path = target.is_absolute() ? target : path.parent_path() / target;
-  }
+  const fs::path path = file_written_at(requested);
   const fs::file_status status = fs::status(path, ec);
   if (fs::exists(status) && !fs::is_regular_file(status))
     throw UserError(requested.string(), fs::is_directory(status) ? "is a folder, not a file"
                                                                   : "is not a regular file; refusing to replace it");
+  {
+    const std::lock_guard<std::mutex> lock(g_written_mutex);
+    if (g_written != nullptr) refuse_writing_twice(requested, path);
+  }
   if (path.has_parent_path()) {
     fs::create_directories(path.parent_path(), ec);
     if (ec) throw UserError(path.parent_path().string(), "cannot create folder: " + ec.message());

@@ -22,7 +22,9 @@ void write_file_atomically(const std::filesystem::path& path,
                            const std::function<void(const std::filesystem::path&)>& write);
 
 /// While one lives, every file write_file_atomically() completes (from any thread) is recorded:
-/// the files a run writes (io/output_folder.h). At most one at a time.
+/// the files a run writes (io/output_folder.h). A write that would land on a file recorded under
+/// another name (a symbolic or hard link among the outputs in an existing folder) is refused
+/// before it is made, naming both. At most one at a time.
 class WrittenFiles {
  public:
   /// `on_write`, if given, is called with each path as it is recorded (under a lock: one call at a

@@ -225,6 +225,13 @@ expect_stderr_has stdout_full "radrecon: error: standard output: cannot write: N
 echo $? >stdout_closed.rc
 expect_rc stdout_closed 2
 expect_stderr_has stdout_closed "radrecon: error: standard output: cannot write"
+# --diff naming the file stdout goes to: refused before any work (the figures and the picture
+# would be written into one file).
+"$RADRECON" compare a.pfm b.pfm --diff to_stdout.png >to_stdout.png 2>diff_stdout.stderr
+echo $? >diff_stdout.rc
+expect_rc diff_stdout 2
+expect_stderr_has diff_stdout "--diff: 'to_stdout.png' is the file standard output goes to"
+[ -s to_stdout.png ] && fail "diff_stdout: wrote into to_stdout.png"
 # --help's text is not checked so (CLI11's own).
 "$RADRECON" compare --help >/dev/full 2>help_full.stderr
 echo $? >help_full.rc

@@ -65,6 +65,25 @@ TEST(WriteFileAtomically, AFailedRenameSaysTheRenamesReasonAndLeavesNoTemporaryF
   EXPECT_EQ(entries, 1u) << "the temporary file is left";
 }
 
+// In a run that lists its files (paper, cornell), a write that would land on a file the run wrote
+// under another name, through a link planted among its outputs, is refused before it is made; the
+// same name twice is a rewrite.
+TEST(WrittenFiles, AWriteOntoAnotherOutputOfTheRunIsRefused) {
+  TempDir root("atomic_file");
+  fs::create_symlink("b.png", root / "a.png");
+  const WrittenFiles run;
+  write_text_file(root / "b.png", "b");
+  write_text_file(root / "b.png", "b again");
+  const std::string said = user_error_message([&] { write_text_file(root / "a.png", "a"); });
+  EXPECT_EQ(said, (root / "a.png").string() + ": is the same file as '" + (root / "b.png").string() +
+                      "', written earlier in this run; give each output its own file");
+  EXPECT_EQ(run.paths().size(), 2u);
+  std::ifstream in(root / "b.png");
+  std::string kept;
+  std::getline(in, kept);
+  EXPECT_EQ(kept, "b again");
+}
+
 TEST(WriteBinaryFile, WritesTheBytes) {
   TempDir root("atomic_file");
   const fs::path target = root / "a.bin";
