@@ -8,6 +8,7 @@
 #include <cstring>
 #include <dirent.h>
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <mutex>
 #include <string>
 #include <system_error>
@@ -216,6 +217,15 @@ void write_file_atomically(const std::filesystem::path& requested,
 }
 
 void move_into_place(const std::filesystem::path& tmp, const std::filesystem::path& path) {
+  // The file it replaces keeps its permission bits (a private 0600 output stays private) and, for
+  // root, its owner and group: best effort, a file system that keeps none is no failure.
+  struct stat existing = {};
+  if (::stat(path.c_str(), &existing) == 0 && S_ISREG(existing.st_mode)) {
+    struct stat made = {};
+    if (::geteuid() == 0 && ::stat(tmp.c_str(), &made) == 0 && (made.st_uid != existing.st_uid || made.st_gid != existing.st_gid))
+      [[maybe_unused]] const int owned = ::chown(tmp.c_str(), existing.st_uid, existing.st_gid);
+    ::chmod(tmp.c_str(), existing.st_mode & 0777);  // after chown, which may clear bits
+  }
   if (::rename(tmp.c_str(), path.c_str()) != 0)
     throw output_error(path.string(), errno, " (moving the finished file into place)");
 }

@@ -67,6 +67,8 @@ class TemporaryPath {
 
 /// Renames the finished file `tmp` to `path` (the name itself: a symbolic link there is replaced,
 /// not followed); output_error() naming `path` if the system refuses, `tmp` left to the caller.
+/// An existing file at `path` passes its permission bits to `tmp` first (and, when running as
+/// root, its owner and group), best effort: replacing an output keeps its mode.
 void move_into_place(const std::filesystem::path& tmp, const std::filesystem::path& path);
 
 /// The one wording of an output that cannot be written: UserError naming `shown_as` (the output as

@@ -393,6 +393,18 @@ done
 cmp -s "$TMP/render_nn.pfm" "$TMP/render_nn__no_barriers.pfm" && fail "render --no-barriers: the same image as with barriers"
 cmp -s "$TMP/render_nn.pfm" "$TMP/render_nn__border_samples.pfm" && fail "render --border-samples: the same image as without"
 
+# --- replacing an output keeps its permissions: a private 0600 file stays 0600 (it became 0644,
+# the new file's), a 0640 one 0640 ----------------------------------------------------------
+for mode in 600 640; do
+  run "mode_$mode" solve --scene paper --mesh grid:2 --out "$TMP/mode.json" --quiet
+  chmod "$mode" "$TMP/mode.json"
+  run "mode_${mode}_again" solve --scene paper --mesh grid:3 --out "$TMP/mode.json" --quiet
+  expect_rc "mode_${mode}_again" 0
+  [ "$(stat -c %a "$TMP/mode.json")" = "$mode" ] || fail "mode_$mode: the replaced output is $(stat -c %a "$TMP/mode.json")"
+  grep -q '"grid": \[3, 3\]' "$TMP/mode.json" || fail "mode_$mode: the output was not replaced"
+done
+rm -f "$TMP/mode.json"
+
 # --- other failures -----------------------------------------------------------------------
 run unknown frobnicate
 expect_nonzero unknown

@@ -476,6 +476,19 @@ with tempfile.TemporaryDirectory() as tmp:
     check([e for e in os.listdir(moved) if e.startswith(".radrecon-gdal")] == [],
           f"a temporary folder left beside m.bil or imm.asc: {os.listdir(moved)}")
 
+    # Replacing a GDAL raster keeps the mode of each file it replaces (the raster 0600, its .prj
+    # 0640): they became the new files' 0644.
+    kept = os.path.join(tmp, "kept.asc")
+    for attempt in range(2):
+        r = run("--samples", samples, "--value", "mag", "--method", "linear", "--raster", "4x3", "--domain",
+                "0,0,4,3", "--crs", "EPSG:2193", "--out", kept)
+        check(r.returncode == 0, f"kept.asc: exit {r.returncode}, {r.stderr.strip()}")
+        if attempt == 0:
+            os.chmod(kept, 0o600)
+            os.chmod(os.path.join(tmp, "kept.prj"), 0o640)
+    modes = (oct(os.stat(kept).st_mode & 0o777), oct(os.stat(os.path.join(tmp, "kept.prj")).st_mode & 0o777))
+    check(modes == ("0o600", "0o640"), f"kept.asc, kept.prj replaced: modes {modes}")
+
     # Terminated while GDAL writes (an MRF of 9 million DEFLATE-compressed points takes seconds):
     # exit by SIGTERM, said, and neither the output, its side files nor the temporary folder left.
     sig_dir = os.path.join(tmp, "terminated")
