@@ -238,9 +238,14 @@ void run_interpolate(const InterpolateArgs& args) {
     const auto write_start = Clock::now();
     if (geo_raster) refuse_nodata_clash(values, args.nodata, geo_options.float64);
     if (geotiff) {
+      // An earlier GeoTIFF's side files (an .aux.xml, whose CRS GDAL reads first; a world file)
+      // go with it, as write_gdal_raster() removes them.
+      const EarlierRaster earlier(args.out, true);
       write_file_atomically(args.out, [&](const std::filesystem::path& tmp) {
         geotiff_functions("--out").write(tmp, args.out, raster, values, samples.channels, geo_options, geotiff_crs);
       });
+      for (const std::string& warning : earlier.remove_unreplaced({std::filesystem::path(args.out).filename().string()}, inputs))
+        std::fprintf(stderr, "radrecon: warning: %s\n", warning.c_str());
     } else if (geo_raster) {
       for (const std::string& warning : write_gdal_raster(args.out, raster, values, samples.channels, geo_options))
         std::fprintf(stderr, "radrecon: warning: %s\n", warning.c_str());

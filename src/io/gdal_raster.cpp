@@ -240,6 +240,18 @@ std::string gdal_raster_driver(const std::string& path, const std::string& forma
                              " (or name a driver with --format)");
 }
 
+std::vector<std::string> gdal_raster_files(const std::string& path) {
+  register_drivers("");  // every driver: the raster may be of any format
+  QuietGdal quiet;
+  const std::unique_ptr<GDALDataset> raster(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
+  if (!raster) return {};
+  std::vector<std::string> files;
+  char** list = raster->GetFileList();
+  for (char** f = list; f != nullptr && *f != nullptr; ++f) files.emplace_back(*f);
+  CSLDestroy(list);
+  return files;
+}
+
 void check_gdal_crs(const std::string& crs) {
   if (crs.empty()) return;
   QuietGdal quiet;

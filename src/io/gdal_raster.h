@@ -37,4 +37,9 @@ void check_gdal_crs(const std::string& crs);
 std::vector<std::string> write_raster_gdal(const std::string& path, const std::string& staging, const Raster& raster,
                                            std::span<const double> values, int channels, const GeoRasterOptions& options);
 
+/// The files of the raster at `path` as GDAL lists them (GDALDataset::GetFileList(): the raster,
+/// its header, .prj, .aux.xml, world file, ...), opened read-only; none if GDAL cannot open it as
+/// a raster.
+std::vector<std::string> gdal_raster_files(const std::string& path);
+
 }  // namespace radrecon

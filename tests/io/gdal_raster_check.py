@@ -489,6 +489,41 @@ with tempfile.TemporaryDirectory() as tmp:
     modes = (oct(os.stat(kept).st_mode & 0o777), oct(os.stat(os.path.join(tmp, "kept.prj")).st_mode & 0o777))
     check(modes == ("0o600", "0o640"), f"kept.asc, kept.prj replaced: modes {modes}")
 
+    # A raster replaced takes its files along: of the earlier raster (as GDAL lists them), those
+    # the new one does not write are removed. An older .prj stayed beside a raster written without
+    # --crs, and GIS read the old CRS; an older .aux.xml beside a GeoTIFF of radrecon's own writer
+    # gave GDAL its CRS. Files of the user's beside them stay, and so does an input of the run
+    # that GDAL lists among the earlier raster's files (a GeoTIFF's _rpc.txt).
+    stale = os.path.join(tmp, "stale")
+    os.mkdir(stale)
+    at = lambda name: os.path.join(stale, name)
+    open(at("notes.txt"), "w").write("mine\n")
+    for name, side in [("o.bil", "o.prj"), ("o.asc", "o.prj")]:
+        for crs in (["--crs", "EPSG:2193"], []):
+            r = run("--samples", samples, "--value", "mag", "--method", "linear", "--raster", "4x3", "--domain",
+                    "0,0,4,3", *crs, "--out", at(name))
+            check(r.returncode == 0, f"stale {name} {crs}: exit {r.returncode}, {r.stderr.strip()}")
+            if crs:
+                check(os.path.exists(at(side)), f"stale {name}: no {side} written with --crs")
+        check(not os.path.exists(at(side)), f"stale {name}: the earlier {side} stayed: {sorted(os.listdir(stale))}")
+        check(gdal.Open(at(name)).GetProjection() == "", f"stale {name}: GDAL reads a CRS: {gdal.Open(at(name)).GetProjection()[:60]}")
+        for e in os.listdir(stale):
+            if e.startswith("o."):
+                os.remove(at(e))
+    # radrecon's own GeoTIFF writer (an EPSG code) over a GeoTIFF with an .aux.xml of another CRS.
+    r = run("--samples", samples, "--value", "mag", "--method", "linear", "--raster", "4x3", "--domain", "0,0,4,3",
+            "--crs", "EPSG:2193", "--out", at("g.tif"))
+    open(at("g.tif.aux.xml"), "w").write("<PAMDataset><SRS>EPSG:4326</SRS></PAMDataset>\n")
+    shutil.copyfile(samples, at("g_rpc.txt"))  # listed by GDAL with g.tif, and read as samples below
+    r = run("--samples", at("g_rpc.txt"), "--value", "mag", "--method", "linear", "--raster", "4x3", "--domain",
+            "0,0,4,3", "--crs", "EPSG:2193", "--out", at("g.tif"))
+    check(r.returncode == 0, f"stale g.tif: exit {r.returncode}, {r.stderr.strip()}")
+    check(not os.path.exists(at("g.tif.aux.xml")), f"stale g.tif: the earlier .aux.xml stayed")
+    check(osr.SpatialReference(wkt=gdal.Open(at("g.tif")).GetProjection()).GetAuthorityCode(None) == "2193",
+          "stale g.tif: GDAL does not read EPSG:2193")
+    check(os.path.exists(at("g_rpc.txt")) and open(at("notes.txt")).read() == "mine\n",
+          f"stale: an input or a file of the user's was removed: {sorted(os.listdir(stale))}")
+
     # Terminated while GDAL writes (an MRF of 9 million DEFLATE-compressed points takes seconds):
     # exit by SIGTERM, said, and neither the output, its side files nor the temporary folder left.
     sig_dir = os.path.join(tmp, "terminated")
