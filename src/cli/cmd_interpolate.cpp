@@ -158,6 +158,12 @@ void run_interpolate(const InterpolateArgs& args) {
   if (!geo_raster && format == FileFormat::pfm && samples.channels != 1 && samples.channels != 3)
     throw UserError("--out", "PFM needs 1 or 3 value columns (greyscale or colour); " + args.samples + " has " +
                                  std::to_string(samples.channels) + "; write .csv instead");
+  // A GDAL format known not to write this raster (its bands, its CRS, its pixels): refused now,
+  // not after the work.
+  if (geo_raster && !geotiff) {
+    const double dx = raster.dx(), dy = raster.dy();
+    gdal_functions("--out").check_raster(args.out, geo_options, samples.channels, std::abs(dx - dy) <= 1e-9 * std::max(dx, dy));
+  }
   // The query points of a file, read before any work (an input), so that the limits are
   // checked first: a point counts once for each value column, as the memory goes with the values
   // (10 samples of 20,000 columns on a 100 x 100 raster took 3.4 GB within the limit of points).

@@ -26,6 +26,7 @@ struct GdalFunctions {
   std::vector<Polyline> (*read_barriers)(const std::string& path);
   std::vector<std::string> (*source_files)(const std::string& path);
   std::vector<std::string> (*raster_files)(const std::string& path);
+  void (*check_raster)(const std::string& path, const GeoRasterOptions& options, int channels, bool square_pixels);
 };
 
 /// The name of the symbol the plugin exports: `const void* ()`, the address of its GdalFunctions.

@@ -17,8 +17,16 @@ namespace radrecon {
 
 /// The short name of the GDAL driver that would write `path` (`format` if given, else the first
 /// raster driver that can create files of its extension); UserError naming `where` if there is
-/// none, with the extensions it knows.
+/// none, with the extensions of the formats that write a plain georeferenced raster of floats, or
+/// if the driver is known to write none of radrecon's rasters (NTv2, HF2, SIGDEM, ...).
 std::string gdal_raster_driver(const std::string& path, const std::string& format, const std::string& where);
+
+/// Refuses (UserError naming --out) before the work a raster of `channels` bands that the driver
+/// writing `path` is known not to write: of more bands than it takes (one for the Arc/Info grid,
+/// netCDF, XYZ, ...), without a --crs it needs (GRIB, BAG), of a CRS it cannot record (NITF:
+/// geographic only), of pixels not square where it takes only those (SAGA, ISIS3). `square_pixels`:
+/// the raster's cells are as wide as tall.
+void check_gdal_raster(const std::string& path, const GeoRasterOptions& options, int channels, bool square_pixels);
 
 /// Checks the CRS text (UserError naming --crs) before any work: anything GDAL's SetFromUserInput
 /// takes.

@@ -260,6 +260,57 @@ with tempfile.TemporaryDirectory() as tmp:
     offered = r.stderr.split("through GDAL")[-1]
     check(all(f" {e}," not in offered and f" {e} " not in offered for e in [".png", ".vrt", ".jpg", ".kml", ".cal"])
           and " .tif," in offered and " .xyz," in offered, f"offered extensions: {offered.strip()}")
+    # Nor the formats that fail for a raster of floats georeferenced by a geotransform (an outside
+    # tester's trial: each was offered, and failed after the work), nor those that keep no
+    # georeferencing. Every one offered writes such a raster, of 6 x 5 cells not square, without a
+    # CRS: of two bands those offered for several, of one those offered for one value column.
+    import re
+    several, _, single = offered.partition("; of one value column also")
+    several_exts = re.findall(r"\.[a-z0-9-]+", several.split("(or name")[0])
+    single_exts = re.findall(r"\.[a-z0-9-]+", single.split("(or name")[0])
+    check(not [e for e in [".ntf", ".ter", ".grb2", ".gsb", ".gvb", ".bag", ".sigdem", ".sg-grd-z", ".hf2", ".fits", ".xml",
+                           ".lbl", ".cub", ".sdat", ".map", ".hdr"] if e in several_exts + single_exts]
+          and ".asc" in single_exts and ".img" in several_exts, f"offered extensions: {offered.strip()}")
+    two = os.path.join(tmp, "two_columns.csv")
+    with open(two, "w") as out:
+        out.write("x,y,a,b\n")
+        for j in range(4):
+            for i in range(5):
+                out.write(f"{i},{j},{f(i, j)!r},{f(j, i)!r}\n")
+    offered_dir = os.path.join(tmp, "offered")
+    os.mkdir(offered_dir)
+    for exts, source in [(several_exts, two), (single_exts, samples)]:
+        for e in exts:
+            out = os.path.join(offered_dir, "o" + e)
+            r = run("--samples", source, *([] if source == two else ["--value", "mag"]), "--method", "linear",
+                    "--raster", "6x5", "--domain", "0,0,4,3", "--out", out)
+            check(r.returncode == 0 and "keeps no georeferencing" not in r.stderr,
+                  f"offered {e}: exit {r.returncode}, {r.stderr.strip()}")
+            if r.returncode == 0:
+                d = gdal.Open(out)
+                check(d.RasterCount == (2 if source == two else 1) and abs(d.GetGeoTransform()[0]) < 1e-9,
+                      f"offered {e}: {d.RasterCount} bands, geotransform {d.GetGeoTransform()}")
+    # A format known to fail for the run's raster is refused before the work (naming --out, not
+    # the file GDAL failed on after it), saying why.
+    for name, args, words in [
+        ("o.hf2", [], "rounds the values"), ("o.sigdem", [], "integers of a fixed step"),
+        ("o.gsb", [], "grid-shift files"), ("o.sg-grd-z", [], "does not write them"), ("o.ter", [], "MINUSERPIXELVALUE"),
+        ("o.ntf", ["--crs", "EPSG:2193"], "geographic coordinates only"), ("o.grb2", [], "give --crs"),
+        ("o.bag", ["--crs", "EPSG:4326"], "2 bands exactly"), ("o.sdat", [], "square pixels only"),
+        ("o.asc", ["--value", "mag,depth"], "one band at most"), ("o.nc", ["--value", "mag,depth"], "separate variables"),
+        ("o.x", ["--format", "hf2"], "rounds the values"),
+    ]:
+        out = os.path.join(offered_dir, "refused_" + name)
+        r = run("--samples", samples, *([] if "--value" in args else ["--value", "mag"]), "--method", "linear",
+                "--raster", "6x5", "--domain", "0,0,4,3", *args, "--out", out)
+        check(r.returncode == 2 and "radrecon: error: --out" in r.stderr.replace("--format", "--out") and words in r.stderr
+              and not os.path.exists(out), f"{name} {args}: exit {r.returncode}, {r.stderr.strip()}")
+    # The same formats where they do write: NITF with a geographic CRS, SAGA of square pixels.
+    for name, args in [("o.ntf", ["--crs", "EPSG:4326"]), ("o.sdat", [])]:
+        out = os.path.join(offered_dir, "written_" + name)
+        r = run("--samples", samples, "--value", "mag", "--method", "linear", "--raster", "8x6", "--domain", "0,0,4,3",
+                *args, "--out", out)
+        check(r.returncode == 0, f"{name} {args}: exit {r.returncode}, {r.stderr.strip()}")
     # A CRS that PROJ reads but GDAL refuses (a bare name) is refused for a GeoTIFF as for any format.
     for crs in ["WGS 84"]:
         out = os.path.join(tmp, "named.tif")
