@@ -15,6 +15,7 @@
 #include "cli/commands.h"
 #include "core/allocator.h"
 #include "core/error.h"
+#include "core/parse.h"
 #include "io/atomic_file.h"
 
 namespace {
@@ -73,8 +74,9 @@ int refuse_extras(const CLI::App& app, const std::string& what, std::string miss
 /// runs, each refusal worded as every refusal is ("radrecon: error: --opt: ..."): an empty value,
 /// which would otherwise mean the default silently (--barriers "$UNSET" ran without barriers);
 /// and a number option's text that is no number at all (CLI11's words, "Could not convert:
-/// --nodata = abc" or "Value abc not in range 1 to 100000", name no rule). A number out of an
-/// option's range, or a fraction for a count, is left to the option's own check.
+/// --nodata = abc" or "Value abc not in range 1 to 100000", name no rule), or one that is not
+/// decimal ("0x10", which CLI11 read as 16). A number out of an option's range, or a fraction for
+/// a count, is left to the option's own check; so are nan and inf.
 void check_option_texts(CLI::App& app) {
   for (CLI::App* command : app.get_subcommands([](CLI::App*) { return true; }))
     for (CLI::Option* option : command->get_options()) {
@@ -87,6 +89,12 @@ void check_option_texts(CLI::App& app) {
               double number = 0;
               if (text.empty()) return std::string();
               if (!CLI::detail::lexical_cast(text, number)) return "must be a number, got '" + text + "'";
+              // CLI11 reads C's forms too, a hexadecimal "0x10" as 16 and " 4" as 4: decimal alone,
+              // as radrecon reads numbers everywhere (core/parse.h); nan and inf pass to the option's
+              // own check.
+              double decimal = 0;
+              if (radrecon::parse_double(text, decimal) == radrecon::NumberStatus::not_a_number)
+                return "must be a decimal number, got '" + text + "'";
               if (!whole) return std::string();
               // CLI11 said "Value 2.5 not in range 1 to 16", and the same of "3.0" and "1e1".
               if (!std::isfinite(number) || number != std::floor(number)) return "must be a whole number, got '" + text + "'";

@@ -128,6 +128,12 @@ run infinite_count render --scene paper --solution "$TMP/solution.json" --camera
 expect_rc infinite_count 2 && expect_stderr_has infinite_count "--samples: must be a whole number, got 'inf'"
 run written_count render --scene paper --solution "$TMP/solution.json" --camera view --samples 2.0 --size 8x6 --out "$TMP/wc.png" --quiet
 expect_rc written_count 0  # a whole number written as "2.0" or "2e0" is that number
+# Decimal numbers only: CLI11 read a hexadecimal "0x10" as 16 (and "0x1p1" as 2).
+run hex_count render --scene paper --solution "$TMP/solution.json" --camera view --samples 0x10 --out "$TMP/hex.png"
+expect_rc hex_count 2 && expect_stderr_has hex_count "radrecon: error: --samples: must be a decimal number, got '0x10'"
+run hex_float render --scene paper --solution "$TMP/solution.json" --camera view --white 0x1p1 --out "$TMP/hex.png"
+expect_rc hex_float 2 && expect_stderr_has hex_float "radrecon: error: --white: must be a decimal number, got '0x1p1'"
+expect_no_output hex_float "$TMP/hex.png"
 run empty_positional compare "" "$TMP/solution.json"
 expect_rc empty_positional 2 && expect_stderr_has empty_positional "must not be empty"
 if grep -q "leave the option out" "$TMP/empty_positional.stderr"; then fail "empty_positional: offered a default it has not"; fi

@@ -374,6 +374,12 @@ expect_rc empty_barriers 2 && expect_stderr_has empty_barriers "radrecon: error:
 [ -e "$TMP/empty_barriers.csv" ] && fail "empty_barriers: wrote an output"
 run nodata_text --samples "$TMP/scattered.csv" --nodata abc --method linear --queries "$TMP/queries.csv" --out "$TMP/nodata_text.csv"
 expect_rc nodata_text 2 && expect_stderr_has nodata_text "radrecon: error: --nodata: must be a number, got 'abc'"
+# Nor a hexadecimal one (--nodata 0x10 was 16); nan stays the no-data value it was.
+run nodata_hex --samples "$TMP/scattered.csv" --nodata 0x10 --method linear --raster 4x3 --domain 0,0,1,1 --out "$TMP/nodata_hex.tif"
+expect_rc nodata_hex 2 && expect_stderr_has nodata_hex "radrecon: error: --nodata: must be a decimal number, got '0x10'"
+expect_no_output nodata_hex "$TMP/nodata_hex.tif"
+run nodata_nan --samples "$TMP/scattered.csv" --nodata nan --method linear --raster 4x3 --domain 0,0,1,1 --out "$TMP/nodata_nan.tif" --quiet
+expect_rc nodata_nan 0
 
 # --- refusals that say what to do: the header's separator decides the rows'; a table under an
 # extension read through OGR; the methods and extensions listed are those this command takes ----
