@@ -2,8 +2,12 @@
 // metrics of evaluate/metrics.h, a difference image, thresholds for scripts (after pbrt's
 // `imgtool diff`).
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -20,6 +24,7 @@
 #include "core/parse.h"
 #include "core/tolerances.h"
 #include "evaluate/metrics.h"
+#include "io/atomic_file.h"
 #include "io/image_io.h"
 #include "io/image_read.h"
 #include "io/paths.h"
@@ -243,6 +248,13 @@ void run_compare(const CompareArgs& args) {
     file_format(args.diff, {FileFormat::png}, "--diff");
     refuse_overwriting_inputs(args.diff, "--diff", {args.a, args.b});
     check_output_file(args.diff, "--diff");
+    // Nor the file stdout goes to (--diff /dev/stdout > d.png): the figures would be written into
+    // the picture, or the picture over the figures.
+    struct stat out = {}, diff = {};
+    if (::fstat(STDOUT_FILENO, &out) == 0 && S_ISREG(out.st_mode) && ::stat(args.diff.c_str(), &diff) == 0 &&
+        out.st_dev == diff.st_dev && out.st_ino == diff.st_ino)
+      throw UserError("--diff", "'" + args.diff + "' is the file standard output goes to, where the figures are printed; "
+                                "give the difference image its own file");
   }
   const Comparison c = solutions ? compare_solutions(args) : compare_pictures(args);
 
@@ -274,7 +286,8 @@ void run_compare(const CompareArgs& args) {
       std::printf("%-12s %s\n", key, v ? format_number(*v).c_str() : (std::string(key) == "overshoot" ? "n/a (no samples)" : "n/a"));
     if (!args.diff.empty()) std::printf("difference image: %s (scale %s)\n", args.diff.c_str(), format_number(args.scale).c_str());
   }
-  std::fflush(stdout);
+  // The figures written (a full disk, a closed stdout: exit 2 with the reason) before the verdict.
+  if (std::fflush(stdout) != 0) throw output_error("standard output", errno);
   for (const std::string& e : exceeded) std::fprintf(stderr, "compare: threshold exceeded: %s\n", e.c_str());
   if (!exceeded.empty()) throw ExitStatus{1};
 }
@@ -298,7 +311,8 @@ void add_compare_command(CLI::App& app) {
       "nu x nv picture (white: --white, else the side's largest value in B; spacing: the element size in metres), "
       "SSIM weighted by element count over the sides of at least 11 x 11, gradient_L2 over all grid-side elements; "
       "adaptive (quadtree) sides count in the norms only.\n"
-      "Exit code 0; 1 when a --threshold is exceeded (after printing the figures); 2 for refused input.");
+      "Exit code 0; 1 when a --threshold is exceeded (after printing the figures); 2 for refused input or figures "
+      "that cannot be written to stdout.");
   cmd->add_option("A", args->a, "The picture or solution to judge")->required();
   cmd->add_option("B", args->b, "The reference picture or solution")->required();
   cmd->add_option("--diff", args->diff,

@@ -111,10 +111,14 @@ void run_cornell(const CornellArgs& args) {
   // --out under one of their names. The scene's and camera's names made fit for a file name.
   const std::filesystem::path dir(args.out);
   const std::string stem = file_name_part(scene.name) + "_" + file_name_part(camera->name) + "_";
+  // Nor may two of them be one file (symbolic or hard links in an existing folder).
   const std::vector<std::string> inputs = scene_input_files(args.scene);
+  std::vector<std::pair<std::string, std::string>> outputs;
   for (const std::string& file : {std::string("solution.json"), std::string("index.html")})
-    refuse_overwriting_inputs((dir / file).string(), "--out", inputs);
-  for (Method m : all_methods()) refuse_overwriting_inputs((dir / (stem + method_name(m) + ".png")).string(), "--out", inputs);
+    outputs.emplace_back("--out", (dir / file).string());
+  for (Method m : all_methods()) outputs.emplace_back("--out", (dir / (stem + method_name(m) + ".png")).string());
+  for (const auto& [where, file] : outputs) refuse_overwriting_inputs(file, where, inputs);
+  refuse_shared_outputs(outputs);
 
   SolveSettings settings;
   settings.residual = args.residual;

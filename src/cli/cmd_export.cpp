@@ -65,9 +65,9 @@ void run_export(const ExportArgs& args) {
   refuse_overwriting_inputs(args.out, "--out", inputs);
   check_output_file(args.out, "--out");
   if (!args.exr.empty()) {
-    inputs.push_back(args.out);
     refuse_overwriting_inputs(args.exr, "--exr", inputs);
     check_output_file(args.exr, "--exr");
+    refuse_shared_outputs({{"--out", args.out}, {"--exr", args.exr}});  // one would overwrite the other
   }
   parse_params(method_option(args.method), args.params, "--param");  // refused before anything is read
   const Scene scene = load_scene(args.scene);

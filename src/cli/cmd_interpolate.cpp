@@ -158,6 +158,12 @@ void run_interpolate(const InterpolateArgs& args) {
   if (!geo_raster && format == FileFormat::pfm && samples.channels != 1 && samples.channels != 3)
     throw UserError("--out", "PFM needs 1 or 3 value columns (greyscale or colour); " + args.samples + " has " +
                                  std::to_string(samples.channels) + "; write .csv instead");
+  // A GDAL format known not to write this raster (its bands, its CRS, its pixels): refused now,
+  // not after the work.
+  if (geo_raster && !geotiff) {
+    const double dx = raster.dx(), dy = raster.dy();
+    gdal_functions("--out").check_raster(args.out, geo_options, samples.channels, std::abs(dx - dy) <= 1e-9 * std::max(dx, dy));
+  }
   // The query points of a file, read before any work (an input), so that the limits are
   // checked first: a point counts once for each value column, as the memory goes with the values
   // (10 samples of 20,000 columns on a 100 x 100 raster took 3.4 GB within the limit of points).
@@ -238,9 +244,14 @@ void run_interpolate(const InterpolateArgs& args) {
     const auto write_start = Clock::now();
     if (geo_raster) refuse_nodata_clash(values, args.nodata, geo_options.float64);
     if (geotiff) {
+      // An earlier GeoTIFF's side files (an .aux.xml, whose CRS GDAL reads first; a world file)
+      // go with it, as write_gdal_raster() removes them.
+      const EarlierRaster earlier(args.out, true);
       write_file_atomically(args.out, [&](const std::filesystem::path& tmp) {
         geotiff_functions("--out").write(tmp, args.out, raster, values, samples.channels, geo_options, geotiff_crs);
       });
+      for (const std::string& warning : earlier.remove_unreplaced({std::filesystem::path(args.out).filename().string()}, inputs))
+        std::fprintf(stderr, "radrecon: warning: %s\n", warning.c_str());
     } else if (geo_raster) {
       for (const std::string& warning : write_gdal_raster(args.out, raster, values, samples.channels, geo_options))
         std::fprintf(stderr, "radrecon: warning: %s\n", warning.c_str());

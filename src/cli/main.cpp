@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <string_view>
@@ -13,6 +15,7 @@
 #include "cli/commands.h"
 #include "core/allocator.h"
 #include "core/error.h"
+#include "core/parse.h"
 #include "io/atomic_file.h"
 
 namespace {
@@ -71,8 +74,9 @@ int refuse_extras(const CLI::App& app, const std::string& what, std::string miss
 /// runs, each refusal worded as every refusal is ("radrecon: error: --opt: ..."): an empty value,
 /// which would otherwise mean the default silently (--barriers "$UNSET" ran without barriers);
 /// and a number option's text that is no number at all (CLI11's words, "Could not convert:
-/// --nodata = abc" or "Value abc not in range 1 to 100000", name no rule). A number out of an
-/// option's range, or a fraction for a count, is left to the option's own check.
+/// --nodata = abc" or "Value abc not in range 1 to 100000", name no rule), or one that is not
+/// decimal ("0x10", which CLI11 read as 16). A number out of an option's range, or a fraction for
+/// a count, is left to the option's own check; so are nan and inf.
 void check_option_texts(CLI::App& app) {
   for (CLI::App* command : app.get_subcommands([](CLI::App*) { return true; }))
     for (CLI::Option* option : command->get_options()) {
@@ -85,6 +89,12 @@ void check_option_texts(CLI::App& app) {
               double number = 0;
               if (text.empty()) return std::string();
               if (!CLI::detail::lexical_cast(text, number)) return "must be a number, got '" + text + "'";
+              // CLI11 reads C's forms too, a hexadecimal "0x10" as 16 and " 4" as 4: decimal alone,
+              // as radrecon reads numbers everywhere (core/parse.h); nan and inf pass to the option's
+              // own check.
+              double decimal = 0;
+              if (radrecon::parse_double(text, decimal) == radrecon::NumberStatus::not_a_number)
+                return "must be a decimal number, got '" + text + "'";
               if (!whole) return std::string();
               // CLI11 said "Value 2.5 not in range 1 to 16", and the same of "3.0" and "1e1".
               if (!std::isfinite(number) || number != std::floor(number)) return "must be a whole number, got '" + text + "'";
@@ -101,6 +111,20 @@ void check_option_texts(CLI::App& app) {
           },
           ""));
     }
+}
+
+/// Whether what the command printed on stdout (compare's figures) reached it: a full disk,
+/// /dev/full or a closed stdout show only when the buffer is written, here if not before. Says so
+/// if not. Not for --help and --version, whose output is CLI11's.
+bool stdout_written() {
+  errno = 0;
+  const bool flushed = std::fflush(stdout) == 0;
+  const int error = errno;
+  if (flushed && !std::ferror(stdout)) return true;
+  const std::string said = error != 0 ? radrecon::output_error("standard output", error).what()
+                                      : std::string("standard output: cannot write");
+  std::fprintf(stderr, "radrecon: error: %s\n", said.c_str());
+  return false;
 }
 
 }  // namespace
@@ -120,6 +144,10 @@ int main(int argc, char** argv) {
   }
   radrecon::keep_freed_memory();
   radrecon::remove_temporary_files_on_signals();
+  // A file-size limit (ulimit -f) met by a write: the write fails with EFBIG, which every writer
+  // reports and cleans up after, instead of SIGXFSZ ending the process silently with the
+  // temporary files left. The command line only: the Python module leaves its host's signals be.
+  std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{
       "radrecon: computes radiosity on a scene (progressive refinement on regular grids, hierarchical radiosity "
       "on quadtrees) and reconstructs a smooth radiosity function across each patch (bilinear, bicubic, "
@@ -166,7 +194,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "radrecon: error: %s\nRun with --help for more information.\n", e.what());
     return radrecon::kUserErrorExitCode;
   } catch (const radrecon::cli::ExitStatus& e) {
-    return e.code;
+    return stdout_written() ? e.code : radrecon::kUserErrorExitCode;
   } catch (const radrecon::UserError& e) {
     std::fprintf(stderr, "radrecon: error: %s\n", e.what());
     return radrecon::kUserErrorExitCode;
@@ -179,5 +207,5 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "radrecon: error: %s\n", e.what());
     return 1;
   }
-  return 0;
+  return stdout_written() ? 0 : radrecon::kUserErrorExitCode;
 }

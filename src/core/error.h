@@ -26,6 +26,14 @@ class UserError : public std::runtime_error {
   explicit UserError(const std::string& what);
 };
 
+/// `said`, a library's words for a write that failed (GDAL's "Write failed, disk full?", libtiff's
+/// "Write error at scanline 40"), with the system's reason after it, " (File too large)", when
+/// errno, read right after the library returns, is one that only a failing write or close sets
+/// (no space, file too large, disk quota, I/O error) and `said` does not say it already. The
+/// caller sets errno to 0 before calling the library, so that an earlier call's errno is not
+/// taken for the reason.
+std::string with_failed_write_reason(const std::string& said);
+
 /// Says a warning to the user: "radrecon: warning: MESSAGE" on stderr, or, while a
 /// WarningCollector lives on the calling thread, into it (the Python module raises them as
 /// Python warnings, which a program can catch or filter).

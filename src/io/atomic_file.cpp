@@ -1,18 +1,24 @@
 #include "io/atomic_file.h"
 
 #include <atomic>
+#include <cerrno>
 #include <csignal>
+#include <cstdarg>
+#include <cstdio>
 #include <cstring>
 #include <dirent.h>
 #include <fcntl.h>
-#include <fstream>
+#include <sys/stat.h>
 #include <mutex>
 #include <string>
 #include <system_error>
+#include <utility>
+#include <vector>
 #include <unistd.h>
 
 #include "core/check.h"
 #include "core/error.h"
+#include "io/paths.h"
 
 namespace radrecon {
 
@@ -51,7 +57,15 @@ void remove_folder_from_handler(const char* path) {
   ::rmdir(path);
 }
 
+/// Whether a thread runs the handler: it runs once per process. sa_mask holds the other signals
+/// off the thread that runs it alone, and another thread can take one meanwhile (`timeout -s HUP`
+/// sends two): that one waits for the first to end the process.
+std::atomic<bool> g_handling{false};
+static_assert(std::atomic<bool>::is_always_lock_free, "lock-free: async-signal-safe");
+
 void remove_pending_then_raise(int signal_number) {
+  if (g_handling.exchange(true))
+    for (;;) ::pause();
   for (PendingSlot& slot : g_pending)
     if (slot.ready.load()) {
       if (slot.folder)
@@ -96,9 +110,15 @@ TemporaryPath::~TemporaryPath() {
 
 void remove_temporary_files_on_signals() {
   for (const int signal_number : {SIGINT, SIGTERM, SIGHUP}) {
+    // A signal ignored on entry stays ignored, as the caller meant (nohup, a shell's trap '' or
+    // its background job's SIGINT): handling it would let it end the process.
+    struct sigaction inherited = {};
+    if (::sigaction(signal_number, nullptr, &inherited) == 0 && !(inherited.sa_flags & SA_SIGINFO) &&
+        inherited.sa_handler == SIG_IGN)
+      continue;
     struct sigaction action = {};
     action.sa_handler = remove_pending_then_raise;
-    // One handler at a time: a second signal waits until the first has cleaned up and ended.
+    // One handler at a time on this thread; on other threads, g_handling holds a second off.
     sigemptyset(&action.sa_mask);
     for (const int blocked : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&action.sa_mask, blocked);
     ::sigaction(signal_number, &action, nullptr);
@@ -107,10 +127,27 @@ void remove_temporary_files_on_signals() {
 
 namespace {
 
-/// The live WrittenFiles' list and callback, null when none.
+/// The live WrittenFiles' list and callback, null when none; and each file it lists, as
+/// requested and as written (symbolic links followed, canonical).
 std::mutex g_written_mutex;
 std::vector<std::filesystem::path>* g_written = nullptr;
 std::function<void(const std::filesystem::path&)> g_on_write;
+std::vector<std::pair<std::filesystem::path, std::filesystem::path>> g_written_to;
+
+/// Within a run that lists its files: refuses a write of `requested`, written at `path`, that
+/// lands on a file the run wrote under another name (a link among the outputs of an existing
+/// folder), before it is made. Under g_written_mutex.
+void refuse_writing_twice(const std::filesystem::path& requested, const std::filesystem::path& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path target = fs::weakly_canonical(path, ec);
+  const bool linked = fs::hard_link_count(path, ec) > 1 && !ec;
+  for (const auto& [name, earlier] : g_written_to)
+    if (name != requested && (earlier == target || (linked && fs::equivalent(earlier, path, ec))))
+      throw UserError(requested.string(), "is the same file as '" + name.string() +
+                                              "', written earlier in this run; give each output its own file");
+  g_written_to.emplace_back(requested, target);
+}
 
 }  // namespace
 
@@ -119,6 +156,7 @@ WrittenFiles::WrittenFiles(std::function<void(const std::filesystem::path&)> on_
   RR_CHECK(g_written == nullptr, "one WrittenFiles at a time");
   g_written = new std::vector<std::filesystem::path>();
   g_on_write = std::move(on_write);
+  g_written_to.clear();
 }
 
 WrittenFiles::~WrittenFiles() {
@@ -126,6 +164,7 @@ WrittenFiles::~WrittenFiles() {
   delete g_written;
   g_written = nullptr;
   g_on_write = nullptr;
+  g_written_to.clear();
 }
 
 std::vector<std::filesystem::path> WrittenFiles::paths() const {
@@ -137,18 +176,16 @@ void write_file_atomically(const std::filesystem::path& requested,
                            const std::function<void(const std::filesystem::path&)>& write) {
   namespace fs = std::filesystem;
   std::error_code ec;
-  fs::path path = requested;
   // Replace only regular files: never a folder, device or pipe; through a symlink, its target.
-  for (int hops = 0; fs::is_symlink(path, ec); ++hops) {
-    if (hops == 40) throw UserError(requested.string(), "too many levels of symbolic links");
-    const fs::path target = fs::read_symlink(path, ec);
-    if (ec) throw UserError(requested.string(), "cannot read the symbolic link: " + ec.message());
-    path = target.is_absolute() ? target : path.parent_path() / target;
-  }
+  const fs::path path = file_written_at(requested);
   const fs::file_status status = fs::status(path, ec);
   if (fs::exists(status) && !fs::is_regular_file(status))
     throw UserError(requested.string(), fs::is_directory(status) ? "is a folder, not a file"
                                                                   : "is not a regular file; refusing to replace it");
+  {
+    const std::lock_guard<std::mutex> lock(g_written_mutex);
+    if (g_written != nullptr) refuse_writing_twice(requested, path);
+  }
   if (path.has_parent_path()) {
     fs::create_directories(path.parent_path(), ec);
     if (ec) throw UserError(path.parent_path().string(), "cannot create folder: " + ec.message());
@@ -171,11 +208,92 @@ void write_file_atomically(const std::filesystem::path& requested,
       if (g_on_write) g_on_write(requested);
     }
   }
-  fs::rename(tmp, path, ec);
-  if (ec) {
+  try {
+    move_into_place(tmp, path);
+  } catch (...) {
     fs::remove(tmp, ec);
-    throw UserError(path.string(), "cannot write: " + ec.message());
+    throw;
   }
+}
+
+void move_into_place(const std::filesystem::path& tmp, const std::filesystem::path& path) {
+  // The file it replaces keeps its permission bits (a private 0600 output stays private) and, for
+  // root, its owner and group: best effort, a file system that keeps none is no failure.
+  struct stat existing = {};
+  if (::stat(path.c_str(), &existing) == 0 && S_ISREG(existing.st_mode)) {
+    struct stat made = {};
+    if (::geteuid() == 0 && ::stat(tmp.c_str(), &made) == 0 && (made.st_uid != existing.st_uid || made.st_gid != existing.st_gid))
+      [[maybe_unused]] const int owned = ::chown(tmp.c_str(), existing.st_uid, existing.st_gid);
+    ::chmod(tmp.c_str(), existing.st_mode & 0777);  // after chown, which may clear bits
+  }
+  if (::rename(tmp.c_str(), path.c_str()) != 0)
+    throw output_error(path.string(), errno, " (moving the finished file into place)");
+}
+
+UserError output_error(const std::string& shown_as, int error, const std::string& detail) {
+  return UserError(shown_as, std::string("cannot write: ") + std::strerror(error) + detail);
+}
+
+namespace {
+/// What OutputFile gathers before a write(2).
+constexpr size_t kOutputBuffer = size_t{1} << 16;
+}  // namespace
+
+OutputFile::OutputFile(const std::filesystem::path& tmp, std::string shown_as) : shown_as_(std::move(shown_as)) {
+  fd_ = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  if (fd_ < 0) throw output_error(shown_as_, errno, " (creating its temporary file)");
+  buffer_.reserve(kOutputBuffer);
+}
+
+OutputFile::~OutputFile() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+void OutputFile::write_through(const char* data, size_t size) {
+  while (size > 0) {
+    const ssize_t n = ::write(fd_, data, size);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) throw output_error(shown_as_, n < 0 ? errno : EIO);
+    data += n;
+    size -= static_cast<size_t>(n);
+  }
+}
+
+void OutputFile::flush() {
+  write_through(buffer_.data(), buffer_.size());
+  buffer_.clear();
+}
+
+void OutputFile::write(const void* data, size_t size) {
+  if (buffer_.size() + size > kOutputBuffer) flush();
+  if (size < kOutputBuffer) buffer_.append(static_cast<const char*>(data), size);
+  else write_through(static_cast<const char*>(data), size);  // large: straight from the caller's memory
+}
+
+void OutputFile::print(const char* format, ...) {
+  char small[256];
+  std::va_list args;
+  va_start(args, format);
+  const int n = std::vsnprintf(small, sizeof(small), format, args);
+  va_end(args);
+  RR_CHECK(n >= 0, "an output's format is invalid");
+  if (static_cast<size_t>(n) < sizeof(small)) {
+    write(small, static_cast<size_t>(n));
+    return;
+  }
+  std::string text(static_cast<size_t>(n) + 1, '\0');
+  va_start(args, format);
+  std::vsnprintf(text.data(), text.size(), format, args);
+  va_end(args);
+  text.pop_back();
+  write(text);
+}
+
+void OutputFile::close() {
+  flush();
+  const int fd = fd_;
+  fd_ = -1;
+  if (::close(fd) != 0 && errno != EINTR) throw output_error(shown_as_, errno);
 }
 
 void write_text_file(const std::filesystem::path& path, const std::string& text) {
@@ -184,10 +302,9 @@ void write_text_file(const std::filesystem::path& path, const std::string& text)
 
 void write_binary_file(const std::filesystem::path& path, std::span<const std::uint8_t> bytes) {
   write_file_atomically(path, [&](const std::filesystem::path& tmp) {
-    std::ofstream out(tmp, std::ios::binary);
-    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-    out.close();  // the last bytes are flushed here: a full disk shows now
-    if (!out) throw UserError(path.string(), "cannot write");
+    OutputFile out(tmp, path.string());
+    out.write(bytes.data(), bytes.size());
+    out.close();  // the last bytes are written here: a full disk shows now
   });
 }
 

@@ -1,6 +1,7 @@
 #include "io/gdal_plugin.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cstdlib>
 #include <filesystem>
 
@@ -23,17 +24,78 @@ std::vector<std::string> write_gdal_raster(const std::string& path, const Raster
   const fs::path out(path);
   const fs::path parent = out.has_parent_path() ? out.parent_path() : fs::path(".");
   std::string pattern = (parent / ".radrecon-gdal-XXXXXX").string();
-  if (mkdtemp(pattern.data()) == nullptr) throw UserError(path, "cannot create a temporary folder beside it");
+  if (mkdtemp(pattern.data()) == nullptr) throw output_error(path, errno, " (creating a temporary folder beside it)");
   const TemporaryPath pending(pattern, TemporaryPath::Kind::folder);
   try {
     std::vector<std::string> warnings = gdal.write_raster(path, pattern, raster, values, channels, options);
+    const EarlierRaster earlier(path, false);
+    // The raster and its side files, each checked before any is moved: a folder (or a device)
+    // under one of their names would stop the move half-way.
+    std::vector<fs::path> names;
+    for (const fs::directory_entry& e : fs::directory_iterator(pattern)) names.push_back(e.path().filename());
+    std::sort(names.begin(), names.end());
+    for (const fs::path& name : names) {
+      std::error_code ec;
+      const fs::file_status there = fs::status(parent / name, ec);
+      if (fs::exists(there) && !fs::is_regular_file(there))
+        throw UserError((parent / name).string(), std::string(fs::is_directory(there) ? "is a folder" : "is not a regular file") +
+                                                      ", where the raster " + path + " has a file of its own; refusing to replace it");
+    }
+    for (const fs::path& name : names) move_into_place(fs::path(pattern) / name, parent / name);
     fs::remove(pattern);
+    std::vector<std::string> written;
+    for (const fs::path& name : names) written.push_back(name.string());
+    for (std::string& warning : earlier.remove_unreplaced(written, options.inputs)) warnings.push_back(std::move(warning));
     return warnings;
   } catch (...) {
     std::error_code ec;
     fs::remove_all(pattern, ec);
     throw;
   }
+}
+
+EarlierRaster::EarlierRaster(const std::string& path, bool only_with_side_files) : path_(path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) return;
+  if (only_with_side_files) {
+    const fs::path file(path);
+    const std::string stem = file.stem().string(), name = file.filename().string();
+    bool beside = false;
+    for (fs::directory_iterator it(file.has_parent_path() ? file.parent_path() : fs::path("."), ec), end; !ec && it != end && !beside;
+         it.increment(ec)) {
+      const std::string other = it->path().filename().string();
+      beside = other != name && other.compare(0, stem.size(), stem) == 0;
+    }
+    if (!beside) return;
+  }
+  files_ = gdal_functions("--out").raster_files(path);
+}
+
+std::vector<std::string> EarlierRaster::remove_unreplaced(const std::vector<std::string>& written,
+                                                          const std::vector<std::string>& inputs) const {
+  namespace fs = std::filesystem;
+  std::vector<std::string> warnings;
+  const fs::path out(path_);
+  const fs::path parent = out.has_parent_path() ? out.parent_path() : fs::path(".");
+  for (const std::string& listed : files_) {
+    const fs::path file(listed);
+    std::error_code ec;
+    // Only the raster's own files beside it: not one elsewhere, nor one the new raster wrote,
+    // nor an input of the run.
+    if (!fs::equivalent(file.has_parent_path() ? file.parent_path() : fs::path("."), parent, ec) || ec) continue;
+    if (std::find(written.begin(), written.end(), file.filename().string()) != written.end()) continue;
+    if (!fs::is_regular_file(fs::symlink_status(file, ec))) continue;
+    if (std::any_of(inputs.begin(), inputs.end(), [&](const std::string& input) {
+          std::error_code e;
+          return fs::equivalent(file, input, e);
+        }))
+      continue;
+    if (!fs::remove(file, ec) && ec)
+      warnings.push_back(listed + ": a file of the raster " + path_ + " replaced, which the new one does not have, cannot be " +
+                         "removed (" + ec.message() + "); GIS may read it with the new raster");
+  }
+  return warnings;
 }
 
 bool is_ogr_vector_path(const std::string& path) {

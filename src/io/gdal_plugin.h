@@ -25,6 +25,8 @@ struct GdalFunctions {
   std::vector<Vec2> (*read_queries)(const std::string& path, const CsvColumns& columns);
   std::vector<Polyline> (*read_barriers)(const std::string& path);
   std::vector<std::string> (*source_files)(const std::string& path);
+  std::vector<std::string> (*raster_files)(const std::string& path);
+  void (*check_raster)(const std::string& path, const GeoRasterOptions& options, int channels, bool square_pixels);
 };
 
 /// The name of the symbol the plugin exports: `const void* ()`, the address of its GdalFunctions.
@@ -36,9 +38,33 @@ const GdalFunctions& gdal_functions(const std::string& what);
 
 /// Writes a raster through GDAL (GdalFunctions::write_raster) atomically: in a fresh folder
 /// `.radrecon-gdal-XXXXXX` beside `path`, removed after, or by a signal (TemporaryPath,
-/// io/atomic_file.h), with what it holds. Returns the warnings.
+/// io/atomic_file.h), with what it holds. Its files are then moved beside `path`, each renamed
+/// (move_into_place()) once none has a folder or another non-file under its name there; and of a
+/// raster it replaces, the files the new one does not have are removed (EarlierRaster). Returns
+/// the warnings.
 std::vector<std::string> write_gdal_raster(const std::string& path, const Raster& raster, std::span<const double> values,
                                            int channels, const GeoRasterOptions& options);
+
+/// A raster about to be replaced at `path`: its files as GDAL lists them (GdalFunctions::
+/// raster_files), taken before the new raster takes its name. A file of it that the new raster
+/// does not write stays beside it otherwise, and is read with it: an older .prj gives the new
+/// raster the old CRS, an older .aux.xml its statistics or no-data value.
+class EarlierRaster {
+ public:
+  /// Lists the files of the raster at `path`, if there is one. With `only_with_side_files`, only
+  /// when a file beside it begins with its stem ("o" of o.tif: o.tfw, o.tif.aux.xml): GDAL is
+  /// not loaded to list a GeoTIFF that stands alone, as radrecon's own GeoTIFF writer leaves it.
+  EarlierRaster(const std::string& path, bool only_with_side_files);
+  /// Removes those of the listed files, in `path`'s folder, that the new raster did not write
+  /// there (`written`: file names) and that are none of `inputs`. Returns a warning for each that
+  /// cannot be removed.
+  std::vector<std::string> remove_unreplaced(const std::vector<std::string>& written,
+                                             const std::vector<std::string>& inputs) const;
+
+ private:
+  std::string path_;
+  std::vector<std::string> files_;
+};
 
 /// The extensions of a file read as a CSV or XYZ table (besides none); any other is read through
 /// OGR (is_ogr_vector_path()).

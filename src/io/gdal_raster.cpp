@@ -1,6 +1,7 @@
 #include "io/gdal_raster.h"
 
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -196,6 +197,70 @@ const char* no_file_of_values(const std::string& driver) {
   return nullptr;
 }
 
+/// What a driver that lists Float32 bands does not write of radrecon's rasters (bands of floats,
+/// one a value column, a north-up geotransform, the CRS of --crs if any, a no-data value), found
+/// by writing each with GDAL 3.6: refused before the work (check_gdal_raster()), saying why, and
+/// left out of the formats an unknown extension is told of, but for those of one band, told as
+/// such. A driver not named here writes them as far as known (the read-back judges, after).
+struct DriverLimits {
+  const char* driver;
+  const char* extension;  ///< only for files of this extension (lower case, no dot); nullptr: all
+  const char* never;      ///< why it writes none of them; nullptr: it writes some
+  bool one_band;          ///< it writes one band at most
+  int exact_bands;        ///< the only number of bands it writes (0: any)
+  bool needs_crs, needs_geographic_crs, needs_square_pixels;
+  bool keeps_georeferencing;  ///< false: written with radrecon's warning that it keeps none
+  const char* several_bands = nullptr;  ///< what it makes of several bands, if not a refusal of its own
+};
+constexpr DriverLimits kDriverLimits[] = {
+    // driver, extension, never, one band, exact bands, CRS, geographic CRS, square pixels, georeferencing
+    {"NTv2", nullptr, "writes grid-shift files of four bands (latitude and longitude shifts and their accuracies), not values",
+     false, 0, false, false, false, true},
+    {"Leveller", nullptr, "needs the heights' range as a creation option (MINUSERPIXELVALUE), which radrecon does not give",
+     true, 0, false, false, false, true},
+    {"Terragen", nullptr, "needs the heights' span as creation options, which radrecon does not give", true, 0, false, false,
+     false, true},
+    {"HF2", nullptr, "rounds the values to its vertical precision (0.01)", true, 0, false, false, false, true},
+    {"SIGDEM", nullptr, "stores the values as integers of a fixed step (0.001), which rounds them", true, 0, true, false, false,
+     true},
+    {"NWT_GRD", nullptr, "writes a grid that GDAL reads back as 8-bit colour bands, not the values", true, 0, false, false, false,
+     true},
+    {"SAGA", "sg-grd-z", "reads zipped SAGA grids but does not write them (.sdat is SAGA's grid)", true, 0, false, false, true,
+     true},
+    {"BAG", nullptr, nullptr, false, 2, true, false, false, true},  // bathymetry: elevation and its uncertainty
+    {"GRIB", nullptr, nullptr, false, 0, true, false, false, false},
+    {"NITF", nullptr, nullptr, false, 0, false, true, false, true},  // its corners in degrees (IGEOLO)
+    {"ISIS3", nullptr, nullptr, false, 0, false, false, true, false},
+    {"SAGA", nullptr, nullptr, true, 0, false, false, true, true},
+    {"PCRaster", nullptr, nullptr, true, 0, false, false, false, false},  // georeferenced for square pixels only
+    {"AAIGrid", nullptr, nullptr, true, 0, false, false, false, true},
+    {"RST", nullptr, nullptr, true, 0, false, false, false, true},
+    {"BT", nullptr, nullptr, true, 0, false, false, false, true},
+    {"GTX", nullptr, nullptr, true, 0, false, false, false, true},
+    {"GSAG", nullptr, nullptr, true, 0, false, false, false, true},
+    {"GSBG", nullptr, nullptr, true, 0, false, false, false, true},
+    {"GS7BG", nullptr, nullptr, true, 0, false, false, false, true},
+    {"XYZ", nullptr, nullptr, true, 0, false, false, false, true},
+    {"ZMap", nullptr, nullptr, true, 0, false, false, false, true},
+    {"GPKG", nullptr, nullptr, true, 0, false, false, false, true},
+    {"netCDF", nullptr, nullptr, true, 0, false, false, false, true,
+     "stores several value columns as separate variables (subdatasets), not as the bands of one raster"},
+    {"FITS", nullptr, nullptr, false, 0, false, false, false, false},
+    {"PDS4", nullptr, nullptr, false, 0, false, false, false, false},
+    {"MFF", nullptr, nullptr, false, 0, false, false, false, false},  // but for a geographic CRS
+};
+
+/// The limits of `driver` writing files of extension `ext` (lower case, no dot), or nullptr.
+const DriverLimits* limits_of(const std::string& driver, const std::string& ext) {
+  for (const DriverLimits& l : kDriverLimits)
+    if (driver == l.driver && (l.extension == nullptr || ext == l.extension)) return &l;
+  return nullptr;
+}
+
+/// The advice of a refusal for a format of one band.
+constexpr const char* kSeveralBandsAdvice =
+    ": write .tif, .img or another format of several floating-point bands, or one value column at a time (--value)";
+
 }  // namespace
 
 std::string gdal_raster_driver(const std::string& path, const std::string& format, const std::string& where) {
@@ -210,10 +275,12 @@ std::string gdal_raster_driver(const std::string& path, const std::string& forma
       throw UserError("--format", "'" + format + "' is no GDAL driver that creates rasters (gdalinfo --formats lists them)");
     if (const char* why = no_file_of_values(d->GetDescription()))
       throw UserError("--format", std::string("GDAL's ") + d->GetDescription() + " driver " + why + kFloatFormatsAdvice);
+    if (const DriverLimits* limits = limits_of(d->GetDescription(), ext); limits != nullptr && limits->never != nullptr)
+      throw UserError("--format", std::string("GDAL's ") + d->GetDescription() + " driver " + limits->never + kFloatFormatsAdvice);
     require_band_type(d, "Float32", "--format");
-    return format;
+    return d->GetDescription();  // GDAL's spelling of the name, whatever the option's case
   }
-  std::string known;
+  std::string known, one_band;  // the extensions of formats of several bands, and of one
   for (int k = 0; k < drivers->GetDriverCount(); ++k) {
     GDALDriver* d = drivers->GetDriver(k);
     if (!can_create_raster(d)) continue;
@@ -221,22 +288,74 @@ std::string gdal_raster_driver(const std::string& path, const std::string& forma
     if (exts == nullptr) continue;
     std::istringstream list(exts);
     for (std::string e; list >> e;) {
+      const DriverLimits* limits = limits_of(d->GetDescription(), ascii_lower(e));
       if (ascii_lower(e) == ext && !ext.empty()) {
         if (const char* why = no_file_of_values(d->GetDescription()))
           throw UserError(where, std::string("GDAL's ") + d->GetDescription() + " driver " + why + " (." + ext + ")" +
                                      kFloatFormatsAdvice);
+        if (limits != nullptr && limits->never != nullptr)
+          throw UserError(where, std::string("GDAL's ") + d->GetDescription() + " driver " + limits->never + " (." + ext + ")" +
+                                     kFloatFormatsAdvice);
         require_band_type(d, "Float32", where);
         return d->GetDescription();
       }
-      // The extensions that would be written: radrecon's own (.png) and the refused left out.
-      if (no_file_of_values(d->GetDescription()) == nullptr && lists_band_type(d, "Float32") &&
-          ascii_lower(e) != "png" && known.find(" ." + e + ",") == std::string::npos)
-        known += " ." + e + ",";
+      // The extensions that would be written, of a plain georeferenced raster of floats (without
+      // conditions on its CRS or its pixels): radrecon's own (.png) and the refused left out.
+      const bool plain = limits == nullptr || (limits->never == nullptr && limits->exact_bands == 0 && !limits->needs_crs &&
+                                               !limits->needs_geographic_crs && !limits->needs_square_pixels &&
+                                               limits->keeps_georeferencing);
+      std::string& list = limits != nullptr && limits->one_band ? one_band : known;
+      if (plain && no_file_of_values(d->GetDescription()) == nullptr && lists_band_type(d, "Float32") &&
+          ascii_lower(e) != "png" && known.find(" ." + e + ",") == std::string::npos &&
+          one_band.find(" ." + e + ",") == std::string::npos)
+        list += " ." + e + ",";
     }
   }
   throw UserError(where, "unknown output extension '" + std::filesystem::path(path).extension().string() +
                              "': radrecon writes .csv, .pfm and .png, and through GDAL" + known.substr(0, known.size() - 1) +
+                             (one_band.empty() ? "" : "; of one value column also" + one_band.substr(0, one_band.size() - 1)) +
                              " (or name a driver with --format)");
+}
+
+void check_gdal_raster(const std::string& path, const GeoRasterOptions& options, int channels, bool square_pixels) {
+  const std::string driver = gdal_raster_driver(path, options.format, "--out");
+  std::string ext = lower_extension(path);
+  if (!ext.empty()) ext.erase(0, 1);
+  const DriverLimits* limits = limits_of(driver, ext);
+  if (limits == nullptr) return;
+  const std::string its = "GDAL's " + driver + " driver ";
+  const std::string columns = std::to_string(channels) + " value column" + (channels == 1 ? "" : "s");
+  if (limits->exact_bands != 0 && channels != limits->exact_bands)
+    throw UserError("--out", its + "writes " + std::to_string(limits->exact_bands) + " bands exactly" +
+                                 (driver == "BAG" ? " (an elevation and its uncertainty)" : "") + "; the samples have " +
+                                 columns + " (--value picks them)" + kFloatFormatsAdvice);
+  if (limits->one_band && channels > 1)
+    throw UserError("--out", its + (limits->several_bands != nullptr ? std::string(limits->several_bands) : "writes one band at most") +
+                                 "; the samples have " + columns + kSeveralBandsAdvice);
+  if (limits->needs_crs && options.crs.empty())
+    throw UserError("--out", its + "needs a coordinate reference system: give --crs (e.g. EPSG:4326)" + kFloatFormatsAdvice);
+  if (limits->needs_geographic_crs) {
+    QuietGdal quiet;
+    OGRSpatialReference srs;
+    if (options.crs.empty() || srs.SetFromUserInput(options.crs.c_str()) != OGRERR_NONE || !srs.IsGeographic())
+      throw UserError("--out", its + "writes its corners in geographic coordinates only: give a geographic --crs (e.g. "
+                                     "EPSG:4326)" + kFloatFormatsAdvice);
+  }
+  if (limits->needs_square_pixels && !square_pixels)
+    throw UserError("--out", its + "writes square pixels only: give --raster and --domain whose cells are as wide as tall" +
+                                 kFloatFormatsAdvice);
+}
+
+std::vector<std::string> gdal_raster_files(const std::string& path) {
+  register_drivers("");  // every driver: the raster may be of any format
+  QuietGdal quiet;
+  const std::unique_ptr<GDALDataset> raster(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
+  if (!raster) return {};
+  std::vector<std::string> files;
+  char** list = raster->GetFileList();
+  for (char** f = list; f != nullptr && *f != nullptr; ++f) files.emplace_back(*f);
+  CSLDestroy(list);
+  return files;
 }
 
 void check_gdal_crs(const std::string& crs) {
@@ -285,7 +404,7 @@ std::vector<std::string> write_raster_gdal(const std::string& path, const std::s
         throw UserError(path, "GDAL cannot fill the raster: " + QuietGdal::last_error());
     }
   }
-  // Written in the caller's fresh folder beside the output, then moved: no half-written file
+  // Written in the caller's fresh folder beside the output, which moves it: no half-written file
   // under the output's name, and side files (e.g. an ENVI header) move along.
   namespace fs = std::filesystem;
   const fs::path out(path);
@@ -294,28 +413,28 @@ std::vector<std::string> write_raster_gdal(const std::string& path, const std::s
   // MRF compresses by PNG by default, which takes no floating-point bands: DEFLATE, lossless.
   CPLStringList creation;
   if (driver_name == "MRF") creation.SetNameValue("COMPRESS", "DEFLATE");
+  errno = 0;  // a failing write's reason, which GDAL's words may leave out (with_failed_write_reason())
   std::unique_ptr<GDALDataset> file(driver->CreateCopy((tmp / out.filename()).c_str(), image.get(), FALSE, creation.List(),
                                                         nullptr, nullptr));
   if (!file) {
-    std::string why = QuietGdal::last_error();  // the temporary folder is no name of the user's
+    std::string why = with_failed_write_reason(QuietGdal::last_error());
+    // The temporary folder is no name of the user's.
     for (size_t at; (at = why.find(tmp.filename().string() + "/")) != std::string::npos;) why.erase(at, tmp.filename().string().size() + 1);
     throw UserError(path, "GDAL's " + driver_name + " driver cannot write it: " + why);
   }
   file.reset();  // closes and flushes
-  if (CPLGetLastErrorType() >= CE_Failure) throw UserError(path, "GDAL failed writing it: " + QuietGdal::last_error());
+  if (CPLGetLastErrorType() >= CE_Failure)
+    throw UserError(path, "GDAL failed writing it: " + with_failed_write_reason(QuietGdal::last_error()));
   std::vector<std::string> warnings = read_back(path, (tmp / out.filename()).string(), driver_name, *image, options);
-  // Every file written, checked before any is moved: none may land on an input.
-  std::vector<fs::path> written;
-  for (const fs::directory_entry& e : fs::directory_iterator(tmp)) written.push_back(e.path());
-  for (const fs::path& w : written) {
-    const fs::path to = parent / w.filename();
+  // Every file written, checked before the caller moves any: none may land on an input.
+  for (const fs::directory_entry& e : fs::directory_iterator(tmp)) {
+    const fs::path to = parent / e.path().filename();
     std::error_code ec;
     for (const std::string& input : options.inputs)
       if (fs::exists(to, ec) && fs::equivalent(to, input, ec))
         throw UserError(path, "GDAL's " + driver_name + " driver writes '" + to.string() + "' beside it, which is the input file '" +
                                   input + "'; refusing to overwrite it (name the output otherwise)");
   }
-  for (const fs::path& w : written) fs::rename(w, parent / w.filename());
   return warnings;
 }
 

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cerrno>
 #include <cmath>
 #include <cstdarg>
 #include <cstdint>
@@ -141,7 +142,8 @@ void write(const std::filesystem::path& file, const std::string& shown_as, const
                                                          XTIFFClose);
   if (!tif) throw UserError(shown_as, "cannot create it: " + messages.reason());
   const auto require = [&](int ok, const char* what) {
-    if (ok != 1) throw UserError(shown_as, std::string("libtiff cannot write ") + what + ": " + messages.reason());
+    if (ok != 1)  // with the system's reason, which libtiff's words may leave out
+      throw UserError(shown_as, std::string("libtiff cannot write ") + what + ": " + with_failed_write_reason(messages.reason()));
   };
   TIFF* t = tif.get();
   require(TIFFSetField(t, TIFFTAG_IMAGEWIDTH, static_cast<uint32_t>(width)), "the width");
@@ -199,8 +201,10 @@ void write(const std::filesystem::path& file, const std::string& shown_as, const
         std::memcpy(row.data() + 4 * k, &f, 4);
       }
     }
+    errno = 0;
     require(TIFFWriteScanline(t, row.data(), static_cast<uint32_t>(r), 0), "a row");
   }
+  errno = 0;
   require(TIFFFlush(t), "the file's end");  // a full disk shows here
 }
 

@@ -10,7 +10,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <fstream>
+#include <string>
 #include <limits>
 #include <vector>
 
@@ -202,10 +202,10 @@ void write_pfm(const std::filesystem::path& path, int width, int height, int cha
   RR_CHECK(width > 0 && height > 0 && batch_values > 0, "a PFM needs pixels, made in batches of some");
   const size_t total = static_cast<size_t>(width) * height * channels;
   write_file_atomically(path, [&](const std::filesystem::path& tmp) {
-    std::ofstream out(tmp, std::ios::binary);
+    OutputFile out(tmp, path.string());
     // The scale -1.0 declares little-endian floats; they are swapped on a big-endian machine.
-    out << (channels == 1 ? "Pf" : "PF") << "\n" << width << " " << height << "\n-1.0\n";
-    if (!out) throw UserError(path.string(), "cannot write PFM");  // before any value is made
+    out.write(std::string(channels == 1 ? "Pf" : "PF") + "\n" + std::to_string(width) + " " + std::to_string(height) +
+              "\n-1.0\n");
     std::vector<double> values(std::min(batch_values, total));
     std::vector<std::uint32_t> bits(values.size());
     for (size_t first = 0; first < total; first += values.size()) {
@@ -221,11 +221,9 @@ void write_pfm(const std::filesystem::path& path, int width, int height, int cha
           b = (b >> 24) | ((b >> 8) & 0xff00u) | ((b << 8) & 0xff0000u) | (b << 24);
         bits[k] = b;
       }
-      out.write(reinterpret_cast<const char*>(bits.data()), static_cast<std::streamsize>(count * sizeof(std::uint32_t)));
-      if (!out) throw UserError(path.string(), "cannot write PFM (disk full?)");  // not after all the rest
+      out.write(bits.data(), count * sizeof(std::uint32_t));  // a full disk shows now, not after all the rest
     }
     out.close();
-    if (!out) throw UserError(path.string(), "cannot write PFM");
   });
 }
 

@@ -74,6 +74,42 @@ void refuse_overwriting_inputs(const std::string& output, const std::string& whe
   }
 }
 
+fs::path file_written_at(const fs::path& requested) {
+  std::error_code ec;
+  fs::path path = requested;
+  for (int hops = 0; fs::is_symlink(path, ec); ++hops) {
+    if (hops == 40) throw UserError(requested.string(), "too many levels of symbolic links");
+    const fs::path target = fs::read_symlink(path, ec);
+    if (ec) throw UserError(requested.string(), "cannot read the symbolic link: " + ec.message());
+    path = target.is_absolute() ? target : path.parent_path() / target;
+  }
+  return path;
+}
+
+void refuse_shared_outputs(const std::vector<std::pair<std::string, std::string>>& outputs) {
+  struct Output {
+    const std::string *where, *path;
+    fs::path written;
+    std::array<fs::path, 2> spelt;
+  };
+  std::vector<Output> seen;
+  for (const auto& [where, path] : outputs) {
+    if (path.empty()) continue;
+    Output o{&where, &path, file_written_at(path), {}};
+    o.spelt = spellings(o.written.string());
+    for (const Output& other : seen) {
+      std::error_code ec;
+      bool same = fs::exists(o.written, ec) && fs::exists(other.written, ec) && fs::equivalent(o.written, other.written, ec);
+      for (const fs::path& a : o.spelt)
+        for (const fs::path& b : other.spelt) same = same || a == b;
+      if (same)
+        throw UserError(where, "'" + path + "' is the same file as " + *other.where + " '" + *other.path +
+                                   "'; give each output its own file");
+    }
+    seen.push_back(std::move(o));
+  }
+}
+
 void check_output_file(const std::string& path, const std::string& where) {
   if (path.empty()) throw UserError(where, "the output file name is empty");
   if (fs::path(path).filename().empty())

@@ -2,7 +2,9 @@
 // Checks on output paths, made before any work: a refusal costs the user nothing, and no input
 // is ever overwritten.
 
+#include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace radrecon {
@@ -12,6 +14,18 @@ namespace radrecon {
 /// compared by identity too (a hard link to an input is the input).
 void refuse_overwriting_inputs(const std::string& output, const std::string& where,
                                const std::vector<std::string>& inputs);
+
+/// Refuses (UserError naming both) two outputs of one run that are, or resolve to, the same file:
+/// `outputs` holds (where, path) pairs, an empty path skipped. Symbolic links are followed as the
+/// writing follows them (file_written_at(): to a file not yet made too), "." and ".." resolved,
+/// and existing files compared by identity (hard links).
+void refuse_shared_outputs(const std::vector<std::pair<std::string, std::string>>& outputs);
+
+/// The file that writing `path` replaces: `path` with the symbolic links of its last part
+/// followed, to a target that does not exist yet too (write_file_atomically() writes there);
+/// `path` itself when it is no link. UserError naming `path` for a link that cannot be read, or
+/// after 40 of them.
+std::filesystem::path file_written_at(const std::filesystem::path& path);
 
 /// Refuses (UserError naming `where`) an output file path that cannot be written: an empty path
 /// or one ending in '/', an existing folder or non-regular file, or a path whose nearest existing ancestor is not a writable

@@ -320,15 +320,15 @@ void write_values_csv(const std::string& path, std::span<const Vec2> points, std
   const size_t ch = value_names.size();
   RR_CHECK(values.size() == points.size() * ch, "values do not match the points");
   write_file_atomically(path, [&](const std::filesystem::path& tmp) {
-    std::ofstream out(tmp, std::ios::binary);
+    OutputFile out(tmp, path);
     std::string header = "x,y";
     for (const std::string& n : value_names) header += "," + n;
     header += "\n";
-    out << header;
+    out.write(header);
     // Rows are formatted in parallel, a block at a time, and written in order.
     constexpr size_t kChunk = 4096, kChunksPerBlock = 64;
     std::vector<std::string> chunks(kChunksPerBlock);
-    for (size_t block = 0; block < points.size() && out; block += kChunk * kChunksPerBlock) {
+    for (size_t block = 0; block < points.size(); block += kChunk * kChunksPerBlock) {
       const size_t block_end = std::min(points.size(), block + kChunk * kChunksPerBlock);
       const auto count = static_cast<std::int64_t>((block_end - block + kChunk - 1) / kChunk);
       parallel_for(0, count, [&](std::int64_t c) {
@@ -346,10 +346,9 @@ void write_values_csv(const std::string& path, std::span<const Vec2> points, std
           text += '\n';
         }
       });
-      for (std::int64_t c = 0; c < count; ++c) out << chunks[static_cast<size_t>(c)];
+      for (std::int64_t c = 0; c < count; ++c) out.write(chunks[static_cast<size_t>(c)]);
     }
     out.close();
-    if (!out) throw UserError(path, "cannot write");
   });
 }
 

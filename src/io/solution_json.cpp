@@ -1,12 +1,8 @@
 #include "io/solution_json.h"
 
 #include <algorithm>
-#include <cerrno>
 #include <charconv>
 #include <cmath>
-#include <cstdio>
-#include <cstring>
-#include <memory>
 #include <string>
 #include <system_error>
 #include <vector>
@@ -68,16 +64,16 @@ void append_element(std::string& text, const SolutionElement& el, bool first) {
   text += "]}";
 }
 
-void put_rgb(std::FILE* f, const Rgb& c) { std::fprintf(f, "[%.9g, %.9g, %.9g]", c[0], c[1], c[2]); }
+void put_rgb(OutputFile& f, const Rgb& c) { f.print("[%.9g, %.9g, %.9g]", c[0], c[1], c[2]); }
 
 /// Polylines as [[s, t], ...], comma-separated, full precision (the enclosing brackets are the
 /// caller's).
-void put_polylines(std::FILE* f, const std::vector<Polyline>& lines) {
+void put_polylines(OutputFile& f, const std::vector<Polyline>& lines) {
   for (size_t k = 0; k < lines.size(); ++k) {
-    std::fprintf(f, "%s[", k ? ", " : "");
+    f.print("%s[", k ? ", " : "");
     for (size_t i = 0; i < lines[k].size(); ++i)
-      std::fprintf(f, "%s[%.17g, %.17g]", i ? ", " : "", lines[k][i].x(), lines[k][i].y());
-    std::fputc(']', f);
+      f.print("%s[%.17g, %.17g]", i ? ", " : "", lines[k][i].x(), lines[k][i].y());
+    f.write("]");
   }
 }
 
@@ -85,24 +81,22 @@ void put_polylines(std::FILE* f, const std::vector<Polyline>& lines) {
 
 void write_solution_json(const std::filesystem::path& path, const Solution& sol) {
   write_file_atomically(path, [&](const std::filesystem::path& tmp) {
-    std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(tmp.c_str(), "wb"), &std::fclose);
-    if (!file) throw UserError(path.string(), std::string("cannot open for writing: ") + std::strerror(errno));
-    std::FILE* f = file.get();
-    std::fprintf(f, "{\n  \"scene\": %s,\n  \"mesh\": %s,\n  \"surfaces\": [", json_string(sol.scene).c_str(),
+    OutputFile f(tmp, path.string());
+    f.print("{\n  \"scene\": %s,\n  \"mesh\": %s,\n  \"surfaces\": [", json_string(sol.scene).c_str(),
                  json_string(sol.mesh).c_str());
     for (size_t s = 0; s < sol.surfaces.size(); ++s) {
       const SurfaceSolution& surf = sol.surfaces[s];
-      std::fprintf(f, "%s\n    {\"name\": %s, \"scene_surface\": %s, \"back_side\": %s,\n", s ? "," : "",
+      f.print("%s\n    {\"name\": %s, \"scene_surface\": %s, \"back_side\": %s,\n", s ? "," : "",
                    json_string(surf.name).c_str(), json_string(surf.scene_surface).c_str(),
                    surf.back_side ? "true" : "false");
-      std::fprintf(f, "     \"length_u_m\": %.17g, \"length_v_m\": %.17g, \"grid\": [%d, %d],\n", surf.length_u_m,
+      f.print("     \"length_u_m\": %.17g, \"length_v_m\": %.17g, \"grid\": [%d, %d],\n", surf.length_u_m,
                    surf.length_v_m, surf.grid_nu, surf.grid_nv);
-      if (surf.triangle) std::fprintf(f, "     \"triangle\": true, \"shear_m\": %.17g,\n", surf.shear_m);
-      std::fprintf(f, "     \"barriers\": [");
+      if (surf.triangle) f.print("     \"triangle\": true, \"shear_m\": %.17g,\n", surf.shear_m);
+      f.print("     \"barriers\": [");
       put_polylines(f, surf.barriers);
-      std::fprintf(f, "],\n     \"excluded\": [");
+      f.print("],\n     \"excluded\": [");
       put_polylines(f, surf.excluded);
-      std::fprintf(f, "],\n     \"elements\": [");
+      f.print("],\n     \"elements\": [");
       // The elements (most of the file): their text made side by side, a run of chunks at a
       // time, and written in order (the same text whatever the threads).
       const size_t count = surf.elements.size();
@@ -116,28 +110,26 @@ void write_solution_json(const std::filesystem::path& path, const Solution& sol)
           for (size_t e = lo; e < hi; ++e) append_element(text, surf.elements[e], e == 0);
         });
         for (size_t c = 0; c < chunks_now; ++c)
-          if (std::fwrite(chunks[c].data(), 1, chunks[c].size(), f) != chunks[c].size())
-            throw UserError(path.string(), "write failed");
+          f.write(chunks[c]);
       }
-      std::fprintf(f, "\n    ]}");
+      f.print("\n    ]}");
     }
     const SolveStats& st = sol.stats;
-    std::fprintf(f, "\n  ],\n  \"stats\": {\"method\": %s, \"shots\": %zu, \"elements\": %zu, \"patches\": %zu,\n",
+    f.print("\n  ],\n  \"stats\": {\"method\": %s, \"shots\": %zu, \"elements\": %zu, \"patches\": %zu,\n",
                  json_string(st.method).c_str(), st.shots, st.elements, st.patches);
     if (st.method == "hierarchical")
-      std::fprintf(f, "    \"links\": %zu, \"epsilon_w\": %.9g,\n", st.links, st.epsilon_w);
-    std::fprintf(f, "    \"emitted_w\": ");
+      f.print("    \"links\": %zu, \"epsilon_w\": %.9g,\n", st.links, st.epsilon_w);
+    f.print("    \"emitted_w\": ");
     put_rgb(f, st.emitted_w);
-    std::fprintf(f, ", \"absorbed_w\": ");
+    f.print(", \"absorbed_w\": ");
     put_rgb(f, st.absorbed_w);
-    std::fprintf(f, ", \"unshot_w\": ");
+    f.print(", \"unshot_w\": ");
     put_rgb(f, st.unshot_w);
-    std::fprintf(f, ", \"escaped_w\": ");
+    f.print(", \"escaped_w\": ");
     put_rgb(f, st.escaped_w);
-    std::fprintf(f, ",\n    \"residual\": %.9g, \"converged\": %s, \"seconds\": %.6g}\n}\n", st.residual,
+    f.print(",\n    \"residual\": %.9g, \"converged\": %s, \"seconds\": %.6g}\n}\n", st.residual,
                  st.converged ? "true" : "false", st.seconds);
-    if (std::ferror(f)) throw UserError(path.string(), "write failed");
-    if (std::fclose(file.release()) != 0) throw UserError(path.string(), "write failed");
+    f.close();
   });
 }
 

@@ -128,6 +128,12 @@ run infinite_count render --scene paper --solution "$TMP/solution.json" --camera
 expect_rc infinite_count 2 && expect_stderr_has infinite_count "--samples: must be a whole number, got 'inf'"
 run written_count render --scene paper --solution "$TMP/solution.json" --camera view --samples 2.0 --size 8x6 --out "$TMP/wc.png" --quiet
 expect_rc written_count 0  # a whole number written as "2.0" or "2e0" is that number
+# Decimal numbers only: CLI11 read a hexadecimal "0x10" as 16 (and "0x1p1" as 2).
+run hex_count render --scene paper --solution "$TMP/solution.json" --camera view --samples 0x10 --out "$TMP/hex.png"
+expect_rc hex_count 2 && expect_stderr_has hex_count "radrecon: error: --samples: must be a decimal number, got '0x10'"
+run hex_float render --scene paper --solution "$TMP/solution.json" --camera view --white 0x1p1 --out "$TMP/hex.png"
+expect_rc hex_float 2 && expect_stderr_has hex_float "radrecon: error: --white: must be a decimal number, got '0x1p1'"
+expect_no_output hex_float "$TMP/hex.png"
 run empty_positional compare "" "$TMP/solution.json"
 expect_rc empty_positional 2 && expect_stderr_has empty_positional "must not be empty"
 if grep -q "leave the option out" "$TMP/empty_positional.stderr"; then fail "empty_positional: offered a default it has not"; fi
@@ -393,6 +399,18 @@ done
 cmp -s "$TMP/render_nn.pfm" "$TMP/render_nn__no_barriers.pfm" && fail "render --no-barriers: the same image as with barriers"
 cmp -s "$TMP/render_nn.pfm" "$TMP/render_nn__border_samples.pfm" && fail "render --border-samples: the same image as without"
 
+# --- replacing an output keeps its permissions: a private 0600 file stays 0600 (it became 0644,
+# the new file's), a 0640 one 0640 ----------------------------------------------------------
+for mode in 600 640; do
+  run "mode_$mode" solve --scene paper --mesh grid:2 --out "$TMP/mode.json" --quiet
+  chmod "$mode" "$TMP/mode.json"
+  run "mode_${mode}_again" solve --scene paper --mesh grid:3 --out "$TMP/mode.json" --quiet
+  expect_rc "mode_${mode}_again" 0
+  [ "$(stat -c %a "$TMP/mode.json")" = "$mode" ] || fail "mode_$mode: the replaced output is $(stat -c %a "$TMP/mode.json")"
+  grep -q '"grid": \[3, 3\]' "$TMP/mode.json" || fail "mode_$mode: the output was not replaced"
+done
+rm -f "$TMP/mode.json"
+
 # --- other failures -----------------------------------------------------------------------
 run unknown frobnicate
 expect_nonzero unknown
@@ -404,5 +422,55 @@ expect_nonzero noout
 run unwritable solve --scene paper --mesh grid:2 --out /proc/nonexistent/x.json --quiet
 expect_rc unwritable 2
 expect_stderr_has unwritable "/proc/nonexistent"
+
+# A write that fails after the work (a full disk; here a file-size limit of 8 KiB, its signal
+# ignored so that the write itself fails, with EFBIG) says so with the system's reason, for each
+# writer, and leaves nothing: exit code 2.
+limited() {  # NAME ARGS...: run under `ulimit -f 8`, SIGXFSZ ignored
+  local name=$1
+  shift
+  (trap '' XFSZ; ulimit -f 8; exec "$RADRECON" "$@") >"$TMP/$name.stdout" 2>"$TMP/$name.stderr"
+  echo $? >"$TMP/$name.rc"
+}
+awk 'BEGIN { print "x,y"; for (k = 0; k < 1000; k++) printf "%.17g,%.17g\n", k / 1000, 1 - k / 1000 }' >"$TMP/many_queries.csv"
+printf 'x,y,v\n0,0,1\n1,0,2\n0,1,3\n1,1,4\n' >"$TMP/four.csv"
+limited efbig_json solve --scene paper --mesh grid:8 --out "$TMP/efbig.json" --quiet
+limited efbig_csv interpolate --samples "$TMP/four.csv" --queries "$TMP/many_queries.csv" --method shepard \
+  --out "$TMP/efbig.csv" --quiet
+limited efbig_png render --scene paper --solution "$TMP/solution.json" --camera view --size 640x480 --out "$TMP/efbig.png" --quiet
+limited efbig_pfm render --scene paper --solution "$TMP/solution.json" --camera view --size 64x48 --out "$TMP/efbig.pfm" --quiet
+limited efbig_glb export --scene paper --solution "$TMP/solution.json" --out "$TMP/efbig.glb" --quiet
+for ext in json csv png pfm glb; do
+  expect_rc "efbig_$ext" 2
+  expect_stderr_has "efbig_$ext" "radrecon: error: $TMP/efbig.$ext: cannot write: File too large"
+  expect_no_output "efbig_$ext" "$TMP/efbig.$ext"
+done
+# A GeoTIFF (libtiff) and an Arc/Info grid (GDAL): the libraries' words, and the system's reason.
+for ext in tif asc; do
+  limited "efbig_$ext" interpolate --samples "$TMP/four.csv" --raster 100x100 --domain 0,0,1,1 --method shepard \
+    --out "$TMP/efbig.$ext" --quiet
+  expect_rc "efbig_$ext" 2
+  expect_stderr_has "efbig_$ext" "radrecon: error: $TMP/efbig.$ext: "
+  expect_stderr_has "efbig_$ext" "File too large"
+  expect_no_output "efbig_$ext" "$TMP/efbig.$ext"
+done
+if compgen -G "$TMP/.radrecon-gdal-*" >/dev/null; then fail "efbig_asc: the temporary folder is left"; fi
+# The same limit without the shell ignoring SIGXFSZ: radrecon ignores it itself, so the write fails
+# and is said as above; it was killed by the signal (exit 153), silent, its temporary file left.
+# An earlier output of the name stays as it was.
+cp "$TMP/solution.json" "$TMP/xfsz.json"
+(ulimit -f 8; exec "$RADRECON" solve --scene paper --mesh grid:8 --out "$TMP/xfsz.json" --quiet) >"$TMP/xfsz.stdout" 2>"$TMP/xfsz.stderr"
+echo $? >"$TMP/xfsz.rc"
+expect_rc xfsz 2
+expect_stderr_has xfsz "radrecon: error: $TMP/xfsz.json: cannot write: File too large"
+cmp -s "$TMP/solution.json" "$TMP/xfsz.json" || fail "xfsz: the earlier xfsz.json was changed"
+if compgen -G "$TMP/xfsz.json.tmp*" >/dev/null; then fail "xfsz: temporary file left: $(ls "$TMP"/xfsz.json.tmp*)"; fi
+(ulimit -f 8; exec "$RADRECON" interpolate --samples "$TMP/four.csv" --raster 100x100 --domain 0,0,1,1 --method shepard \
+  --out "$TMP/xfsz.asc" --quiet) >"$TMP/xfsz_asc.stdout" 2>"$TMP/xfsz_asc.stderr"
+echo $? >"$TMP/xfsz_asc.rc"
+expect_rc xfsz_asc 2
+expect_stderr_has xfsz_asc "File too large"
+expect_no_output xfsz_asc "$TMP/xfsz.asc"
+if compgen -G "$TMP/.radrecon-gdal-*" >/dev/null; then fail "xfsz_asc: the temporary folder is left"; fi
 
 finish cli_test

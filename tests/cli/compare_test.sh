@@ -215,6 +215,28 @@ expect_rc solution_diff 2
 run kinds s12.json b.pfm
 expect_rc kinds 2
 
+# Figures that cannot be written to stdout (a full device, a closed stdout) are an output that
+# failed: exit 2 with the system's reason, not 0 (an empty file had passed for a comparison).
+"$RADRECON" compare a.pfm b.pfm --json >/dev/full 2>stdout_full.stderr
+echo $? >stdout_full.rc
+expect_rc stdout_full 2
+expect_stderr_has stdout_full "radrecon: error: standard output: cannot write: No space left on device"
+"$RADRECON" compare a.pfm b.pfm >&- 2>stdout_closed.stderr
+echo $? >stdout_closed.rc
+expect_rc stdout_closed 2
+expect_stderr_has stdout_closed "radrecon: error: standard output: cannot write"
+# --diff naming the file stdout goes to: refused before any work (the figures and the picture
+# would be written into one file).
+"$RADRECON" compare a.pfm b.pfm --diff to_stdout.png >to_stdout.png 2>diff_stdout.stderr
+echo $? >diff_stdout.rc
+expect_rc diff_stdout 2
+expect_stderr_has diff_stdout "--diff: 'to_stdout.png' is the file standard output goes to"
+[ -s to_stdout.png ] && fail "diff_stdout: wrote into to_stdout.png"
+# --help's text is not checked so (CLI11's own).
+"$RADRECON" compare --help >/dev/full 2>help_full.stderr
+echo $? >help_full.rc
+expect_rc help_full 0
+
 run help --help
 expect_rc help 0
 for word in --diff --threshold --json SSIM gradient_L2 overshoot "mid-grey"; do

@@ -68,6 +68,14 @@ run over_scene "${SMALL[@]}" --scene over/solution.json --out over
 expect_rc over_scene 2 && expect_stderr_has over_scene "is the input file"
 cmp -s quads.json over/solution.json || fail "over_scene: the scene was overwritten"
 
+# Two of the files it writes that are one file (a link in an existing --out): refused before any
+# work, naming both (the second picture had been written over the first).
+mkdir -p linked && ln -s cornell_published_constant.png linked/cornell_published_shepard.png
+run linked_outputs "${SMALL[@]}" --out linked
+expect_rc linked_outputs 2 && expect_stderr_has linked_outputs "is the same file as --out"
+expect_stderr_has linked_outputs "cornell_published_shepard.png"
+[ -e linked/index.html ] || [ -e linked/cornell_published_constant.png ] && fail "linked_outputs: wrote into linked/"
+
 # --- bad input: exit 2, a message naming the option, no page ---------------------------------------
 run bad_mesh "${SMALL[@]}" --mesh quadtree:10 --out bad1
 expect_rc bad_mesh 2 && expect_stderr_has bad_mesh "--mesh"

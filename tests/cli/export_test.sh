@@ -61,6 +61,23 @@ run over_input --scene cornell --solution box.json --out box.json.glb --exr box.
 expect_rc over_input 2 && expect_stderr_has over_input "--exr"
 expect_no_output over_input box.json.glb
 cmp -s box.json keep.json || fail "over_input: the solution was changed"
+# --out and --exr that are one file (a link from one to the other, its target made or not yet):
+# refused before any work, naming both; the .glb held EXR data, or the .exr glTF (exit 0). Not
+# called "the input file" when it exists.
+ln -s lm.glb lm.exr
+ln -s lm2.exr lm2.glb
+for case in "lm.glb lm.exr" "lm2.glb lm2.exr"; do
+  read -r glb exr <<<"$case"
+  for made in no yes; do
+    [ "$made" = yes ] && cp box_constant.glb "$(readlink -f "$exr")"
+    run "shared_${glb}_$made" --scene cornell --solution box.json --out "$glb" --exr "$exr"
+    expect_rc "shared_${glb}_$made" 2
+    expect_stderr_has "shared_${glb}_$made" "--exr: '$exr' is the same file as --out '$glb'"
+    expect_stderr_lacks "shared_${glb}_$made" "input file"
+    expect_stderr_lacks "shared_${glb}_$made" "export: "  # no work: no progress said
+  done
+done
+cmp -s lm.glb box_constant.glb || fail "shared: lm.glb was changed"
 run wrong_scene --scene paper --solution box.json --out b.glb
 expect_rc wrong_scene 2 && expect_stderr_has wrong_scene "box.json"
 expect_no_output wrong_scene b.glb

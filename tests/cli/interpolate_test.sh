@@ -259,11 +259,15 @@ fi
 # Interrupted (SIGINT) or hung up (SIGHUP) while streaming a large PFM (64,000,000 points, seconds
 # of work): exit 128 + the signal's number, said, and neither the output nor its temporary file is
 # left. (SIGTERM's case is tests/io/gdal_raster_check.py's, during a GDAL write.)
+# Started with job control on: a script's background job otherwise has SIGINT ignored, which
+# radrecon keeps (below).
 for case in "INT 130 interrupted (SIGINT)" "HUP 129 hung up (SIGHUP)"; do
   read -r sig code said <<<"$case"
+  set -m
   "$RADRECON" interpolate --samples "$TMP/scattered1.csv" --method shepard --raster 8000x8000 --domain 0,0,1,1 \
     --out "$TMP/interrupted.pfm" --quiet >/dev/null 2>"$TMP/interrupted.stderr" &
   pid=$!
+  set +m
   for _ in $(seq 50); do ls "$TMP"/interrupted.pfm.tmp* >/dev/null 2>&1 && break; sleep 0.1; done
   kill -"$sig" "$pid"
   wait "$pid"
@@ -272,6 +276,25 @@ for case in "INT 130 interrupted (SIGINT)" "HUP 129 hung up (SIGHUP)"; do
   grep -qF "radrecon: $said; no output was left half-written under its name" "$TMP/interrupted.stderr" ||
     fail "SIG$sig: said nothing: $(cat "$TMP/interrupted.stderr")"
   if ls "$TMP"/interrupted.pfm* >/dev/null 2>&1; then fail "SIG$sig: left $(ls "$TMP"/interrupted.pfm*)"; fi
+done
+
+# A signal ignored when radrecon starts stays ignored (nohup, `trap ''`, a script's background
+# job's SIGINT): the run completes, exit 0, its output whole. Its handler ended it (exit 129, 130).
+for sig in HUP INT; do
+  (
+    trap '' "$sig"
+    "$RADRECON" interpolate --samples "$TMP/scattered1.csv" --method shepard --raster 2000x2000 --domain 0,0,1,1 \
+      --out "$TMP/ignored_$sig.pfm" --quiet >/dev/null 2>"$TMP/ignored_$sig.stderr" &
+    pid=$!
+    for _ in $(seq 100); do ls "$TMP"/ignored_"$sig".pfm.tmp* >/dev/null 2>&1 && break; sleep 0.05; done
+    kill -"$sig" "$pid"
+    wait "$pid"
+    echo $? >"$TMP/ignored_$sig.rc"
+  )
+  expect_rc "ignored_$sig" 0
+  [ "$(stat -c %s "$TMP/ignored_$sig.pfm" 2>/dev/null)" = $((18 + 2000 * 2000 * 4)) ] ||
+    fail "ignored_$sig: the PFM is not whole: $(cat "$TMP/ignored_$sig.stderr")"
+  rm -f "$TMP/ignored_$sig.pfm"
 done
 
 # An output that existed before a refused run is left as it was.
@@ -351,6 +374,12 @@ expect_rc empty_barriers 2 && expect_stderr_has empty_barriers "radrecon: error:
 [ -e "$TMP/empty_barriers.csv" ] && fail "empty_barriers: wrote an output"
 run nodata_text --samples "$TMP/scattered.csv" --nodata abc --method linear --queries "$TMP/queries.csv" --out "$TMP/nodata_text.csv"
 expect_rc nodata_text 2 && expect_stderr_has nodata_text "radrecon: error: --nodata: must be a number, got 'abc'"
+# Nor a hexadecimal one (--nodata 0x10 was 16); nan stays the no-data value it was.
+run nodata_hex --samples "$TMP/scattered.csv" --nodata 0x10 --method linear --raster 4x3 --domain 0,0,1,1 --out "$TMP/nodata_hex.tif"
+expect_rc nodata_hex 2 && expect_stderr_has nodata_hex "radrecon: error: --nodata: must be a decimal number, got '0x10'"
+expect_no_output nodata_hex "$TMP/nodata_hex.tif"
+run nodata_nan --samples "$TMP/scattered.csv" --nodata nan --method linear --raster 4x3 --domain 0,0,1,1 --out "$TMP/nodata_nan.tif" --quiet
+expect_rc nodata_nan 0
 
 # --- refusals that say what to do: the header's separator decides the rows'; a table under an
 # extension read through OGR; the methods and extensions listed are those this command takes ----

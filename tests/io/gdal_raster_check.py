@@ -260,6 +260,57 @@ with tempfile.TemporaryDirectory() as tmp:
     offered = r.stderr.split("through GDAL")[-1]
     check(all(f" {e}," not in offered and f" {e} " not in offered for e in [".png", ".vrt", ".jpg", ".kml", ".cal"])
           and " .tif," in offered and " .xyz," in offered, f"offered extensions: {offered.strip()}")
+    # Nor the formats that fail for a raster of floats georeferenced by a geotransform (an outside
+    # tester's trial: each was offered, and failed after the work), nor those that keep no
+    # georeferencing. Every one offered writes such a raster, of 6 x 5 cells not square, without a
+    # CRS: of two bands those offered for several, of one those offered for one value column.
+    import re
+    several, _, single = offered.partition("; of one value column also")
+    several_exts = re.findall(r"\.[a-z0-9-]+", several.split("(or name")[0])
+    single_exts = re.findall(r"\.[a-z0-9-]+", single.split("(or name")[0])
+    check(not [e for e in [".ntf", ".ter", ".grb2", ".gsb", ".gvb", ".bag", ".sigdem", ".sg-grd-z", ".hf2", ".fits", ".xml",
+                           ".lbl", ".cub", ".sdat", ".map", ".hdr"] if e in several_exts + single_exts]
+          and ".asc" in single_exts and ".img" in several_exts, f"offered extensions: {offered.strip()}")
+    two = os.path.join(tmp, "two_columns.csv")
+    with open(two, "w") as out:
+        out.write("x,y,a,b\n")
+        for j in range(4):
+            for i in range(5):
+                out.write(f"{i},{j},{f(i, j)!r},{f(j, i)!r}\n")
+    offered_dir = os.path.join(tmp, "offered")
+    os.mkdir(offered_dir)
+    for exts, source in [(several_exts, two), (single_exts, samples)]:
+        for e in exts:
+            out = os.path.join(offered_dir, "o" + e)
+            r = run("--samples", source, *([] if source == two else ["--value", "mag"]), "--method", "linear",
+                    "--raster", "6x5", "--domain", "0,0,4,3", "--out", out)
+            check(r.returncode == 0 and "keeps no georeferencing" not in r.stderr,
+                  f"offered {e}: exit {r.returncode}, {r.stderr.strip()}")
+            if r.returncode == 0:
+                d = gdal.Open(out)
+                check(d.RasterCount == (2 if source == two else 1) and abs(d.GetGeoTransform()[0]) < 1e-9,
+                      f"offered {e}: {d.RasterCount} bands, geotransform {d.GetGeoTransform()}")
+    # A format known to fail for the run's raster is refused before the work (naming --out, not
+    # the file GDAL failed on after it), saying why.
+    for name, args, words in [
+        ("o.hf2", [], "rounds the values"), ("o.sigdem", [], "integers of a fixed step"),
+        ("o.gsb", [], "grid-shift files"), ("o.sg-grd-z", [], "does not write them"), ("o.ter", [], "MINUSERPIXELVALUE"),
+        ("o.ntf", ["--crs", "EPSG:2193"], "geographic coordinates only"), ("o.grb2", [], "give --crs"),
+        ("o.bag", ["--crs", "EPSG:4326"], "2 bands exactly"), ("o.sdat", [], "square pixels only"),
+        ("o.asc", ["--value", "mag,depth"], "one band at most"), ("o.nc", ["--value", "mag,depth"], "separate variables"),
+        ("o.x", ["--format", "hf2"], "rounds the values"),
+    ]:
+        out = os.path.join(offered_dir, "refused_" + name)
+        r = run("--samples", samples, *([] if "--value" in args else ["--value", "mag"]), "--method", "linear",
+                "--raster", "6x5", "--domain", "0,0,4,3", *args, "--out", out)
+        check(r.returncode == 2 and "radrecon: error: --out" in r.stderr.replace("--format", "--out") and words in r.stderr
+              and not os.path.exists(out), f"{name} {args}: exit {r.returncode}, {r.stderr.strip()}")
+    # The same formats where they do write: NITF with a geographic CRS, SAGA of square pixels.
+    for name, args in [("o.ntf", ["--crs", "EPSG:4326"]), ("o.sdat", [])]:
+        out = os.path.join(offered_dir, "written_" + name)
+        r = run("--samples", samples, "--value", "mag", "--method", "linear", "--raster", "8x6", "--domain", "0,0,4,3",
+                *args, "--out", out)
+        check(r.returncode == 0, f"{name} {args}: exit {r.returncode}, {r.stderr.strip()}")
     # A CRS that PROJ reads but GDAL refuses (a bare name) is refused for a GeoTIFF as for any format.
     for crs in ["WGS 84"]:
         out = os.path.join(tmp, "named.tif")
@@ -448,6 +499,81 @@ with tempfile.TemporaryDirectory() as tmp:
     check(r.returncode == 2 and "not_a_folder" in r.stderr, f"unwritable GeoTIFF: exit {r.returncode}, {r.stderr.strip()}")
     check([e for e in os.listdir(tmp) if e.startswith(".radrecon-gdal") or ".tmp" in e] == [],
           "no temporary file or folder left behind")
+
+    # A file GDAL wrote that cannot be moved into place: a folder where the EHdr driver's header
+    # goes is refused before any file is moved, naming it; a rename the system refuses (an
+    # immutable file, where chattr can make one) says the system's reason, naming the output and
+    # not the temporary folder (it was an exit 1 "filesystem error" naming both). Exit 2, the
+    # temporary folder removed.
+    moved = os.path.join(tmp, "moved")
+    os.mkdir(moved)
+    os.makedirs(os.path.join(moved, "m.hdr", "inside"))
+    r = run("--samples", samples, "--value", "mag", "--method", "linear", "--raster", "4x3", "--domain", "0,0,4,3",
+            "--out", os.path.join(moved, "m.bil"))
+    check(r.returncode == 2 and os.path.join(moved, "m.hdr") + ": is a folder" in r.stderr
+          and not os.path.exists(os.path.join(moved, "m.bil")) and ".radrecon-gdal" not in r.stderr,
+          f"m.bil beside a folder m.hdr: exit {r.returncode}, {r.stderr.strip()}")
+    immutable = os.path.join(moved, "imm.asc")
+    open(immutable, "w").write("earlier\n")
+    if shutil.which("chattr") and subprocess.run(["chattr", "+i", immutable], capture_output=True).returncode == 0:
+        try:
+            r = run("--samples", samples, "--value", "mag", "--method", "linear", "--raster", "4x3", "--domain",
+                    "0,0,4,3", "--out", immutable)
+        finally:
+            subprocess.run(["chattr", "-i", immutable])
+        check(r.returncode == 2 and f"radrecon: error: {immutable}: cannot write: Operation not permitted" in r.stderr
+              and ".radrecon-gdal" not in r.stderr and open(immutable).read() == "earlier\n",
+              f"imm.asc immutable: exit {r.returncode}, {r.stderr.strip()}")
+    check([e for e in os.listdir(moved) if e.startswith(".radrecon-gdal")] == [],
+          f"a temporary folder left beside m.bil or imm.asc: {os.listdir(moved)}")
+
+    # Replacing a GDAL raster keeps the mode of each file it replaces (the raster 0600, its .prj
+    # 0640): they became the new files' 0644.
+    kept = os.path.join(tmp, "kept.asc")
+    for attempt in range(2):
+        r = run("--samples", samples, "--value", "mag", "--method", "linear", "--raster", "4x3", "--domain",
+                "0,0,4,3", "--crs", "EPSG:2193", "--out", kept)
+        check(r.returncode == 0, f"kept.asc: exit {r.returncode}, {r.stderr.strip()}")
+        if attempt == 0:
+            os.chmod(kept, 0o600)
+            os.chmod(os.path.join(tmp, "kept.prj"), 0o640)
+    modes = (oct(os.stat(kept).st_mode & 0o777), oct(os.stat(os.path.join(tmp, "kept.prj")).st_mode & 0o777))
+    check(modes == ("0o600", "0o640"), f"kept.asc, kept.prj replaced: modes {modes}")
+
+    # A raster replaced takes its files along: of the earlier raster (as GDAL lists them), those
+    # the new one does not write are removed. An older .prj stayed beside a raster written without
+    # --crs, and GIS read the old CRS; an older .aux.xml beside a GeoTIFF of radrecon's own writer
+    # gave GDAL its CRS. Files of the user's beside them stay, and so does an input of the run
+    # that GDAL lists among the earlier raster's files (a GeoTIFF's _rpc.txt).
+    stale = os.path.join(tmp, "stale")
+    os.mkdir(stale)
+    at = lambda name: os.path.join(stale, name)
+    open(at("notes.txt"), "w").write("mine\n")
+    for name, side in [("o.bil", "o.prj"), ("o.asc", "o.prj")]:
+        for crs in (["--crs", "EPSG:2193"], []):
+            r = run("--samples", samples, "--value", "mag", "--method", "linear", "--raster", "4x3", "--domain",
+                    "0,0,4,3", *crs, "--out", at(name))
+            check(r.returncode == 0, f"stale {name} {crs}: exit {r.returncode}, {r.stderr.strip()}")
+            if crs:
+                check(os.path.exists(at(side)), f"stale {name}: no {side} written with --crs")
+        check(not os.path.exists(at(side)), f"stale {name}: the earlier {side} stayed: {sorted(os.listdir(stale))}")
+        check(gdal.Open(at(name)).GetProjection() == "", f"stale {name}: GDAL reads a CRS: {gdal.Open(at(name)).GetProjection()[:60]}")
+        for e in os.listdir(stale):
+            if e.startswith("o."):
+                os.remove(at(e))
+    # radrecon's own GeoTIFF writer (an EPSG code) over a GeoTIFF with an .aux.xml of another CRS.
+    r = run("--samples", samples, "--value", "mag", "--method", "linear", "--raster", "4x3", "--domain", "0,0,4,3",
+            "--crs", "EPSG:2193", "--out", at("g.tif"))
+    open(at("g.tif.aux.xml"), "w").write("<PAMDataset><SRS>EPSG:4326</SRS></PAMDataset>\n")
+    shutil.copyfile(samples, at("g_rpc.txt"))  # listed by GDAL with g.tif, and read as samples below
+    r = run("--samples", at("g_rpc.txt"), "--value", "mag", "--method", "linear", "--raster", "4x3", "--domain",
+            "0,0,4,3", "--crs", "EPSG:2193", "--out", at("g.tif"))
+    check(r.returncode == 0, f"stale g.tif: exit {r.returncode}, {r.stderr.strip()}")
+    check(not os.path.exists(at("g.tif.aux.xml")), f"stale g.tif: the earlier .aux.xml stayed")
+    check(osr.SpatialReference(wkt=gdal.Open(at("g.tif")).GetProjection()).GetAuthorityCode(None) == "2193",
+          "stale g.tif: GDAL does not read EPSG:2193")
+    check(os.path.exists(at("g_rpc.txt")) and open(at("notes.txt")).read() == "mine\n",
+          f"stale: an input or a file of the user's was removed: {sorted(os.listdir(stale))}")
 
     # Terminated while GDAL writes (an MRF of 9 million DEFLATE-compressed points takes seconds):
     # exit by SIGTERM, said, and neither the output, its side files nor the temporary folder left.

@@ -5,6 +5,9 @@
 
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "core/error.h"
 #include "io/paths.h"
@@ -41,6 +44,23 @@ TEST_F(Paths, AnOutputThatIsAnInputIsRefusedHoweverItIsSpelled) {
   }
   // The input named through a link is caught too.
   EXPECT_NE(refusal([&] { refuse_overwriting_inputs(at("in.csv"), "--out", {at("link.csv")}); }), "");
+}
+
+TEST_F(Paths, TwoOutputsThatAreOneFileAreRefusedNamingBoth) {
+  fs::create_symlink("lm.glb", at("lm.exr"));  // to a file not made yet: the writing makes it
+  fs::create_hard_link(at("in.csv"), at("hard.csv"));
+  const std::vector<std::pair<std::string, std::string>> same[] = {
+      {{"--out", at("lm.glb")}, {"--exr", at("lm.exr")}},
+      {{"--exr", at("lm.exr")}, {"--out", at("lm.glb")}},
+      {{"--out", at("in.csv")}, {"--other", at("hard.csv")}},
+      {{"--out", at("x.csv")}, {"--other", at("sub/../x.csv")}},
+      {{"--out", at("y.csv")}, {"--other", at("missing/../y.csv")}}};
+  for (const auto& outputs : same) {
+    const std::string message = refusal([&] { refuse_shared_outputs(outputs); });
+    EXPECT_EQ(message, outputs[1].first + ": '" + outputs[1].second + "' is the same file as " + outputs[0].first + " '" +
+                           outputs[0].second + "'; give each output its own file");
+  }
+  EXPECT_EQ(refusal([&] { refuse_shared_outputs({{"--out", at("lm.glb")}, {"--exr", at("other.exr")}, {"--x", ""}}); }), "");
 }
 
 TEST_F(Paths, OtherOutputsPass) {
