@@ -222,10 +222,9 @@ TEST(SibsonC1, ReproducesLinearFunctionsAndIsExactAtTheSamples) {
 
 TEST(SibsonC1, ReproducesLinearFunctionsAtAnyScaleOfCoordinates) {
   // The gradient fit works in offsets scaled to the neighbourhood, so its normal matrix (which
-  // grows like the fourth power of the offsets) neither overflows nor underflows. Sibson's areas
-  // and circumcentres themselves, products of four coordinates, bound the usable range to about
-  // 1e+-75 (a known limit of every triangulation method here).
-  for (const double scale : {1e-60, 1e-30, 1.0, 1e30, 1e60}) {
+  // grows like the fourth power of the offsets) and Sibson's areas (products of four
+  // coordinates) neither overflow nor underflow.
+  for (const double scale : {1e-99, 1e-60, 1e-30, 1.0, 1e30, 1e60, 1e99}) {
     std::mt19937 rng(37);
     ScatteredSamples s = random_samples(40, rng);
     auto f = [&](const Vec2& p) { return 1 + 2 * p.x() / scale - 3 * p.y() / scale; };
@@ -234,6 +233,41 @@ TEST(SibsonC1, ReproducesLinearFunctionsAtAnyScaleOfCoordinates) {
     const NaturalNeighbour c1(s, OutsideHull::none, {}, NeighbourRule::sibson_c1);
     const Vec2 q = Vec2(2.1, 1.9) * scale;
     EXPECT_NEAR(eval1(c1, q), f(q), 1e-12) << "coordinates scaled by " << scale;
+  }
+}
+
+TEST(SibsonC1, DoesNotDependOnTheUnitOfLength) {
+  // Sibson's coordinates, the weighted planes and Farin's form are all invariant under scaling
+  // the points (the gradients scale inversely): the same data in any unit within the accepted
+  // coordinates (1e+-100) gives the same values, bit for bit when the factor is a power of two
+  // (no rounding anywhere), to rounding otherwise. Before, the gradient fit took Sibson's areas
+  // in the samples' units, whose squares in its normal matrix overflowed or underflowed beyond
+  // about 1e+-77: at 1e+-80 and 1e+-99 the values were off by 0.031 on data within +-2.7.
+  std::mt19937 rng(53);
+  ScatteredSamples s = random_samples(150, rng, 0, 1);
+  for (size_t i = 0; i < s.points.size(); ++i)
+    s.values[i] = std::sin(4 * s.points[i].x()) * std::exp(s.points[i].y());
+  std::vector<Vec2> q;
+  std::uniform_real_distribution<double> inner(0.2, 0.8);
+  for (int t = 0; t < 400; ++t) q.emplace_back(inner(rng), inner(rng));
+  const auto values_at = [&](double scale) {
+    ScatteredSamples scaled = s;
+    for (Vec2& p : scaled.points) p *= scale;
+    std::vector<Vec2> at = q;
+    for (Vec2& p : at) p *= scale;
+    const NaturalNeighbour c1(scaled, OutsideHull::none, {}, NeighbourRule::sibson_c1);
+    std::vector<double> out(at.size());
+    c1.evaluate(at, out);
+    return out;
+  };
+  const std::vector<double> reference = values_at(1);
+  for (const int power : {-330, -260, 260, 330}) {
+    const std::vector<double> got = values_at(std::ldexp(1.0, power));
+    for (size_t k = 0; k < q.size(); ++k) ASSERT_EQ(got[k], reference[k]) << "scale 2^" << power << ", query " << k;
+  }
+  for (const double scale : {1e-99, 1e-80, 1e-75, 1e75, 1e80, 1e99}) {
+    const std::vector<double> got = values_at(scale);
+    for (size_t k = 0; k < q.size(); ++k) ASSERT_NEAR(got[k], reference[k], 1e-12) << "scale " << scale << ", query " << k;
   }
 }
 
