@@ -84,12 +84,18 @@ std::vector<double> fit_gradients(const Delaunay& dt, std::span<const Delaunay::
     normal_equations(false);
     double det = h00 * h11 - h01 * h01, trace = h00 + h11;
     if (!(trace > 0)) return;  // no visible neighbour: gradient 0
-    if (!(det > tol::kGradientFitSingularRelative * trace * trace)) {
-      // Near-singular by the coordinates: a neighbour off the line may hold a coordinate of
-      // 1e-16 (a sample a rounding error inside the hull beside two on its edge, their three
-      // points collinear to 3e-17), which the fit must not lose, or a linear function's gradient
-      // across the line is lost (found by an outside-in trial: errors of 0.2 on survey tracks).
-      // The neighbours by their distance alone.
+    if (!(det > tol::kGradientFitConditionRelative * trace * trace)) {
+      // Ill-conditioned by the coordinates (tol::kGradientFitConditionRelative): the slope in
+      // one direction rests on neighbours of tiny weight, and the data's curvature, which the
+      // heavy ones' differences carry, is amplified by the condition number. A sample a few
+      // centimetres inside a hull edge kilometres long gives the edge's far ends nearly all its
+      // coordinates: a slope across the edge of 0.77 /m on data of slope 0.002 /m, values of
+      // -3.5 on data in [-1, 1] (found by an outside-in trial; CGAL's fit gives the same).
+      // Near-singular, a neighbour off the line may hold a coordinate of 1e-16 (a sample a
+      // rounding error inside the hull beside two on its edge, their three points collinear to
+      // 3e-17), which the fit must not lose, or a linear function's gradient across the line is
+      // lost (errors of 0.2 on survey tracks). The neighbours by their distance alone: a plane
+      // through the same neighbours, so linear functions are still reproduced.
       normal_equations(true);
       det = h00 * h11 - h01 * h01, trace = h00 + h11;
     }
