@@ -16,6 +16,8 @@ CloughTocher::CloughTocher(const ScatteredSamples& samples, OutsideHull outside,
     : mesh_(samples.points, "clough-tocher"), channels_(samples.channels), outside_(outside) {
   RR_CHECK(samples.values.size() == samples.points.size() * static_cast<size_t>(channels_),
            "sample values do not match the points");
+  for (const double v : samples.values)
+    if (!std::isfinite(v)) throw ReconstructionError("clough-tocher needs finite sample values");
   if (gradients.empty()) {
     estimate_gradients(samples.values);
   } else {
@@ -106,7 +108,11 @@ void CloughTocher::estimate_gradients(const std::vector<double>& values) {
   // each sample's edges span the plane): conjugate gradients preconditioned by that block
   // diagonal converge by a factor (sqrt 3 - 1) / (sqrt 3 + 1) = 0.27 or better per iteration,
   // some 30 iterations to the rounding floor. The points are scaled by their extent h first
-  // (gradients by 1/h after), so that 1/L^3 neither overflows nor underflows for any units.
+  // (gradients by 1/h after), so that 1/L^3 neither overflows nor underflows for any units; and
+  // each channel's values by the power of two m at or above their largest magnitude (gradients
+  // by m after; exact, and the equations are linear in the values), so that the solver's
+  // squared residuals neither underflow (values of 1e-160 gave zero or NaN gradients) nor
+  // overflow: the gradients scale with the values to rounding, bit for bit by a power of two.
   const std::vector<Vec2>& p = mesh_.points();
   const size_t n = p.size(), C = static_cast<size_t>(channels_);
   Vec2 lo = p[0], hi = p[0];
@@ -131,6 +137,12 @@ void CloughTocher::estimate_gradients(const std::vector<double>& values) {
   a.off.resize(2 * edges.size());
   std::vector<size_t> fill(a.start.begin(), a.start.end() - 1);
   std::vector<std::vector<double>> rhs(C, std::vector<double>(2 * n, 0.0));
+  std::vector<double> unit(C, 1.0);  // m per channel: a power of two
+  for (size_t c = 0; c < C; ++c) {
+    double largest = 0;
+    for (size_t v = 0; v < n; ++v) largest = std::max(largest, std::abs(values[v * C + c]));
+    if (largest > 0) unit[c] = std::ldexp(1.0, std::ilogb(largest) + 1);
+  }
   for (const auto& [i, j] : edges) {
     const Vec2 e = (p[j] - p[i]) / h;
     const double len_sq = e.squaredNorm(), w = 1 / (len_sq * std::sqrt(len_sq));
@@ -141,7 +153,7 @@ void CloughTocher::estimate_gradients(const std::vector<double>& values) {
       a.off[fill[r]++] = {2 * b[0], 2 * b[1], 2 * b[2]};
     }
     for (size_t c = 0; c < C; ++c) {
-      const double s = -6 * (values[i * C + c] - values[j * C + c]) * w;
+      const double s = -6 * (values[i * C + c] / unit[c] - values[j * C + c] / unit[c]) * w;
       for (const unsigned v : {i, j}) rhs[c][2 * v] += s * e.x(), rhs[c][2 * v + 1] += s * e.y();
     }
   }
@@ -158,10 +170,11 @@ void CloughTocher::estimate_gradients(const std::vector<double>& values) {
   for (size_t c = 0; c < C; ++c) {  // one channel at a time: each channel's bits are its own
     const std::vector<double> g = solve(a, rhs[c]);
     for (size_t v = 0; v < n; ++v) {
-      if (!std::isfinite(g[2 * v]) || !std::isfinite(g[2 * v + 1]))
-        throw ReconstructionError("clough-tocher: the estimated gradients are not finite");
-      gradients_[(v * C + c) * 2] = g[2 * v] / h;
-      gradients_[(v * C + c) * 2 + 1] = g[2 * v + 1] / h;
+      // Finite for any finite values and points the triangulation takes (the values' unit and
+      // the points' extent are taken out): a failure here is a bug, not the input's.
+      RR_CHECK(std::isfinite(g[2 * v]) && std::isfinite(g[2 * v + 1]), "clough-tocher: the estimated gradients are not finite");
+      gradients_[(v * C + c) * 2] = g[2 * v] / h * unit[c];
+      gradients_[(v * C + c) * 2 + 1] = g[2 * v + 1] / h * unit[c];
     }
   }
 }

@@ -35,8 +35,9 @@ namespace radrecon {
 
 class CloughTocher final : public Interpolant {
  public:
-  /// Needs 3 samples not all on one line; duplicate points are refused (ReconstructionError).
-  /// `gradients` (for tests): the gradients at the samples, (d/dx, d/dy) per sample and channel,
+  /// Needs 3 samples not all on one line; duplicate points and non-finite values are refused
+  /// (ReconstructionError). The result is linear in the values at any magnitude (the gradient
+  /// estimate works in values scaled by a power of two). `gradients` (for tests): the gradients at the samples, (d/dx, d/dy) per sample and channel,
   /// index (i * channels + c) * 2 + d, instead of Nielson's estimate; empty: estimated.
   CloughTocher(const ScatteredSamples& samples, OutsideHull outside, std::span<const double> gradients = {});
   int channels() const override { return channels_; }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numbers>
 
@@ -172,11 +173,13 @@ double LocalMultiquadric::reciprocal_condition() const {
 
 void LocalMultiquadric::check_patches() const {
   for (const Patch& p : patches_) {
-    if (p.samples.size() > kMaxPatchSamples)
-      throw ReconstructionError("a local " + kernel_.name() + " patch at (" + std::to_string(p.center.x()) + ", " +
-                                     std::to_string(p.center.y()) + ") holds " + std::to_string(p.samples.size()) +
+    if (p.samples.size() > kMaxPatchSamples) {
+      char at[64];  // %g: six digits locate a patch at any scale of coordinates (%f printed 0.000000)
+      std::snprintf(at, sizeof at, "(%g, %g)", p.center.x(), p.center.y());
+      throw ReconstructionError("a local " + kernel_.name() + " patch at " + at + " holds " + std::to_string(p.samples.size()) +
                                      " samples (at most " + std::to_string(kMaxPatchSamples) +
                                      "): the samples are too clustered for patches of the requested size; use a smaller k");
+    }
   }
   const double worst = reciprocal_condition();
   if (!(worst > 0) || !std::isfinite(worst)) throw ReconstructionError("a local " + kernel_.name() + " system is singular");

@@ -61,6 +61,9 @@ struct ScatteredSamples {
 /// local multiquadric's patches, the k-nearest search's tiles): a box of no width (points on a
 /// line) gets tol::kFlatBoxWidthRelative of its length as width, and at least
 /// tol::kFlatBoxAreaRelative of its squared length as area, so that such grids stay finite.
+/// Relative to the box's length alone, so that the grids scale with the points in any unit (a
+/// floor of 1e-12 in absolute units made every box below that size flat and wide: a local
+/// thin-plate of data 1e-13 across became the global one). A single point: length 1.
 struct PointSpread {
   Vec2 lo, hi;    ///< the box, metres
   Vec2 extent;    ///< its sides, widened where flat
@@ -69,7 +72,8 @@ struct PointSpread {
 inline PointSpread point_spread(std::span<const Vec2> points) {
   PointSpread s{points.front(), points.front(), Vec2::Zero(), 0};
   for (const Vec2& p : points) s.lo = s.lo.cwiseMin(p), s.hi = s.hi.cwiseMax(p);
-  s.extent = (s.hi - s.lo).cwiseMax(Vec2::Constant(tol::kFlatBoxWidthRelative * std::max(1.0, (s.hi - s.lo).maxCoeff())));
+  const double length = (s.hi - s.lo).maxCoeff();
+  s.extent = (s.hi - s.lo).cwiseMax(Vec2::Constant(tol::kFlatBoxWidthRelative * (length > 0 ? length : 1.0)));
   s.area_m2 = std::max(s.extent.x() * s.extent.y(), s.extent.maxCoeff() * s.extent.maxCoeff() * tol::kFlatBoxAreaRelative);
   return s;
 }

@@ -13,29 +13,60 @@ std::vector<double> fit_gradients(const Delaunay& dt, std::span<const Delaunay::
   const size_t n = points.size();
   const size_t C = static_cast<size_t>(channels);
   std::vector<double> gradients(n * C * 2, 0.0);
-  using Weights = std::vector<std::pair<unsigned, double>>;
-  parallel_for_with_scratch<Weights>(0, static_cast<std::int64_t>(n), [&](std::int64_t k, Weights& weights) {
+  struct Scratch {
+    std::vector<std::pair<unsigned, double>> weights;
+    std::vector<std::pair<Point, unsigned>> offsets;
+  };
+  parallel_for_with_scratch<Scratch>(0, static_cast<std::int64_t>(n), [&](std::int64_t k, Scratch& scratch) {
     const size_t i = static_cast<size_t>(k);
     const Delaunay::Vertex_handle v = vertex_of[i];
+    std::vector<std::pair<unsigned, double>>& weights = scratch.weights;
     weights.clear();
-    if (dt.is_edge(v, dt.infinite_vertex())) {
+    // Everything below is in offsets from p_i divided by `scale`, the power of two at or above
+    // the farthest neighbour's distance (exact): the normal matrix H grows like the fourth power
+    // of the offsets, and Sibson's areas are products of four coordinates, so in the samples'
+    // own units they overflowed or underflowed beyond 1e+-77 (the gradients then came from the
+    // fallback below, results off by 3% of the data's range at 1e+-80).
+    double farthest = 0;
+    {
       auto vc = dt.incident_vertices(v), done = vc;
       do
-        if (!dt.is_infinite(vc)) weights.emplace_back(vc->info(), 1.0);
+        if (!dt.is_infinite(vc)) farthest = std::max(farthest, (points[vc->info()] - points[i]).norm());
       while (++vc != done);
-    } else {
-      CGAL::natural_neighbor_coordinates_2(dt, v, std::back_inserter(weights), VertexIndex());
     }
-    // The normal equations H g = r of the weighted plane, per channel, in offsets divided by the
-    // farthest neighbour's distance (so that H stays of order one at any scale of coordinates:
-    // its determinant grows like the fourth power of the offsets), the gradient divided back.
-    double scale = 0;
-    for (const auto& [j, lambda] : weights) scale = std::max(scale, (points[j] - points[i]).norm());
-    if (!(scale > 0)) return;
+    if (!(farthest > 0) || !std::isfinite(farthest)) return;
+    const double scale = std::ldexp(1.0, std::ilogb(farthest) + 1);
+    const bool on_hull = dt.is_edge(v, dt.infinite_vertex());
+    scratch.offsets.clear();
+    {
+      auto vc = dt.incident_vertices(v), done = vc;
+      do
+        if (!dt.is_infinite(vc)) {
+          const Vec2 d = (points[vc->info()] - points[i]) / scale;
+          scratch.offsets.emplace_back(Point(d.x(), d.y()), vc->info());
+          if (on_hull) weights.emplace_back(vc->info(), 1.0);
+        }
+      while (++vc != done);
+    }
+    if (!on_hull) {
+      // Sibson's coordinates of p_i among its neighbours: the areas its Voronoi cell takes from
+      // theirs in the triangulation of the neighbours alone (what CGAL's
+      // natural_neighbor_coordinates_2 for a vertex computes, here in the scaled offsets, where
+      // p_i is the origin). Should rounding put the origin outside that triangulation's hull, the
+      // neighbours count by distance alone, as on the hull.
+      const Delaunay local(scratch.offsets.begin(), scratch.offsets.end());
+      const bool found = local.dimension() == 2 &&
+                         CGAL::natural_neighbor_coordinates_2(local, Point(0, 0), std::back_inserter(weights), VertexIndex()).third;
+      if (!found || weights.empty()) {
+        weights.clear();
+        for (const auto& [point, j] : scratch.offsets) weights.emplace_back(j, 1.0);
+      }
+    }
     double h00 = 0, h01 = 0, h11 = 0;
     thread_local std::vector<double> r;
-    // The normal equations with each neighbour weighted by its coordinate lambda_j / d_j^2, or
-    // (`by_distance`) by 1 / d_j^2 alone.
+    // The normal equations H g = r of the weighted plane, per channel, in the scaled offsets
+    // (the gradient divided back by the scale), with each neighbour weighted by its coordinate
+    // lambda_j / d_j^2, or (`by_distance`) by 1 / d_j^2 alone.
     const auto normal_equations = [&](bool by_distance) {
       h00 = h01 = h11 = 0;
       r.assign(C * 2, 0.0);
@@ -53,12 +84,18 @@ std::vector<double> fit_gradients(const Delaunay& dt, std::span<const Delaunay::
     normal_equations(false);
     double det = h00 * h11 - h01 * h01, trace = h00 + h11;
     if (!(trace > 0)) return;  // no visible neighbour: gradient 0
-    if (!(det > tol::kGradientFitSingularRelative * trace * trace)) {
-      // Near-singular by the coordinates: a neighbour off the line may hold a coordinate of
-      // 1e-16 (a sample a rounding error inside the hull beside two on its edge, their three
-      // points collinear to 3e-17), which the fit must not lose, or a linear function's gradient
-      // across the line is lost (found by an outside-in trial: errors of 0.2 on survey tracks).
-      // The neighbours by their distance alone.
+    if (!(det > tol::kGradientFitConditionRelative * trace * trace)) {
+      // Ill-conditioned by the coordinates (tol::kGradientFitConditionRelative): the slope in
+      // one direction rests on neighbours of tiny weight, and the data's curvature, which the
+      // heavy ones' differences carry, is amplified by the condition number. A sample a few
+      // centimetres inside a hull edge kilometres long gives the edge's far ends nearly all its
+      // coordinates: a slope across the edge of 0.77 /m on data of slope 0.002 /m, values of
+      // -3.5 on data in [-1, 1] (found by an outside-in trial; CGAL's fit gives the same).
+      // Near-singular, a neighbour off the line may hold a coordinate of 1e-16 (a sample a
+      // rounding error inside the hull beside two on its edge, their three points collinear to
+      // 3e-17), which the fit must not lose, or a linear function's gradient across the line is
+      // lost (errors of 0.2 on survey tracks). The neighbours by their distance alone: a plane
+      // through the same neighbours, so linear functions are still reproduced.
       normal_equations(true);
       det = h00 * h11 - h01 * h01, trace = h00 + h11;
     }

@@ -27,9 +27,11 @@ namespace radrecon::nn {
 ///   g_i = argmin_g sum_j w_j (f_j - f_i - g . (p_j - p_i))^2,
 /// w_j = lambda_j / |p_j - p_i|^2 with lambda_j the Sibson coordinates of p_i among the other
 /// samples (Sibson's choice, CGAL's sibson_gradient_fitting); on the hull, where those do not
-/// exist, w_j = 1 / |p_j - p_i|^2. Neighbours a barrier hides from p_i are left out. A sample
-/// whose remaining neighbours lie (nearly) on one line through it gets the gradient of the
-/// plane fitted along that line, and none across it; one that has none, gradient 0.
+/// exist, w_j = 1 / |p_j - p_i|^2, as also where the fit with Sibson's weights is
+/// ill-conditioned (tol::kGradientFitConditionRelative: next to the hull). Neighbours a barrier
+/// hides from p_i are left out. A sample whose remaining neighbours lie (nearly) on one line
+/// through it gets the gradient of the plane fitted along that line, and none across it; one
+/// that has none, gradient 0.
 /// `vertex_of[i]` is sample i's vertex in `dt`.
 std::vector<double> fit_gradients(const Delaunay& dt, std::span<const Delaunay::Vertex_handle> vertex_of,
                                   std::span<const Vec2> points, std::span<const double> values, int channels,

@@ -238,6 +238,47 @@ TEST(CloughTocher, OutsideTheHull) {
   EXPECT_EQ(eval1(nearest, Vec2(-2, -0.5)), 1);
 }
 
+TEST(CloughTocher, ScalesWithTheValuesAtAnyMagnitude) {
+  // The interpolant is linear in the values: values times c give c times the result, for any c
+  // the values stay finite and normal with. A linear function's values times 1e-300 and 1e100
+  // (the largest accepted) are reproduced, and on non-linear data the result for c V is c times
+  // that for V to rounding (bit for bit when c is a power of two). Before, the solver's squared
+  // residuals underflowed: values of 1e-165 to 1e-300 got zero gradients (a linear function off
+  // by 0.0745 of its range), 1e-160 non-finite ones (refused as if the points were at fault).
+  std::mt19937 rng(51);
+  ScatteredSamples s = random_samples(200, rng, 0, 1);
+  std::vector<Vec2> q;
+  std::uniform_real_distribution<double> inner(0.1, 0.9);
+  for (int t = 0; t < 500; ++t) q.emplace_back(inner(rng), inner(rng));
+  const auto values_at = [&](const ScatteredSamples& samples) {
+    const CloughTocher f(samples, OutsideHull::none);
+    std::vector<double> out(q.size());
+    f.evaluate(q, out);
+    return out;
+  };
+  auto linear = [](const Vec2& p) { return 3 * p.x() - 2 * p.y(); };
+  for (const double c : {1e-300, 1e-160, 1.0, 1e100}) {
+    ScatteredSamples scaled = s;
+    for (size_t i = 0; i < s.points.size(); ++i) scaled.values[i] = c * linear(s.points[i]);
+    const std::vector<double> got = values_at(scaled);
+    for (size_t k = 0; k < q.size(); ++k)
+      ASSERT_NEAR(got[k] / c, linear(q[k]), 1e-13) << "values times " << c << ", query " << k;
+  }
+  for (size_t i = 0; i < s.points.size(); ++i)
+    s.values[i] = std::sin(5 * s.points[i].x()) + s.points[i].y() * s.points[i].y();
+  const std::vector<double> reference = values_at(s);
+  for (const double c : {1e-300, 1e-200, 1e-160, 1e-100, 1e50, 1e100, std::ldexp(1.0, -990), std::ldexp(1.0, 330)}) {
+    ScatteredSamples scaled = s;
+    for (double& v : scaled.values) v *= c;
+    const std::vector<double> got = values_at(scaled);
+    const bool exact = std::ilogb(c) == std::log2(c);  // a power of two: no rounding at all
+    for (size_t k = 0; k < q.size(); ++k) {
+      if (exact) ASSERT_EQ(got[k] / c, reference[k]) << "values times " << c << ", query " << k;
+      else ASSERT_NEAR(got[k] / c, reference[k], 1e-13) << "values times " << c << ", query " << k;
+    }
+  }
+}
+
 TEST(CloughTocher, RefusesTooFewCollinearOrDuplicateSamples) {
   ScatteredSamples two;
   two.points = {{0, 0}, {1, 0}};
