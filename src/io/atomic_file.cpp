@@ -29,33 +29,50 @@ namespace {
 struct PendingSlot {
   std::atomic<bool> in_use{false};
   std::atomic<bool> ready{false};
-  bool folder = false;  ///< a folder: its files are removed, then it
+  std::atomic<bool> folder{false};  ///< a folder: what it holds is removed, then it
   char path[4096] = {};
 };
 PendingSlot g_pending[kMaxPendingFiles];
 
-/// Removes the folder `path` and the files in it (not folders within), with async-signal-safe
-/// calls only: the entries are read by getdents64 into a buffer on the stack, and read again from
-/// the start while a pass removes any (removing while reading may skip an entry).
-void remove_folder_from_handler(const char* path) {
-  const int fd = ::open(path, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (fd >= 0) {
-    alignas(dirent64) char entries[4096];
-    for (bool removed = true; removed;) {
-      removed = false;
-      if (::lseek(fd, 0, SEEK_SET) != 0) break;
-      for (ssize_t n; (n = ::getdents64(fd, entries, sizeof(entries))) > 0;)
-        for (ssize_t at = 0; at < n;) {
-          const auto* entry = reinterpret_cast<const dirent64*>(entries + at);
-          at += entry->d_reclen;
-          const char* name = entry->d_name;
-          if (std::strcmp(name, ".") != 0 && std::strcmp(name, "..") != 0 && ::unlinkat(fd, name, 0) == 0) removed = true;
+/// Folders within a temporary folder that the handler removes (a GDAL driver writing a folder
+/// per raster, as Zarr does: two levels).
+constexpr int kMaxFolderDepth = 8;
+
+/// Empties the folder open as `fd` (closed here), its folders to `depth` more levels, with
+/// async-signal-safe calls only: the entries are read by getdents64 into a buffer on the stack,
+/// and read again from the start while a pass removes any (removing while reading may skip one).
+void empty_folder_from_handler(int fd, int depth) {
+  alignas(dirent64) char entries[4096];
+  for (bool removed = true; removed;) {
+    removed = false;
+    if (::lseek(fd, 0, SEEK_SET) != 0) break;
+    for (ssize_t n; (n = ::getdents64(fd, entries, sizeof(entries))) > 0;)
+      for (ssize_t at = 0; at < n;) {
+        const auto* entry = reinterpret_cast<const dirent64*>(entries + at);
+        at += entry->d_reclen;
+        const char* name = entry->d_name;
+        if (std::strcmp(name, ".") == 0 || std::strcmp(name, "..") == 0) continue;
+        if (::unlinkat(fd, name, 0) == 0) {
+          removed = true;
+        } else if (depth > 0) {  // a folder (EISDIR): emptied, then removed
+          const int inner = ::openat(fd, name, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+          if (inner >= 0) empty_folder_from_handler(inner, depth - 1);
+          if (::unlinkat(fd, name, AT_REMOVEDIR) == 0) removed = true;
         }
-    }
-    ::close(fd);
+      }
   }
+  ::close(fd);
+}
+
+void remove_folder_from_handler(const char* path) {
+  const int fd = ::open(path, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+  if (fd >= 0) empty_folder_from_handler(fd, kMaxFolderDepth);
   ::rmdir(path);
 }
+
+/// DeferredSignals alive, and the signal that came meanwhile (0: none).
+std::atomic<int> g_defer_depth{0};
+std::atomic<int> g_deferred_signal{0};
 
 /// Whether a thread runs the handler: it runs once per process. sa_mask holds the other signals
 /// off the thread that runs it alone, and another thread can take one meanwhile (`timeout -s HUP`
@@ -64,6 +81,11 @@ std::atomic<bool> g_handling{false};
 static_assert(std::atomic<bool>::is_always_lock_free, "lock-free: async-signal-safe");
 
 void remove_pending_then_raise(int signal_number) {
+  if (g_defer_depth.load() > 0) {
+    g_deferred_signal.store(signal_number);
+    if (g_defer_depth.load() > 0) return;  // raised again when the step ends
+    // It ended meanwhile (and may raise it too: the second entry waits below).
+  }
   if (g_handling.exchange(true))
     for (;;) ::pause();
   for (PendingSlot& slot : g_pending)
@@ -93,12 +115,19 @@ TemporaryPath::TemporaryPath(const std::filesystem::path& tmp, Kind kind) {
     bool expected = false;
     if (candidate.in_use.compare_exchange_strong(expected, true)) {
       std::memcpy(candidate.path, text.c_str(), text.size() + 1);
-      candidate.folder = kind == Kind::folder;
+      candidate.folder.store(kind == Kind::folder);
       candidate.ready.store(true);
       slot_ = &candidate;
       return;
     }
   }
+}
+
+DeferredSignals::DeferredSignals() { g_defer_depth.fetch_add(1); }
+
+DeferredSignals::~DeferredSignals() {
+  if (g_defer_depth.fetch_sub(1) == 1)
+    if (const int signal_number = g_deferred_signal.exchange(0); signal_number != 0) ::raise(signal_number);
 }
 
 TemporaryPath::~TemporaryPath() {

@@ -51,8 +51,9 @@ void remove_temporary_files_on_signals();
 inline constexpr int kMaxPendingFiles = 16;
 
 /// While alive, names a temporary file or folder for the signal handler of
-/// remove_temporary_files_on_signals() to remove (a folder with the files in it; nothing if all
-/// kMaxPendingFiles slots are taken or the path is over 4,095 bytes). It removes nothing itself.
+/// remove_temporary_files_on_signals() to remove (a folder with everything in it, to 8 levels of
+/// folders; nothing if all kMaxPendingFiles slots are taken or the path is over 4,095 bytes). It
+/// removes nothing itself.
 class TemporaryPath {
  public:
   enum class Kind { file, folder };
@@ -63,6 +64,18 @@ class TemporaryPath {
 
  private:
   void* slot_ = nullptr;  ///< the handler's slot, opaque here
+};
+
+/// While one lives, SIGINT, SIGTERM and SIGHUP wait: the handler of
+/// remove_temporary_files_on_signals() notes the signal and returns, and the last one to end
+/// raises it, which then cleans up and ends the process as usual. For a step that must not stop
+/// half-way: moving a GDAL raster's files into place one by one.
+class DeferredSignals {
+ public:
+  DeferredSignals();
+  ~DeferredSignals();
+  DeferredSignals(const DeferredSignals&) = delete;
+  DeferredSignals& operator=(const DeferredSignals&) = delete;
 };
 
 /// Renames the finished file `tmp` to `path` (the name itself: a symbolic link there is replaced,

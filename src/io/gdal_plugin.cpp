@@ -41,8 +41,12 @@ std::vector<std::string> write_gdal_raster(const std::string& path, const Raster
         throw UserError((parent / name).string(), std::string(fs::is_directory(there) ? "is a folder" : "is not a regular file") +
                                                       ", where the raster " + path + " has a file of its own; refusing to replace it");
     }
+    // A signal from here on waits: it would leave the raster's files half moved, or the earlier
+    // raster's side files beside the new one.
+    const DeferredSignals whole;
     for (const fs::path& name : names) move_into_place(fs::path(pattern) / name, parent / name);
-    fs::remove(pattern);
+    std::error_code ec;
+    fs::remove(pattern, ec);  // empty now: were it not, the raster is in place all the same
     std::vector<std::string> written;
     for (const fs::path& name : names) written.push_back(name.string());
     for (std::string& warning : earlier.remove_unreplaced(written, options.inputs)) warnings.push_back(std::move(warning));

@@ -147,5 +147,62 @@ TEST(RemoveTemporaryFilesOnSignals, RunsOnceWhenTwoThreadsTakeASignal) {
   EXPECT_EQ(messages, 1u);
 }
 
+/// Runs `body` in a child process with the handlers installed and its stderr to /dev/null; returns
+/// the child's wait status.
+template <class Body>
+int in_child(Body body) {
+  const pid_t child = ::fork();
+  if (child == 0) {
+    const int null = ::open("/dev/null", O_WRONLY);
+    ::dup2(null, STDERR_FILENO);
+    remove_temporary_files_on_signals();
+    body();
+    ::_exit(3);  // not reached when the body raises a signal
+  }
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  return status;
+}
+
+// A temporary folder holding folders (GDAL's Zarr driver writes one per raster, with folders in
+// it) is removed whole by the handler; a folder beside it is not touched.
+TEST(RemoveTemporaryFilesOnSignals, RemovesATemporaryFolderWithFoldersInIt) {
+  const TempDir dir("radrecon_signal_folder");
+  const fs::path staging = dir.path() / ".radrecon-gdal-test";
+  fs::create_directories(staging / "big.zarr" / "0" / "1");
+  std::ofstream(staging / "big.zarr" / ".zarray") << "{}";
+  std::ofstream(staging / "big.zarr" / "0" / "1" / "0") << "chunk";
+  std::ofstream(staging / "big.aux.xml") << "<x/>";
+  fs::create_directories(dir.path() / "kept");
+  std::ofstream(dir.path() / "kept" / "file") << "mine";
+  const int status = in_child([&] {
+    const TemporaryPath pending(staging, TemporaryPath::Kind::folder);
+    std::raise(SIGTERM);
+  });
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM) << status;
+  EXPECT_FALSE(fs::exists(staging));
+  EXPECT_TRUE(fs::exists(dir.path() / "kept" / "file"));
+}
+
+// A signal while DeferredSignals lives waits for it to end: the step goes on (here, writes a file),
+// then the process ends by that signal, the temporary file removed.
+TEST(DeferredSignals, ASignalWaitsForTheStepThenEndsTheProcess) {
+  const TempDir dir("radrecon_signal_deferred");
+  const fs::path tmp = dir.path() / "out.tmp1", done = dir.path() / "step_done";
+  std::ofstream(tmp) << "partial";
+  const int status = in_child([&] {
+    const TemporaryPath pending(tmp, TemporaryPath::Kind::file);
+    {
+      const DeferredSignals step;
+      std::raise(SIGINT);
+      std::ofstream(done) << "the step went on";
+    }
+    ::_exit(4);  // not reached: the deferred signal ends the process
+  });
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGINT) << status;
+  EXPECT_TRUE(fs::exists(done));
+  EXPECT_FALSE(fs::exists(tmp));
+}
+
 }  // namespace atomic_file_test
 }  // namespace radrecon
