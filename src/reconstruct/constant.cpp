@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/check.h"
+#include "core/parse.h"
 #include "core/parallel.h"
 #include "core/tolerances.h"
 
@@ -19,8 +20,8 @@ PiecewiseConstant::PiecewiseConstant(CellSamples samples) : samples_(std::move(s
   double min_w = std::numeric_limits<double>::infinity(), min_h = min_w;
   for (const Rect& r : samples_.cells) {
     if (!(r.x1 > r.x0 && r.y1 > r.y0))
-      throw ReconstructionError("a cell has no extent: [" + std::to_string(r.x0) + ", " + std::to_string(r.x1) +
-                                "] x [" + std::to_string(r.y0) + ", " + std::to_string(r.y1) + "]");
+      throw ReconstructionError("a cell has no extent: [" + format_number(r.x0) + ", " + format_number(r.x1) + "] x [" +
+                                format_number(r.y0) + ", " + format_number(r.y1) + "]");
     bounds_.x0 = std::min(bounds_.x0, r.x0);
     bounds_.y0 = std::min(bounds_.y0, r.y0);
     bounds_.x1 = std::max(bounds_.x1, r.x1);

@@ -209,5 +209,18 @@ TEST(PiecewiseConstant, GapBetweenCellsGivesNan) {
   EXPECT_EQ(pc.locate(Vec2(1.5, -4.0)), -1);
 }
 
+TEST(PiecewiseConstant, ACellOfNoExtentIsRefusedNamedInItsOwnUnits) {
+  // A cell of 1e-9 m with no height: its corners as they are, where "%f" printed 0.000000.
+  CellSamples s;
+  s.cells = {{1e-9, 2e-9, 3e-9, 2e-9}};
+  s.values = {1};
+  try {
+    const PiecewiseConstant pc(s);
+    FAIL() << "accepted";
+  } catch (const ReconstructionError& e) {
+    EXPECT_NE(std::string(e.what()).find("[1e-09, 3e-09] x [2e-09, 2e-09]"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace constant_test
 }  // namespace radrecon
