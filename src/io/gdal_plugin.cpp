@@ -76,6 +76,25 @@ EarlierRaster::EarlierRaster(const std::string& path, bool only_with_side_files)
   files_ = gdal_functions("--out").raster_files(path);
 }
 
+namespace {
+
+/// Whether `name` is a side file of the raster `output` that GIS would read with a new raster of
+/// that name: the whole name followed by .aux.xml, .aux, .ovr or .msk, or the stem followed by
+/// .prj, .hdr, .aux, .stx, .clr, .rrd or a world file's extension (case aside). Never a product's
+/// metadata that GDAL also lists for a raster (summary.txt, METADATA.DIM, X_MTL.txt, .RPB, .IMD:
+/// a user's files, some shared by every raster of the folder).
+bool is_side_file_of(const std::filesystem::path& output, const std::string& name) {
+  const std::string file = ascii_lower(output.filename().string()), stem = ascii_lower(output.stem().string());
+  const std::string lower = ascii_lower(name);
+  for (const char* suffix : {".aux.xml", ".aux", ".ovr", ".msk"})
+    if (lower == file + suffix) return true;
+  for (const char* extension : {".prj", ".hdr", ".aux", ".stx", ".clr", ".rrd", ".tfw", ".tifw", ".tiffw", ".wld"})
+    if (lower == stem + extension) return true;
+  return false;
+}
+
+}  // namespace
+
 std::vector<std::string> EarlierRaster::remove_unreplaced(const std::vector<std::string>& written,
                                                           const std::vector<std::string>& inputs) const {
   namespace fs = std::filesystem;
@@ -85,8 +104,9 @@ std::vector<std::string> EarlierRaster::remove_unreplaced(const std::vector<std:
   for (const std::string& listed : files_) {
     const fs::path file(listed);
     std::error_code ec;
-    // Only the raster's own files beside it: not one elsewhere, nor one the new raster wrote,
-    // nor an input of the run.
+    // Only the raster's own side files beside it: not one elsewhere, nor one the new raster
+    // wrote, nor an input of the run, nor any file GDAL lists that is not named after the raster.
+    if (!is_side_file_of(out, file.filename().string())) continue;
     if (!fs::equivalent(file.has_parent_path() ? file.parent_path() : fs::path("."), parent, ec) || ec) continue;
     if (std::find(written.begin(), written.end(), file.filename().string()) != written.end()) continue;
     if (!fs::is_regular_file(fs::symlink_status(file, ec))) continue;

@@ -55,9 +55,10 @@ class EarlierRaster {
   /// when a file beside it begins with its stem ("o" of o.tif: o.tfw, o.tif.aux.xml): GDAL is
   /// not loaded to list a GeoTIFF that stands alone, as radrecon's own GeoTIFF writer leaves it.
   EarlierRaster(const std::string& path, bool only_with_side_files);
-  /// Removes those of the listed files, in `path`'s folder, that the new raster did not write
-  /// there (`written`: file names) and that are none of `inputs`. Returns a warning for each that
-  /// cannot be removed.
+  /// Removes those of the listed files, in `path`'s folder, that are side files named after it
+  /// (PATH.aux.xml, STEM.prj, a world file, ...: never a product's metadata that GDAL lists too,
+  /// such as summary.txt or METADATA.DIM), that the new raster did not write there (`written`:
+  /// file names) and that are none of `inputs`. Returns a warning for each that cannot be removed.
   std::vector<std::string> remove_unreplaced(const std::vector<std::string>& written,
                                              const std::vector<std::string>& inputs) const;
 

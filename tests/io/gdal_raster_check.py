@@ -574,6 +574,17 @@ with tempfile.TemporaryDirectory() as tmp:
           "stale g.tif: GDAL does not read EPSG:2193")
     check(os.path.exists(at("g_rpc.txt")) and open(at("notes.txt")).read() == "mine\n",
           f"stale: an input or a file of the user's was removed: {sorted(os.listdir(stale))}")
+    # GDAL also lists a satellite product's metadata with a GeoTIFF, named after the folder or
+    # shared by its rasters (ALOS summary.txt, SPOT METADATA.DIM, Landsat X_MTL.txt, X.RPB): the
+    # review found each removed with exit 0. Only side files named after the raster go.
+    for name in ("summary.txt", "METADATA.DIM", "site_MTL.txt", "site_b.RPB", "site_b.IMD"):
+        open(at(name), "w").write("product metadata\n")
+    for attempt in range(2):
+        r = run("--samples", samples, "--value", "mag", "--method", "linear", "--raster", "4x3", "--domain",
+                "0,0,4,3", "--crs", "EPSG:2193", "--out", at("site_b.tif"))
+        check(r.returncode == 0, f"site_b.tif: exit {r.returncode}, {r.stderr.strip()}")
+    kept_all = [n for n in ("summary.txt", "METADATA.DIM", "site_MTL.txt", "site_b.RPB", "site_b.IMD") if os.path.exists(at(n))]
+    check(len(kept_all) == 5, f"site_b.tif replaced: a product's metadata was removed: {sorted(os.listdir(stale))}")
 
     # Terminated while GDAL writes (an MRF of 9 million DEFLATE-compressed points takes seconds):
     # exit by SIGTERM, said, and neither the output, its side files nor the temporary folder left.
