@@ -250,6 +250,7 @@ void run_interpolate(const InterpolateArgs& args) {
       write_file_atomically(args.out, [&](const std::filesystem::path& tmp) {
         geotiff_functions("--out").write(tmp, args.out, raster, values, samples.channels, geo_options, geotiff_crs);
       });
+      const DeferredSignals whole;  // the earlier side files go with the file they described
       for (const std::string& warning : earlier.remove_unreplaced({std::filesystem::path(args.out).filename().string()}, inputs))
         std::fprintf(stderr, "radrecon: warning: %s\n", warning.c_str());
     } else if (geo_raster) {

@@ -147,6 +147,8 @@ void remove_temporary_files_on_signals() {
       continue;
     struct sigaction action = {};
     action.sa_handler = remove_pending_then_raise;
+    // The handler returns only while DeferredSignals lives: the step's system calls go on.
+    action.sa_flags = SA_RESTART;
     // One handler at a time on this thread; on other threads, g_handling holds a second off.
     sigemptyset(&action.sa_mask);
     for (const int blocked : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&action.sa_mask, blocked);
@@ -223,6 +225,17 @@ void write_file_atomically(const std::filesystem::path& requested,
   tmp += ".tmp" + std::to_string(::getpid());
   const TemporaryPath pending(tmp, TemporaryPath::Kind::file);  // removed by a signal until renamed or removed below
   try {
+    // Replacing a file, its temporary file is made first with the file's permission bits: a
+    // private output is no more readable while it is written (writers open it truncating, which
+    // keeps them) than after. move_into_place() sets them again, for writers that do not.
+    struct stat existing = {};
+    if (::stat(path.c_str(), &existing) == 0 && S_ISREG(existing.st_mode)) {
+      const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW | O_CLOEXEC, existing.st_mode & 0777);
+      if (fd >= 0) {
+        [[maybe_unused]] const int set = ::fchmod(fd, existing.st_mode & 0777);  // a leftover file of another mode
+        ::close(fd);
+      }
+    }
     write(tmp);
   } catch (...) {
     fs::remove(tmp, ec);
@@ -269,7 +282,7 @@ constexpr size_t kOutputBuffer = size_t{1} << 16;
 }  // namespace
 
 OutputFile::OutputFile(const std::filesystem::path& tmp, std::string shown_as) : shown_as_(std::move(shown_as)) {
-  fd_ = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  fd_ = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW | O_CLOEXEC, 0666);
   if (fd_ < 0) throw output_error(shown_as_, errno, " (creating its temporary file)");
   buffer_.reserve(kOutputBuffer);
 }

@@ -147,6 +147,25 @@ TEST(RemoveTemporaryFilesOnSignals, RunsOnceWhenTwoThreadsTakeASignal) {
   EXPECT_EQ(messages, 1u);
 }
 
+// Replacing a private (0600) output: its temporary file is 0600 while it is written, not the
+// umask's 0644 until the rename (another user could read a long write), and so is the result.
+TEST(WriteFileAtomically, APrivateOutputStaysPrivateWhileItIsWritten) {
+  const TempDir dir("radrecon_private_output");
+  const fs::path out = dir.path() / "private.json";
+  std::ofstream(out) << "old";
+  fs::permissions(out, fs::perms::owner_read | fs::perms::owner_write);
+  fs::perms while_written = fs::perms::none;
+  write_file_atomically(out, [&](const fs::path& tmp) {
+    std::ofstream(tmp) << "new";
+    while_written = fs::status(tmp).permissions();
+  });
+  EXPECT_EQ(while_written, fs::perms::owner_read | fs::perms::owner_write);
+  EXPECT_EQ(fs::status(out).permissions(), fs::perms::owner_read | fs::perms::owner_write);
+  std::string content;
+  std::ifstream(out) >> content;
+  EXPECT_EQ(content, "new");
+}
+
 /// Runs `body` in a child process with the handlers installed and its stderr to /dev/null; returns
 /// the child's wait status.
 template <class Body>
