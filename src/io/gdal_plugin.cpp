@@ -17,6 +17,46 @@ const GdalFunctions& gdal_functions(const std::string& what) {
   return *static_cast<const GdalFunctions*>(plugin_table(kPlugin, what));
 }
 
+namespace {
+
+/// Moves the files `names` from the folder `from` into `to` (move_into_place()), all or none: a
+/// file each replaces is kept first as a hard link in `from` (".was." and its name), and if a
+/// move fails, those moved go back (or away, if they replaced nothing) before the error goes on.
+/// A header moved beside the data of the raster it replaced (a BIL's .hdr) would describe it
+/// wrongly. Where no hard link can be made, that file is moved without its way back.
+void move_all_or_none(const std::filesystem::path& from, const std::filesystem::path& to,
+                      const std::vector<std::filesystem::path>& names) {
+  namespace fs = std::filesystem;
+  std::vector<bool> kept(names.size(), false);
+  for (size_t k = 0; k < names.size(); ++k) {
+    std::error_code ec;
+    if (fs::is_regular_file(fs::symlink_status(to / names[k], ec))) {
+      fs::create_hard_link(to / names[k], from / (".was." + names[k].string()), ec);
+      kept[k] = !ec;
+    }
+  }
+  for (size_t k = 0; k < names.size(); ++k) {
+    try {
+      move_into_place(from / names[k], to / names[k]);
+    } catch (...) {
+      for (size_t j = 0; j < k; ++j) {
+        std::error_code ec;
+        if (kept[j])
+          fs::rename(from / (".was." + names[j].string()), to / names[j], ec);
+        else
+          fs::remove(to / names[j], ec);
+      }
+      throw;
+    }
+  }
+  for (size_t k = 0; k < names.size(); ++k) {
+    std::error_code ec;
+    if (kept[k]) fs::remove(from / (".was." + names[k].string()), ec);
+  }
+}
+
+}  // namespace
+
 std::vector<std::string> write_gdal_raster(const std::string& path, const Raster& raster, std::span<const double> values,
                                            int channels, const GeoRasterOptions& options) {
   namespace fs = std::filesystem;
@@ -44,7 +84,7 @@ std::vector<std::string> write_gdal_raster(const std::string& path, const Raster
     // A signal from here on waits: it would leave the raster's files half moved, or the earlier
     // raster's side files beside the new one.
     const DeferredSignals whole;
-    for (const fs::path& name : names) move_into_place(fs::path(pattern) / name, parent / name);
+    move_all_or_none(pattern, parent, names);
     std::error_code ec;
     fs::remove(pattern, ec);  // empty now: were it not, the raster is in place all the same
     std::vector<std::string> written;

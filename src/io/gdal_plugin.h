@@ -39,7 +39,8 @@ const GdalFunctions& gdal_functions(const std::string& what);
 /// Writes a raster through GDAL (GdalFunctions::write_raster) atomically: in a fresh folder
 /// `.radrecon-gdal-XXXXXX` beside `path`, removed after, or by a signal (TemporaryPath,
 /// io/atomic_file.h), with what it holds. Its files are then moved beside `path`, each renamed
-/// (move_into_place()) once none has a folder or another non-file under its name there; and of a
+/// (move_into_place()) once none has a folder or another non-file under its name there, all or
+/// none (a failed rename puts back the files already moved), signals deferred; and of a
 /// raster it replaces, the files the new one does not have are removed (EarlierRaster). Returns
 /// the warnings.
 std::vector<std::string> write_gdal_raster(const std::string& path, const Raster& raster, std::span<const double> values,

@@ -524,6 +524,24 @@ with tempfile.TemporaryDirectory() as tmp:
         check(r.returncode == 2 and f"radrecon: error: {immutable}: cannot write: Operation not permitted" in r.stderr
               and ".radrecon-gdal" not in r.stderr and open(immutable).read() == "earlier\n",
               f"imm.asc immutable: exit {r.returncode}, {r.stderr.strip()}")
+        # A raster of two files whose header cannot be replaced: the data file, moved first, goes
+        # back (the review found 3 x 3 values under the earlier 6 x 5 header, unreadable).
+        pair = os.path.join(moved, "pair.bil")
+        r = run("--samples", samples, "--value", "mag", "--method", "linear", "--raster", "6x5", "--domain", "0,0,4,3",
+                "--out", pair)
+        check(r.returncode == 0, f"pair.bil: exit {r.returncode}, {r.stderr.strip()}")
+        before = {n: open(os.path.join(moved, n), "rb").read() for n in os.listdir(moved) if n.startswith("pair.")}
+        header = os.path.join(moved, "pair.hdr")
+        subprocess.run(["chattr", "+i", header])
+        try:
+            r = run("--samples", samples, "--value", "mag", "--method", "linear", "--raster", "3x3", "--domain",
+                    "0,0,4,3", "--out", pair)
+        finally:
+            subprocess.run(["chattr", "-i", header])
+        after = {n: open(os.path.join(moved, n), "rb").read() for n in os.listdir(moved) if n.startswith("pair.")}
+        check(r.returncode == 2 and "pair.hdr: cannot write" in r.stderr and after == before,
+              f"pair.bil, its header immutable: exit {r.returncode}, {r.stderr.strip()}; files changed: "
+              f"{sorted(n for n in set(before) | set(after) if before.get(n) != after.get(n))}")
     check([e for e in os.listdir(moved) if e.startswith(".radrecon-gdal")] == [],
           f"a temporary folder left beside m.bil or imm.asc: {os.listdir(moved)}")
 
