@@ -1,0 +1,98 @@
+// The local multiquadric and thin-plate (reconstruct/local_multiquadric.h) in any unit of length:
+// data and length parameters scaled together give the same function, and messages name places in
+// the data's own units.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "reconstruct/local_multiquadric.h"
+#include "reconstruct/multiquadric_basis.h"
+
+namespace radrecon {
+namespace local_rbf_scale_test {
+
+TEST(LocalMultiquadric, DoesNotDependOnTheUnitOfLength) {
+  // The same data in another unit of length, with the parameters of length in that unit (a
+  // given r scaled, Eck's radii and the patches scaling by themselves), is the same function:
+  // the multiquadric's basis at s d and s r is s^(2 mu) times that at d and r, which the
+  // coefficients absorb; the thin-plate spline's extra log(s) d^2 term is a polynomial the side
+  // conditions cancel; and the patch grid is sized from the samples' box. Before, the box's
+  // width had a floor of 1e-12 in absolute units: at 1e-12 the values moved by 0.16
+  // (multiquadric) and 0.057 (thin-plate), at 1e-13 the local thin-plate was the global one, and
+  // 3000 samples were refused as too clustered for patches of ~32.
+  std::mt19937 rng(57);
+  ScatteredSamples s;
+  std::uniform_real_distribution<double> unit(0, 1);
+  for (int i = 0; i < 150; ++i) {
+    s.points.emplace_back(unit(rng), unit(rng));
+    s.values.push_back(std::sin(4 * s.points.back().x()) * std::exp(s.points.back().y()));
+  }
+  std::vector<Vec2> q(400);
+  for (Vec2& p : q) p = Vec2(0.1 + 0.8 * unit(rng), 0.1 + 0.8 * unit(rng));
+  struct Case {
+    const char* name;
+    RbfKernel kernel;
+    std::optional<double> r;
+  };
+  const Case cases[] = {{"multiquadric, Eck's r", RbfKernel::multiquadric(0.5), std::nullopt},
+                        {"multiquadric, r = 0.05", RbfKernel::multiquadric(0.5), 0.05},
+                        {"thin-plate", RbfKernel::thin_plate(), std::nullopt}};
+  for (const Case& c : cases) {
+    const LocalMultiquadric reference(s, c.kernel, c.r, 30);
+    std::vector<double> want(q.size());
+    reference.evaluate(q, want);
+    for (const double scale : {1e-13, 1e-12, 1e13, 1e-99}) {
+      ScatteredSamples scaled = s;
+      for (Vec2& p : scaled.points) p *= scale;
+      std::vector<Vec2> at = q;
+      for (Vec2& p : at) p *= scale;
+      const LocalMultiquadric f(scaled, c.kernel, c.r ? std::optional<double>(*c.r * scale) : std::nullopt, 30);
+      EXPECT_NEAR(f.patch_radius() / scale, reference.patch_radius(), 1e-14 * reference.patch_radius())
+          << c.name << ", scale " << scale;
+      std::vector<double> got(q.size());
+      f.evaluate(at, got);
+      for (size_t k = 0; k < q.size(); ++k)
+        ASSERT_NEAR(got[k], want[k], 1e-12 * std::max(1.0, std::abs(want[k]))) << c.name << ", scale " << scale << ", query " << k;
+    }
+  }
+  // 3000 samples 1e-13 across take patches of ~32 as they do 1 across.
+  ScatteredSamples many;
+  for (int i = 0; i < 3000; ++i) {
+    many.points.emplace_back(1e-13 * unit(rng), 1e-13 * unit(rng));
+    many.values.push_back(many.points.back().x() * 1e13);
+  }
+  ScatteredSamples one = many;
+  for (Vec2& p : one.points) p *= 1e13;
+  const LocalMultiquadric tiny(many, RbfKernel::thin_plate(), std::nullopt, 32), wide(one, RbfKernel::thin_plate(), std::nullopt, 32);
+  EXPECT_NEAR(tiny.patch_radius() * 1e13, wide.patch_radius(), 1e-12 * wide.patch_radius());
+}
+
+TEST(LocalMultiquadric, ARefusedPatchIsLocatedInTheSamplesUnits) {
+  // A cluster of 2500 samples within 1e-13 of (5e-11, 5e-11), among samples 1e-10 apart: the
+  // patch holding it is refused, and its centre is printed as a number of the data's scale
+  // (printed with %f it read "(0.000000, 0.000000)").
+  ScatteredSamples s;
+  for (const Vec2& c : {Vec2(0, 0), Vec2(1e-10, 0), Vec2(0, 1e-10), Vec2(1e-10, 1e-10)}) s.points.push_back(c);
+  for (int j = 0; j < 50; ++j)
+    for (int i = 0; i < 50; ++i) s.points.emplace_back(5e-11 + 2e-15 * i, 5e-11 + 2e-15 * j);
+  s.values.assign(s.points.size(), 1.0);
+  try {
+    const LocalMultiquadric f(s, RbfKernel::thin_plate(), std::nullopt, 3);
+    FAIL() << "not refused";
+  } catch (const ReconstructionError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("holds 2500 samples"), std::string::npos) << what;
+    EXPECT_NE(what.find("e-11"), std::string::npos) << what;
+    EXPECT_EQ(what.find("0.000000"), std::string::npos) << what;
+  }
+}
+
+}  // namespace local_rbf_scale_test
+}  // namespace radrecon
