@@ -75,7 +75,7 @@ bool in_region(const Polyline& region, const Vec2& st);
 /// surface standing on their outline faces.
 struct SideContactSet {
   std::vector<Segment2> lines;
-  /// excluded_regions(), then the faced enclosed areas (faced.size() of them, last): each may be
+  /// excluded_regions(), then the faced enclosed areas (the last `faced` of them): each may be
   /// seen or hidden, as light reaches it or not.
   std::vector<Polyline> excluded;
   size_t faced = 0;

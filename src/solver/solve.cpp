@@ -137,7 +137,7 @@ Solution solve_by_spec(const Scene& scene, const std::string& spec, const SolveS
 
 /// Whether light reaches the enclosed area `region` of `side`: an element of the side inside it
 /// is brighter than tol::kEnclosedLitRelative of `brightest_w_m2`. Inside: every corner of the
-/// element in the region; where no element is (a coarse mesh), the element's centroid.
+/// element in the region; where no element lies wholly inside it (a coarse mesh), its centroid.
 bool lit(const SurfaceSolution& side, const Polyline& region, double brightest_w_m2) {
   const double dark_w_m2 = tol::kEnclosedLitRelative * brightest_w_m2;
   const SurfaceFrame frame = side.frame();
