@@ -27,10 +27,6 @@ namespace radrecon {
 
 namespace {
 
-/// Link form factors measured between two progress reports (measure_into_cache()): some 0.2 s
-/// of the final gather's at 3.6 million links.
-constexpr std::int64_t kMeasureBatch = 1 << 16;
-
 using hierarchy::Link;
 using hierarchy::NodeState;
 using hierarchy::Tree;
@@ -68,7 +64,7 @@ class Hierarchy {
       RR_CHECK(found, "leaf cap names no surface side");
     }
     pair_occluders_.resize(trees_.size() * trees_.size());
-    std::vector<Request> roots;
+    std::vector<LinkRequest> roots;
     for (size_t r = 0; r < trees_.size(); ++r)
       for (size_t s = 0; s < trees_.size(); ++s) {
         const Tree& R = trees_[r];
@@ -80,7 +76,7 @@ class Hierarchy {
         roots.push_back({static_cast<int>(r), &R.node(0), static_cast<int>(s), &S.node(0)});
       }
     measure_into_cache(roots);
-    for (const Request& q : roots) links_.push_back(make_link(q.receiver_tree, 0, q.source_tree, 0));
+    for (const LinkRequest& q : roots) links_.push_back(make_link(q.receiver_tree, 0, q.source_tree, 0));
   }
 
   void solve() {
@@ -157,46 +153,12 @@ class Hierarchy {
     return {rt, rn, st, sn, known->f, known->f_spread};
   }
 
-  /// A link to measure: its ends' trees and nodes (a tree's, or a node not stored yet).
-  struct Request {
-    int receiver_tree;
-    const QuadNode* receiver;  ///< the caller's, alive until measure_into_cache() returns
-    int source_tree;
-    const QuadNode* source;
-  };
-
-  /// Measures the requests not in the cache, in parallel, and adds them to it in their order
-  /// (so that the cache, and every solve that reads it, does not depend on the threads). Returns
-  /// each request's form factor, as the cache holds it.
-  std::vector<const LinkFormFactor*> measure_into_cache(const std::vector<Request>& requests) const {
-    std::vector<const LinkFormFactor*> out(requests.size());
-    std::vector<size_t> missing;
-    for (size_t k = 0; k < requests.size(); ++k) {
-      const Request& q = requests[k];
-      out[k] = cache_->find({q.receiver_tree, *q.receiver}, {q.source_tree, *q.source});
-      if (out[k] == nullptr) missing.push_back(k);
-    }
-    std::vector<LinkFormFactor> measured(missing.size());
-    // In batches, between which the solve's progress hears the share measured (the final
-    // gather's millions of links took 10 s without a word).
-    const auto total = static_cast<std::int64_t>(missing.size());
-    const auto stage_start = std::chrono::steady_clock::now();
-    for (std::int64_t first = 0; first < total; first += kMeasureBatch) {
-      parallel_for_coarse(first, std::min(total, first + kMeasureBatch), [&](std::int64_t k) {
-        const Request& q = requests[missing[static_cast<size_t>(k)]];
-        measured[static_cast<size_t>(k)] = measure_link(end(q.receiver_tree, *q.receiver), end(q.source_tree, *q.source), bvh_,
-                                                        !occluders(q.receiver_tree, q.source_tree).empty());
-      });
-      if (progress_ != nullptr)
-        progress_->update(static_cast<double>(std::min(total, first + kMeasureBatch)) / static_cast<double>(total),
-                          "the " + std::to_string(total) + " new links' form factors measured", stage_start);
-    }
-    for (size_t k = 0; k < missing.size(); ++k) {
-      const Request& q = requests[missing[k]];
-      // A request made twice is measured twice and kept once: the first, as the cache keeps it.
-      out[missing[k]] = cache_->insert({q.receiver_tree, *q.receiver}, {q.source_tree, *q.source}, measured[k]);
-    }
-    return out;
+  /// Measures the requests not in the cache (measure_into_cache(), link_form_factor.h).
+  std::vector<const LinkFormFactor*> measure_into_cache(const std::vector<LinkRequest>& requests) const {
+    return radrecon::measure_into_cache(*cache_, requests, progress_, [&](const LinkRequest& q) {
+      return measure_link(end(q.receiver_tree, *q.receiver), end(q.source_tree, *q.source), bvh_,
+                          !occluders(q.receiver_tree, q.source_tree).empty());
+    });
   }
 
   /// The refinement oracle: the power error (W, channel mean) of the link, from the variation
@@ -295,7 +257,7 @@ class Hierarchy {
         for (const End& c : children(refine == Refine::receiver ? p.r : p.s))
           next.push_back(refine == Refine::receiver ? Pending{c, p.s, {}} : Pending{p.r, c, {}});
       }
-      std::vector<Request> requests;
+      std::vector<LinkRequest> requests;
       requests.reserve(next.size());
       for (const Pending& p : next) requests.push_back({p.r.tree, &p.r.node, p.s.tree, &p.s.node});
       const std::vector<const LinkFormFactor*> measured = measure_into_cache(requests);
@@ -371,7 +333,7 @@ class Hierarchy {
   /// an ancestor's average irradiance (e.g. light from the front of a wall that the leaf is
   /// behind).
   void push_links_to_leaves() {
-    std::vector<Request> requests;
+    std::vector<LinkRequest> requests;
     size_t count = 0;
     for (const Link& l : links_) {
       const Tree& R = trees_[static_cast<size_t>(l.receiver_tree)];

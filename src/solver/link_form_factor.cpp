@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <span>
 
+#include "core/parallel.h"
 #include "solver/visibility.h"
 
 namespace radrecon {
@@ -78,6 +80,37 @@ LinkFormFactor measure_link(const LinkEnd& receiver, const LinkEnd& source, cons
     sum += fine / kFine;
   }
   return {sum / kCells, hi - lo};
+}
+
+std::vector<const LinkFormFactor*> measure_into_cache(LinkFormFactorCache& cache, const std::vector<LinkRequest>& requests,
+                                                      Progress* progress,
+                                                      const std::function<LinkFormFactor(const LinkRequest&)>& measure) {
+  std::vector<const LinkFormFactor*> out(requests.size());
+  std::vector<size_t> missing;
+  for (size_t k = 0; k < requests.size(); ++k) {
+    const LinkRequest& q = requests[k];
+    out[k] = cache.find({q.receiver_tree, *q.receiver}, {q.source_tree, *q.source});
+    if (out[k] == nullptr) missing.push_back(k);
+  }
+  std::vector<LinkFormFactor> measured(missing.size());
+  // In batches, between which the solve's progress hears the share measured (the final
+  // gather's millions of links took 10 s without a word).
+  const auto total = static_cast<std::int64_t>(missing.size());
+  const auto stage_start = std::chrono::steady_clock::now();
+  for (std::int64_t first = 0; first < total; first += kMeasureBatch) {
+    parallel_for_coarse(first, std::min(total, first + kMeasureBatch), [&](std::int64_t k) {
+      measured[static_cast<size_t>(k)] = measure(requests[missing[static_cast<size_t>(k)]]);
+    });
+    if (progress != nullptr)
+      progress->update(static_cast<double>(std::min(total, first + kMeasureBatch)) / static_cast<double>(total),
+                       "the " + std::to_string(total) + " new links' form factors measured", stage_start);
+  }
+  for (size_t k = 0; k < missing.size(); ++k) {
+    const LinkRequest& q = requests[missing[k]];
+    // A request made twice is measured twice and kept once: the first, as the cache keeps it.
+    out[missing[k]] = cache.insert({q.receiver_tree, *q.receiver}, {q.source_tree, *q.source}, measured[k]);
+  }
+  return out;
 }
 
 }  // namespace radrecon
