@@ -257,6 +257,12 @@ inline constexpr double kGradientFitSingularRelative = 1e-12;
 /// those between 1e-3 and 3e-3 by 0.56 of it, those above by less.
 inline constexpr double kGradientFitConditionRelative = 1e-3;
 
+/// sibson-c1's two gradient fits are blended where the Sibson-weighted fit's det H / trace(H)^2
+/// lies between kGradientFitConditionRelative and this many times it: the Sibson fit's share
+/// rises smoothly in the logarithm from 0 to 1 (a gradient that switched at one threshold moved
+/// a sample's gradient by a step under the rounding of a change of units).
+inline constexpr double kGradientFitBlendRelative = 4;
+
 /// RBFs with a linear polynomial (reconstruct/multiquadric_basis.h): a subset of samples whose
 /// spread across its principal axis is below this fraction of its spread along it counts as
 /// lying on one line, and its polynomial drops the term across (linear along the line, constant

@@ -2,6 +2,10 @@
 
 #include <CGAL/natural_neighbor_coordinates_2.h>
 
+#include <cmath>
+#include <span>
+#include <vector>
+
 #include "core/parallel.h"
 #include "core/tolerances.h"
 
@@ -81,44 +85,61 @@ std::vector<double> fit_gradients(const Delaunay& dt, std::span<const Delaunay::
         }
       }
     };
-    normal_equations(false);
-    double det = h00 * h11 - h01 * h01, trace = h00 + h11;
-    if (!(trace > 0)) return;  // no visible neighbour: gradient 0
-    if (!(det > tol::kGradientFitConditionRelative * trace * trace)) {
-      // Ill-conditioned by the coordinates (tol::kGradientFitConditionRelative): the slope in
-      // one direction rests on neighbours of tiny weight, and the data's curvature, which the
-      // heavy ones' differences carry, is amplified by the condition number. A sample a few
-      // centimetres inside a hull edge kilometres long gives the edge's far ends nearly all its
-      // coordinates: a slope across the edge of 0.77 /m on data of slope 0.002 /m, values of
-      // -3.5 on data in [-1, 1] (found by an outside-in trial; CGAL's fit gives the same).
-      // Near-singular, a neighbour off the line may hold a coordinate of 1e-16 (a sample a
-      // rounding error inside the hull beside two on its edge, their three points collinear to
-      // 3e-17), which the fit must not lose, or a linear function's gradient across the line is
-      // lost (errors of 0.2 on survey tracks). The neighbours by their distance alone: a plane
-      // through the same neighbours, so linear functions are still reproduced.
-      normal_equations(true);
-      det = h00 * h11 - h01 * h01, trace = h00 + h11;
-    }
-    if (!(det > tol::kGradientFitSingularRelative * trace * trace)) {
-      // The neighbours (nearly) on one line through p_i: the plane is fitted along that line
-      // alone, H's larger eigenvector e (eigenvalue lambda), g = (e . r / lambda) e, and
-      // nothing across it. A linear function's gradient along the line is exact; across it, its
-      // component errs by at most the spread's thickness times that component.
-      const double lambda = trace / 2 + std::sqrt(std::max(trace * trace / 4 - det, 0.0));
-      const Vec2 a(h01, lambda - h00), b(lambda - h11, h01);  // each along e, or zero
-      const Vec2 e = (a.squaredNorm() >= b.squaredNorm() ? a : b).normalized();
-      if (!(e.squaredNorm() > 0)) return;  // both candidates zero: not reached (H has a trace here)
-      for (size_t c = 0; c < C; ++c) {
-        const double along = (e.x() * r[2 * c] + e.y() * r[2 * c + 1]) / lambda / scale;
-        gradients[(i * C + c) * 2] = along * e.x();
-        gradients[(i * C + c) * 2 + 1] = along * e.y();
+    // The fitted plane's gradient (per channel, into g) with the weights of `by_distance`, or
+    // false with no visible neighbour. Neighbours (nearly) on one line through p_i
+    // (tol::kGradientFitSingularRelative): the plane is fitted along that line alone, H's larger
+    // eigenvector e (eigenvalue lambda), g = (e . r / lambda) e, and nothing across it; a linear
+    // function's gradient along the line is exact, and across it its component errs by at most
+    // the spread's thickness times that component. `conditioning` gets det H / trace(H)^2.
+    const auto fit = [&](bool by_distance, std::span<double> g, double& conditioning) {
+      normal_equations(by_distance);
+      const double det = h00 * h11 - h01 * h01, trace = h00 + h11;
+      if (!(trace > 0)) return false;
+      conditioning = det / (trace * trace);
+      if (!(det > tol::kGradientFitSingularRelative * trace * trace)) {
+        const double lambda = trace / 2 + std::sqrt(std::max(trace * trace / 4 - det, 0.0));
+        const Vec2 a(h01, lambda - h00), b(lambda - h11, h01);  // each along e, or zero
+        const Vec2 e = (a.squaredNorm() >= b.squaredNorm() ? a : b).normalized();
+        if (!(e.squaredNorm() > 0)) return false;  // both candidates zero: not reached (H has a trace here)
+        for (size_t c = 0; c < C; ++c) {
+          const double along = (e.x() * r[2 * c] + e.y() * r[2 * c + 1]) / lambda / scale;
+          g[2 * c] = along * e.x(), g[2 * c + 1] = along * e.y();
+        }
+        return true;
       }
-      return;
-    }
-    for (size_t c = 0; c < C; ++c) {
-      gradients[(i * C + c) * 2] = (h11 * r[2 * c] - h01 * r[2 * c + 1]) / det / scale;
-      gradients[(i * C + c) * 2 + 1] = (h00 * r[2 * c + 1] - h01 * r[2 * c]) / det / scale;
-    }
+      for (size_t c = 0; c < C; ++c) {
+        g[2 * c] = (h11 * r[2 * c] - h01 * r[2 * c + 1]) / det / scale;
+        g[2 * c + 1] = (h00 * r[2 * c + 1] - h01 * r[2 * c]) / det / scale;
+      }
+      return true;
+    };
+    const std::span<double> out(gradients.data() + i * C * 2, C * 2);
+    double conditioning = 0;
+    if (!fit(false, out, conditioning)) return;  // no visible neighbour: gradient 0
+    // Ill-conditioned by the coordinates: the slope in one direction rests on neighbours of
+    // tiny weight, and the data's curvature, which the heavy ones' differences carry, is
+    // amplified by the condition number. A sample a few centimetres inside a hull edge
+    // kilometres long gives the edge's far ends nearly all its coordinates: a slope across the
+    // edge of 0.77 /m on data of slope 0.002 /m, values of -3.5 on data in [-1, 1] (found by an
+    // outside-in trial; CGAL's fit gives the same). Below tol::kGradientFitConditionRelative the
+    // neighbours count by their distance alone (a plane through the same neighbours, so linear
+    // functions are still reproduced); up to tol::kGradientFitBlendRelative times that, the two
+    // fits are blended by the conditioning's logarithm, so that no sample's gradient jumps when
+    // its conditioning crosses a threshold (under a change of units, whose rounding moves it).
+    // Near-singular, a neighbour off the line may hold a coordinate of 1e-16 (a sample a
+    // rounding error inside the hull beside two on its edge, their three points collinear to
+    // 3e-17), which the distance fit must not lose, or a linear function's gradient across the
+    // line is lost (errors of 0.2 on survey tracks).
+    const double lo = tol::kGradientFitConditionRelative, hi = lo * tol::kGradientFitBlendRelative;
+    if (!(conditioning < hi)) return;
+    thread_local std::vector<double> by_distance;
+    by_distance.assign(C * 2, 0.0);
+    double unused = 0;
+    fit(true, by_distance, unused);  // the same visible neighbours: it has a trace too
+    // The Sibson fit's share: 0 at or below lo, 1 at hi, smooth in log(conditioning) between.
+    const double t = conditioning > lo ? std::log(conditioning / lo) / std::log(hi / lo) : 0.0;
+    const double share = t * t * (3 - 2 * t);
+    for (size_t k = 0; k < C * 2; ++k) out[k] = share * out[k] + (1 - share) * by_distance[k];
   });
   return gradients;
 }

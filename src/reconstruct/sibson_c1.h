@@ -28,7 +28,8 @@ namespace radrecon::nn {
 /// w_j = lambda_j / |p_j - p_i|^2 with lambda_j the Sibson coordinates of p_i among the other
 /// samples (Sibson's choice, CGAL's sibson_gradient_fitting); on the hull, where those do not
 /// exist, w_j = 1 / |p_j - p_i|^2, as also where the fit with Sibson's weights is
-/// ill-conditioned (tol::kGradientFitConditionRelative: next to the hull). Neighbours a barrier
+/// ill-conditioned (tol::kGradientFitConditionRelative: next to the hull), the two blended just
+/// above it (tol::kGradientFitBlendRelative), so no gradient jumps there. Neighbours a barrier
 /// hides from p_i are left out. A sample whose remaining neighbours lie (nearly) on one line
 /// through it gets the gradient of the plane fitted along that line, and none across it; one
 /// that has none, gradient 0.
