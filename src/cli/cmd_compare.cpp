@@ -326,7 +326,8 @@ void add_compare_command(CLI::App& app) {
                   "below it (a figure that is n/a or NaN exceeds every threshold)");
   cmd->add_flag("--json", args->json,
                 "Print one JSON object instead: L1, L2, RMSE, Linf, SSIM, gradient_L2, overshoot (the keys of "
-                "errors.json; null where not defined), A, B, kind, count, sizes, white, thresholds_exceeded");
+                "errors.json; null where not defined), A, B, kind, count, the sizes (width, height, channels of pictures; "
+                "surfaces, grid_sides, ssim_sides of solutions), white, thresholds_exceeded");
   cmd->footer(
       "Examples:\n"
       "  radrecon compare approx.pfm reference.pfm --diff diff.png\n"

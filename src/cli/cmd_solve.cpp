@@ -61,7 +61,8 @@ void add_solve_command(CLI::App& app) {
   cmd->add_option("--scene", args->scene, "Scene JSON file, model file (.obj .gltf .glb .ply with an emitting face; docs/formats.md, Meshes), or a built-in scene: 'paper' (the paper experiment) or 'cornell' (the Cornell box, docs/cornell.md)")
       ->capture_default_str();
   cmd->add_option("--mesh", args->mesh,
-                  "grid:N: progressive refinement, elements of 1/N of the longest quad edge or triangle base or height, "
+                  "grid:N: progressive refinement, elements of 1/N of the scene's longest surface extent (a quad's longer "
+                  "mean edge, a triangle's longest edge), "
                   "on every surface (a triangle's cells about as wide as a square's diagonal; capped by a surface's "
                   "mesh.max_divisions); "
                   "quadtree-eps:E: hierarchical radiosity, links refined while their error estimate (the power they may carry wrongly) exceeds E watts; "

@@ -167,7 +167,16 @@ Scene load_scene(const std::string& file_or_builtin) {
   if (file_or_builtin == "paper") return paper_scene();
   if (file_or_builtin == "cornell") return cornell_scene();
   if (is_mesh_file(file_or_builtin)) return load_mesh_scene(file_or_builtin);
-  return parse_scene_json(read_text_file(file_or_builtin, "scene file"), file_or_builtin);
+  const std::string text = read_text_file(file_or_builtin, "scene file");
+  // A file of another extension that is no JSON object (an .stl, .fbx, .dae model): said as
+  // such, not as the JSON parser's complaint about its first byte.
+  const size_t first = text.find_first_not_of(" \t\r\n");
+  const bool object = first != std::string::npos && (text[first] == '{' || text.compare(first, 3, "\xEF\xBB\xBF") == 0);
+  if (lower_extension(file_or_builtin) != ".json" && !object)
+    throw UserError(file_or_builtin,
+                    "not a scene: a scene is a JSON file (docs/formats.md) or a model file (.obj, .gltf, .glb or .ply; "
+                    "docs/formats.md, \"Meshes\"), or 'paper' or 'cornell'");
+  return parse_scene_json(text, file_or_builtin);
 }
 
 namespace {

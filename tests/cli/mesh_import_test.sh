@@ -131,4 +131,15 @@ expect_rc stl 2
 expect_stderr_has stl "meshes[0].file"
 expect_stderr_has stl "unknown mesh format"
 
+# The same model as the whole scene: said to be no scene, not a JSON syntax error at its first byte.
+printf 'solid x\nendsolid x\n' >"$TMP/model.stl"
+run stl_scene solve --scene "$TMP/model.stl" --mesh grid:2 --out "$TMP/stl_scene.json" --quiet
+expect_rc stl_scene 2
+expect_stderr_has stl_scene "model.stl: not a scene"
+expect_stderr_lacks stl_scene "JSON:"
+# A scene file of another extension that holds JSON is read as one.
+printf '{"surfaces": [{"name": "floor", "corners": [[0,0,0],[1,0,0],[1,1,0],[0,1,0]], "reflectance": 0.5}, {"name": "lamp", "corners": [[0.4,0.4,1],[0.4,0.6,1],[0.6,0.6,1],[0.6,0.4,1]], "reflectance": 0, "emission": 10}]}\n' >"$TMP/room.scene"
+run json_other solve --scene "$TMP/room.scene" --mesh grid:2 --out "$TMP/room_out.json" --quiet
+expect_rc json_other 0
+
 finish mesh_import_test
