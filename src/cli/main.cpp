@@ -176,6 +176,14 @@ int main(int argc, char** argv) {
   else
     for (const Command& c : kCommands) c.add(app);
   check_option_texts(app);
+  if (named == kCommands.end() && !first.empty() && first.front() != '-') {
+    // A misspelt command with --help after it would otherwise print the general help and exit 0.
+    std::string names;
+    for (const Command& c : kCommands) names += (names.empty() ? "" : ", ") + std::string(c.name);
+    std::fprintf(stderr, "radrecon: error: %.*s: not a command; the commands are %s ('radrecon --help' says what each does)\n",
+                 static_cast<int>(first.size()), first.data(), names.c_str());
+    return radrecon::kUserErrorExitCode;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -78,6 +78,10 @@ std::atomic<int> g_deferred_signal{0};
 /// off the thread that runs it alone, and another thread can take one meanwhile (`timeout -s HUP`
 /// sends two): that one waits for the first to end the process.
 std::atomic<bool> g_handling{false};
+/// Whether stderr was a terminal when the handler was installed: there Ctrl-C's echoed "^C"
+/// (or a progress line) ends the line, and the message starts a new one; elsewhere (a pipe, a
+/// log file, --quiet under a script) it would be an empty line.
+std::atomic<bool> g_stderr_terminal{false};
 static_assert(std::atomic<bool>::is_always_lock_free, "lock-free: async-signal-safe");
 
 void remove_pending_then_raise(int signal_number) {
@@ -97,10 +101,12 @@ void remove_pending_then_raise(int signal_number) {
     }
   // Said, not only shown by the exit code (write(2) is safe in a handler; fprintf is not). A
   // closed pipe on stderr would raise SIGPIPE and end the process as that signal: ignored.
-  const char* what = signal_number == SIGINT    ? "\nradrecon: interrupted (SIGINT); no output was left half-written under its name\n"
+  const char* what = signal_number == SIGINT    ? "radrecon: interrupted (SIGINT); no output was left half-written under its name\n"
                      : signal_number == SIGTERM ? "radrecon: terminated (SIGTERM); no output was left half-written under its name\n"
                                                 : "radrecon: hung up (SIGHUP); no output was left half-written under its name\n";
   std::signal(SIGPIPE, SIG_IGN);
+  const bool own_line = signal_number != SIGINT || !g_stderr_terminal.load();
+  [[maybe_unused]] const ssize_t newline = own_line ? 0 : ::write(STDERR_FILENO, "\n", 1);
   [[maybe_unused]] const ssize_t written = ::write(STDERR_FILENO, what, std::strlen(what));
   std::signal(signal_number, SIG_DFL);
   std::raise(signal_number);
@@ -138,6 +144,7 @@ TemporaryPath::~TemporaryPath() {
 }
 
 void remove_temporary_files_on_signals() {
+  g_stderr_terminal.store(::isatty(STDERR_FILENO) == 1);
   for (const int signal_number : {SIGINT, SIGTERM, SIGHUP}) {
     // A signal ignored on entry stays ignored, as the caller meant (nohup, a shell's trap '' or
     // its background job's SIGINT): handling it would let it end the process.

@@ -178,6 +178,12 @@ expect_stderr_has option_twice "radrecon: error: --scene: "
 run no_command
 expect_rc no_command 2
 expect_stderr_has no_command "radrecon: error: A subcommand is required"
+# A misspelt command is refused, with --help after it too (that printed the general help, exit 0).
+for args in "reconstruct" "reconstruct --help"; do
+  run misspelt_command $args
+  expect_rc misspelt_command 2
+  expect_stderr_has misspelt_command "radrecon: error: reconstruct: not a command; the commands are solve, paper"
+done
 # A misspelt option leaves the one it meant missing: the misspelling is named first (it was
 # hidden behind "--out is required"; an outside-in trial).
 run misspelt solve --scene paper --mesh grid:4 --ouy "$TMP/misspelt.json" --quiet

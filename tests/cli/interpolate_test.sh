@@ -273,8 +273,9 @@ for case in "INT 130 interrupted (SIGINT)" "HUP 129 hung up (SIGHUP)"; do
   wait "$pid"
   rc=$?
   [ "$rc" = "$code" ] || fail "SIG$sig: exit code $rc, expected $code"
-  grep -qF "radrecon: $said; no output was left half-written under its name" "$TMP/interrupted.stderr" ||
-    fail "SIG$sig: said nothing: $(cat "$TMP/interrupted.stderr")"
+  # On the first line: no empty line before it when stderr is no terminal (a log file here).
+  [ "$(head -n 1 "$TMP/interrupted.stderr")" = "radrecon: $said; no output was left half-written under its name" ] ||
+    fail "SIG$sig: not said on the first line: $(cat "$TMP/interrupted.stderr")"
   if ls "$TMP"/interrupted.pfm* >/dev/null 2>&1; then fail "SIG$sig: left $(ls "$TMP"/interrupted.pfm*)"; fi
 done
 
