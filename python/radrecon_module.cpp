@@ -66,6 +66,22 @@ Doubles doubles_of(const py::handle& o, const std::string& what) {
                               py::str(py::type::of(o).attr("__name__")).cast<std::string>() + ")");
   };
   if (py::isinstance<py::str>(o) || py::isinstance<py::bytes>(o) || o.is_none()) refuse();
+  // What NumPy would convert with a loss the caller would not see: a masked array's mask (its
+  // hidden entries would count) and complex numbers (their imaginary parts would go, with only
+  // NumPy's ComplexWarning).
+  if (py::isinstance(o, py::module_::import("numpy.ma").attr("MaskedArray")))
+    throw UserError(what, "a masked array: its mask would be ignored; pass the entries to use alone (e.g. a[~a.mask] "
+                          "or, for points and values together, the rows no mask hides)");
+  const py::object dtype = py::hasattr(o, "dtype") ? py::object(o.attr("dtype")) : [&] {
+    try {
+      return py::object(py::module_::import("numpy").attr("asarray")(o).attr("dtype"));
+    } catch (const py::error_already_set&) {
+      return py::object(py::none());  // ragged or not numbers: refused below as before
+    }
+  }();
+  if (!dtype.is_none() && py::hasattr(dtype, "kind") && py::str(dtype.attr("kind")).cast<std::string>() == "c")
+    throw UserError(what, "complex numbers are not taken (their imaginary parts would be dropped); pass the real "
+                          "parts (numpy.real) if they are what is meant");
   Doubles a = Doubles::ensure(o);
   if (!a) {
     PyErr_Clear();

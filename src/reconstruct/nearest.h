@@ -1,6 +1,7 @@
 #pragma once
 // Piecewise-constant reconstruction of scattered samples: the value of the nearest sample (its
-// Voronoi cell). Ties (equidistant samples) are broken deterministically.
+// Voronoi cell). Ties (equidistant samples) go to the k-d tree's first found: the same for any
+// threads, but not by the samples' order (docs/interpolate.md).
 
 #include <memory>
 
