@@ -413,6 +413,9 @@ std::vector<std::string> write_raster_gdal(const std::string& path, const std::s
   // MRF compresses by PNG by default, which takes no floating-point bands: DEFLATE, lossless.
   CPLStringList creation;
   if (driver_name == "MRF") creation.SetNameValue("COMPRESS", "DEFLATE");
+  // netCDF's "history" attribute would hold the time and the staging folder's random name: two
+  // runs of the same command wrote files that differed in it (a thread-count audit).
+  if (driver_name == "netCDF") creation.SetNameValue("WRITE_GDAL_HISTORY", "NO");
   errno = 0;  // a failing write's reason, which GDAL's words may leave out (with_failed_write_reason())
   std::unique_ptr<GDALDataset> file(driver->CreateCopy((tmp / out.filename()).c_str(), image.get(), FALSE, creation.List(),
                                                         nullptr, nullptr));

@@ -166,4 +166,17 @@ with tempfile.TemporaryDirectory() as tmp:
           f"terminated MRF said: {err.strip()}")
     check(os.listdir(sig_dir) == [], f"terminated MRF left {os.listdir(sig_dir)}")
 
+    # The same command twice writes the same bytes: netCDF's "history" attribute held the time and
+    # the staging folder's random name (a thread-count audit found the files differing in it).
+    written = []
+    for k in range(2):
+        out = os.path.join(tmp, f"again{k}.nc")
+        r = run("--samples", samples, "--value", "mag", "--method", "linear", "--raster", "4x3", "--domain", "0,0,4,3",
+                "--out", out)
+        check(r.returncode == 0, f"again{k}.nc: exit {r.returncode}, {r.stderr.strip()}")
+        written.append(open(out, "rb").read() if r.returncode == 0 else b"")
+        time.sleep(1.1)  # the history's time is in seconds
+    check(written[0] == written[1] and b".radrecon-gdal" not in written[0],
+          "two runs of one command wrote different netCDF files (or named the staging folder)")
+
 finish()
