@@ -92,9 +92,10 @@ void write_lightmapped_glb(const std::filesystem::path& path, const Scene& scene
                                        {"indices", a + 3}, {"material", 0}}}}});
     nodes.push_back({{"name", name}, {"mesh", meshes.size() - 1}});
   }
-  Image display = tone_mapped(atlas.radiosity_w_m2, white_w_m2);
-  const std::vector<std::uint8_t> png = encode_png(display, true);
-  const int image_view = bin.add(png.data(), png.size(), 0);
+  const int image_view = [&] {
+    const std::vector<std::uint8_t> png = encode_png_tone_mapped(atlas.radiosity_w_m2, white_w_m2);
+    return bin.add(png.data(), png.size(), 0);
+  }();
   while (bin.bytes.size() % 4 != 0) bin.bytes.push_back(0);
 
   nlohmann::json asset_extras = extras;

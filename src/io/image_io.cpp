@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <string>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "core/check.h"
@@ -89,14 +90,16 @@ class SrgbCodes {
   std::array<std::uint8_t, kBuckets> start_;
 };
 
-/// Display values as 8-bit RGB, row by row (write_png()'s conversion).
-std::vector<std::uint8_t> png_bytes(const Image& image, bool srgb_encode_values) {
+/// Display values as 8-bit RGB, row by row (write_png()'s conversion); with `white_w_m2`, the
+/// image's values are radiosity, tone-mapped first (tone_map()).
+std::vector<std::uint8_t> png_bytes(const Image& image, bool srgb_encode_values, std::optional<double> white_w_m2 = {}) {
   static const SrgbCodes srgb_codes;
   std::vector<std::uint8_t> bytes(static_cast<size_t>(image.width()) * image.height() * 3);
   for (int y = 0; y < image.height(); ++y)
     for (int x = 0; x < image.width(); ++x)
       for (int c = 0; c < 3; ++c) {
-        double v = std::clamp(image.at(x, y)[c], 0.0, 1.0);
+        const double display = white_w_m2 ? tone_map(image.at(x, y)[c], *white_w_m2) : image.at(x, y)[c];
+        double v = std::clamp(display, 0.0, 1.0);
         if (std::isnan(v)) v = 0.0;
         bytes[(static_cast<size_t>(y) * image.width() + x) * 3 + c] =
             srgb_encode_values ? srgb_codes(v) : static_cast<std::uint8_t>(std::lround(v * 255.0));
@@ -171,8 +174,9 @@ void write_png(const std::filesystem::path& path, const Image& image, bool srgb_
   write_binary_file(path, encoded);
 }
 
-std::vector<std::uint8_t> encode_png(const Image& image, bool srgb_encode_values) {
-  const std::vector<std::uint8_t> bytes = png_bytes(image, srgb_encode_values);
+namespace {
+
+std::vector<std::uint8_t> encode_rgb8_bytes(const std::vector<std::uint8_t>& bytes, const Image& image) {
   std::vector<std::uint8_t> encoded;
   encoded.reserve(bytes.size() / 4);
   PngSink sink{&encoded};
@@ -181,6 +185,16 @@ std::vector<std::uint8_t> encode_png(const Image& image, bool srgb_encode_values
     throw UserError("PNG", "cannot encode: " + reason);
   }
   return encoded;
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> encode_png(const Image& image, bool srgb_encode_values) {
+  return encode_rgb8_bytes(png_bytes(image, srgb_encode_values), image);
+}
+
+std::vector<std::uint8_t> encode_png_tone_mapped(const Image& linear_w_m2, double white_w_m2) {
+  return encode_rgb8_bytes(png_bytes(linear_w_m2, true, white_w_m2), linear_w_m2);
 }
 
 namespace {

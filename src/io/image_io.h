@@ -32,6 +32,10 @@ void write_png(const std::filesystem::path& path, const Image& image, bool srgb_
 /// The PNG file write_png() would write, in memory (for embedding, e.g. in a glTF binary).
 std::vector<std::uint8_t> encode_png(const Image& image, bool srgb_encode_values);
 
+/// encode_png(tone_mapped(linear_w_m2, white_w_m2), true), byte for byte, without the display
+/// image between (24 bytes a pixel: a lightmap atlas of 16384 x 16384 would need 6 GiB more).
+std::vector<std::uint8_t> encode_png_tone_mapped(const Image& linear_w_m2, double white_w_m2);
+
 /// Writes an image's linear values as a colour PFM (little endian, bottom row first as PFM
 /// requires).
 void write_pfm(const std::filesystem::path& path, const Image& image);
