@@ -264,7 +264,9 @@ py::array interpolate(const py::object& points_arg, const py::object& values_arg
   samples.points.resize(n);
   for (size_t i = 0; i < n; ++i) samples.points[i] = Vec2(points.data()[2 * i], points.data()[2 * i + 1]);
   samples.values.assign(values.data(), values.data() + values.size());
-  const size_t removed = merge_duplicate_points(samples);
+  const Result<size_t> merged = merge_duplicate_points(samples, params.barriers);
+  if (!merged) throw UserError("points", merged.reason());
+  const size_t removed = merged.value();
   if (removed > 0 &&
       PyErr_WarnEx(PyExc_UserWarning, merged_samples_message(removed, n, samples.points.size()).c_str(), 1) != 0)
     throw py::error_already_set();  // warnings turned into errors

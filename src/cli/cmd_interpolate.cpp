@@ -141,12 +141,15 @@ void run_interpolate(const InterpolateArgs& args) {
     samples = gdal_functions("--samples").read_samples(args.samples, &value_names, columns);
     // Here, not in the plugin: it links its own copy of the limits, which --max-samples does not set.
     check_limit(Limit::samples, static_cast<long long>(samples.points.size()), args.samples, "holds");
-    const size_t before = samples.points.size(), removed = merge_duplicate_points(samples);
+    const size_t before = samples.points.size();
+    const Result<size_t> merged = merge_duplicate_points(samples, params.barriers);
+    if (!merged) throw UserError(args.samples, merged.reason());
+    const size_t removed = merged.value();
     if (removed > 0)
       std::fprintf(stderr, "radrecon: warning: %s: %s\n", args.samples.c_str(),
                    merged_samples_message(removed, before, samples.points.size()).c_str());
   } else {
-    samples = read_samples_csv(args.samples, &value_names, columns);
+    samples = read_samples_csv(args.samples, &value_names, columns, params.barriers);
   }
   if (args.border_samples) {
     // On --domain (the raster's), else the samples' bounding box.

@@ -253,7 +253,7 @@ std::pair<size_t, size_t> xy_columns(const CsvTable& table, const CsvColumns& co
 }  // namespace
 
 ScatteredSamples read_samples_csv(const std::string& path, std::vector<std::string>* value_names,
-                                  const CsvColumns& columns) {
+                                  const CsvColumns& columns, const Barriers& barriers) {
   CsvTable table(path, 3, "x,y,VALUE[,VALUE...] (or --x, --y, --value naming the columns)");
   const std::pair<size_t, size_t> xy = xy_columns(table, columns);  // not a structured binding: lambdas take these
   const size_t xc = xy.first, yc = xy.second;
@@ -295,7 +295,9 @@ ScatteredSamples read_samples_csv(const std::string& path, std::vector<std::stri
     for (const size_t c : value_columns) value_names->push_back(table.header()[c]);
   }
   const size_t before = s.points.size();
-  const size_t removed = merge_duplicate_points(s);
+  const Result<size_t> merged = merge_duplicate_points(s, barriers);
+  if (!merged) throw UserError(path, merged.reason());
+  const size_t removed = merged.value();
   if (removed > 0) warn(path + ": " + merged_samples_message(removed, before, s.points.size()));
   return s;
 }

@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "core/vec.h"
+#include "reconstruct/barriers.h"
 #include "reconstruct/samples.h"
 
 namespace radrecon {
@@ -52,8 +53,9 @@ inline bool repeats_a_coordinate_name(std::string_view name) {
   return name.size() == 1 && (name[0] == 'x' || name[0] == 'X' || name[0] == 'y' || name[0] == 'Y');
 }
 
+/// Samples to be merged that `barriers` part are refused (merge_duplicate_points()).
 ScatteredSamples read_samples_csv(const std::string& path, std::vector<std::string>* value_names,
-                                  const CsvColumns& columns = {});
+                                  const CsvColumns& columns = {}, const Barriers& barriers = {});
 
 /// Reads query points: columns x and y as above; further columns are allowed and ignored (their
 /// fields are not checked, but every row needs the header's field count).

@@ -5,8 +5,10 @@
 #include <utility>
 #include <string>
 #include <cmath>
+#include <cstdio>
 
 #include "core/check.h"
+#include "core/parse.h"
 #include "core/tolerances.h"
 
 namespace radrecon {
@@ -44,7 +46,7 @@ Axis axis_of(const ScatteredSamples& s, int dim) {
 }
 }  // namespace
 
-std::size_t merge_duplicate_points(ScatteredSamples& s) {
+Result<std::size_t> merge_duplicate_points(ScatteredSamples& s, const Barriers& barriers) {
   const size_t n = s.points.size(), ch = static_cast<size_t>(s.channels);
   RR_CHECK(s.values.size() == n * ch, "sample values do not match the points");
   if (n < 2) return 0;
@@ -77,6 +79,30 @@ std::size_t merge_duplicate_points(ScatteredSamples& s) {
     if (rep[k] != k) ++removed;
   }
   if (removed == 0) return 0;
+  if (!barriers.empty()) {
+    // Any two of a group (not only the pairs that joined it: a chain through a sample on the
+    // barrier joins its two sides) that a barrier parts.
+    std::vector<size_t> by_group(n);
+    std::iota(by_group.begin(), by_group.end(), size_t{0});
+    std::stable_sort(by_group.begin(), by_group.end(), [&](size_t a, size_t b) { return rep[a] < rep[b]; });
+    for (size_t first = 0, end = 0; first < n; first = end) {
+      for (end = first + 1; end < n && rep[by_group[end]] == rep[by_group[first]];) ++end;
+      for (size_t a = first; a < end; ++a)
+        for (size_t b = a + 1; b < end; ++b) {
+          const size_t i = by_group[a], j = by_group[b];
+          if (!barriers.blocks(s.points[i], s.points[j])) continue;
+          const auto at = [&](size_t k) {
+            return "(" + format_number(s.points[k].x()) + ", " + format_number(s.points[k].y()) + ")";
+          };
+          char within[32];
+          std::snprintf(within, sizeof within, "%.3g", eps);
+          return Failure{"samples " + std::to_string(i + 1) + " and " + std::to_string(j + 1) + " (in the order read), at " +
+                         at(i) + " and " + at(j) + ", lie on either side of a barrier within " + within +
+                         " of each other (1e-9 of the samples' extent), where samples are merged: merged, their mean "
+                         "would be seen from both sides; move them apart or leave one out"};
+        }
+    }
+  }
 
   // A group's point: the mean of its points (the first, when they are all the same point); its
   // values: their mean. A linear function stays linear.

@@ -6,6 +6,8 @@
 #include <optional>
 #include <string>
 
+#include "core/result.h"
+#include "reconstruct/barriers.h"
 #include "reconstruct/samples.h"
 
 namespace radrecon {
@@ -14,7 +16,12 @@ namespace radrecon {
 /// samples' extent of each other (groups joined transitively), into one at the mean of their
 /// points (the point itself when they all share it) with the mean of their values, keeping the
 /// order of first appearance. Returns the number of samples removed (0: none).
-std::size_t merge_duplicate_points(ScatteredSamples& samples);
+///
+/// Two such samples on either side of one of `barriers` (the segment between them crosses it)
+/// are a Failure naming both, the samples unchanged: merged, their mean would lie on the barrier
+/// and be seen from both sides, carrying each side's value across it (an outside-in trial: 0
+/// and 100 on either side of a wall 2e-10 apart gave 19.9 and 74.4 beside the wall).
+Result<std::size_t> merge_duplicate_points(ScatteredSamples& samples, const Barriers& barriers = {});
 
 /// The warning that reports merge_duplicate_points()'s work (the same words wherever samples
 /// come from).

@@ -157,6 +157,15 @@ if expect_rc dup 0; then
   printf 'x,y,B\n0,0,3\n' >"$TMP/dup_expected.csv"
   check_values dup "$TMP/dup_out.csv" "$TMP/dup_expected.csv" 0
 fi
+# Two to be merged on either side of a barrier: refused naming both (merged, their mean was seen
+# from both sides), nothing written.
+printf 'x,y,B\n0,0,0\n1,0,100\n0,1,0\n1,1,100\n0.4999999999,0.3,0\n0.5000000001,0.3,100\n' >"$TMP/dup_wall.csv"
+printf '{"type": "LineString", "coordinates": [[0.5, -1], [0.5, 2]]}\n' >"$TMP/dup_wall.geojson"
+run dup_wall --samples "$TMP/dup_wall.csv" --method shepard --barriers "$TMP/dup_wall.geojson" --queries "$TMP/origin.csv" \
+  --out "$TMP/dup_wall_out.csv" --quiet
+expect_rc dup_wall 2
+expect_stderr_has dup_wall "dup_wall.csv: samples 5 and 6 (in the order read), at (0.4999999999, 0.3) and (0.5000000001, 0.3)"
+[ -e "$TMP/dup_wall_out.csv" ] && fail "dup_wall: wrote an output"
 
 # --- refusals: exit 2, a message, no output ---------------------------------------------------
 : >"$TMP/empty.csv"

@@ -11,6 +11,7 @@
 
 #include "reconstruct/barriers.h"
 #include "reconstruct/nearest.h"
+#include "reconstruct/sample_set.h"
 #include "reconstruct/shepard.h"
 #include "support/barrier_cases.h"
 
@@ -342,5 +343,42 @@ TEST(ShepardWithBarriers, KNearestUsesTheKNearestVisibleSamplesAsTheFormulaSays)
   }
 }
 
+
+TEST(Barriers, SamplesToBeMergedThatABarrierPartsAreRefused) {
+  // Samples within 1e-9 of the extent of each other are merged into their mean; on either side of
+  // a wall that mean would lie on it and be seen from both sides, carrying each side's value across
+  // (an outside-in trial: 0 and 100 beside x = 0.5 came out 19.9 and 74.4). Refused, naming both,
+  // the samples untouched; merged as before where no barrier parts them.
+  const Barriers wall = Barriers::from_polylines(std::vector<Polyline>{{{0.5, -1}, {0.5, 2}}}).value();
+  const auto samples = [](std::vector<Vec2> extra) {
+    ScatteredSamples s;
+    s.channels = 1;
+    s.points = {{0, 0}, {1, 0}, {0, 1}, {1, 1}};
+    s.values = {0, 100, 0, 100};
+    for (const Vec2& p : extra) s.points.push_back(p), s.values.push_back(p.x() < 0.5 ? 0 : 100);
+    return s;
+  };
+  ScatteredSamples across = samples({{0.5 - 1e-10, 0.3}, {0.5 + 1e-10, 0.3}});
+  const ScatteredSamples before = across;
+  const Result<size_t> refused = merge_duplicate_points(across, wall);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.reason().find("samples 5 and 6"), std::string::npos) << refused.reason();
+  EXPECT_NE(refused.reason().find("either side of a barrier"), std::string::npos) << refused.reason();
+  EXPECT_EQ(across.points, before.points);
+  EXPECT_EQ(across.values, before.values);
+  // A chain through a sample on the wall: neither pair that joins it crosses, its ends do.
+  ScatteredSamples chain = samples({{0.5 - 4e-10, 0.3}, {0.5, 0.3}, {0.5 + 4e-10, 0.3}});
+  const Result<size_t> chained = merge_duplicate_points(chain, wall);
+  ASSERT_FALSE(chained.ok());
+  EXPECT_NE(chained.reason().find("samples 5 and 7"), std::string::npos) << chained.reason();
+  // Without the wall, or on one side of it, merged.
+  ScatteredSamples free = samples({{0.5 - 1e-10, 0.3}, {0.5 + 1e-10, 0.3}});
+  EXPECT_EQ(merge_duplicate_points(free).value(), 1u);
+  ScatteredSamples one_side = samples({{0.4, 0.3}, {0.4 + 2e-10, 0.3 + 1e-10}});
+  EXPECT_EQ(merge_duplicate_points(one_side, wall).value(), 1u);
+  EXPECT_EQ(one_side.points.size(), 5u);
+}
+
 }  // namespace barriers_test
 }  // namespace radrecon
+
