@@ -165,7 +165,8 @@ InterpolantResult make_point_interpolant(Method method, const ScatteredSamples& 
 
 /// `radrecon interpolate --border-samples` and Python's border_samples=True: border samples
 /// (border_samples.h) on `domain` (the raster's), or without one on the samples' bounding box,
-/// and beside `params`' barriers, appended to `samples`; `params` then adds no barrier samples of
+/// and beside `params`' barriers (but for thin-plate and a multiquadric of a given r, whose fits
+/// through two such samples 2e-6 apart swing past a barrier's free end), appended to `samples`; `params` then adds no barrier samples of
 /// its own. Returns how many were added, or why none could be (the method takes none:
 /// border_samples_problem(); the rule's own failures).
 Result<size_t> add_border_samples(Method method, ScatteredSamples& samples, const std::optional<Rect>& domain,

@@ -14,6 +14,8 @@
 #include "core/error.h"
 #include "reconstruct/local_multiquadric.h"
 #include "reconstruct/multiquadric.h"
+#include "reconstruct/border_samples.h"
+#include "reconstruct/methods.h"
 #include "reconstruct/multiquadric_basis.h"
 #include "reconstruct/natural_neighbour.h"
 
@@ -385,6 +387,45 @@ TEST(LocalMultiquadric, AsAccurateAsNaturalNeighbourOverallAndAlongTheEdges) {
     EXPECT_LE(mq.rms, nn.rms) << "k=" << k;
     EXPECT_LE(mq.max, 1.5 * nn.max) << "k=" << k;
     EXPECT_LE(mq.edge_max, 1.5 * nn.edge_max) << "k=" << k;
+  }
+}
+
+TEST(Multiquadric, BorderSamplesWithBarriersAndOneRadiusStayOnTheDomainsBorder) {
+  // As the thin-plate spline (ThinPlate.BorderSamplesWithBarriersStayOnTheDomainsBorder): with
+  // one radius r for every sample (r given), samples beside a wall made a point past its free end
+  // see two of them 2e-6 m apart with values a step apart, and the multiquadric through both swung
+  // far past the data (an outside-in trial: -266..109 for data in [-1, 2] at r = 0.1, -12..27 at
+  // r = 0.01). Such a multiquadric takes border samples on the domain's border only; with its
+  // default radii (Eck's: each sample's nearest neighbour's distance) it keeps those beside the
+  // walls, whose radii of 2e-6 disturb nothing past them.
+  ScatteredSamples s;
+  const std::vector<Polyline> walls = {{{2.6, 0.6}, {2.6, 2.6}}, {{0.6, 2.6}, {2.6, 2.6}}};
+  for (int j = 0; j < 16; ++j)
+    for (int i = 0; i < 16; ++i) {
+      const Vec2 p(0.125 + 0.25 * i, 0.125 + 0.25 * j);
+      const bool shade = p.x() < 2.6 && p.y() < 2.6;
+      s.points.push_back(p);
+      s.values.push_back(shade ? 0.4 + 0.05 * p.y() : 0.9 + 0.03 * p.x());
+    }
+  std::vector<Vec2> q;
+  for (int j = 0; j < 100; ++j)
+    for (int i = 0; i < 100; ++i) q.emplace_back(0.02 + 0.04 * i, 0.02 + 0.04 * j);
+  for (const std::string radius : {"r=0.1", "r=1", ""}) {
+    MethodParams params = parse_params(Method::multiquadric, radius.empty() ? std::vector<std::string>{}
+                                                                            : std::vector<std::string>{radius}, "test");
+    params.barriers = Barriers::from_polylines(walls).value();
+    ScatteredSamples bordered = s;
+    const Result<size_t> added = add_border_samples(Method::multiquadric, bordered, Rect{0, 0, 4, 4}, params);
+    ASSERT_TRUE(added) << added.reason();
+    if (radius.empty()) EXPECT_GT(added.value(), 64u);  // beside the walls too
+    else EXPECT_EQ(added.value(), 64u) << radius;       // 4 sides of 16 parts at the data's spacing
+    const InterpolantResult f = make_point_interpolant(Method::multiquadric, bordered, params);
+    ASSERT_TRUE(f) << f.reason();
+    std::vector<double> v(q.size());
+    f.value()->evaluate(q, v);
+    const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+    EXPECT_GT(*lo, 0.4 - 0.5 * (1.02 - 0.4)) << radius;
+    EXPECT_LT(*hi, 1.02 + 0.5 * (1.02 - 0.4)) << radius;
   }
 }
 
