@@ -177,6 +177,12 @@ inline constexpr double kLyingSmallerRelative = 1e-6;
 /// shadows give 0 inside a closed box, up to round-off), solver/solve.cpp.
 inline constexpr double kEnclosedLitRelative = 1e-9;
 
+/// A point of an excluded region within the side's frame bend of its outline takes the value at
+/// the nearest point of the outline moved this fraction of the side's longer length out across it
+/// (sampling/solution_reconstruction.h, SideSampling::outline_band_m): beyond the outline as a
+/// barrier, so it sees the samples outside, and far below any element.
+inline constexpr double kExcludedOutlineNudgeRelative = 1e-9;
+
 /// Scattered samples count as the nodes of a regular grid when their coordinates lie within
 /// this fraction of the samples' extent from the grid lines: far above the round-off of
 /// coordinates printed with 10+ digits, far below any intended offset.

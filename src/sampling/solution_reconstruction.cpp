@@ -4,6 +4,7 @@
 #include <cmath>
 #include <iterator>
 #include <limits>
+#include <optional>
 
 #include "core/error.h"
 #include "core/parse.h"
@@ -16,11 +17,13 @@ namespace radrecon {
 
 namespace {
 
-/// An interpolant that has no value (NaN) inside the side's excluded regions.
+/// An interpolant that has no value (NaN) inside the side's excluded regions, but within
+/// `band_m` of their outlines (SideSampling::outline_band_m), where a point takes the value at the
+/// nearest point of the outline, `nudge_m` outside it.
 class OutsideExcluded final : public Interpolant {
  public:
-  OutsideExcluded(std::unique_ptr<Interpolant> inner, std::vector<Polyline> regions)
-      : inner_(std::move(inner)), regions_(std::move(regions)) {}
+  OutsideExcluded(std::unique_ptr<Interpolant> inner, std::vector<Polyline> regions, double band_m, double nudge_m)
+      : inner_(std::move(inner)), regions_(std::move(regions)), band_m_(band_m), nudge_m_(nudge_m) {}
   int channels() const override { return inner_->channels(); }
   /// The inner interpolant sees only the points outside the regions: what it would give inside
   /// them is never asked (gouraud would search for the nearest cell outside its holes).
@@ -28,12 +31,16 @@ class OutsideExcluded final : public Interpolant {
     const size_t C = static_cast<size_t>(channels());
     std::vector<Vec2> outside;
     std::vector<size_t> at;  // their indices in `points`
+    size_t moved = 0;
     for (size_t k = 0; k < points.size(); ++k)
-      if (points[k].allFinite() && in_excluded_region(regions_, points[k]))
-        for (size_t c = 0; c < C; ++c) out[k * C + c] = std::numeric_limits<double>::quiet_NaN();
-      else
+      if (!points[k].allFinite() || !in_excluded_region(regions_, points[k])) {
         outside.push_back(points[k]), at.push_back(k);
-    if (at.size() == points.size()) return inner_->evaluate(points, out);
+      } else if (const std::optional<Vec2> q = band_m_ > 0 ? just_outside(points[k]) : std::nullopt) {
+        outside.push_back(*q), at.push_back(k), ++moved;
+      } else {
+        for (size_t c = 0; c < C; ++c) out[k * C + c] = std::numeric_limits<double>::quiet_NaN();
+      }
+    if (at.size() == points.size() && moved == 0) return inner_->evaluate(points, out);
     std::vector<double> values(outside.size() * C);
     inner_->evaluate(outside, values);
     for (size_t i = 0; i < at.size(); ++i)
@@ -41,8 +48,32 @@ class OutsideExcluded final : public Interpolant {
   }
 
  private:
+  /// The nearest point of the regions' outlines to `p` (in a region), moved nudge_m out across
+  /// its edge; none beyond band_m, or if the point so moved still lies in a region.
+  std::optional<Vec2> just_outside(const Vec2& p) const {
+    double best = band_m_;
+    std::optional<Vec2> found;
+    for (const Polyline& r : regions_) {
+      double twice_area = 0;  // the ring's orientation: its outside is right of a counter-clockwise edge
+      for (size_t i = 0; i < r.size(); ++i) twice_area += cross(r[i], r[(i + 1) % r.size()]);
+      for (size_t i = 0; i < r.size(); ++i) {
+        const Vec2 &a = r[i], &b = r[(i + 1) % r.size()];
+        const Vec2 q = a + nearest_on_segment_t(p, a, b) * (b - a);
+        const double d = (q - p).norm();
+        if (!(d <= best) || a == b) continue;
+        const Vec2 along = (b - a).normalized();
+        const Vec2 out_normal = twice_area > 0 ? Vec2(along.y(), -along.x()) : Vec2(-along.y(), along.x());
+        best = d;
+        found = q + nudge_m_ * out_normal;
+      }
+    }
+    if (found && in_excluded_region(regions_, *found)) return std::nullopt;
+    return found;
+  }
+
   std::unique_ptr<Interpolant> inner_;
   std::vector<Polyline> regions_;
+  double band_m_, nudge_m_;
 };
 
 /// The samples outside the excluded regions.
@@ -144,7 +175,9 @@ InterpolantResult reconstruct_side(const SurfaceSolution& s, Method method, cons
                                    const SideSampling& sampling) {
   InterpolantResult built = reconstruct_unmasked(s, method, params, sampling);
   if (!built || s.excluded.empty()) return built;
-  return InterpolantResult(std::make_unique<OutsideExcluded>(std::move(built).value(), s.excluded));
+  const double nudge_m = tol::kExcludedOutlineNudgeRelative * std::max(s.length_u_m, s.length_v_m);
+  return InterpolantResult(
+      std::make_unique<OutsideExcluded>(std::move(built).value(), s.excluded, sampling.outline_band_m, nudge_m));
 }
 
 SolutionReconstruction::SolutionReconstruction(const Scene& scene, const Solution& solution, Method method,
@@ -187,13 +220,15 @@ SolutionReconstruction::SolutionReconstruction(const Scene& scene, const Solutio
     s.length_u_m = surface.length_u_m();
     s.length_v_m = surface.length_v_m();
     s.shear_m = surface.shear_m();
-    InterpolantResult built = reconstruct_side(s, method, params, sampling);
+    SideSampling own = sampling;
+    own.outline_band_m = surface.frame_bend_m();
+    InterpolantResult built = reconstruct_side(s, method, params, own);
     if (!built) {
       const auto same = [&](const SolutionElement& e) {
         return (e.radiosity_w_m2 == side.elements.front().radiosity_w_m2).all();
       };
       fallbacks_.push_back({side.name, built.reason(), std::all_of(side.elements.begin(), side.elements.end(), same)});
-      built = reconstruct_side(s, Method::constant, params, SideSampling{.barriers = false});
+      built = reconstruct_side(s, Method::constant, params, SideSampling{.barriers = false, .outline_band_m = own.outline_band_m});
       if (!built) throw UserError(source, "surface '" + side.name + "': " + built.reason());
     }
     sides_[ref->slot()] = std::move(built).value();

@@ -24,6 +24,12 @@ struct SideSampling {
   /// barriers (on a quad's sides; a triangle's have none), for the methods that take points (all but constant, the grid methods and
   /// gouraud, which use the data as it is).
   bool border_samples = false;
+  /// A point of an excluded region within this distance (metres) of its outline takes the value
+  /// just outside it, where it would have none: the region's corners lie where the surfaces meet,
+  /// but its edges are straight in (s, t), which bend away from the true ones on a quad that is no
+  /// parallelogram (Surface::frame_bend_m()), and a sliver of the side in view beside a block's
+  /// foot fell inside (black rays in every picture of `radrecon cornell`). 0: none.
+  double outline_band_m = 0;
 };
 
 /// Whether the point (s, t) of a side, metres, lies in one of its excluded regions

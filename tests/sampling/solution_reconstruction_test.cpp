@@ -149,5 +149,47 @@ TEST(SideReconstruction, ATrianglesSideReconstructsInItsMetricFrame) {
     EXPECT_NEAR(at(*linear.value(), centres.points[k]), side.elements[k].radiosity_w_m2[0], 1e-12);
 }
 
+TEST(SideReconstruction, ThePointsBesideABlocksFootOnATwistedFloorHaveValues) {
+  // The box standing on a floor that is no parallelogram (a corner drawn in by 0.4 m): the
+  // floor's (s, t) follow its bilinear parameters, so the box's feet, straight in space, bend in
+  // (s, t) between their corners, while the excluded square is straight there. Points of the
+  // floor beside a foot, outside the box in space, fell inside it and had no value (black rays
+  // along the Cornell box's blocks in every picture of `radrecon cornell`). Each method now gives
+  // them one, and the middle of the box's footprint has none.
+  Scene scene = box_on_floor();
+  scene.surfaces[0] = quad("floor", {0, 0, 0}, {4, 0, 0}, {3.6, 4, 0}, {0, 4, 0}, 0.5);
+  scene.surfaces[0].max_divisions = 16;
+  const Solution solution = solve_scene(scene, "grid:16", SolveSettings{}, "test");
+  const Surface& floor = scene.surfaces[0];
+  ASSERT_GT(floor.frame_bend_m(), 0.1);
+  // 0.1 mm outside each foot, at 41 points along it, in space; then to (s, t). The feet along
+  // v bend by up to 0.33 mm.
+  std::vector<Vec2> beside;
+  const Vec3 corners[4] = {{1, 1, 0}, {2, 1, 0}, {2, 2, 0}, {1, 2, 0}};
+  double bent_in = 0;  // how far inside the straight square the farthest of them falls, metres
+  for (int e = 0; e < 4; ++e) {
+    const Vec3 a = corners[e], b = corners[(e + 1) % 4], out = Vec3(0, 0, 1).cross(b - a).normalized() * -1e-4;
+    for (int k = 0; k <= 40; ++k) {
+      const Vec3 p = a + (k / 40.0) * (b - a) + out;
+      const Vec2 st = floor.frame().st(floor.parameters(p).value());
+      beside.push_back(st);
+    }
+  }
+  const SurfaceSolution& side = require_surface(solution, "floor", "test");
+  ASSERT_EQ(side.excluded.size(), 1u);
+  for (const Vec2& q : beside)
+    if (in_excluded_region(side.excluded, q)) bent_in += 1;
+  EXPECT_GT(bent_in, 0) << "no point beside a foot falls inside the square: the test tests nothing";
+  const Vec2 middle = floor.frame().st(floor.parameters(Vec3(1.5, 1.5, 0)).value());
+  for (Method m : {Method::constant, Method::natural_neighbour, Method::shepard, Method::bilinear, Method::gouraud}) {
+    SCOPED_TRACE(method_name(m));
+    const SolutionReconstruction recon(scene, solution, m, {}, "test", SideSampling{});
+    const Interpolant* f = recon.side(SideRef{0, false});
+    ASSERT_NE(f, nullptr);
+    for (const Vec2& q : beside) EXPECT_TRUE(std::isfinite(at(*f, q))) << q.transpose();
+    EXPECT_TRUE(std::isnan(at(*f, middle)));
+  }
+}
+
 }  // namespace solution_reconstruction_test
 }  // namespace radrecon
