@@ -5,11 +5,13 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <string_view>
 
 #include <cpl_error.h>
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
 
+#include "core/barrier_line.h"
 #include "core/error.h"
 #include "core/parse.h"
 #include "core/tolerances.h"
@@ -190,39 +192,74 @@ std::vector<Vec2> read_queries_ogr(const std::string& path, const CsvColumns& co
   return points;
 }
 
+namespace {
+
+/// GDAL's warning for an unclosed Polygon ring, which it reads as it is: the reader below
+/// refuses the ring itself, naming it, and the warning's advice (a configuration option that
+/// makes GDAL drop the geometry) is not radrecon's.
+void quiet_unclosed_rings(CPLErr level, CPLErrorNum number, const char* message) {
+  if (level == CE_Warning && std::string_view(message).starts_with("Non closed ring detected")) return;
+  CPLDefaultErrorHandler(level, number, message);
+}
+
+}  // namespace
+
 std::vector<Polyline> read_ogr_barriers(const std::string& path) {
   OgrLayer src(path);
   std::vector<Polyline> lines;
-  const OGRFeature* feature = nullptr;  // the one being read, for messages
-  const auto add = [&](const OGRLineString& l) {
+  // One line of a feature's geometry: `part` names it within the feature ("" for a LineString,
+  // "line 2" of a MultiLineString, "ring 1" of a Polygon, "polygon 2, ring 1" of a
+  // MultiPolygon; counted from 1, the exterior ring first), as the messages do.
+  const auto add = [&](const OGRFeature& f, const OGRSimpleCurve& l, const std::string& part, BarrierLineKind kind) {
+    const auto where = [&](std::optional<size_t> point) {
+      std::string w = src.where(f);
+      if (!part.empty()) w += ", " + part;
+      if (point) w += ", point " + std::to_string(*point + 1);
+      return w;
+    };
     Polyline line;
     for (int k = 0; k < l.getNumPoints(); ++k) {
       const Vec2 p(l.getX(k), l.getY(k));
       // As GeoJSON barriers (geojson.h): beyond it squared distances overflow.
       if (!(std::abs(p.x()) <= tol::kMaxSampleCoordinate && std::abs(p.y()) <= tol::kMaxSampleCoordinate))
-        throw UserError(src.where(*feature), "point " + std::to_string(k + 1) + " of a barrier line is not finite or beyond "
-                                             "the largest coordinate, " + format_number(tol::kMaxSampleCoordinate));
+        throw UserError(where(static_cast<size_t>(k)), "not finite or beyond the largest coordinate, " +
+                                                           format_number(tol::kMaxSampleCoordinate));
       line.push_back(p);
     }
+    // The rules of GeoJSON's barriers (core/barrier_line.h), in OGR's words.
+    if (const auto defect = barrier_line_defect(line, kind, "point")) throw UserError(where(defect->point), defect->what);
     lines.push_back(std::move(line));
   };
+  // A Polygon's rings; `part` names the polygon within a MultiPolygon ("polygon 2"), else "".
+  const auto polygon = [&](const OGRFeature& f, const OGRPolygon& p, const std::string& part) {
+    const std::string before = part.empty() ? std::string() : part + ", ";
+    // A Polygon without rings is refused as from GeoJSON: the barrier meant is not there.
+    if (p.IsEmpty()) throw UserError(src.where(f) + (part.empty() ? std::string() : ", " + part), "an empty Polygon (no ring)");
+    int k = 0;
+    for (const OGRLinearRing* r : p) add(f, *r, before + "ring " + std::to_string(++k), BarrierLineKind::polygon_ring);
+  };
+  CPLPushErrorHandler(quiet_unclosed_rings);
+  struct PopHandler {
+    ~PopHandler() { CPLPopErrorHandler(); }
+  } pop;
   src.layer().ResetReading();
   for (std::unique_ptr<OGRFeature> f(src.layer().GetNextFeature()); f; f.reset(src.layer().GetNextFeature())) {
-    feature = f.get();
     const OGRGeometry* g = f->GetGeometryRef();
     if (g == nullptr) continue;
     switch (wkbFlatten(g->getGeometryType())) {
-      case wkbLineString: add(*g->toLineString()); break;
-      case wkbMultiLineString:
-        for (const OGRLineString* l : *g->toMultiLineString()) add(*l);
+      case wkbLineString: add(*f, *g->toLineString(), "", BarrierLineKind::line_string); break;
+      case wkbMultiLineString: {
+        int k = 0;
+        for (const OGRLineString* l : *g->toMultiLineString())
+          add(*f, *l, "line " + std::to_string(++k), BarrierLineKind::line_string);
         break;
-      case wkbPolygon:
-        for (const OGRLinearRing* r : *g->toPolygon()) add(*r);
+      }
+      case wkbPolygon: polygon(*f, *g->toPolygon(), ""); break;
+      case wkbMultiPolygon: {
+        int k = 0;
+        for (const OGRPolygon* p : *g->toMultiPolygon()) polygon(*f, *p, "polygon " + std::to_string(++k));
         break;
-      case wkbMultiPolygon:
-        for (const OGRPolygon* p : *g->toMultiPolygon())
-          for (const OGRLinearRing* r : *p) add(*r);
-        break;
+      }
       default:
         throw UserError(src.where(*f), std::string("has a ") + g->getGeometryName() + "; a barrier is a line or a polygon's ring");
     }

@@ -24,7 +24,14 @@ ScatteredSamples read_samples_ogr(const std::string& path, std::vector<std::stri
 /// The query points of the source's first layer (as samples, without values).
 std::vector<Vec2> read_queries_ogr(const std::string& path, const CsvColumns& columns);
 
-/// The barrier lines of the source's first layer; UserError for a point feature or none at all.
+/// The barrier lines of the source's first layer: a LineString's, each line of a
+/// MultiLineString, each ring of a Polygon or MultiPolygon (a feature without a geometry holds
+/// none). UserError naming the file, layer and feature, and the part and point where there are
+/// several ("b.gpkg: layer 'walls', feature 2, polygon 1, ring 2: a Polygon ring must be closed:
+/// ..."), for another geometry (a point), an empty Polygon, a coordinate beyond
+/// tol::kMaxSampleCoordinate, a line barrier_line_defect() refuses (as GeoJSON's: a LineString
+/// of fewer than 2 points, a ring of fewer than 4 or not closed, a segment of zero length), or
+/// no line at all. What is returned therefore always passes Barriers::from_polylines().
 std::vector<Polyline> read_ogr_barriers(const std::string& path);
 
 /// Every file of the vector source (GDALDataset::GetFileList(): a shapefile's .shp, .shx, .dbf,

@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/barrier_line.h"
 #include "core/error.h"
 #include "core/parse.h"
 #include "core/tolerances.h"
@@ -121,23 +122,13 @@ class BarrierReader {
   /// A LineString's positions, or (`ring`) a Polygon's closed ring.
   Polyline positions(const json& j, const std::string& path, bool ring) const {
     if (!j.is_array()) r_.fail(path, ring ? "expected a ring [[x, y], ...]" : "expected an array of positions [[x, y], ...]");
-    // The positions first, then their count: [x, y] where [[x, y], ...] belongs is named as such.
+    // The positions first, then the line: [x, y] where [[x, y], ...] belongs is named as such.
     Polyline line;
     line.reserve(j.size());
-    for (size_t i = 0; i < j.size(); ++i) {
-      const std::string pp = JsonReader::at(path, i);
-      const Vec2 p = position(j[i], pp);
-      if (!line.empty() && p == line.back())
-        r_.fail(pp, "repeats the position before it, " + text(p) + ": a segment of zero length");
-      line.push_back(p);
-    }
-    if (ring && line.size() < 4)
-      r_.fail(path, "a Polygon ring needs at least 4 positions (a closed triangle), it has " + std::to_string(line.size()));
-    if (!ring && line.size() < 2)
-      r_.fail(path, "a LineString needs at least 2 positions, it has " + std::to_string(line.size()));
-    if (ring && line.front() != line.back())
-      r_.fail(path, "a Polygon ring must be closed: its last position " + text(line.back()) + " must repeat its first " +
-                        text(line.front()));
+    for (size_t i = 0; i < j.size(); ++i) line.push_back(position(j[i], JsonReader::at(path, i)));
+    if (const auto defect = barrier_line_defect(
+            line, ring ? BarrierLineKind::polygon_ring : BarrierLineKind::line_string, "position"))
+      r_.fail(defect->point ? JsonReader::at(path, *defect->point) : path, defect->what);
     return line;
   }
 
@@ -152,15 +143,6 @@ class BarrierReader {
         r_.fail(kp, format_number(v) + " is beyond the largest coordinate, " + format_number(tol::kMaxSampleCoordinate));
     }
     return Vec2(j[0].get<double>(), j[1].get<double>());
-  }
-
-  static std::string text(const Vec2& p) {
-    std::string t = "[";  // appended, not "[" + ...: GCC 12 warns (-Wrestrict) on that falsely
-    t += format_number(p.x());
-    t += ", ";
-    t += format_number(p.y());
-    t += "]";
-    return t;
   }
 
   const JsonReader r_;

@@ -24,7 +24,8 @@ namespace radrecon {
 /// object without "type" or of a type not listed above; a Point or MultiPoint (a point cannot
 /// be a barrier); a LineString of fewer than 2 positions; a Polygon without rings, or a ring of
 /// fewer than 4 positions or not closed; a position repeating the one before it (a segment of
-/// zero length); a coordinate that is not a number, or beyond tol::kMaxSampleCoordinate.
+/// zero length); a coordinate that is not a number, or beyond tol::kMaxSampleCoordinate. The
+/// rules of one line are barrier_line_defect()'s (core/barrier_line.h), shared with GDAL's sources.
 /// What is returned therefore always passes Barriers::from_polylines().
 std::vector<Polyline> read_geojson_barriers(const std::string& path);
 

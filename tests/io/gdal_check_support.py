@@ -1,5 +1,5 @@
-"""What the GDAL raster checks share (gdal_raster_check.py, gdal_replace_check.py): GDAL's
-Python bindings (exit 77 without them or gdalinfo), radrecon's path from argv[1], a failure list,
+"""What the GDAL checks share (gdal_raster_check.py, gdal_replace_check.py, gdal_barriers_check.py):
+GDAL's Python bindings (exit 77 without them or gdalinfo), radrecon's path from argv[1], a failure list,
 the linear function the samples hold, and a run of `radrecon interpolate`."""
 import os
 import shutil
