@@ -6,29 +6,46 @@
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
-#include <OpenEXR/ImfRgbaFile.h>
+#include <OpenEXR/ImfOutputFile.h>
 
+#include <cmath>
+#include <limits>
 #include <new>
 #include <vector>
 
 #include "core/error.h"
+#include "core/parse.h"
 
 namespace radrecon {
 
 namespace {
 
+/// 32-bit float R, G, B channels, as PFM holds them: half floats end at 65504 (a lamp of 1e5
+/// W/m^2 was written as infinity) and flush what lies below 6e-8 to 0.
 void write(const std::filesystem::path& file, const std::string& shown_as, const Image& image) {
   const int width = image.width(), height = image.height();
-  std::vector<Imf::Rgba> pixels(static_cast<size_t>(width) * height);
+  const size_t n = static_cast<size_t>(width) * height;
+  std::vector<float> pixels(n * 3);
   for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) {
-      const Rgb& c = image.at(x, y);
-      pixels[static_cast<size_t>(y) * width + x] =
-          Imf::Rgba(static_cast<float>(c[0]), static_cast<float>(c[1]), static_cast<float>(c[2]), 1.0f);
-    }
+    for (int x = 0; x < width; ++x)
+      for (int c = 0; c < 3; ++c) {
+        const double v = image.at(x, y)[c];
+        if (std::isfinite(v) && std::abs(v) > std::numeric_limits<float>::max())
+          throw UserError(shown_as, "a value, " + format_number(v) +
+                                        ", is beyond the range of OpenEXR's 32-bit floats (3.4e38)");
+        pixels[(static_cast<size_t>(y) * width + x) * 3 + static_cast<size_t>(c)] = static_cast<float>(v);
+      }
   try {
-    Imf::RgbaOutputFile out(file.c_str(), width, height, Imf::WRITE_RGB);
-    out.setFrameBuffer(pixels.data(), 1, static_cast<size_t>(width));
+    Imf::Header header(width, height);
+    const char* names[3] = {"R", "G", "B"};
+    Imf::FrameBuffer frame;
+    for (size_t c = 0; c < 3; ++c) {
+      header.channels().insert(names[c], Imf::Channel(Imf::FLOAT));
+      frame.insert(names[c], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(pixels.data() + c), sizeof(float) * 3,
+                                        sizeof(float) * 3 * static_cast<size_t>(width)));
+    }
+    Imf::OutputFile out(file.c_str(), header);
+    out.setFrameBuffer(frame);
     out.writePixels(height);
   } catch (const std::bad_alloc&) {
     throw;  // out of memory, not a file problem
