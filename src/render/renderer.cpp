@@ -335,7 +335,9 @@ void shade(const Scene& scene, const CameraHits& traced, const SideReconstructio
         radiosity[k * 3 + c] = std::isfinite(v) ? v : 0.0;
         if (!std::isfinite(v)) without_value[k] = 1;
       }
-      reflecting[k] = reflects;
+      // A ray drawn black for want of a value shows nothing lit: it does not count towards the
+      // white point (it lowered it: 0.80 for 0.96 with 74% of rays without value).
+      reflecting[k] = reflects && !without_value[k];
     });
   }
   out.rays += rays;
