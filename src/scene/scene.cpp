@@ -92,9 +92,19 @@ std::optional<Vec2> Surface::parameters(const Vec3& p, const Vec3& n) const {
   } else {
     const double disc = k1 * k1 - 4 * k0 * k2;
     if (disc < 0) return std::nullopt;
+    // The roots (-k1 -+ w) / (2 k2) without cancelling: one as q / k2, the other as k0 / q, q =
+    // -(k1 + sign(k1) w) / 2. (-k1 + w) / (2 k2) cancelled to a few digits where the quad is
+    // barely no parallelogram (k2 just above the threshold): (u, v) came out in steps of 3e-5, and
+    // points 2e-5 of the quad outside it were taken in (a review).
     const double w = std::sqrt(disc);
-    v = (-k1 - w) / (2 * k2);
-    if (v < 0 || v > 1) v = (-k1 + w) / (2 * k2);
+    const double q = -0.5 * (k1 + std::copysign(w, k1));
+    if (q == 0) {
+      v = 0;  // k1 = 0 and a double root: k0 = 0 too
+    } else {
+      const double minus = k1 >= 0 ? q / k2 : k0 / q, plus = k1 >= 0 ? k0 / q : q / k2;  // (-k1 -+ w) / (2 k2)
+      v = minus;
+      if (v < 0 || v > 1) v = plus;
+    }
   }
   const Vec2 denom = e + v * g;
   const double u = std::abs(denom.x()) > std::abs(denom.y()) ? (q.x() - v * f.x()) / denom.x() : (q.y() - v * f.y()) / denom.y();

@@ -36,6 +36,28 @@ TEST(QuadParameters, InvertsTheBilinearMapOfAGeneralConvexQuad) {
   EXPECT_FALSE(s.parameters(s.point(0.5, -0.1)).has_value());
 }
 
+TEST(QuadParameters, InvertTheMapOfAQuadBarelyNoParallelogram) {
+  // A unit square with one corner moved by 2e-12 to 1e-8: the bilinear term is just above the
+  // parallelogram threshold (tol::kParallelogramRelative), and the textbook root of its quadratic
+  // cancelled to a few digits: v in steps of 3e-5, and points 2e-5 outside the quad taken in (a
+  // review). The stable root gives (u, v) to rounding, and refuses points beyond the border.
+  std::mt19937 rng(33);
+  std::uniform_real_distribution<double> U(0, 1);
+  for (const double moved : {2e-12, 1e-10, 1e-8}) {
+    const Surface s = quad("q", {0, 0, 0}, {1, 0, 0}, {1 + moved, 1, 0}, {0, 1, 0});
+    for (int k = 0; k < 1000; ++k) {
+      const double u = U(rng), v = U(rng);
+      const auto uv = s.parameters(s.point(u, v));
+      ASSERT_TRUE(uv.has_value()) << moved;
+      EXPECT_NEAR(uv->x(), u, 1e-12) << moved;
+      EXPECT_NEAR(uv->y(), v, 1e-12) << moved;
+    }
+    for (const double beyond : {1e-6, 2e-5})
+      for (const Vec2& uv : {Vec2(0.5, 1 + beyond), Vec2(1 + beyond, 0.5), Vec2(-beyond, 0.3), Vec2(0.3, -beyond)})
+        EXPECT_FALSE(s.parameters(s.point(uv.x(), uv.y())).has_value()) << moved << " at " << uv.transpose();
+  }
+}
+
 Surface triangle(const std::string& name, const Vec3& c0, const Vec3& c1, const Vec3& c2) {
   Surface s;
   s.name = name;
