@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cli/commands.h"
+#include "cli/solution_methods.h"
 #include "core/error.h"
 #include "core/parse.h"
 #include "io/atomic_file.h"
@@ -61,7 +62,7 @@ std::string escaped(const std::string& text) {
 }
 
 std::string page(const Scene& scene, const Camera& camera, const std::string& mesh, size_t elements,
-                 double white, int samples, const std::vector<Panel>& panels) {
+                 double white, const std::string& white_source, int samples, const std::vector<Panel>& panels) {
   std::ostringstream html;
   html << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>radrecon: " << escaped(scene.name)
        << " with every reconstruction method</title>\n<style>body{font-family:sans-serif;max-width:75em;margin:auto}"
@@ -69,8 +70,7 @@ std::string page(const Scene& scene, const Camera& camera, const std::string& me
   html << "<h1>" << escaped(scene.name) << ": every reconstruction method</h1>\n<p>Solved by " << escaped(mesh) << " ("
        << elements << " elements); camera <code>" << escaped(camera.name) << "</code>, " << samples * samples
        << " rays per pixel; one white point for every picture: " << format_number(white)
-       << " W/m<sup>2</sup> (the " << format_number(kDefaultWhitePercentile)
-       << "th percentile of the lit surfaces seen, piecewise constant). Written by <code>radrecon cornell</code>; "
+       << " W/m<sup>2</sup> (" << escaped(white_source) << "). Written by <code>radrecon cornell</code>; "
           "the scene: docs/cornell.md.</p>\n";
   for (const Panel& p : panels) {
     html << "<figure><img src=\"" << escaped(p.file) << "\" alt=\"" << escaped(p.method) << "\"><figcaption><b>"
@@ -120,6 +120,23 @@ void run_cornell(const CornellArgs& args) {
   for (const auto& [where, file] : outputs) refuse_overwriting_inputs(file, where, inputs);
   refuse_shared_outputs(outputs);
 
+  // The pictures' rays are traced at once (render tiles them): their memory, checked before the
+  // solve. 57 bytes a ray measured (979 MB at 1024 x 1024 with --samples 4), and the pictures.
+  {
+    const long long pixels = static_cast<long long>(args.width) * args.height, rays = pixels * args.samples * args.samples;
+    const std::string asked = std::to_string(args.width) + "x" + std::to_string(args.height) + " pixels at " +
+                              std::to_string(args.samples * args.samples) + (args.samples == 1 ? " ray" : " rays") + " each";
+    check_limit(Limit::render_rays, rays, "--width", asked + " make",
+                "use fewer --samples or a smaller --width and --height, or radrecon render, which draws any size in tiles");
+    constexpr double kBytesPerRay = 64, kBytesPerPixel = 96;
+    const double needed = kBytesPerRay * static_cast<double>(rays) + kBytesPerPixel * static_cast<double>(pixels);
+    if (needed > static_cast<double>(memory_available_bytes()))
+      throw UserError("--width", asked + " need about " + megabytes(needed) + " of memory, and " +
+                                     megabytes(static_cast<double>(memory_available_bytes())) +
+                                     " are available: use fewer --samples or a smaller --width and --height, or radrecon "
+                                     "render, which draws any size in tiles");
+  }
+
   SolveSettings settings;
   settings.residual = args.residual;
   settings.progress_label = args.quiet ? "" : "cornell";
@@ -142,11 +159,22 @@ void run_cornell(const CornellArgs& args) {
 
   // One white point for all: the default of `render` on the piecewise constant picture.
   double white = 0;
+  std::string white_source;
   {
     const SolutionReconstruction recon(scene, solution, Method::constant, MethodParams{}, "solution", sampling);
     Rendering r{Image(view.width, view.height), std::vector<std::uint8_t>(static_cast<size_t>(view.width) * view.height, 0)};
     shade(scene, hits, [&](SideRef side) { return recon.side(side); }, r);
-    white = percentile_white(r, kDefaultWhitePercentile).value_or(1.0);
+    // As render's: with no lit surface in sight, the largest radiosity of one in the solution.
+    if (const auto p = percentile_white(r, kDefaultWhitePercentile)) {
+      white = *p;
+      white_source = "the " + format_number(kDefaultWhitePercentile) + "th percentile of the lit surfaces seen, piecewise constant";
+    } else if (const auto largest = largest_reflected_radiosity(scene, solution)) {
+      white = *largest;
+      white_source = "no lit surface in sight: the largest radiosity of the solution's";
+    } else {
+      white = 1;
+      white_source = "no surface of the solution is lit";
+    }
   }
 
   std::vector<Panel> panels;
@@ -185,7 +213,7 @@ void run_cornell(const CornellArgs& args) {
                    panel.note.empty() ? "" : "; ", panel.note.c_str());
     panels.push_back(panel);
   }
-  write_text_file(dir / "index.html", page(scene, *camera, args.mesh, elements, white, args.samples, panels));
+  write_text_file(dir / "index.html", page(scene, *camera, args.mesh, elements, white, white_source, args.samples, panels));
   folder.finish();
   if (!args.quiet)
     std::fprintf(stderr, "cornell: wrote %s in %.1f s\n", (dir / "index.html").string().c_str(), seconds_since(start));
@@ -220,7 +248,7 @@ void add_cornell_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--out", args->out, "Output folder (created if missing)")->capture_default_str();
   cmd->add_flag("--quiet", args->quiet, "No progress messages");
-  add_limit_options(*cmd, {Limit::elements, Limit::file_bytes});
+  add_limit_options(*cmd, {Limit::elements, Limit::render_rays, Limit::file_bytes});
   cmd->callback([args] {
     if (args->mesh.rfind("grid:", 0) != 0) throw UserError("--mesh", "must be grid:N (progressive refinement)");
     run_cornell(*args);

@@ -1,11 +1,7 @@
-#include <sys/resource.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <new>
 #include <string>
 
@@ -46,22 +42,6 @@ struct RenderArgs {
 constexpr int kMaxImageSide = 8192;
 /// At most this many pixels: the linear image takes 24 bytes a pixel (1.6 GB at this size).
 constexpr long long kMaxImagePixels = static_cast<long long>(kMaxImageSide) * kMaxImageSide;
-
-/// Bytes this process may still allocate: the physical memory, or less under a limit on its
-/// address space (ulimit -v) less what it maps already.
-size_t memory_available_bytes() {
-  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
-  double available = pages > 0 && page > 0 ? static_cast<double>(pages) * page : 1e300;
-  rlimit limit{};
-  if (getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY) {
-    double mapped = 0;  // pages mapped now: the first field of /proc/self/statm
-    if (std::ifstream statm("/proc/self/statm"); statm >> mapped) mapped *= page;
-    available = std::min(available, static_cast<double>(limit.rlim_cur) - mapped);
-  }
-  return static_cast<size_t>(std::clamp(available, 0.0, 1e18));
-}
-
-std::string megabytes(double bytes) { return std::to_string(static_cast<long long>(std::ceil(bytes / 1e6))) + " MB"; }
 
 /// Refuses a render whose rays or memory are beyond what can be done, with advice, before any
 /// work. `output_bytes_per_pixel`: what writing the format holds beside the linear image.
@@ -112,18 +92,13 @@ void render_and_write(const RenderArgs& args, const Scene& scene, const Camera& 
     } else if (const auto p = percentile_white(rendering, kDefaultWhitePercentile)) {
       white = *p;
       white_note = white_text(white) + " (the " + format_number(kDefaultWhitePercentile) + "th percentile of the lit surfaces seen)";
-    } else {  // no reflecting surface in sight: the largest radiosity of one in the solution
-      for (const SurfaceSolution& s : solution.surfaces) {
-        const auto idx = scene.find_surface(s.scene_surface);
-        if (idx && (scene.surfaces[*idx].emission_w_m2 > 0).any()) continue;
-        for (const SolutionElement& e : s.elements) white = std::max(white, e.radiosity_w_m2.maxCoeff());
-      }
-      if (white > 0) {
-        white_note = white_text(white) + " (no lit surface in sight: the largest of the solution's)";
-      } else {
-        white = 1;
-        white_note = white_text(white) + " (no surface of the solution is lit: every reflecting surface is black)";
-      }
+    } else if (const auto largest = largest_reflected_radiosity(scene, solution)) {
+      // No reflecting surface in sight: the largest radiosity of one in the solution.
+      white = *largest;
+      white_note = white_text(white) + " (no lit surface in sight: the largest of the solution's)";
+    } else {
+      white = 1;
+      white_note = white_text(white) + " (no surface of the solution is lit: every reflecting surface is black)";
     }
     rendering.reflecting = {};
     // Tone-mapped in place: the display image takes no second 24 bytes a pixel.

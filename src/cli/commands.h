@@ -22,6 +22,12 @@ void add_export_command(CLI::App& app);
 /// Adds the --max-* options of `limits` to a command (core/limits.h, docs/hostile.md).
 void add_limit_options(CLI::App& cmd, std::initializer_list<Limit> limits);
 
+/// Bytes this process may still allocate: the physical memory, or less under a limit on its
+/// address space (ulimit -v) less what it maps already.
+size_t memory_available_bytes();
+/// "123 MB", rounded up.
+std::string megabytes(double bytes);
+
 /// A check for an option that takes a positive number of at most `most` (a white point: zero
 /// would divide by zero, so it is refused rather than read as "the default").
 CLI::Validator positive_at_most(double most);

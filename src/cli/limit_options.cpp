@@ -1,5 +1,11 @@
 // The --max-* options that raise (or lower) the resource limits of core/limits.h, and the checks
 // that several commands' options share.
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
 #include <optional>
 #include <string>
 #include <utility>
@@ -10,6 +16,23 @@
 #include "solver/solve.h"
 
 namespace radrecon::cli {
+
+/// Bytes this process may still allocate: the physical memory, or less under a limit on its
+/// address space (ulimit -v) less what it maps already.
+size_t memory_available_bytes() {
+  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+  double available = pages > 0 && page > 0 ? static_cast<double>(pages) * page : 1e300;
+  rlimit limit{};
+  if (getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY) {
+    double mapped = 0;  // pages mapped now: the first field of /proc/self/statm
+    if (std::ifstream statm("/proc/self/statm"); statm >> mapped) mapped *= page;
+    available = std::min(available, static_cast<double>(limit.rlim_cur) - mapped);
+  }
+  return static_cast<size_t>(std::clamp(available, 0.0, 1e18));
+}
+
+std::string megabytes(double bytes) { return std::to_string(static_cast<long long>(std::ceil(bytes / 1e6))) + " MB"; }
+
 
 void add_limit_options(CLI::App& cmd, std::initializer_list<Limit> limits) {
   for (const Limit which : limits) {

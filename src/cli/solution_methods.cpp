@@ -52,4 +52,14 @@ std::unique_ptr<SolutionReconstruction> reconstruct_solution(const Scene& scene,
   return recon;
 }
 
+std::optional<double> largest_reflected_radiosity(const Scene& scene, const Solution& solution) {
+  double white = 0;
+  for (const SurfaceSolution& s : solution.surfaces) {
+    const auto idx = scene.find_surface(s.scene_surface);
+    if (idx && (scene.surfaces[*idx].emission_w_m2 > 0).any()) continue;
+    for (const SolutionElement& e : s.elements) white = std::max(white, e.radiosity_w_m2.maxCoeff());
+  }
+  return white > 0 ? std::optional<double>(white) : std::nullopt;
+}
+
 }  // namespace radrecon::cli

@@ -4,6 +4,7 @@
 // should see.
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,5 +23,9 @@ std::unique_ptr<SolutionReconstruction> reconstruct_solution(const Scene& scene,
                                                              const std::string& method_name,
                                                              const std::vector<std::string>& params, bool no_barriers,
                                                              bool border_samples);
+
+/// The white point of a picture with no lit surface in sight (render and cornell): the largest
+/// radiosity (W/m^2) of an element of a side that emits nothing; nullopt when none is lit.
+std::optional<double> largest_reflected_radiosity(const Scene& scene, const Solution& solution);
 
 }  // namespace radrecon::cli
