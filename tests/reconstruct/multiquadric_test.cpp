@@ -18,6 +18,7 @@
 #include "reconstruct/methods.h"
 #include "reconstruct/multiquadric_basis.h"
 #include "reconstruct/natural_neighbour.h"
+#include "support/barrier_cases.h"
 
 namespace radrecon {
 namespace multiquadric_test {
@@ -398,18 +399,10 @@ TEST(Multiquadric, BorderSamplesWithBarriersAndOneRadiusStayOnTheDomainsBorder) 
   // r = 0.01). Such a multiquadric takes border samples on the domain's border only; with its
   // default radii (Eck's: each sample's nearest neighbour's distance) it keeps those beside the
   // walls, whose radii of 2e-6 disturb nothing past them.
-  ScatteredSamples s;
-  const std::vector<Polyline> walls = {{{2.6, 0.6}, {2.6, 2.6}}, {{0.6, 2.6}, {2.6, 2.6}}};
-  for (int j = 0; j < 16; ++j)
-    for (int i = 0; i < 16; ++i) {
-      const Vec2 p(0.125 + 0.25 * i, 0.125 + 0.25 * j);
-      const bool shade = p.x() < 2.6 && p.y() < 2.6;
-      s.points.push_back(p);
-      s.values.push_back(shade ? 0.4 + 0.05 * p.y() : 0.9 + 0.03 * p.x());
-    }
-  std::vector<Vec2> q;
-  for (int j = 0; j < 100; ++j)
-    for (int i = 0; i < 100; ++i) q.emplace_back(0.02 + 0.04 * i, 0.02 + 0.04 * j);
+  const testing_support::WallCornerGround ground = testing_support::wall_corner_ground();
+  const ScatteredSamples& s = ground.samples;
+  const std::vector<Polyline>& walls = ground.walls;
+  const std::vector<Vec2>& q = ground.queries;
   for (const std::string radius : {"r=0.1", "r=1", ""}) {
     MethodParams params = parse_params(Method::multiquadric, radius.empty() ? std::vector<std::string>{}
                                                                             : std::vector<std::string>{radius}, "test");

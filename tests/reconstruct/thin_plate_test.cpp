@@ -270,16 +270,9 @@ TEST(ThinPlate, BorderSamplesWithBarriersStayOnTheDomainsBorder) {
   // spline takes border samples on the domain's border only: its values stay within a fraction
   // of the data's range of it. Its border samples are those of the domain's border (4 sides of 16
   // parts at the data's spacing, 64), none beside a wall.
-  ScatteredSamples s;
-  const std::vector<Polyline> walls = {{{2.6, 0.6}, {2.6, 2.6}}, {{0.6, 2.6}, {2.6, 2.6}}};
-  const Barriers barriers = Barriers::from_polylines(walls).value();
-  for (int j = 0; j < 16; ++j)
-    for (int i = 0; i < 16; ++i) {
-      const Vec2 p(0.125 + 0.25 * i, 0.125 + 0.25 * j);
-      const bool shade = p.x() < 2.6 && p.y() < 2.6;
-      s.points.push_back(p);
-      s.values.push_back(shade ? 0.4 + 0.05 * p.y() : 0.9 + 0.03 * p.x());
-    }
+  const testing_support::WallCornerGround ground = testing_support::wall_corner_ground();
+  const ScatteredSamples& s = ground.samples;
+  const Barriers barriers = Barriers::from_polylines(ground.walls).value();
   MethodParams params;
   params.barriers = barriers;
   ScatteredSamples bordered = s;
@@ -288,9 +281,7 @@ TEST(ThinPlate, BorderSamplesWithBarriersStayOnTheDomainsBorder) {
   EXPECT_EQ(added.value(), 64u);
   const InterpolantResult f = make_point_interpolant(Method::thin_plate, bordered, params);
   ASSERT_TRUE(f) << f.reason();
-  std::vector<Vec2> q;
-  for (int j = 0; j < 100; ++j)
-    for (int i = 0; i < 100; ++i) q.emplace_back(0.02 + 0.04 * i, 0.02 + 0.04 * j);
+  const std::vector<Vec2>& q = ground.queries;
   std::vector<double> v(q.size());
   f.value()->evaluate(q, v);
   const auto [lo, hi] = std::minmax_element(v.begin(), v.end());

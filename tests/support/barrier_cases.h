@@ -73,4 +73,25 @@ inline std::vector<std::pair<double, size_t>> visible_by_distance(const Scattere
   return visible;
 }
 
+/// The paper's ground as 16 x 16 cell centres over 4 m, two wall feet meeting in a corner at
+/// (2.6, 2.6), darker on the walls' inner side (values 0.4..1.02); and 100 x 100 queries over it.
+struct WallCornerGround {
+  ScatteredSamples samples;
+  std::vector<Polyline> walls = {{{2.6, 0.6}, {2.6, 2.6}}, {{0.6, 2.6}, {2.6, 2.6}}};
+  std::vector<Vec2> queries;
+};
+inline WallCornerGround wall_corner_ground() {
+  WallCornerGround g;
+  for (int j = 0; j < 16; ++j)
+    for (int i = 0; i < 16; ++i) {
+      const Vec2 p(0.125 + 0.25 * i, 0.125 + 0.25 * j);
+      const bool shade = p.x() < 2.6 && p.y() < 2.6;
+      g.samples.points.push_back(p);
+      g.samples.values.push_back(shade ? 0.4 + 0.05 * p.y() : 0.9 + 0.03 * p.x());
+    }
+  for (int j = 0; j < 100; ++j)
+    for (int i = 0; i < 100; ++i) g.queries.emplace_back(0.02 + 0.04 * i, 0.02 + 0.04 * j);
+  return g;
+}
+
 }  // namespace radrecon::testing_support
