@@ -179,12 +179,8 @@ Barriers barriers_of(const py::object& barriers) {
   std::vector<Polyline> lines;
   size_t index = 0;
   for (const py::handle item : barriers) {
-    const Doubles line = Doubles::ensure(item);
     const std::string what = "barriers[" + std::to_string(index++) + "]";
-    if (!line) {
-      PyErr_Clear();
-      throw UserError(what, "a polyline is an array of shape (k, 2)");
-    }
+    const Doubles line = doubles_of(item, what);  // complex and masked refused, as every array
     check_points(line, what);
     // Checked here so that messages count from 0, as Python does (the library's count from 1).
     if (line.shape(0) < 2) throw UserError(what, "a line needs 2 points, got " + std::to_string(line.shape(0)));

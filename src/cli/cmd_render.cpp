@@ -120,8 +120,8 @@ void run_render(const RenderArgs& args) {
   options.height = height;
   options.samples_per_axis = args.samples;
   // Beside the linear image: PNG its bytes (3) and the default white's values (8); PFM nothing
-  // (written from the image in batches); EXR its half floats (8) and the library's buffers.
-  check_render_size(options, format == FileFormat::png ? 11 : format == FileFormat::pfm ? 0 : 12);
+  // (written from the image in batches); EXR its floats (12) and the library's buffers (4).
+  check_render_size(options, format == FileFormat::png ? 11 : format == FileFormat::pfm ? 0 : 16);
   std::vector<std::string> inputs = {args.solution};
   for (std::string& file : scene_input_files(args.scene)) inputs.push_back(std::move(file));
   refuse_overwriting_inputs(args.out, "--out", inputs);

@@ -13,7 +13,8 @@
 // bilinear (u, v) of that point, which differs. Around each tile a gutter of kLightmapGutter texels repeats its
 // border texels, so filtering at a tile's edge never reads a neighbour. A triangle's texels
 // beyond its hypotenuse hold the value at the nearest point of the triangle. Where a method has
-// no value (behind barriers, under excluded regions) a texel holds 0; `export` warns of those
+// no value (behind barriers, under excluded regions but for a sliver along their outlines on a quad
+// that is no parallelogram: SideSampling::outline_band_m) a texel holds 0; `export` warns of those
 // outside excluded regions.
 
 #include <string>
@@ -47,7 +48,8 @@ struct LightmapAtlas {
   double texels_per_metre = 0;
   /// Texels of the tiles (gutters aside), and those where the method gave no value outside the
   /// sides' excluded regions (outside=none, beyond a radius, cut off by barriers): they hold 0.
-  /// Texels in an excluded region (hidden) hold 0 too, and are not counted.
+  /// Texels in an excluded region (hidden) hold 0 too, and are not counted; but for those within
+  /// the side's frame bend of its outline, which hold the value just outside it.
   size_t texels = 0, texels_without_value = 0;
 
   /// The texture coordinate of the side's parameters (u, v), in [0, 1]^2 of the atlas.

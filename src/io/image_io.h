@@ -1,6 +1,6 @@
 #pragma once
 // The one home of image and raster files: PNG (8-bit, for looking at), PFM (32-bit floats) and
-// OpenEXR (16-bit half floats), and the choice of a format by file extension. Every writer is
+// OpenEXR (32-bit floats), and the choice of a format by file extension. Every writer is
 // atomic (atomic_file.h): the file appears whole or not at all.
 
 #include <filesystem>
@@ -56,7 +56,7 @@ using PfmValues = std::function<void(size_t first, std::span<double> out)>;
 void write_pfm(const std::filesystem::path& path, int width, int height, int channels, size_t batch_values,
                const PfmValues& produce);
 
-/// Writes an image's linear values as OpenEXR (RGB, 16-bit half floats).
+/// Writes an image's linear values as OpenEXR (RGB, 32-bit floats).
 void write_exr(const std::filesystem::path& path, const Image& image);
 
 }  // namespace radrecon

@@ -13,8 +13,8 @@ namespace radrecon {
 
 /// The plugin's table of functions.
 struct OpenExrFunctions {
-  /// Writes the image's linear RGB as 16-bit half floats into `file`; a UserError naming
-  /// `shown_as` if OpenEXR cannot.
+  /// Writes the image's linear RGB as 32-bit floats into `file`; a UserError naming `shown_as`
+  /// if OpenEXR cannot, or a value lies beyond a float's range.
   void (*write)(const std::filesystem::path& file, const std::string& shown_as, const Image& image);
   /// Reads R, G, B (or Y) over the data window (read_picture()'s rules); a UserError naming
   /// `file` for anything it cannot read whole.

@@ -45,6 +45,24 @@ double Surface::length_v_m() const {
   return 0.5 * ((corners[3] - corners[0]).norm() + (corners[2] - corners[1]).norm());
 }
 
+double Surface::frame_bend_m() const {
+  if (is_triangle()) return 0;
+  const Vec3 a = corners[1] - corners[0], b = corners[3] - corners[0], twist = corners[0] - corners[1] + corners[2] - corners[3];
+  if (twist == Vec3::Zero()) return 0;
+  // At each corner the plane's length dX becomes d(s, t) = diag(Lu, Lv) J^+ dX, J = [dP/du, dP/dv]:
+  // stretched by at most 1 / sigma_min(M), M = [dP/du / Lu, dP/dv / Lv].
+  const double lu = length_u_m(), lv = length_v_m();
+  double stretch = 0;
+  for (const auto& [u, v] : {std::pair{0.0, 0.0}, std::pair{1.0, 0.0}, std::pair{1.0, 1.0}, std::pair{0.0, 1.0}}) {
+    const Vec3 m1 = (a + v * twist) / lu, m2 = (b + u * twist) / lv;
+    const double g11 = m1.dot(m1), g12 = m1.dot(m2), g22 = m2.dot(m2);
+    const double half_trace = 0.5 * (g11 + g22), det = g11 * g22 - g12 * g12;
+    const double smallest = half_trace - std::sqrt(std::max(half_trace * half_trace - det, 0.0));
+    stretch = std::max(stretch, smallest > 0 ? 1 / std::sqrt(smallest) : std::numeric_limits<double>::infinity());
+  }
+  return std::min(0.5 * twist.norm() * stretch, std::max(lu, lv));  // a sliver of a corner: at most the side
+}
+
 double Surface::shear_m() const {
   if (!is_triangle()) return 0;
   const Vec3 e = corners[1] - corners[0];
@@ -102,8 +120,8 @@ std::optional<Vec2> Surface::parameters(const Vec3& p, const Vec3& n) const {
       v = 0;  // k1 = 0 and a double root: k0 = 0 too
     } else {
       const double minus = k1 >= 0 ? q / k2 : k0 / q, plus = k1 >= 0 ? k0 / q : q / k2;  // (-k1 -+ w) / (2 k2)
-      v = minus;
-      if (v < 0 || v > 1) v = plus;
+      v = minus;  // the other root where this one lies beyond the border's tolerance (in_domain())
+      if (v < -tol::kQuadEdgeParameter || v > 1 + tol::kQuadEdgeParameter) v = plus;
     }
   }
   const Vec2 denom = e + v * g;

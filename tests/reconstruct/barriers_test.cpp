@@ -366,8 +366,9 @@ TEST(Barriers, SamplesToBeMergedThatABarrierPartsAreRefused) {
   EXPECT_NE(refused.reason().find("either side of a barrier"), std::string::npos) << refused.reason();
   EXPECT_EQ(across.points, before.points);
   EXPECT_EQ(across.values, before.values);
-  // A chain through a sample on the wall: neither pair that joins it crosses, its ends do.
-  ScatteredSamples chain = samples({{0.5 - 4e-10, 0.3}, {0.5, 0.3}, {0.5 + 4e-10, 0.3}});
+  // A chain through a sample on the wall: neither pair that joins it crosses, its ends do, and
+  // lie 1.2e-9 apart, beyond the merge distance (1e-9 of the extent 1): no pair of their own.
+  ScatteredSamples chain = samples({{0.5 - 6e-10, 0.3}, {0.5, 0.3}, {0.5 + 6e-10, 0.3}});
   const Result<size_t> chained = merge_duplicate_points(chain, wall);
   ASSERT_FALSE(chained.ok());
   EXPECT_NE(chained.reason().find("samples 5 and 7"), std::string::npos) << chained.reason();
