@@ -100,7 +100,7 @@ py::array interpolate(const py::object& points_arg, const py::object& values_arg
   samples.points.resize(n);
   for (size_t i = 0; i < n; ++i) samples.points[i] = Vec2(points.data()[2 * i], points.data()[2 * i + 1]);
   samples.values.assign(values.data(), values.data() + values.size());
-  const Result<size_t> merged = merge_duplicate_points(samples, params.barriers);
+  const Result<size_t> merged = merge_duplicate_points(samples, params.barriers, "points");
   if (!merged) throw UserError("points", merged.reason());
   const size_t removed = merged.value();
   if (removed > 0 &&

@@ -46,7 +46,7 @@ Axis axis_of(const ScatteredSamples& s, int dim) {
 }
 }  // namespace
 
-Result<std::size_t> merge_duplicate_points(ScatteredSamples& s, const Barriers& barriers) {
+Result<std::size_t> merge_duplicate_points(ScatteredSamples& s, const Barriers& barriers, const std::string& array_name) {
   const size_t n = s.points.size(), ch = static_cast<size_t>(s.channels);
   RR_CHECK(s.values.size() == n * ch, "sample values do not match the points");
   if (n < 2) return 0;
@@ -96,8 +96,10 @@ Result<std::size_t> merge_duplicate_points(ScatteredSamples& s, const Barriers& 
           };
           char within[32];
           std::snprintf(within, sizeof within, "%.3g", eps);
-          return Failure{"samples " + std::to_string(i + 1) + " and " + std::to_string(j + 1) + " (in the order read), at " +
-                         at(i) + " and " + at(j) + ", lie on either side of a barrier within " + within +
+          const std::string named =
+              array_name.empty() ? "samples " + std::to_string(i + 1) + " and " + std::to_string(j + 1) + " (in the order read)"
+                                 : array_name + "[" + std::to_string(i) + "] and " + array_name + "[" + std::to_string(j) + "]";
+          return Failure{named + ", at " + at(i) + " and " + at(j) + ", lie on either side of a barrier within " + within +
                          " of each other (1e-9 of the samples' extent), where samples are merged: merged, their mean "
                          "would be seen from both sides; move them apart or leave one out"};
         }

@@ -20,8 +20,11 @@ namespace radrecon {
 /// Two such samples on either side of one of `barriers` (the segment between them crosses it)
 /// are a Failure naming both, the samples unchanged: merged, their mean would lie on the barrier
 /// and be seen from both sides, carrying each side's value across it (an outside-in trial: 0
-/// and 100 on either side of a wall 2e-10 apart gave 19.9 and 74.4 beside the wall).
-Result<std::size_t> merge_duplicate_points(ScatteredSamples& samples, const Barriers& barriers = {});
+/// and 100 on either side of a wall 2e-10 apart gave 19.9 and 74.4 beside the wall). The
+/// samples are named "samples 5 and 6 (in the order read)", counted from 1, or with an
+/// `array_name`, as Python indexes it: "points[4] and points[5]".
+Result<std::size_t> merge_duplicate_points(ScatteredSamples& samples, const Barriers& barriers = {},
+                                           const std::string& array_name = {});
 
 /// The warning that reports merge_duplicate_points()'s work (the same words wherever samples
 /// come from).

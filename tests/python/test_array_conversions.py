@@ -44,3 +44,12 @@ def test_real_arrays_of_any_dtype_are_still_taken():
         got = radrecon.interpolate(P.astype(dtype), V.astype(dtype), queries=Q, method="linear")
         assert got.tolist() == [2.0], dtype
     assert radrecon.interpolate(P.tolist(), V.tolist(), queries=Q.tolist(), method="linear").tolist() == [2.0]
+
+
+def test_samples_merged_across_a_barrier_are_refused_counting_from_0():
+    # Within 1e-9 of the extent, on either side of the wall x = 0.5: merged, their mean would be
+    # seen from both sides. Named as Python indexes them, as the module's other messages are.
+    points = np.array([[0, 0], [1, 0], [0, 1], [1, 1], [0.5 - 1e-10, 0.3], [0.5 + 1e-10, 0.3]])
+    values = np.array([0.0, 100, 0, 100, 0, 100])
+    with pytest.raises(radrecon.Error, match=r"^points: points\[4\] and points\[5\], at .* lie on either side of a barrier"):
+        radrecon.interpolate(points, values, queries=Q, method="shepard", barriers=[np.array([[0.5, -1], [0.5, 2]])])
