@@ -140,8 +140,13 @@ Solution solve_hierarchical_leaves(const Scene& scene, const std::string& side, 
     throw UserError(field, "refinement gives " + std::to_string(made) + " leaves on '" + side + "', not exactly " +
                                std::to_string(leaves) + "; try a neighbouring count (1 + 3k)");
   sol.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (!label.empty())
+  // Said whether the cap made the count: that epsilon alone gives more (quadtree-eps:E would not
+  // reproduce the solution; an outside-in trial).
+  if (!label.empty() && c_lo == leaves)
     std::fprintf(stderr, "%s: epsilon %.4g W gives %d leaves on %s\n", label.c_str(), lo, leaves, side.c_str());
+  else if (!label.empty())
+    std::fprintf(stderr, "%s: epsilon %.4g W with a cap of %d leaves on %s (that epsilon alone gives %d; the splits of "
+                 "largest estimate kept)\n", label.c_str(), lo, leaves, side.c_str(), c_lo);
   return sol;
 }
 
