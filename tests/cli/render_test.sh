@@ -171,4 +171,22 @@ said = re.search(r"warning: (\d+) of the (\d+) rays", open(sys.argv[3]).read())
 sys.exit(0 if said and int(said.group(1)) == black > 0 and int(said.group(2)) == 32 * 24 else 1)
 EOF
 
+# --- radiosity below 0 where a method overshoots (clough-tocher across the walls' feet of a
+# quadtree solution): said with the count of such pixels, which the PFM holds as they are -------
+run overshoot_solve solve --scene paper --mesh quadtree:286 --out "$TMP/q286.json" --quiet
+run overshoot_render render --scene paper --solution "$TMP/q286.json" --camera view --method clough-tocher \
+  --size 80x60 --samples 1 --out "$TMP/ct.pfm" --quiet
+expect_rc overshoot_render 0 && expect_stderr_has overshoot_render "overshoots the samples there"
+python3 - "$TMP/ct.pfm" "$TMP/overshoot_render.stderr" <<'EOF' || fail "overshoot_render: the warning's count is not the pixels below 0"
+import re, struct, sys
+magic, size, scale, body = open(sys.argv[1], "rb").read().split(b"\n", 3)
+w, h = map(int, size.split())
+below = sum(1 for p in range(w * h) if min(struct.unpack_from("<fff", body, 12 * p)) < 0)
+said = re.search(r"warning: (\d+) pixels hold radiosity below 0", open(sys.argv[2]).read())
+sys.exit(0 if said and int(said.group(1)) == below > 0 else 1)
+EOF
+run no_overshoot_render render --scene paper --solution "$TMP/q286.json" --camera view --method constant \
+  --size 80x60 --samples 1 --out "$TMP/c.pfm" --quiet
+expect_rc no_overshoot_render 0 && expect_stderr_lacks no_overshoot_render "below 0"
+
 finish render_test
