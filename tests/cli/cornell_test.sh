@@ -106,14 +106,16 @@ expect_rc published_into_blocks 0
 
 # --- pictures larger than the memory: refused before the solve, nothing written (the whole image's
 # rays are traced at once; it ran out of memory after the solve, its solution left) ------------
-(
-  ulimit -v 3000000
-  "$RADRECON" cornell --quiet --width 1024 --height 1024 --samples 8 --out too_big >too_big.stdout 2>too_big.stderr
-  echo $? >too_big.rc
-)
-[ "$(cat too_big.rc)" = 2 ] || fail "too_big: exit $(cat too_big.rc), expected 2: $(cat too_big.stderr)"
-grep -q "1024x1024 pixels at 64 rays each need about .* of memory" too_big.stderr ||
-  fail "too_big: said $(cat too_big.stderr)"
-[ -e too_big ] && fail "too_big: wrote $(ls too_big)"
+if ! grep -q __asan_init "$RADRECON"; then  # ASan needs address space beyond any ulimit -v
+  (
+    ulimit -v 3000000
+    "$RADRECON" cornell --quiet --width 1024 --height 1024 --samples 8 --out too_big >too_big.stdout 2>too_big.stderr
+    echo $? >too_big.rc
+  )
+  [ "$(cat too_big.rc)" = 2 ] || fail "too_big: exit $(cat too_big.rc), expected 2: $(cat too_big.stderr)"
+  grep -q "1024x1024 pixels at 64 rays each need about .* of memory" too_big.stderr ||
+    fail "too_big: said $(cat too_big.stderr)"
+  [ -e too_big ] && fail "too_big: wrote $(ls too_big)"
+fi
 
 finish cornell_test
