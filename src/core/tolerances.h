@@ -306,6 +306,7 @@ inline constexpr double kEmitterTieRelative = 1e-6;
 /// `render` warns of pixels whose radiosity lies below 0 by more than this fraction of the
 /// picture's largest (a method overshooting its samples), not of round-off below 0.
 inline constexpr double kRenderNegativeRelative = 1e-9;
+
 /// The renderer's surface hierarchy (render/surface_bvh.h) widens every surface's box by this
 /// fraction of (1 m + the scene's size and coordinates): far above the round-off of a ray's hit
 /// on an edge (Surface::parameters() accepts one within tol::kOnBorderParameter), so no hit the
