@@ -124,17 +124,13 @@ void run_cornell(const CornellArgs& args) {
   // solve. 57 bytes a ray measured (979 MB at 1024 x 1024 with --samples 4), and the pictures.
   {
     const long long pixels = static_cast<long long>(args.width) * args.height, rays = pixels * args.samples * args.samples;
-    const std::string asked = std::to_string(args.width) + "x" + std::to_string(args.height) + " pixels at " +
-                              std::to_string(args.samples * args.samples) + (args.samples == 1 ? " ray" : " rays") + " each";
-    check_limit(Limit::render_rays, rays, "--width", asked + " make",
-                "use fewer --samples or a smaller --width and --height, or radrecon render, which draws any size in tiles");
+    const std::string asked = picture_size_text(args.width, args.height, args.samples);
+    const std::string advice =
+        "use fewer --samples or a smaller --width and --height, or radrecon render, which draws any size in tiles";
+    check_limit(Limit::render_rays, rays, "--width", asked + " make", advice);
     constexpr double kBytesPerRay = 64, kBytesPerPixel = 96;
-    const double needed = kBytesPerRay * static_cast<double>(rays) + kBytesPerPixel * static_cast<double>(pixels);
-    if (needed > static_cast<double>(memory_available_bytes()))
-      throw UserError("--width", asked + " need about " + megabytes(needed) + " of memory, and " +
-                                     megabytes(static_cast<double>(memory_available_bytes())) +
-                                     " are available: use fewer --samples or a smaller --width and --height, or radrecon "
-                                     "render, which draws any size in tiles");
+    refuse_beyond_memory("--width", asked, kBytesPerRay * static_cast<double>(rays) + kBytesPerPixel * static_cast<double>(pixels),
+                         advice);
   }
 
   SolveSettings settings;

@@ -49,17 +49,12 @@ constexpr long long kMaxImagePixels = static_cast<long long>(kMaxImageSide) * kM
 void check_render_size(const RenderOptions& options, double output_bytes_per_pixel) {
   const long long pixels = static_cast<long long>(options.width) * options.height;
   const long long per_pixel = static_cast<long long>(options.samples_per_axis) * options.samples_per_axis;
-  const std::string asked = std::to_string(options.width) + "x" + std::to_string(options.height) + " pixels at " +
-                            std::to_string(per_pixel) + (per_pixel == 1 ? " ray" : " rays") + " each";
+  const std::string asked = picture_size_text(options.width, options.height, options.samples_per_axis);
   check_limit(Limit::render_rays, pixels * per_pixel, "--size", asked + " make",
               "use fewer --samples (--samples 1 casts one ray a pixel) or a smaller --size");
-  const double needed = static_cast<double>(render_memory_bytes(options)) + output_bytes_per_pixel * pixels;
-  const size_t available = memory_available_bytes();
-  if (needed > static_cast<double>(available))
-    throw UserError("--size", asked + " needs about " + megabytes(needed) + " of memory, and " +
-                                  megabytes(static_cast<double>(available)) +
-                                  " are available: use a smaller --size (memory grows with the pixels, not with "
-                                  "--samples)");
+  refuse_beyond_memory("--size", asked,
+                       static_cast<double>(render_memory_bytes(options)) + output_bytes_per_pixel * pixels,
+                       "use a smaller --size (memory grows with the pixels, not with --samples)");
 }
 
 std::string white_text(double white) {

@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "cli/commands.h"
+#include "core/error.h"
 #include "core/limits.h"
 #include "core/parse.h"
 #include "solver/solve.h"
@@ -32,6 +33,20 @@ size_t memory_available_bytes() {
 }
 
 std::string megabytes(double bytes) { return std::to_string(static_cast<long long>(std::ceil(bytes / 1e6))) + " MB"; }
+
+std::string picture_size_text(int width, int height, int samples_per_axis) {
+  const long long per_pixel = static_cast<long long>(samples_per_axis) * samples_per_axis;
+  return std::to_string(width) + "x" + std::to_string(height) + " pixels at " + std::to_string(per_pixel) +
+         (per_pixel == 1 ? " ray" : " rays") + " each";
+}
+
+void refuse_beyond_memory(const std::string& option, const std::string& asked, double needed_bytes,
+                          const std::string& advice) {
+  const size_t available = memory_available_bytes();
+  if (needed_bytes > static_cast<double>(available))
+    throw UserError(option, asked + " need about " + megabytes(needed_bytes) + " of memory, and " +
+                                megabytes(static_cast<double>(available)) + " are available: " + advice);
+}
 
 
 void add_limit_options(CLI::App& cmd, std::initializer_list<Limit> limits) {

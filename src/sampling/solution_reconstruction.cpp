@@ -23,7 +23,14 @@ namespace {
 class OutsideExcluded final : public Interpolant {
  public:
   OutsideExcluded(std::unique_ptr<Interpolant> inner, std::vector<Polyline> regions, double band_m, double nudge_m)
-      : inner_(std::move(inner)), regions_(std::move(regions)), band_m_(band_m), nudge_m_(nudge_m) {}
+      : inner_(std::move(inner)), regions_(std::move(regions)), band_m_(band_m), nudge_m_(nudge_m) {
+    // Each ring's orientation, once: its outside lies right of an edge of a counter-clockwise one.
+    for (const Polyline& r : regions_) {
+      double twice_area = 0;
+      for (size_t i = 0; i < r.size(); ++i) twice_area += cross(r[i], r[(i + 1) % r.size()]);
+      counter_clockwise_.push_back(twice_area > 0);
+    }
+  }
   int channels() const override { return inner_->channels(); }
   /// The inner interpolant sees only the points outside the regions: what it would give inside
   /// them is never asked (gouraud would search for the nearest cell outside its holes).
@@ -53,16 +60,15 @@ class OutsideExcluded final : public Interpolant {
   std::optional<Vec2> just_outside(const Vec2& p) const {
     double best = band_m_;
     std::optional<Vec2> found;
-    for (const Polyline& r : regions_) {
-      double twice_area = 0;  // the ring's orientation: its outside is right of a counter-clockwise edge
-      for (size_t i = 0; i < r.size(); ++i) twice_area += cross(r[i], r[(i + 1) % r.size()]);
+    for (size_t k = 0; k < regions_.size(); ++k) {
+      const Polyline& r = regions_[k];
       for (size_t i = 0; i < r.size(); ++i) {
         const Vec2 &a = r[i], &b = r[(i + 1) % r.size()];
         const Vec2 q = a + nearest_on_segment_t(p, a, b) * (b - a);
         const double d = (q - p).norm();
         if (!(d <= best) || a == b) continue;
         const Vec2 along = (b - a).normalized();
-        const Vec2 out_normal = twice_area > 0 ? Vec2(along.y(), -along.x()) : Vec2(-along.y(), along.x());
+        const Vec2 out_normal = counter_clockwise_[k] ? Vec2(along.y(), -along.x()) : Vec2(-along.y(), along.x());
         best = d;
         found = q + nudge_m_ * out_normal;
       }
@@ -73,6 +79,7 @@ class OutsideExcluded final : public Interpolant {
 
   std::unique_ptr<Interpolant> inner_;
   std::vector<Polyline> regions_;
+  std::vector<bool> counter_clockwise_;  ///< per region
   double band_m_, nudge_m_;
 };
 
