@@ -5,6 +5,7 @@
 #include <limits>
 #include <numbers>
 
+#include "core/check.h"
 #include "core/parallel.h"
 #include "core/tolerances.h"
 
