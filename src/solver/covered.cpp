@@ -7,17 +7,6 @@
 
 namespace radrecon {
 
-namespace {
-
-/// The area of a planar polygon, m^2.
-double area(const ConvexPolygon& p) {
-  Vec3 twice = Vec3::Zero();
-  for (int k = 0; k < p.n; ++k) twice += p.v[k].cross(p.v[(k + 1) % p.n]);
-  return 0.5 * twice.norm();
-}
-
-}  // namespace
-
 std::vector<std::vector<ConvexPolygon>> covers_by_surface(const Scene& scene) {
   const size_t n = scene.surfaces.size();
   std::vector<std::vector<ConvexPolygon>> out(n);
@@ -55,7 +44,7 @@ double exposed_fraction(std::span<const Vec3> corners, const Vec3& normal, std::
   if (covers.empty()) return 1.0;
   ConvexPolygon part;
   for (const Vec3& c : corners) part.push(c);
-  const double whole = area(part);
+  const double whole = area_m2(part);
   if (!(whole > 0)) return 1.0;
   double covered = 0;
   for (const ConvexPolygon& cover : covers) {
@@ -70,7 +59,7 @@ double exposed_fraction(std::span<const Vec3> corners, const Vec3& normal, std::
       const Vec3 inward = sign * normal.cross(cover.v[(k + 1) % cover.n] - a);
       inside = clip(inside, HalfSpace{inward, inward.dot(a)});
     }
-    if (!inside.empty()) covered += area(inside);
+    if (!inside.empty()) covered += area_m2(inside);
   }
   return std::clamp(1.0 - covered / whole, 0.0, 1.0);
 }

@@ -37,6 +37,13 @@ struct ConvexPolygon {
   }
 };
 
+/// The area of a convex (planar) polygon, m^2: half the norm of its fan's summed cross products.
+inline double area_m2(const ConvexPolygon& q) {
+  Vec3 twice = Vec3::Zero();
+  for (int i = 1; i + 1 < q.n; ++i) twice += (q.v[i] - q.v[0]).cross(q.v[i + 1] - q.v[0]);
+  return 0.5 * twice.norm();
+}
+
 /// A half-space {x : dot(normal, x) >= offset}; the normal need not be unit length.
 struct HalfSpace {
   Vec3 normal;

@@ -181,13 +181,6 @@ void subtract_shadows(std::vector<Shadow>& shadows, const ConvexPolygon& front, 
 
 namespace {
 
-/// The area of a convex polygon, m^2.
-double area_m2(const ConvexPolygon& q) {
-  Vec3 twice = Vec3::Zero();
-  for (int i = 1; i + 1 < q.n; ++i) twice += (q.v[i] - q.v[0]).cross(q.v[i + 1] - q.v[0]);
-  return 0.5 * twice.norm();
-}
-
 /// Sums over the pieces of polygons inside a cone: their Lambert form factors and areas.
 struct InCone {
   double form_factor = 0, area_m2 = 0;
