@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <limits>
+#include <tuple>
+
+#include "solver/polygon.h"
 
 namespace radrecon::hierarchy {
 
@@ -38,16 +41,108 @@ Rgb push_pull(Tree& t, int index, const Rgb& irradiance_above, double& change, d
   return b;
 }
 
+/// The plane of a tree's side, its front the half-space {dot(normal, x) >= dot(normal, corner)}.
+HalfSpace front_of(const Tree& t) {
+  return HalfSpace{t.normal, t.normal.dot(t.node(0).corners[0])}.with_tolerance();
+}
+
+ConvexPolygon polygon_of(const QuadNode& n) {
+  ConvexPolygon p;
+  for (int k = 0; k < n.vertex_count(); ++k) p.push(n.corners[static_cast<size_t>(k)]);
+  return p;
+}
+
+/// Adds the area (m^2) of node k's part in the half-space `front`, and that area times the
+/// node's radiosity, to `area` and `power`: whole nodes as they are, a leaf across the plane by
+/// the share of its area on the front side (its radiosity is uniform).
+void add_front_part(const Tree& t, int k, const HalfSpace& front, double& area, Rgb& power) {
+  const QuadNode& node = t.node(k);
+  const ConvexPolygon p = polygon_of(node);
+  std::array<double, ConvexPolygon::kCapacity> d;
+  const Side side = distances(p, front, d);
+  if (side == Side::outside) return;
+  if (side == Side::inside || node.is_leaf()) {
+    double a = node.area_m2;
+    if (side == Side::across) {
+      ConvexPolygon part;
+      cut(p, d, 1.0, part);
+      a *= area_m2(part) / area_m2(p);
+    }
+    area += a;
+    power += a * t.at(k).radiosity;
+    return;
+  }
+  for (int c = 0; c < 4; ++c) add_front_part(t, node.first_child + c, front, area, power);
+}
+
+/// The links whose source node the receiver's plane cuts (a ground node across a wall's foot,
+/// linked to the wall): the receiver sees only the source's part in front of its plane, so it
+/// takes that part's mean radiosity, not the node's (which mixes in the lit or shadowed ground on
+/// the wall's other side). Each distinct (receiver side, source node) is listed once.
+struct SourcesSeenInPart {
+  struct Part {
+    int receiver_tree, source_tree, source_node;
+    auto operator<=>(const Part&) const = default;
+  };
+  std::vector<Part> parts;
+  std::vector<int> of_link;  ///< by link: its index in `parts`, or -1 when it sees the whole source
+  std::vector<Rgb> radiosity;  ///< by part: the mean radiosity of the source's front part, W/m^2
+
+  SourcesSeenInPart(const std::vector<Tree>& trees, const std::vector<Link>& links) : of_link(links.size(), -1) {
+    std::vector<HalfSpace> fronts;
+    for (const Tree& t : trees) fronts.push_back(front_of(t));
+    std::array<double, ConvexPolygon::kCapacity> d;
+    for (size_t i = 0; i < links.size(); ++i) {
+      const Link& l = links[i];
+      const ConvexPolygon source = polygon_of(trees[static_cast<size_t>(l.source_tree)].node(l.source_node));
+      if (distances(source, fronts[static_cast<size_t>(l.receiver_tree)], d) != Side::across) continue;
+      of_link[i] = static_cast<int>(parts.size());
+      parts.push_back({l.receiver_tree, l.source_tree, l.source_node});
+    }
+    // One entry per distinct part: many receivers on one wall link to the same ground node.
+    std::vector<Part> unique = parts;
+    std::sort(unique.begin(), unique.end());
+    unique.erase(std::unique(unique.begin(), unique.end()), unique.end());
+    for (int& k : of_link)
+      if (k >= 0)
+        k = static_cast<int>(std::lower_bound(unique.begin(), unique.end(), parts[static_cast<size_t>(k)]) -
+                             unique.begin());
+    parts = std::move(unique);
+    radiosity.assign(parts.size(), Rgb::Zero());
+    fronts_ = std::move(fronts);
+  }
+
+  /// Recomputes every part's radiosity from the trees' current node radiosities.
+  void update(const std::vector<Tree>& trees) {
+    for (size_t k = 0; k < parts.size(); ++k) {
+      const Part& q = parts[k];
+      const Tree& t = trees[static_cast<size_t>(q.source_tree)];
+      double area = 0;
+      Rgb power = Rgb::Zero();
+      add_front_part(t, q.source_node, fronts_[static_cast<size_t>(q.receiver_tree)], area, power);
+      radiosity[k] = area > 0 ? Rgb(power / area) : t.at(q.source_node).radiosity;
+    }
+  }
+
+ private:
+  std::vector<HalfSpace> fronts_;
+};
+
 }  // namespace
 
 bool gather_over_links(std::vector<Tree>& trees, const std::vector<Link>& links, int max_iterations, double tolerance,
                        double& residual) {
+  SourcesSeenInPart seen_in_part(trees, links);
   for (int iteration = 0; iteration < max_iterations; ++iteration) {
     for (Tree& t : trees)
       for (NodeState& n : t.state) n.gathered = Rgb::Zero();
-    for (const Link& l : links) {
-      const NodeState& s = trees[static_cast<size_t>(l.source_tree)].at(l.source_node);
-      trees[static_cast<size_t>(l.receiver_tree)].at(l.receiver_node).gathered += l.f * s.radiosity;
+    seen_in_part.update(trees);
+    for (size_t i = 0; i < links.size(); ++i) {
+      const Link& l = links[i];
+      const int part = seen_in_part.of_link[i];
+      const Rgb& b = part >= 0 ? seen_in_part.radiosity[static_cast<size_t>(part)]
+                               : trees[static_cast<size_t>(l.source_tree)].at(l.source_node).radiosity;
+      trees[static_cast<size_t>(l.receiver_tree)].at(l.receiver_node).gathered += l.f * b;
     }
     double change = 0, largest = 0;
     for (Tree& t : trees) push_pull(t, 0, Rgb::Zero(), change, largest);

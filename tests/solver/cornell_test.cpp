@@ -12,11 +12,13 @@
 #include "mesh/grid_mesh.h"
 #include "solver/progressive.h"
 #include "support/path_tracer.h"
+#include "support/side_mean.h"
 
 namespace radrecon {
 namespace cornell_test {
 
 using testing_support::PathTracer;
+using testing_support::side_mean;
 
 /// Mesh: elements along the box's longest edge (0.56 m), so some 17 mm elements.
 constexpr int kDivisions = 32;
@@ -25,16 +27,6 @@ constexpr int kDivisions = 32;
 constexpr int kPaths = 400000;
 /// Light samples per axis at each floor point.
 constexpr int kStrata = 2;
-
-/// Area-weighted mean radiosity (W/m^2 per channel) over a side's elements.
-Rgb side_mean(const Solution& solution, const std::string& side) {
-  const SurfaceSolution* s = solution.find(side);
-  EXPECT_NE(s, nullptr) << side;
-  Rgb sum = Rgb::Zero();
-  double area = 0;
-  for (const SolutionElement& e : s->elements) sum += e.area_m2 * e.radiosity_w_m2, area += e.area_m2;
-  return sum / area;
-}
 
 Solution solve_grid(const Scene& scene, int divisions) {
   return solve_progressive(scene, make_grid_mesh(scene, {divisions}), ProgressiveOptions{}, "grid");
