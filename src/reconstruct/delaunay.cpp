@@ -246,14 +246,16 @@ bool DelaunayMesh::locate(const Vec2& q, OutsideHull outside, std::int64_t& hint
       hint = out.face;
       return true;
     case Delaunay::OUTSIDE_CONVEX_HULL: {
-      // Outside by rounding only: on the hull edge of the infinite face found, or of one of its
-      // two neighbours (the edges at that edge's ends), whichever is nearest; its value on that
-      // edge's nearest piece.
+      // Outside by rounding only: on the hull edge nearest q (whatever edge CGAL's walk ended
+      // at), or on one of its two neighbours (the edges at its ends), whichever is nearest in
+      // bands; its value on that edge's nearest piece.
       const Delaunay::Vertex_handle infinite = m.dt.infinite_vertex();
-      const int i = f->index(infinite);
+      const Delaunay::Face_handle nearest_edge = nearest_hull_face(m.dt, points_, q, f);
+      const int i = nearest_edge->index(infinite);
       double best_bands = 1;
       Delaunay::Face_handle on;
-      for (const Delaunay::Face_handle& g : {f, f->neighbor(Delaunay::ccw(i)), f->neighbor(Delaunay::cw(i))})
+      for (const Delaunay::Face_handle& g :
+           {nearest_edge, nearest_edge->neighbor(Delaunay::ccw(i)), nearest_edge->neighbor(Delaunay::cw(i))})
         if (const double bands = bands_to(g); bands <= best_bands) best_bands = bands, on = g;
       if (on != Delaunay::Face_handle()) {
         on_piece(m.chains->of(on, on->index(infinite)), q, out);

@@ -12,6 +12,7 @@
 // Internal to reconstruct/: CGAL's types stay out of the public headers.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -77,6 +78,41 @@ void hull_chain(const DT& dt, typename DT::Face_handle infinite_face, std::span<
 /// Every hull edge of `dt` (a 2-D triangulation) split by hull_chain(): the pieces, hull edge by
 /// hull edge, and by each hull edge (its ends as the infinite face has them: ccw(i), cw(i)) the
 /// range of its pieces.
+/// For q outside the hull of `dt` (a 2-D triangulation; `points` its samples by vertex info): the
+/// infinite face whose hull edge is nearest to q, found from `outside`, an infinite face whose
+/// hull edge q lies outside of (what CGAL's locate() returns there, which depends on where its
+/// walk began: along collinear hull edges, such as a lattice's side, any of them). Walks along
+/// the hull from it while the distance falls: over the hull edges that q lies outside of, the
+/// distance falls and then rises, and the nearest edge is among them. So the face found depends
+/// on q alone (up to a tie between edges, whose nearest points are then one and the same).
+template <class DT>
+typename DT::Face_handle nearest_hull_face(const DT& dt, std::span<const Vec2> points, const Vec2& q,
+                                           typename DT::Face_handle outside) {
+  using Face_handle = typename DT::Face_handle;
+  const auto infinite = dt.infinite_vertex();
+  const auto distance_sq_to = [&](const Face_handle& e) {
+    const int i = e->index(infinite);
+    const Vec2 a = points[e->vertex(DT::ccw(i))->info()], b = points[e->vertex(DT::cw(i))->info()];
+    return (a + nearest_on_segment_t(q, a, b) * (b - a) - q).squaredNorm();
+  };
+  // The infinite faces on the hull edges at e's two ends.
+  const auto hull_neighbours = [&](const Face_handle& e) {
+    const int i = e->index(infinite);
+    return std::array<Face_handle, 2>{e->neighbor(DT::ccw(i)), e->neighbor(DT::cw(i))};
+  };
+  Face_handle nearest = outside;
+  double nearest_sq = distance_sq_to(outside);
+  for (const Face_handle& first : hull_neighbours(outside)) {
+    Face_handle previous = outside, e = first;
+    for (double d = distance_sq_to(e); d < nearest_sq; d = distance_sq_to(e)) {
+      nearest_sq = d, nearest = e;
+      const std::array<Face_handle, 2> next = hull_neighbours(e);
+      previous = std::exchange(e, next[0] == previous ? next[1] : next[0]);
+    }
+  }
+  return nearest;
+}
+
 template <class DT>
 struct HullChains {
   /// A hull edge's pieces, [begin, end) in `pieces`, and the largest distance of their ends from

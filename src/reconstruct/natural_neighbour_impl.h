@@ -124,6 +124,7 @@ struct NaturalNeighbour::Impl {
     // or outside): linear along the edge, the limit of the coordinates from inside. Inside,
     // within rounding of the edge, the conflict zone's circumcentres are far off and the
     // coordinates' sums cancel catastrophically; outside, the point would get no value.
+    if (lt == Delaunay::OUTSIDE_CONVEX_HULL) hint = nearest_hull_face(dt, points, q, hint);  // not where the walk ended
     if (near_hull_edge(q, hint, out)) return true;
     if (lt == Delaunay::OUTSIDE_CONVEX_HULL) return false;
     // A point on an inner edge lies in both of its faces, and the walk may end in either (it

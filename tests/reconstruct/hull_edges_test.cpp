@@ -91,6 +91,28 @@ TEST(HullEdges, EveryTriangulationMethodReproducesALinearFunctionOnEveryHullEdge
   EXPECT_GT(queries, 3000);
 }
 
+TEST(HullEdges, APointJustOutsideALatticesSideGetsTheSameValueInABatchAsAlone) {
+  // An 11 x 11 lattice: each side of its hull is ten collinear hull edges, and CGAL's walk to a
+  // point just outside one may end at any of them (it depends on where the walk began, here the
+  // query before). The value must be the edge's, alone or after any other query (an outside-in
+  // trial: NaN after (0, 9.95), 2.5 alone, for every triangulation method).
+  ScatteredSamples s;
+  for (int j = 0; j <= 10; ++j)
+    for (int i = 0; i <= 10; ++i) s.points.emplace_back(i, j), s.values.push_back(f(Vec2(i, j)));
+  s.channels = 1;
+  const double above = std::nextafter(10.0, 11.0), beyond = std::nextafter(10.0, 11.0);
+  const std::vector<Vec2> outside = {{2.5, above}, {7.25, above}, {beyond, 3.5}, {0.5, -1e-15}, {-1e-15, 8.75}};
+  const std::vector<Vec2> before = {{0, 9.95}, {9.95, 0.2}, {5, 5}, {0.01, 0.01}, {9.99, 9.99}};
+  for (const Method m : kTriangulationMethods)
+    for (const Vec2& q : outside) {
+      const double alone = values_with_no_outside(m, s, {q})[0];
+      ASSERT_NEAR(alone, f(q), 1e-9) << method_name(m) << " at " << q.transpose();
+      for (const Vec2& b : before)
+        EXPECT_EQ(values_with_no_outside(m, s, {b, q})[1], alone)
+            << method_name(m) << " at " << q.transpose() << " after " << b.transpose();
+    }
+}
+
 TEST(HullEdges, ALineThroughASliverFaceOfThreeSamplesCollinearToRounding) {
   // Three samples collinear to 3e-17 (the middle one a rounding error off the line of the other
   // two) make a Delaunay face of that thickness. Points computed on the line between the outer
