@@ -164,7 +164,9 @@ InterpolantResult make_scattered_interpolant(Method method, const ScatteredSampl
 InterpolantResult make_point_interpolant(Method method, const ScatteredSamples& samples, const MethodParams& params = {});
 
 /// `radrecon interpolate --border-samples` and Python's border_samples=True: border samples
-/// (border_samples.h) on `domain` (the raster's), or without one on the samples' bounding box,
+/// (border_samples.h) on the border of the rectangle that holds `domain` (the raster's) and every
+/// sample (so a window of a raster gets the values of the whole; without a domain, the samples'
+/// bounding box),
 /// and beside `params`' barriers (but for thin-plate and a multiquadric of a given r, whose fits
 /// through two such samples 2e-6 apart swing past a barrier's free end), appended to `samples`; `params` then adds no barrier samples of
 /// its own. Returns how many were added, or why none could be (the method takes none:

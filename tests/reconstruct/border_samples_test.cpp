@@ -13,6 +13,7 @@
 
 #include "core/tolerances.h"
 #include "reconstruct/border_samples.h"
+#include "reconstruct/methods.h"
 
 namespace radrecon {
 namespace border_samples_test {
@@ -76,6 +77,27 @@ const std::vector<Polyline> kWalls = {{{0.8, 0.2}, {0.8, 0.7}, {1.5, 0.7}}, {{1.
 constexpr Rect kWide{0, 0, 2, 1};
 
 double linear(const Vec2& p, int c) { return c == 0 ? 3 + 2 * p.x() - 5 * p.y() : -1 + 0.5 * p.x() + 4 * p.y(); }
+
+TEST(BorderSamples, ADomainInsideTheSamplesPutsNoneAmongThemAndAWindowGetsTheWholesValues) {
+  // interpolate's domain is the raster's; a window of the samples (a domain inside their extent)
+  // put border samples among them, made-up values that moved the interpolant (an outside-in
+  // trial: 0.054 on data of range 2). The border is now that of the rectangle holding the
+  // domain and every sample: none inside the samples' extent, and the same samples, so the
+  // same values, for a window as for the whole.
+  const Rect whole{0, 0, 1, 1}, window{0.25, 0.25, 0.75, 0.75};
+  const ScatteredSamples interior =
+      sampled(random_points(300, whole, 11), 1, [](const Vec2& p, int) { return std::sin(6 * p.x()) * p.y() + p.x(); });
+  Vec2 lo = interior.points[0], hi = lo;
+  for (const Vec2& p : interior.points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  const Rect extent{lo.x(), lo.y(), hi.x(), hi.y()};
+  ScatteredSamples for_window = interior, for_whole = interior;
+  MethodParams params_window, params_whole;
+  ASSERT_GT(add_border_samples(Method::shepard, for_window, window, params_window).value(), 0u);
+  ASSERT_GT(add_border_samples(Method::shepard, for_whole, extent, params_whole).value(), 0u);
+  for (const Vec2& p : added_points(for_window, interior)) EXPECT_TRUE(on_border(p, extent)) << p.transpose();
+  EXPECT_EQ(for_window.points, for_whole.points);
+  EXPECT_EQ(for_window.values, for_whole.values);
+}
 
 TEST(BorderSamples, EveryAddedSampleReproducesALinearFunction) {
   const ScatteredSamples interior = sampled(random_points(400, kWide, 11), 2, linear);
