@@ -100,9 +100,14 @@ py::array interpolate(const py::object& points_arg, const py::object& values_arg
   samples.points.resize(n);
   for (size_t i = 0; i < n; ++i) samples.points[i] = Vec2(points.data()[2 * i], points.data()[2 * i + 1]);
   samples.values.assign(values.data(), values.data() + values.size());
-  const Result<size_t> merged = merge_duplicate_points(samples, params.barriers, "points");
-  if (!merged) throw UserError("points", merged.reason());
-  const size_t removed = merged.value();
+  WarningCollector warnings;  // the library's warnings, raised as Python's below
+  size_t removed = 0;
+  {
+    py::gil_scoped_release release;  // a million samples with barriers take a while
+    const Result<size_t> merged = merge_duplicate_points(samples, params.barriers, "points");
+    if (!merged) throw UserError("points", merged.reason());
+    removed = merged.value();
+  }
   if (removed > 0 &&
       PyErr_WarnEx(PyExc_UserWarning, merged_samples_message(removed, n, samples.points.size()).c_str(), 1) != 0)
     throw py::error_already_set();  // warnings turned into errors
@@ -133,20 +138,19 @@ py::array interpolate(const py::object& points_arg, const py::object& values_arg
     at = as_vec2(*queries);
     shape = {queries->shape(0)};
   }
-  if (border_samples) {
-    // On the raster's domain (checked above), else the samples' bounding box (as --border-samples).
-    std::optional<Rect> on;
-    if (domain) on = Rect{(*domain)[0], (*domain)[1], (*domain)[2], (*domain)[3]};
-    const Result<size_t> added = add_border_samples(method, samples, on, params);
-    if (!added) throw UserError("border_samples", added.reason());
-  }
+  // The border's rectangle holds the domain (checked above) and every sample (as --border-samples).
+  std::optional<Rect> border_domain;
+  if (domain) border_domain = Rect{(*domain)[0], (*domain)[1], (*domain)[2], (*domain)[3]};
   if (values.ndim() == 2) shape.push_back(channels);
   py::array_t<double> out(shape);
   double* result = out.mutable_data();
   const size_t count = raster ? static_cast<size_t>(grid.width) * grid.height : at.size();
-  WarningCollector warnings;  // the library's warnings, raised as Python's below
   {
     py::gil_scoped_release release;
+    if (border_samples) {
+      const Result<size_t> added = add_border_samples(method, samples, border_domain, params);
+      if (!added) throw UserError("border_samples", added.reason());
+    }
     const InterpolantResult interpolant = make_point_interpolant(method, samples, params);
     if (!interpolant) throw UserError("points", interpolant.reason());
     const std::span<double> results(result, count * static_cast<size_t>(channels));
