@@ -147,12 +147,14 @@ py::array interpolate(const py::object& points_arg, const py::object& values_arg
   const size_t count = raster ? static_cast<size_t>(grid.width) * grid.height : at.size();
   {
     py::gil_scoped_release release;
+    size_t added_samples = 0;
     if (border_samples) {
       const Result<size_t> added = add_border_samples(method, samples, border_domain, params);
       if (!added) throw UserError("border_samples", added.reason());
+      added_samples = added.value();
     }
     const InterpolantResult interpolant = make_point_interpolant(method, samples, params);
-    if (!interpolant) throw UserError("points", interpolant.reason());
+    if (!interpolant) throw UserError("points", reason_with_border_samples(interpolant.reason(), added_samples));
     const std::span<double> results(result, count * static_cast<size_t>(channels));
     for (size_t first = 0; first < count; first += kEvaluateBatch) {
       const size_t batch = std::min(kEvaluateBatch, count - first);
@@ -252,7 +254,7 @@ PYBIND11_MODULE(radrecon, m) {
     std::vector<std::string> names;
     for (Method method : all_methods()) names.push_back(method_name(method));
     return names;
-  }, "The reconstruction methods' names, as method= takes them.");
+  }, "The reconstruction methods' names, as --method takes them; interpolate()'s method= takes all but 'gouraud' (it draws cells: render and paper).");
 
   m.def("interpolate", &interpolate, py::arg("points"), py::arg("values"), py::arg("queries") = py::none(),
         py::arg("raster") = py::none(), py::arg("domain") = py::none(), py::arg("method") = "natural-neighbour",

@@ -151,12 +151,14 @@ void run_interpolate(const InterpolateArgs& args) {
   } else {
     samples = read_samples_csv(args.samples, &value_names, columns, params.barriers);
   }
+  size_t border_samples = 0;
   if (args.border_samples) {
-    // On --domain (the raster's), else the samples' bounding box.
+    // On the rectangle holding --domain (the raster's) and every sample.
     const Result<size_t> added =
         add_border_samples(*method, samples, args.domain.empty() ? std::nullopt : std::optional<Rect>(raster.domain), params);
     if (!added) throw UserError(args.samples, "border samples: " + added.reason());
-    if (!args.quiet) std::fprintf(stderr, "interpolate: %zu border samples added\n", added.value());
+    border_samples = added.value();
+    if (!args.quiet) std::fprintf(stderr, "interpolate: %zu border samples added\n", border_samples);
   }
   if (!geo_raster && format == FileFormat::pfm && samples.channels != 1 && samples.channels != 3)
     throw UserError("--out", "PFM needs 1 or 3 value columns (greyscale or colour); " + args.samples + " has " +
@@ -189,7 +191,7 @@ void run_interpolate(const InterpolateArgs& args) {
   const auto build_start = Clock::now();
   const InterpolantResult interpolant = make_point_interpolant(*method, samples, params);
   const double building_s = seconds_since(build_start);
-  if (!interpolant) throw UserError(args.samples, interpolant.reason());
+  if (!interpolant) throw UserError(args.samples, reason_with_border_samples(interpolant.reason(), border_samples));
   // A raster's cell centres (timed with the interpolation below, as the Python module's raster
   // is), made batch by batch unless a CSV output lists them all: W3's 4,000,000 would take 64 MB.
   const auto raster_start = Clock::now();

@@ -342,4 +342,9 @@ Result<size_t> add_border_samples(Method method, ScatteredSamples& samples, cons
   return added;
 }
 
+std::string reason_with_border_samples(const std::string& reason, size_t border_samples) {
+  if (border_samples == 0) return reason;
+  return reason + " (the samples counted include the " + std::to_string(border_samples) + " border samples added)";
+}
+
 }  // namespace radrecon

@@ -174,4 +174,8 @@ InterpolantResult make_point_interpolant(Method method, const ScatteredSamples& 
 Result<size_t> add_border_samples(Method method, ScatteredSamples& samples, const std::optional<Rect>& domain,
                                   MethodParams& params);
 
+/// A failure of make_point_interpolant() after add_border_samples() added `border_samples`: its
+/// counts include them, which the user did not pass, so the reason says so (unchanged for 0).
+std::string reason_with_border_samples(const std::string& reason, size_t border_samples);
+
 }  // namespace radrecon

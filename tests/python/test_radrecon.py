@@ -163,6 +163,14 @@ def test_no_influence_across_a_barrier():
         assert np.max(np.abs(got)) < 1e-12, method
 
 
+def test_a_count_that_includes_border_samples_says_so():
+    # 7,990 samples are within one global system's 8,000; with the border samples added they are
+    # not, and the refusal said "8,2xx samples are too many" of samples the user never passed.
+    p, v = samples(7990, seed=5)  # refused before any system is built
+    with pytest.raises(radrecon.Error, match=r"too many .* border samples added\)"):
+        radrecon.interpolate(p, v, queries=p[:3], method="thin-plate", border_samples=True)
+
+
 def test_barrier_samples_keyword():
     # barrier_samples=False is --param barrier-samples=off: without the samples along the wall a
     # query beside it takes its natural neighbours from farther away, so the values differ.
