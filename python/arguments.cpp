@@ -52,9 +52,15 @@ Doubles doubles_of(const py::handle& o, const std::string& what) {
       return py::object(py::none());  // ragged or not numbers: refused below as before
     }
   }();
-  if (!dtype.is_none() && py::hasattr(dtype, "kind") && py::str(dtype.attr("kind")).cast<std::string>() == "c")
+  const std::string kind = !dtype.is_none() && py::hasattr(dtype, "kind") ? py::str(dtype.attr("kind")).cast<std::string>() : "";
+  if (kind == "c")
     throw UserError(what, "complex numbers are not taken (their imaginary parts would be dropped); pass the real "
                           "parts (numpy.real) if they are what is meant");
+  // NumPy would parse text as numbers ("0.5") and take dates as counts of their unit, in silence.
+  if (kind == "U" || kind == "S" || kind == "M" || kind == "m" || kind == "V")
+    throw UserError(what, "an array of numbers is expected, got one of " + py::str(dtype).cast<std::string>() +
+                              (kind == "M" || kind == "m" ? " (dates or times)" : kind == "V" ? " (records)" : " (text)") +
+                              "; convert it first (e.g. a.astype(float)) if it holds numbers");
   Doubles a = Doubles::ensure(o);
   if (!a) {
     PyErr_Clear();
@@ -75,7 +81,9 @@ std::vector<std::string> settings_of(const py::kwargs& params) {
     std::string name = py::str(key).cast<std::string>();
     if (name == "barrier_samples") name = "barrier-samples";  // a keyword cannot hold a hyphen
     std::string text;
-    if (py::isinstance<py::bool_>(value) && name == "barrier-samples") text = value.cast<bool>() ? "on" : "off";
+    // A Python or NumPy bool (numpy.bool_ is no Python bool: its str() is "True").
+    const bool is_bool = py::isinstance<py::bool_>(value) || py::isinstance(value, py::module_::import("numpy").attr("bool_"));
+    if (is_bool && name == "barrier-samples") text = PyObject_IsTrue(value.ptr()) == 1 ? "on" : "off";
     else text = py::str(value).cast<std::string>();
     out.push_back(name + "=" + text);
   }

@@ -129,7 +129,8 @@ MethodParams parse_params(Method method, const std::vector<std::string>& setting
       if (!(p.shepard_mu > 0)) throw UserError(where, "must be > 0");
     } else if (method == Method::shepard && name == "k") {
       const double k = parse_number(value, where);
-      if (k < 0 || k != std::floor(k) || k > 1e6) throw UserError(where, "must be an integer >= 0 (0: all samples)");
+      if (k < 0 || k != std::floor(k) || k > 1e6)
+        throw UserError(where, "must be an integer from 0 (all samples) to 1000000, got " + value);
       p.shepard_k = static_cast<int>(k);
     } else if ((method == Method::shepard || method == Method::multiquadric || method == Method::thin_plate) &&
                name == "radius") {
@@ -138,7 +139,7 @@ MethodParams parse_params(Method method, const std::vector<std::string>& setting
     } else if ((method == Method::shepard || method == Method::multiquadric || method == Method::thin_plate) &&
                name == "min_points") {
       const double m = parse_number(value, where);
-      if (m < 1 || m != std::floor(m) || m > 1e6) throw UserError(where, "must be an integer >= 1");
+      if (m < 1 || m != std::floor(m) || m > 1e6) throw UserError(where, "must be an integer from 1 to 1000000, got " + value);
       p.min_points = static_cast<int>(m);
     } else if (method == Method::multiquadric && name == "mu") {
       p.multiquadric_mu = parse_number(value, where);
@@ -158,8 +159,9 @@ MethodParams parse_params(Method method, const std::vector<std::string>& setting
       if (const std::string problem = rbf_patch_problem(k); !problem.empty()) throw UserError(where, problem);
       (method == Method::multiquadric ? p.multiquadric_k : p.thin_plate_k) = static_cast<int>(k);
     } else if (method == Method::multiquadric && name == "poly") {
-      if (value == "0") p.multiquadric_poly = 0;
-      else if (value == "1") p.multiquadric_poly = 1;
+      const std::optional<double> poly = parse_finite(value);  // 1.0 as well as 1 (Python's poly=1.0)
+      if (poly == 0.0) p.multiquadric_poly = 0;
+      else if (poly == 1.0) p.multiquadric_poly = 1;
       else throw UserError(where, "must be 0 (no polynomial) or 1 (a linear polynomial), got '" + value + "'");
     } else if (is_natural_neighbour_method(method) && name == "barrier-samples") {
       if (value == "on") p.barrier_samples = true;

@@ -185,6 +185,8 @@ def test_barrier_samples_keyword():
     assert np.max(np.abs(on - off)) > 1e-6
     with pytest.raises(radrecon.Error, match="barrier-samples"):
         radrecon.interpolate(p, v, queries=q, barriers=wall, barrier_samples="maybe")
+    # A NumPy bool as a Python one (it was refused: "got 'False'").
+    assert np.array_equal(radrecon.interpolate(p, v, queries=q, barriers=wall, barrier_samples=np.bool_(False)), off)
     # Refusals name the argument at fault, counting from 0 as Python does.
     with pytest.raises(radrecon.Error, match=r"^barriers: linear does not take barriers"):
         radrecon.interpolate(p, v, queries=q, barriers=wall, method="linear")
@@ -252,6 +254,13 @@ def test_bad_arrays_are_named():
         assert len(str(e.value)) < 200
     with pytest.raises(radrecon.Error, match=r"^points: an array of numbers is expected, got None"):
         radrecon.interpolate(None, v, queries=p)
+    # Text and dates NumPy would have parsed or counted in silence (an outside-in trial).
+    for kwargs, pattern in [(dict(queries=[["0.5", "0.5"]]), r"^queries: an array of numbers is expected, got one of <U3 \(text\)"),
+                            (dict(queries=p.astype("datetime64[s]")), r"^queries: .* \(dates or times\)")]:
+        with pytest.raises(radrecon.Error, match=pattern):
+            radrecon.interpolate(p, v, **kwargs)
+    with pytest.raises(radrecon.Error, match=r"^values: .* \(text\)"):
+        radrecon.interpolate(p, v.astype(str), queries=p)
 
 
 def test_raster_and_domain_of_the_wrong_shape_or_kind_are_named(tmp_path):

@@ -422,5 +422,13 @@ TEST(Multiquadric, BorderSamplesWithBarriersAndOneRadiusStayOnTheDomainsBorder) 
   }
 }
 
+TEST(Multiquadric, PolyTakesTheNumbersZeroAndOneInAnyNotation) {
+  // Python's poly=1.0 arrives as "1.0": it was refused while k=3.0 was taken.
+  EXPECT_EQ(parse_params(Method::multiquadric, {"poly=1.0"}, "test").multiquadric_poly, 1);
+  EXPECT_EQ(parse_params(Method::multiquadric, {"poly=0e0"}, "test").multiquadric_poly, 0);
+  for (const std::string bad : {"poly=2", "poly=0.5", "poly=one", "poly=nan"})
+    EXPECT_THROW(parse_params(Method::multiquadric, {bad}, "test"), UserError) << bad;
+}
+
 }  // namespace multiquadric_test
 }  // namespace radrecon
