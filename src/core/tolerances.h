@@ -303,6 +303,12 @@ inline constexpr double kNielsonResidualRelative = 1e-13;
 /// across); a light that little behind a surface is drawn in front of it.
 inline constexpr double kEmitterTieRelative = 1e-6;
 
+/// `export` writes positions as 32-bit floats, relative to an origin near the model kept by the
+/// nodes' translation when the model's centre lies farther from (0, 0, 0) than this many of its
+/// extents (beyond, a float's rounding of the centre's magnitude, 2^-24 of it, would pass 1e-6 of
+/// the extent: a 0.45 m lamp at x = 300 km came out 0.4375 m wide).
+inline constexpr double kExportOriginFreeExtents = 16;
+
 /// `render` warns of pixels whose radiosity lies below 0 by more than this fraction of the
 /// picture's largest (a method overshooting its samples), not of round-off below 0.
 inline constexpr double kRenderNegativeRelative = 1e-9;

@@ -8,6 +8,7 @@
 
 #include "core/check.h"
 #include "core/error.h"
+#include "core/tolerances.h"
 #include "io/atomic_file.h"
 #include "io/image_io.h"
 #include "scene/side.h"
@@ -47,10 +48,24 @@ void put_u32(std::vector<std::uint8_t>& out, std::uint32_t v) {
 
 }  // namespace
 
+Vec3 export_origin(const Scene& scene) {
+  Vec3 lo = Vec3::Constant(INFINITY), hi = -lo;
+  for (const Surface& s : scene.surfaces)
+    for (const Vec3& c : s.polygon()) lo = lo.cwiseMin(c), hi = hi.cwiseMax(c);
+  const Vec3 centre = 0.5 * (lo + hi);
+  const double extent = (hi - lo).maxCoeff();
+  if (!(centre.cwiseAbs().maxCoeff() > tol::kExportOriginFreeExtents * extent)) return Vec3::Zero();
+  // The centre rounded to a multiple of the power of two at least the extent: a float exactly up
+  // to 2^24 such steps, so that a reader holding the translation as a float holds it exactly.
+  const double step = std::exp2(std::ceil(std::log2(extent)));
+  return (centre / step).array().round().matrix() * step;
+}
+
 void write_lightmapped_glb(const std::filesystem::path& path, const Scene& scene, const Solution& solution,
                            const LightmapAtlas& atlas, double white_w_m2, const nlohmann::json& extras) {
   RR_CHECK(white_w_m2 > 0, "the white point must be positive");
   Binary bin;
+  const Vec3 origin = export_origin(scene);
   nlohmann::json accessors = nlohmann::json::array(), meshes = nlohmann::json::array(), nodes = nlohmann::json::array();
   for (const LightmapTile& tile : atlas.tiles) {
     const Surface& surface = scene.surfaces[tile.side.surface];
@@ -63,7 +78,7 @@ void write_lightmapped_glb(const std::filesystem::path& path, const Scene& scene
     std::vector<float> position, normal, texcoord;
     Vec3 lo = Vec3::Constant(INFINITY), hi = -lo;
     for (const Vec2& c : uv) {
-      const Vec3 p = surface.point(c.x(), c.y());
+      const Vec3 p = surface.point(c.x(), c.y()) - origin;  // exact: the origin is near the model
       const Vec2 t = atlas.texture_coordinate(tile, c.x(), c.y());
       for (int k = 0; k < 3; ++k) {
         position.push_back(static_cast<float>(p[k]));
@@ -91,6 +106,7 @@ void write_lightmapped_glb(const std::filesystem::path& path, const Scene& scene
                       {"primitives", {{{"attributes", {{"POSITION", a}, {"NORMAL", a + 1}, {"TEXCOORD_0", a + 2}}},
                                        {"indices", a + 3}, {"material", 0}}}}});
     nodes.push_back({{"name", name}, {"mesh", meshes.size() - 1}});
+    if (origin != Vec3::Zero()) nodes.back()["translation"] = {origin.x(), origin.y(), origin.z()};
   }
   const int image_view = [&] {
     const std::vector<std::uint8_t> png = encode_png_tone_mapped(atlas.radiosity_w_m2, white_w_m2);

@@ -3,7 +3,7 @@
 // as a lightmap texture (export/lightmap.h), for Blender, three.js and game engines.
 //
 // Each surface side is a mesh of its own (named after the side; a two-sided surface gives two,
-// facing opposite ways) with positions (metres, the scene's axes), normals and TEXCOORD_0 into
+// facing opposite ways) with positions (metres, the scene's axes, from export_origin()), normals and TEXCOORD_0 into
 // the atlas. They share one material: black base colour, fully rough, not metallic, and the
 // lightmap as its emissive texture (emissiveFactor 1), so that any glTF viewer shows the baked
 // radiosity as it is, unlit by its own lights. The lightmap is an sRGB PNG of
@@ -17,6 +17,12 @@
 #include "export/lightmap.h"
 
 namespace radrecon {
+
+/// Where a model's exported positions are measured from, metres: (0, 0, 0) for a model within
+/// tol::kExportOriginFreeExtents of its extent from it (the usual case); else its bounding box's
+/// centre rounded to a multiple of the power of two at least its extent, which every node then
+/// takes as its translation (float positions far from (0, 0, 0) would lose the model's shape).
+Vec3 export_origin(const Scene& scene);
 
 /// Writes `path` atomically. `extras` goes into asset.extras (with white_w_m2 and
 /// texels_per_metre added).

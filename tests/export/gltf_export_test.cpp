@@ -142,6 +142,47 @@ TEST(GltfExport, GeometryAndTexelsReadBackByAssimp) {
   std::filesystem::remove(path);
 }
 
+TEST(GltfExport, AModelFarFromTheOriginKeepsItsShapeThroughTheNodesTranslation) {
+  // The floor and lamp 300 km along x: as floats there, positions step by 1/32 m (a 0.45 m lamp
+  // came out 0.4375 m wide; an outside-in trial). Read back by assimp, each vertex plus its node's
+  // translation (a float, exact as export_origin() rounds it) is the scene's corner.
+  Scene scene = floor_and_lamp();
+  for (Surface& s : scene.surfaces)
+    for (Vec3& c : s.corners) c += Vec3(300000.3, -2000.1, 7);
+  const Solution solution = floor_solution(scene);
+  const SolutionReconstruction recon(scene, solution, Method::thin_plate, {}, "test");
+  const LightmapAtlas atlas = bake_lightmaps(scene, solution, recon, 16, "test");
+  const std::filesystem::path path = std::filesystem::temp_directory_path() / "radrecon_gltf_far_test.glb";
+  write_lightmapped_glb(path, scene, solution, atlas, 2.8, nlohmann::json::object());
+  EXPECT_NE(export_origin(scene), Vec3::Zero());
+  EXPECT_EQ(export_origin(floor_and_lamp()), Vec3::Zero()) << "a model about the origin keeps its positions";
+
+  Assimp::Importer importer;
+  const aiScene* read = importer.ReadFile(path.string(), 0);
+  ASSERT_NE(read, nullptr) << importer.GetErrorString();
+  int checked = 0;
+  for (unsigned k = 0; k < read->mRootNode->mNumChildren; ++k) {
+    const aiNode* node = read->mRootNode->mChildren[k];
+    ASSERT_EQ(node->mNumMeshes, 1u);
+    const aiMesh* mesh = read->mMeshes[node->mMeshes[0]];
+    const Surface* surface = nullptr;
+    for (const Surface& s : scene.surfaces)
+      if (s.name == mesh->mName.C_Str()) surface = &s;
+    ASSERT_NE(surface, nullptr) << mesh->mName.C_Str();
+    const aiMatrix4x4& m = node->mTransformation;
+    const Vec3 translation(m.a4, m.b4, m.c4);
+    for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
+      const Vec3 p = translation + Vec3(mesh->mVertices[v].x, mesh->mVertices[v].y, mesh->mVertices[v].z);
+      double nearest = INFINITY;
+      for (const Vec3& c : surface->corners) nearest = std::min(nearest, (p - c).norm());
+      EXPECT_LT(nearest, 2e-6) << mesh->mName.C_Str() << " vertex " << v;  // 1e-6 of the model's 2 m
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 8);
+  std::filesystem::remove(path);
+}
+
 TEST(Lightmap, GuttersRepeatTheirTilesBorderAndTilesDoNotOverlap) {
   // Around each tile, kLightmapGutter texels repeat its border (the nearest texel of the tile),
   // so that bilinear filtering at a tile's edge never reads a neighbour; no texel belongs to two
