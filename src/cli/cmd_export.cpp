@@ -72,8 +72,10 @@ void run_export(const ExportArgs& args) {
   parse_params(method_option(args.method), args.params, "--param");  // refused before anything is read
   const Scene scene = load_scene(args.scene);
   const Solution solution = read_solution_json(args.solution);
-  const auto recon = reconstruct_solution(scene, solution, args.solution, args.method, args.params, args.no_barriers,
-                                          args.border_samples);
+  const auto recon = noting_the_solutions_scene(scene, solution, args.scene, [&] {
+    return reconstruct_solution(scene, solution, args.solution, args.method, args.params, args.no_barriers,
+                                args.border_samples);
+  });
   Progress progress("export", args.quiet);
   const LightmapAtlas atlas = bake_lightmaps(scene, solution, *recon, args.texels, "--texels", &progress);
   if (atlas.texels_without_value > 0)

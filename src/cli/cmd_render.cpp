@@ -144,18 +144,19 @@ void run_render(const RenderArgs& args) {
   refuse_overwriting_inputs(args.out, "--out", inputs);
   check_output_file(args.out, "--out");
   const Scene scene = load_scene(args.scene);
-  const Camera* camera = nullptr;
-  for (const Camera& c : scene.cameras)
-    if (c.name == args.camera) camera = &c;
-  if (!camera) {
+  parse_params(method_option(args.method), args.params, "--param");  // refused before the solution is read
+  const Solution solution = read_solution_json(args.solution);
+  const Camera* camera = noting_the_solutions_scene(scene, solution, args.scene, [&] {
+    for (const Camera& c : scene.cameras)
+      if (c.name == args.camera) return &c;
     std::string names;
     for (const Camera& c : scene.cameras) names += (names.empty() ? "" : ", ") + c.name;
     throw UserError("--camera", "the scene has no camera '" + args.camera + "' (cameras: " + (names.empty() ? "none" : names) + ")");
-  }
-  parse_params(method_option(args.method), args.params, "--param");  // refused before the solution is read
-  const Solution solution = read_solution_json(args.solution);
-  const std::unique_ptr<SolutionReconstruction> recon_ptr = reconstruct_solution(
-      scene, solution, args.solution, args.method, args.params, args.no_barriers, args.border_samples);
+  });
+  const std::unique_ptr<SolutionReconstruction> recon_ptr = noting_the_solutions_scene(scene, solution, args.scene, [&] {
+    return reconstruct_solution(scene, solution, args.solution, args.method, args.params, args.no_barriers,
+                                args.border_samples);
+  });
   const SolutionReconstruction& recon = *recon_ptr;
   const auto start = std::chrono::steady_clock::now();
   Progress reporter("render", args.quiet);

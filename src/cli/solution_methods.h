@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/error.h"
 #include "sampling/solution_reconstruction.h"
 
 namespace radrecon::cli {
@@ -23,6 +24,22 @@ std::unique_ptr<SolutionReconstruction> reconstruct_solution(const Scene& scene,
                                                              const std::string& method_name,
                                                              const std::vector<std::string>& params, bool no_barriers,
                                                              bool border_samples);
+
+/// Runs `step` (finding the scene's camera, reconstructing the solution) and, when it refuses
+/// while `solution` records another scene's name than `scene`'s, adds that to the refusal: a
+/// solution of a model rendered with --scene left at its default read "the scene's side 'ground'
+/// is not in the solution ... solve the scene again".
+template <class Step>
+auto noting_the_solutions_scene(const Scene& scene, const Solution& solution, const std::string& scene_option, Step&& step) {
+  try {
+    return step();
+  } catch (const UserError& e) {
+    if (solution.scene.empty() || solution.scene == scene.name) throw;
+    throw UserError(std::string(e.what()) + " (the solution was solved from scene '" + solution.scene +
+                    "', and --scene " + scene_option + " is scene '" + scene.name +
+                    "': give --scene the scene it was solved from)");
+  }
+}
 
 /// The white point of a picture with no lit surface in sight (render and cornell): the largest
 /// radiosity (W/m^2) of an element of a side that emits nothing; nullopt when none is lit.

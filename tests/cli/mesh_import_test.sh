@@ -114,6 +114,18 @@ run moved_export export --scene "$TMP/moved.json" --solution "$TMP/lit_out.json"
 expect_rc moved_export 2
 expect_stderr_has moved_export "has moved since the solve"
 expect_no_output moved_export "$TMP/moved.glb"
+# --scene left out: the default scene is read, and the refusal says which scene was solved (it
+# said only "the scene's side 'ground' is not in the solution ... solve the scene again").
+run default_scene_render render --solution "$TMP/lit_out.json" --method constant --camera default --size 16x12 \
+  --out "$TMP/default_scene.png" --quiet
+expect_rc default_scene_render 2
+expect_stderr_has default_scene_render "no camera 'default'"
+expect_stderr_has default_scene_render "the solution was solved from scene 'lit', and --scene paper is scene 'paper'"
+run default_scene_export export --solution "$TMP/lit_out.json" --out "$TMP/default_scene.glb" --quiet
+expect_rc default_scene_export 2
+expect_stderr_has default_scene_export "is not in the solution"
+expect_stderr_has default_scene_export "the solution was solved from scene 'lit'"
+expect_no_output default_scene_export "$TMP/default_scene.glb"
 
 # --- a malformed model: refused, naming it ----------------------------------------------------
 printf 'v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 9\n' >"$TMP/broken.obj"
