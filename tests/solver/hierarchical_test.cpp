@@ -60,6 +60,17 @@ TEST(Hierarchical, RefusesImpossibleLeafCounts) {
   EXPECT_THROW(paper_leaves(287), UserError);   // not 1 + 3k
   EXPECT_THROW(paper_leaves(0), UserError);
   EXPECT_THROW(paper_leaves(1000000), UserError);  // beyond the minimum element size
+  // All of the ground's 256 x 256 at the minimum element size, or nearly: reached only as epsilon
+  // goes to 0 (a search crept for minutes), so refused at once, with the count within reach.
+  for (const int leaves : {65536, 64882}) {
+    try {
+      paper_leaves(leaves);
+      ADD_FAILURE() << leaves << " leaves accepted";
+    } catch (const UserError& e) {
+      EXPECT_NE(std::string(e.what()).find("allows at most 65536"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("ask for at most 64879"), std::string::npos) << e.what();
+    }
+  }
 }
 
 TEST(Hierarchical, ASmallTrianglesLeafCountsAreReachedAndABlackSideIsRefusedAtOnce) {
