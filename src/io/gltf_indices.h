@@ -20,6 +20,9 @@ namespace radrecon {
 /// do not fit their buffer and sparse accessors are left to assimp, which refuses them.
 /// UserError "PATH: meshes[i].primitives[j]: vertex index K out of range (N vertices)"; also for
 /// a line loop of fewer than 2 indices, which assimp 5.2 reads past.
+/// Every integer field it reads (and those assimp reads: a mesh's, a node's, a scene's) is first
+/// held to the glTF 2.0 schema's bounds, naming the field ("accessors[1].byteOffset: must be an
+/// integer >= 0 (the glTF schema), got -2"): assimp 5.2 reads a negative or fractional one as absent.
 void check_gltf_indices(const nlohmann::json& doc, const std::string& bin, const std::string& folder, const std::string& path);
 
 }  // namespace radrecon

@@ -347,6 +347,49 @@ TEST(MeshImportErrors, GltfMissingBufferBadAccessorSchemaAndTruncation) {
   EXPECT_TRUE(Refused(dir, "nan.gltf", testing_support::gltf_text(g, nan_bytes), {"not finite"}));
 }
 
+TEST(MeshImportErrors, GltfIntegerFieldsOutsideTheSchemaAreRefusedNamingTheField) {
+  // assimp 5.2 reads a negative or fractional integer field as its default: an indices accessor
+  // at byteOffset -2 was read from offset 0 (other indices, a lamp 79 times too bright, exit 0).
+  TempDir dir("mesh_bad");
+  std::string buffer;
+  const nlohmann::json g = testing_support::quad_gltf(buffer);
+  const auto with = [&](const nlohmann::json::json_pointer& field, const nlohmann::json& value) {
+    nlohmann::json h = g;
+    h[field] = value;
+    return testing_support::glb_bytes(h, buffer);
+  };
+  using P = nlohmann::json::json_pointer;
+  EXPECT_TRUE(Refused(dir, "offset.glb", with(P("/accessors/1/byteOffset"), -2),
+                      {"accessors[1].byteOffset", "an integer >= 0", "got -2"}));
+  EXPECT_TRUE(Refused(dir, "view_offset.glb", with(P("/bufferViews/1/byteOffset"), -2), {"bufferViews[1].byteOffset", "got -2"}));
+  EXPECT_TRUE(Refused(dir, "half.glb", with(P("/accessors/1/byteOffset"), 1.5), {"accessors[1].byteOffset", "got 1.5"}));
+  EXPECT_TRUE(Refused(dir, "real.glb", with(P("/accessors/0/count"), 4.0), {"accessors[0].count", "an integer >= 1", "got 4.0"}));
+  EXPECT_TRUE(Refused(dir, "count0.glb", with(P("/accessors/1/count"), 0), {"accessors[1].count", "an integer >= 1", "got 0"}));
+  EXPECT_TRUE(Refused(dir, "length0.glb", with(P("/bufferViews/0/byteLength"), 0), {"bufferViews[0].byteLength", "got 0"}));
+  EXPECT_TRUE(Refused(dir, "buffer.glb", with(P("/buffers/0/byteLength"), -60), {"buffers[0].byteLength", "got -60"}));
+  EXPECT_TRUE(Refused(dir, "view.glb", with(P("/accessors/0/bufferView"), "0"), {"accessors[0].bufferView", "got \"0\""}));
+  for (const nlohmann::json& stride : {nlohmann::json(-12), nlohmann::json(2), nlohmann::json(14), nlohmann::json(256)})
+    EXPECT_TRUE(Refused(dir, "stride.glb", with(P("/bufferViews/0/byteStride"), stride),
+                        {"bufferViews[0].byteStride", "a multiple of 4 in [4, 252]", "got " + stride.dump()}));
+  // A primitive's indices of -1 were no indices (4 vertices, one triangle of the quad), a mode
+  // of 7 no faces; a node's mesh of -1 no mesh.
+  EXPECT_TRUE(Refused(dir, "indices.glb", with(P("/meshes/0/primitives/0/indices"), -1), {"meshes[0].primitives[0].indices", "got -1"}));
+  EXPECT_TRUE(Refused(dir, "mode.glb", with(P("/meshes/0/primitives/0/mode"), 7), {"meshes[0].primitives[0].mode", "in [0, 6]", "got 7"}));
+  EXPECT_TRUE(Refused(dir, "position.glb", with(P("/meshes/0/primitives/0/attributes/POSITION"), -1),
+                      {"meshes[0].primitives[0].attributes.POSITION", "got -1"}));
+  EXPECT_TRUE(Refused(dir, "material.glb", with(P("/meshes/0/primitives/0/material"), 0.5), {"meshes[0].primitives[0].material"}));
+  EXPECT_TRUE(Refused(dir, "mesh.glb", with(P("/nodes/1/mesh"), -1), {"nodes[1].mesh", "got -1"}));
+  EXPECT_TRUE(Refused(dir, "child.glb", with(P("/nodes/0/children"), nlohmann::json::array({-1})), {"nodes[0].children[0]", "got -1"}));
+  EXPECT_TRUE(Refused(dir, "root.glb", with(P("/scenes/0/nodes"), nlohmann::json::array({0, 1.0})), {"scenes[0].nodes[1]", "got 1.0"}));
+  EXPECT_TRUE(Refused(dir, "scene.glb", with(P("/scene"), -1), {"scene:", "got -1"}));
+  // As the schema has them, they are read: a stride of 12 (the positions' own) and mode 4.
+  nlohmann::json fine = g;
+  fine["bufferViews"][0]["byteStride"] = 12;
+  fine["meshes"][0]["primitives"][0]["mode"] = 4;
+  write_file((dir / "fine.glb").string(), testing_support::glb_bytes(fine, buffer));
+  EXPECT_EQ(import_mesh((dir / "fine.glb").string()).faces_read, 4u);
+}
+
 TEST(MeshImportErrors, PlyTruncatedOrWithIndicesOutOfRange) {
   TempDir dir("mesh_bad");
   const std::string ply = testing_support::coloured_square_ply();
