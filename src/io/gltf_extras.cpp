@@ -31,8 +31,19 @@ uint32_t little_endian_u32(const std::string& bytes, size_t at) {
 /// The JSON text of a .glb (its first chunk, which the format requires to be of type JSON) and
 /// its BIN chunk ("" if none).
 std::pair<std::string, std::string> glb_chunks(const std::string& bytes, const std::string& path) {
-  if (bytes.size() < 20 || bytes.compare(0, 4, "glTF") != 0)
-    throw UserError(path, "not a binary glTF file (no 'glTF' header)");
+  if (bytes.size() < 4 || bytes.compare(0, 4, "glTF") != 0) throw UserError(path, "not a binary glTF file (no 'glTF' header)");
+  if (bytes.size() < 12)
+    throw UserError(path, "binary glTF is truncated: " + std::to_string(bytes.size()) + " bytes, shorter than its 12-byte header");
+  // The header: magic, version, length (of the whole file); assimp 5.2 read on past a wrong one.
+  const uint32_t version = little_endian_u32(bytes, 4), declared = little_endian_u32(bytes, 8);
+  if (version != 2) throw UserError(path, "binary glTF: its header's version must be 2 (glTF 2.0), got " + std::to_string(version));
+  if (declared != bytes.size())
+    throw UserError(path, std::string(declared > bytes.size() ? "binary glTF is truncated: " : "binary glTF: ") +
+                              "its header's length is " + std::to_string(declared) + " bytes, the file has " +
+                              std::to_string(bytes.size()) + (declared < bytes.size() ? " (data after its end)" : ""));
+  if (bytes.size() < 20)
+    throw UserError(path, "binary glTF is truncated: its header's length is " + std::to_string(declared) +
+                              " bytes: no JSON chunk after the 12-byte header");
   const uint32_t length = little_endian_u32(bytes, 12), type = little_endian_u32(bytes, 16);
   if (type != 0x4E4F534Au) throw UserError(path, "binary glTF's first chunk is not JSON");
   if (length > bytes.size() - 20) throw UserError(path, "binary glTF is truncated (its JSON chunk runs past the end)");

@@ -320,7 +320,7 @@ TEST(MeshImportErrors, GltfMissingBufferBadAccessorSchemaAndTruncation) {
 
   EXPECT_TRUE(Refused(dir, "truncated.gltf", good.substr(0, good.size() / 2), {"not valid JSON"}));
   const std::string glb = testing_support::glb_bytes(g, buffer);
-  EXPECT_TRUE(Refused(dir, "truncated.glb", glb.substr(0, glb.size() - 20), {"truncated", "BIN chunk"}));
+  EXPECT_TRUE(Refused(dir, "truncated.glb", glb.substr(0, glb.size() - 20), {"truncated", "header's length"}));
   EXPECT_TRUE(Refused(dir, "cut.glb", glb.substr(0, 40), {"truncated"}));
 
   nlohmann::json negative = nlohmann::json::parse(good);
@@ -388,6 +388,23 @@ TEST(MeshImportErrors, GltfIntegerFieldsOutsideTheSchemaAreRefusedNamingTheField
   fine["meshes"][0]["primitives"][0]["mode"] = 4;
   write_file((dir / "fine.glb").string(), testing_support::glb_bytes(fine, buffer));
   EXPECT_EQ(import_mesh((dir / "fine.glb").string()).faces_read, 4u);
+}
+
+TEST(MeshImportErrors, GlbHeaderLengthAndVersion) {
+  TempDir dir("mesh_bad");
+  std::string buffer;
+  const std::string glb = testing_support::glb_bytes(testing_support::quad_gltf(buffer), buffer);
+  // The 12-byte header alone: "no 'glTF' header" before.
+  EXPECT_TRUE(Refused(dir, "header.glb", glb.substr(0, 8) + std::string("\x0C\0\0\0", 4),
+                      {"truncated", "its header's length is 12 bytes", "no JSON chunk"}));
+  EXPECT_TRUE(Refused(dir, "header_only.glb", glb.substr(0, 12), {"truncated", "header's length is " + std::to_string(glb.size()), "has 12"}));
+  EXPECT_TRUE(Refused(dir, "short.glb", glb.substr(0, 10), {"truncated", "10 bytes", "12-byte header"}));
+  EXPECT_TRUE(Refused(dir, "longer.glb", glb + std::string(8, '\0'),
+                      {"header's length is " + std::to_string(glb.size()), "the file has " + std::to_string(glb.size() + 8)}));
+  std::string version1 = glb;
+  version1[4] = 1;
+  EXPECT_TRUE(Refused(dir, "version1.glb", version1, {"header's version", "must be 2", "got 1"}));
+  EXPECT_TRUE(Refused(dir, "magic.glb", "glTx" + glb.substr(4), {"no 'glTF' header"}));
 }
 
 TEST(MeshImportErrors, PlyTruncatedOrWithIndicesOutOfRange) {
