@@ -390,6 +390,37 @@ TEST(MeshImportErrors, GltfIntegerFieldsOutsideTheSchemaAreRefusedNamingTheField
   EXPECT_EQ(import_mesh((dir / "fine.glb").string()).faces_read, 4u);
 }
 
+TEST(MeshImportErrors, GltfEmptyMeshSharedNodeAndSceneOutOfRange) {
+  // The schema forbids each; assimp 5.2 dropped the mesh without a word, read a node that is a
+  // child of two parents once under each (a lamp of 20.25 W shown three times, 60.75 W), and
+  // said only "GLTF: No scene" for a scene index past the scenes.
+  TempDir dir("mesh_bad");
+  std::string buffer;
+  const nlohmann::json g = testing_support::quad_gltf(buffer);
+  nlohmann::json empty = g;
+  empty["meshes"].push_back({{"name", "nothing"}, {"primitives", nlohmann::json::array()}});
+  EXPECT_TRUE(Refused(dir, "empty.glb", testing_support::glb_bytes(empty, buffer), {"meshes[1].primitives", "at least one primitive"}));
+  nlohmann::json shared = g;  // node 2 (the quad) under both node 0 and node 1
+  shared["nodes"].push_back({{"mesh", 0}, {"name", "lamp"}});
+  shared["nodes"][0]["children"] = {2};
+  shared["nodes"][1]["children"] = {2};
+  EXPECT_TRUE(Refused(dir, "shared.glb", testing_support::glb_bytes(shared, buffer),
+                      {"nodes[2]", "a child of nodes[0] and of nodes[1]", "one parent"}));
+  nlohmann::json twice = g;  // listed twice by one parent
+  twice["nodes"].push_back({{"mesh", 0}});
+  twice["nodes"][0]["children"] = {2, 2};
+  EXPECT_TRUE(Refused(dir, "twice.glb", testing_support::glb_bytes(twice, buffer), {"nodes[0].children", "lists nodes[2] twice"}));
+  nlohmann::json root_child = g;  // a root of the scene that is also a child
+  root_child["nodes"][0]["children"] = {1};
+  EXPECT_TRUE(Refused(dir, "root.glb", testing_support::glb_bytes(root_child, buffer), {"scenes[0].nodes", "nodes[1]", "a child of nodes[0]"}));
+  nlohmann::json scene = g;
+  scene["scene"] = 3;
+  EXPECT_TRUE(Refused(dir, "scene.glb", testing_support::glb_bytes(scene, buffer), {"scene:", "3", "1 scene"}));
+  nlohmann::json no_scenes = g;
+  no_scenes.erase("scenes");
+  EXPECT_TRUE(Refused(dir, "no_scenes.glb", testing_support::glb_bytes(no_scenes, buffer), {"scene:", "0", "no scenes"}));
+}
+
 TEST(MeshImportErrors, GlbHeaderLengthAndVersion) {
   TempDir dir("mesh_bad");
   std::string buffer;
