@@ -331,16 +331,17 @@ GltfExtras read_gltf_extras(const std::string& path) {
     }
   }
   std::vector<GltfMaterialFactors>& out = extras.materials;
+  json copy = doc;  // as assimp is to read it
+  const bool padded = pad_strided_views(copy, bin, binary, path);
   if (!doc.contains("materials")) {
-    extras.assimp_copy = file;
+    extras.assimp_copy = !padded ? file : binary ? glb_with_json(copy.dump(), bin) : copy.dump();
     return extras;
   }
   const json& materials = doc["materials"];
   if (!materials.is_array()) r.fail("materials", "must be an array");
-  json tagged = doc;
   for (size_t i = 0; i < materials.size(); ++i)
-    if (tagged["materials"][i].is_object()) tagged["materials"][i]["name"] = gltf_material_tag(i);
-  extras.assimp_copy = binary ? glb_with_json(tagged.dump(), bin) : tagged.dump();
+    if (copy["materials"][i].is_object()) copy["materials"][i]["name"] = gltf_material_tag(i);
+  extras.assimp_copy = binary ? glb_with_json(copy.dump(), bin) : copy.dump();
   for (size_t i = 0; i < materials.size(); ++i) {
     const std::string where = JsonReader::at("materials", i);
     const json& m = materials[i];

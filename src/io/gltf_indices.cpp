@@ -265,6 +265,41 @@ void check_positions(const json& doc, Buffers& buffers, size_t accessor, const s
 
 }  // namespace
 
+bool pad_strided_views(json& copy, std::string& bin, bool binary, const std::string& path) {
+  if (!copy.contains("accessors") || !copy["accessors"].is_array()) return false;
+  std::map<size_t, uint64_t> needed;  // view -> the bytes assimp needs of it
+  for (size_t i = 0; i < copy["accessors"].size(); ++i) {
+    const json& a = copy["accessors"][i];
+    if (!a.is_object() || a.contains("sparse")) continue;
+    const std::optional<size_t> v = count_of(a, "bufferView"), count = count_of(a, "count"), type = count_of(a, "componentType");
+    const json* view = element(copy, "bufferViews", v);
+    if (view == nullptr || !count || !type || !a.contains("type") || !a["type"].is_string()) continue;
+    const uint64_t element_bytes = component_bytes(*type) * components(a["type"].get<std::string>());
+    const uint64_t stride = count_of(*view, "byteStride").value_or(0), length = count_of(*view, "byteLength").value_or(0);
+    // Checked to fit (check_gltf_accessors()): (count - 1) * stride + element_bytes <= length.
+    if (stride <= element_bytes || *count * stride <= length) continue;
+    needed[*v] = std::max(needed[*v], static_cast<uint64_t>(*count) * stride);
+    const json* buffer = element(copy, "buffers", count_of(*view, "buffer"));
+    const uint64_t view_offset = count_of(*view, "byteOffset").value_or(0);
+    const uint64_t buffer_length = buffer ? count_of(*buffer, "byteLength").value_or(0) : 0;
+    if (view_offset + needed[*v] <= buffer_length) continue;
+    // At its buffer's end: a .glb's BIN chunk (buffer 0 without a uri) is padded with zeros here;
+    // another buffer is not radrecon's to rewrite.
+    const bool glb_bin = binary && buffer != nullptr && count_of(*view, "buffer") == size_t{0} && !buffer->contains("uri") &&
+                         bin.size() >= buffer_length;
+    if (!glb_bin)
+      throw UserError(path, "accessors[" + std::to_string(i) + "]: its buffer view's last element is not padded to the byteStride " +
+                                std::to_string(stride) + " (bufferViews[" + std::to_string(*v) + "].byteLength " + std::to_string(length) +
+                                ", at the end of its buffer): valid glTF, but the model reader (assimp 5.2) needs count x byteStride = " +
+                                std::to_string(*count) + " x " + std::to_string(stride) + " = " + std::to_string(*count * stride) +
+                                " bytes in the view; pad the buffer and the view to that length, or write the model as .glb");
+    copy["buffers"][0]["byteLength"] = view_offset + needed[*v];
+    if (bin.size() < view_offset + needed[*v]) bin.resize(view_offset + needed[*v], '\0');
+  }
+  for (const auto& [v, bytes] : needed) copy["bufferViews"][v]["byteLength"] = bytes;
+  return !needed.empty();
+}
+
 void check_gltf_indices(const json& doc, const std::string& bin, const std::string& folder, const std::string& path) {
   check_gltf_integers(doc, path);
   check_gltf_accessors(doc, path);
