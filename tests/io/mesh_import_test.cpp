@@ -106,6 +106,12 @@ TEST(MeshImport, ObjPentagonIsCutIntoTrianglesOfItsAreaAndKdAboveOneIsClamped) {
     return w.find("'hot' Kd") != std::string::npos && w.find("clamped") != std::string::npos;
   });
   EXPECT_TRUE(warned);
+  // With a reflectance override no Kd is used: none is said to be clamped.
+  MeshPlacement grey;
+  grey.reflectance = Rgb::Constant(0.3);
+  const MeshImport o = import_mesh((dir / "room.obj").string(), grey);
+  for (const Surface& s : o.surfaces) expect_near(s.reflectance, Rgb::Constant(0.3));
+  for (const std::string& w : o.warnings) EXPECT_EQ(w.find("clamped"), std::string::npos) << w;
 }
 
 TEST(MeshImport, ObjWithoutItsMtlIsHalfGreyWithAWarning) {
