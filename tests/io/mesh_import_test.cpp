@@ -381,6 +381,11 @@ TEST(MeshImport, GltfStripsFansAndRepeatedIndicesAreFacesToo) {
   double area = 0;
   for (const Surface& s : m.surfaces) area += s.area_m2();
   EXPECT_NEAR(area, 2.5, kFloat);  // strip 1 + fan 1 + the list's one triangle 0.5
+  // A mesh of several primitives is one mesh each, named MESH-K (K the primitive's index) by
+  // assimp 5.2; FACE counts in its primitive (docs/formats.md).
+  std::vector<std::string> names;
+  for (const Surface& s : m.surfaces) names.push_back(s.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"quad-0:0", "quad-1:0", "quad-2:0"}));
 }
 
 TEST(MeshImport, GltfStridedPositionsWhoseLastElementIsNotPadded) {
