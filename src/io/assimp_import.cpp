@@ -177,7 +177,9 @@ class Builder {
       : scene_(scene), format_(format), path_(std::move(path)), placement_(placement), file_offset_m_(file_offset_m),
         face_colours_(face_colours), out_(out) {
     stem_ = std::filesystem::path(path_).stem().string();
-    materials_ = read_materials(scene, format, path_, gltf, obj, out.warnings);
+    // A reflectance override uses no colour of the file: none is said to be clamped.
+    std::vector<std::string> unused;
+    materials_ = read_materials(scene, format, path_, gltf, obj, placement.reflectance ? unused : out.warnings);
     const double a = placement.rotate_x_deg * std::numbers::pi / 180.0;
     Eigen::Matrix3d rx;
     rx << 1, 0, 0, 0, std::cos(a), -std::sin(a), 0, std::sin(a), std::cos(a);
@@ -196,10 +198,10 @@ class Builder {
     for (unsigned c = 0; c < n->mNumChildren; ++c) node(n->mChildren[c], m, depth + 1);
   }
 
-  /// One warning for the faces whose mean vertex colour was clamped (a white PLY has them all),
-  /// and one for the polygons of 5 or more corners off their plane.
+  /// One warning for the faces whose mean vertex colour was clamped (a white PLY has them all;
+  /// none under a reflectance override), and one for the polygons of 5 or more corners off their plane.
   void finish() {
-    if (colours_clamped_ > 0)
+    if (colours_clamped_ > 0 && !placement_.reflectance)
       out_.warnings.push_back(path_ + ": the " + (face_colours_ != nullptr ? "colour" : "mean vertex colour") + " of " +
                               std::to_string(colours_clamped_) + " face(s) clamped into [0, 0.999] (a reflectance must lie in [0, 1))");
     if (polygons_warped_ > 0)
@@ -394,7 +396,7 @@ MeshImport import_mesh_assimp(const std::string& path, const MeshPlacement& plac
   if (ply && !ply->face_colours.empty()) {
     if (scene->mNumMeshes == 1 && scene->mMeshes[0] != nullptr && scene->mMeshes[0]->mNumFaces == ply->face_colours.size())
       face_colours = &ply->face_colours;
-    else
+    else if (!placement.reflectance)
       out.warnings.push_back(path + ": its face colours are not read: its faces are split among " + std::to_string(scene->mNumMeshes) +
                              " materials (their vertex colours, else 0.5 grey, are used)");
   }

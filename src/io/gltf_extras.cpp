@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <set>
 #include <string_view>
@@ -31,8 +32,19 @@ uint32_t little_endian_u32(const std::string& bytes, size_t at) {
 /// The JSON text of a .glb (its first chunk, which the format requires to be of type JSON) and
 /// its BIN chunk ("" if none).
 std::pair<std::string, std::string> glb_chunks(const std::string& bytes, const std::string& path) {
-  if (bytes.size() < 20 || bytes.compare(0, 4, "glTF") != 0)
-    throw UserError(path, "not a binary glTF file (no 'glTF' header)");
+  if (bytes.size() < 4 || bytes.compare(0, 4, "glTF") != 0) throw UserError(path, "not a binary glTF file (no 'glTF' header)");
+  if (bytes.size() < 12)
+    throw UserError(path, "binary glTF is truncated: " + std::to_string(bytes.size()) + " bytes, shorter than its 12-byte header");
+  // The header: magic, version, length (of the whole file); assimp 5.2 read on past a wrong one.
+  const uint32_t version = little_endian_u32(bytes, 4), declared = little_endian_u32(bytes, 8);
+  if (version != 2) throw UserError(path, "binary glTF: its header's version must be 2 (glTF 2.0), got " + std::to_string(version));
+  if (declared != bytes.size())
+    throw UserError(path, std::string(declared > bytes.size() ? "binary glTF is truncated: " : "binary glTF: ") +
+                              "its header's length is " + std::to_string(declared) + " bytes, the file has " +
+                              std::to_string(bytes.size()) + (declared < bytes.size() ? " (data after its end)" : ""));
+  if (bytes.size() < 20)
+    throw UserError(path, "binary glTF is truncated: its header's length is " + std::to_string(declared) +
+                              " bytes: no JSON chunk after the 12-byte header");
   const uint32_t length = little_endian_u32(bytes, 12), type = little_endian_u32(bytes, 16);
   if (type != 0x4E4F534Au) throw UserError(path, "binary glTF's first chunk is not JSON");
   if (length > bytes.size() - 20) throw UserError(path, "binary glTF is truncated (its JSON chunk runs past the end)");
@@ -196,6 +208,59 @@ void check_nodes(const JsonReader& r, const json& doc) {
   }
 }
 
+/// Refuses what the glTF schema forbids in the node tree and assimp 5.2 reads without a word: a
+/// node that is a child of two parents, or listed twice by one, is shown once under each (a lamp
+/// of 20.25 W shown three times, 60.75 W); a scene's root that is a child of another node is shown
+/// twice. A `scene` past the scenes is refused naming it (assimp 5.2 said "GLTF: No scene").
+/// Indices not integers >= 0 are check_gltf_indices()'s to refuse, those past their arrays assimp's.
+void check_node_tree(const JsonReader& r, const json& doc) {
+  const size_t scenes = doc.contains("scenes") && doc["scenes"].is_array() ? doc["scenes"].size() : 0;
+  if (doc.contains("scene") && doc["scene"].is_number_unsigned() && doc["scene"].get<size_t>() >= scenes)
+    r.fail("scene", std::to_string(doc["scene"].get<size_t>()) + " is out of range: the file has " +
+                        (scenes == 0 ? std::string("no scenes") : std::to_string(scenes) + (scenes == 1 ? " scene" : " scenes")));
+  if (!doc.contains("nodes") || !doc["nodes"].is_array()) return;
+  const json& nodes = doc["nodes"];
+  std::map<size_t, size_t> parent;  // child -> its parent
+  for (size_t i = 0; i < nodes.size(); ++i) {
+    if (!nodes[i].is_object() || !nodes[i].contains("children") || !nodes[i]["children"].is_array()) continue;
+    for (const json& c : nodes[i]["children"]) {
+      if (!c.is_number_unsigned()) continue;
+      const size_t child = c.get<size_t>();
+      if (const auto [it, first] = parent.emplace(child, i); !first && it->second == i)
+        r.fail(JsonReader::at("nodes", i) + ".children", "lists nodes[" + std::to_string(child) + "] twice (the glTF schema lists each once)");
+      else if (!first)
+        r.fail(JsonReader::at("nodes", child), "is a child of nodes[" + std::to_string(it->second) + "] and of nodes[" +
+                                                   std::to_string(i) + "]: a node has one parent at most (the glTF schema); give "
+                                                   "each place a node of its own (they may share the mesh)");
+    }
+  }
+  for (size_t s = 0; s < scenes; ++s) {
+    const json& scene = doc["scenes"][s];
+    if (!scene.is_object() || !scene.contains("nodes") || !scene["nodes"].is_array()) continue;
+    std::set<size_t> roots;
+    for (const json& n : scene["nodes"]) {
+      if (!n.is_number_unsigned()) continue;
+      const size_t node = n.get<size_t>();
+      const std::string field = JsonReader::at("scenes", s) + ".nodes";
+      if (const auto it = parent.find(node); it != parent.end())
+        r.fail(field, "lists nodes[" + std::to_string(node) + "], a child of nodes[" + std::to_string(it->second) +
+                          "]: a scene lists root nodes only (the glTF schema)");
+      if (!roots.insert(node).second) r.fail(field, "lists nodes[" + std::to_string(node) + "] twice (the glTF schema lists each once)");
+    }
+  }
+}
+
+/// Refuses a mesh of no primitives (the schema requires one at least; assimp 5.2 dropped the mesh
+/// without a word).
+void check_meshes(const JsonReader& r, const json& doc) {
+  if (!doc.contains("meshes") || !doc["meshes"].is_array()) return;
+  for (size_t m = 0; m < doc["meshes"].size(); ++m) {
+    const json& mesh = doc["meshes"][m];
+    if (mesh.is_object() && mesh.contains("primitives") && mesh["primitives"].is_array() && mesh["primitives"].empty())
+      r.fail(JsonReader::at("meshes", m) + ".primitives", "must hold at least one primitive (the glTF schema); it is empty");
+  }
+}
+
 /// The meshes the default scene shows: those of the nodes reachable from it ("scene", else scene
 /// 0), each once however many nodes show it. assimp 5.2 reads these and no others (its objects
 /// load as the scene refers to them). Empty optional where the file has no scene (assimp refuses it).
@@ -252,6 +317,8 @@ GltfExtras read_gltf_extras(const std::string& path) {
   check_required_extensions(r, doc);
   if (binary) check_glb_buffers(r, doc);
   check_nodes(r, doc);
+  check_node_tree(r, doc);
+  check_meshes(r, doc);
   check_gltf_indices(doc, bin, std::filesystem::path(path).parent_path().string(), path);
   GltfExtras extras;
   if (doc.contains("meshes") && doc["meshes"].is_array()) {
@@ -264,16 +331,17 @@ GltfExtras read_gltf_extras(const std::string& path) {
     }
   }
   std::vector<GltfMaterialFactors>& out = extras.materials;
+  json copy = doc;  // as assimp is to read it
+  const bool padded = pad_strided_views(copy, bin, binary, path);
   if (!doc.contains("materials")) {
-    extras.assimp_copy = file;
+    extras.assimp_copy = !padded ? file : binary ? glb_with_json(copy.dump(), bin) : copy.dump();
     return extras;
   }
   const json& materials = doc["materials"];
   if (!materials.is_array()) r.fail("materials", "must be an array");
-  json tagged = doc;
   for (size_t i = 0; i < materials.size(); ++i)
-    if (tagged["materials"][i].is_object()) tagged["materials"][i]["name"] = gltf_material_tag(i);
-  extras.assimp_copy = binary ? glb_with_json(tagged.dump(), bin) : tagged.dump();
+    if (copy["materials"][i].is_object()) copy["materials"][i]["name"] = gltf_material_tag(i);
+  extras.assimp_copy = binary ? glb_with_json(copy.dump(), bin) : copy.dump();
   for (size_t i = 0; i < materials.size(); ++i) {
     const std::string where = JsonReader::at("materials", i);
     const json& m = materials[i];

@@ -33,7 +33,9 @@ struct GltfExtras {
   /// The file as assimp is to read it (GltfIOSystem): the same, but every material named
   /// gltf_material_tag(its index), so that each of assimp's materials is found by index (assimp
   /// 5.2 loads only the materials the default scene uses, in the order it meets them, and names
-  /// an unnamed one ""). A .gltf's JSON, or a .glb with its JSON chunk so rewritten.
+  /// an unnamed one ""), and every strided buffer view holding count x byteStride bytes
+  /// (pad_strided_views(), io/gltf_indices.h). A .gltf's JSON, or a .glb with its JSON chunk so
+  /// rewritten (and its BIN chunk padded).
   std::string assimp_copy;
 };
 

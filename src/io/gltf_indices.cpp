@@ -4,6 +4,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -112,6 +113,93 @@ size_t components(const std::string& type) {
   return 0;
 }
 
+/// `value` (field `field`) as the glTF schema has an integer: a JSON integer (not 2.0) in [lo, hi]
+/// and a multiple of `multiple`; refused naming the field otherwise.
+void check_integer(const json& value, const std::string& field, const std::string& path, uint64_t lo,
+                   uint64_t hi = std::numeric_limits<uint64_t>::max(), uint64_t multiple = 1) {
+  if (value.is_number_unsigned()) {
+    const uint64_t v = value.get<uint64_t>();
+    if (v >= lo && v <= hi && v % multiple == 0) return;
+  }
+  const std::string range = multiple > 1 ? "a multiple of " + std::to_string(multiple) + " in [" + std::to_string(lo) + ", " +
+                                               std::to_string(hi) + "]"
+                            : hi == std::numeric_limits<uint64_t>::max() ? "an integer >= " + std::to_string(lo)
+                                                                         : "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+  throw UserError(path, field + ": must be " + range + " (the glTF schema), got " + value.dump());
+}
+
+/// obj[key] by check_integer() if present (or refused as missing if `required`).
+void check_member(const json& obj, const char* key, const std::string& where, const std::string& path, uint64_t lo,
+                  bool required = false, uint64_t hi = std::numeric_limits<uint64_t>::max(), uint64_t multiple = 1) {
+  if (!obj.is_object()) return;
+  const std::string field = where + "." + key;
+  if (!obj.contains(key)) {
+    if (required) throw UserError(path, field + ": missing (the glTF schema requires it)");
+    return;
+  }
+  check_integer(obj[key], field, path, lo, hi, multiple);
+}
+
+/// Every element of the array obj[key] (if it is one) by check_integer(), as an index (>= 0).
+void check_indices(const json& obj, const char* key, const std::string& where, const std::string& path) {
+  if (!obj.is_object() || !obj.contains(key) || !obj[key].is_array()) return;
+  for (size_t k = 0; k < obj[key].size(); ++k) check_integer(obj[key][k], where + "." + key + "[" + std::to_string(k) + "]", path, 0);
+}
+
+/// The array doc[name]'s objects, with their names ("accessors[3]").
+template <typename F>
+void each(const json& doc, const char* name, F f) {
+  if (!doc.contains(name) || !doc[name].is_array()) return;
+  for (size_t i = 0; i < doc[name].size(); ++i)
+    if (doc[name][i].is_object()) f(doc[name][i], std::string(name) + "[" + std::to_string(i) + "]");
+}
+
+/// Every integer field radrecon or assimp reads, as the glTF 2.0 schema bounds it: offsets and
+/// indices >= 0, counts and lengths >= 1, a byteStride a multiple of 4 in [4, 252], a mode in
+/// [0, 6]. assimp 5.2 reads a negative or fractional one (or one written 2.0) as absent: an
+/// accessor's byteOffset of -2 as 0 (other indices, a lamp 79 times too bright, exit 0), a
+/// primitive's indices of -1 as none, a byteStride of -12 as tightly packed.
+void check_gltf_integers(const json& doc, const std::string& path) {
+  if (doc.contains("scene")) check_integer(doc["scene"], "scene", path, 0);
+  each(doc, "scenes", [&](const json& scene, const std::string& where) { check_indices(scene, "nodes", where, path); });
+  each(doc, "nodes", [&](const json& node, const std::string& where) {
+    for (const char* key : {"mesh", "camera", "skin"}) check_member(node, key, where, path, 0);
+    check_indices(node, "children", where, path);
+  });
+  each(doc, "meshes", [&](const json& mesh, const std::string& where) {
+    if (!mesh.contains("primitives") || !mesh["primitives"].is_array()) return;
+    for (size_t p = 0; p < mesh["primitives"].size(); ++p) {
+      const json& primitive = mesh["primitives"][p];
+      const std::string at = where + ".primitives[" + std::to_string(p) + "]";
+      check_member(primitive, "indices", at, path, 0);
+      check_member(primitive, "material", at, path, 0);
+      check_member(primitive, "mode", at, path, 0, false, 6);
+      if (primitive.is_object() && primitive.contains("attributes") && primitive["attributes"].is_object())
+        for (const auto& [name, index] : primitive["attributes"].items()) check_integer(index, at + ".attributes." + name, path, 0);
+    }
+  });
+  each(doc, "accessors", [&](const json& a, const std::string& where) {
+    check_member(a, "bufferView", where, path, 0);
+    check_member(a, "byteOffset", where, path, 0);
+    check_member(a, "count", where, path, 1);
+    if (!a.contains("sparse") || !a["sparse"].is_object()) return;
+    const json& sparse = a["sparse"];
+    check_member(sparse, "count", where + ".sparse", path, 1);
+    for (const char* part : {"indices", "values"})
+      if (sparse.contains(part)) {
+        check_member(sparse[part], "bufferView", where + ".sparse." + part, path, 0);
+        check_member(sparse[part], "byteOffset", where + ".sparse." + part, path, 0);
+      }
+  });
+  each(doc, "bufferViews", [&](const json& view, const std::string& where) {
+    check_member(view, "buffer", where, path, 0, true);
+    check_member(view, "byteOffset", where, path, 0);
+    check_member(view, "byteLength", where, path, 1, true);
+    check_member(view, "byteStride", where, path, 4, false, 252, 4);
+  });
+  each(doc, "buffers", [&](const json& buffer, const std::string& where) { check_member(buffer, "byteLength", where, path, 1, true); });
+}
+
 /// Every accessor's elements fit its buffer view, and every view its buffer (byteLength): assimp
 /// 5.2 refuses an accessor that does not, but leaks memory on the way (LeakSanitizer, found by
 /// fuzzing), so radrecon refuses it first.
@@ -177,7 +265,43 @@ void check_positions(const json& doc, Buffers& buffers, size_t accessor, const s
 
 }  // namespace
 
+bool pad_strided_views(json& copy, std::string& bin, bool binary, const std::string& path) {
+  if (!copy.contains("accessors") || !copy["accessors"].is_array()) return false;
+  std::map<size_t, uint64_t> needed;  // view -> the bytes assimp needs of it
+  for (size_t i = 0; i < copy["accessors"].size(); ++i) {
+    const json& a = copy["accessors"][i];
+    if (!a.is_object() || a.contains("sparse")) continue;
+    const std::optional<size_t> v = count_of(a, "bufferView"), count = count_of(a, "count"), type = count_of(a, "componentType");
+    const json* view = element(copy, "bufferViews", v);
+    if (view == nullptr || !count || !type || !a.contains("type") || !a["type"].is_string()) continue;
+    const uint64_t element_bytes = component_bytes(*type) * components(a["type"].get<std::string>());
+    const uint64_t stride = count_of(*view, "byteStride").value_or(0), length = count_of(*view, "byteLength").value_or(0);
+    // Checked to fit (check_gltf_accessors()): (count - 1) * stride + element_bytes <= length.
+    if (stride <= element_bytes || *count * stride <= length) continue;
+    needed[*v] = std::max(needed[*v], static_cast<uint64_t>(*count) * stride);
+    const json* buffer = element(copy, "buffers", count_of(*view, "buffer"));
+    const uint64_t view_offset = count_of(*view, "byteOffset").value_or(0);
+    const uint64_t buffer_length = buffer ? count_of(*buffer, "byteLength").value_or(0) : 0;
+    if (view_offset + needed[*v] <= buffer_length) continue;
+    // At its buffer's end: a .glb's BIN chunk (buffer 0 without a uri) is padded with zeros here;
+    // another buffer is not radrecon's to rewrite.
+    const bool glb_bin = binary && buffer != nullptr && count_of(*view, "buffer") == size_t{0} && !buffer->contains("uri") &&
+                         bin.size() >= buffer_length;
+    if (!glb_bin)
+      throw UserError(path, "accessors[" + std::to_string(i) + "]: its buffer view's last element is not padded to the byteStride " +
+                                std::to_string(stride) + " (bufferViews[" + std::to_string(*v) + "].byteLength " + std::to_string(length) +
+                                ", at the end of its buffer): valid glTF, but the model reader (assimp 5.2) needs count x byteStride = " +
+                                std::to_string(*count) + " x " + std::to_string(stride) + " = " + std::to_string(*count * stride) +
+                                " bytes in the view; pad the buffer and the view to that length, or write the model as .glb");
+    copy["buffers"][0]["byteLength"] = view_offset + needed[*v];
+    if (bin.size() < view_offset + needed[*v]) bin.resize(view_offset + needed[*v], '\0');
+  }
+  for (const auto& [v, bytes] : needed) copy["bufferViews"][v]["byteLength"] = bytes;
+  return !needed.empty();
+}
+
 void check_gltf_indices(const json& doc, const std::string& bin, const std::string& folder, const std::string& path) {
+  check_gltf_integers(doc, path);
   check_gltf_accessors(doc, path);
   if (!doc.contains("meshes") || !doc["meshes"].is_array()) return;
   Buffers buffers(doc, bin, folder);

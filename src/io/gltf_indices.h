@@ -20,6 +20,18 @@ namespace radrecon {
 /// do not fit their buffer and sparse accessors are left to assimp, which refuses them.
 /// UserError "PATH: meshes[i].primitives[j]: vertex index K out of range (N vertices)"; also for
 /// a line loop of fewer than 2 indices, which assimp 5.2 reads past.
+/// Every integer field it reads (and those assimp reads: a mesh's, a node's, a scene's) is first
+/// held to the glTF 2.0 schema's bounds, naming the field ("accessors[1].byteOffset: must be an
+/// integer >= 0 (the glTF schema), got -2"): assimp 5.2 reads a negative or fractional one as absent.
 void check_gltf_indices(const nlohmann::json& doc, const std::string& bin, const std::string& folder, const std::string& path);
+
+/// In `copy`, the document assimp is to read (checked by check_gltf_indices()), makes every buffer
+/// view hold count x byteStride bytes of each strided accessor in it, as assimp 5.2 requires (the
+/// spec asks for (count - 1) x byteStride + the element's size: a view whose last element is not
+/// padded was refused, "count*stride 128 > maxSize 124"): the view takes the bytes after it in its
+/// buffer, or, at the end of a .glb's BIN chunk (`bin`, when `binary`), zeros appended to it.
+/// UserError naming the accessor and the view where neither can be (the end of another buffer).
+/// Returns whether `copy` (or `bin`) changed.
+bool pad_strided_views(nlohmann::json& copy, std::string& bin, bool binary, const std::string& path);
 
 }  // namespace radrecon

@@ -18,6 +18,9 @@ namespace radrecon {
 
 namespace {
 
+/// Said of a word holding a '\' that is no number or index.
+constexpr const char* kContinuation = " (a '\\' continues a statement on the next line only as the last character of a line)";
+
 /// A UTF-8 byte-order mark, which some editors write at the start of a text file.
 constexpr std::string_view kUtf8Bom = "\xEF\xBB\xBF";
 
@@ -68,23 +71,41 @@ ObjForAssimp check_obj(const std::string& path) {
   const auto file_bytes = std::filesystem::file_size(path, size_error);
   if (!size_error) out.text.reserve(static_cast<size_t>(file_bytes) + 64);
   Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-  while (std::getline(in, line)) {
-    ++line_no;
-    drop_bom(line, line_no);
-    // assimp 5.2 ends a line at a NUL, a form feed or a carriage return too, where this check
-    // reads on: the statements after one would reach assimp unchecked (an "l 0" after NULs
-    // crashed it, found by fuzzing). No OBJ text holds them (a line's closing CR aside).
-    const std::string_view body(line.data(), line.size() - (!line.empty() && line.back() == '\r' ? 1 : 0));
+  long long lines_read = 0;
+  // assimp 5.2 ends a line at a NUL, a form feed or a carriage return too, where this check
+  // reads on: the statements after one would reach assimp unchecked (an "l 0" after NULs
+  // crashed it, found by fuzzing). No OBJ text holds them (a line's closing CR aside). Returns
+  // the line without its closing CR.
+  const auto text_of = [&](const std::string& l) {
+    const std::string_view body(l.data(), l.size() - (!l.empty() && l.back() == '\r' ? 1 : 0));
     if (const size_t bad = body.find_first_of(std::string_view("\0\f\r", 3)); bad != std::string_view::npos)
-      throw UserError(path + ":" + std::to_string(line_no),
+      throw UserError(path + ":" + std::to_string(lines_read),
                       std::string("a ") + (body[bad] == '\0' ? "NUL byte" : body[bad] == '\f' ? "form feed" : "carriage return") +
                           " within the line (byte " + std::to_string(bad + 1) + "): not OBJ text");
+    return body;
+  };
+  while (std::getline(in, line)) {
+    line_no = ++lines_read;  // a statement is named by its first line
+    drop_bom(line, line_no);
+    // A '\' that ends a line goes on in the next, as assimp 5.2 joins them (the '\' and the
+    // line's end dropped, nothing put between): assimp is given the joined line.
+    for (size_t text = text_of(line).size(); text > 0 && line[text - 1] == '\\';) {
+      line.resize(text - 1);
+      std::string next;
+      if (!std::getline(in, next)) break;  // the file's end
+      ++lines_read;
+      text = line.size() + text_of(next).size();
+      line += next;
+    }
     // assimp's copy: its materials are radrecon's to read (obj_materials()), so no mtllib.
     // A statement that only begins with f ("foo bar"): assimp 5.2 read it as a face ("Invalid face
     // index", no line); unknown statements are skipped, as OBJ readers skip them.
     const bool unknown_f = line.size() >= 2 && line[0] == 'f' && !std::isspace(static_cast<unsigned char>(line[1]));
     if (after_keyword(line, "mtllib") || unknown_f) out.text.append("# ");
-    out.text += line;
+    // A vertex without its comment: assimp 5.2 counts the numbers in one among the vertex's
+    // ("v 0 0 0 # 4" failed, "Cannot parse string '#'", naming no line).
+    const bool vertex_line = line.size() >= 2 && line[0] == 'v' && std::isspace(static_cast<unsigned char>(line[1]));
+    out.text += vertex_line ? std::string_view(line).substr(0, line.find('#')) : std::string_view(line);
     out.text += '\n';
     // A keyword of one letter, then white space or the line's end (a bare "f").
     if (line.empty() || (line.size() >= 2 && !std::isspace(static_cast<unsigned char>(line[1])))) continue;
@@ -93,31 +114,39 @@ ObjForAssimp check_obj(const std::string& path) {
       ++vertices;
       const std::vector<std::string> words = line_words(line.substr(1));
       if (words.size() < 3) throw UserError(at, "a vertex needs 3 coordinates, it has " + std::to_string(words.size()));
-      for (size_t k = 0; k < 3; ++k) {
+      // x y z, then a weight w or a colour r g b (some exporters write it; not read): assimp 5.2
+      // reads a vertex of 3, 4 or 6 numbers, and divides x y z by w.
+      double w = 1;
+      for (size_t k = 0; k < words.size(); ++k) {
+        const std::string what = k < 3 ? "vertex coordinate " : words.size() == 4 ? "vertex weight " : "vertex colour ";
         double value = 0;
         const NumberStatus status = parse_double(words[k], value);
-        if (status == NumberStatus::not_finite) throw UserError(at, "vertex coordinate " + in_quotes(words[k]) + " is not finite");
-        if (status == NumberStatus::out_of_range)
-          throw UserError(at, "vertex coordinate " + in_quotes(words[k]) + " is out of a double's range");
-        if (status == NumberStatus::not_a_number) throw UserError(at, "vertex coordinate " + in_quotes(words[k]) + " is not a number");
+        if (status == NumberStatus::not_finite) throw UserError(at, what + in_quotes(words[k]) + " is not finite");
+        if (status == NumberStatus::out_of_range) throw UserError(at, what + in_quotes(words[k]) + " is out of a double's range");
+        if (status == NumberStatus::not_a_number)
+          throw UserError(at, what + in_quotes(words[k]) + " is not a number" + (words[k].find('\\') != std::string::npos ? kContinuation : ""));
+        if (k == 3) w = value;
+        if (k >= 3) continue;
         if (std::isinf(static_cast<float>(value)))  // beyond the largest float once rounded to one
           throw UserError(at, "vertex coordinate " + in_quotes(words[k]) +
                                   " is beyond single precision's range (3.4e38), in which the model reader holds it");
         lo[static_cast<int>(k)] = std::min(lo[static_cast<int>(k)], value), hi[static_cast<int>(k)] = std::max(hi[static_cast<int>(k)], value);
       }
+      if (words.size() == 5 || words.size() > 6)
+        throw UserError(at, "a vertex of " + std::to_string(words.size()) + " numbers: 'v' takes 3 coordinates x y z, with a "
+                            "weight w or a colour r g b after them (3, 4 or 6 numbers)");
+      if (words.size() == 4 && w != 1)
+        throw UserError(at, "vertex weight w = " + format_number(w) + ": only 1 is supported (the model reader would divide x y z "
+                            "by it): write x/w y/w z/w");
       continue;
     }
     if (line[0] != 'f' && line[0] != 'l' && line[0] != 'p') continue;
     const std::vector<std::string> corners = line_words(line.substr(1));
-    // assimp 5.2 makes such a face a line or a point it then fails to validate, unnamed. (A line
-    // ending in '\\' goes on in the next, as assimp reads it: its corners are not all here.)
-    const bool continued = !corners.empty() && corners.back().ends_with('\\');
-    if (line[0] == 'f' && corners.size() < 3 && !continued)
+    // assimp 5.2 makes such a face a line or a point it then fails to validate, unnamed.
+    if (line[0] == 'f' && corners.size() < 3)
       throw UserError(at, "a face of " + std::to_string(corners.size()) + " corner" + (corners.size() == 1 ? "" : "s") +
                               "; a face ('f') needs 3 or more (lines are 'l', points 'p', which are skipped)");
-    for (const std::string& corner : corners) {
-      const std::string word = corner.ends_with('\\') ? corner.substr(0, corner.size() - 1) : corner;
-      if (word.empty()) continue;  // the line goes on in the next
+    for (const std::string& word : corners) {
       long long index = 0;
       size_t used = 0;
       try {
@@ -126,7 +155,8 @@ ObjForAssimp check_obj(const std::string& path) {
         used = 0;
       }
       if (used == 0 || (used < word.size() && word[used] != '/'))
-        throw UserError(at, "corner " + in_quotes(word) + " is no vertex index (v, v/vt, v//vn or v/vt/vn)");
+        throw UserError(at, "corner " + in_quotes(word) + " is no vertex index (v, v/vt, v//vn or v/vt/vn)" +
+                                (word.find('\\') != std::string::npos ? kContinuation : ""));
       const long long absolute = index < 0 ? vertices + 1 + index : index;
       if (index == 0 || absolute < 1)
         throw UserError(at, "vertex index " + std::to_string(index) + " out of range (" + std::to_string(vertices) + " vertices before it)");
@@ -154,7 +184,6 @@ ObjForAssimp check_obj(const std::string& path) {
       moved_text += '\n';
       continue;
     }
-    const size_t hash = l.find('#');
     const std::vector<std::string> words = line_words(std::string(l.substr(1)));
     moved_text += 'v';
     for (size_t k = 0; k < words.size(); ++k) {
@@ -169,7 +198,6 @@ ObjForAssimp check_obj(const std::string& path) {
         moved_text += words[k];
       }
     }
-    if (hash != std::string_view::npos) moved_text.append(" ").append(l.substr(hash));
     moved_text += '\n';
   }
   out.text = std::move(moved_text);

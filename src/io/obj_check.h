@@ -37,9 +37,11 @@ struct ObjForAssimp {
 };
 
 /// Reads and checks the OBJ, and makes its copy for assimp. Refuses (UserError naming
-/// "path:line") a vertex (`v`) whose first three coordinates are not finite numbers, a face (`f`)
-/// of fewer than 3 corners, and a face (or line, or point) whose vertex index is 0 or names a
-/// vertex the file does not have (a negative one counting back from the vertices before it).
+/// "path:line") a vertex (`v`) that is not x y z, x y z w with w = 1 (assimp 5.2 divides by w) or
+/// x y z r g b, all finite numbers; a face (`f`) of fewer than 3 corners, and a face (or line, or
+/// point) whose vertex index is 0 or names a vertex the file does not have (a negative one
+/// counting back from the vertices before it). A line ending in '\' is joined to the next as
+/// assimp 5.2 joins it (the statement named by its first line), and assimp is given it joined.
 /// assimp 5.2 reads a coordinate it cannot parse as a smaller vertex count, and refuses an index
 /// out of range without the line, leaking memory doing so (LeakSanitizer, found by fuzzing).
 ObjForAssimp check_obj(const std::string& path);

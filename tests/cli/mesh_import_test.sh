@@ -134,6 +134,33 @@ expect_rc broken 2
 expect_stderr_has broken "broken.obj"
 expect_stderr_has broken "out of range"
 expect_no_output broken "$TMP/broken_out.json"
+# Each once read with exit 0 and wrong values: a glTF index accessor at byteOffset -2 (read from
+# 0), an OBJ vertex of weight w = 2 (divided by it).
+python3 - "$TMP/offset.glb" <<'EOF2' || fail "offset: the model was not written"
+import json, struct, sys
+buf = struct.pack('<12f', 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0) + struct.pack('<6H', 0, 1, 2, 0, 2, 3)
+g = {"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+     "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+     "buffers": [{"byteLength": 60}],
+     "bufferViews": [{"buffer": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 12}],
+     "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3"},
+                   {"bufferView": 1, "byteOffset": -2, "componentType": 5123, "count": 6, "type": "SCALAR"}]}
+text = json.dumps(g).encode()
+text += b' ' * (-len(text) % 4)
+body = struct.pack('<II', len(text), 0x4E4F534A) + text + struct.pack('<II', len(buf), 0x004E4942) + buf
+open(sys.argv[1], 'wb').write(b'glTF' + struct.pack('<II', 2, 12 + len(body)) + body)
+EOF2
+printf 'v 0 0 0 2\nv 1 0 0 2\nv 1 1 0 2\nf 1 2 3\n' >"$TMP/weight.obj"
+for model in offset.glb weight.obj; do
+  printf '{"meshes": [{"file": "%s"}], "surfaces": [{"name": "light", "corners": [[0,0,2],[0,1,2],[1,1,2],[1,0,2]], "reflectance": 0, "emission": 10}]}\n' \
+    "$model" >"$TMP/$model.json"
+  run "$model" solve --scene "$TMP/$model.json" --mesh grid:2 --out "$TMP/$model.out.json" --quiet
+  expect_rc "$model" 2
+  expect_no_output "$model" "$TMP/$model.out.json"
+done
+expect_stderr_has offset.glb "offset.glb: accessors[1].byteOffset: must be an integer >= 0"
+expect_stderr_has weight.obj "weight.obj:1: vertex weight w = 2: only 1 is supported"
+
 printf 'solid x\nendsolid x\n' >"$TMP/model.stl"
 cat >"$TMP/stl.json" <<'EOF2'
 {"meshes": [{"file": "model.stl"}]}

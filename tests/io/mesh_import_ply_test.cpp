@@ -111,6 +111,13 @@ TEST(MeshImport, WhiteVertexColoursAreClampedWithOneWarning) {
   expect_near(m.surfaces[0].reflectance, Rgb::Constant(0.999));
   ASSERT_EQ(m.warnings.size(), 1u);
   EXPECT_NE(m.warnings[0].find("2 face(s) clamped"), std::string::npos) << m.warnings[0];
+  // A reflectance override (a scene's meshes[].reflectance) uses no colour of the file: no warning.
+  MeshPlacement grey;
+  grey.reflectance = Rgb::Constant(0.3);
+  const MeshImport o = import_mesh((dir / "white.ply").string(), grey);
+  ASSERT_EQ(o.surfaces.size(), 1u);
+  expect_near(o.surfaces[0].reflectance, Rgb::Constant(0.3));
+  EXPECT_TRUE(o.warnings.empty()) << o.warnings[0];
 }
 
 /// A binary PLY of the unit square as one quad, in either byte order.
