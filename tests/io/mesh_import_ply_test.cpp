@@ -13,25 +13,17 @@
 #include <vector>
 
 #include "io/mesh_import.h"
+#include "support/mesh_checks.h"
 #include "support/model_files.h"
 #include "support/temp_dir.h"
 
 namespace radrecon {
 namespace mesh_import_ply_test {
 
+using testing_support::expect_near;
+using testing_support::kFloat;
 using testing_support::TempDir;
 using testing_support::write_file;
-
-// Single-precision storage (assimp keeps positions and colours as float) rounds the files'
-// decimal numbers to some 6e-8 relative.
-constexpr double kFloat = 1e-6;
-
-void expect_near(const Vec3& got, const Vec3& want) {
-  EXPECT_LT((got - want).norm(), kFloat) << got.transpose() << " vs " << want.transpose();
-}
-void expect_near(const Rgb& got, const Rgb& want) {
-  EXPECT_LT((got - want).abs().maxCoeff(), kFloat) << got.transpose() << " vs " << want.transpose();
-}
 
 TEST(MeshImport, PlyVertexColoursAreAveragedPerFace) {
   TempDir dir("mesh_ply");

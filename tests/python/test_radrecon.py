@@ -215,54 +215,6 @@ def test_refusals_carry_the_command_lines_messages(tmp_path):
     assert issubclass(radrecon.Error, ValueError)
 
 
-def test_bad_arrays_are_named():
-    p, v = samples(50)
-    bad = p.copy()
-    bad[7, 1] = np.nan
-    with pytest.raises(radrecon.Error, match=r"points\[7\]: not a finite number"):
-        radrecon.interpolate(bad, v, queries=p)
-    with pytest.raises(radrecon.Error, match=r"values: an array of shape \(50,\)"):
-        radrecon.interpolate(p, v[:10], queries=p)
-    with pytest.raises(radrecon.Error, match=r"points: an array of shape \(n, 2\)"):
-        radrecon.interpolate(np.zeros((5, 3)), np.zeros(5), queries=p)
-    with pytest.raises(radrecon.Error, match="give the query points"):
-        radrecon.interpolate(p, v)
-    with pytest.raises(radrecon.Error, match="raster needs domain"):
-        radrecon.interpolate(p, v, raster=(10, 10))
-    # The command line's bounds: beyond them distances and sums overflow (a query at 1e200 had
-    # aborted the interpreter in the k-d tree, values near 1e308 gave inf or NaN).
-    far = p.copy()
-    far[3, 0] = 1e200
-    with pytest.raises(radrecon.Error, match=r"points\[3\]: 1e\+200 is beyond the largest coordinate, 1e\+100"):
-        radrecon.interpolate(far, v, queries=p)
-    with pytest.raises(radrecon.Error, match=r"queries\[3\]: 1e\+200 is beyond the largest coordinate"):
-        radrecon.interpolate(p, v, queries=far)
-    with pytest.raises(radrecon.Error, match="domain: .*magnitude at most 1e\\+100"):
-        radrecon.interpolate(p, v, raster=(2, 2), domain=(0, 0, 1e200, 1))
-    big = v.copy()
-    big[5] = -1e308
-    with pytest.raises(radrecon.Error, match=r"values\[5\]: -1e\+308 is beyond the largest value, 1e\+100"):
-        radrecon.interpolate(p, big, queries=p)
-    # Arguments of the wrong kind, named, in a message of one line (pybind's TypeError printed
-    # every argument's whole array and named none; an outside-in trial).
-    for kwargs, pattern in [(dict(queries="abc"), r"^queries: an array of numbers is expected, got 'abc' \(str\)$"),
-                            (dict(queries=[["a", "b"]]), r"^queries: an array of numbers is expected"),
-                            (dict(queries=p, method=None), r"^method: a method's name is expected .* got None$"),
-                            (dict(queries=p, barriers=5), r"^barriers: a file name .* is expected, got 5$")]:
-        with pytest.raises(radrecon.Error, match=pattern) as e:
-            radrecon.interpolate(p, v, **kwargs)
-        assert len(str(e.value)) < 200
-    with pytest.raises(radrecon.Error, match=r"^points: an array of numbers is expected, got None"):
-        radrecon.interpolate(None, v, queries=p)
-    # Text and dates NumPy would have parsed or counted in silence (an outside-in trial).
-    for kwargs, pattern in [(dict(queries=[["0.5", "0.5"]]), r"^queries: an array of numbers is expected, got one of <U3 \(text\)"),
-                            (dict(queries=p.astype("datetime64[s]")), r"^queries: .* \(dates or times\)")]:
-        with pytest.raises(radrecon.Error, match=pattern):
-            radrecon.interpolate(p, v, **kwargs)
-    with pytest.raises(radrecon.Error, match=r"^values: .* \(text\)"):
-        radrecon.interpolate(p, v.astype(str), queries=p)
-
-
 def test_raster_and_domain_of_the_wrong_shape_or_kind_are_named(tmp_path):
     # pybind's own TypeError ("incompatible function arguments") before: found by an outside-in
     # trial. Arrays and lists serve as well as tuples; a path-like object names a barrier file.
