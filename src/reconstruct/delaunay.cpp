@@ -250,7 +250,7 @@ bool DelaunayMesh::locate(const Vec2& q, OutsideHull outside, std::int64_t& hint
       // at), or on one of its two neighbours (the edges at its ends), whichever is nearest in
       // bands; its value on that edge's nearest piece.
       const Delaunay::Vertex_handle infinite = m.dt.infinite_vertex();
-      const Delaunay::Face_handle nearest_edge = nearest_hull_face(m.dt, points_, q, f);
+      const Delaunay::Face_handle nearest_edge = nearest_hull_face(m.dt, points_, q, f, m.chains->band_bound.at(q));
       const int i = nearest_edge->index(infinite);
       double best_bands = 1;
       Delaunay::Face_handle on;

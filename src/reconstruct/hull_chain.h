@@ -75,9 +75,15 @@ void hull_chain(const DT& dt, typename DT::Face_handle infinite_face, std::span<
   }
 }
 
-/// Every hull edge of `dt` (a 2-D triangulation) split by hull_chain(): the pieces, hull edge by
-/// hull edge, and by each hull edge (its ends as the infinite face has them: ccw(i), cw(i)) the
-/// range of its pieces.
+/// A bound on the band of every hull edge of a triangulation (hull_edge_distance(), delaunay.h:
+/// its pieces' depth, plus kHullEdgeBandRelative of its length, plus kHullEdgeRounding of the
+/// largest coordinate): no point farther than at(q) from the hull is on it up to rounding.
+struct HullBandBound {
+  double fixed_m = 0;              ///< the largest depth plus kHullEdgeBandRelative of the longest edge, metres
+  double largest_coordinate = 0;   ///< the hull vertices' largest |coordinate|, metres
+  double at(const Vec2& q) const { return fixed_m + tol::kHullEdgeRounding * std::max(largest_coordinate, q.cwiseAbs().maxCoeff()); }
+};
+
 /// For q outside the hull of `dt` (a 2-D triangulation; `points` its samples by vertex info): the
 /// infinite face whose hull edge is nearest to q, found from `outside`, an infinite face whose
 /// hull edge q lies outside of (what CGAL's locate() returns there, which depends on where its
@@ -85,11 +91,21 @@ void hull_chain(const DT& dt, typename DT::Face_handle infinite_face, std::span<
 /// the hull from it while the distance falls: over the hull edges that q lies outside of, the
 /// distance falls and then rises, and the nearest edge is among them. So the face found depends
 /// on q alone (up to a tie between edges, whose nearest points are then one and the same).
+///
+/// `band_bound_m` bounds every hull edge's band (HullBandBound::at()): q farther outside
+/// `outside`'s line than that lies at least as far from the whole hull (it stands on the line's
+/// other side), so it is outside by more than rounding, and `outside` is returned as it is, with
+/// no walk (a raster's cells far outside the hull would each walk a share of it).
 template <class DT>
 typename DT::Face_handle nearest_hull_face(const DT& dt, std::span<const Vec2> points, const Vec2& q,
-                                           typename DT::Face_handle outside) {
+                                           typename DT::Face_handle outside, double band_bound_m) {
   using Face_handle = typename DT::Face_handle;
   const auto infinite = dt.infinite_vertex();
+  {
+    const int i = outside->index(infinite);
+    const Vec2 a = points[outside->vertex(DT::ccw(i))->info()], ab = points[outside->vertex(DT::cw(i))->info()] - a;
+    if (std::abs(cross(ab, q - a)) > band_bound_m * ab.norm()) return outside;  // |cross| = distance x length
+  }
   const auto distance_sq_to = [&](const Face_handle& e) {
     const int i = e->index(infinite);
     const Vec2 a = points[e->vertex(DT::ccw(i))->info()], b = points[e->vertex(DT::cw(i))->info()];
@@ -113,6 +129,9 @@ typename DT::Face_handle nearest_hull_face(const DT& dt, std::span<const Vec2> p
   return nearest;
 }
 
+/// Every hull edge of `dt` (a 2-D triangulation) split by hull_chain(): the pieces, hull edge by
+/// hull edge, and by each hull edge (its ends as the infinite face has them: ccw(i), cw(i)) the
+/// range of its pieces.
 template <class DT>
 struct HullChains {
   /// A hull edge's pieces, [begin, end) in `pieces`, and the largest distance of their ends from
@@ -127,6 +146,7 @@ struct HullChains {
   explicit HullChains(const DT& dt, std::span<const Vec2> points) {
     const auto inf = dt.infinite_vertex();
     auto fc = dt.incident_faces(inf), done = fc;
+    double longest_m = 0, deepest_m = 0;
     do {
       Range r{pieces.size(), 0, 0};
       hull_chain(dt, fc, points, pieces);
@@ -136,8 +156,16 @@ struct HullChains {
       for (size_t k = r.begin + 1; k < r.end; ++k)
         r.depth_m = std::max(r.depth_m, std::abs(cross(ab, points[pieces[k].a] - a)) / ab.norm());
       of_edge[key(fc, i)] = r;
+      longest_m = std::max(longest_m, ab.norm());
+      deepest_m = std::max(deepest_m, r.depth_m);
+      for (const int end : {DT::ccw(i), DT::cw(i)})
+        band_bound.largest_coordinate = std::max(band_bound.largest_coordinate, points[fc->vertex(end)->info()].cwiseAbs().maxCoeff());
     } while (++fc != done);
+    band_bound.fixed_m = deepest_m + tol::kHullEdgeBandRelative * longest_m;
   }
+
+  /// A bound on every hull edge's band.
+  HullBandBound band_bound;
 
   /// The range of the hull edge of infinite face f, whose infinite vertex is its corner i.
   const Range& range(typename DT::Face_handle f, int i) const { return of_edge.at(key(f, i)); }

@@ -44,6 +44,7 @@ struct NaturalNeighbour::Impl {
   std::vector<std::pair<unsigned, unsigned>> hull_pieces;
   std::vector<std::pair<size_t, size_t>> hull_edge_pieces;
   std::vector<double> hull_edge_depth_m;  ///< by hull edge: how far inside it its pieces' ends lie
+  HullBandBound hull_band_bound;  ///< bounds every hull edge's band (hull_chain.h)
   std::vector<Vec2> points;
   std::vector<Delaunay::Vertex_handle> vertex_of;  ///< by sample index
   /// The samples' k-d tree, to start walks near a query and to find the samples one sees past
@@ -124,7 +125,8 @@ struct NaturalNeighbour::Impl {
     // or outside): linear along the edge, the limit of the coordinates from inside. Inside,
     // within rounding of the edge, the conflict zone's circumcentres are far off and the
     // coordinates' sums cancel catastrophically; outside, the point would get no value.
-    if (lt == Delaunay::OUTSIDE_CONVEX_HULL) hint = nearest_hull_face(dt, points, q, hint);  // not where the walk ended
+    if (lt == Delaunay::OUTSIDE_CONVEX_HULL)
+      hint = nearest_hull_face(dt, points, q, hint, hull_band_bound.at(q));  // not where the walk ended
     if (near_hull_edge(q, hint, out)) return true;
     if (lt == Delaunay::OUTSIDE_CONVEX_HULL) return false;
     // A point on an inner edge lies in both of its faces, and the walk may end in either (it
