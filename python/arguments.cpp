@@ -56,7 +56,20 @@ Doubles doubles_of(const py::handle& o, const std::string& what) {
   if (kind == "c")
     throw UserError(what, "complex numbers are not taken (their imaginary parts would be dropped); pass the real "
                           "parts (numpy.real) if they are what is meant");
-  // NumPy would parse text as numbers ("0.5") and take dates as counts of their unit, in silence.
+  // NumPy would parse text as numbers ("0.5") and take dates as counts of their unit, in silence;
+  // an object array (a pandas column of text) holds its text as str.
+  bool text = false;
+  if (kind == "O") {
+    const py::object flat = py::module_::import("numpy").attr("asarray")(o, py::arg("dtype") = "O").attr("ravel")();
+    for (const py::handle item : flat)
+      if (py::isinstance<py::str>(item) || py::isinstance<py::bytes>(item)) {
+        text = true;
+        break;
+      }
+  }
+  if (text)
+    throw UserError(what, "an array of numbers is expected, got an object array holding text; convert it first (e.g. "
+                          "a.astype(float)) if it holds numbers");
   if (kind == "U" || kind == "S" || kind == "M" || kind == "m" || kind == "V")
     throw UserError(what, "an array of numbers is expected, got one of " + py::str(dtype).cast<std::string>() +
                               (kind == "M" || kind == "m" ? " (dates or times)" : kind == "V" ? " (records)" : " (text)") +

@@ -265,8 +265,8 @@ points: (n, 2) coordinates; values: (n,) or (n, c). Either queries: (m, 2) point
 or (m, c); or raster=(width, height) with domain=(x0, y0, x1, y1), giving (height, width) or
 (height, width, c) values at the cells' centres, row 0 the y0 row. method: any of methods().
 barriers: a GeoJSON (or other OGR) file of lines, or a sequence of (k, 2) polylines.
-border_samples: as --border-samples, samples on the border of domain (with queries too, as
---domain with --queries; else of the samples' bounding box) and beside the barriers, each a
+border_samples: as --border-samples, samples on the border of the rectangle holding domain
+(with queries too, as --domain with --queries) and every sample, and beside the barriers, each a
 plane fitted to the samples it sees. Further
 keywords are the method's parameters as in --param (k=32, mu=2, outside="none", radius=...).
 NaN where a method has no value. Samples at the same point are merged (a UserWarning).

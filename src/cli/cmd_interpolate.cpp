@@ -372,8 +372,8 @@ void add_interpolate_command(CLI::App& app) {
                   "method honours them except linear and clough-tocher, which refuse them; see "
                   "docs/method.md");
   cmd->add_flag("--border-samples", args->border_samples,
-                "scattered methods but constant: add samples on the border of --domain (without it: "
-                "of the samples' bounding box) and on both sides of every barrier, each the value of a plane "
+                "scattered methods but constant: add samples on the border of the rectangle holding --domain "
+                "and every sample (without --domain: the samples' bounding box) and on both sides of every barrier, each the value of a plane "
                 "fitted to the nearest samples it sees, so that nothing is extrapolated past the samples' hull");
   cmd->add_flag("--quiet", args->quiet, "No progress messages (warnings are still printed)");
   cmd->footer(

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <nlohmann/json.hpp>
 
 #include "core/check.h"
@@ -55,9 +56,12 @@ Vec3 export_origin(const Scene& scene) {
   const Vec3 centre = 0.5 * (lo + hi);
   const double extent = (hi - lo).maxCoeff();
   if (!(centre.cwiseAbs().maxCoeff() > tol::kExportOriginFreeExtents * extent)) return Vec3::Zero();
-  // The centre rounded to a multiple of the power of two at least the extent: a float exactly up
-  // to 2^24 such steps, so that a reader holding the translation as a float holds it exactly.
-  const double step = std::exp2(std::ceil(std::log2(extent)));
+  // The centre rounded to a multiple of a power of two at least the extent and at least a float's
+  // spacing at the centre's magnitude: a float exactly, so that a reader holding the translation
+  // as a float (most do) holds it exactly. (The extent's alone left 6378137.25 for a 0.1 m model
+  // at x = 6,378,137.3 m, which a float reader took as 6378137: the model moved by 0.25 m.)
+  const int float_spacing_exponent = std::ilogb(centre.cwiseAbs().maxCoeff()) - (std::numeric_limits<float>::digits - 1);
+  const double step = std::exp2(std::max<double>(std::ceil(std::log2(extent)), float_spacing_exponent));
   return (centre / step).array().round().matrix() * step;
 }
 

@@ -156,6 +156,16 @@ TEST(GltfExport, AModelFarFromTheOriginKeepsItsShapeThroughTheNodesTranslation) 
   write_lightmapped_glb(path, scene, solution, atlas, 2.8, nlohmann::json::object());
   EXPECT_NE(export_origin(scene), Vec3::Zero());
   EXPECT_EQ(export_origin(floor_and_lamp()), Vec3::Zero()) << "a model about the origin keeps its positions";
+  // The origin is a float exactly, even where a float's spacing passes the model's extent (a
+  // 0.1 m model at x = 6,378,137.3 m, the Earth's radius: 6378137.25 was taken as 6378137).
+  for (const double x : {300000.3, 6378137.3, 4.1e7}) {
+    Scene far;
+    far.surfaces = {scene.surfaces[1]};
+    for (Vec3& c : far.surfaces[0].corners) c = Vec3(x, 0, 0) + 0.25 * (c - scene.surfaces[1].corners[0]);
+    const Vec3 o = export_origin(far);
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(static_cast<double>(static_cast<float>(o[k])), o[k]) << x;
+    EXPECT_LT(std::abs(o.x() - x), 8) << x;  // near the model: within a float's spacing there
+  }
 
   Assimp::Importer importer;
   const aiScene* read = importer.ReadFile(path.string(), 0);

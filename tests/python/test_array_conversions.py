@@ -109,3 +109,7 @@ def test_bad_arrays_are_named():
             radrecon.interpolate(p, v, **kwargs)
     with pytest.raises(radrecon.Error, match=r"^values: .* \(text\)"):
         radrecon.interpolate(p, v.astype(str), queries=p)
+    # An object array (a pandas column) holding text, refused; one holding numbers, taken.
+    with pytest.raises(radrecon.Error, match=r"^values: .* an object array holding text"):
+        radrecon.interpolate(p, v.astype(str).astype(object), queries=p)
+    assert np.array_equal(radrecon.interpolate(p, v.astype(object), queries=p[:5]), radrecon.interpolate(p, v, queries=p[:5]))
