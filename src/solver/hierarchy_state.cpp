@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <limits>
-#include <tuple>
 
 #include "solver/polygon.h"
 
@@ -52,27 +51,28 @@ ConvexPolygon polygon_of(const QuadNode& n) {
   return p;
 }
 
-/// Adds the area (m^2) of node k's part in the half-space `front`, and that area times the
-/// node's radiosity, to `area` and `power`: whole nodes as they are, a leaf across the plane by
-/// the share of its area on the front side (its radiosity is uniform).
-void add_front_part(const Tree& t, int k, const HalfSpace& front, double& area, Rgb& power) {
+/// Adds the area of node k's part in the half-space `front` to `area_m2`, and that area times the
+/// node's radiosity to `power_w`: whole nodes as they are, a leaf across the plane by the share
+/// of its area on the front side (its radiosity is uniform).
+void add_front_part(const Tree& t, int k, const HalfSpace& front, double& area_m2_sum, Rgb& power_w) {
   const QuadNode& node = t.node(k);
   const ConvexPolygon p = polygon_of(node);
   std::array<double, ConvexPolygon::kCapacity> d;
   const Side side = distances(p, front, d);
   if (side == Side::outside) return;
   if (side == Side::inside || node.is_leaf()) {
-    double a = node.area_m2;
+    double a_m2 = node.area_m2;
     if (side == Side::across) {
       ConvexPolygon part;
       cut(p, d, 1.0, part);
-      a *= area_m2(part) / area_m2(p);
+      const double whole_m2 = area_m2(p);
+      a_m2 = whole_m2 > 0 ? a_m2 * area_m2(part) / whole_m2 : 0;  // a node has area; no 0 / 0 if not
     }
-    area += a;
-    power += a * t.at(k).radiosity;
+    area_m2_sum += a_m2;
+    power_w += a_m2 * t.at(k).radiosity;
     return;
   }
-  for (int c = 0; c < 4; ++c) add_front_part(t, node.first_child + c, front, area, power);
+  for (int c = 0; c < 4; ++c) add_front_part(t, node.first_child + c, front, area_m2_sum, power_w);
 }
 
 /// The links whose source node the receiver's plane cuts (a ground node across a wall's foot,
@@ -86,7 +86,7 @@ struct SourcesSeenInPart {
   };
   std::vector<Part> parts;
   std::vector<int> of_link;  ///< by link: its index in `parts`, or -1 when it sees the whole source
-  std::vector<Rgb> radiosity;  ///< by part: the mean radiosity of the source's front part, W/m^2
+  std::vector<Rgb> radiosity_w_m2;  ///< by part: the mean radiosity of the source's front part
 
   SourcesSeenInPart(const std::vector<Tree>& trees, const std::vector<Link>& links) : of_link(links.size(), -1) {
     std::vector<HalfSpace> fronts;
@@ -108,7 +108,7 @@ struct SourcesSeenInPart {
         k = static_cast<int>(std::lower_bound(unique.begin(), unique.end(), parts[static_cast<size_t>(k)]) -
                              unique.begin());
     parts = std::move(unique);
-    radiosity.assign(parts.size(), Rgb::Zero());
+    radiosity_w_m2.assign(parts.size(), Rgb::Zero());
     fronts_ = std::move(fronts);
   }
 
@@ -117,10 +117,10 @@ struct SourcesSeenInPart {
     for (size_t k = 0; k < parts.size(); ++k) {
       const Part& q = parts[k];
       const Tree& t = trees[static_cast<size_t>(q.source_tree)];
-      double area = 0;
-      Rgb power = Rgb::Zero();
-      add_front_part(t, q.source_node, fronts_[static_cast<size_t>(q.receiver_tree)], area, power);
-      radiosity[k] = area > 0 ? Rgb(power / area) : t.at(q.source_node).radiosity;
+      double area_m2_sum = 0;
+      Rgb power_w = Rgb::Zero();
+      add_front_part(t, q.source_node, fronts_[static_cast<size_t>(q.receiver_tree)], area_m2_sum, power_w);
+      radiosity_w_m2[k] = area_m2_sum > 0 ? Rgb(power_w / area_m2_sum) : t.at(q.source_node).radiosity;
     }
   }
 
@@ -140,7 +140,7 @@ bool gather_over_links(std::vector<Tree>& trees, const std::vector<Link>& links,
     for (size_t i = 0; i < links.size(); ++i) {
       const Link& l = links[i];
       const int part = seen_in_part.of_link[i];
-      const Rgb& b = part >= 0 ? seen_in_part.radiosity[static_cast<size_t>(part)]
+      const Rgb& b = part >= 0 ? seen_in_part.radiosity_w_m2[static_cast<size_t>(part)]
                                : trees[static_cast<size_t>(l.source_tree)].at(l.source_node).radiosity;
       trees[static_cast<size_t>(l.receiver_tree)].at(l.receiver_node).gathered += l.f * b;
     }
