@@ -31,14 +31,6 @@ struct DelaunayMesh::Impl {
   Delaunay dt;
   std::vector<Delaunay::Face_handle> handles;             ///< by face index
   std::vector<std::pair<std::int64_t, int>> vertex_face;  ///< by sample: a face and its corner there
-  /// A hull edge (split at the samples on it up to rounding: hull_chain.h): its samples a < b,
-  /// the face inside it and that face's corner opposite it.
-  struct HullEdge {
-    unsigned a, b;
-    std::int64_t face;
-    int corner;
-  };
-  std::vector<HullEdge> hull;
   std::unique_ptr<HullChains<Delaunay>> chains;  ///< CGAL's hull edges and their pieces
   /// By sample: the infinite faces of the hull edges it ends (two), or of the one it splits.
   std::vector<std::array<Delaunay::Face_handle, 2>> hull_at;
@@ -105,7 +97,6 @@ DelaunayMesh::DelaunayMesh(std::span<const Vec2> points, const std::string& meth
     for (size_t k = 1; k < pieces.size(); ++k)
       if (auto& at = m.hull_at[pieces[k].a]; at[0] == Delaunay::Face_handle()) at[0] = fc;
   } while (++fc != done);
-  for (const auto& e : m.chains->pieces) m.hull.push_back({std::min(e.a, e.b), std::max(e.a, e.b), e.inner->info(), e.corner});
   m.tree = std::make_unique<KdTree2>(points_);
 }
 
@@ -263,16 +254,24 @@ bool DelaunayMesh::locate(const Vec2& q, OutsideHull outside, std::int64_t& hint
         return true;
       }
       if (outside == OutsideHull::none) return false;
+      // The nearest point of the hull: on the pieces of the hull edge nearest q or of the two at
+      // its ends, found by walking the hull (not by a scan of all of it: a raster around 100,000
+      // samples on a circle). Ties between pieces: the one of smaller sample indices.
+      const Delaunay::Face_handle nearest_hull = nearest_hull_face(m.dt, points_, q, nearest_edge, INFINITY);
+      const int h = nearest_hull->index(infinite);
       double best = std::numeric_limits<double>::infinity();
-      const Impl::HullEdge* nearest = nullptr;
-      for (const Impl::HullEdge& e : m.hull) {
-        const Vec2 &a = points_[e.a], &b = points_[e.b];
-        const double t = nearest_on_segment_t(q, a, b);
-        const double d = (a + t * (b - a) - q).squaredNorm();
-        if (d < best || (nearest && d == best && std::pair(e.a, e.b) < std::pair(nearest->a, nearest->b))) best = d, nearest = &e;
-      }
+      const HullChainEdge<Delaunay::Face_handle>* nearest = nullptr;
+      const auto key = [](const HullChainEdge<Delaunay::Face_handle>& e) { return std::minmax(e.a, e.b); };
+      for (const Delaunay::Face_handle& g :
+           {nearest_hull, nearest_hull->neighbor(Delaunay::ccw(h)), nearest_hull->neighbor(Delaunay::cw(h))})
+        for (const HullChainEdge<Delaunay::Face_handle>& e : m.chains->of(g, g->index(infinite))) {
+          const Vec2 &a = points_[e.a], &b = points_[e.b];
+          const double t = nearest_on_segment_t(q, a, b);
+          const double d = (a + t * (b - a) - q).squaredNorm();
+          if (d < best || (nearest && d == best && key(e) < key(*nearest))) best = d, nearest = &e;
+        }
       if (!nearest) return false;  // q so far away that every distance overflowed
-      out.face = nearest->face;
+      out.face = nearest->inner->info();
       on_edge(points_, vertices_[static_cast<size_t>(out.face)], nearest->corner, q, out.b);
       hint = out.face;
       return true;

@@ -6,7 +6,8 @@
 // fixed-seed generator: co-circular samples (a lattice) are triangulated the same way in every
 // run and for every thread count (the diagonal of a co-circular quadrilateral is CGAL's choice
 // for the samples in their given order). A query's location depends on the query alone, never
-// on where a walk started (see locate()). Outside queries cost a pass over the hull's edges.
+// on where a walk started (see locate()). An outside query walks along the hull from where
+// CGAL's walk left it to the edge nearest it (hull_chain.h, nearest_hull_face()).
 
 #include <array>
 #include <cstdint>
