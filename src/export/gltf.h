@@ -3,8 +3,8 @@
 // as a lightmap texture (export/lightmap.h), for Blender, three.js and game engines.
 //
 // Each surface side is a mesh of its own (named after the side; a two-sided surface gives two,
-// facing opposite ways) with positions (metres, the scene's axes, from export_origin()), normals and TEXCOORD_0 into
-// the atlas. They share one material: black base colour, fully rough, not metallic, and the
+// facing opposite ways) with positions (metres, the scene's axes, from export_origin()), normals
+// and TEXCOORD_0 into the atlas. They share one material: black base colour, fully rough, not metallic, and the
 // lightmap as its emissive texture (emissiveFactor 1), so that any glTF viewer shows the baked
 // radiosity as it is, unlit by its own lights. The lightmap is an sRGB PNG of
 // clamp(B / white, 0, 1) per channel (core/image.h's tone mapping: B the radiosity in W/m^2,
@@ -20,8 +20,9 @@ namespace radrecon {
 
 /// Where a model's exported positions are measured from, metres: (0, 0, 0) for a model within
 /// tol::kExportOriginFreeExtents of its extent from it (the usual case); else its bounding box's
-/// centre rounded to a multiple of the power of two at least its extent, which every node then
-/// takes as its translation (float positions far from (0, 0, 0) would lose the model's shape).
+/// centre rounded to a multiple of a power of two at least its extent and at least a float's
+/// spacing there (so a float exactly), which every node then takes as its translation (float
+/// positions far from (0, 0, 0) would lose the model's shape).
 Vec3 export_origin(const Scene& scene);
 
 /// Writes `path` atomically. `extras` goes into asset.extras (with white_w_m2 and

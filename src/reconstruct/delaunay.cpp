@@ -257,7 +257,7 @@ bool DelaunayMesh::locate(const Vec2& q, OutsideHull outside, std::int64_t& hint
       // The nearest point of the hull: on the pieces of the hull edge nearest q or of the two at
       // its ends, found by walking the hull (not by a scan of all of it: a raster around 100,000
       // samples on a circle). Ties between pieces: the one of smaller sample indices.
-      const Delaunay::Face_handle nearest_hull = nearest_hull_face(m.dt, points_, q, nearest_edge, INFINITY);
+      const Delaunay::Face_handle nearest_hull = nearest_hull_face(m.dt, points_, q, nearest_edge, std::numeric_limits<double>::infinity());
       const int h = nearest_hull->index(infinite);
       double best = std::numeric_limits<double>::infinity();
       const HullChainEdge<Delaunay::Face_handle>* nearest = nullptr;

@@ -220,6 +220,7 @@ struct NaturalNeighbour::Impl {
         for (size_t k = begin; k < end; ++k) near[count++] = hull_pieces[k];
       }
     }
+    if (count == 0) return nearest_on_edges(q, hull_pieces, out);  // no edge matched: not expected, but whole
     nearest_on_edges(q, std::span(near).first(count), out);
   }
   /// The pieces of one hull edge nearest_on_near_edges() holds on the stack (more: the whole scan).

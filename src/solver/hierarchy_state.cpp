@@ -51,7 +51,7 @@ ConvexPolygon polygon_of(const QuadNode& n) {
   return p;
 }
 
-/// Adds the area of node k's part in the half-space `front` to `area_m2`, and that area times the
+/// Adds the area of node k's part in the half-space `front` to `area_m2_sum`, and that area times the
 /// node's radiosity to `power_w`: whole nodes as they are, a leaf across the plane by the share
 /// of its area on the front side (its radiosity is uniform).
 void add_front_part(const Tree& t, int k, const HalfSpace& front, double& area_m2_sum, Rgb& power_w) {
