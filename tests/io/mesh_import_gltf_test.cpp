@@ -39,20 +39,16 @@ void check_glow_quads(const MeshImport& m) {
   for (const Vec3& c : named(m.surfaces, "quad:0").corners) EXPECT_NEAR(c.z(), 0.0, kFloat);
 }
 
-TEST(MeshImport, GltfBaseColourEmissiveStrengthAndNodeTransforms) {
+TEST(MeshImport, GltfBaseColourEmissiveStrengthAndNodeTransformsTheSameFromGlb) {
   TempDir dir("mesh_gltf");
   std::string buffer;
   const nlohmann::json g = testing_support::quad_gltf(buffer);
   write_file(dir / "glow.gltf", testing_support::gltf_text(g, buffer));
-  check_glow_quads(import_mesh((dir / "glow.gltf").string()));
-}
-
-TEST(MeshImport, BinaryGltfReadsTheSame) {
-  TempDir dir("mesh_glb");
-  std::string buffer;
-  const nlohmann::json g = testing_support::quad_gltf(buffer);
   write_file(dir / "glow.glb", testing_support::glb_bytes(g, buffer));
-  check_glow_quads(import_mesh((dir / "glow.glb").string()));
+  for (const char* name : {"glow.gltf", "glow.glb"}) {
+    SCOPED_TRACE(name);
+    check_glow_quads(import_mesh((dir / name).string()));
+  }
 }
 
 TEST(MeshImport, GltfBufferNamedByAPercentEncodedUri) {

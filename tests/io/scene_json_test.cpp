@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "io/scene_json.h"
 #include "scene/scene.h"
+#include "support/temp_dir.h"
 
 namespace radrecon {
 namespace scene_json_test {
@@ -25,22 +26,9 @@ constexpr double kExact = 1e-12;
 const char* const kSource = "bad.json";
 
 /// Passes when parsing `text` throws UserError whose message contains every one of `needles`.
-testing::AssertionResult RefusedMentioning(const std::string& text,
-                                           std::initializer_list<std::string> needles) {
-  try {
-    parse_scene_json(text, kSource);
-  } catch (const UserError& e) {
-    const std::string message = e.what();
-    for (const std::string& needle : needles)
-      if (message.find(needle) == std::string::npos)
-        return testing::AssertionFailure() << "message \"" << message << "\" does not mention \"" << needle << "\"";
-    return testing::AssertionSuccess() << message;
-  } catch (const std::exception& e) {
-    return testing::AssertionFailure() << "threw a non-UserError exception: " << e.what();
-  } catch (...) {
-    return testing::AssertionFailure() << "threw something that is not a std::exception";
-  }
-  return testing::AssertionFailure() << "accepted the scene:\n" << text;
+testing::AssertionResult RefusedMentioning(const std::string& text, std::initializer_list<std::string> needles) {
+  return testing_support::refused_mentioning([&] { parse_scene_json(text, kSource); }, needles) << " (the scene:\n"
+                                                                                                  << text << ")";
 }
 
 /// A valid scene: a 2 m x 1 m grey floor and a 1 m x 1 m lamp facing it.

@@ -1,4 +1,6 @@
 #pragma once
+
+#include <gtest/gtest.h>
 // Test helpers for files: a scratch folder that cleans up after itself, and the message of a
 // refusal.
 
@@ -7,6 +9,7 @@
 #include <atomic>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "core/error.h"
 
@@ -45,6 +48,26 @@ std::string user_error_message(F f) {
     return e.what();
   }
   return "";
+}
+
+/// Passes when f throws a UserError whose message holds every one of `needles`; fails naming what
+/// happened instead (accepted, another exception, a needle missing).
+template <typename F>
+testing::AssertionResult refused_mentioning(F f, const std::vector<std::string>& needles) {
+  try {
+    f();
+  } catch (const UserError& e) {
+    const std::string message = e.what();
+    for (const std::string& needle : needles)
+      if (message.find(needle) == std::string::npos)
+        return testing::AssertionFailure() << "message \"" << message << "\" does not mention \"" << needle << "\"";
+    return testing::AssertionSuccess() << message;
+  } catch (const std::exception& e) {
+    return testing::AssertionFailure() << "threw a non-UserError exception: " << e.what();
+  } catch (...) {
+    return testing::AssertionFailure() << "threw something that is not a std::exception";
+  }
+  return testing::AssertionFailure() << "accepted";
 }
 
 }  // namespace radrecon::testing_support
