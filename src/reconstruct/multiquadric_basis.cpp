@@ -112,14 +112,35 @@ void fill_system(std::span<const double> r_sq, std::span<const double> values, i
 }
 
 /// The subset's frame (polynomial and kernel scale) and coordinates into a new fit.
-RbfFit frame_fit(std::span<const Vec2> points, const RbfKernel& kernel, std::vector<unsigned> subset) {
+RbfFit frame_fit(std::span<const Vec2> points, std::span<const double> r_sq, const RbfKernel& kernel,
+                 std::vector<unsigned> subset) {
   RR_CHECK(!subset.empty(), "an RBF fit needs samples");
   RbfFit fit;
   if (kernel.poly) polynomial_frame(points, subset, fit);
+  // The subset's largest squared distance from its centroid (the polynomial's centre if any).
+  Vec2 centre = fit.centre;
+  if (!kernel.poly) {
+    centre = Vec2::Zero();
+    for (unsigned s : subset) centre += points[s];
+    centre /= static_cast<double>(subset.size());
+  }
+  double size_sq = 0;
+  for (unsigned s : subset) size_sq = std::max(size_sq, (points[s] - centre).squaredNorm());
   if (kernel.is_thin_plate()) {
-    double size_sq = 0;
-    for (unsigned s : subset) size_sq = std::max(size_sq, (points[s] - fit.centre).squaredNorm());
     if (size_sq > 0) fit.kernel_scale = 1 / size_sq;
+  } else {
+    // The multiquadric's s (header): a power of 4 near 1 / (size^2 + r^2), so that phi's
+    // arguments are of order 1 whatever the unit (not 1e100^mu, which overflows for mu > ~3).
+    // A power of 4 scales d^2 + r^2 exactly and, for mu = 1/2, phi by an exact power of 2 too:
+    // the fit is the unscaled one to the bit.
+    double largest_r_sq = 0;
+    for (unsigned s : subset) largest_r_sq = std::max(largest_r_sq, r_sq[s]);
+    const double typical_sq = size_sq + largest_r_sq;
+    if (typical_sq > 0 && std::isfinite(typical_sq)) {
+      int exponent = 0;
+      std::frexp(typical_sq, &exponent);
+      fit.kernel_scale = std::ldexp(1.0, -2 * (exponent / 2));
+    }
   }
   fit.px.resize(subset.size());
   fit.py.resize(subset.size());
@@ -180,7 +201,7 @@ using rbf_system::check_factorisation, rbf_system::fill_system, rbf_system::fram
 
 RbfFit fit_rbf(std::span<const Vec2> points, std::span<const double> r_sq, std::span<const double> values,
                int channels, const RbfKernel& kernel, std::vector<unsigned> subset, bool centre_values) {
-  RbfFit fit = frame_fit(points, kernel, std::move(subset));
+  RbfFit fit = frame_fit(points, r_sq, kernel, std::move(subset));
   const std::vector<double> mean = subset_mean(values, channels, fit.subset, fit.terms > 0 || centre_values);
   Eigen::MatrixXd A, B;
   fill_system(r_sq, values, channels, kernel, fit, mean, A, B);

@@ -6,8 +6,9 @@
 //
 // A fit through samples p_j (j in a subset) is
 //   B(q) = sum_j alpha_j phi(s (d(q, p_j)^2 + r_j^2)) + sum_t c_t u_t(q),
-// phi(v) = v^mu (the multiquadric, s = 1) or phi(v) = v log(v) / 2 = d^2 log d (the thin-plate
-// spline, r_j = 0, phi(0) = 0, s = 1 / size^2: distances in units of the subset's size). With a
+// phi(v) = v^mu (the multiquadric, s a power of 4 near 1 / (size^2 + max r_j^2)) or
+// phi(v) = v log(v) / 2 = d^2 log d (the thin-plate spline, r_j = 0, phi(0) = 0, s = 1 / size^2:
+// distances in units of the subset's size); size: the subset's largest distance from its centroid. With a
 // polynomial, u_0 = 1 and u_1, u_2 are the coordinates along the subset's principal axes about
 // its centroid, each divided by the subset's spread along it, so that the polynomial block has
 // entries of order 1 whatever the units; the interpolation system is the augmented
@@ -21,7 +22,9 @@
 // Scale: the thin-plate interpolant does not depend on the unit of length. phi(s d^2) =
 // s d^2 log d + (s log s / 2) d^2, and under the side conditions sum_j alpha_j |q - p_j|^2 is a
 // constant (its quadratic and linear parts in q vanish), absorbed by c_0: the kernel's scale only
-// multiplies alpha. The multiquadric's scale is its radii r_j.
+// multiplies alpha. The multiquadric's scale is its radii r_j; its s only multiplies phi by s^mu
+// (and alpha by s^-mu), so it changes nothing but the range of the numbers: samples 1e50 m apart
+// with mu = 7.5 no longer overflow to a "singular" system.
 
 #include <cmath>
 #include <limits>

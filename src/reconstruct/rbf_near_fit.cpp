@@ -20,7 +20,7 @@ using rbf_system::check_factorisation, rbf_system::fill_system, rbf_system::fram
 RbfRootFit fit_rbf_root(std::span<const Vec2> points, std::span<const double> r_sq, std::span<const double> values,
                         int channels, const RbfKernel& kernel, std::vector<unsigned> subset) {
   RbfRootFit root;
-  root.fit = frame_fit(points, kernel, std::move(subset));
+  root.fit = frame_fit(points, r_sq, kernel, std::move(subset));
   const std::vector<double> mean = subset_mean(values, channels, root.fit.subset, root.fit.terms > 0);
   Eigen::MatrixXd A, B;
   fill_system(r_sq, values, channels, kernel, root.fit, mean, A, B);

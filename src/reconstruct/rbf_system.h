@@ -23,8 +23,10 @@ void fill_system(std::span<const double> r_sq, std::span<const double> values, i
                  const RbfKernel& kernel, const RbfFit& fit, const std::vector<double>& mean, Eigen::MatrixXd& A,
                  Eigen::MatrixXd& B);
 
-/// The subset's frame (polynomial and kernel scale) and coordinates into a new fit.
-RbfFit frame_fit(std::span<const Vec2> points, const RbfKernel& kernel, std::vector<unsigned> subset);
+/// The subset's frame (polynomial and kernel scale, from its extent and, for the multiquadric,
+/// its largest r_j^2 in `r_sq`, m^2 per point) and coordinates into a new fit.
+RbfFit frame_fit(std::span<const Vec2> points, std::span<const double> r_sq, const RbfKernel& kernel,
+                 std::vector<unsigned> subset);
 
 /// The values' mean per channel over the subset, taken out of the system into c_0 (with a
 /// polynomial) or into the offset; zeros otherwise.

@@ -1,6 +1,6 @@
-// The local multiquadric and thin-plate (reconstruct/local_multiquadric.h) in any unit of length:
-// data and length parameters scaled together give the same function, and messages name places in
-// the data's own units.
+// The multiquadric and thin-plate, global (reconstruct/multiquadric.h) and local
+// (reconstruct/local_multiquadric.h), in any unit of length: data and length parameters scaled
+// together give the same function, and messages name places in the data's own units.
 
 #include <gtest/gtest.h>
 
@@ -13,6 +13,7 @@
 
 #include "core/error.h"
 #include "reconstruct/local_multiquadric.h"
+#include "reconstruct/multiquadric.h"
 #include "reconstruct/multiquadric_basis.h"
 
 namespace radrecon {
@@ -72,6 +73,49 @@ TEST(LocalMultiquadric, DoesNotDependOnTheUnitOfLength) {
   for (Vec2& p : one.points) p *= 1e13;
   const LocalMultiquadric tiny(many, RbfKernel::thin_plate(), std::nullopt, 32), wide(one, RbfKernel::thin_plate(), std::nullopt, 32);
   EXPECT_NEAR(tiny.patch_radius() * 1e13, wide.patch_radius(), 1e-12 * wide.patch_radius());
+}
+
+TEST(Multiquadric, DoesNotDependOnTheUnitOfLengthWhateverItsExponent) {
+  // The basis at s d and s r is s^(2 mu) times that at d and r, which alpha absorbs: the same
+  // function in any unit. With the basis taken in the data's unit, samples 1e50 apart gave
+  // (1e100)^7.5 = inf, and 1e-50 apart 0: both refused as "singular" (an outside-in trial).
+  // Exact at the samples in every unit; by a power of 2 (a power of 4 in d^2), the mu = 1/2
+  // interpolant without a polynomial is the same to the bit.
+  std::mt19937 rng(58);
+  std::uniform_real_distribution<double> unit(0, 1);
+  ScatteredSamples s;
+  for (int i = 0; i < 40; ++i) {
+    s.points.emplace_back(unit(rng), unit(rng));
+    s.values.push_back(std::sin(3 * s.points.back().x()) + s.points.back().y());
+  }
+  std::vector<Vec2> q(50);
+  for (Vec2& p : q) p = Vec2(unit(rng), unit(rng));
+  for (const double mu : {0.5, 2.5, 7.5, -1.5})
+    for (const int poly : {0, 1}) {
+      const RbfKernel kernel = RbfKernel::multiquadric(mu, poly);
+      const Multiquadric reference(s, kernel, std::nullopt);
+      std::vector<double> want(q.size());
+      reference.evaluate(q, want);
+      // mu = 7.5's system is poorly conditioned (rcond ~1e-19): its solve's rounding, not the unit.
+      const double tolerance = mu == 7.5 ? 1e-7 : 1e-11;
+      for (const double scale : {1e-50, 1e50, 0x1p20}) {
+        ScatteredSamples scaled = s;
+        for (Vec2& p : scaled.points) p *= scale;
+        std::vector<Vec2> at = q;
+        for (Vec2& p : at) p *= scale;
+        const std::string where = "mu " + std::to_string(mu) + ", poly " + std::to_string(poly) + ", scale " + std::to_string(scale);
+        const Multiquadric f(scaled, kernel, std::nullopt);
+        std::vector<double> got(q.size()), at_samples(s.points.size());
+        f.evaluate(at, got);
+        f.evaluate(scaled.points, at_samples);
+        for (size_t k = 0; k < s.points.size(); ++k)
+          ASSERT_NEAR(at_samples[k], s.values[k], tolerance) << where << ", sample " << k;
+        for (size_t k = 0; k < q.size(); ++k) {
+          if (mu == 0.5 && poly == 0 && scale == 0x1p20) ASSERT_EQ(got[k], want[k]) << where << ", query " << k;
+          ASSERT_NEAR(got[k], want[k], tolerance * std::max(1.0, std::abs(want[k]))) << where << ", query " << k;
+        }
+      }
+    }
 }
 
 TEST(LocalMultiquadric, ARefusedPatchIsLocatedInTheSamplesUnits) {
