@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <limits>
 #include <memory>
 #include <vector>
@@ -90,6 +91,28 @@ struct NaturalNeighbour::Impl {
     return true;
   }
 
+  /// normalise(), or, when the sum is not positive for q inside the hull: q lies within rounding
+  /// of a sample (a query 1 ulp off one: its Voronoi cell's areas cancel to nothing), which takes
+  /// the whole weight, the coordinates' limit there. The sample is the nearest to q of those in
+  /// `out` (q's natural neighbours) and the corners of f, a finite face of `dt` at q (or of its
+  /// conflict zone). Without this, such a point was taken for one outside the hull: NaN, or the
+  /// value of a hull edge (an outside-in trial).
+  void normalise_inside(const Delaunay& dt, const Vec2& q, const Delaunay::Face_handle& f, double norm,
+                        std::vector<std::pair<unsigned, double>>& out) const {
+    if (normalise(norm, out)) return;
+    unsigned nearest = 0;
+    double nearest_sq = std::numeric_limits<double>::infinity();
+    const auto consider = [&](unsigned i) {
+      const double d_sq = (points[i] - q).squaredNorm();
+      if (d_sq < nearest_sq || (d_sq == nearest_sq && i < nearest)) nearest_sq = d_sq, nearest = i;
+    };
+    for (const auto& [index, w] : out) consider(index);
+    if (f != Delaunay::Face_handle() && !dt.is_infinite(f))
+      for (int k = 0; k < 3; ++k) consider(f->vertex(k)->info());
+    RR_CHECK(std::isfinite(nearest_sq), "natural neighbours: a point inside the hull with no neighbour");
+    out.assign(1, {nearest, 1.0});
+  }
+
   /// What a query gets: Sibson coordinates, the value of a point on a hull edge (outside the
   /// hull), or nothing (NaN).
   enum class Kind { coordinates, on_hull, nothing };
@@ -110,7 +133,8 @@ struct NaturalNeighbour::Impl {
     // The last query's conflict zone, when q certainly has the same: no walk, no conflict search.
     if (rule != NeighbourRule::laplace && scratch.zone.holds(q)) {
       hint = scratch.zone.face();
-      return normalise(scratch.zone.sibson(q, out), out);
+      normalise_inside(dt, q, hint, scratch.zone.sibson(q, out), out);
+      return true;
     }
     const Point p(q.x(), q.y());
     Delaunay::Locate_type lt;
@@ -143,15 +167,19 @@ struct NaturalNeighbour::Impl {
     hole.clear();
     if (rule == NeighbourRule::laplace) {
       dt.get_boundary_of_conflicts(p, std::back_inserter(hole), hint);
-      return normalise(nn::hole_coordinates(dt, p, hole, rule, out), out);
+      normalise_inside(dt, q, hint, nn::hole_coordinates(dt, p, hole, rule, out), out);
+      return true;
     }
     scratch.conflicts.clear();
     dt.get_conflicts_and_boundary(p, std::back_inserter(scratch.conflicts), std::back_inserter(hole), hint);
     const auto hull_vertex = [&](unsigned i) { return hull_edges_at[i][0] >= 0; };
-    if (scratch.zone.build(dt, scratch.conflicts, hole, hull_vertex))
-      return normalise(scratch.zone.sibson(q, out), out);
+    if (scratch.zone.build(dt, scratch.conflicts, hole, hull_vertex)) {
+      normalise_inside(dt, q, hint, scratch.zone.sibson(q, out), out);
+      return true;
+    }
     scratch.zone.forget();
-    return normalise(nn::hole_coordinates(dt, p, hole, rule, out), out);  // CGAL's areas
+    normalise_inside(dt, q, hint, nn::hole_coordinates(dt, p, hole, rule, out), out);  // CGAL's areas
+    return true;
   }
 
   /// Whether q lies on a hull edge at a vertex of face f up to rounding (hull_edge_distance(),

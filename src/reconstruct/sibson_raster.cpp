@@ -334,8 +334,12 @@ void SibsonRaster::evaluate(const Raster& raster, size_t first, size_t count, st
     piece_left.clear();
     for (size_t i = 0; i < n; ++i) {
       const double w = s.weight[i];
-      // Served: inside, a positive weight, and rounding far below it (NaN fails every test).
-      if (i < s0 || i >= s1 || !(w > 0) || !(s.error[i] <= tol::kSibsonRasterCancellation * w)) {
+      // Served: inside, a positive finite weight, and rounding far below it (NaN fails every
+      // test). A point within rounding of a sample divides by a near-zero cross product: its
+      // weight and error can both be infinite (their test then passes, and inf / inf was
+      // written as NaN: an outside-in trial); it goes query by query.
+      if (i < s0 || i >= s1 || !(w > 0) || !(w < std::numeric_limits<double>::infinity()) ||
+          !(s.error[i] <= tol::kSibsonRasterCancellation * w)) {
         piece_left.push_back(offset + i);
         continue;
       }
