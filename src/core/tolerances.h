@@ -187,6 +187,10 @@ inline constexpr double kExcludedOutlineNudgeRelative = 1e-9;
 /// this fraction of the samples' extent from the grid lines: far above the round-off of
 /// coordinates printed with 10+ digits, far below any intended offset.
 inline constexpr double kGridCoordinateRelative = 1e-9;
+/// ... or within this fraction of the coordinates' magnitude (64 ulps), when that is more: a 1 cm
+/// grid at a UTM northing of 5e6 m lies 1 ulp (9.3e-10 m, 9.3e-9 of its 0.1 m extent) off its
+/// lines, which the relative tolerance alone refused.
+inline constexpr double kGridCoordinateRounding = 64 * 2.220446049250313e-16;
 
 /// Natural neighbours with barriers: a local triangulation's Sibson coordinates are certified
 /// when the next visible sample lies beyond the bound rho + max(rho, r) by this relative margin

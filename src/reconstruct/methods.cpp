@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 #include <set>
+#include <tuple>
 
 #include "core/check.h"
 #include "core/error.h"
@@ -403,11 +404,10 @@ InterpolantResult make_point_interpolant(Method method, const ScatteredSamples& 
     // The counts of a whole grid, spaced unevenly: say so (float32 coordinates, rounded to 6e-8,
     // looked like a grid with the wrong counts).
     std::string spacing;
-    for (const auto& [axis, off] : {std::pair{"x", d.x_uneven}, std::pair{"y", d.y_uneven}})
-      if (off > tol::kGridCoordinateRelative && spacing.empty())
+    for (const auto& [axis, off, tolerance] : {std::tuple{"x", d.x_uneven, d.x_tolerance}, std::tuple{"y", d.y_uneven, d.y_tolerance}})
+      if (off > tolerance && spacing.empty())
         spacing = "; the " + std::string(axis) + " values are unevenly spaced: one lies " + two_digits(off) +
-                  " of their extent from its equally spaced place, beyond the tolerance of " +
-                  format_number(tol::kGridCoordinateRelative) +
+                  " of their extent from its equally spaced place, beyond the tolerance of " + two_digits(tolerance) +
                   (off < kFloat32Stray ? " (coordinates rounded to 32-bit floats stray by about 6e-8: give 64-bit ones)" : "");
     return Failure{method_name(method) + " needs samples on a regular grid: every combination of nx equally spaced "
                                          "x values and ny equally spaced y values (nx, ny >= 2), each exactly once; found " +

@@ -40,7 +40,8 @@ Axis axis_of(const ScatteredSamples& s, int dim) {
   const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
   a.lo = *lo;
   a.hi = *hi;
-  a.tol = tol::kGridCoordinateRelative * (a.hi - a.lo);
+  a.tol = std::max(tol::kGridCoordinateRelative * (a.hi - a.lo),
+                   tol::kGridCoordinateRounding * std::max(std::abs(a.lo), std::abs(a.hi)));
   a.distinct = distinct_values(std::move(v), a.tol);
   return a;
 }
@@ -148,8 +149,9 @@ DistinctCoordinates count_distinct_coordinates(const ScatteredSamples& samples) 
     for (size_t i = 0; i < n; ++i) most = std::max(most, std::abs(a.distinct[i] - (a.lo + static_cast<double>(i) * d)));
     return most / (a.hi - a.lo);
   };
+  const auto tolerance = [](const Axis& a) { return a.hi > a.lo ? a.tol / (a.hi - a.lo) : tol::kGridCoordinateRelative; };
   const Axis ax = axis_of(samples, 0), ay = axis_of(samples, 1);
-  return {ax.distinct.size(), ay.distinct.size(), uneven(ax), uneven(ay)};
+  return {ax.distinct.size(), ay.distinct.size(), uneven(ax), uneven(ay), tolerance(ax), tolerance(ay)};
 }
 
 std::optional<GridNodes> as_regular_grid(const ScatteredSamples& s) {

@@ -31,18 +31,22 @@ Result<std::size_t> merge_duplicate_points(ScatteredSamples& samples, const Barr
 std::string merged_samples_message(std::size_t removed, std::size_t before, std::size_t after);
 
 /// The samples as the nodes of a regular grid, if they are one: the distinct x values (values
-/// within tol::kGridCoordinateRelative (1e-9) of the x extent of each other count as one) are nx >= 2 equally spaced values,
-/// each within tol::kGridCoordinateRelative (1e-9) of the x extent from x0 + i (x1 - x0) / (nx - 1); the same for y; and every
+/// within the x tolerance of each other count as one) are nx >= 2 equally spaced values,
+/// each within the x tolerance from x0 + i (x1 - x0) / (nx - 1); the same for y; and every
 /// (x, y) combination is present exactly once (nx * ny samples, in any order). The nodes are
-/// returned row by row from y0 upward (GridNodes' layout) with the samples' channels.
+/// returned row by row from y0 upward (GridNodes' layout) with the samples' channels. An axis's
+/// tolerance: tol::kGridCoordinateRelative (1e-9) of its extent, or tol::kGridCoordinateRounding
+/// (64 ulps) of its coordinates' magnitude when that is more.
 std::optional<GridNodes> as_regular_grid(const ScatteredSamples& samples);
 
 /// Distinct-coordinate counts reported when samples are not a grid (the same tolerance), and
 /// how far the distinct values of each axis stray from equal spacing: the largest distance of one
-/// from its place x0 + i (x1 - x0) / (nx - 1), as a fraction of the extent (0 for fewer than 2).
+/// from its place x0 + i (x1 - x0) / (nx - 1), as a fraction of the extent (0 for fewer than 2),
+/// and each axis's tolerance as such a fraction.
 struct DistinctCoordinates {
   std::size_t x = 0, y = 0;
   double x_uneven = 0, y_uneven = 0;
+  double x_tolerance = 0, y_tolerance = 0;
 };
 DistinctCoordinates count_distinct_coordinates(const ScatteredSamples& samples);
 

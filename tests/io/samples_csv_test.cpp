@@ -255,6 +255,45 @@ TEST(SamplesIo, GridDetectionToleratesRoundingWithinTolerance) {
   EXPECT_EQ(g->ny, 2);
 }
 
+TEST(SamplesIo, AGridOfCentimetresAtAUtmNorthingIsAGridAndAStrayOfAMicronIsNot) {
+  // 11 x 11 nodes 1 cm apart at x = 500000 m, y = 5000000 m, as the decimals 5000000.03 etc.
+  // read: 1 ulp (9.3e-10 m, 9.3e-9 of the 0.1 m extent) off the lines, which the extent's
+  // 1e-9 alone refused (an outside-in trial). Bilinear then reproduces a linear function; a
+  // node 1 micron off (1e-5 of the extent, 1000 ulps) is still no grid, and the message gives
+  // the tolerance used.
+  const auto utm_grid = [](double stray_m) {
+    ScatteredSamples s;
+    for (int j = 0; j <= 10; ++j)
+      for (int i = 0; i <= 10; ++i) {
+        char text[64];
+        std::snprintf(text, sizeof text, "%.2f %.2f", 500000 + i / 100.0, 5000000 + j / 100.0);
+        char* end = nullptr;
+        const double x = std::strtod(text, &end), y = std::strtod(end, nullptr) + (i == 3 && j == 7 ? stray_m : 0);
+        s.points.emplace_back(x, y);
+        s.values.push_back(2 * (x - 500000) - 3 * (y - 5000000));
+      }
+    return s;
+  };
+  const ScatteredSamples s = utm_grid(0);
+  const std::optional<GridNodes> g = as_regular_grid(s);
+  ASSERT_TRUE(g.has_value());
+  EXPECT_EQ(g->nx, 11);
+  EXPECT_EQ(g->ny, 11);
+  const InterpolantResult bilinear = make_point_interpolant(Method::bilinear, s, {});
+  ASSERT_TRUE(bilinear) << bilinear.reason();
+  const Vec2 q(500000.0437, 5000000.0612);
+  double v = 0;
+  bilinear.value()->evaluate(std::span(&q, 1), std::span(&v, 1));
+  EXPECT_NEAR(v, 2 * 0.0437 - 3 * 0.0612, 1e-8);  // the query's own rounding at 5e6: 1e-9 m
+  const InterpolantResult stray = make_point_interpolant(Method::bilinear, utm_grid(1e-6), {});
+  ASSERT_FALSE(stray);
+  // 64 ulps at 5e6 m: 7.1e-8 m, 7.1e-7 of the extent.
+  EXPECT_NE(stray.reason().find("11 distinct x, 12 distinct y; the y values are unevenly spaced"), std::string::npos)
+      << stray.reason();
+  EXPECT_NE(stray.reason().find("beyond the tolerance of 7.1e-07"), std::string::npos)
+      << stray.reason();
+}
+
 TEST(SamplesIo, RejectsIncompleteOrUnevenGrids) {
   const auto grid = [](const std::vector<double>& xs, const std::vector<double>& ys) {
     ScatteredSamples s;
