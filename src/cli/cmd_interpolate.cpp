@@ -248,6 +248,12 @@ void run_interpolate(const InterpolateArgs& args) {
 
     const auto write_start = Clock::now();
     if (geo_raster) refuse_nodata_clash(values, args.nodata, geo_options.float64);
+    if (geo_raster && !geo_options.float64) {
+      double largest = 0;
+      for (const double v : values)
+        if (std::isfinite(v)) largest = std::max(largest, std::abs(v));
+      refuse_float32_underflow(args.out, largest, "give --type float64, write .csv, or scale the values");
+    }
     if (geotiff) {
       // An earlier GeoTIFF's side files (an .aux.xml, whose CRS GDAL reads first; a world file)
       // go with it, as write_gdal_raster() removes them.

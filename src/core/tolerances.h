@@ -429,6 +429,12 @@ inline constexpr double kHullChainRelative = 1e-12;
 /// The rounding part of the hull band above, times the coordinates' magnitude (64 ulps).
 inline constexpr double kHullEdgeRounding = 64 * 2.220446049250313e-16;
 
+/// Values written as 32-bit floats (PFM, a float32 GeoTIFF) whose largest magnitude is below this
+/// are refused (io/image_io.h, refuse_float32_underflow()): FLT_MIN / FLT_EPSILON (9.9e-32), below
+/// which the floats' spacing near zero (FLT_MIN times FLT_EPSILON at the least) is coarser than
+/// their relative precision times the largest value.
+inline constexpr double kFloat32LeastLargest = 1.1754943508222875e-38 / 1.1920928955078125e-07;
+
 /// A PNG of a raster (io/raster.h) maps [min, max] of its finite values to black and white; when
 /// max - min is no more than this fraction of their magnitude the values are taken as one (the
 /// rounding of an interpolant of constant data) and shown at display 0.5, not as speckle.

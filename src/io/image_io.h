@@ -56,6 +56,13 @@ using PfmValues = std::function<void(size_t first, std::span<double> out)>;
 void write_pfm(const std::filesystem::path& path, int width, int height, int channels, size_t batch_values,
                const PfmValues& produce);
 
+/// Refuses (UserError naming `path`) values to be stored as 32-bit floats whose largest finite
+/// magnitude `largest` is positive and below tol::kFloat32LeastLargest: there a float's spacing
+/// near zero is coarser than its relative precision at the largest value, and below 1.4e-45
+/// every value is 0 (an outside-in trial: values of 1e-50 written as a raster of zeros, exit 0).
+/// `advice`: what to write instead.
+void refuse_float32_underflow(const std::string& path, double largest, const std::string& advice);
+
 /// Writes an image's linear values as OpenEXR (RGB, 32-bit floats).
 void write_exr(const std::filesystem::path& path, const Image& image);
 
