@@ -429,6 +429,11 @@ inline constexpr double kHullChainRelative = 1e-12;
 /// The rounding part of the hull band above, times the coordinates' magnitude (64 ulps).
 inline constexpr double kHullEdgeRounding = 64 * 2.220446049250313e-16;
 
+/// `interpolate` warns when Hardy's global multiquadric without a polynomial is given values
+/// whose mean exceeds this many times their range (reconstruct/methods.h, make_point_interpolant()):
+/// it holds no constant, and bends toward 0 by an amount in proportion to the mean.
+inline constexpr double kMultiquadricOffsetWarning = 1;
+
 /// Values written as 32-bit floats (PFM, a float32 GeoTIFF) whose largest magnitude is below this
 /// are refused (io/image_io.h, refuse_float32_underflow()): FLT_MIN / FLT_EPSILON (9.9e-32), below
 /// which the floats' spacing near zero (FLT_MIN times FLT_EPSILON at the least) is coarser than

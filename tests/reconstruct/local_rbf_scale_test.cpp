@@ -13,6 +13,7 @@
 
 #include "core/error.h"
 #include "reconstruct/local_multiquadric.h"
+#include "reconstruct/methods.h"
 #include "reconstruct/multiquadric.h"
 #include "reconstruct/multiquadric_basis.h"
 
@@ -116,6 +117,39 @@ TEST(Multiquadric, DoesNotDependOnTheUnitOfLengthWhateverItsExponent) {
         }
       }
     }
+}
+
+TEST(Multiquadric, InterpolateWarnsThatAnOffsetInTheValuesBendsTheGlobalFormAndPolyReproducesIt) {
+  // 200 samples of the constant 1000: the global multiquadric (no constant in its span) is off
+  // it between and past the samples, the form with a linear polynomial is 1000 to rounding, and
+  // interpolate's entry warns of the first only (an outside-in trial).
+  std::mt19937 rng(59);
+  std::uniform_real_distribution<double> unit(0, 15);
+  ScatteredSamples s;
+  for (int i = 0; i < 200; ++i) s.points.emplace_back(unit(rng), unit(rng));
+  s.values.assign(s.points.size(), 1000.0);
+  const std::vector<Vec2> q = {Vec2(15.2, 15.6), Vec2(-0.5, 7)};
+  MethodParams params;
+  ::testing::internal::CaptureStderr();
+  const InterpolantResult hardy = make_point_interpolant(Method::multiquadric, s, params);
+  const std::string warned = ::testing::internal::GetCapturedStderr();
+  ASSERT_TRUE(hardy) << hardy.reason();
+  EXPECT_NE(warned.find("the values' mean, 1000, is large against their range, 0"), std::string::npos) << warned;
+  std::vector<double> got(q.size());
+  hardy.value()->evaluate(q, got);
+  EXPECT_GT(std::abs(got[0] - 1000), 1.0);  // 1119 in the trial
+  params.multiquadric_poly = 1;
+  ::testing::internal::CaptureStderr();
+  const InterpolantResult with_poly = make_point_interpolant(Method::multiquadric, s, params);
+  EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
+  ASSERT_TRUE(with_poly) << with_poly.reason();
+  with_poly.value()->evaluate(q, got);
+  for (const double v : got) EXPECT_NEAR(v, 1000, 1e-9);
+  // Values about 0 (mean within their range): no warning.
+  for (size_t k = 0; k < s.points.size(); ++k) s.values[k] = std::sin(s.points[k].x());
+  ::testing::internal::CaptureStderr();
+  const InterpolantResult centred = make_point_interpolant(Method::multiquadric, s, MethodParams{});
+  EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
 }
 
 TEST(LocalMultiquadric, ARefusedPatchIsLocatedInTheSamplesUnits) {
