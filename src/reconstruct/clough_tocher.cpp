@@ -8,6 +8,7 @@
 
 #include "core/check.h"
 #include "core/parallel.h"
+#include "core/parse.h"
 #include "core/tolerances.h"
 
 namespace radrecon {
@@ -161,8 +162,10 @@ void CloughTocher::estimate_gradients(const std::vector<double>& values) {
   for (size_t v = 0; v < n; ++v) {
     const auto& d = a.diagonal[v];
     const double det = d[0] * d[2] - d[1] * d[1];
-    if (!(det > 0) || !std::isfinite(det))
-      throw ReconstructionError("clough-tocher: the gradient equations of a sample are singular (samples too close together?)");
+    if (!(det > 0) || !std::isfinite(det))  // its edges do not span the plane, to rounding
+      throw ReconstructionError("clough-tocher: the edges of the triangulation at the sample at (" + format_number(p[v].x()) +
+                                ", " + format_number(p[v].y()) + ") lie on one line to rounding, so its gradient cannot be "
+                                "estimated (samples collinear up to rounding?); linear or natural-neighbour take them");
     a.inverse[v] = {d[2] / det, -d[1] / det, d[0] / det};
   }
 

@@ -441,4 +441,15 @@ if expect_rc tiny_csv 0; then
   grep -q '^1,1,4e-50$' "$TMP/tiny_out.csv" || fail "tiny_csv: the corner's 4e-50 not kept: $(cat "$TMP/tiny_out.csv")"
 fi
 
+# --- clough-tocher on samples collinear to rounding names the sample and the cause -----------------
+printf 'x,y,z\n0,0,1\n1,0.1,2\n2,0.2,3\n3,0.30000000000000004,4\n4,0.4,5\n' > "$TMP/collinear_rounding.csv"
+printf 'x,y\n2.5,0.25\n' > "$TMP/collinear_q.csv"
+refuse ct_collinear "lie on one line to rounding" "$TMP/ct_collinear.csv" --samples "$TMP/collinear_rounding.csv" \
+  --method clough-tocher --queries "$TMP/collinear_q.csv"
+run ct_collinear_linear --samples "$TMP/collinear_rounding.csv" --method linear --queries "$TMP/collinear_q.csv" \
+  --out "$TMP/ct_collinear_linear.csv" --quiet
+if expect_rc ct_collinear_linear 0; then
+  grep -q '^2.5,0.25,3.5$' "$TMP/ct_collinear_linear.csv" || fail "ct_collinear_linear: $(cat "$TMP/ct_collinear_linear.csv")"
+fi
+
 finish interpolate_test
