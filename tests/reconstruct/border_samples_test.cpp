@@ -285,6 +285,32 @@ TEST(BorderSamples, CountsFollowTheSpacingRuleWithoutDuplicates) {
         ASSERT_GT((s->points[i] - s->points[j]).norm(), delta) << s->points[i].transpose();
 }
 
+TEST(BorderSamples, ADomainApartFromTheSamplesIsWarnedOfWithTheCountAdded) {
+  // Samples in [0, 1]^2 and a 1 x 1 domain 500 away: the border goes around both, with a
+  // warning that names both boxes and the count; a domain over the samples gets none.
+  ScatteredSamples s;
+  for (const Vec2& p : {Vec2(0, 0), Vec2(1, 0), Vec2(0, 1), Vec2(1, 1), Vec2(0.4, 0.6)}) {
+    s.points.push_back(p);
+    s.values.push_back(p.x() + 2 * p.y());
+  }
+  for (const auto& [domain, apart] : {std::pair{Rect{500, 500, 501, 501}, true}, std::pair{Rect{0.5, 0.5, 3, 3}, false}}) {
+    ScatteredSamples bordered = s;
+    MethodParams params;
+    ::testing::internal::CaptureStderr();
+    const Result<size_t> added = add_border_samples(Method::natural_neighbour, bordered, domain, params);
+    const std::string warned = ::testing::internal::GetCapturedStderr();
+    ASSERT_TRUE(added) << added.reason();
+    EXPECT_EQ(bordered.points.size(), s.points.size() + added.value());
+    if (!apart) {
+      EXPECT_EQ(warned, "");
+      continue;
+    }
+    EXPECT_NE(warned.find("the domain [500, 500, 501, 501] does not meet the samples' bounding box [0, 0, 1, 1]"),
+              std::string::npos) << warned;
+    EXPECT_NE(warned.find("(" + std::to_string(added.value()) + " added)"), std::string::npos) << warned;
+  }
+}
+
 TEST(BorderSamples, RefusesWhatItCannotExtrapolateFrom) {
   const ScatteredSamples grid = sampled(cell_centres(4, 4, kUnit), 1, [](const Vec2& p, int) { return p.x(); });
   const auto refused = [](const ScatteredSamples& s, const Rect& d, BorderSampleSettings settings, const std::string& words) {
