@@ -46,9 +46,16 @@ struct ExportArgs {
 /// The default white: the kDefaultWhitePercentile-th percentile of the brightest channel of the
 /// texels of the sides that emit nothing (the lights would set it far too high); 1 if none is lit.
 double lightmap_white(const Scene& scene, const LightmapAtlas& atlas) {
-  std::vector<double> brightest;
+  const auto emits = [&](const LightmapTile& t) {
+    return (side_emission(scene.surfaces[t.side.surface], t.side.back_side) > 0).any();
+  };
+  size_t unlit_texels = 0;
+  for (const LightmapTile& t : atlas.tiles)
+    if (!emits(t)) unlit_texels += static_cast<size_t>(t.width) * t.height;
+  std::vector<double> brightest;  // reserved exactly: 8 bytes a texel (grown by doubling, up to 24)
+  brightest.reserve(unlit_texels);
   for (const LightmapTile& t : atlas.tiles) {
-    if ((side_emission(scene.surfaces[t.side.surface], t.side.back_side) > 0).any()) continue;
+    if (emits(t)) continue;
     for (int j = 0; j < t.height; ++j)
       for (int i = 0; i < t.width; ++i) brightest.push_back(atlas.radiosity_w_m2.at(t.x0 + i, t.y0 + j).maxCoeff());
   }
