@@ -43,12 +43,34 @@ struct ExportArgs {
   bool quiet = false;
 };
 
+/// Bytes that export holds at most for a texel of the atlas: the linear atlas (an Rgb, 24) and
+/// beside it, one at a time, the white point's brightest channels (8), the .exr's floats (12), or
+/// the PNG's 8-bit texels (3) and their encoding, whose buffer grows by doubling (9 more at worst:
+/// a PNG of incompressible texels, one doubling past 3 bytes a texel).
+constexpr double kExportBytesPerAtlasTexel = sizeof(Rgb) + 12;
+/// Bytes that baking adds beside the atlas whatever its size: the reconstruction's caches filled
+/// as texels ask (natural-neighbour's triangulations of visible samples, ~60 MB at most), the
+/// worker threads (a stack and a malloc arena each: 72 MB of address space, counted under
+/// ulimit -v) and the OpenEXR library. 110-115 MB measured beyond the atlas's at --texels 2048
+/// and 4096 with --exr on 2 threads (the smallest ulimit -v that runs; docs/export.md).
+constexpr double kExportBytesBesideAtlas = 256e6;
+
+/// The memory export needs for an atlas of `size`, bytes: an upper bound of its peak.
+double export_memory_bytes(LightmapSize size) { return kExportBytesPerAtlasTexel * size.texels() + kExportBytesBesideAtlas; }
+
 /// The default white: the kDefaultWhitePercentile-th percentile of the brightest channel of the
 /// texels of the sides that emit nothing (the lights would set it far too high); 1 if none is lit.
 double lightmap_white(const Scene& scene, const LightmapAtlas& atlas) {
-  std::vector<double> brightest;
+  const auto emits = [&](const LightmapTile& t) {
+    return (side_emission(scene.surfaces[t.side.surface], t.side.back_side) > 0).any();
+  };
+  size_t unlit_texels = 0;
+  for (const LightmapTile& t : atlas.tiles)
+    if (!emits(t)) unlit_texels += static_cast<size_t>(t.width) * t.height;
+  std::vector<double> brightest;  // reserved exactly: 8 bytes a texel (grown by doubling, up to 24)
+  brightest.reserve(unlit_texels);
   for (const LightmapTile& t : atlas.tiles) {
-    if ((side_emission(scene.surfaces[t.side.surface], t.side.back_side) > 0).any()) continue;
+    if (emits(t)) continue;
     for (int j = 0; j < t.height; ++j)
       for (int i = 0; i < t.width; ++i) brightest.push_back(atlas.radiosity_w_m2.at(t.x0 + i, t.y0 + j).maxCoeff());
   }
@@ -76,6 +98,17 @@ void run_export(const ExportArgs& args) {
     return reconstruct_solution(scene, solution, args.solution, args.method, args.params, args.no_barriers,
                                 args.border_samples);
   });
+  // The memory, checked before the atlas is made (what the reconstruction holds is mapped by now,
+  // so counted under a ulimit -v): refused with the most texels that fit.
+  const LightmapSize size = lightmap_size(scene, solution, args.texels, "--texels");
+  refuse_beyond_memory("--texels", "the lightmap's " + std::to_string(size.width) + "x" + std::to_string(size.height) + " texels",
+                       export_memory_bytes(size), [&](double available_bytes) -> std::string {
+                         const int most = most_lightmap_texels_below(scene, solution, args.texels, [&](LightmapSize s) {
+                           return export_memory_bytes(s) <= available_bytes;
+                         });
+                         if (most < 2) return "not even --texels 2 fits; free memory or raise ulimit -v";
+                         return "use --texels " + std::to_string(most) + " or fewer";
+                       });
   Progress progress("export", args.quiet);
   const LightmapAtlas atlas = bake_lightmaps(scene, solution, *recon, args.texels, "--texels", &progress);
   if (atlas.texels_without_value > 0)

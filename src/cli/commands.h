@@ -29,10 +29,14 @@ size_t memory_available_bytes();
 std::string megabytes(double bytes);
 /// A picture's size as render and cornell name it: "640x480 pixels at 9 rays each".
 std::string picture_size_text(int width, int height, int samples_per_axis);
-/// Refuses the picture of `asked` (picture_size_text()) needing `needed_bytes` when that exceeds
-/// memory_available_bytes(): UserError naming `option`, with `advice`.
+/// Refuses what `asked` names (a picture: picture_size_text(); a lightmap's texels) needing
+/// `needed_bytes` when that exceeds memory_available_bytes(): UserError naming `option`, with
+/// `advice`.
 void refuse_beyond_memory(const std::string& option, const std::string& asked, double needed_bytes,
                           const std::string& advice);
+/// The same, the advice made only when refused, from the bytes available (e.g. the most that fit).
+void refuse_beyond_memory(const std::string& option, const std::string& asked, double needed_bytes,
+                          const std::function<std::string(double available_bytes)>& advice);
 
 /// A check for an option that takes a positive number of at most `most` (a white point: zero
 /// would divide by zero, so it is refused rather than read as "the default").

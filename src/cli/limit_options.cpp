@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <optional>
 #include <string>
 #include <utility>
@@ -42,10 +43,15 @@ std::string picture_size_text(int width, int height, int samples_per_axis) {
 
 void refuse_beyond_memory(const std::string& option, const std::string& asked, double needed_bytes,
                           const std::string& advice) {
-  const size_t available = memory_available_bytes();
-  if (needed_bytes > static_cast<double>(available))
-    throw UserError(option, asked + " need about " + megabytes(needed_bytes) + " of memory, and " +
-                                megabytes(static_cast<double>(available)) + " are available: " + advice);
+  refuse_beyond_memory(option, asked, needed_bytes, [&](double) { return advice; });
+}
+
+void refuse_beyond_memory(const std::string& option, const std::string& asked, double needed_bytes,
+                          const std::function<std::string(double available_bytes)>& advice) {
+  const auto available = static_cast<double>(memory_available_bytes());
+  if (needed_bytes > available)
+    throw UserError(option, asked + " need about " + megabytes(needed_bytes) + " of memory, and " + megabytes(available) +
+                                " are available: " + advice(available));
 }
 
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <numeric>
 #include <string>
 #include <vector>
@@ -93,34 +94,59 @@ Vec2 LightmapAtlas::texture_coordinate(const LightmapTile& tile, double u, doubl
   return {(tile.x0 + u * tile.width) / radiosity_w_m2.width(), (tile.y0 + v * tile.height) / radiosity_w_m2.height()};
 }
 
-LightmapAtlas bake_lightmaps(const Scene& scene, const Solution& solution, const SolutionReconstruction& reconstruction,
-                             int texels_along_longest, const std::string& where, Progress* progress) {
-  RR_CHECK(texels_along_longest >= 2, "a lightmap needs 2 texels along the longest edge");
+namespace {
+
+/// The longest surface edge of the solution, metres: --texels texels along it.
+double longest_edge_m(const Solution& solution) {
   double longest_m = 0;
   for (const SurfaceSolution& s : solution.surfaces)
     longest_m = std::max(longest_m, mesh_extent_m(s.frame(), s.triangle));
   RR_CHECK(longest_m > 0, "a solution of no extent");
-  const double texels_per_metre = texels_along_longest / longest_m;
-  LightmapAtlas atlas;
-  atlas.texels_per_metre = texels_per_metre;
-  Packing packing = pack(scene, solution, texels_along_longest, longest_m);
-  if (!packing.fits()) {
-    // The most texels that fit, found by halving (the gutters and shelves make it no proportion).
-    int lo = 1, hi = texels_along_longest;  // pack(lo) fits (or lo is 1: none does), pack(hi) does not
-    while (hi - lo > 1) {
-      const int mid = lo + (hi - lo) / 2;
-      (pack(scene, solution, mid, longest_m).fits() ? lo : hi) = mid;
-    }
-    const std::string most = lo >= 2 ? "; at most " + std::to_string(lo) + " fit" : "";
-    if (!packing.too_large_side.empty())
-      throw UserError(where, "side '" + packing.too_large_side + "' would need " + packing.too_large_size +
-                                 " texels and a gutter of " + std::to_string(kLightmapGutter) +
-                                 " around them, more than the largest texture (" + std::to_string(kMaxLightmapSide) +
-                                 " texels a side)" + most);
-    throw UserError(where, "the atlas would be " + std::to_string(packing.width) + " x " + std::to_string(packing.height) +
-                               " texels, more than the largest texture (" + std::to_string(kMaxLightmapSide) + " a side)" +
-                               most);
+  return longest_m;
+}
+
+/// pack(), or UserError naming `where` when the atlas exceeds the largest texture, with the most
+/// texels that would fit.
+Packing checked_packing(const Scene& scene, const Solution& solution, int texels_along_longest, const std::string& where) {
+  RR_CHECK(texels_along_longest >= 2, "a lightmap needs 2 texels along the longest edge");
+  Packing packing = pack(scene, solution, texels_along_longest, longest_edge_m(solution));
+  if (packing.fits()) return packing;
+  const int lo = most_lightmap_texels_below(scene, solution, texels_along_longest, [](LightmapSize) { return true; });
+  const std::string most = lo >= 2 ? "; at most " + std::to_string(lo) + " fit" : "";
+  if (!packing.too_large_side.empty())
+    throw UserError(where, "side '" + packing.too_large_side + "' would need " + packing.too_large_size +
+                               " texels and a gutter of " + std::to_string(kLightmapGutter) +
+                               " around them, more than the largest texture (" + std::to_string(kMaxLightmapSide) +
+                               " texels a side)" + most);
+  throw UserError(where, "the atlas would be " + std::to_string(packing.width) + " x " + std::to_string(packing.height) +
+                             " texels, more than the largest texture (" + std::to_string(kMaxLightmapSide) + " a side)" +
+                             most);
+}
+
+}  // namespace
+
+int most_lightmap_texels_below(const Scene& scene, const Solution& solution, int texels_along_longest,
+                               const std::function<bool(LightmapSize)>& fits) {
+  const double longest_m = longest_edge_m(solution);
+  int lo = 1, hi = texels_along_longest;  // lo fits (or is 1: none does), hi does not
+  while (hi - lo > 1) {
+    const int mid = lo + (hi - lo) / 2;
+    const Packing p = pack(scene, solution, mid, longest_m);
+    (p.fits() && fits({p.width, p.height}) ? lo : hi) = mid;
   }
+  return lo;
+}
+
+LightmapSize lightmap_size(const Scene& scene, const Solution& solution, int texels_along_longest, const std::string& where) {
+  const Packing packing = checked_packing(scene, solution, texels_along_longest, where);
+  return {packing.width, packing.height};
+}
+
+LightmapAtlas bake_lightmaps(const Scene& scene, const Solution& solution, const SolutionReconstruction& reconstruction,
+                             int texels_along_longest, const std::string& where, Progress* progress) {
+  Packing packing = checked_packing(scene, solution, texels_along_longest, where);
+  LightmapAtlas atlas;
+  atlas.texels_per_metre = texels_along_longest / longest_edge_m(solution);
   atlas.tiles = std::move(packing.tiles);
   const int atlas_width = packing.width, atlas_height = packing.height;
   atlas.radiosity_w_m2 = Image(atlas_width, atlas_height);

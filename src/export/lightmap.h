@@ -17,12 +17,12 @@
 // that is no parallelogram: SideSampling::outline_band_m) a texel holds 0; `export` warns of those
 // outside excluded regions.
 
+#include <functional>
 #include <string>
-
-#include "core/progress.h"
 #include <vector>
 
 #include "core/image.h"
+#include "core/progress.h"
 #include "sampling/solution_reconstruction.h"
 #include "scene/scene.h"
 #include "solver/solution.h"
@@ -55,6 +55,22 @@ struct LightmapAtlas {
   /// The texture coordinate of the side's parameters (u, v), in [0, 1]^2 of the atlas.
   Vec2 texture_coordinate(const LightmapTile& tile, double u, double v) const;
 };
+
+/// An atlas's size, texels.
+struct LightmapSize {
+  int width = 0, height = 0;
+  double texels() const { return static_cast<double>(width) * height; }
+};
+
+/// The size of the atlas that bake_lightmaps() would lay out for `texels_along_longest`, found
+/// without allocating it; throws as bake_lightmaps() does beyond kMaxLightmapSide.
+LightmapSize lightmap_size(const Scene& scene, const Solution& solution, int texels_along_longest, const std::string& where);
+
+/// The most texels along the longest edge, fewer than `texels_along_longest`, whose atlas is
+/// within kMaxLightmapSide and passes `fits` (e.g. the memory available); 1 if not even 2 do.
+/// Found by halving: an atlas grows with its texels, though in no exact proportion.
+int most_lightmap_texels_below(const Scene& scene, const Solution& solution, int texels_along_longest,
+                               const std::function<bool(LightmapSize)>& fits);
 
 /// Lays out and fills the atlas with `texels_along_longest` (>= 2) texels along the longest
 /// surface edge of the solution, every side at that density. Throws UserError naming `where`

@@ -93,4 +93,26 @@ expect_rc beyond_texture 2 && expect_stderr_has beyond_texture "--texels: Value 
 run no_solution --scene cornell --solution missing.json --out b.glb
 expect_rc no_solution 2 && expect_stderr_has no_solution "missing.json"
 
+# --- a lightmap beyond the memory available (ulimit -v; ~7.5 GB asked): refused before the atlas
+# is made, naming the most --texels that fit, nothing written. That many then run under the same
+# limit (exit 0, not 3): the estimate is an upper bound of what the run needs, as the kernel
+# counts it. Two threads: each thread's stack and malloc arena take address space.
+if ! grep -q __asan_init "$RADRECON"; then  # ASan needs address space beyond any ulimit -v
+  (ulimit -v 600000 && export OMP_NUM_THREADS=2 &&
+    run beyond_memory --scene cornell --solution box.json --texels 6442 --out big.glb --exr big.exr)
+  expect_rc beyond_memory 2 && expect_stderr_has beyond_memory "--texels: the lightmap's 12257x16383 texels need about"
+  expect_stderr_lacks beyond_memory "export: "  # refused before any texel
+  expect_no_output beyond_memory big.glb
+  expect_no_output beyond_memory big.exr
+  cmp -s box.json keep.json || fail "beyond_memory: the solution was changed"
+  most=$(grep -o "use --texels [0-9]* or fewer" "$TMP/beyond_memory.stderr" | tr -dc 0-9)
+  if [ -z "$most" ]; then
+    fail "beyond_memory: no --texels advised: $(cat "$TMP/beyond_memory.stderr")"
+  else
+    (ulimit -v 600000 && export OMP_NUM_THREADS=2 &&
+      run most_in_memory --scene cornell --solution box.json --texels "$most" --out big.glb --exr big.exr)
+    if expect_rc most_in_memory 0; then [ "$(head -c 4 big.glb)" = glTF ] || fail "most_in_memory: no glTF written"; fi
+  fi
+fi
+
 finish export_test

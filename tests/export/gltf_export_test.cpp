@@ -245,6 +245,28 @@ TEST(Lightmap, TheLongestSideGetsExactlyTheTexelsAsked) {
   }
 }
 
+TEST(Lightmap, SizeIsTheBakedAtlasAndTheMostThatFitAreFound) {
+  // lightmap_size() lays the atlas out without making it (export's memory check): the atlas that
+  // bake_lightmaps() then makes has that size. most_lightmap_texels_below(): the most texels
+  // whose atlas passes a test, the next failing it.
+  const Scene scene = lit_quad("floor", {Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(2, 1, 0), Vec3(0, 1, 0)},
+                               {Vec3(0.3, 0.3, 1), Vec3(0.3, 0.7, 1), Vec3(0.7, 0.7, 1), Vec3(0.7, 0.3, 1)});
+  const Solution solution = solve_scene(scene, "grid:4", SolveSettings{}, "mesh");
+  const SolutionReconstruction recon(scene, solution, Method::constant, {}, "test");
+  for (const int texels : {2, 31, 100}) {
+    const LightmapSize size = lightmap_size(scene, solution, texels, "test");
+    const LightmapAtlas atlas = bake_lightmaps(scene, solution, recon, texels, "test");
+    EXPECT_EQ(size.width, atlas.radiosity_w_m2.width()) << texels;
+    EXPECT_EQ(size.height, atlas.radiosity_w_m2.height()) << texels;
+  }
+  const double most_texels = 5000;
+  const auto fits = [&](LightmapSize s) { return s.texels() <= most_texels; };
+  const int most = most_lightmap_texels_below(scene, solution, 1000, fits);
+  EXPECT_TRUE(fits(lightmap_size(scene, solution, most, "test")));
+  EXPECT_FALSE(fits(lightmap_size(scene, solution, most + 1, "test")));
+  EXPECT_EQ(most_lightmap_texels_below(scene, solution, 1000, [](LightmapSize) { return false; }), 1);
+}
+
 TEST(Lightmap, CountsTheTexelsWhereTheMethodGivesNoValue) {
   // natural-neighbour with outside=none has no value outside the hull of a side's element centres,
   // here the rectangle of the extreme centres: the count is the texels whose point lies outside it
