@@ -255,7 +255,7 @@ TEST(HullEdges, AThinSetWhoseHullVerticesLieOnTheEdgesAcrossIsTriangulated) {
   // The hull is two long edges, each split at samples on the other side's hull within rounding:
   // a hull vertex also split the edge across, and an internal check that no sample ends more
   // than two hull edges failed (an abort). Each method builds and is near v = x on the line;
-  // clough-tocher may refuse the set instead, naming why (its gradient equations are singular).
+  // clough-tocher may refuse the set instead, naming why (its edges at a sample lie on one line to rounding).
   ScatteredSamples s;
   s.channels = 1;
   for (const auto& [x, y] : std::vector<std::pair<double, double>>{
