@@ -23,6 +23,7 @@
 #include "io/geo_raster.h"
 #include "io/geotiff.h"
 #include "io/geojson.h"
+#include "core/float32_range.h"
 #include "io/image_io.h"
 #include "io/paths.h"
 #include "io/raster.h"
@@ -249,10 +250,9 @@ void run_interpolate(const InterpolateArgs& args) {
     const auto write_start = Clock::now();
     if (geo_raster) refuse_nodata_clash(values, args.nodata, geo_options.float64);
     if (geo_raster && !geo_options.float64) {
-      double largest = 0;
-      for (const double v : values)
-        if (std::isfinite(v)) largest = std::max(largest, std::abs(v));
-      refuse_float32_underflow(args.out, largest, "give --type float64, write .csv, or scale the values");
+      Float32Range range;
+      for (const double v : values) range.add(v);
+      range.refuse_underflow(args.out, "give --type float64, write .csv, or scale the values");
     }
     if (geotiff) {
       // An earlier GeoTIFF's side files (an .aux.xml, whose CRS GDAL reads first; a world file)

@@ -18,6 +18,7 @@
 #include "core/check.h"
 #include "core/error.h"
 #include "core/parse.h"
+#include "core/float32_range.h"
 #include "core/tolerances.h"
 #include "io/atomic_file.h"
 #include "io/openexr_io.h"
@@ -212,7 +213,7 @@ void write_pfm(const std::filesystem::path& path, int width, int height, int cha
 }
 
 void write_pfm(const std::filesystem::path& path, int width, int height, int channels, size_t batch_values,
-               const PfmValues& produce) {
+               const PfmValues& produce, const std::string& underflow_advice) {
   RR_CHECK(channels == 1 || channels == 3, "PFM holds 1 or 3 channels");
   RR_CHECK(width > 0 && height > 0 && batch_values > 0, "a PFM needs pixels, made in batches of some");
   const size_t total = static_cast<size_t>(width) * height * channels;
@@ -223,7 +224,7 @@ void write_pfm(const std::filesystem::path& path, int width, int height, int cha
               "\n-1.0\n");
     std::vector<double> values(std::min(batch_values, total));
     std::vector<std::uint32_t> bits(values.size());
-    double largest = 0;
+    Float32Range range;
     for (size_t first = 0; first < total; first += values.size()) {
       const size_t count = std::min(values.size(), total - first);
       produce(first, std::span(values.data(), count));
@@ -232,7 +233,7 @@ void write_pfm(const std::filesystem::path& path, int width, int height, int cha
         if (std::isfinite(v) && std::abs(v) > std::numeric_limits<float>::max())
           throw UserError(path.string(), "a value, " + format_number(v) +
                                              ", is beyond the range of PFM's 32-bit floats (3.4e38); write .csv instead");
-        if (std::isfinite(v)) largest = std::max(largest, std::abs(v));
+        range.add(v);
         std::uint32_t b = std::bit_cast<std::uint32_t>(static_cast<float>(v));
         if constexpr (std::endian::native == std::endian::big)
           b = (b >> 24) | ((b >> 8) & 0xff00u) | ((b << 8) & 0xff0000u) | (b << 24);
@@ -240,17 +241,9 @@ void write_pfm(const std::filesystem::path& path, int width, int height, int cha
       }
       out.write(bits.data(), count * sizeof(std::uint32_t));  // a full disk shows now, not after all the rest
     }
-    refuse_float32_underflow(path.string(), largest, "write .csv instead, or scale the values");
+    range.refuse_underflow(path.string(), underflow_advice);
     out.close();
   });
-}
-
-void refuse_float32_underflow(const std::string& path, double largest, const std::string& advice) {
-  if (!(largest > 0 && largest < tol::kFloat32LeastLargest)) return;
-  char least[16];
-  std::snprintf(least, sizeof least, "%.2g", tol::kFloat32LeastLargest);
-  throw UserError(path, "the values' largest magnitude, " + format_number(largest) + ", is too small for 32-bit floats (below " +
-                            least + " they lose their precision, and below 1.4e-45 they are 0); " + advice);
 }
 
 void write_pfm(const std::filesystem::path& path, const Image& image) {
@@ -270,7 +263,7 @@ void write_pfm(const std::filesystem::path& path, const Image& image) {
         if (++x == W) x = 0, ++j;
       }
     }
-  });
+  }, kImageFloat32Advice);
 }
 
 const OpenExrFunctions& openexr_functions(const std::string& what) {

@@ -52,16 +52,10 @@ using PfmValues = std::function<void(size_t first, std::span<double> out)>;
 /// write_pfm() with the values made batch by batch, at most `batch_values` at a time, by
 /// `produce`, and written as they come: a large raster never held whole (W3's 4,000,000 values
 /// would take 32 MB, and each of their pages a fault). `produce` may throw; the file is then
-/// not written (write_file_atomically()).
+/// not written (write_file_atomically()). Values too small for 32-bit floats are refused
+/// (Float32Range, core/float32_range.h) with `underflow_advice`.
 void write_pfm(const std::filesystem::path& path, int width, int height, int channels, size_t batch_values,
-               const PfmValues& produce);
-
-/// Refuses (UserError naming `path`) values to be stored as 32-bit floats whose largest finite
-/// magnitude `largest` is positive and below tol::kFloat32LeastLargest: there a float's spacing
-/// near zero is coarser than its relative precision at the largest value, and below 1.4e-45
-/// every value is 0 (an outside-in trial: values of 1e-50 written as a raster of zeros, exit 0).
-/// `advice`: what to write instead.
-void refuse_float32_underflow(const std::string& path, double largest, const std::string& advice);
+               const PfmValues& produce, const std::string& underflow_advice = "write .csv instead, or scale the values");
 
 /// Writes an image's linear values as OpenEXR (RGB, 32-bit floats).
 void write_exr(const std::filesystem::path& path, const Image& image);

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/float32_range.h"
 #include "core/parse.h"
 
 namespace radrecon {
@@ -26,6 +27,7 @@ void write(const std::filesystem::path& file, const std::string& shown_as, const
   const int width = image.width(), height = image.height();
   const size_t n = static_cast<size_t>(width) * height;
   std::vector<float> pixels(n * 3);
+  Float32Range range;
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x)
       for (int c = 0; c < 3; ++c) {
@@ -33,8 +35,10 @@ void write(const std::filesystem::path& file, const std::string& shown_as, const
         if (std::isfinite(v) && std::abs(v) > std::numeric_limits<float>::max())
           throw UserError(shown_as, "a value, " + format_number(v) +
                                         ", is beyond the range of OpenEXR's 32-bit floats (3.4e38)");
+        range.add(v);
         pixels[(static_cast<size_t>(y) * width + x) * 3 + static_cast<size_t>(c)] = static_cast<float>(v);
       }
+  range.refuse_underflow(shown_as, kImageFloat32Advice);
   try {
     Imf::Header header(width, height);
     const char* names[3] = {"R", "G", "B"};

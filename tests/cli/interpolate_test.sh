@@ -432,8 +432,11 @@ expect_rc no_value 0 && expect_stderr_has no_value "no point has a value"
 
 # --- values too small for 32-bit floats are refused, not written as zeros (an outside-in trial) --
 printf 'x,y,z\n0,0,1e-50\n1,0,2e-50\n0,1,3e-50\n1,1,4e-50\n' > "$TMP/tiny.csv"
-refuse tiny_pfm "too small for 32-bit floats" "$TMP/tiny.pfm" --samples "$TMP/tiny.csv" --method bilinear --raster 4x4 --domain 0,0,1,1
+refuse tiny_pfm "below a 32-bit float's normal range" "$TMP/tiny.pfm" --samples "$TMP/tiny.csv" --method bilinear --raster 4x4 --domain 0,0,1,1
 refuse tiny_tif "give --type float64" "$TMP/tiny.tif" --samples "$TMP/tiny.csv" --method bilinear --raster 4x4 --domain 0,0,1,1
+printf 'x,y,z\n0,0,1e-33\n1,0,2e-33\n0,1,3e-33\n1,1,4e-33\n' > "$TMP/small.csv"  # normal floats: kept
+run small_pfm --samples "$TMP/small.csv" --method bilinear --raster 4x4 --domain 0,0,1,1 --out "$TMP/small.pfm" --quiet
+expect_rc small_pfm 0
 run tiny_tif64 --samples "$TMP/tiny.csv" --method bilinear --raster 4x4 --domain 0,0,1,1 --type float64 --out "$TMP/tiny64.tif" --quiet
 expect_rc tiny_tif64 0
 run tiny_csv --samples "$TMP/tiny.csv" --method bilinear --queries "$TMP/tiny.csv" --out "$TMP/tiny_out.csv" --quiet
