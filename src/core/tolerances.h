@@ -183,14 +183,23 @@ inline constexpr double kEnclosedLitRelative = 1e-9;
 /// barrier, so it sees the samples outside, and far below any element.
 inline constexpr double kExcludedOutlineNudgeRelative = 1e-9;
 
+/// A surface is one face of a sheet of no thickness when the coplanar surfaces facing the other
+/// way cover each of this many x this many points over it (scene/contacts.cpp): their faces then
+/// cover none of it.
+inline constexpr int kSheetProbes = 16;
+
+/// A coordinate's rounding, as a fraction of its magnitude (64 ulps): the rounding part of a hull
+/// edge's band (kHullEdgeBandRelative), a regular grid's least tolerance (kGridCoordinateRelative),
+/// a query within rounding of a sample (kNearSampleRelative).
+inline constexpr double kCoordinateRounding = 64 * 2.220446049250313e-16;
+
 /// Scattered samples count as the nodes of a regular grid when their coordinates lie within
 /// this fraction of the samples' extent from the grid lines: far above the round-off of
 /// coordinates printed with 10+ digits, far below any intended offset.
 inline constexpr double kGridCoordinateRelative = 1e-9;
-/// ... or within this fraction of the coordinates' magnitude (64 ulps), when that is more: a 1 cm
-/// grid at a UTM northing of 5e6 m lies 1 ulp (9.3e-10 m, 9.3e-9 of its 0.1 m extent) off its
-/// lines, which the relative tolerance alone refused.
-inline constexpr double kGridCoordinateRounding = 64 * 2.220446049250313e-16;
+// ... or within kCoordinateRounding of the coordinates' magnitude (64 ulps), when that is more:
+// a 1 cm grid at a UTM northing of 5e6 m lies 1 ulp (9.3e-10 m, 9.3e-9 of its 0.1 m extent) off
+// its lines, which the relative tolerance alone refused.
 
 /// Natural neighbours with barriers: a local triangulation's Sibson coordinates are certified
 /// when the next visible sample lies beyond the bound rho + max(rho, r) by this relative margin
@@ -405,7 +414,7 @@ inline constexpr double kQuadMergeTurnRelative = 1e-6;
 
 /// Natural-neighbour interpolation (and laplace, sibson-c1): a query within this fraction of a
 /// hull edge's length of the edge (or of the height of the hull triangle on it, if smaller: a
-/// thin strip of samples, whose coordinates change fast across it), plus kHullEdgeRounding times
+/// thin strip of samples, whose coordinates change fast across it), plus kCoordinateRounding times
 /// its coordinates' magnitude, is on the edge, and gets the linear interpolation along it (the
 /// limit of Sibson's coordinates from inside). Points computed on a hull edge land within
 /// rounding of it, inside or outside; inside, the Voronoi computation cancels catastrophically
@@ -426,19 +435,17 @@ inline constexpr double kDelaunaySliverRelative = 1e-8;
 /// it was split at, so that the split takes no query off the hull.
 inline constexpr double kHullChainRelative = 1e-12;
 
-/// The rounding part of the hull band above, times the coordinates' magnitude (64 ulps).
-inline constexpr double kHullEdgeRounding = 64 * 2.220446049250313e-16;
+/// A natural-neighbour query whose coordinates' sum cancels to nothing (not positive) lies within
+/// rounding of a sample when it is within this fraction of its face's longest side of it (or
+/// kCoordinateRounding of its own magnitude), and takes that sample's value
+/// (reconstruct/natural_neighbour_impl.h); farther, the failed sum's rule stands.
+inline constexpr double kNearSampleRelative = 1e-12;
+
 
 /// `interpolate` warns when Hardy's global multiquadric without a polynomial is given values
 /// whose mean exceeds this many times their range (reconstruct/methods.h, make_point_interpolant()):
 /// it holds no constant, and bends toward 0 by an amount in proportion to the mean.
 inline constexpr double kMultiquadricOffsetWarning = 1;
-
-/// Values written as 32-bit floats (PFM, a float32 GeoTIFF) whose largest magnitude is below this
-/// are refused (io/image_io.h, refuse_float32_underflow()): FLT_MIN / FLT_EPSILON (9.9e-32), below
-/// which the floats' spacing near zero (FLT_MIN times FLT_EPSILON at the least) is coarser than
-/// their relative precision times the largest value.
-inline constexpr double kFloat32LeastLargest = 1.1754943508222875e-38 / 1.1920928955078125e-07;
 
 /// A PNG of a raster (io/raster.h) maps [min, max] of its finite values to black and white; when
 /// max - min is no more than this fraction of their magnitude the values are taken as one (the

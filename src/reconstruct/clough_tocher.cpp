@@ -162,7 +162,8 @@ void CloughTocher::estimate_gradients(const std::vector<double>& values) {
   for (size_t v = 0; v < n; ++v) {
     const auto& d = a.diagonal[v];
     const double det = d[0] * d[2] - d[1] * d[1];
-    if (!(det > 0) || !std::isfinite(det))  // its edges do not span the plane, to rounding
+    RR_CHECK(std::isfinite(det), "clough-tocher: a sample's gradient equations overflow");  // scaled by h: finite
+    if (!(det > 0))  // its edges do not span the plane, to rounding
       throw ReconstructionError("clough-tocher: the edges of the triangulation at the sample at (" + format_number(p[v].x()) +
                                 ", " + format_number(p[v].y()) + ") lie on one line to rounding, so its gradient cannot be "
                                 "estimated (samples collinear up to rounding?); linear or natural-neighbour take them");

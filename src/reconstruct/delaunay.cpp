@@ -157,7 +157,7 @@ HullEdgeDistance hull_edge_distance(const Vec2& a, const Vec2& b, const Vec2& q,
   const Vec2 ab = b - a;
   const double t = std::clamp((q - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
   const double band = slack_m + tol::kHullEdgeBandRelative * std::min(ab.norm(), height_m) +
-                      tol::kHullEdgeRounding * std::max({a.cwiseAbs().maxCoeff(), b.cwiseAbs().maxCoeff(), q.cwiseAbs().maxCoeff()});
+                      tol::kCoordinateRounding * std::max({a.cwiseAbs().maxCoeff(), b.cwiseAbs().maxCoeff(), q.cwiseAbs().maxCoeff()});
   return {(a + t * ab - q).norm() / band, t};
 }
 

@@ -26,7 +26,7 @@ namespace radrecon {
 
 /// Whether q lies on the hull edge ab up to rounding: within tol::kHullEdgeBandRelative of the
 /// edge's length (or of `height_m`, the height over ab of the hull triangle on it, if smaller),
-/// plus tol::kHullEdgeRounding of the coordinates' magnitude. A point computed on a
+/// plus tol::kCoordinateRounding of the coordinates' magnitude. A point computed on a
 /// hull edge as a + t (b - a) lands within that of it, a little inside or outside the hull; the
 /// triangulation methods give it the value on the edge (never NaN, never a far-off value from
 /// catastrophic cancellation). `slack_m` widens the band by the depth of the samples the edge was

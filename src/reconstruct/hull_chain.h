@@ -76,12 +76,12 @@ void hull_chain(const DT& dt, typename DT::Face_handle infinite_face, std::span<
 }
 
 /// A bound on the band of every hull edge of a triangulation (hull_edge_distance(), delaunay.h:
-/// its pieces' depth, plus kHullEdgeBandRelative of its length, plus kHullEdgeRounding of the
+/// its pieces' depth, plus kHullEdgeBandRelative of its length, plus kCoordinateRounding of the
 /// largest coordinate): no point farther than at(q) from the hull is on it up to rounding.
 struct HullBandBound {
   double fixed_m = 0;              ///< the largest depth plus kHullEdgeBandRelative of the longest edge, metres
   double largest_coordinate = 0;   ///< the hull vertices' largest |coordinate|, metres
-  double at(const Vec2& q) const { return fixed_m + tol::kHullEdgeRounding * std::max(largest_coordinate, q.cwiseAbs().maxCoeff()); }
+  double at(const Vec2& q) const { return fixed_m + tol::kCoordinateRounding * std::max(largest_coordinate, q.cwiseAbs().maxCoeff()); }
 };
 
 /// For q outside the hull of `dt` (a 2-D triangulation; `points` its samples by vertex info): the

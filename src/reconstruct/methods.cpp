@@ -401,7 +401,8 @@ namespace {
 /// large against their range: B(q) = sum alpha_j phi_j(q) holds no constant, so a constant added
 /// to the values is not added to the interpolant (200 samples of 1000 gave 999.98 inside their
 /// hull and 1119 0.6 m outside it: an outside-in trial). poly=1 and the local patches (k > 0)
-/// fit the deviations from the mean. The paper's form, kept as it is; only interpolate warns.
+/// fit the deviations from the mean. The paper's form, kept as it is; only interpolate's entry
+/// warns (the command line on stderr, Python as a UserWarning), once the interpolant is made.
 void warn_of_multiquadric_offset(const ScatteredSamples& samples, const MethodParams& params) {
   if (params.multiquadric_k != 0 || params.multiquadric_poly != 0 || samples.points.empty()) return;
   const size_t C = static_cast<size_t>(samples.channels), n = samples.points.size();
@@ -416,7 +417,7 @@ void warn_of_multiquadric_offset(const ScatteredSamples& samples, const MethodPa
     warn("multiquadric: the values' mean, " + format_number(mean) + ", is large against their range, " +
          format_number(hi - lo) + (C > 1 ? " (value column " + std::to_string(c + 1) + ")" : "") +
          ": Hardy's multiquadric holds no constant, so it bends toward 0 between and beyond the samples; "
-         "--param poly=1 (or k > 0) fits their deviations from the mean");
+         "--param poly=1 (or local patches, --param k=32) fits their deviations from the mean");
     return;
   }
 }
@@ -425,8 +426,11 @@ void warn_of_multiquadric_offset(const ScatteredSamples& samples, const MethodPa
 
 InterpolantResult make_point_interpolant(Method method, const ScatteredSamples& samples, const MethodParams& params) {
   if (const std::string problem = point_method_problem(method); !problem.empty()) return Failure{problem};
-  if (method == Method::multiquadric) warn_of_multiquadric_offset(samples, params);
-  if (!is_grid_method(method)) return make_scattered_interpolant(method, samples, params);
+  if (!is_grid_method(method)) {
+    InterpolantResult made = make_scattered_interpolant(method, samples, params);
+    if (made && method == Method::multiquadric) warn_of_multiquadric_offset(samples, params);
+    return made;
+  }
   const std::optional<GridNodes> grid = as_regular_grid(samples);
   if (!grid) {
     const DistinctCoordinates d = count_distinct_coordinates(samples);

@@ -137,9 +137,12 @@ RbfFit frame_fit(std::span<const Vec2> points, std::span<const double> r_sq, con
     for (unsigned s : subset) largest_r_sq = std::max(largest_r_sq, r_sq[s]);
     const double typical_sq = size_sq + largest_r_sq;
     if (typical_sq > 0 && std::isfinite(typical_sq)) {
-      int exponent = 0;
+      int exponent = 0;  // typical_sq = m 2^exponent, m in [1/2, 1)
       std::frexp(typical_sq, &exponent);
-      fit.kernel_scale = std::ldexp(1.0, -2 * (exponent / 2));
+      // s = 4^-half, s typical_sq in [1/2, 2); half >= -511 keeps s finite (2^1022 at most) for
+      // samples less than 1e-154 apart.
+      const int half = std::max(static_cast<int>(std::floor(exponent / 2.0)), -511);
+      fit.kernel_scale = std::ldexp(1.0, -2 * half);
     }
   }
   fit.px.resize(subset.size());

@@ -149,7 +149,7 @@ RbfRootFit fit_rbf_root(std::span<const Vec2> points, std::span<const double> r_
 /// samples' size), with the root's samples that the subset drops released from their equations
 /// and held at 0 (a system of their number). Costs solves with the root's LU for each sample
 /// added or dropped, instead of a factorisation. The same interpolant as fit_rbf() through the
-/// subset, in the root's frame (polynomial axes, the thin-plate kernel's scale: the interpolant
+/// subset, in the root's frame (polynomial axes, the kernel's scale s: the interpolant
 /// does not depend on them), centred by the subset's own mean; the values of the dropped
 /// samples never enter; each channel solved as a vector of its own, as if alone. Checked:
 /// nullopt unless the backward error of the same update on the subset's own system, for a fixed

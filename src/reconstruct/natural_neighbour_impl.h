@@ -91,26 +91,35 @@ struct NaturalNeighbour::Impl {
     return true;
   }
 
-  /// normalise(), or, when the sum is not positive for q inside the hull: q lies within rounding
-  /// of a sample (a query 1 ulp off one: its Voronoi cell's areas cancel to nothing), which takes
-  /// the whole weight, the coordinates' limit there. The sample is the nearest to q of those in
-  /// `out` (q's natural neighbours) and the corners of f, a finite face of `dt` at q (or of its
-  /// conflict zone). Without this, such a point was taken for one outside the hull: NaN, or the
-  /// value of a hull edge (an outside-in trial).
-  void normalise_inside(const Delaunay& dt, const Vec2& q, const Delaunay::Face_handle& f, double norm,
+  /// normalise(), or, when the sum is not positive for q inside the hull and q lies within
+  /// rounding of a sample (tol::kNearSampleRelative of the face's longest side, or
+  /// tol::kCoordinateRounding of q's magnitude: a query 1 ulp off a sample, whose Voronoi cell's
+  /// areas cancel to nothing), that sample's whole weight, the coordinates' limit there; true if
+  /// either. The sample is the nearest to q of those in `out` (q's natural neighbours) and the
+  /// corners of f, a finite face of `dt` at q. Before, such a point was taken for one outside the
+  /// hull: NaN, or the value of a hull edge (an outside-in trial). False otherwise (`out` as it
+  /// is): the caller's rule for a failed sum stands.
+  bool normalise_inside(const Delaunay& dt, const Vec2& q, const Delaunay::Face_handle& f, double norm,
                         std::vector<std::pair<unsigned, double>>& out) const {
-    if (normalise(norm, out)) return;
+    if (normalise(norm, out)) return true;
+    if (f == Delaunay::Face_handle() || dt.is_infinite(f)) return false;
     unsigned nearest = 0;
-    double nearest_sq = std::numeric_limits<double>::infinity();
+    double nearest_sq = std::numeric_limits<double>::infinity(), longest_sq = 0;
     const auto consider = [&](unsigned i) {
       const double d_sq = (points[i] - q).squaredNorm();
       if (d_sq < nearest_sq || (d_sq == nearest_sq && i < nearest)) nearest_sq = d_sq, nearest = i;
     };
     for (const auto& [index, w] : out) consider(index);
-    if (f != Delaunay::Face_handle() && !dt.is_infinite(f))
-      for (int k = 0; k < 3; ++k) consider(f->vertex(k)->info());
-    RR_CHECK(std::isfinite(nearest_sq), "natural neighbours: a point inside the hull with no neighbour");
+    for (int k = 0; k < 3; ++k) {
+      consider(f->vertex(k)->info());
+      const Vec2 side = points[f->vertex(k)->info()] - points[f->vertex((k + 1) % 3)->info()];
+      longest_sq = std::max(longest_sq, side.squaredNorm());
+    }
+    const double rounding_m = std::max(tol::kNearSampleRelative * std::sqrt(longest_sq),
+                                       tol::kCoordinateRounding * q.cwiseAbs().maxCoeff());
+    if (!(nearest_sq <= rounding_m * rounding_m)) return false;
     out.assign(1, {nearest, 1.0});
+    return true;
   }
 
   /// What a query gets: Sibson coordinates, the value of a point on a hull edge (outside the
@@ -133,8 +142,9 @@ struct NaturalNeighbour::Impl {
     // The last query's conflict zone, when q certainly has the same: no walk, no conflict search.
     if (rule != NeighbourRule::laplace && scratch.zone.holds(q)) {
       hint = scratch.zone.face();
-      normalise_inside(dt, q, hint, scratch.zone.sibson(q, out), out);
-      return true;
+      if (normalise(scratch.zone.sibson(q, out), out)) return true;
+      scratch.zone.forget();  // a sum that cancelled: q's own conflict zone below decides
+      out.clear();
     }
     const Point p(q.x(), q.y());
     Delaunay::Locate_type lt;
@@ -167,19 +177,15 @@ struct NaturalNeighbour::Impl {
     hole.clear();
     if (rule == NeighbourRule::laplace) {
       dt.get_boundary_of_conflicts(p, std::back_inserter(hole), hint);
-      normalise_inside(dt, q, hint, nn::hole_coordinates(dt, p, hole, rule, out), out);
-      return true;
+      return normalise_inside(dt, q, hint, nn::hole_coordinates(dt, p, hole, rule, out), out);
     }
     scratch.conflicts.clear();
     dt.get_conflicts_and_boundary(p, std::back_inserter(scratch.conflicts), std::back_inserter(hole), hint);
     const auto hull_vertex = [&](unsigned i) { return hull_edges_at[i][0] >= 0; };
-    if (scratch.zone.build(dt, scratch.conflicts, hole, hull_vertex)) {
-      normalise_inside(dt, q, hint, scratch.zone.sibson(q, out), out);
-      return true;
-    }
+    if (scratch.zone.build(dt, scratch.conflicts, hole, hull_vertex))
+      return normalise_inside(dt, q, hint, scratch.zone.sibson(q, out), out);
     scratch.zone.forget();
-    normalise_inside(dt, q, hint, nn::hole_coordinates(dt, p, hole, rule, out), out);  // CGAL's areas
-    return true;
+    return normalise_inside(dt, q, hint, nn::hole_coordinates(dt, p, hole, rule, out), out);  // CGAL's areas
   }
 
   /// Whether q lies on a hull edge at a vertex of face f up to rounding (hull_edge_distance(),

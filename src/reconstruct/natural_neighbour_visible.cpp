@@ -50,8 +50,8 @@ NaturalNeighbour::Impl::Kind NaturalNeighbour::Impl::whole_visible_coordinates(c
   s.hole.clear();
   dt.get_conflicts_and_boundary(p, std::back_inserter(s.conflicts), std::back_inserter(s.hole), f);
   s.coords.clear();
-  normalise_inside(dt, q, f, nn::hole_coordinates(dt, p, s.hole, rule, s.coords), s.coords);
-  return Kind::coordinates;
+  return normalise_inside(dt, q, f, nn::hole_coordinates(dt, p, s.hole, rule, s.coords), s.coords) ? Kind::coordinates
+                                                                                                     : Kind::nothing;
 }
 
 NaturalNeighbour::Impl::Kind NaturalNeighbour::Impl::visible_coordinates(const Vec2& q, Scratch& s) const {
@@ -121,9 +121,10 @@ NaturalNeighbour::Impl::Kind NaturalNeighbour::Impl::visible_coordinates(const V
     }
     s.coords.clear();
     const double norm = nn::hole_coordinates(dt, p, s.hole, rule, s.coords);
-    if (!(norm > 0)) {  // within rounding of a sample of f (normalise_inside())
-      normalise_inside(dt, q, f, norm, s.coords);
-      return Kind::coordinates;
+    if (!(norm > 0)) {
+      if (normalise_inside(dt, q, f, norm, s.coords)) return Kind::coordinates;  // within rounding of a sample
+      if (!last) continue;
+      return Kind::nothing;
     }
     const double rho = std::sqrt(rho_max_sq), bound = rho + std::max(rho, std::sqrt(r_max_sq));
     const bool certified = std::isfinite(bound) && (complete || next_visible_m > bound * (1 + tol::kSibsonCertificateRelative));

@@ -41,7 +41,7 @@ Axis axis_of(const ScatteredSamples& s, int dim) {
   a.lo = *lo;
   a.hi = *hi;
   a.tol = std::max(tol::kGridCoordinateRelative * (a.hi - a.lo),
-                   tol::kGridCoordinateRounding * std::max(std::abs(a.lo), std::abs(a.hi)));
+                   tol::kCoordinateRounding * std::max(std::abs(a.lo), std::abs(a.hi)));
   a.distinct = distinct_values(std::move(v), a.tol);
   return a;
 }

@@ -35,7 +35,7 @@ std::string merged_samples_message(std::size_t removed, std::size_t before, std:
 /// each within the x tolerance from x0 + i (x1 - x0) / (nx - 1); the same for y; and every
 /// (x, y) combination is present exactly once (nx * ny samples, in any order). The nodes are
 /// returned row by row from y0 upward (GridNodes' layout) with the samples' channels. An axis's
-/// tolerance: tol::kGridCoordinateRelative (1e-9) of its extent, or tol::kGridCoordinateRounding
+/// tolerance: tol::kGridCoordinateRelative (1e-9) of its extent, or tol::kCoordinateRounding
 /// (64 ulps) of its coordinates' magnitude when that is more.
 std::optional<GridNodes> as_regular_grid(const ScatteredSamples& samples);
 
