@@ -192,15 +192,22 @@ SideContacts side_contacts(const Scene& scene, SideRef side, std::span<const siz
   // (s, t) turns counter-clockwise about the surface's front normal (scene.h): left of a
   // direction d in the side's plane is along front x d.
   const Vec3 st_up = s.normal();
+  // The outline of surface t clipped to the side, in the side's metres; none if they overlap
+  // only along an edge or not at all.
+  const auto clipped_region = [&](const Surface& t) {
+    std::vector<Vec3> clipped = clip_polygon_to_quad(s, std::vector<Vec3>(t.corners.begin(), t.corners.end()));
+    Polyline st;
+    for (const Vec3& p : clipped)
+      if (const std::optional<Vec2> q = s.parameters(p)) st.push_back(frame.st(*q));
+    return as_region(std::move(st), join_m);
+  };
+  const bool sheet = sheet_face(scene, side.surface, candidates);
   for (const size_t k : candidates) {
     if (k == side.surface) continue;
     const Surface& t = scene.surfaces[k];
     if (lies_on(t, s)) {
-      std::vector<Vec3> clipped = clip_polygon_to_quad(s, std::vector<Vec3>(t.corners.begin(), t.corners.end()));
-      Polyline st;  // the clipped outline in the side's metres
-      for (const Vec3& p : clipped)
-        if (const std::optional<Vec2> q = s.parameters(p)) st.push_back(frame.st(*q));
-      std::optional<Polyline> region = as_region(std::move(st), join_m);
+      if (!covers(t, s, sheet)) continue;  // the sheet's other face: no cover, no outline
+      std::optional<Polyline> region = clipped_region(t);
       if (!region) continue;  // no overlap, or only along an edge
       for (size_t i = 0; i < region->size(); ++i) {
         const Vec2& a = (*region)[i];
@@ -304,6 +311,52 @@ void enclosed_regions(const std::vector<Segment2>& lines, const std::vector<Seen
 }
 
 }  // namespace
+
+bool sheet_face(const Scene& scene, size_t surface, std::span<const size_t> candidates) {
+  const Surface& s = scene.surfaces[surface];
+  const Vec3 n = s.normal();
+  const double offset = n.dot(s.corners[0]);
+  const SurfaceFrame frame = s.frame();
+  const double join_m = tol::kContactJoinRelative * std::max(frame.length_u_m, frame.length_v_m);
+  std::vector<Polyline> behind;  // the outlines of the coplanar surfaces facing the other way, clipped to s
+  for (const size_t k : candidates) {
+    if (k == surface) continue;
+    const Surface& t = scene.surfaces[k];
+    if (!(t.normal().dot(n) < 0)) continue;
+    const double touch_m = tol::kContactRelative * std::max(t.length_u_m(), t.length_v_m());
+    bool coplanar = true;
+    for (const Vec3& c : t.corners) coplanar = coplanar && std::abs(n.dot(c) - offset) <= touch_m;
+    if (!coplanar) continue;
+    Polyline st;
+    for (const Vec3& p : clip_polygon_to_quad(s, std::vector<Vec3>(t.corners.begin(), t.corners.end())))
+      if (const std::optional<Vec2> q = s.parameters(p)) st.push_back(frame.st(*q));
+    if (std::optional<Polyline> region = as_region(std::move(st), join_m)) behind.push_back(std::move(*region));
+  }
+  if (behind.empty()) return false;
+  const int m = tol::kSheetProbes;
+  for (int j = 0; j < m; ++j)
+    for (int i = 0; i < m; ++i) {
+      const Vec2 uv((i + 0.5) / m, (j + 0.5) / m);
+      if (s.is_triangle() && uv.sum() >= 1) continue;
+      const Vec2 st = frame.st(uv);
+      // Inside an outline, or on it (within join_m): a point on the line between two of them
+      // (a probe on the diagonal two triangles share) may count as in neither.
+      const auto covered = [&](const Polyline& r) {
+        if (in_region(r, st)) return true;
+        for (size_t e = 0; e < r.size(); ++e) {
+          const Vec2 &a = r[e], &b = r[(e + 1) % r.size()];
+          if ((a + nearest_on_segment_t(st, a, b) * (b - a) - st).norm() <= join_m) return true;
+        }
+        return false;
+      };
+      if (std::none_of(behind.begin(), behind.end(), covered)) return false;
+    }
+  return true;
+}
+
+bool covers(const Surface& other, const Surface& base, bool base_is_sheet_face) {
+  return lies_on(other, base) && !(base_is_sheet_face && other.normal().dot(base.normal()) < 0);
+}
 
 bool lies_on(const Surface& other, const Surface& base) {
   const Vec3 n = base.normal();

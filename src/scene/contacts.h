@@ -6,6 +6,8 @@
 // surfaces standing on it.
 
 #include <array>
+#include <cstddef>
+#include <span>
 #include <vector>
 
 #include "core/vec.h"
@@ -39,12 +41,26 @@ std::vector<Segment2> contact_lines(const Scene& scene, SideRef side);
 /// plate; two equal ones cover neither). Whether they overlap is not asked.
 bool lies_on(const Surface& other, const Surface& base);
 
+/// Whether surface `surface` is one face of a sheet of no thickness modelled as one-sided faces
+/// back to back: the coplanar surfaces among `candidates` facing the other way (of any size)
+/// cover all of it (each of tol::kSheetProbes x tol::kSheetProbes points over it, cell centres,
+/// lies inside one of their outlines). Their faces then cover none of it (covers()): each of a
+/// plate's bottom triangles lay on its top quad as a box's bottom lies on a floor, and the lit
+/// top took no light (an outside-in trial; two equal quads were already left alone by
+/// lies_on()'s "smaller"). `candidates`: surfaces that may touch it (others are ignored).
+bool sheet_face(const Scene& scene, size_t surface, std::span<const size_t> candidates);
+
+/// Whether `other` covers `base`: it lies on it (lies_on()), unless `base` is one face of a sheet
+/// (sheet_face()) and `other` faces the other way. The one rule of what hides a surface's parts:
+/// excluded_regions() and the solvers' covered parts (solver/covered.h).
+bool covers(const Surface& other, const Surface& base, bool base_is_sheet_face);
+
 /// The parts of `side` that are neither samples nor queries, as closed polygons in the side's
 /// (s, t) metres: each a simple polygon of at least 3 vertices, counter-clockwise in (s, t),
 /// starting at its lexicographically smallest vertex, the last vertex joined back to the first
 /// (the first is NOT repeated at the end). Regions may overlap. They are
 /// (a) covered: every other surface lying flat on the side (lies_on(): coplanar, facing either
-///     way, smaller), its polygon clipped to the side's quad, in surface order. The surface has no
+///     way, smaller) and covering it (covers(): not the other face of a sheet), its polygon clipped to the side's quad, in surface order. The surface has no
 ///     thickness, so both sides of a two-sided side are covered alike;
 /// (b) enclosed: every area bounded by a closed loop of the side's contact_lines() chained end to
 ///     end (ends within tol::kContactJoinRelative of the side's longer edge are one point), e.g.

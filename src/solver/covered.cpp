@@ -23,11 +23,11 @@ std::vector<std::vector<ConvexPolygon>> covers_by_surface(const Scene& scene) {
   std::vector<size_t> order(n);
   for (size_t k = 0; k < n; ++k) order[k] = k;
   std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return lo[a].x() < lo[b].x() || (lo[a].x() == lo[b].x() && a < b); });
+  // (cover, base) pairs of lies_on(); a pair facing opposite ways asks whether base is one face
+  // of a sheet (covers(), contacts.h), once per base, over the surfaces whose box meets its own.
+  std::vector<std::vector<size_t>> lying(n);
   const auto add = [&](size_t cover, size_t base) {
-    if (!lies_on(scene.surfaces[cover], scene.surfaces[base])) return;
-    ConvexPolygon p;
-    for (const Vec3& c : scene.surfaces[cover].polygon()) p.push(c);
-    out[base].push_back(p);
+    if (lies_on(scene.surfaces[cover], scene.surfaces[base])) lying[base].push_back(cover);
   };
   for (size_t i = 0; i < n; ++i)
     for (size_t j = i + 1; j < n && lo[order[j]].x() <= hi[order[i]].x() + margin; ++j) {
@@ -37,6 +37,28 @@ std::vector<std::vector<ConvexPolygon>> covers_by_surface(const Scene& scene) {
         add(b, a);
       }
     }
+  const auto boxes_meet = [&](size_t a, size_t b) {
+    return ((lo[a].array() - margin) <= hi[b].array()).all() && (lo[b].array() <= (hi[a].array() + margin)).all();
+  };
+  for (size_t base = 0; base < n; ++base) {
+    if (lying[base].empty()) continue;
+    const Surface& b = scene.surfaces[base];
+    bool sheet = false;
+    if (std::any_of(lying[base].begin(), lying[base].end(),
+                    [&](size_t c) { return scene.surfaces[c].normal().dot(b.normal()) < 0; })) {
+      std::vector<size_t> near;
+      for (size_t k = 0; k < n; ++k)
+        if (k != base && boxes_meet(k, base)) near.push_back(k);
+      sheet = sheet_face(scene, base, near);
+    }
+    std::sort(lying[base].begin(), lying[base].end());  // surface order, whatever the sweep's
+    for (const size_t cover : lying[base]) {
+      if (!covers(scene.surfaces[cover], b, sheet)) continue;
+      ConvexPolygon p;
+      for (const Vec3& c : scene.surfaces[cover].polygon()) p.push(c);
+      out[base].push_back(p);
+    }
+  }
   return out;
 }
 

@@ -3,8 +3,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <string>
 #include <vector>
 
+#include "scene/contacts.h"
 #include "solver/covered.h"
 #include "support/scenes.h"
 
@@ -53,6 +56,49 @@ TEST(Covered, ALampOnACeilingCoversItAndNotTheFloor) {
   EXPECT_NEAR(exposed_fraction(ceiling, scene.surfaces[0].normal(), on_ceiling), 1 - 0.5 / 7.5, 1e-14);
   EXPECT_TRUE(covers[1].empty());  // the larger ceiling does not lie on the lamp
   EXPECT_TRUE(covers[2].empty());
+}
+
+/// A triangle of the corners a, b, c (its front by the right-hand rule), grey.
+Surface triangle(const std::string& name, const Vec3& a, const Vec3& b, const Vec3& c) {
+  Surface s;
+  s.name = name;
+  s.set_triangle(a, b, c);
+  s.reflectance = Rgb::Constant(0.5);
+  return s;
+}
+
+TEST(Covered, OneSidedFacesBackToBackAreASheetAndNeitherFaceCoversTheOther) {
+  // A plate of no thickness as a top quad (facing +z) over two bottom triangles (facing -z):
+  // each triangle is smaller than the quad and lay on it as a box's bottom lies on a floor, so
+  // the lit top was all covered and took no light (an outside-in trial). And a plate whose top
+  // and bottom are both split in two, along the two different diagonals (probes on a diagonal
+  // lie on two outlines at once). A plate facing down on the floor still covers the floor.
+  Scene scene;
+  scene.surfaces.push_back(quad("floor", {0, 0, 0}, {4, 0, 0}, {4, 4, 0}, {0, 4, 0}, 0.5));
+  scene.surfaces.push_back(quad("top", {1, 1, 1}, {2, 1, 1}, {2, 2, 1}, {1, 2, 1}, 0.5));
+  scene.surfaces.push_back(triangle("bottom a", {1, 1, 1}, {1, 2, 1}, {2, 2, 1}));
+  scene.surfaces.push_back(triangle("bottom b", {1, 1, 1}, {2, 2, 1}, {2, 1, 1}));
+  scene.surfaces.push_back(triangle("top c", {3, 1, 1}, {3.5, 1, 1}, {3.5, 1.5, 1}));
+  scene.surfaces.push_back(triangle("top d", {3, 1, 1}, {3.5, 1.5, 1}, {3, 1.5, 1}));
+  scene.surfaces.push_back(triangle("bottom e", {3, 1, 1}, {3, 1.5, 1}, {3.5, 1, 1}));
+  scene.surfaces.push_back(triangle("bottom f", {3.5, 1, 1}, {3, 1.5, 1}, {3.5, 1.5, 1}));
+  scene.surfaces.push_back(quad("mat", {0.5, 0.5, 0}, {0.5, 1, 0}, {1, 1, 0}, {1, 0.5, 0}, 0.5));  // facing down
+  for (size_t k = 1; k < scene.surfaces.size() - 1; ++k)
+    ASSERT_GT(std::abs(scene.surfaces[k].normal().z()), 0.99) << scene.surfaces[k].name;
+  const std::vector<std::vector<ConvexPolygon>> covers = covers_by_surface(scene);
+  for (size_t k = 1; k < scene.surfaces.size(); ++k) {
+    EXPECT_TRUE(covers[k].empty()) << scene.surfaces[k].name;
+    EXPECT_TRUE(excluded_regions(scene, SideRef{k, false}).empty()) << scene.surfaces[k].name;
+  }
+  // The floor: the mat's 0.25 m^2 of its 16, in both homes of the rule.
+  ASSERT_EQ(covers[0].size(), 1u);
+  const std::vector<Vec3> floor = {{0, 0, 0}, {4, 0, 0}, {4, 4, 0}, {0, 4, 0}};
+  EXPECT_NEAR(exposed_fraction(floor, scene.surfaces[0].normal(), covers[0]), 1 - 0.25 / 16, 1e-14);
+  EXPECT_EQ(excluded_regions(scene, SideRef{0, false}).size(), 1u);
+  // Without its bottom triangles the top is no sheet's face; bottom a alone on it is a cover.
+  Scene half = scene;
+  half.surfaces.erase(half.surfaces.begin() + 3);
+  EXPECT_EQ(covers_by_surface(half)[1].size(), 1u);
 }
 
 }  // namespace covered_test
