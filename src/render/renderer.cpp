@@ -48,7 +48,11 @@ template <class Surfaces>
 std::optional<SurfaceHit> nearest_hit(const Scene& scene, SurfaceNormals normals, const Surfaces& surfaces,
                                       const Vec3& o, const Vec3& d) {
   std::optional<SurfaceHit> best;
-  bool best_emits = false;
+  // A tie's order (renderer.h): an emitting side, then a side seen from its front (a one-sided
+  // surface's back is no side to be seen: of a sheet's two faces back to back, the first listed
+  // was drawn black from one side), then the rest.
+  const auto tie_rank = [&](const Surface& s, bool back_side) { return emits(s, back_side) ? 2 : (!back_side || s.two_sided) ? 1 : 0; };
+  int best_rank = 0;
   double t_best = std::numeric_limits<double>::infinity();
   const double o_norm = o.norm();
   for (const size_t k : surfaces) {
@@ -59,19 +63,17 @@ std::optional<SurfaceHit> nearest_hit(const Scene& scene, SurfaceNormals normals
     if (!hit || !(*hit > 0)) continue;
     const double t = *hit;
     // Within the tie distance (relative to the magnitude of the coordinates there, |o| + t, whose
-    // round-off it covers) the emitting side wins; otherwise, or between equals, the nearer.
+    // round-off it covers) the higher tie_rank wins; otherwise, or between equals, the nearer.
     const bool tie = best && std::abs(t - t_best) <= tol::kEmitterTieRelative * (o_norm + t_best);
     bool wins = t < t_best;
-    if (tie) {
-      const bool e = emits(s, back_side);
-      if (e != best_emits) wins = e;
-    }
+    const int rank = tie_rank(s, back_side);
+    if (tie && rank != best_rank) wins = rank > best_rank;
     if (!wins) continue;
     const auto uv = s.parameters(o + t * d, n);
     if (!uv) continue;
     t_best = t;
     best = SurfaceHit{k, back_side, uv->x(), uv->y(), t};
-    best_emits = emits(s, back_side);
+    best_rank = rank;
   }
   return best;
 }

@@ -28,8 +28,10 @@ struct SurfaceHit {
 
 /// The nearest surface hit by the ray o + t d (d of unit length), t > 0, if any. An emitting side
 /// wins a tie: a light in the plane of a ceiling (hit at the same t, within
-/// tol::kEmitterTieRelative (|o| + t)) is seen, not the ceiling. Other ties go to the nearer
-/// hit, then to the surface listed first.
+/// tol::kEmitterTieRelative (|o| + t)) is seen, not the ceiling. Then a side seen from its front
+/// (a two-sided surface's either side) wins over a one-sided surface's back: of a sheet's two
+/// faces back to back, the one facing the ray. Other ties go to the nearer hit, then to the
+/// surface listed first.
 std::optional<SurfaceHit> intersect_scene(const Scene& scene, const Vec3& o, const Vec3& d);
 class SurfaceBvh;
 /// The same through the scene's surface hierarchy (render/surface_bvh.h): the same hit.

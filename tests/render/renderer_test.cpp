@@ -171,7 +171,8 @@ TEST(EmitterTie, ALightInTheCeilingsPlaneIsHitWhicheverIsListedFirst) {
     }
     const Vec3 o(2, 2, 0.5), beside(3.2, 2, 2.5);  // beside the light: the ceiling
     EXPECT_EQ(intersect_scene(scene, o, (beside - o).normalized())->surface, ceiling);
-    // Seen from above (through the back of both, neither emits): the first listed, as before.
+    // Seen from above (through the back of both, neither emits nor faces the ray): the first
+    // listed, as before.
     const Vec3 above(2, 2, 4);
     EXPECT_EQ(intersect_scene(scene, above, Vec3(0, 0, -1))->surface, 0u);
   }
@@ -181,6 +182,29 @@ TEST(EmitterTie, ALightInTheCeilingsPlaneIsHitWhicheverIsListedFirst) {
     const Vec3 o(2, 2, 0.5);
     EXPECT_NE(intersect_scene(ceiling_with_light(light_first, -1e-3), o, Vec3(0, 0, 1))->surface, light);
     EXPECT_EQ(intersect_scene(ceiling_with_light(light_first, 1e-3), o, Vec3(0, 0, 1))->surface, light);
+  }
+}
+
+TEST(EmitterTie, OfTwoOneSidedFacesBackToBackTheOneFacingTheRayIsSeenWhicheverIsListedFirst) {
+  // A plate of no thickness: a top facing +z and a bottom facing -z in one plane. The first
+  // listed was hit from both sides, its back drawn black from one (an outside-in trial).
+  const std::string top = R"({"name": "top", "corners": [[1,1,1], [2,1,1], [2,2,1], [1,2,1]], "reflectance": 0.6})";
+  const std::string bottom = R"({"name": "bottom", "corners": [[1,1,1], [1,2,1], [2,2,1], [2,1,1]], "reflectance": 0.6})";
+  for (const bool top_first : {true, false}) {
+    const Scene scene = parse_scene_json(R"({"name": "plate", "surfaces": [)" + (top_first ? top + ", " + bottom : bottom + ", " + top) +
+                                             R"(, {"name": "lamp", "corners": [[5,5,5], [5,6,5], [6,6,5], [6,5,5]], "reflectance": 0, "emission": 1}], "cameras": [{"name": "c", "eye": [0,0,3], "target": [1.5,1.5,1], "up": [0,0,1], "fov_deg": 60}]})",
+                                         "plate.json");
+    const size_t top_index = top_first ? 0 : 1;
+    for (const Vec3& target : {Vec3(1.5, 1.5, 1), Vec3(1.1, 1.9, 1), Vec3(1.93, 1.02, 1)}) {
+      const Vec3 above(1.3, 1.6, 3), below(1.7, 1.4, -2);
+      const auto from_above = intersect_scene(scene, above, (target - above).normalized());
+      const auto from_below = intersect_scene(scene, below, (target - below).normalized());
+      ASSERT_TRUE(from_above && from_below);
+      EXPECT_EQ(from_above->surface, top_index) << top_first;
+      EXPECT_FALSE(from_above->back_side);
+      EXPECT_EQ(from_below->surface, 1 - top_index) << top_first;
+      EXPECT_FALSE(from_below->back_side);
+    }
   }
 }
 
