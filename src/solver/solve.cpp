@@ -181,6 +181,34 @@ Solution with_barriers(const Scene& scene, Solution sol, bool shadow_lines_too) 
   return sol;
 }
 
+/// Warns of each emitting side that no other surface lies in front of (beyond
+/// tol::kContactRelative of the other's size): all its power leaves the scene, which is a light
+/// facing the wrong way far more often than an intended one (a lamp written facing the sky beside
+/// one that works: 71% of the power lost without a word, an outside-in trial). When no surface at
+/// all is lit, solve_scene()'s own warning says so instead.
+void warn_of_lights_facing_nothing(const Scene& scene) {
+  for (size_t k = 0; k < scene.surfaces.size(); ++k) {
+    const Surface& s = scene.surfaces[k];
+    for (const bool back : {false, true}) {
+      if ((back && !s.two_sided) || !(side_emission(s, back) > 0).any()) continue;
+      const Vec3 n = side_normal(s, back);
+      const double offset = n.dot(s.corners[0]);
+      bool lights_something = false;
+      for (size_t j = 0; j < scene.surfaces.size() && !lights_something; ++j) {
+        if (j == k) continue;
+        const Surface& t = scene.surfaces[j];
+        const double touch_m = tol::kContactRelative * std::max(t.length_u_m(), t.length_v_m());
+        for (const Vec3& c : t.polygon()) lights_something = lights_something || n.dot(c) - offset > touch_m;
+      }
+      if (!lights_something)
+        warn("light '" + side_name(s, back) + "' lights no surface: every other surface lies behind its plane, so its " +
+             format_number((side_emission(s, back) * s.area_m2()).maxCoeff()) +
+             " W leave the scene. A surface emits on its front, the side its corners run counter-clockwise around: "
+             "check the light's corners (or make it two_sided)");
+    }
+  }
+}
+
 }  // namespace
 
 Solution solve_scene(const Scene& scene, const std::string& spec, const SolveSettings& settings,
@@ -194,6 +222,7 @@ Solution solve_scene(const Scene& scene, const std::string& spec, const SolveSet
   // Power emitted and none absorbed: no light reaches a surface, which is a scene facing the
   // wrong way far more often than an intended one (a lamp facing the sky, a floor upside down).
   const SolveStats& st = sol.stats;
+  if ((st.absorbed_w > 0).any()) warn_of_lights_facing_nothing(scene);
   if ((st.emitted_w > 0).any() && !(st.absorbed_w > 0).any())
     warn("no light reaches any surface: all " + format_number(st.emitted_w.maxCoeff()) +
          " W emitted left the scene. A surface emits and reflects on its front, the side its corners run "

@@ -109,6 +109,17 @@ EOF
 run away solve --scene "$TMP/away.json" --mesh grid:4 --out "$TMP/away_s.json" --quiet
 expect_rc away 0
 expect_stderr_has away "warning: no light reaches any surface: all 10 W emitted left the scene"
+expect_stderr_lacks away "lights no surface"  # the warning of a scene with no surface lit says it all
+# Beside a lamp that works, a second one facing the sky: a warning naming it, exit 0.
+cat >"$TMP/one_away.json" <<'EOF'
+{"surfaces": [{"name": "floor", "corners": [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], "reflectance": 0.5},
+ {"name": "lamp", "corners": [[0, 0, 1], [0, 1, 1], [1, 1, 1], [1, 0, 1]], "reflectance": 0, "emission": 10},
+ {"name": "skylamp", "corners": [[0, 0, 2], [1, 0, 2], [1, 1, 2], [0, 1, 2]], "reflectance": 0, "emission": 5}]}
+EOF
+run one_away solve --scene "$TMP/one_away.json" --mesh grid:4 --out "$TMP/one_away_s.json" --quiet
+expect_rc one_away 0
+expect_stderr_has one_away "warning: light 'skylamp' lights no surface: every other surface lies behind its plane, so its 5 W leave the scene"
+expect_stderr_lacks one_away "light 'lamp'"
 run away_render render --scene "$TMP/away.json" --solution "$TMP/away_s.json" --camera c --size 40x30 --out "$TMP/away.png"
 expect_rc away_render 0
 expect_stderr_has away_render "no surface of the solution is lit"
