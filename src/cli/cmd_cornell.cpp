@@ -69,7 +69,7 @@ std::string page(const Scene& scene, const Camera& camera, const std::string& me
           "figure{display:inline-block;margin:0.5em;vertical-align:top}figcaption{font-size:90%}.note{color:#a40}</style></head><body>\n";
   html << "<h1>" << escaped(scene.name) << ": every reconstruction method</h1>\n<p>Solved by " << escaped(mesh) << " ("
        << elements << " elements); camera <code>" << escaped(camera.name) << "</code>, " << samples * samples
-       << " rays per pixel; one white point for every picture: " << format_number(white)
+       << (samples == 1 ? " ray" : " rays") << " per pixel; one white point for every picture: " << format_number(white)
        << " W/m<sup>2</sup> (" << escaped(white_source) << "). Written by <code>radrecon cornell</code>; "
           "the scene: docs/cornell.md.</p>\n";
   for (const Panel& p : panels) {

@@ -171,8 +171,9 @@ void run_render(const RenderArgs& args) {
   }
   if (!args.quiet) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::fprintf(stderr, "render: wrote %s (%dx%d, %d rays per pixel) in %.1f s\n", args.out.c_str(), width, height,
-                 args.samples * args.samples, seconds);
+    const int rays = args.samples * args.samples;
+    std::fprintf(stderr, "render: wrote %s (%dx%d, %d %s per pixel) in %.1f s\n", args.out.c_str(), width, height, rays,
+                 rays == 1 ? "ray" : "rays", seconds);
   }
 }
 
