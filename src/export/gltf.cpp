@@ -13,6 +13,7 @@
 #include "io/atomic_file.h"
 #include "io/image_io.h"
 #include "scene/side.h"
+#include "solver/covered.h"
 
 namespace radrecon {
 
@@ -65,11 +66,32 @@ Vec3 export_origin(const Scene& scene) {
   return (centre / step).array().round().matrix() * step;
 }
 
+std::vector<double> export_raise_m(const Scene& scene) {
+  std::vector<double> raise(scene.surfaces.size(), 0.0);
+  Vec3 lo = Vec3::Constant(INFINITY), hi = -lo;
+  for (const Surface& s : scene.surfaces)
+    for (const Vec3& c : s.polygon()) lo = lo.cwiseMin(c), hi = hi.cwiseMax(c);
+  const double raise_m = tol::kExportRaisedRelative * (hi - lo).maxCoeff();
+  const std::vector<std::vector<size_t>> covering = covering_surfaces(scene);
+  for (size_t base = 0; base < covering.size(); ++base) {
+    const Surface& b = scene.surfaces[base];
+    for (const size_t cover : covering[base]) {
+      // Only a cover that overlaps it (a coplanar neighbour touching its edge stays in place).
+      ConvexPolygon p;
+      for (const Vec3& c : scene.surfaces[cover].polygon()) p.push(c);
+      const std::span<const Vec3> corners = b.polygon();
+      if (exposed_fraction(corners, b.normal(), std::span(&p, 1)) < 1) raise[cover] = raise_m;
+    }
+  }
+  return raise;
+}
+
 void write_lightmapped_glb(const std::filesystem::path& path, const Scene& scene, const Solution& solution,
                            const LightmapAtlas& atlas, double white_w_m2, const nlohmann::json& extras) {
   RR_CHECK(white_w_m2 > 0, "the white point must be positive");
   Binary bin;
   const Vec3 origin = export_origin(scene);
+  const std::vector<double> raise_m = export_raise_m(scene);
   nlohmann::json accessors = nlohmann::json::array(), meshes = nlohmann::json::array(), nodes = nlohmann::json::array();
   for (const LightmapTile& tile : atlas.tiles) {
     const Surface& surface = scene.surfaces[tile.side.surface];
@@ -82,7 +104,8 @@ void write_lightmapped_glb(const std::filesystem::path& path, const Scene& scene
     std::vector<float> position, normal, texcoord;
     Vec3 lo = Vec3::Constant(INFINITY), hi = -lo;
     for (const Vec2& c : uv) {
-      const Vec3 p = surface.point(c.x(), c.y()) - origin;  // exact: the origin is near the model
+      // Exact: the origin is near the model. A surface lying on another is raised off it.
+      const Vec3 p = surface.point(c.x(), c.y()) - origin + raise_m[tile.side.surface] * n;
       const Vec2 t = atlas.texture_coordinate(tile, c.x(), c.y());
       for (int k = 0; k < 3; ++k) {
         position.push_back(static_cast<float>(p[k]));

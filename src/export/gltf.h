@@ -12,6 +12,7 @@
 // asset.extras records the method, the white point (W/m^2) and the density (texels per metre).
 
 #include <filesystem>
+#include <vector>
 #include <nlohmann/json_fwd.hpp>
 
 #include "export/lightmap.h"
@@ -24,6 +25,13 @@ namespace radrecon {
 /// spacing there (so a float exactly), which every node then takes as its translation (float
 /// positions far from (0, 0, 0) would lose the model's shape).
 Vec3 export_origin(const Scene& scene);
+
+/// By scene surface: how far its exported mesh is raised along each side's normal, metres:
+/// tol::kExportRaisedRelative of the scene's extent for a surface covering part of another
+/// (solver/covered.h: a lamp lying on a ceiling, a window in a wall, a rug on a floor), else 0.
+/// In the same plane, a viewer's depth test would draw one or the other pixel by pixel as the
+/// view moves (the lamp over the ceiling's dark covered part: a flicker, an outside-in trial).
+std::vector<double> export_raise_m(const Scene& scene);
 
 /// Writes `path` atomically. `extras` goes into asset.extras (with white_w_m2 and
 /// texels_per_metre added).

@@ -7,9 +7,9 @@
 
 namespace radrecon {
 
-std::vector<std::vector<ConvexPolygon>> covers_by_surface(const Scene& scene) {
+std::vector<std::vector<size_t>> covering_surfaces(const Scene& scene) {
   const size_t n = scene.surfaces.size();
-  std::vector<std::vector<ConvexPolygon>> out(n);
+  std::vector<std::vector<size_t>> out(n);
   // Bounding boxes, widened by a margin far below any surface's size: a cover outside a
   // surface's box hides none of it.
   std::vector<Vec3> lo(n), hi(n);
@@ -52,13 +52,21 @@ std::vector<std::vector<ConvexPolygon>> covers_by_surface(const Scene& scene) {
       sheet = sheet_face(scene, base, near);
     }
     std::sort(lying[base].begin(), lying[base].end());  // surface order, whatever the sweep's
-    for (const size_t cover : lying[base]) {
-      if (!covers(scene.surfaces[cover], b, sheet)) continue;
+    for (const size_t cover : lying[base])
+      if (covers(scene.surfaces[cover], b, sheet)) out[base].push_back(cover);
+  }
+  return out;
+}
+
+std::vector<std::vector<ConvexPolygon>> covers_by_surface(const Scene& scene) {
+  const std::vector<std::vector<size_t>> covering = covering_surfaces(scene);
+  std::vector<std::vector<ConvexPolygon>> out(covering.size());
+  for (size_t base = 0; base < covering.size(); ++base)
+    for (const size_t cover : covering[base]) {
       ConvexPolygon p;
       for (const Vec3& c : scene.surfaces[cover].polygon()) p.push(c);
       out[base].push_back(p);
     }
-  }
   return out;
 }
 

@@ -4,6 +4,7 @@
 // absorbs, reflects and emits by the fraction of it left exposed, so that a closed room keeps its
 // energy (docs/method.md, "Covered parts").
 
+#include <cstddef>
 #include <span>
 #include <vector>
 
@@ -12,9 +13,13 @@
 
 namespace radrecon {
 
-/// By scene surface: the polygons of the surfaces lying flat on it (either side of it) and
-/// overlapping its bounding box. Pairs are found by a sweep over the boxes, not all n^2 of them
-/// (a model of 11,000 triangles: 1.2 s of lies_on() tests before).
+/// By scene surface: the indices of the surfaces covering it (scene/contacts.h covers(): lying
+/// flat on it, either side of it, not the other face of a sheet) and overlapping its bounding
+/// box, in surface order. Pairs are found by a sweep over the boxes, not all n^2 of them (a model
+/// of 11,000 triangles: 1.2 s of lies_on() tests before).
+std::vector<std::vector<size_t>> covering_surfaces(const Scene& scene);
+
+/// By scene surface: the polygons of covering_surfaces().
 std::vector<std::vector<ConvexPolygon>> covers_by_surface(const Scene& scene);
 
 /// The fraction of the convex polygon of corners `part` (an element, a quadtree node), in the

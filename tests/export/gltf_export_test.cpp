@@ -193,6 +193,56 @@ TEST(GltfExport, AModelFarFromTheOriginKeepsItsShapeThroughTheNodesTranslation) 
   std::filesystem::remove(path);
 }
 
+TEST(GltfExport, ALampLyingOnTheCeilingIsRaisedOffItAndANeighbourTouchingItsEdgeIsNot) {
+  // In one plane, a viewer's depth test draws the lamp or the ceiling's covered part pixel by
+  // pixel as the view moves (an outside-in trial: a window in its wall). Read back by assimp, the
+  // lamp's corners are the scene's moved 1e-4 of the scene's 4 m extent along its normal (down,
+  // into the room); the ceiling, and a coplanar tile beside it touching its edge, are where the
+  // scene has them.
+  Scene scene;
+  scene.name = "room";
+  const auto grey = [](const std::string& name, std::array<Vec3, 4> corners, double emission = 0) {
+    Surface s;
+    s.name = name;
+    s.corners = corners;
+    s.reflectance = Rgb::Constant(emission > 0 ? 0 : 0.5);
+    s.emission_w_m2 = Rgb::Constant(emission);
+    return s;
+  };
+  scene.surfaces = {grey("floor", {Vec3(0, 0, 0), Vec3(3, 0, 0), Vec3(3, 3, 0), Vec3(0, 3, 0)}),
+                    grey("ceiling", {Vec3(0, 0, 2), Vec3(0, 3, 2), Vec3(3, 3, 2), Vec3(3, 0, 2)}),
+                    grey("beside", {Vec3(3, 0, 2), Vec3(3, 1, 2), Vec3(4, 1, 2), Vec3(4, 0, 2)}),
+                    grey("lamp", {Vec3(1, 1, 2), Vec3(1, 2, 2), Vec3(2, 2, 2), Vec3(2, 1, 2)}, 10)};
+  const double raise_m = 1e-4 * 4;  // the scene's extent: 4 m along x
+  const std::vector<double> raised = export_raise_m(scene);
+  EXPECT_EQ(raised, (std::vector<double>{0, 0, 0, raise_m}));
+  const Solution solution = solve_scene(scene, "grid:4", SolveSettings{}, "mesh");
+  const SolutionReconstruction recon(scene, solution, Method::constant, {}, "test");
+  const LightmapAtlas atlas = bake_lightmaps(scene, solution, recon, 8, "test");
+  const std::filesystem::path path = std::filesystem::temp_directory_path() / "radrecon_gltf_raised_test.glb";
+  write_lightmapped_glb(path, scene, solution, atlas, 10, nlohmann::json::object());
+  Assimp::Importer importer;
+  const aiScene* read = importer.ReadFile(path.string(), 0);
+  ASSERT_NE(read, nullptr) << importer.GetErrorString();
+  int checked = 0;
+  for (unsigned k = 0; k < read->mNumMeshes; ++k) {
+    const aiMesh* mesh = read->mMeshes[k];
+    const std::string name = mesh->mName.C_Str();
+    const auto surface = std::find_if(scene.surfaces.begin(), scene.surfaces.end(), [&](const Surface& s) { return s.name == name; });
+    ASSERT_NE(surface, scene.surfaces.end()) << name;
+    const Vec3 offset = name == "lamp" ? Vec3(0, 0, -raise_m) : Vec3::Zero();
+    for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
+      const Vec3 p(mesh->mVertices[v].x, mesh->mVertices[v].y, mesh->mVertices[v].z);
+      double nearest = INFINITY;
+      for (const Vec3& c : surface->corners) nearest = std::min(nearest, (p - (c + offset)).norm());
+      EXPECT_LT(nearest, 1e-6) << name << " vertex " << v;
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 16);
+  std::filesystem::remove(path);
+}
+
 TEST(Lightmap, GuttersRepeatTheirTilesBorderAndTilesDoNotOverlap) {
   // Around each tile, kLightmapGutter texels repeat its border (the nearest texel of the tile),
   // so that bilinear filtering at a tile's edge never reads a neighbour; no texel belongs to two
