@@ -50,6 +50,15 @@ expect_no_output() {  # NAME PATH: neither the file nor a temporary sibling of i
   fi
 }
 
+refuse() {  # NAME TEXT OUT ARGS...: run with --out OUT --quiet; expects exit 2, TEXT on stderr and no OUT
+  local name=$1 text=$2 out=$3
+  shift 3
+  run "$name" "$@" --out "$out" --quiet
+  expect_rc "$name" 2
+  expect_stderr_has "$name" "$text"
+  expect_no_output "$name" "$out"
+}
+
 finish() {  # NAME: the verdict and the exit code
   if [ "$failures" -ne 0 ]; then
     echo "$1: $failures failure(s)" >&2
