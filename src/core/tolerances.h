@@ -323,10 +323,11 @@ inline constexpr double kEmitterTieRelative = 1e-6;
 inline constexpr double kExportOriginFreeExtents = 16;
 
 /// An exported surface covering part of another (a lamp lying on a ceiling) is raised off it
-/// along its normal by this fraction of the scene's extent (export/gltf.h, export_raise_m()):
-/// 0.5 mm in a 5 m room, above a viewer's depth resolution (some 6e-5 m at 10 m with a 24-bit
+/// along its normal by this fraction of its own longer side (export/gltf.h, export_raise_m()):
+/// 0.13 mm for the Cornell box's 13 cm lamp, 1 mm for a 1 m window, above a viewer's depth
+/// resolution where such a surface is seen whole (6e-7 m at 1 m, 6e-5 m at 10 m, with a 24-bit
 /// depth buffer and a 0.1 m near plane), far below anything the eye takes for a gap.
-inline constexpr double kExportRaisedRelative = 1e-4;
+inline constexpr double kExportRaisedRelative = 1e-3;
 
 /// `render` warns of pixels whose radiosity lies below 0 by more than this fraction of the
 /// picture's largest (a method overshooting its samples), not of round-off below 0.

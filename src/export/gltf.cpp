@@ -67,22 +67,30 @@ Vec3 export_origin(const Scene& scene) {
 }
 
 std::vector<double> export_raise_m(const Scene& scene) {
-  std::vector<double> raise(scene.surfaces.size(), 0.0);
-  Vec3 lo = Vec3::Constant(INFINITY), hi = -lo;
-  for (const Surface& s : scene.surfaces)
-    for (const Vec3& c : s.polygon()) lo = lo.cwiseMin(c), hi = hi.cwiseMax(c);
-  const double raise_m = tol::kExportRaisedRelative * (hi - lo).maxCoeff();
+  const size_t n = scene.surfaces.size();
+  // By cover, the bases it overlaps (a coplanar neighbour touching a base's edge is none).
+  std::vector<std::vector<size_t>> bases(n);
   const std::vector<std::vector<size_t>> covering = covering_surfaces(scene);
-  for (size_t base = 0; base < covering.size(); ++base) {
+  for (size_t base = 0; base < n; ++base) {
     const Surface& b = scene.surfaces[base];
     for (const size_t cover : covering[base]) {
-      // Only a cover that overlaps it (a coplanar neighbour touching its edge stays in place).
       ConvexPolygon p;
       for (const Vec3& c : scene.surfaces[cover].polygon()) p.push(c);
-      const std::span<const Vec3> corners = b.polygon();
-      if (exposed_fraction(corners, b.normal(), std::span(&p, 1)) < 1) raise[cover] = raise_m;
+      if (exposed_fraction(b.polygon(), b.normal(), std::span(&p, 1)) < 1) bases[cover].push_back(base);
     }
   }
+  // A cover's own step (its size's share) over the highest of its bases' raises: a canvas on a
+  // frame on a wall stands above both. Covers are smaller than their bases, so the chains end.
+  std::vector<double> raise(n, -1);
+  const auto raise_of = [&](const auto& self, size_t k) -> double {
+    if (raise[k] >= 0) return raise[k];
+    double below = 0;
+    for (const size_t base : bases[k]) below = std::max(below, self(self, base));
+    const Surface& s = scene.surfaces[k];
+    raise[k] = bases[k].empty() ? 0 : below + tol::kExportRaisedRelative * std::max(s.length_u_m(), s.length_v_m());
+    return raise[k];
+  };
+  for (size_t k = 0; k < n; ++k) raise_of(raise_of, k);
   return raise;
 }
 

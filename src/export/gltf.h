@@ -26,9 +26,10 @@ namespace radrecon {
 /// positions far from (0, 0, 0) would lose the model's shape).
 Vec3 export_origin(const Scene& scene);
 
-/// By scene surface: how far its exported mesh is raised along each side's normal, metres:
-/// tol::kExportRaisedRelative of the scene's extent for a surface covering part of another
-/// (solver/covered.h: a lamp lying on a ceiling, a window in a wall, a rug on a floor), else 0.
+/// By scene surface: how far its exported mesh is raised, each side along its own normal,
+/// metres: for a surface covering part of another (solver/covered.h: a lamp lying on a ceiling, a
+/// window in a wall, a rug on a floor), tol::kExportRaisedRelative of its longer side above the
+/// highest raise of those it covers (a canvas on a frame on a wall stands above both); else 0.
 /// In the same plane, a viewer's depth test would draw one or the other pixel by pixel as the
 /// view moves (the lamp over the ceiling's dark covered part: a flicker, an outside-in trial).
 std::vector<double> export_raise_m(const Scene& scene);

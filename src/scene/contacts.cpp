@@ -206,7 +206,7 @@ SideContacts side_contacts(const Scene& scene, SideRef side, std::span<const siz
     if (k == side.surface) continue;
     const Surface& t = scene.surfaces[k];
     if (lies_on(t, s)) {
-      if (!covers(t, s, sheet)) continue;  // the sheet's other face: no cover, no outline
+      if (!covers(scene, k, side.surface, sheet, candidates)) continue;  // the sheet's other face: no cover, no outline
       std::optional<Polyline> region = clipped_region(t);
       if (!region) continue;  // no overlap, or only along an edge
       for (size_t i = 0; i < region->size(); ++i) {
@@ -312,26 +312,34 @@ void enclosed_regions(const std::vector<Segment2>& lines, const std::vector<Seen
 
 }  // namespace
 
-bool sheet_face(const Scene& scene, size_t surface, std::span<const size_t> candidates) {
-  const Surface& s = scene.surfaces[surface];
-  const Vec3 n = s.normal();
-  const double offset = n.dot(s.corners[0]);
+namespace {
+
+/// Whether one-sided `t` lies in one-sided `s`'s plane (in_plane_of()) facing the other way.
+bool back_to_back(const Surface& t, const Surface& s) {
+  return !t.two_sided && !s.two_sided && t.normal().dot(s.normal()) < 0 && in_plane_of(t, s);
+}
+
+/// The outline of `t` clipped to `s`, in s's (s, t) metres, if they overlap with some width.
+std::optional<Polyline> overlap_region(const Surface& t, const Surface& s) {
   const SurfaceFrame frame = s.frame();
   const double join_m = tol::kContactJoinRelative * std::max(frame.length_u_m, frame.length_v_m);
-  std::vector<Polyline> behind;  // the outlines of the coplanar surfaces facing the other way, clipped to s
-  for (const size_t k : candidates) {
-    if (k == surface) continue;
-    const Surface& t = scene.surfaces[k];
-    if (!(t.normal().dot(n) < 0)) continue;
-    const double touch_m = tol::kContactRelative * std::max(t.length_u_m(), t.length_v_m());
-    bool coplanar = true;
-    for (const Vec3& c : t.corners) coplanar = coplanar && std::abs(n.dot(c) - offset) <= touch_m;
-    if (!coplanar) continue;
-    Polyline st;
-    for (const Vec3& p : clip_polygon_to_quad(s, std::vector<Vec3>(t.corners.begin(), t.corners.end())))
-      if (const std::optional<Vec2> q = s.parameters(p)) st.push_back(frame.st(*q));
-    if (std::optional<Polyline> region = as_region(std::move(st), join_m)) behind.push_back(std::move(*region));
-  }
+  Polyline st;
+  for (const Vec3& p : clip_polygon_to_quad(s, std::vector<Vec3>(t.corners.begin(), t.corners.end())))
+    if (const std::optional<Vec2> q = s.parameters(p)) st.push_back(frame.st(*q));
+  return as_region(std::move(st), join_m);
+}
+
+}  // namespace
+
+bool sheet_face(const Scene& scene, size_t surface, std::span<const size_t> candidates) {
+  const Surface& s = scene.surfaces[surface];
+  if (s.two_sided) return false;
+  const SurfaceFrame frame = s.frame();
+  const double join_m = tol::kContactJoinRelative * std::max(frame.length_u_m, frame.length_v_m);
+  std::vector<Polyline> behind;  // the outlines of the surfaces back to back with it, clipped to it
+  for (const size_t k : candidates)
+    if (k != surface && back_to_back(scene.surfaces[k], s))
+      if (std::optional<Polyline> region = overlap_region(scene.surfaces[k], s)) behind.push_back(std::move(*region));
   if (behind.empty()) return false;
   const int m = tol::kSheetProbes;
   for (int j = 0; j < m; ++j)
@@ -354,17 +362,32 @@ bool sheet_face(const Scene& scene, size_t surface, std::span<const size_t> cand
   return true;
 }
 
-bool covers(const Surface& other, const Surface& base, bool base_is_sheet_face) {
-  return lies_on(other, base) && !(base_is_sheet_face && other.normal().dot(base.normal()) < 0);
+bool covers(const Scene& scene, size_t other, size_t base, bool base_is_sheet_face, std::span<const size_t> candidates) {
+  const Surface &o = scene.surfaces[other], &b = scene.surfaces[base];
+  if (!lies_on(o, b)) return false;
+  if (!base_is_sheet_face || !back_to_back(o, b)) return true;
+  // Back to back with a sheet's face: the sheet's other face, unless it lies on a part of that
+  // (a box's bottom standing on the plate overlaps the plate's bottom; the bottom's own pieces
+  // only touch along their edges).
+  for (const size_t k : candidates) {
+    if (k == other || k == base) continue;
+    const Surface& t = scene.surfaces[k];
+    if (t.normal().dot(o.normal()) > 0 && lies_on(o, t) && overlap_region(o, t)) return true;
+  }
+  return false;
 }
 
-bool lies_on(const Surface& other, const Surface& base) {
+bool in_plane_of(const Surface& other, const Surface& base) {
   const Vec3 n = base.normal();
   const double offset = n.dot(base.corners[0]);
   const double touch_m = tol::kContactRelative * std::max(other.length_u_m(), other.length_v_m());
   for (const Vec3& c : other.corners)
     if (std::abs(n.dot(c) - offset) > touch_m) return false;
-  return other.area_m2() < (1 - tol::kLyingSmallerRelative) * base.area_m2();
+  return true;
+}
+
+bool lies_on(const Surface& other, const Surface& base) {
+  return in_plane_of(other, base) && other.area_m2() < (1 - tol::kLyingSmallerRelative) * base.area_m2();
 }
 
 namespace {

@@ -23,11 +23,14 @@ std::vector<std::vector<size_t>> covering_surfaces(const Scene& scene) {
   std::vector<size_t> order(n);
   for (size_t k = 0; k < n; ++k) order[k] = k;
   std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return lo[a].x() < lo[b].x() || (lo[a].x() == lo[b].x() && a < b); });
-  // (cover, base) pairs of lies_on(); a pair facing opposite ways asks whether base is one face
-  // of a sheet (covers(), contacts.h), once per base, over the surfaces whose box meets its own.
-  std::vector<std::vector<size_t>> lying(n);
-  const auto add = [&](size_t cover, size_t base) {
-    if (lies_on(scene.surfaces[cover], scene.surfaces[base])) lying[base].push_back(cover);
+  // By base, the surfaces in its plane whose box meets its own (in surface order after the
+  // sort below), and those of them lying on it (lies_on()); a pair facing opposite ways asks
+  // whether base is one face of a sheet (covers(), contacts.h), over the former.
+  std::vector<std::vector<size_t>> in_plane(n), lying(n);
+  const auto add = [&](size_t other, size_t base) {
+    if (!in_plane_of(scene.surfaces[other], scene.surfaces[base])) return;
+    in_plane[base].push_back(other);
+    if (lies_on(scene.surfaces[other], scene.surfaces[base])) lying[base].push_back(other);
   };
   for (size_t i = 0; i < n; ++i)
     for (size_t j = i + 1; j < n && lo[order[j]].x() <= hi[order[i]].x() + margin; ++j) {
@@ -37,23 +40,16 @@ std::vector<std::vector<size_t>> covering_surfaces(const Scene& scene) {
         add(b, a);
       }
     }
-  const auto boxes_meet = [&](size_t a, size_t b) {
-    return ((lo[a].array() - margin) <= hi[b].array()).all() && (lo[b].array() <= (hi[a].array() + margin)).all();
-  };
   for (size_t base = 0; base < n; ++base) {
     if (lying[base].empty()) continue;
     const Surface& b = scene.surfaces[base];
-    bool sheet = false;
-    if (std::any_of(lying[base].begin(), lying[base].end(),
-                    [&](size_t c) { return scene.surfaces[c].normal().dot(b.normal()) < 0; })) {
-      std::vector<size_t> near;
-      for (size_t k = 0; k < n; ++k)
-        if (k != base && boxes_meet(k, base)) near.push_back(k);
-      sheet = sheet_face(scene, base, near);
-    }
-    std::sort(lying[base].begin(), lying[base].end());  // surface order, whatever the sweep's
+    std::sort(in_plane[base].begin(), in_plane[base].end());  // surface order, whatever the sweep's
+    std::sort(lying[base].begin(), lying[base].end());
+    const bool facing_back = std::any_of(lying[base].begin(), lying[base].end(),
+                                         [&](size_t c) { return scene.surfaces[c].normal().dot(b.normal()) < 0; });
+    const bool sheet = facing_back && sheet_face(scene, base, in_plane[base]);
     for (const size_t cover : lying[base])
-      if (covers(scene.surfaces[cover], b, sheet)) out[base].push_back(cover);
+      if (covers(scene, cover, base, sheet, in_plane[base])) out[base].push_back(cover);
   }
   return out;
 }

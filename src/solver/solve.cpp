@@ -181,32 +181,40 @@ Solution with_barriers(const Scene& scene, Solution sol, bool shadow_lines_too) 
   return sol;
 }
 
-/// Warns of each emitting side that no other surface lies in front of (beyond
-/// tol::kContactRelative of the other's size): all its power leaves the scene, which is a light
-/// facing the wrong way far more often than an intended one (a lamp written facing the sky beside
-/// one that works: 71% of the power lost without a word, an outside-in trial). When no surface at
-/// all is lit, solve_scene()'s own warning says so instead.
+/// Warns of each light (an emitting surface: only a front emits) that no other surface lies in
+/// front of (beyond tol::kContactRelative of the other's size): all its power leaves the scene,
+/// which is a light facing the wrong way far more often than an intended one (a lamp written
+/// facing the sky beside one that works: 71% of the power lost without a word, an outside-in
+/// trial). The first few are named, the rest counted. When no surface at all is lit,
+/// solve_scene()'s own warning says so instead.
 void warn_of_lights_facing_nothing(const Scene& scene) {
-  for (size_t k = 0; k < scene.surfaces.size(); ++k) {
+  constexpr size_t kNamed = 5;
+  const size_t n = scene.surfaces.size();
+  std::vector<double> touch_m(n);
+  for (size_t j = 0; j < n; ++j)
+    touch_m[j] = tol::kContactRelative * std::max(scene.surfaces[j].length_u_m(), scene.surfaces[j].length_v_m());
+  size_t lost = 0;
+  double lost_w = 0;
+  for (size_t k = 0; k < n; ++k) {
     const Surface& s = scene.surfaces[k];
-    for (const bool back : {false, true}) {
-      if ((back && !s.two_sided) || !(side_emission(s, back) > 0).any()) continue;
-      const Vec3 n = side_normal(s, back);
-      const double offset = n.dot(s.corners[0]);
-      bool lights_something = false;
-      for (size_t j = 0; j < scene.surfaces.size() && !lights_something; ++j) {
-        if (j == k) continue;
-        const Surface& t = scene.surfaces[j];
-        const double touch_m = tol::kContactRelative * std::max(t.length_u_m(), t.length_v_m());
-        for (const Vec3& c : t.polygon()) lights_something = lights_something || n.dot(c) - offset > touch_m;
-      }
-      if (!lights_something)
-        warn("light '" + side_name(s, back) + "' lights no surface: every other surface lies behind its plane, so its " +
-             format_number((side_emission(s, back) * s.area_m2()).maxCoeff()) +
-             " W leave the scene. A surface emits on its front, the side its corners run counter-clockwise around: "
-             "check the light's corners (or make it two_sided)");
-    }
+    if (!(s.emission_w_m2 > 0).any()) continue;
+    const Vec3 n_front = s.normal();
+    const double offset = n_front.dot(s.corners[0]);
+    bool lights_something = false;
+    for (size_t j = 0; j < n && !lights_something; ++j)
+      if (j != k)
+        for (const Vec3& c : scene.surfaces[j].polygon()) lights_something = lights_something || n_front.dot(c) - offset > touch_m[j];
+    if (lights_something) continue;
+    const double power_w = (s.emission_w_m2 * s.area_m2()).maxCoeff();
+    if (++lost <= kNamed)
+      warn("light '" + s.name + "' lights no surface: every other surface lies behind its plane, so its " +
+           format_number(power_w) + " W leave the scene. A surface emits on its front, the side its corners run "
+           "counter-clockwise around: check the order of its corners");
+    else
+      lost_w += power_w;
   }
+  if (lost > kNamed)
+    warn("and " + std::to_string(lost - kNamed) + " more lights light no surface (" + format_number(lost_w) + " W)");
 }
 
 }  // namespace

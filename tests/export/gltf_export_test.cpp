@@ -193,12 +193,12 @@ TEST(GltfExport, AModelFarFromTheOriginKeepsItsShapeThroughTheNodesTranslation) 
   std::filesystem::remove(path);
 }
 
-TEST(GltfExport, ALampLyingOnTheCeilingIsRaisedOffItAndANeighbourTouchingItsEdgeIsNot) {
+TEST(GltfExport, SurfacesLyingOnOthersAreRaisedOffThemInTurnAndANeighbourTouchingAnEdgeIsNot) {
   // In one plane, a viewer's depth test draws the lamp or the ceiling's covered part pixel by
-  // pixel as the view moves (an outside-in trial: a window in its wall). Read back by assimp, the
-  // lamp's corners are the scene's moved 1e-4 of the scene's 4 m extent along its normal (down,
-  // into the room); the ceiling, and a coplanar tile beside it touching its edge, are where the
-  // scene has them.
+  // pixel as the view moves (an outside-in trial: a window in its wall). A 2 m panel lies on the
+  // ceiling and a 1 m lamp on the panel: read back by assimp, the panel's corners are the
+  // scene's moved 1e-3 of its 2 m along its normal (down, into the room), the lamp's 1e-3 of its
+  // 1 m further; the ceiling, and a coplanar tile beside it touching its edge, stay.
   Scene scene;
   scene.name = "room";
   const auto grey = [](const std::string& name, std::array<Vec3, 4> corners, double emission = 0) {
@@ -212,10 +212,10 @@ TEST(GltfExport, ALampLyingOnTheCeilingIsRaisedOffItAndANeighbourTouchingItsEdge
   scene.surfaces = {grey("floor", {Vec3(0, 0, 0), Vec3(3, 0, 0), Vec3(3, 3, 0), Vec3(0, 3, 0)}),
                     grey("ceiling", {Vec3(0, 0, 2), Vec3(0, 3, 2), Vec3(3, 3, 2), Vec3(3, 0, 2)}),
                     grey("beside", {Vec3(3, 0, 2), Vec3(3, 1, 2), Vec3(4, 1, 2), Vec3(4, 0, 2)}),
+                    grey("panel", {Vec3(0.5, 0.5, 2), Vec3(0.5, 2.5, 2), Vec3(2.5, 2.5, 2), Vec3(2.5, 0.5, 2)}),
                     grey("lamp", {Vec3(1, 1, 2), Vec3(1, 2, 2), Vec3(2, 2, 2), Vec3(2, 1, 2)}, 10)};
-  const double raise_m = 1e-4 * 4;  // the scene's extent: 4 m along x
-  const std::vector<double> raised = export_raise_m(scene);
-  EXPECT_EQ(raised, (std::vector<double>{0, 0, 0, raise_m}));
+  const double panel_m = 1e-3 * 2, lamp_m = panel_m + 1e-3 * 1;
+  EXPECT_EQ(export_raise_m(scene), (std::vector<double>{0, 0, 0, panel_m, lamp_m}));
   const Solution solution = solve_scene(scene, "grid:4", SolveSettings{}, "mesh");
   const SolutionReconstruction recon(scene, solution, Method::constant, {}, "test");
   const LightmapAtlas atlas = bake_lightmaps(scene, solution, recon, 8, "test");
@@ -230,7 +230,7 @@ TEST(GltfExport, ALampLyingOnTheCeilingIsRaisedOffItAndANeighbourTouchingItsEdge
     const std::string name = mesh->mName.C_Str();
     const auto surface = std::find_if(scene.surfaces.begin(), scene.surfaces.end(), [&](const Surface& s) { return s.name == name; });
     ASSERT_NE(surface, scene.surfaces.end()) << name;
-    const Vec3 offset = name == "lamp" ? Vec3(0, 0, -raise_m) : Vec3::Zero();
+    const Vec3 offset = name == "lamp" ? Vec3(0, 0, -lamp_m) : name == "panel" ? Vec3(0, 0, -panel_m) : Vec3::Zero();
     for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
       const Vec3 p(mesh->mVertices[v].x, mesh->mVertices[v].y, mesh->mVertices[v].z);
       double nearest = INFINITY;
@@ -239,7 +239,7 @@ TEST(GltfExport, ALampLyingOnTheCeilingIsRaisedOffItAndANeighbourTouchingItsEdge
       ++checked;
     }
   }
-  EXPECT_EQ(checked, 16);
+  EXPECT_EQ(checked, 20);
   std::filesystem::remove(path);
 }
 

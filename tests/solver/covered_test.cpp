@@ -70,35 +70,50 @@ Surface triangle(const std::string& name, const Vec3& a, const Vec3& b, const Ve
 TEST(Covered, OneSidedFacesBackToBackAreASheetAndNeitherFaceCoversTheOther) {
   // A plate of no thickness as a top quad (facing +z) over two bottom triangles (facing -z):
   // each triangle is smaller than the quad and lay on it as a box's bottom lies on a floor, so
-  // the lit top was all covered and took no light (an outside-in trial). And a plate whose top
-  // and bottom are both split in two, along the two different diagonals (probes on a diagonal
-  // lie on two outlines at once). A plate facing down on the floor still covers the floor.
+  // the lit top was all covered and took no light (an outside-in trial). A second plate's top
+  // is cut into a triangle and a quad of other sizes than its bottom's two triangles, so that
+  // faces of either side lie on faces of the other. A box's bottom standing on a third plate of
+  // two equal quads still covers its top; a plate facing down on the floor still covers it; and
+  // a two-sided panel is no sheet: the lamps under it cover it.
   Scene scene;
-  scene.surfaces.push_back(quad("floor", {0, 0, 0}, {4, 0, 0}, {4, 4, 0}, {0, 4, 0}, 0.5));
-  scene.surfaces.push_back(quad("top", {1, 1, 1}, {2, 1, 1}, {2, 2, 1}, {1, 2, 1}, 0.5));
-  scene.surfaces.push_back(triangle("bottom a", {1, 1, 1}, {1, 2, 1}, {2, 2, 1}));
-  scene.surfaces.push_back(triangle("bottom b", {1, 1, 1}, {2, 2, 1}, {2, 1, 1}));
-  scene.surfaces.push_back(triangle("top c", {3, 1, 1}, {3.5, 1, 1}, {3.5, 1.5, 1}));
-  scene.surfaces.push_back(triangle("top d", {3, 1, 1}, {3.5, 1.5, 1}, {3, 1.5, 1}));
-  scene.surfaces.push_back(triangle("bottom e", {3, 1, 1}, {3, 1.5, 1}, {3.5, 1, 1}));
-  scene.surfaces.push_back(triangle("bottom f", {3.5, 1, 1}, {3, 1.5, 1}, {3.5, 1.5, 1}));
-  scene.surfaces.push_back(quad("mat", {0.5, 0.5, 0}, {0.5, 1, 0}, {1, 1, 0}, {1, 0.5, 0}, 0.5));  // facing down
-  for (size_t k = 1; k < scene.surfaces.size() - 1; ++k)
+  scene.surfaces.push_back(quad("floor", {0, 0, 0}, {4, 0, 0}, {4, 4, 0}, {0, 4, 0}, 0.5));           // 0
+  scene.surfaces.push_back(quad("top", {1, 1, 1}, {2, 1, 1}, {2, 2, 1}, {1, 2, 1}, 0.5));             // 1
+  scene.surfaces.push_back(triangle("bottom a", {1, 1, 1}, {1, 2, 1}, {2, 2, 1}));                     // 2
+  scene.surfaces.push_back(triangle("bottom b", {1, 1, 1}, {2, 2, 1}, {2, 1, 1}));                     // 3
+  scene.surfaces.push_back(triangle("top c", {3, 1, 1}, {3.5, 1, 1}, {3, 1.25, 1}));                   // 4: 0.0625 m^2
+  scene.surfaces.push_back(quad("top d", {3.5, 1, 1}, {3.5, 1.5, 1}, {3, 1.5, 1}, {3, 1.25, 1}, 0.5));  // 5: 0.1875 m^2
+  scene.surfaces.push_back(triangle("bottom e", {3, 1, 1}, {3, 1.5, 1}, {3.5, 1, 1}));                 // 6: 0.125 m^2
+  scene.surfaces.push_back(triangle("bottom f", {3.5, 1, 1}, {3, 1.5, 1}, {3.5, 1.5, 1}));             // 7: 0.125 m^2
+  scene.surfaces.push_back(quad("mat", {0.5, 0.5, 0}, {0.5, 1, 0}, {1, 1, 0}, {1, 0.5, 0}, 0.5));     // 8: facing down
+  scene.surfaces.push_back(quad("plate top", {1, 3, 1}, {2, 3, 1}, {2, 4, 1}, {1, 4, 1}, 0.5));         // 9
+  scene.surfaces.push_back(quad("plate bottom", {1, 3, 1}, {1, 4, 1}, {2, 4, 1}, {2, 3, 1}, 0.5));      // 10
+  scene.surfaces.push_back(quad("box bottom", {1.25, 3.25, 1}, {1.25, 3.5, 1}, {1.5, 3.5, 1}, {1.5, 3.25, 1}, 0.5));  // 11
+  Surface panel = quad("panel", {3, 3, 2}, {3, 4, 2}, {4, 4, 2}, {4, 3, 2}, 0.5);                       // 12: two-sided
+  panel.two_sided = true;
+  scene.surfaces.push_back(panel);
+  scene.surfaces.push_back(triangle("lamp g", {3, 3, 2}, {4, 3, 2}, {4, 4, 2}));                       // 13: facing +z
+  scene.surfaces.push_back(triangle("lamp h", {3, 3, 2}, {4, 4, 2}, {3, 4, 2}));                       // 14
+  for (size_t k = 1; k < scene.surfaces.size(); ++k)
     ASSERT_GT(std::abs(scene.surfaces[k].normal().z()), 0.99) << scene.surfaces[k].name;
+  ASSERT_LT(scene.surfaces[12].normal().dot(scene.surfaces[13].normal()), 0);
+  // (Top c lies on top d beside it, touching only along an edge: listed, it hides nothing.)
+  const std::vector<std::vector<size_t>> expected = {{8}, {}, {}, {}, {}, {4}, {}, {}, {}, {11}, {11}, {}, {13, 14}, {}, {}};
+  EXPECT_EQ(covering_surfaces(scene), expected);
+  const std::vector<size_t> regions = {1, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 0, 2, 0, 0};
+  for (size_t k = 0; k < scene.surfaces.size(); ++k)  // the excluded regions: the same rule
+    EXPECT_EQ(excluded_regions(scene, SideRef{k, false}).size(), regions[k]) << scene.surfaces[k].name;
+  // The floor: the mat's 0.25 m^2 of its 16.
   const std::vector<std::vector<ConvexPolygon>> covers = covers_by_surface(scene);
-  for (size_t k = 1; k < scene.surfaces.size(); ++k) {
-    EXPECT_TRUE(covers[k].empty()) << scene.surfaces[k].name;
-    EXPECT_TRUE(excluded_regions(scene, SideRef{k, false}).empty()) << scene.surfaces[k].name;
-  }
-  // The floor: the mat's 0.25 m^2 of its 16, in both homes of the rule.
-  ASSERT_EQ(covers[0].size(), 1u);
   const std::vector<Vec3> floor = {{0, 0, 0}, {4, 0, 0}, {4, 4, 0}, {0, 4, 0}};
   EXPECT_NEAR(exposed_fraction(floor, scene.surfaces[0].normal(), covers[0]), 1 - 0.25 / 16, 1e-14);
-  EXPECT_EQ(excluded_regions(scene, SideRef{0, false}).size(), 1u);
-  // Without its bottom triangles the top is no sheet's face; bottom a alone on it is a cover.
+  // Without bottom b the top is no sheet's face: bottom a covers it; and without their sheet's
+  // other face the second plate's pieces cover one another (c lies on e and f, e and f on d).
   Scene half = scene;
   half.surfaces.erase(half.surfaces.begin() + 3);
-  EXPECT_EQ(covers_by_surface(half)[1].size(), 1u);
+  EXPECT_EQ(covering_surfaces(half)[1], std::vector<size_t>{2});
+  Scene apart = scene;
+  for (Vec3& c : apart.surfaces[9].corners) c.z() += 0.5;  // the third plate's top lifted off
+  EXPECT_EQ(covering_surfaces(apart)[10], std::vector<size_t>{11});
 }
 
 }  // namespace covered_test
