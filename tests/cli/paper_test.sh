@@ -33,6 +33,7 @@ for table, method in [("grid", "constant"), ("grid", "bilinear"), ("grid", "bicu
     assert set(doc[table][method]) == {"L1", "L2", "RMSE", "Linf", "SSIM", "gradient_L2", "overshoot"}, (table, method)
     assert 0 < doc[table][method]["SSIM"] <= 1, (table, method)
 assert doc["settings"]["ground_leaves"] == 286
+assert "barriers" in doc["settings"] and "border_samples" not in doc["settings"], "settings of rules not used"
 EOF
 
 # --- run again into the same folder without barriers: nothing of the first run's Table 3 -------
@@ -48,5 +49,7 @@ expect_rc again 0 && expect_stderr_has again "removed"
 [ -e "$TMP/paper/table3.md" ] && fail "again: table3.md of the earlier run is left beside the new tables"
 ls "$TMP/paper/figures" | grep -v fig5_my_sketch | grep -q '^fig[5-8]_' && fail "again: Fig. 5-8 of the earlier run are left"
 [ -s "$TMP/paper/table1.md" ] || fail "again: no table1.md"
+python3 -c 'import json, sys; s = json.load(open(sys.argv[1]))["settings"]; assert "barriers" not in s and "border_samples" not in s' \
+  "$TMP/paper/errors.json" || fail "again: errors.json describes barriers the run did not use"
 
 finish paper_test
