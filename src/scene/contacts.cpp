@@ -152,6 +152,16 @@ struct SeenFrom {
   void add(const SeenFrom& o) { left = left || o.left, right = right || o.right, both = both || o.both; }
 };
 
+/// The outline of `t` clipped to `s`, in s's (s, t) metres, if they overlap with some width.
+std::optional<Polyline> overlap_region(const Surface& t, const Surface& s) {
+  const SurfaceFrame frame = s.frame();
+  const double join_m = tol::kContactJoinRelative * std::max(frame.length_u_m, frame.length_v_m);
+  Polyline st;
+  for (const Vec3& p : clip_polygon_to_quad(s, std::vector<Vec3>(t.corners.begin(), t.corners.end())))
+    if (const std::optional<Vec2> q = s.parameters(p)) st.push_back(frame.st(*q));
+  return as_region(std::move(st), join_m);
+}
+
 /// Everything contacts.h computes for one side, in its (s, t) metres.
 struct SideContacts {
   std::vector<Segment2> lines;    ///< contact_lines()
@@ -192,22 +202,13 @@ SideContacts side_contacts(const Scene& scene, SideRef side, std::span<const siz
   // (s, t) turns counter-clockwise about the surface's front normal (scene.h): left of a
   // direction d in the side's plane is along front x d.
   const Vec3 st_up = s.normal();
-  // The outline of surface t clipped to the side, in the side's metres; none if they overlap
-  // only along an edge or not at all.
-  const auto clipped_region = [&](const Surface& t) {
-    std::vector<Vec3> clipped = clip_polygon_to_quad(s, std::vector<Vec3>(t.corners.begin(), t.corners.end()));
-    Polyline st;
-    for (const Vec3& p : clipped)
-      if (const std::optional<Vec2> q = s.parameters(p)) st.push_back(frame.st(*q));
-    return as_region(std::move(st), join_m);
-  };
   const bool sheet = sheet_face(scene, side.surface, candidates);
   for (const size_t k : candidates) {
     if (k == side.surface) continue;
     const Surface& t = scene.surfaces[k];
     if (lies_on(t, s)) {
       if (!covers(scene, k, side.surface, sheet, candidates)) continue;  // the sheet's other face: no cover, no outline
-      std::optional<Polyline> region = clipped_region(t);
+      std::optional<Polyline> region = overlap_region(t, s);  // the outline clipped to the side
       if (!region) continue;  // no overlap, or only along an edge
       for (size_t i = 0; i < region->size(); ++i) {
         const Vec2& a = (*region)[i];
@@ -317,16 +318,6 @@ namespace {
 /// Whether one-sided `t` lies in one-sided `s`'s plane (in_plane_of()) facing the other way.
 bool back_to_back(const Surface& t, const Surface& s) {
   return !t.two_sided && !s.two_sided && t.normal().dot(s.normal()) < 0 && in_plane_of(t, s);
-}
-
-/// The outline of `t` clipped to `s`, in s's (s, t) metres, if they overlap with some width.
-std::optional<Polyline> overlap_region(const Surface& t, const Surface& s) {
-  const SurfaceFrame frame = s.frame();
-  const double join_m = tol::kContactJoinRelative * std::max(frame.length_u_m, frame.length_v_m);
-  Polyline st;
-  for (const Vec3& p : clip_polygon_to_quad(s, std::vector<Vec3>(t.corners.begin(), t.corners.end())))
-    if (const std::optional<Vec2> q = s.parameters(p)) st.push_back(frame.st(*q));
-  return as_region(std::move(st), join_m);
 }
 
 }  // namespace
