@@ -152,15 +152,6 @@ struct SeenFrom {
   void add(const SeenFrom& o) { left = left || o.left, right = right || o.right, both = both || o.both; }
 };
 
-/// The outline of `t` clipped to `s`, in s's (s, t) metres, if they overlap with some width.
-std::optional<Polyline> overlap_region(const Surface& t, const Surface& s) {
-  const SurfaceFrame frame = s.frame();
-  const double join_m = tol::kContactJoinRelative * std::max(frame.length_u_m, frame.length_v_m);
-  Polyline st;
-  for (const Vec3& p : clip_polygon_to_quad(s, std::vector<Vec3>(t.corners.begin(), t.corners.end())))
-    if (const std::optional<Vec2> q = s.parameters(p)) st.push_back(frame.st(*q));
-  return as_region(std::move(st), join_m);
-}
 
 /// Everything contacts.h computes for one side, in its (s, t) metres.
 struct SideContacts {
@@ -218,7 +209,7 @@ SideContacts side_contacts(const Scene& scene, SideRef side, std::span<const siz
       out.covered.push_back(std::move(*region));
       continue;
     }
-    const double touch_m = tol::kContactRelative * std::max(t.length_u_m(), t.length_v_m());
+    const double touch_m = contact_tolerance_m(t);
     std::array<double, 4> dist;
     bool in_front = false, all_on = true;
     for (int i = 0; i < 4; ++i) {
@@ -313,72 +304,14 @@ void enclosed_regions(const std::vector<Segment2>& lines, const std::vector<Seen
 
 }  // namespace
 
-namespace {
-
-/// Whether one-sided `t` lies in one-sided `s`'s plane (in_plane_of()) facing the other way.
-bool back_to_back(const Surface& t, const Surface& s) {
-  return !t.two_sided && !s.two_sided && t.normal().dot(s.normal()) < 0 && in_plane_of(t, s);
-}
-
-}  // namespace
-
-bool sheet_face(const Scene& scene, size_t surface, std::span<const size_t> candidates) {
-  const Surface& s = scene.surfaces[surface];
-  if (s.two_sided) return false;
+// overlap_region() (covering.h) needs this file's clipping and regions.
+std::optional<Polyline> overlap_region(const Surface& t, const Surface& s) {
   const SurfaceFrame frame = s.frame();
   const double join_m = tol::kContactJoinRelative * std::max(frame.length_u_m, frame.length_v_m);
-  std::vector<Polyline> behind;  // the outlines of the surfaces back to back with it, clipped to it
-  for (const size_t k : candidates)
-    if (k != surface && back_to_back(scene.surfaces[k], s))
-      if (std::optional<Polyline> region = overlap_region(scene.surfaces[k], s)) behind.push_back(std::move(*region));
-  if (behind.empty()) return false;
-  const int m = tol::kSheetProbes;
-  for (int j = 0; j < m; ++j)
-    for (int i = 0; i < m; ++i) {
-      const Vec2 uv((i + 0.5) / m, (j + 0.5) / m);
-      if (s.is_triangle() && uv.sum() >= 1) continue;
-      const Vec2 st = frame.st(uv);
-      // Inside an outline, or on it (within join_m): a point on the line between two of them
-      // (a probe on the diagonal two triangles share) may count as in neither.
-      const auto covered = [&](const Polyline& r) {
-        if (in_region(r, st)) return true;
-        for (size_t e = 0; e < r.size(); ++e) {
-          const Vec2 &a = r[e], &b = r[(e + 1) % r.size()];
-          if ((a + nearest_on_segment_t(st, a, b) * (b - a) - st).norm() <= join_m) return true;
-        }
-        return false;
-      };
-      if (std::none_of(behind.begin(), behind.end(), covered)) return false;
-    }
-  return true;
-}
-
-bool covers(const Scene& scene, size_t other, size_t base, bool base_is_sheet_face, std::span<const size_t> candidates) {
-  const Surface &o = scene.surfaces[other], &b = scene.surfaces[base];
-  if (!lies_on(o, b)) return false;
-  if (!base_is_sheet_face || !back_to_back(o, b)) return true;
-  // Back to back with a sheet's face: the sheet's other face, unless it lies on a part of that
-  // (a box's bottom standing on the plate overlaps the plate's bottom; the bottom's own pieces
-  // only touch along their edges).
-  for (const size_t k : candidates) {
-    if (k == other || k == base) continue;
-    const Surface& t = scene.surfaces[k];
-    if (t.normal().dot(o.normal()) > 0 && lies_on(o, t) && overlap_region(o, t)) return true;
-  }
-  return false;
-}
-
-bool in_plane_of(const Surface& other, const Surface& base) {
-  const Vec3 n = base.normal();
-  const double offset = n.dot(base.corners[0]);
-  const double touch_m = tol::kContactRelative * std::max(other.length_u_m(), other.length_v_m());
-  for (const Vec3& c : other.corners)
-    if (std::abs(n.dot(c) - offset) > touch_m) return false;
-  return true;
-}
-
-bool lies_on(const Surface& other, const Surface& base) {
-  return in_plane_of(other, base) && other.area_m2() < (1 - tol::kLyingSmallerRelative) * base.area_m2();
+  Polyline st;
+  for (const Vec3& p : clip_polygon_to_quad(s, std::vector<Vec3>(t.corners.begin(), t.corners.end())))
+    if (const std::optional<Vec2> q = s.parameters(p)) st.push_back(frame.st(*q));
+  return as_region(std::move(st), join_m);
 }
 
 namespace {
@@ -394,7 +327,7 @@ std::array<Vec3, 2> contact_box(const Surface& t) {
     lo = lo.cwiseMin(c), hi = hi.cwiseMax(c);
     for (const Vec3& d : t.corners) size_m = std::max(size_m, (c - d).norm());
   }
-  const double margin_m = 2 * tol::kContactRelative * std::max(t.length_u_m(), t.length_v_m()) +
+  const double margin_m = 2 * contact_tolerance_m(t) +
                           2 * tol::kPlanarityRelative * size_m + tol::kPlaneDistance_m;
   return {lo.array() - margin_m, hi.array() + margin_m};
 }

@@ -192,7 +192,7 @@ void warn_of_lights_facing_nothing(const Scene& scene) {
   const size_t n = scene.surfaces.size();
   std::vector<double> touch_m(n);
   for (size_t j = 0; j < n; ++j)
-    touch_m[j] = tol::kContactRelative * std::max(scene.surfaces[j].length_u_m(), scene.surfaces[j].length_v_m());
+    touch_m[j] = contact_tolerance_m(scene.surfaces[j]);
   size_t lost = 0;
   double lost_w = 0;
   for (size_t k = 0; k < n; ++k) {
