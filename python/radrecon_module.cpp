@@ -1,5 +1,6 @@
 // radrecon for Python (pybind11, NumPy): scattered-data interpolation by every reconstruction
-// method of `radrecon interpolate`, and the radiosity solvers of `radrecon solve`, on arrays.
+// method of `radrecon interpolate`, the radiosity solvers of `radrecon solve`, and solutions
+// (solved or read from their files) reconstructed side by side as `radrecon render` does, on arrays.
 // The work runs without the GIL; refused input raises radrecon.Error (a ValueError) with the
 // message the command line prints. docs/python.md.
 
@@ -10,7 +11,9 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -27,6 +30,7 @@
 #include "reconstruct/interpolant.h"
 #include "reconstruct/methods.h"
 #include "reconstruct/sample_set.h"
+#include "sampling/solution_reconstruction.h"
 #include "solver/solve.h"
 
 namespace py = pybind11;
@@ -35,6 +39,45 @@ namespace radrecon {
 namespace {
 
 using namespace python;  // the arguments' conversions (arguments.h)
+
+/// raster=(width, height) as a size, or none; refused (naming "raster") beyond kMaxRasterSide
+/// or, as the command line's limit, beyond Limit::raster_points cells counted once for each of
+/// the `channels` value columns.
+std::optional<std::pair<int, int>> raster_of(const py::object& raster_arg, int channels) {
+  if (raster_arg.is_none()) return std::nullopt;
+  const std::vector<double> r = numbers_of(raster_arg, 2, true, "raster", "(width, height), two whole numbers, is expected");
+  if (r[0] < 1 || r[1] < 1 || r[0] > kMaxRasterSide || r[1] > kMaxRasterSide ||
+      r[0] * r[1] * channels > static_cast<double>(limit_value(Limit::raster_points)))
+    throw UserError("raster", "(" + format_number(r[0]) + ", " + format_number(r[1]) + ") is out of range: 1 <= width, height <= " +
+                                  std::to_string(kMaxRasterSide) + ", at most " + std::to_string(limit_value(Limit::raster_points)) +
+                                  " cells, each counted once for each value column (" + std::to_string(channels) + ")");
+  return std::pair<int, int>(static_cast<int>(r[0]), static_cast<int>(r[1]));
+}
+
+/// queries=(m, 2) as points, refused (naming "queries") as check_points() does or, as the command
+/// line's limit, beyond Limit::raster_points points counted once for each value column.
+std::vector<Vec2> query_points(const Doubles& queries, int channels) {
+  check_points(queries, "queries");
+  if (static_cast<double>(queries.shape(0)) * channels > static_cast<double>(limit_value(Limit::raster_points)))
+    throw UserError("queries", std::to_string(queries.shape(0)) + " points of " + std::to_string(channels) +
+                                   " value columns are beyond the limit of " + std::to_string(limit_value(Limit::raster_points)) +
+                                   " (a point counts once for each value column)");
+  return as_vec2(queries);
+}
+
+/// The interpolant's values at the raster's cells (row by row, the domain's y0 row first) or at
+/// the points, in batches of kEvaluateBatch, into `out` (channels() values a point). Without the GIL.
+void evaluate_all(const Interpolant& f, const std::optional<Raster>& raster, std::span<const Vec2> points,
+                  std::span<double> out) {
+  const size_t channels = static_cast<size_t>(f.channels());
+  const size_t count = raster ? static_cast<size_t>(raster->width) * static_cast<size_t>(raster->height) : points.size();
+  for (size_t first = 0; first < count; first += kEvaluateBatch) {
+    const size_t batch = std::min(kEvaluateBatch, count - first);
+    const std::span<double> out_batch = out.subspan(first * channels, batch * channels);
+    if (raster) f.evaluate_raster(*raster, first, batch, out_batch);
+    else f.evaluate(points.subspan(first, batch), out_batch);
+  }
+}
 
 py::array interpolate(const py::object& points_arg, const py::object& values_arg, const py::object& queries_arg,
                       const py::object& raster_arg, const py::object& domain_arg, const py::object& method_arg,
@@ -47,15 +90,7 @@ py::array interpolate(const py::object& points_arg, const py::object& values_arg
     throw UserError("method", "a method's name is expected (radrecon.methods() lists them), got " +
                                   py::repr(method_arg).cast<std::string>());
   const std::string method_text = method_arg.cast<std::string>();
-  std::optional<std::pair<int, int>> raster;
   std::optional<std::array<double, 4>> domain;
-  if (!raster_arg.is_none()) {
-    const std::vector<double> r = numbers_of(raster_arg, 2, true, "raster", "(width, height), two whole numbers, is expected");
-    if (r[0] < 1 || r[1] < 1 || r[0] > kMaxRasterSide || r[1] > kMaxRasterSide)
-      throw UserError("raster", "(" + format_number(r[0]) + ", " + format_number(r[1]) + ") is out of range: 1 <= width, height <= " +
-                                    std::to_string(kMaxRasterSide));
-    raster = std::pair<int, int>(static_cast<int>(r[0]), static_cast<int>(r[1]));
-  }
   if (!domain_arg.is_none()) {
     const std::vector<double> d = numbers_of(domain_arg, 4, false, "domain", "(x0, y0, x1, y1), four numbers, is expected");
     domain = std::array<double, 4>{d[0], d[1], d[2], d[3]};
@@ -67,6 +102,7 @@ py::array interpolate(const py::object& points_arg, const py::object& values_arg
                                   ", channels) is expected, one row per point; got shape " + shape_of(values));
   const int channels = values.ndim() == 2 ? static_cast<int>(values.shape(1)) : 1;
   if (channels < 1) throw UserError("values", "no value columns");
+  const std::optional<std::pair<int, int>> raster = raster_of(raster_arg, channels);
   for (py::ssize_t i = 0; i < values.size(); ++i) {
     const double v = values.data()[i];
     if (!std::isfinite(v)) throw UserError("values[" + std::to_string(i / channels) + "]", "not a finite number");
@@ -117,26 +153,14 @@ py::array interpolate(const py::object& points_arg, const py::object& values_arg
   std::vector<py::ssize_t> shape;
   if (raster) {
     const auto [w, h] = *raster;
-    // As the command line's limit: a cell counts once for each value column.
-    if (w < 1 || h < 1 || w > kMaxRasterSide || h > kMaxRasterSide ||
-        static_cast<double>(w) * h * samples.channels > static_cast<double>(limit_value(Limit::raster_points)))
-      throw UserError("raster", "(" + std::to_string(w) + ", " + std::to_string(h) + ") is out of range: 1 <= width, height <= " +
-                                    std::to_string(kMaxRasterSide) + ", at most " + std::to_string(limit_value(Limit::raster_points)) +
-                                    " cells, each counted once for each value column (" + std::to_string(samples.channels) + ")");
     const auto& d = *domain;  // checked above
     grid.width = w;
     grid.height = h;
     grid.domain = Rect{d[0], d[1], d[2], d[3]};
     shape = {h, w};
   } else {
-    check_points(*queries, "queries");
-    // As the command line's limit: a query counts once for each value column.
-    if (static_cast<double>(queries->shape(0)) * samples.channels > static_cast<double>(limit_value(Limit::raster_points)))
-      throw UserError("queries", std::to_string(queries->shape(0)) + " points of " + std::to_string(samples.channels) +
-                                     " value columns are beyond the limit of " + std::to_string(limit_value(Limit::raster_points)) +
-                                     " (a point counts once for each value column)");
-    at = as_vec2(*queries);
-    shape = {queries->shape(0)};
+    at = query_points(*queries, samples.channels);
+    shape = {static_cast<py::ssize_t>(at.size())};
   }
   // The border's rectangle holds the domain (checked above) and every sample (as --border-samples).
   std::optional<Rect> border_domain;
@@ -155,13 +179,8 @@ py::array interpolate(const py::object& points_arg, const py::object& values_arg
     }
     const InterpolantResult interpolant = make_point_interpolant(method, samples, params);
     if (!interpolant) throw UserError("points", reason_with_border_samples(interpolant.reason(), added_samples));
-    const std::span<double> results(result, count * static_cast<size_t>(channels));
-    for (size_t first = 0; first < count; first += kEvaluateBatch) {
-      const size_t batch = std::min(kEvaluateBatch, count - first);
-      const std::span<double> out_batch = results.subspan(first * channels, batch * channels);
-      if (raster) interpolant.value()->evaluate_raster(grid, first, batch, out_batch);
-      else interpolant.value()->evaluate(std::span<const Vec2>(at).subspan(first, batch), out_batch);
-    }
+    evaluate_all(*interpolant.value(), raster ? std::optional<Raster>(grid) : std::nullopt, at,
+                 std::span<double>(result, count * static_cast<size_t>(channels)));
   }
   raise_warnings(warnings);
   return out;
@@ -217,7 +236,87 @@ py::dict surface_dict(const SurfaceSolution& s) {
   d["shear_m"] = s.shear_m;
   d["barriers"] = polylines(s.barriers);
   d["excluded"] = polylines(s.excluded);
+  d["outline"] = polylines({s.outline_st()})[0];
+  py::array_t<double> st({n, py::ssize_t{2}});
+  auto q = st.mutable_unchecked<2>();
+  for (py::ssize_t i = 0; i < n; ++i) {
+    const Vec2 c = s.centroid_st(s.elements[static_cast<size_t>(i)]);
+    q(i, 0) = c.x(), q(i, 1) = c.y();
+  }
+  d["st"] = st;
   return d;
+}
+
+/// The domain of a side's rasters: its outline's bounding box in (s, t) metres.
+Rect side_domain(const SurfaceSolution& side) {
+  Rect r{0, 0, 0, 0};
+  for (const Vec2& p : side.outline_st())
+    r.x0 = std::min(r.x0, p.x()), r.y0 = std::min(r.y0, p.y()), r.x1 = std::max(r.x1, p.x()), r.y1 = std::max(r.y1, p.y());
+  return r;
+}
+
+/// Solution.reconstruct(): one side reconstructed as `radrecon render` reconstructs it, at points
+/// of its (s, t) frame or on a raster over its outline's bounding box; NaN off the side and in
+/// its excluded regions.
+py::array reconstruct(const PySolution& sol, const std::string& side_name, const py::object& queries_arg,
+                      const py::object& raster_arg, const py::object& method_arg, const py::object& barriers_arg,
+                      const py::object& border_samples_arg, const py::kwargs& kwargs) {
+  const SurfaceSolution* side = sol.find(side_name);
+  if (side == nullptr) {
+    std::string names;
+    for (size_t k = 0; k < std::min<size_t>(sol.surfaces.size(), 8); ++k) names += (k ? ", " : "") + sol.surfaces[k].name;
+    if (sol.surfaces.size() > 8) names += ", ... (" + std::to_string(sol.surfaces.size()) + " in all)";
+    throw UserError("side", "the solution has no side '" + side_name + "'; its sides: " + names);
+  }
+  if (!py::isinstance<py::str>(method_arg))
+    throw UserError("method", "a method's name is expected (radrecon.methods() lists them), got " +
+                                  py::repr(method_arg).cast<std::string>());
+  const std::string method_text = method_arg.cast<std::string>();
+  const Method method = method_by_name(method_text, "method");
+  const bool barriers = flag_of(barriers_arg, "barriers"), border_samples = flag_of(border_samples_arg, "border_samples");
+  if (const std::string problem = border_samples ? border_samples_problem(method) : ""; !problem.empty())
+    throw UserError("border_samples", problem);
+  const MethodParams params = parse_params(method, settings_of(kwargs), "params");
+  if (barriers && !takes_barriers(method) && !side->barriers.empty()) {
+    const std::string message = method_text + " takes no barriers: side '" + side_name +
+                                "' is reconstructed across them (barriers=False asks for that)";
+    if (PyErr_WarnEx(PyExc_UserWarning, message.c_str(), 1) != 0) throw py::error_already_set();
+  }
+  constexpr int kChannels = 3;  // a solution's radiosity: red, green, blue
+  const std::optional<std::pair<int, int>> size = raster_of(raster_arg, kChannels);
+  if (queries_arg.is_none() == !size.has_value())
+    throw UserError("queries/raster", size ? "give either queries or raster, not both"
+                                           : "give the query points: queries=(m, 2) array of (s, t) metres, or "
+                                             "raster=(width, height)");
+  std::optional<Raster> raster;
+  std::vector<Vec2> at;
+  std::vector<py::ssize_t> shape;
+  if (size) {
+    raster = Raster{size->first, size->second, side_domain(*side)};
+    shape = {size->second, size->first, kChannels};
+  } else {
+    at = query_points(doubles_of(queries_arg, "queries"), kChannels);
+    shape = {static_cast<py::ssize_t>(at.size()), kChannels};
+  }
+  py::array_t<double> out(shape);
+  const std::span<double> values(out.mutable_data(), static_cast<size_t>(out.size()));
+  WarningCollector warnings;  // the library's (a poorly conditioned system), raised as Python's below
+  {
+    py::gil_scoped_release release;
+    const InterpolantResult f =
+        reconstruct_side(*side, method, params, SideSampling{.barriers = barriers, .border_samples = border_samples});
+    if (!f) throw UserError("method", method_text + " cannot reconstruct side '" + side_name + "': " + f.reason());
+    evaluate_all(*f.value(), raster, at, values);
+    // Off the side (a triangle's raster corners, a query beyond its outline): no value.
+    const size_t count = values.size() / kChannels;
+    for (size_t k = 0; k < count; ++k) {
+      const Vec2 p = raster ? raster->point(k % static_cast<size_t>(raster->width), k / static_cast<size_t>(raster->width)) : at[k];
+      if (!side->contains_st(p))
+        std::fill_n(values.begin() + static_cast<std::ptrdiff_t>(k * kChannels), kChannels, std::numeric_limits<double>::quiet_NaN());
+    }
+  }
+  raise_warnings(warnings);
+  return out;
 }
 
 py::dict stats_dict(const SolveStats& s) {
@@ -284,6 +383,18 @@ Raises radrecon.Error (a ValueError) for refused input.)doc");
          "metres, radiosity (n, 3) W/m^2, area (n,) m^2, cell (n, 4) its (u0, v0, u1, v1), triangle (n,), shape "
          "(n names: box, lower or upper half of the cell); per side length_u_m, length_v_m, shear_m (its (s, t) "
          "frame), barriers and excluded (lists of (k, 2) polylines in (s, t) metres)")
+      .def("reconstruct", &reconstruct, py::arg("side"), py::arg("queries") = py::none(), py::arg("raster") = py::none(),
+           py::arg("method") = "natural-neighbour", py::arg("barriers") = py::bool_(true),
+           py::arg("border_samples") = py::bool_(false),
+           R"doc(Reconstruct one side's radiosity, as `radrecon render` does.
+
+side: its name ("floor", "wall1/front"). Either queries: (m, 2) points of the side's (s, t) frame,
+metres, giving (m, 3) W/m^2; or raster=(width, height) over the bounding box of its outline
+(surfaces[i]["outline"]), giving (height, width, 3), row 0 at the lowest t. NaN off the side
+and in its excluded regions. method: any of methods() (the grid methods on grid sides only).
+barriers: honour the side's barriers (as render without --no-barriers); border_samples: as
+render --border-samples. Further keywords are the method's parameters as in --param.
+Raises radrecon.Error (a ValueError) for refused input.)doc")
       .def("save", [](const PySolution& s, const py::object& path_arg) {
         if (!is_path(path_arg))
           throw UserError("path", "expected a file name (str or os.PathLike), got " + py::repr(path_arg).cast<std::string>());
@@ -293,6 +404,19 @@ Raises radrecon.Error (a ValueError) for refused input.)doc");
         py::gil_scoped_release release;
         write_solution_json(path, s);
       }, py::arg("path"), "Write the solution JSON that `radrecon solve --out` writes.");
+
+  m.def("load_solution", [](const py::object& path_arg) {
+    if (!is_path(path_arg))
+      throw UserError("path", "expected a file name (str or os.PathLike), got " + py::repr(path_arg).cast<std::string>());
+    const std::string path = path_of(path_arg);
+    PySolution out;
+    {
+      py::gil_scoped_release release;
+      static_cast<Solution&>(out) = read_solution_json(path);
+    }
+    out.inputs.push_back(std::filesystem::absolute(path).string());  // save() must not overwrite it
+    return out;
+  }, py::arg("path"), "Read a solution file written by `radrecon solve --out` (or Solution.save()) as a Solution.");
 
   m.def("solve", [](const py::object& scene_arg, const std::string& mesh, std::optional<double> residual,
                     std::optional<long long> patches, std::optional<std::string> leaves_on, const py::object& clusters_arg,

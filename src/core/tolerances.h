@@ -155,7 +155,9 @@ inline constexpr double kSolutionCentreRelative = 1e-7;
 inline constexpr double kContactRelative = 1e-6;
 
 /// A contact line whose ends lie within this of the same edge of a quad's (u, v) square runs
-/// along that edge: it bounds the side and is no barrier inside it.
+/// along that edge: it bounds the side and is no barrier inside it. A point outside a surface's
+/// (u, v) domain by at most this lies on its border (Surface::parameters(),
+/// SurfaceSolution::contains_st()).
 inline constexpr double kOnBorderParameter = 1e-9;
 
 /// Contact lines and covered regions of a side (scene/contacts.h), in its (s, t) metres: two

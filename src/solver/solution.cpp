@@ -2,12 +2,26 @@
 
 #include <algorithm>
 
+#include "core/tolerances.h"
+
 namespace radrecon {
 
 const SurfaceSolution* Solution::find(const std::string& name) const {
   for (const SurfaceSolution& s : surfaces)
     if (s.name == name) return &s;
   return nullptr;
+}
+
+std::vector<Vec2> SurfaceSolution::outline_st() const {
+  if (triangle) return {Vec2(0, 0), Vec2(length_u_m, 0), Vec2(shear_m, length_v_m)};
+  return {Vec2(0, 0), Vec2(length_u_m, 0), Vec2(length_u_m, length_v_m), Vec2(0, length_v_m)};
+}
+
+bool SurfaceSolution::contains_st(const Vec2& st) const {
+  const Vec2 uv = frame().uv(st);  // a quad's unit square, a triangle's unit right triangle
+  const double slack = tol::kOnBorderParameter;
+  if (!(uv.x() >= -slack && uv.y() >= -slack)) return false;  // NaN: not on it
+  return triangle ? uv.x() + uv.y() <= 1 + slack : uv.x() <= 1 + slack && uv.y() <= 1 + slack;
 }
 
 NegativeRadiosity clamp_negative_radiosity(Solution& solution) {

@@ -41,6 +41,12 @@ struct SurfaceSolution {
   SurfaceFrame frame() const { return {length_u_m, length_v_m, shear_m}; }
   /// An element's centroid in (s, t) metres.
   Vec2 centroid_st(const SolutionElement& e) const { return frame().st(e.centroid()); }
+  /// The side's outline in (s, t) metres, counter-clockwise: a quad's rectangle (0, 0) to
+  /// (length_u, length_v); a triangle's corners (0, 0), (length_u, 0), (shear, length_v).
+  std::vector<Vec2> outline_st() const;
+  /// Whether (s, t), metres, lies on the side: in its outline, or outside it by at most
+  /// tol::kOnBorderParameter of its parameters (a point on its border, rounded).
+  bool contains_st(const Vec2& st) const;
 };
 
 /// Solver statistics. Powers are per colour channel, in W.
