@@ -51,6 +51,26 @@ struct InterpolateArgs {
   bool quiet = false;
 };
 
+/// The CRS a vector source declares (GdalFunctions::source_crs()); "" for a table, and for
+/// GeoJSON, which GDAL takes as WGS 84 whatever it holds (RFC 7946), while files of local or
+/// projected coordinates are common.
+std::string declared_crs(const std::string& path, const std::string& option) {
+  const std::string ext = lower_extension(path);
+  if (!is_ogr_vector_path(path) || ext == ".geojson" || ext == ".json") return {};
+  return gdal_functions(option).source_crs(path);
+}
+
+/// Warns when the samples and the barriers, both vector sources, declare different CRSs: their
+/// coordinates are taken as stored (no reprojection), so the barriers would stand elsewhere.
+void warn_of_another_crs(const std::string& samples, const std::string& barriers) {
+  if (barriers.empty()) return;
+  const std::string a = declared_crs(samples, "--samples"), b = declared_crs(barriers, "--barriers");
+  if (!a.empty() && !b.empty() && !gdal_functions("--barriers").same_crs(a, b))
+    std::fprintf(stderr, "radrecon: warning: %s and %s declare different CRSs; coordinates are used as stored, not "
+                         "reprojected (ogr2ogr -t_srs puts the barriers in the samples' CRS)\n",
+                 barriers.c_str(), samples.c_str());
+}
+
 /// Checks the options, reads the samples, builds the interpolant (make_point_interpolant()),
 /// evaluates it at the queries in batches with progress, and writes the output.
 void run_interpolate(const InterpolateArgs& args) {
@@ -63,17 +83,25 @@ void run_interpolate(const InterpolateArgs& args) {
   // raster: a GeoTIFF by libtiff when its CRS is none or an EPSG code, else by GDAL.
   const std::string ext = lower_extension(args.out);
   const bool geo_raster = !args.gdal_format.empty() || !(ext == ".csv" || ext == ".pfm" || ext == ".png");
+  // The raster's CRS: --crs, else the one a vector source of the samples declares (as gdal_grid).
+  std::string crs = args.crs;
+  if (crs.empty() && geo_raster) {
+    crs = declared_crs(args.samples, "--samples");
+    if (!crs.empty() && !args.quiet)
+      std::fprintf(stderr, "interpolate: the raster's CRS is the samples' (%s; --crs sets another)\n",
+                   crs.rfind("EPSG:", 0) == 0 ? crs.c_str() : "as their layer declares it");
+  }
   GeoTiffCrs geotiff_crs;
   const bool geotiff = geo_raster && is_geotiff_output(args.out, args.gdal_format) &&
-                       geotiff_functions("--out").resolve_crs(args.crs, &geotiff_crs);
+                       geotiff_functions("--out").resolve_crs(crs, &geotiff_crs);
   // `format` is radrecon's own writer; unused for a georeferenced raster.
   const FileFormat format =
       geo_raster ? FileFormat::pfm : file_format(args.out, {FileFormat::csv, FileFormat::pfm, FileFormat::png}, "--out");
-  GeoRasterOptions geo_options{args.gdal_format, args.gdal_type == "float64", args.crs, args.nodata, {}};
+  GeoRasterOptions geo_options{args.gdal_format, args.gdal_type == "float64", crs, args.nodata, {}};
   if (geo_raster) {
     if (!geotiff) {
       gdal_functions("--out").raster_driver(args.out, args.gdal_format, "--out");
-      gdal_functions("--crs").check_crs(args.crs);
+      gdal_functions("--crs").check_crs(crs);
     }
     if (args.gdal_type != "float32" && args.gdal_type != "float64")
       throw UserError("--type", "'" + args.gdal_type + "' is no band type; float32 or float64");
@@ -128,6 +156,7 @@ void run_interpolate(const InterpolateArgs& args) {
 
   // Barriers, samples, interpolant, queries.
   if (!args.barriers.empty()) params.barriers = read_barriers_file(args.barriers, "--barriers");
+  warn_of_another_crs(args.samples, args.barriers);
   CsvColumns columns{args.x_column, args.y_column, {}};
   for (size_t at = 0; !args.value_columns.empty();) {
     const size_t comma = args.value_columns.find(',', at);
@@ -152,6 +181,12 @@ void run_interpolate(const InterpolateArgs& args) {
   } else {
     samples = read_samples_csv(args.samples, &value_names, columns, params.barriers);
   }
+  // A raster apart from every sample (another unit or CRS, swapped columns): said so (with border
+  // samples, add_border_samples() says it with their count).
+  if (use_raster && !args.border_samples)
+    if (const std::string apart = domain_apart(raster.domain, samples); !apart.empty())
+      std::fprintf(stderr, "radrecon: warning: %s: every value there is extrapolated, or none (outside=none)\n",
+                   apart.c_str());
   size_t border_samples = 0;
   if (args.border_samples) {
     // On the rectangle holding --domain (the raster's) and every sample.

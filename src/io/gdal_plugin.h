@@ -27,6 +27,8 @@ struct GdalFunctions {
   std::vector<std::string> (*source_files)(const std::string& path);
   std::vector<std::string> (*raster_files)(const std::string& path);
   void (*check_raster)(const std::string& path, const GeoRasterOptions& options, int channels, bool square_pixels);
+  std::string (*source_crs)(const std::string& path);
+  bool (*same_crs)(const std::string& a, const std::string& b);
 };
 
 /// The name of the symbol the plugin exports: `const void* ()`, the address of its GdalFunctions.

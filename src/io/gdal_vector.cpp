@@ -1,196 +1,25 @@
+// Barrier lines, the files and the CRS of OGR vector sources (io/gdal_vector.h).
+
 #include "io/gdal_vector.h"
 
 #include <cmath>
-#include <filesystem>
 #include <memory>
-#include <mutex>
 #include <optional>
 #include <string_view>
 
+#include <cpl_conv.h>
 #include <cpl_error.h>
 #include <gdal_priv.h>
+#include <ogr_spatialref.h>
 #include <ogrsf_frmts.h>
 
 #include "core/barrier_line.h"
 #include "core/error.h"
 #include "core/parse.h"
 #include "core/tolerances.h"
-#include "io/gdal_plugin.h"
+#include "io/ogr_layer.h"
 
 namespace radrecon {
-
-namespace {
-
-/// kTableExtensions, as a list for a message: ".csv, .txt, ..., .tsv".
-std::string table_names() {
-  std::string out;
-  for (const std::string_view e : kTableExtensions) out += (out.empty() ? "" : ", ") + std::string(e);
-  return out;
-}
-
-/// GDAL's drivers, registered on first use.
-void register_drivers() {
-  static std::once_flag once;
-  std::call_once(once, [] { GDALAllRegister(); });
-}
-
-/// The first layer of the vector source at `path`, opened read-only.
-class OgrLayer {
- public:
-  explicit OgrLayer(const std::string& path) : path_(path) {
-    register_drivers();
-    CPLPushErrorHandler(CPLQuietErrorHandler);
-    CPLErrorReset();
-    data_.reset(static_cast<GDALDataset*>(
-        GDALOpenEx(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
-    const std::string reason = CPLGetLastErrorMsg();
-    CPLPopErrorHandler();
-    std::error_code ec;
-    // A plain path (not a GDAL connection string such as PG:..., a URL or a /vsi... path) that
-    // names nothing: said so, rather than left to GDAL's "not recognized".
-    const bool plain = path.find(':') == std::string::npos && path.rfind("/vsi", 0) != 0;
-    if (!data_ && plain && !std::filesystem::exists(path, ec)) throw UserError(path, "no such file");
-    if (!data_)
-      throw UserError(path, "cannot open as a vector source" + (reason.empty() ? std::string() : ": " + reason) +
-                                (plain ? " (a CSV or XYZ table is read as one only under the names " + table_names() +
-                                             " or no extension: rename it if it is one)"
-                                       : std::string()));
-    if (data_->GetLayerCount() < 1) throw UserError(path, "has no layer");
-    layer_ = data_->GetLayer(0);
-    // The first layer is read (docs/interpolate.md); the others, said so rather than left unseen.
-    if (data_->GetLayerCount() > 1)
-      warn(path + ": " + std::to_string(data_->GetLayerCount()) + " layers; the first, '" + layer_->GetName() +
-           "', is read (the others are not)");
-  }
-
-  OGRLayer& layer() { return *layer_; }
-  const std::string& path() const { return path_; }
-  OGRFeatureDefn& fields() { return *layer_->GetLayerDefn(); }
-  std::string where(const OGRFeature& f) const {
-    return path_ + ": layer '" + layer_->GetName() + "', feature " + std::to_string(f.GetFID());
-  }
-
-  /// The field named `name` (case-insensitive) for option `option`.
-  int field(const std::string& name, const std::string& option) {
-    for (int k = 0; k < fields().GetFieldCount(); ++k)
-      if (ascii_lower(fields().GetFieldDefn(k)->GetNameRef()) == ascii_lower(name)) return k;
-    std::string names;
-    for (int k = 0; k < fields().GetFieldCount(); ++k) names += (names.empty() ? "" : ", ") + std::string(fields().GetFieldDefn(k)->GetNameRef());
-    throw UserError(option, path_ + " has no field named '" + name + "' (its fields: " + (names.empty() ? "none" : names) + ")");
-  }
-
-  bool numeric(int k) {
-    const OGRFieldType t = fields().GetFieldDefn(k)->GetType();
-    return t == OFTReal || t == OFTInteger || t == OFTInteger64;
-  }
-
-  /// The finite number in field k of feature f.
-  double number(const OGRFeature& f, int k) {
-    const std::string name = fields().GetFieldDefn(k)->GetNameRef();
-    if (!f.IsFieldSetAndNotNull(k)) throw UserError(where(f), "field " + name + " has no value");
-    if (!numeric(k)) throw UserError(where(f), "field " + name + " is not numeric");
-    const double v = f.GetFieldAsDouble(k);
-    if (!std::isfinite(v)) throw UserError(where(f), "field " + name + " is not finite");
-    return v;
-  }
-
- private:
-  std::string path_;
-  std::unique_ptr<GDALDataset> data_;
-  OGRLayer* layer_ = nullptr;
-};
-
-/// Reads the (x, y) of every feature and, for samples, its values.
-template <typename PerFeature>
-void for_each_point(OgrLayer& src, const CsvColumns& columns, PerFeature&& each) {
-  const std::optional<int> xf = columns.x.empty() ? std::nullopt : std::optional<int>(src.field(columns.x, "--x"));
-  const std::optional<int> yf = columns.y.empty() ? std::nullopt : std::optional<int>(src.field(columns.y, "--y"));
-  if (xf.has_value() != yf.has_value()) throw UserError("--x/--y", "name both the x and the y field, or neither");
-  src.layer().ResetReading();
-  size_t count = 0;
-  for (std::unique_ptr<OGRFeature> f(src.layer().GetNextFeature()); f; f.reset(src.layer().GetNextFeature())) {
-    Vec2 p;
-    if (xf) {
-      p = Vec2(src.number(*f, *xf), src.number(*f, *yf));
-    } else {
-      const OGRGeometry* g = f->GetGeometryRef();
-      if (g == nullptr || wkbFlatten(g->getGeometryType()) != wkbPoint)
-        throw UserError(src.where(*f), std::string("has ") + (g ? g->getGeometryName() : "no geometry") +
-                                           "; expected a Point (or name x and y fields with --x and --y)");
-      const OGRPoint* point = g->toPoint();
-      p = Vec2(point->getX(), point->getY());
-    }
-    if (!(std::abs(p.x()) <= tol::kMaxSampleCoordinate && std::abs(p.y()) <= tol::kMaxSampleCoordinate))
-      throw UserError(src.where(*f), "its point is not finite or beyond the largest coordinate, " +
-                                         format_number(tol::kMaxSampleCoordinate));
-    each(*f, p);
-    ++count;
-  }
-  if (count == 0) throw UserError(src.path(), std::string("layer '") + src.layer().GetName() + "' has no features");
-}
-
-}  // namespace
-
-ScatteredSamples read_samples_ogr(const std::string& path, std::vector<std::string>* value_names, const CsvColumns& columns) {
-  OgrLayer src(path);
-  std::vector<int> value_fields;
-  for (const std::string& name : columns.values) value_fields.push_back(src.field(name, "--value"));
-  if (columns.values.empty()) {
-    // Every numeric field but the coordinates': those --x and --y name, and fields named x or y,
-    // which (beside a point geometry, as ogr2ogr keeps a CSV's columns) would repeat the output's
-    // own x and y columns.
-    std::string left_out;
-    for (int k = 0; k < src.fields().GetFieldCount(); ++k) {
-      const std::string name = ascii_lower(src.fields().GetFieldDefn(k)->GetNameRef());
-      if (!src.numeric(k) || name == ascii_lower(columns.x) || name == ascii_lower(columns.y)) continue;
-      if (repeats_a_coordinate_name(name)) {
-        left_out += (left_out.empty() ? "" : ", ") + std::string(src.fields().GetFieldDefn(k)->GetNameRef());
-        continue;
-      }
-      value_fields.push_back(k);
-    }
-    if (!left_out.empty() && !value_fields.empty())
-      warn(path + (left_out.find(',') == std::string::npos ? ": the field " + left_out + " is not interpolated: it is"
-                                                            : ": the fields " + left_out + " are not interpolated: they are") +
-           " named as the output's coordinate columns (x, y), the points' coordinates coming from " +
-           (columns.x.empty() ? std::string("their geometry") : "--x and --y") + " (--value names the fields to interpolate)");
-  }
-  if (value_fields.empty()) {
-    std::string found;  // the fields there are, with their types (a number written as a string is text)
-    for (int k = 0; k < src.fields().GetFieldCount(); ++k) {
-      const OGRFieldDefn* d = src.fields().GetFieldDefn(k);
-      found += (found.empty() ? "" : ", ") + std::string(d->GetNameRef()) + " (" +
-               OGRFieldDefn::GetFieldTypeName(d->GetType()) + ")";
-    }
-    throw UserError(path, "has no numeric field to interpolate (its fields: " + (found.empty() ? "none" : found) +
-                              "; a number in quotes is a string); name one with --value");
-  }
-  ScatteredSamples s;
-  s.channels = static_cast<int>(value_fields.size());
-  for_each_point(src, columns, [&](const OGRFeature& f, const Vec2& p) {
-    s.points.push_back(p);
-    for (const int k : value_fields) {
-      const double v = src.number(f, k);
-      if (std::abs(v) > tol::kMaxSampleValue)
-        throw UserError(src.where(f), "field " + std::string(src.fields().GetFieldDefn(k)->GetNameRef()) + ": " +
-                                          format_number(v) + " is beyond the largest value, " +
-                                          format_number(tol::kMaxSampleValue));
-      s.values.push_back(v);
-    }
-  });
-  if (value_names) {
-    value_names->clear();
-    for (const int k : value_fields) value_names->push_back(src.fields().GetFieldDefn(k)->GetNameRef());
-  }
-  return s;
-}
-
-std::vector<Vec2> read_queries_ogr(const std::string& path, const CsvColumns& columns) {
-  OgrLayer src(path);
-  std::vector<Vec2> points;
-  for_each_point(src, columns, [&](const OGRFeature&, const Vec2& p) { points.push_back(p); });
-  return points;
-}
 
 namespace {
 
@@ -268,12 +97,51 @@ std::vector<Polyline> read_ogr_barriers(const std::string& path) {
   return lines;
 }
 
-std::vector<std::string> ogr_source_files(const std::string& path) {
-  register_drivers();
+namespace {
+
+/// The vector source at `path` opened read-only without a word: null when GDAL cannot.
+std::unique_ptr<GDALDataset> open_quietly(const std::string& path) {
+  register_ogr_drivers();
   CPLPushErrorHandler(CPLQuietErrorHandler);
   std::unique_ptr<GDALDataset> data(
       static_cast<GDALDataset*>(GDALOpenEx(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
   CPLPopErrorHandler();
+  return data;
+}
+
+}  // namespace
+
+std::string ogr_source_crs(const std::string& path) {
+  const std::unique_ptr<GDALDataset> data = open_quietly(path);
+  if (!data || data->GetLayerCount() < 1) return {};
+  const OGRSpatialReference* declared = data->GetLayer(0)->GetSpatialRef();
+  if (declared == nullptr) return {};
+  OGRSpatialReference srs(*declared);
+  // An EPSG code where the CRS is one (radrecon's own GeoTIFF writer takes those), else its WKT.
+  const char* authority = srs.GetAuthorityName(nullptr);
+  const char* code = srs.GetAuthorityCode(nullptr);
+  if (authority != nullptr && code != nullptr && std::string_view(authority) == "EPSG") return std::string("EPSG:") + code;
+  char* wkt = nullptr;
+  const char* const options[] = {"FORMAT=WKT2_2019", nullptr};
+  if (srs.exportToWkt(&wkt, options) != OGRERR_NONE || wkt == nullptr) {
+    CPLFree(wkt);
+    return {};
+  }
+  std::string out(wkt);
+  CPLFree(wkt);
+  return out;
+}
+
+bool same_crs(const std::string& a, const std::string& b) {
+  OGRSpatialReference x, y;
+  CPLPushErrorHandler(CPLQuietErrorHandler);
+  const bool read = x.SetFromUserInput(a.c_str()) == OGRERR_NONE && y.SetFromUserInput(b.c_str()) == OGRERR_NONE;
+  CPLPopErrorHandler();
+  return !read || x.IsSame(&y);  // one GDAL cannot read is no evidence of a difference
+}
+
+std::vector<std::string> ogr_source_files(const std::string& path) {
+  const std::unique_ptr<GDALDataset> data = open_quietly(path);
   std::vector<std::string> files;
   if (data)
     if (char** list = data->GetFileList()) {

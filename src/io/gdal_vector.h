@@ -34,6 +34,14 @@ std::vector<Vec2> read_queries_ogr(const std::string& path, const CsvColumns& co
 /// no line at all. What is returned therefore always passes Barriers::from_polylines().
 std::vector<Polyline> read_ogr_barriers(const std::string& path);
 
+/// The CRS its first layer declares: "EPSG:CODE" when it is an EPSG one, else its WKT; "" when
+/// it declares none (or GDAL cannot open it: the readers above say why).
+std::string ogr_source_crs(const std::string& path);
+
+/// Whether two CRSs (EPSG codes, WKT, PROJ strings) are the same (OGRSpatialReference::IsSame());
+/// true when GDAL cannot read one of them.
+bool same_crs(const std::string& a, const std::string& b);
+
 /// Every file of the vector source (GDALDataset::GetFileList(): a shapefile's .shp, .shx, .dbf,
 /// .prj, ...), so that no output lands on one; just `path` if GDAL cannot open it.
 std::vector<std::string> ogr_source_files(const std::string& path);

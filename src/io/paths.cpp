@@ -64,6 +64,10 @@ void refuse_overwriting_inputs(const std::string& output, const std::string& whe
                                const std::vector<std::string>& inputs) {
   const std::array<fs::path, 2> out = spellings(output);
   for (const std::string& input : inputs) {
+    // An input that is not there is refused by its reader, as missing (it was said to be
+    // overwritten).
+    std::error_code missing;
+    if (!fs::exists(fs::symlink_status(input, missing))) continue;
     const std::array<fs::path, 2> in = spellings(input);
     bool same = false;
     for (const fs::path& o : out) {

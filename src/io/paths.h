@@ -11,7 +11,8 @@ namespace radrecon {
 
 /// Refuses (UserError naming `where` and both paths) an output path that is, or resolves to,
 /// one of the `inputs` files: symbolic links and ".." are resolved, and an existing output is
-/// compared by identity too (a hard link to an input is the input).
+/// compared by identity too (a hard link to an input is the input). An input that does not exist
+/// is passed over: its reader refuses it as missing.
 void refuse_overwriting_inputs(const std::string& output, const std::string& where,
                                const std::vector<std::string>& inputs);
 

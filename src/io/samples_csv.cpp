@@ -1,6 +1,7 @@
 #include "io/samples_csv.h"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cerrno>
 #include <charconv>
@@ -242,10 +243,17 @@ void append_number(std::string& out, double v) {
 
 namespace {
 
-/// The x and y columns: the named ones, else those named x and y, else the first two.
+/// The x and y columns: the named ones, else the first pair of kCoordinateNames in the header
+/// (any case), else the first two.
 std::pair<size_t, size_t> xy_columns(const CsvTable& table, const CsvColumns& columns) {
-  const size_t x = !columns.x.empty() ? table.column(columns.x, "--x") : table.find("x") ? table.column("x", "--x") : 0;
-  const size_t y = !columns.y.empty() ? table.column(columns.y, "--y") : table.find("y") ? table.column("y", "--y") : 1;
+  std::string x_name = "x", y_name = "y";
+  for (const auto& [xn, yn] : kCoordinateNames)
+    if (table.find(std::string(xn)) && table.find(std::string(yn))) {
+      x_name = xn, y_name = yn;
+      break;
+    }
+  const size_t x = !columns.x.empty() ? table.column(columns.x, "--x") : table.find(x_name) ? table.column(x_name, "--x") : 0;
+  const size_t y = !columns.y.empty() ? table.column(columns.y, "--y") : table.find(y_name) ? table.column(y_name, "--y") : 1;
   if (x == y) throw UserError("--x/--y", "x and y are the same column ('" + table.header()[x] + "')");
   return {x, y};
 }

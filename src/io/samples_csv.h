@@ -6,9 +6,10 @@
 //   - the first line that is neither blank nor a comment is the header, unless all its fields
 //     are numbers: then the file has no header, its columns are x, y, then z (one value) or
 //     value1, value2, ... (nnbathy's and GMT's XYZ files);
-//   - x and y are the columns --x and --y name (CsvColumns), else those named x and y
-//     (case-insensitive), else the first two; the values are those --value names, else every
-//     other column;
+//   - x and y are the columns --x and --y name (CsvColumns), else the first pair of x and y,
+//     lon (long, lng) and lat, longitude and latitude, easting and northing, east and north
+//     found in the header (case-insensitive; "lat,lon,elev" has its x second), else the first
+//     two; the values are those --value names, else every other column;
 //   - lines whose first non-blank character is '#' and blank lines are ignored anywhere; a UTF-8
 //     byte order mark is skipped;
 //   - fields are separated by ',' (with optional spaces or tabs around them) when the header line
@@ -19,11 +20,13 @@
 //     ("1", "-2.5", "3e-4", a leading '+' allowed) and must be finite (no nan, no inf).
 // A violation throws UserError naming "FILE:LINE" and the column.
 
+#include <array>
 #include <cstddef>
 #include <optional>
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "core/vec.h"
@@ -51,6 +54,22 @@ struct CsvColumns {
 /// written under the output's own x and y (a header "x,y,x,v", which radrecon refuses to read).
 inline bool repeats_a_coordinate_name(std::string_view name) {
   return name.size() == 1 && (name[0] == 'x' || name[0] == 'X' || name[0] == 'y' || name[0] == 'Y');
+}
+
+/// Names of the x and y columns, in the order they are looked for when --x and --y name none
+/// (lower case): a pair whose both names are in a table's header decides ("lat,lon,elev" has
+/// its x second).
+inline constexpr std::array<std::pair<std::string_view, std::string_view>, 7> kCoordinateNames = {{
+    {"x", "y"}, {"lon", "lat"}, {"long", "lat"}, {"lng", "lat"}, {"longitude", "latitude"}, {"easting", "northing"},
+    {"east", "north"}}};
+
+/// Whether a vector source's field (lower case) is named as a coordinate (kCoordinateNames):
+/// beside a point geometry it repeats the point (the columns a VRT makes its points of), and is
+/// left out of the default value fields.
+inline bool names_a_coordinate(std::string_view lower_name) {
+  for (const auto& [x, y] : kCoordinateNames)
+    if (lower_name == x || lower_name == y) return true;
+  return false;
 }
 
 /// Samples to be merged that `barriers` part are refused (merge_duplicate_points()).

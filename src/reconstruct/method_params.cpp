@@ -99,7 +99,15 @@ MethodParams parse_params(Method method, const std::vector<std::string>& setting
       else if (value == "none") p.outside = OutsideHull::none;
       else throw UserError(where, "must be 'nearest' or 'none', got '" + value + "'");
     } else {
-      throw UserError(where, "unknown parameter for method " + method_name(method));
+      // gdal_grid's and scipy's names for what radrecon calls otherwise.
+      const std::string hint = method == Method::shepard && (name == "power" || name == "p")
+                                   ? " (its exponent is mu, gdal_grid's power: mu=" + value + ")"
+                               : method == Method::shepard && name == "max_points"
+                                   ? " (the nearest samples used: k, gdal_grid's max_points)"
+                               : name == "radius1" || name == "radius2"
+                                   ? " (radrecon's search is a circle: radius, for shepard)"
+                                   : "";
+      throw UserError(where, "unknown parameter for method " + method_name(method) + hint);
     }
   }
   // min_points counts the samples within the radius: alone it did nothing, in silence.

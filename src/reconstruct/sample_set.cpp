@@ -189,4 +189,22 @@ std::optional<GridNodes> as_regular_grid(const ScatteredSamples& s) {
   return g;  // nx * ny samples, none twice: every node is present
 }
 
+std::string rect_text(const Rect& r) {
+  return "[" + format_number(r.x0) + ", " + format_number(r.y0) + ", " + format_number(r.x1) + ", " + format_number(r.y1) + "]";
+}
+
+Rect bounding_box(const ScatteredSamples& samples) {
+  RR_CHECK(!samples.points.empty(), "the bounding box of no samples");
+  Vec2 lo = samples.points[0], hi = lo;
+  for (const Vec2& p : samples.points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  return {lo.x(), lo.y(), hi.x(), hi.y()};
+}
+
+std::string domain_apart(const Rect& domain, const ScatteredSamples& samples) {
+  if (samples.points.empty()) return {};
+  const Rect box = bounding_box(samples);
+  if (!(domain.x0 > box.x1 || domain.x1 < box.x0 || domain.y0 > box.y1 || domain.y1 < box.y0)) return {};
+  return "the domain " + rect_text(domain) + " does not meet the samples' bounding box " + rect_text(box);
+}
+
 }  // namespace radrecon

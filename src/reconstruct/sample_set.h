@@ -30,6 +30,17 @@ Result<std::size_t> merge_duplicate_points(ScatteredSamples& samples, const Barr
 /// come from).
 std::string merged_samples_message(std::size_t removed, std::size_t before, std::size_t after);
 
+/// "[x0, y0, x1, y1]", for messages.
+std::string rect_text(const Rect& r);
+
+/// The samples' bounding box; samples must not be empty.
+Rect bounding_box(const ScatteredSamples& samples);
+
+/// "the domain [...] does not meet the samples' bounding box [...]" when it does not (a domain in
+/// another unit or CRS, columns swapped: every value then comes from extrapolation, or is NaN);
+/// "" when it does, or when there are no samples.
+std::string domain_apart(const Rect& domain, const ScatteredSamples& samples);
+
 /// The samples as the nodes of a regular grid, if they are one: the distinct x values (values
 /// within the x tolerance of each other count as one) are nx >= 2 equally spaced values,
 /// each within the x tolerance from x0 + i (x1 - x0) / (nx - 1); the same for y; and every

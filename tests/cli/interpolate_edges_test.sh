@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # `radrecon interpolate` at the edges of what it takes: values too small for the 32-bit floats of
-# a PFM or a float32 GeoTIFF (refused, not written as zeros), and clough-tocher on samples
-# collinear to rounding (refused, naming the sample; linear takes them).
+# a PFM or a float32 GeoTIFF (refused, not written as zeros), clough-tocher on samples
+# collinear to rounding (refused, naming the sample; linear takes them), and a gdal_grid user's
+# slips (a domain apart from the samples, gdal_grid's parameter names, a missing query file).
 # Usage: interpolate_edges_test.sh /path/to/radrecon
 set -u
 
@@ -36,5 +37,22 @@ run ct_collinear_linear --samples "$TMP/collinear_rounding.csv" --method linear 
 if expect_rc ct_collinear_linear 0; then
   grep -q '^2.5,0.25,3.5$' "$TMP/ct_collinear_linear.csv" || fail "ct_collinear_linear: $(cat "$TMP/ct_collinear_linear.csv")"
 fi
+
+# --- a gdal_grid user's slips (an outside-in trial) ------------------------------------------------
+# A domain that misses every sample (swapped or other-unit coordinates): a warning, not silence.
+printf 'x,y,v\n0,0,1\n1,0,2\n0,1,3\n' > "$TMP/three.csv"
+run far_domain --samples "$TMP/three.csv" --method linear --raster 2x2 --domain 5,5,6,6 --out "$TMP/far.csv"
+expect_rc far_domain 0
+expect_stderr_has far_domain "the domain [5, 5, 6, 6] does not meet the samples' bounding box [0, 0, 1, 1]"
+run near_domain --samples "$TMP/three.csv" --method linear --raster 2x2 --domain 0.5,0.5,6,6 --out "$TMP/near.csv"
+expect_stderr_lacks near_domain "does not meet"
+# gdal_grid's power: the hint names mu.
+refuse shepard_power "its exponent is mu, gdal_grid's power: mu=2" "$TMP/power.csv" --samples "$TMP/three.csv" \
+  --method shepard --param power=2 --raster 2x2 --domain 0,0,1,1
+# A query file that is not there, named as the output too: said to be missing (it was "the input
+# file; refusing to overwrite it").
+refuse missing_queries "cannot open CSV file" "$TMP/absent.csv" --samples "$TMP/three.csv" --method linear \
+  --queries "$TMP/absent.csv"
+expect_stderr_lacks missing_queries "refusing to overwrite"
 
 finish interpolate_edges_test

@@ -434,3 +434,13 @@ def test_solve_takes_the_far_field_bound_and_shadow_barriers_as_the_command_line
                         *options], check=True)
         assert without_timing(ours) == without_timing(theirs), options
         assert without_timing(ours) != without_timing(default), options
+
+
+def test_a_raster_apart_from_the_samples_is_a_warning():
+    # As the command line warns: a domain in another unit or CRS, or with x and y swapped.
+    points, values = np.array([[0, 0], [1, 0], [0, 1]]), np.array([1.0, 2.0, 3.0])
+    with pytest.warns(UserWarning, match=r"the domain \[5, 5, 6, 6\] does not meet the samples' bounding box"):
+        radrecon.interpolate(points, values, raster=(2, 2), domain=(5, 5, 6, 6), method="linear")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        radrecon.interpolate(points, values, raster=(2, 2), domain=(0.5, 0.5, 6, 6), method="linear")
