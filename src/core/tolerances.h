@@ -285,6 +285,11 @@ inline constexpr double kShadowTraceRelative = 1e-7;
 /// subtraction is cheaper, and the solutions stay bit for bit what they were.
 inline constexpr std::size_t kKeptFragmentsShadows = 16;
 
+/// The least fraction of its area that an element wholly enclosed by surfaces standing on its
+/// side keeps in the progressive solver (solver/enclosed.h): its power is then nil to 1e-9 of
+/// an element's, while its shooter blocks keep an area to take their means over.
+inline constexpr double kEnclosedLeastFraction = 1e-9;
+
 /// VisibleFragments: a part of a shooting patch counts as seen in part when the fragments it sees
 /// cover less of its front than its area less this fraction of it, and less kPlaneDistance_m
 /// times its outline's length: clip() takes a vertex within kPlaneDistance_m of a plane as on it,

@@ -357,6 +357,7 @@ SideContactSet ContactFinder::at(SideRef side) const {
   std::vector<Polyline> hidden, faced;
   enclosed_regions(contacts.lines, contacts.seen, join_m, hidden, faced);
   for (Polyline& r : contacts.covered) add(std::move(r));
+  out.covered = out.excluded.size();
   for (Polyline& r : hidden) add(std::move(r));
   const size_t before = out.excluded.size();
   for (Polyline& r : faced) add(std::move(r));

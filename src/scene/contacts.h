@@ -75,6 +75,9 @@ struct SideContactSet {
   /// excluded_regions(), then the faced enclosed areas (the last `faced` of them): each may be
   /// seen or hidden, as light reaches it or not.
   std::vector<Polyline> excluded;
+  /// The first `covered` of `excluded` are covered (excluded_regions() (a)); those after them,
+  /// up to the faced, enclosed ((b)).
+  size_t covered = 0;
   size_t faced = 0;
 };
 

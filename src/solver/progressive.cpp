@@ -16,6 +16,7 @@
 #include "core/tolerances.h"
 #include "solver/bvh.h"
 #include "solver/covered.h"
+#include "solver/enclosed.h"
 #include "solver/gather.h"
 #include "solver/patch_views.h"
 #include "solver/shooter_clusters.h"
@@ -64,7 +65,7 @@ constexpr std::int64_t kReceiverGrain = 16;
 
 }  // namespace
 
-Solution solve_progressive(const Scene& scene, const Mesh& mesh, const ProgressiveOptions& options,
+Solution solve_progressive(const Scene& scene, Mesh mesh, const ProgressiveOptions& options,
                            const std::string& mesh_spec) {
   RR_CHECK(options.residual > 0 && options.residual < 1, "residual must be in (0, 1)");
   RR_CHECK(options.far_field_error >= 0 && options.far_field_error < 1, "far_field_error must be in [0, 1)");
@@ -78,6 +79,17 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
   for (const MeshSurface& side : mesh.surfaces) splits.push_back(shooter_splits(scene, side, contacts));
   const std::vector<std::vector<ConvexPolygon>> covers_by = covers_by_surface(scene);
   std::vector<std::vector<Receiver>> receivers = make_receivers(scene, mesh);  // once for all shots
+  // Elements partly enclosed by surfaces standing on their side: they gather on their exposed
+  // part, and their areas, which carry every power of the solve, are their exposed parts'.
+  const std::vector<EnclosedElement> enclosed = enclosed_elements(scene, mesh, contacts);
+  std::vector<double> whole_area_m2;  // theirs, for the solution
+  for (const EnclosedElement& x : enclosed) {
+    MeshElement& element = mesh.surfaces[x.side].elements[x.element];
+    whole_area_m2.push_back(element.area_m2);
+    element.area_m2 *= std::max(x.exposed, tol::kEnclosedLeastFraction);
+    if (!x.exposed_uv.empty())
+      move_to_exposed_part(scene.surfaces[mesh.surfaces[x.side].scene_surface], x.exposed_uv, receivers[x.side][x.element]);
+  }
   ShootingPatches shooting(mesh);
   const std::vector<ShootingPatch>& patches = shooting.patches();
   Rgb emitted = Rgb::Zero();
@@ -414,6 +426,9 @@ Solution solve_progressive(const Scene& scene, const Mesh& mesh, const Progressi
     stats.elements += side.elements.size();
     sol.surfaces.push_back(std::move(out));
   }
+  // The file keeps each element's whole area, as its cell has it.
+  for (size_t k = 0; k < enclosed.size(); ++k)
+    sol.surfaces[enclosed[k].side].elements[enclosed[k].element].area_m2 = whole_area_m2[k];
   stats.residual = stats.unshot_w.sum() / emitted_sum;
   stats.converged = converged;
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -58,8 +58,10 @@ struct ProgressiveOptions {
   std::string progress_label;
 };
 
-/// Solves the radiosity of the meshed scene. `mesh_spec` is recorded in the solution.
-Solution solve_progressive(const Scene& scene, const Mesh& mesh, const ProgressiveOptions& options,
+/// Solves the radiosity of the meshed scene. `mesh_spec` is recorded in the solution. The mesh is
+/// taken by value: the solver weighs the area of an element partly enclosed by surfaces standing
+/// on its side by its exposed fraction (solver/enclosed.h); the solution keeps the whole areas.
+Solution solve_progressive(const Scene& scene, Mesh mesh, const ProgressiveOptions& options,
                            const std::string& mesh_spec);
 
 }  // namespace radrecon

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <unordered_map>
+#include <utility>
 
 #include "core/error.h"
 #include "core/limits.h"
@@ -104,7 +105,7 @@ Solution solve_by_spec(const Scene& scene, const std::string& spec, const SolveS
     const size_t elements = grid_element_count(scene, mesh_options);
     check_limit(Limit::elements, static_cast<long long>(elements), field, "'" + spec + "' makes",
                 "use a smaller N");
-    const Mesh mesh = make_grid_mesh(scene, mesh_options);
+    Mesh mesh = make_grid_mesh(scene, mesh_options);
     if (!settings.progress_label.empty())
       std::fprintf(stderr, "%s: %s, %zu elements on %zu surface sides\n", settings.progress_label.c_str(), spec.c_str(),
                    mesh.element_count(), mesh.surfaces.size());
@@ -113,7 +114,7 @@ Solution solve_by_spec(const Scene& scene, const std::string& spec, const SolveS
     po.far_field_error = settings.far_field_error;
     po.clusters = settings.clusters;
     po.progress_label = settings.progress_label;
-    return solve_progressive(scene, mesh, po, "grid:" + std::to_string(n));
+    return solve_progressive(scene, std::move(mesh), po, "grid:" + std::to_string(n));
   }
   HierarchicalOptions ho;
   ho.progress_label = settings.progress_label;

@@ -1,0 +1,127 @@
+// The parts of a side that surfaces standing on it enclose (solver/enclosed.h).
+
+#include "solver/enclosed.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <span>
+
+#include "scene/side.h"
+
+namespace radrecon {
+
+namespace {
+
+/// An axis-aligned box in (s, t): low and high corners.
+struct StBox {
+  Vec2 lo, hi;
+  explicit StBox(const std::vector<Vec2>& points) : lo(points[0]), hi(points[0]) {
+    for (const Vec2& p : points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  }
+  bool overlaps(const StBox& o) const { return (lo.array() < o.hi.array()).all() && (o.lo.array() < hi.array()).all(); }
+};
+
+/// Twice the signed area of a polygon (counter-clockwise positive).
+double twice_signed_area(const std::vector<Vec2>& p) {
+  double a = 0;
+  for (size_t i = 0, j = p.size() - 1; i < p.size(); j = i++) a += cross(p[j], p[i]);
+  return a;
+}
+
+}  // namespace
+
+double overlap_area(const Polyline& region, const std::vector<Vec2>& convex) {
+  // Sutherland-Hodgman: the region clipped by each edge's inner half-plane in turn. A non-convex
+  // region may come out with edges doubling back along the clip lines, which add no area.
+  std::vector<Vec2> out(region.begin(), region.end()), in;
+  for (size_t i = 0, j = convex.size() - 1; i < convex.size() && !out.empty(); j = i++) {
+    const Vec2 a = convex[j], edge = convex[i] - convex[j];
+    const auto side = [&](const Vec2& p) { return cross(edge, p - a); };  // >= 0: inside
+    in.swap(out);
+    out.clear();
+    for (size_t k = 0, l = in.size() - 1; k < in.size(); l = k++) {
+      const Vec2 &p = in[l], &q = in[k];
+      const double sp = side(p), sq = side(q);
+      if (sq >= 0) {
+        if (sp < 0) out.push_back(p + (q - p) * (sp / (sp - sq)));
+        out.push_back(q);
+      } else if (sp >= 0) {
+        out.push_back(p + (q - p) * (sp / (sp - sq)));
+      }
+    }
+  }
+  return out.size() < 3 ? 0.0 : std::abs(0.5 * twice_signed_area(out));
+}
+
+std::vector<EnclosedElement> enclosed_elements(const Scene& scene, const Mesh& mesh, const ContactFinder& contacts) {
+  std::vector<EnclosedElement> out;
+  for (size_t s = 0; s < mesh.surfaces.size(); ++s) {
+    const MeshSurface& side = mesh.surfaces[s];
+    const SideContactSet set = contacts.at(SideRef{side.scene_surface, side.back_side});
+    const auto first = set.excluded.begin() + static_cast<std::ptrdiff_t>(set.covered);
+    const auto last = set.excluded.end() - static_cast<std::ptrdiff_t>(set.faced);
+    if (first >= last) continue;
+    const std::vector<Polyline> regions(first, last);
+    std::vector<StBox> boxes;
+    for (const Polyline& r : regions) boxes.emplace_back(r);
+    const SurfaceFrame frame = scene.surfaces[side.scene_surface].frame();
+    for (size_t e = 0; e < side.elements.size(); ++e) {
+      const MeshElement& element = side.elements[e];
+      std::vector<Vec2> polygon;  // the element in (s, t), counter-clockwise (the frame keeps orientation)
+      const auto uv = element.vertices();
+      for (int k = 0; k < element.vertex_count(); ++k) polygon.push_back(frame.st(uv[static_cast<size_t>(k)]));
+      const StBox box(polygon);
+      double covered = 0;
+      for (size_t r = 0; r < regions.size(); ++r)
+        if (boxes[r].overlaps(box)) covered += overlap_area(regions[r], polygon);
+      if (covered <= 0) continue;
+      const double area = 0.5 * twice_signed_area(polygon);
+      EnclosedElement found{s, e, std::clamp(1 - covered / area, 0.0, 1.0), {}};
+      if (found.exposed >= 1) continue;
+      element.for_each_midpoint(kEnclosedSubdivision, [&](const Vec2& p) {
+        const Vec2 st = frame.st(p);
+        if (std::none_of(regions.begin(), regions.end(), [&](const Polyline& r) { return in_region(r, st); }))
+          found.exposed_uv.push_back(p);
+      });
+      out.push_back(std::move(found));
+    }
+  }
+  return out;
+}
+
+void move_to_exposed_part(const Surface& surface, const std::vector<Vec2>& exposed_uv, Receiver& r) {
+  // The point of a group nearest its mean: a point of the exposed part standing for the group.
+  const auto nearest_to_mean = [](std::span<const Vec2> group) {
+    Vec2 mean = Vec2::Zero();
+    for (const Vec2& p : group) mean += p;
+    mean /= static_cast<double>(group.size());
+    return *std::min_element(group.begin(), group.end(), [&](const Vec2& a, const Vec2& b) {
+      return (a - mean).squaredNorm() < (b - mean).squaredNorm();
+    });
+  };
+  const Vec2 centre = nearest_to_mean(exposed_uv);
+  r.center = surface.point(centre.x(), centre.y());
+  // Four groups of equal count (equal area: the subdivision's cells are), halved along u and each
+  // half along v, a point for each: equal weights, as the Gauss rule's.
+  std::vector<Vec2> points = exposed_uv;
+  const size_t n = points.size();
+  if (n < r.gauss.size()) {
+    for (size_t k = 0; k < n; ++k) r.gauss[k] = surface.point(points[k].x(), points[k].y());
+    r.gauss_count = static_cast<int>(n);
+    return;
+  }
+  const auto by = [](int axis) { return [axis](const Vec2& a, const Vec2& b) { return a[axis] < b[axis]; }; };
+  std::sort(points.begin(), points.end(), by(0));
+  const size_t half = n / 2;
+  std::sort(points.begin(), points.begin() + static_cast<std::ptrdiff_t>(half), by(1));
+  std::sort(points.begin() + static_cast<std::ptrdiff_t>(half), points.end(), by(1));
+  const std::array<size_t, 5> cut = {0, half / 2, half, half + (n - half) / 2, n};
+  for (size_t k = 0; k < 4; ++k) {
+    const Vec2 p = nearest_to_mean(std::span<const Vec2>(points).subspan(cut[k], cut[k + 1] - cut[k]));
+    r.gauss[k] = surface.point(p.x(), p.y());
+  }
+  r.gauss_count = 4;
+}
+
+}  // namespace radrecon
