@@ -30,7 +30,7 @@ namespace radrecon::cli {
 namespace {
 
 struct ExportArgs {
-  std::string scene = "paper";
+  std::string scene;  ///< empty: scene_of() the solution
   std::string solution;
   std::string method = "natural-neighbour";
   std::vector<std::string> params;
@@ -82,19 +82,21 @@ void run_export(const ExportArgs& args) {
   const std::string ext = lower_extension(args.out);
   if (ext != ".glb") throw UserError("--out", "writes binary glTF: give a .glb file (got '" + args.out + "')");
   if (!args.exr.empty()) file_format(args.exr, {FileFormat::exr}, "--exr");
-  std::vector<std::string> inputs = {args.solution};
-  for (std::string& file : scene_input_files(args.scene)) inputs.push_back(std::move(file));
-  refuse_overwriting_inputs(args.out, "--out", inputs);
+  refuse_overwriting_inputs(args.out, "--out", {args.solution});
   check_output_file(args.out, "--out");
   if (!args.exr.empty()) {
-    refuse_overwriting_inputs(args.exr, "--exr", inputs);
+    refuse_overwriting_inputs(args.exr, "--exr", {args.solution});
     check_output_file(args.exr, "--exr");
     refuse_shared_outputs({{"--out", args.out}, {"--exr", args.exr}});  // one would overwrite the other
   }
   parse_params(method_option(args.method), args.params, "--param");  // refused before anything is read
-  const Scene scene = load_scene(args.scene);
   const Solution solution = read_solution_json(args.solution);
-  const auto recon = noting_the_solutions_scene(scene, solution, args.scene, [&] {
+  const std::string scene_spec = scene_of(args.scene, solution);
+  const std::vector<std::string> scene_files = scene_input_files(scene_spec);
+  refuse_overwriting_inputs(args.out, "--out", scene_files);
+  if (!args.exr.empty()) refuse_overwriting_inputs(args.exr, "--exr", scene_files);
+  const Scene scene = load_scene(scene_spec);
+  const auto recon = noting_the_solutions_scene(scene, solution, scene_spec, [&] {
     return reconstruct_solution(scene, solution, args.solution, args.method, args.params, args.no_barriers,
                                 args.border_samples);
   });
@@ -144,7 +146,7 @@ void add_export_command(CLI::App& app) {
       "Bake a solution's reconstructed radiosity into a lightmap and write the scene as binary glTF 2.0 (.glb) for "
       "Blender, three.js or a game engine: one mesh per surface side, the lightmap its emissive texture (an sRGB PNG "
       "of clamp(B / white, 0, 1)), so viewers show the baked light as it is. docs/export.md.");
-  cmd->add_option("--scene", args->scene, "Scene JSON file, mesh file, or a built-in scene: 'paper' or 'cornell'")->capture_default_str();
+  cmd->add_option("--scene", args->scene, "Scene JSON file, mesh file, or a built-in scene: 'paper' or 'cornell'; default: the solution's scene when it is a built-in one, else 'paper'");
   cmd->add_option("--solution", args->solution, "Solution JSON written by 'radrecon solve' for this scene")->required();
   cmd->add_option("--method", args->method, "Reconstruction method (as render's --method)")->capture_default_str();
   cmd->add_option("--param", args->params, "NAME=VALUE method parameter, repeatable (see 'interpolate --help')");

@@ -25,7 +25,7 @@ namespace radrecon::cli {
 namespace {
 
 struct RenderArgs {
-  std::string scene = "paper";
+  std::string scene;  ///< empty: scene_of() the solution
   std::string solution;
   std::string method = "constant";
   std::vector<std::string> params;
@@ -139,21 +139,21 @@ void run_render(const RenderArgs& args) {
   // Beside the linear image: PNG its bytes (3) and the default white's values (8); PFM nothing
   // (written from the image in batches); EXR its floats (12) and the library's buffers (4).
   check_render_size(options, format == FileFormat::png ? 11 : format == FileFormat::pfm ? 0 : 16);
-  std::vector<std::string> inputs = {args.solution};
-  for (std::string& file : scene_input_files(args.scene)) inputs.push_back(std::move(file));
-  refuse_overwriting_inputs(args.out, "--out", inputs);
+  refuse_overwriting_inputs(args.out, "--out", {args.solution});
   check_output_file(args.out, "--out");
-  const Scene scene = load_scene(args.scene);
   parse_params(method_option(args.method), args.params, "--param");  // refused before the solution is read
   const Solution solution = read_solution_json(args.solution);
-  const Camera* camera = noting_the_solutions_scene(scene, solution, args.scene, [&] {
+  const std::string scene_spec = scene_of(args.scene, solution);
+  refuse_overwriting_inputs(args.out, "--out", scene_input_files(scene_spec));
+  const Scene scene = load_scene(scene_spec);
+  const Camera* camera = noting_the_solutions_scene(scene, solution, scene_spec, [&] {
     for (const Camera& c : scene.cameras)
       if (c.name == args.camera) return &c;
     std::string names;
     for (const Camera& c : scene.cameras) names += (names.empty() ? "" : ", ") + c.name;
     throw UserError("--camera", "the scene has no camera '" + args.camera + "' (cameras: " + (names.empty() ? "none" : names) + ")");
   });
-  const std::unique_ptr<SolutionReconstruction> recon_ptr = noting_the_solutions_scene(scene, solution, args.scene, [&] {
+  const std::unique_ptr<SolutionReconstruction> recon_ptr = noting_the_solutions_scene(scene, solution, scene_spec, [&] {
     return reconstruct_solution(scene, solution, args.solution, args.method, args.params, args.no_barriers,
                                 args.border_samples);
   });
@@ -185,7 +185,7 @@ void add_render_command(CLI::App& app) {
       "render",
       "Render a solution seen through one of the scene's cameras, every surface reconstructed by one method. "
       "PNG: tone-mapped, display = clamp(B / white, 0, 1) with the sRGB curve; PFM, EXR: linear radiosity, W/m^2.");
-  cmd->add_option("--scene", args->scene, "Scene JSON file, model file (.obj .gltf .glb .ply with an emitting face), or a built-in scene: 'paper' or 'cornell' (docs/cornell.md)")->capture_default_str();
+  cmd->add_option("--scene", args->scene, "Scene JSON file, model file (.obj .gltf .glb .ply with an emitting face), or a built-in scene: 'paper' or 'cornell' (docs/cornell.md); default: the solution's scene when it is a built-in one, else 'paper'");
   cmd->add_option("--solution", args->solution, "Solution JSON written by 'radrecon solve'")->required();
   cmd->add_option("--method", args->method,
                   "constant, gouraud (cells); bilinear, bicubic, hermite (grid solutions); shepard, multiquadric, "

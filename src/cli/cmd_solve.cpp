@@ -44,6 +44,16 @@ void run_solve(const SolveArgs& args, const CLI::App& cmd) {
   settings.progress_label = args.quiet ? "" : "solve";
   settings.shadow_barriers = args.shadow_barriers;
   const Solution sol = solve_scene(scene, args.mesh, settings, "--mesh");
+  if (!args.quiet) {
+    // Where the power went, summed over the channels (the file has them per channel).
+    const SolveStats& st = sol.stats;
+    const double emitted = st.emitted_w.sum();
+    if (emitted > 0)
+      std::fprintf(stderr, "solve: of %.4g W emitted, %.1f%% absorbed, %.2g%% unshot, %.2g%% escaped (left the scene through "
+                           "an opening or onto a surface's back, or lost to discretisation; stats in the file)\n",
+                   emitted, 100 * st.absorbed_w.sum() / emitted, 100 * st.unshot_w.sum() / emitted,
+                   100 * st.escaped_w.sum() / emitted);
+  }
   write_solution_json(args.out, sol);
   if (!args.quiet) std::fprintf(stderr, "solve: wrote %s\n", args.out.c_str());
 }

@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "core/error.h"
+#include "io/scene_json.h"
 
 namespace radrecon::cli {
 
@@ -50,6 +51,11 @@ std::unique_ptr<SolutionReconstruction> reconstruct_solution(const Scene& scene,
     std::fprintf(stderr, "radrecon: warning: %s: %zu more sides drawn piecewise constant (%zu of the %zu in all)\n",
                  solution_path.c_str(), fallbacks.size() - kNamedFallbacks, fallbacks.size(), solution.surfaces.size());
   return recon;
+}
+
+std::string scene_of(const std::string& scene_option, const Solution& solution) {
+  if (!scene_option.empty()) return scene_option;
+  return is_builtin_scene(solution.scene) ? solution.scene : "paper";
 }
 
 std::optional<double> largest_reflected_radiosity(const Scene& scene, const Solution& solution) {

@@ -41,6 +41,11 @@ auto noting_the_solutions_scene(const Scene& scene, const Solution& solution, co
   }
 }
 
+/// The scene a solution is drawn with: --scene when given (`scene_option` not empty), else the
+/// solution's own when it is a built-in one (a Cornell box solution rendered without --scene was
+/// refused: "the scene's side 'ground' is not in the solution"), else 'paper'.
+std::string scene_of(const std::string& scene_option, const Solution& solution);
+
 /// The white point of a picture with no lit surface in sight (render and cornell): the largest
 /// radiosity (W/m^2) of an element of a side that emits nothing; nullopt when none is lit.
 std::optional<double> largest_reflected_radiosity(const Scene& scene, const Solution& solution);

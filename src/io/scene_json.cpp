@@ -232,7 +232,7 @@ std::vector<std::string> model_companion_files(const std::filesystem::path& mode
 }  // namespace
 
 std::vector<std::string> scene_input_files(const std::string& file_or_builtin) {
-  if (file_or_builtin == "paper" || file_or_builtin == "cornell") return {};
+  if (is_builtin_scene(file_or_builtin)) return {};
   std::vector<std::string> out = {file_or_builtin};
   std::vector<std::filesystem::path> models;
   if (is_mesh_file(file_or_builtin)) {
@@ -263,5 +263,7 @@ std::vector<std::string> scene_input_files(const std::string& file_or_builtin) {
   }
   return out;
 }
+
+bool is_builtin_scene(const std::string& name) { return name == "paper" || name == "cornell"; }
 
 }  // namespace radrecon

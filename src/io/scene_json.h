@@ -33,4 +33,7 @@ Scene load_scene(const std::string& file_or_builtin);
 /// buffers. Best effort on files that do not parse (load_scene() then refuses them anyway).
 std::vector<std::string> scene_input_files(const std::string& file_or_builtin);
 
+/// Whether `name` names a built-in scene ('paper', 'cornell'), which load_scene() makes without a file.
+bool is_builtin_scene(const std::string& name);
+
 }  // namespace radrecon

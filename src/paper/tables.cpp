@@ -151,9 +151,9 @@ void write_tables(const std::filesystem::path& dir, const PaperRun& run) {
   write_text_file(dir / "errors.json", errors.dump(2) + "\n");
 
   const std::string common =
-      " Norms in W/m^2 over the " + std::to_string(W) + " x " + std::to_string(H) +
-      " reference cell centres (all three channels; the scene is grey). L2 is the mean squared error as in the "
-      "paper; RMSE = sqrt(L2). " + std::string(kMetricsRule) + " The paper's columns are its published tables (its own scene, whose radiometry "
+      " Norms over the " + std::to_string(W) + " x " + std::to_string(H) +
+      " reference cell centres (all three channels; the scene is grey): L1 and Linf in W/m^2; L2 is the mean squared "
+      "error as in the paper, in (W/m^2)^2; RMSE = sqrt(L2), in W/m^2. " + std::string(kMetricsRule) + " The paper's columns are its published tables (its own scene, whose radiometry "
       "differs), for comparing rankings.";
   const std::string settings_text = method_settings(run.params);
   write_text_file(dir / "table1.md",
@@ -248,11 +248,14 @@ ReportContent report_content(const PaperRun& run, int rays_per_pixel) {
           std::to_string(d.reference.stats.shots) + " shots).",
       "Grid data: " + d.grid.mesh + ", " + std::to_string(grid_ground.grid_nu) + " x " + std::to_string(grid_ground.grid_nv) +
           " elements on the ground; bilinear and bicubic use nodal values, each the mean of the cells sharing the node.",
-      "Quadtree data: hierarchical radiosity, " + std::to_string(quad_ground.elements.size()) + " leaves on the ground, epsilon " +
-          format_3g(d.quadtree.stats.epsilon_w) + " W, " + std::to_string(d.quadtree.stats.links) + " links; the scattered methods use the leaf centres.",
+      "Quadtree data: hierarchical radiosity, " + std::to_string(quad_ground.elements.size()) + " leaves on the ground (" +
+          d.quadtree.mesh + ": refined with epsilon " + format_3g(d.quadtree.stats.epsilon_w) +
+          " W, the splits of largest estimate kept up to that count), " + std::to_string(d.quadtree.stats.links) +
+          " links; the scattered methods use the leaf centres.",
       "Methods:" + method_settings(run.params),
       "Norms over the " + std::to_string(run.at.width) + " x " + std::to_string(run.at.height) +
-          " reference cell centres, 3 channels; L2 is the mean squared error, RMSE its root.",
+          " reference cell centres, 3 channels: L1 and Linf in W/m^2; L2 is the mean squared error, in (W/m^2)^2, RMSE its "
+          "root.",
       kMetricsRule,
       "Images: display = clamp(B / " + format_3g(white) + " W/m^2, 0, 1), sRGB; views with " + std::to_string(rays_per_pixel) +
           " rays per pixel; differences 0.5 + 2 (B - B_ref) / " + format_3g(white) + ", linear."};

@@ -6,6 +6,8 @@
 #include <limits>
 #include <set>
 #include <tuple>
+#include <utility>
+#include <vector>
 
 #include "core/check.h"
 #include "core/error.h"
@@ -324,12 +326,59 @@ InterpolantResult make_point_interpolant(Method method, const ScatteredSamples& 
   return make_nodal_interpolant(method, *grid, params);
 }
 
+namespace {
+
+/// The number of single-character insertions, deletions and substitutions that turn a into b.
+size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diagonal = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+/// The method a user most likely meant by an unknown name: other tools' names for it (gdal_grid's
+/// invdist, scipy's nearest and cubic, American spelling), else the nearest name within 2 edits;
+/// none if neither.
+std::optional<Method> meant_method(const std::string& name) {
+  static const std::vector<std::pair<std::string, Method>> others = {
+      {"natural-neighbor", Method::natural_neighbour}, {"natural_neighbour", Method::natural_neighbour},
+      {"natural_neighbor", Method::natural_neighbour}, {"nn", Method::natural_neighbour},
+      {"sibson", Method::natural_neighbour},           {"invdist", Method::shepard},
+      {"idw", Method::shepard},                         {"inverse-distance", Method::shepard},
+      {"nearest", Method::constant},                    {"rbf", Method::multiquadric},
+      {"tps", Method::thin_plate},                      {"thin_plate", Method::thin_plate},
+      {"thinplate", Method::thin_plate},                {"cubic", Method::clough_tocher},
+      {"clough_tocher", Method::clough_tocher},         {"sibson_c1", Method::sibson_c1},
+      {"barycentric", Method::linear},                  {"delaunay", Method::linear}};
+  const std::string lower = ascii_lower(name);
+  for (const auto& [other, m] : others)
+    if (lower == other) return m;
+  std::optional<Method> best;
+  size_t best_distance = 3;  // at most 2 edits
+  for (Method m : all_methods())
+    if (const size_t d = edit_distance(lower, method_name(m)); d < best_distance) best = m, best_distance = d;
+  return best;
+}
+
+}  // namespace
+
 Method method_by_name(const std::string& name, const std::string& where, bool (*listed)(Method)) {
   if (const std::optional<Method> m = parse_method(name)) return *m;
   std::string names;
   for (Method m : all_methods())
     if (listed == nullptr || listed(m)) names += (names.empty() ? "" : ", ") + method_name(m);
-  throw UserError(where, "unknown method '" + name + "'; valid methods: " + names);
+  const std::optional<Method> meant = meant_method(name);
+  throw UserError(where, "unknown method '" + name + "'" +
+                             (meant ? " (did you mean " + method_name(*meant) + "?)" : std::string()) +
+                             "; valid methods: " + names);
 }
 
 }  // namespace radrecon

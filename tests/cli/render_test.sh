@@ -34,6 +34,17 @@ expect_rc render_sol 2
 expect_stderr_has render_sol "badsol.json"
 expect_no_output render_sol "$TMP/bad.png"
 
+# Without --scene, the solution's own built-in scene (a Cornell box solution was refused as the
+# paper's: an outside-in trial).
+"$RADRECON" solve --scene cornell --mesh grid:4 --out "$TMP/cornell.json" --quiet || fail "solve cornell: exit code $?"
+run cornell_default render --solution "$TMP/cornell.json" --camera published --size 32x24 --out "$TMP/cornell.png" --quiet
+expect_rc cornell_default 0
+run cornell_default_export export --solution "$TMP/cornell.json" --texels 32 --out "$TMP/cornell.glb" --quiet
+expect_rc cornell_default_export 0
+run cornell_as_paper render --scene paper --solution "$TMP/cornell.json" --camera view --size 32x24 --out "$TMP/cp.png"
+expect_rc cornell_as_paper 2
+expect_stderr_has cornell_as_paper "the solution was solved from scene 'cornell'"
+
 # The white point: by default the 99th percentile of the lit surfaces in sight, said on stderr.
 run render_white render --scene paper --solution "$TMP/solution.json" --camera view --size 32x24 --out "$TMP/white.png"
 expect_rc render_white 0
