@@ -48,6 +48,18 @@ expect_rc missing 2
 expect_stderr_has missing "does_not_exist.json"
 expect_no_output missing "$TMP/missing_out.json"
 
+# --- where the power went, said after a solve: a closed room absorbs nearly all of it ----------
+printf '%s\n' '{"name": "room", "surfaces": [' \
+  '{"name": "bottom", "corners": [[0,0,0],[1,0,0],[1,1,0],[0,1,0]], "reflectance": 0.5},' \
+  '{"name": "top", "corners": [[0,0,1],[0,1,1],[1,1,1],[1,0,1]], "reflectance": 0.5, "emission": 1},' \
+  '{"name": "x0", "corners": [[0,0,0],[0,1,0],[0,1,1],[0,0,1]], "reflectance": 0.5},' \
+  '{"name": "x1", "corners": [[1,0,0],[1,0,1],[1,1,1],[1,1,0]], "reflectance": 0.5},' \
+  '{"name": "y0", "corners": [[0,0,0],[0,0,1],[1,0,1],[1,0,0]], "reflectance": 0.5},' \
+  '{"name": "y1", "corners": [[0,1,0],[1,1,0],[1,1,1],[0,1,1]], "reflectance": 0.5}]}' > "$TMP/room.json"
+run room_power solve --scene "$TMP/room.json" --mesh grid:4 --out "$TMP/room_out.json"
+expect_rc room_power 0
+expect_stderr_has room_power "solve: of 3 W emitted, 100.0% absorbed"
+
 # --- refused mesh options -----------------------------------------------------------------
 i=0
 for mesh in grid:0 grid:abc foo:3 grid: grid:-1 grid:3x; do

@@ -49,6 +49,12 @@ expect_stderr_lacks near_domain "does not meet"
 # gdal_grid's power: the hint names mu.
 refuse shepard_power "its exponent is mu, gdal_grid's power: mu=2" "$TMP/power.csv" --samples "$TMP/three.csv" \
   --method shepard --param power=2 --raster 2x2 --domain 0,0,1,1
+# Other tools' names and typos of a method: a suggestion.
+refuse method_typo "unknown method 'natural-neighbor' (did you mean natural-neighbour?)" "$TMP/typo.csv" \
+  --samples "$TMP/three.csv" --method natural-neighbor --raster 2x2 --domain 0,0,1,1
+refuse method_idw "(did you mean shepard?)" "$TMP/idw.csv" --samples "$TMP/three.csv" --method idw --raster 2x2 --domain 0,0,1,1
+refuse method_far "unknown method 'kriging'; valid methods" "$TMP/kriging.csv" --samples "$TMP/three.csv" --method kriging \
+  --raster 2x2 --domain 0,0,1,1
 # A query file that is not there, named as the output too: said to be missing (it was "the input
 # file; refusing to overwrite it").
 refuse missing_queries "cannot open CSV file" "$TMP/absent.csv" --samples "$TMP/three.csv" --method linear \
