@@ -61,6 +61,13 @@ std::string escaped(const std::string& text) {
   return out;
 }
 
+/// A white point as a reader takes it in: 4 significant digits (0.9516, not 0.9516331024472886).
+std::string format_4g(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", v);
+  return text;
+}
+
 std::string page(const Scene& scene, const Camera& camera, const std::string& mesh, size_t elements,
                  double white, const std::string& white_source, int samples, const std::vector<Panel>& panels) {
   std::ostringstream html;
@@ -69,7 +76,7 @@ std::string page(const Scene& scene, const Camera& camera, const std::string& me
           "figure{display:inline-block;margin:0.5em;vertical-align:top}figcaption{font-size:90%}.note{color:#a40}</style></head><body>\n";
   html << "<h1>" << escaped(scene.name) << ": every reconstruction method</h1>\n<p>Solved by " << escaped(mesh) << " ("
        << elements << " elements); camera <code>" << escaped(camera.name) << "</code>, " << samples * samples
-       << (samples == 1 ? " ray" : " rays") << " per pixel; one white point for every picture: " << format_number(white)
+       << (samples == 1 ? " ray" : " rays") << " per pixel; one white point for every picture: " << format_4g(white)
        << " W/m<sup>2</sup> (" << escaped(white_source) << "). Written by <code>radrecon cornell</code>; "
           "the scene: docs/cornell.md.</p>\n";
   for (const Panel& p : panels) {

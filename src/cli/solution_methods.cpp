@@ -30,7 +30,10 @@ std::unique_ptr<SolutionReconstruction> reconstruct_solution(const Scene& scene,
   auto recon = std::make_unique<SolutionReconstruction>(scene, solution, method, params, solution_path, sampling);
   if (!recon->fallbacks().empty() && recon->fallbacks().size() == solution.surfaces.size())
     throw UserError(solution_path, method_name_text + " cannot reconstruct any side of this solution (" +
-                                       recon->fallbacks().front().reason + "); use constant, or a solution it fits");
+                                       recon->fallbacks().front().reason + ")" +
+                                       (is_grid_method(method) ? "; the scattered methods (natural-neighbour, shepard, multiquadric, "
+                                                                 "linear, ...) and constant take any solution, or solve on grid:N"
+                                                               : "; use constant, or a solution it fits"));
   // Sides drawn piecewise constant (fallbacks) are not reconstructed across their barriers.
   const auto fell_back = [&](const std::string& name) {
     return std::any_of(recon->fallbacks().begin(), recon->fallbacks().end(), [&](const Fallback& f) { return f.side == name; });
