@@ -246,7 +246,7 @@ expect_rc qt_cornell 0 && expect_stderr_has qt_cornell "gives 10 leaves on floor
 run render_nofit render --scene paper --solution "$TMP/qt4.json" --method bilinear --camera view --size 8x6 --out "$TMP/nofit.png" --quiet
 expect_rc render_nofit 2
 expect_stderr_has render_nofit "cannot reconstruct any side"
-expect_stderr_has render_nofit "the scattered methods (natural-neighbour
+expect_stderr_has render_nofit "the scattered methods (natural-neighbour"
 expect_no_output render_nofit "$TMP/nofit.png"
 
 # --- barriers: the solution lists the wall feet on the ground; render honours them unless told not
