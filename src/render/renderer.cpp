@@ -50,9 +50,11 @@ std::optional<SurfaceHit> nearest_hit(const Scene& scene, SurfaceNormals normals
   std::optional<SurfaceHit> best;
   // A tie's order (renderer.h): an emitting side, then a side seen from its front (a one-sided
   // surface's back is no side to be seen: of a sheet's two faces back to back, the first listed
-  // was drawn black from one side), then the rest.
+  // was drawn black from one side), then the rest; among equals the smaller surface, which lies
+  // on the other (a rug on a floor was drawn or not by the order of the list).
   const auto tie_rank = [&](const Surface& s, bool back_side) { return emits(s, back_side) ? 2 : (!back_side || s.two_sided) ? 1 : 0; };
   int best_rank = 0;
+  double best_area_m2 = -1;  // the best's area once a tie needs it
   double t_best = std::numeric_limits<double>::infinity();
   const double o_norm = o.norm();
   for (const size_t k : surfaces) {
@@ -67,13 +69,21 @@ std::optional<SurfaceHit> nearest_hit(const Scene& scene, SurfaceNormals normals
     const bool tie = best && std::abs(t - t_best) <= tol::kEmitterTieRelative * (o_norm + t_best);
     bool wins = t < t_best;
     const int rank = tie_rank(s, back_side);
-    if (tie && rank != best_rank) wins = rank > best_rank;
+    double area_m2 = -1;
+    if (tie && rank != best_rank) {
+      wins = rank > best_rank;
+    } else if (tie) {
+      if (best_area_m2 < 0) best_area_m2 = scene.surfaces[best->surface].area_m2();
+      area_m2 = s.area_m2();
+      if (area_m2 != best_area_m2) wins = area_m2 < best_area_m2;
+    }
     if (!wins) continue;
     const auto uv = s.parameters(o + t * d, n);
     if (!uv) continue;
     t_best = t;
     best = SurfaceHit{k, back_side, uv->x(), uv->y(), t};
     best_rank = rank;
+    best_area_m2 = area_m2;
   }
   return best;
 }

@@ -30,8 +30,9 @@ struct SurfaceHit {
 /// wins a tie: a light in the plane of a ceiling (hit at the same t, within
 /// tol::kEmitterTieRelative (|o| + t)) is seen, not the ceiling. Then a side seen from its front
 /// (a two-sided surface's either side) wins over a one-sided surface's back: of a sheet's two
-/// faces back to back, the one facing the ray. Other ties go to the nearer hit, then to the
-/// surface listed first.
+/// faces back to back, the one facing the ray. Then the smaller surface: one lying on another
+/// (a rug on a floor, a canvas on its frame on a wall) is seen on it, whatever the order of the
+/// list. Other ties go to the nearer hit, then to the surface listed first.
 std::optional<SurfaceHit> intersect_scene(const Scene& scene, const Vec3& o, const Vec3& d);
 class SurfaceBvh;
 /// The same through the scene's surface hierarchy (render/surface_bvh.h): the same hit.

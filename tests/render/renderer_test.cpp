@@ -171,10 +171,10 @@ TEST(EmitterTie, ALightInTheCeilingsPlaneIsHitWhicheverIsListedFirst) {
     }
     const Vec3 o(2, 2, 0.5), beside(3.2, 2, 2.5);  // beside the light: the ceiling
     EXPECT_EQ(intersect_scene(scene, o, (beside - o).normalized())->surface, ceiling);
-    // Seen from above (through the back of both, neither emits nor faces the ray): the first
-    // listed, as before.
+    // Seen from above (through the back of both, neither emits nor faces the ray): the smaller,
+    // lying on the other, whichever is listed first (the first listed, before).
     const Vec3 above(2, 2, 4);
-    EXPECT_EQ(intersect_scene(scene, above, Vec3(0, 0, -1))->surface, 0u);
+    EXPECT_EQ(intersect_scene(scene, above, Vec3(0, 0, -1))->surface, light);
   }
   // A millimetre behind the ceiling the light is hidden; a millimetre in front, it is seen.
   for (bool light_first : {true, false}) {
@@ -205,6 +205,27 @@ TEST(EmitterTie, OfTwoOneSidedFacesBackToBackTheOneFacingTheRayIsSeenWhicheverIs
       EXPECT_EQ(from_below->surface, 1 - top_index) << top_first;
       EXPECT_FALSE(from_below->back_side);
     }
+  }
+}
+
+TEST(EmitterTie, ARugLyingOnAFloorIsSeenWhicheverIsListedFirst) {
+  // Both facing up in one plane: the rug, the smaller, lies on the floor and is seen on it (it
+  // was the floor when the floor came first in the list).
+  const std::string floor = R"({"name": "floor", "corners": [[0,0,0], [4,0,0], [4,4,0], [0,4,0]], "reflectance": 0.5})";
+  const std::string rug = R"({"name": "rug", "corners": [[1,1,0], [2,1,0], [2,2,0], [1,2,0]], "reflectance": 0.2})";
+  for (const bool floor_first : {true, false}) {
+    const Scene scene = parse_scene_json(R"({"name": "room", "surfaces": [)" + (floor_first ? floor + ", " + rug : rug + ", " + floor) +
+                                             R"(, {"name": "lamp", "corners": [[0,0,3], [0,4,3], [4,4,3], [4,0,3]], "reflectance": 0, "emission": 1}], "cameras": [{"name": "c", "eye": [2,2,2], "target": [1.5,1.5,0], "up": [0,1,0], "fov_deg": 60}]})",
+                                         "room.json");
+    const size_t rug_index = floor_first ? 1 : 0;
+    const Vec3 above(1.3, 1.6, 2);
+    for (const Vec3& target : {Vec3(1.5, 1.5, 0), Vec3(1.1, 1.9, 0), Vec3(1.93, 1.02, 0)}) {
+      const auto hit = intersect_scene(scene, above, (target - above).normalized());
+      ASSERT_TRUE(hit);
+      EXPECT_EQ(hit->surface, rug_index) << floor_first;
+    }
+    // Beside the rug: the floor.
+    EXPECT_EQ(intersect_scene(scene, above, (Vec3(3, 3, 0) - above).normalized())->surface, 1 - rug_index);
   }
 }
 
