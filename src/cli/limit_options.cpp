@@ -19,11 +19,58 @@
 
 namespace radrecon::cli {
 
-/// Bytes this process may still allocate: the physical memory, or less under a limit on its
-/// address space (ulimit -v) less what it maps already.
+namespace {
+
+/// The first number after `key` in the text file at `path` ("MemAvailable:" of /proc/meminfo, in
+/// kB there), or nullopt.
+std::optional<double> number_after(const char* path, const std::string& key) {
+  std::ifstream in(path);
+  for (std::string word; in >> word;)
+    if (word == key) {
+      double v = 0;
+      if (in >> v) return v;
+      return std::nullopt;
+    }
+  return std::nullopt;
+}
+
+/// The number in the text file at `path` ("max", or none: nullopt).
+std::optional<double> number_in(const std::string& path) {
+  std::ifstream in(path);
+  std::string text;
+  return in >> text ? parse_finite(text) : std::nullopt;
+}
+
+/// The bytes a cgroup memory limit leaves this process's group (a container's): cgroup v2's
+/// memory.max less memory.current, or v1's memory.limit_in_bytes less memory.usage_in_bytes;
+/// nullopt where no limit is found ("max"; v1's "no limit" is a huge number, which min() passes).
+std::optional<double> cgroup_memory_left() {
+  std::ifstream groups("/proc/self/cgroup");  // "0::/PATH" (v2), "N:memory:/PATH" (v1)
+  for (std::string line; std::getline(groups, line);) {
+    if (line.rfind("0::", 0) == 0) {
+      const std::string dir = "/sys/fs/cgroup" + line.substr(3);
+      const std::optional<double> max = number_in(dir + "/memory.max"), current = number_in(dir + "/memory.current");
+      if (max && current) return *max - *current;
+    } else if (const size_t at = line.find(":memory:"); at != std::string::npos) {
+      const std::string dir = "/sys/fs/cgroup/memory" + line.substr(at + 8);
+      const std::optional<double> max = number_in(dir + "/memory.limit_in_bytes"), used = number_in(dir + "/memory.usage_in_bytes");
+      if (max && used) return *max - *used;
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+/// Bytes this process may still allocate: the memory the kernel counts as available (free and
+/// reclaimable: /proc/meminfo's MemAvailable; the physical memory where it cannot be read), or
+/// less under a cgroup's memory limit (a container) or a limit on its address space (ulimit -v),
+/// less what they count in use already.
 size_t memory_available_bytes() {
   const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
   double available = pages > 0 && page > 0 ? static_cast<double>(pages) * page : 1e300;
+  if (const std::optional<double> kb = number_after("/proc/meminfo", "MemAvailable:")) available = std::min(available, *kb * 1024);
+  if (const std::optional<double> left = cgroup_memory_left()) available = std::min(available, *left);
   rlimit limit{};
   if (getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY) {
     double mapped = 0;  // pages mapped now: the first field of /proc/self/statm
