@@ -284,6 +284,7 @@ void run_interpolate(const InterpolateArgs& args) {
 
     const auto write_start = Clock::now();
     if (geo_raster) refuse_nodata_clash(values, args.nodata, geo_options.float64);
+    geo_options.band_names = value_names;
     if (geo_raster && !geo_options.float64) {
       Float32Range range;
       for (const double v : values) range.add(v);

@@ -393,6 +393,7 @@ std::vector<std::string> write_raster_gdal(const std::string& path, const std::s
   for (int c = 0; c < channels; ++c) {
     GDALRasterBand* band = image->GetRasterBand(c + 1);
     band->SetNoDataValue(options.nodata);
+    if (static_cast<size_t>(c) < options.band_names.size()) band->SetDescription(options.band_names[static_cast<size_t>(c)].c_str());
     for (int j = 0; j < raster.height; ++j) {
       // Stored row r is the raster's row height - 1 - r: north-up.
       const size_t first = static_cast<size_t>(raster.height - 1 - j) * raster.width;

@@ -25,6 +25,9 @@ struct GeoRasterOptions {
   /// The command's input files: a side file a format writes beside the output (an ENVI or ERS
   /// header's data file, named like the output without its extension) may not be one of them.
   std::vector<std::string> inputs;
+  /// Each band's description: the value columns' names (a GeoTIFF's bands read in QGIS or by
+  /// gdalinfo as "depth", "mag"); empty: none.
+  std::vector<std::string> band_names;
 };
 
 /// UserError naming --nodata if a value equals `nodata` as the band stores both (rounded to a

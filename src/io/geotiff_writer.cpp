@@ -90,14 +90,35 @@ bool resolve_crs(const std::string& crs, GeoTiffCrs* out) {
   return true;
 }
 
-/// GDAL's no-data tag (its TIFF tag 42113: the value as text), which libtiff must be told of.
+/// GDAL's metadata and no-data tags (its TIFF tags 42112, XML, and 42113, the value as text),
+/// which libtiff must be told of.
+constexpr ttag_t kTagGdalMetadata = 42112;
 constexpr ttag_t kTagGdalNoData = 42113;
 TIFFExtendProc parent_extender = nullptr;
 void add_gdal_tags(TIFF* tif) {
   static const TIFFFieldInfo kFields[] = {
+      {kTagGdalMetadata, -1, -1, TIFF_ASCII, FIELD_CUSTOM, 1, 0, const_cast<char*>("GDALMetadata")},
       {kTagGdalNoData, -1, -1, TIFF_ASCII, FIELD_CUSTOM, 1, 0, const_cast<char*>("GDALNoDataValue")}};
-  TIFFMergeFieldInfo(tif, kFields, 1);
+  TIFFMergeFieldInfo(tif, kFields, 2);
   if (parent_extender != nullptr) parent_extender(tif);
+}
+
+/// The bands' descriptions as GDAL's metadata tag holds them (GDAL reads them back as each band's
+/// GetDescription()): <Item name="DESCRIPTION" sample="K" role="description">, XML-escaped.
+std::string band_descriptions_xml(const std::vector<std::string>& names) {
+  std::string xml = "<GDALMetadata>\n";
+  for (size_t k = 0; k < names.size(); ++k) {
+    xml += "  <Item name=\"DESCRIPTION\" sample=\"" + std::to_string(k) + "\" role=\"description\">";
+    for (const char c : names[k]) {
+      if (c == '&') xml += "&amp;";
+      else if (c == '<') xml += "&lt;";
+      else if (c == '>') xml += "&gt;";
+      else if (c == '"') xml += "&quot;";
+      else xml += c;
+    }
+    xml += "</Item>\n";
+  }
+  return xml + "</GDALMetadata>";
 }
 
 /// libtiff's last error on one file (its own handler, not the process-wide one: other code, GDAL
@@ -170,6 +191,8 @@ void write(const std::filesystem::path& file, const std::string& shown_as, const
   char nodata[40];
   std::snprintf(nodata, sizeof nodata, "%.18g", options.nodata);  // GDAL's own spelling
   require(TIFFSetField(t, kTagGdalNoData, nodata), "the no-data value");
+  if (!options.band_names.empty())
+    require(TIFFSetField(t, kTagGdalMetadata, band_descriptions_xml(options.band_names).c_str()), "the bands' names");
   if (crs.epsg != 0) {  // the GeoKeys GDAL writes for an EPSG code; none without a CRS, as GDAL writes none
     const std::unique_ptr<GTIF, decltype(&GTIFFree)> keys(GTIFNew(t), GTIFFree);
     if (!keys) throw UserError(shown_as, "libgeotiff cannot start its keys");
