@@ -16,6 +16,7 @@ namespace {
 /// An axis-aligned box in (s, t): low and high corners.
 struct StBox {
   Vec2 lo, hi;
+  StBox(const Vec2& low, const Vec2& high) : lo(low), hi(high) {}
   explicit StBox(const std::vector<Vec2>& points) : lo(points[0]), hi(points[0]) {
     for (const Vec2& p : points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
   }
@@ -54,35 +55,48 @@ double overlap_area(const Polyline& region, const std::vector<Vec2>& convex) {
   return out.size() < 3 ? 0.0 : std::abs(0.5 * twice_signed_area(out));
 }
 
+EnclosedRegions::EnclosedRegions(const SideContactSet& set, const SurfaceFrame& frame) : frame_(frame) {
+  const auto first = set.excluded.begin() + static_cast<std::ptrdiff_t>(set.covered);
+  const auto last = set.excluded.end() - static_cast<std::ptrdiff_t>(set.faced);
+  if (first < last) regions_.assign(first, last);
+  for (const Polyline& r : regions_) {
+    const StBox box(r);
+    boxes_.push_back({box.lo, box.hi});
+  }
+}
+
+double EnclosedRegions::exposed_fraction(const ParamCell& cell) const {
+  if (regions_.empty()) return 1;
+  std::vector<Vec2> polygon;  // the cell in (s, t), counter-clockwise (the frame keeps orientation)
+  const auto uv = cell.vertices();
+  for (int k = 0; k < cell.vertex_count(); ++k) polygon.push_back(frame_.st(uv[static_cast<size_t>(k)]));
+  const StBox box(polygon);
+  double covered = 0;
+  for (size_t r = 0; r < regions_.size(); ++r)
+    if (StBox{boxes_[r].lo, boxes_[r].hi}.overlaps(box)) covered += overlap_area(regions_[r], polygon);
+  if (covered <= 0) return 1;
+  const double area = 0.5 * twice_signed_area(polygon);
+  return std::clamp(1 - covered / area, 0.0, 1.0);
+}
+
+bool EnclosedRegions::encloses(const Vec2& uv) const {
+  const Vec2 st = frame_.st(uv);
+  return std::any_of(regions_.begin(), regions_.end(), [&](const Polyline& r) { return in_region(r, st); });
+}
+
 std::vector<EnclosedElement> enclosed_elements(const Scene& scene, const Mesh& mesh, const ContactFinder& contacts) {
   std::vector<EnclosedElement> out;
   for (size_t s = 0; s < mesh.surfaces.size(); ++s) {
     const MeshSurface& side = mesh.surfaces[s];
-    const SideContactSet set = contacts.at(SideRef{side.scene_surface, side.back_side});
-    const auto first = set.excluded.begin() + static_cast<std::ptrdiff_t>(set.covered);
-    const auto last = set.excluded.end() - static_cast<std::ptrdiff_t>(set.faced);
-    if (first >= last) continue;
-    const std::vector<Polyline> regions(first, last);
-    std::vector<StBox> boxes;
-    for (const Polyline& r : regions) boxes.emplace_back(r);
-    const SurfaceFrame frame = scene.surfaces[side.scene_surface].frame();
+    const EnclosedRegions regions(contacts.at(SideRef{side.scene_surface, side.back_side}),
+                                  scene.surfaces[side.scene_surface].frame());
+    if (regions.empty()) continue;
     for (size_t e = 0; e < side.elements.size(); ++e) {
       const MeshElement& element = side.elements[e];
-      std::vector<Vec2> polygon;  // the element in (s, t), counter-clockwise (the frame keeps orientation)
-      const auto uv = element.vertices();
-      for (int k = 0; k < element.vertex_count(); ++k) polygon.push_back(frame.st(uv[static_cast<size_t>(k)]));
-      const StBox box(polygon);
-      double covered = 0;
-      for (size_t r = 0; r < regions.size(); ++r)
-        if (boxes[r].overlaps(box)) covered += overlap_area(regions[r], polygon);
-      if (covered <= 0) continue;
-      const double area = 0.5 * twice_signed_area(polygon);
-      EnclosedElement found{s, e, std::clamp(1 - covered / area, 0.0, 1.0), {}};
+      EnclosedElement found{s, e, regions.exposed_fraction(element), {}};
       if (found.exposed >= 1) continue;
       element.for_each_midpoint(kEnclosedSubdivision, [&](const Vec2& p) {
-        const Vec2 st = frame.st(p);
-        if (std::none_of(regions.begin(), regions.end(), [&](const Polyline& r) { return in_region(r, st); }))
-          found.exposed_uv.push_back(p);
+        if (!regions.encloses(p)) found.exposed_uv.push_back(p);
       });
       out.push_back(std::move(found));
     }

@@ -30,6 +30,33 @@ struct EnclosedElement {
   std::vector<Vec2> exposed_uv;
 };
 
+/// The regions of one side that surfaces standing on it enclose (scene/contacts.h
+/// excluded_regions() (b), not the faced ones: those may be seen), in the side's (s, t) metres,
+/// and the fraction of a cell of the side's parameter domain that they leave exposed. Regions are
+/// taken as not overlapping each other.
+class EnclosedRegions {
+ public:
+  EnclosedRegions() = default;
+  /// The enclosed regions of `set` (a side's contacts), on a side of surface frame `frame`.
+  EnclosedRegions(const SideContactSet& set, const SurfaceFrame& frame);
+  bool empty() const { return regions_.empty(); }
+  const std::vector<Polyline>& regions() const { return regions_; }
+  const SurfaceFrame& frame() const { return frame_; }
+  /// The fraction of the area of `cell` (its vertices joined by straight lines in (s, t)) outside
+  /// every region, in [0, 1]: exactly 1 where no region overlaps it.
+  double exposed_fraction(const ParamCell& cell) const;
+  /// Whether the parameter point (u, v) lies in a region.
+  bool encloses(const Vec2& uv) const;
+
+ private:
+  struct Box {
+    Vec2 lo, hi;  ///< low and high corners in (s, t)
+  };
+  std::vector<Polyline> regions_;
+  std::vector<Box> boxes_;  ///< by region
+  SurfaceFrame frame_;
+};
+
 /// Cells of the subdivision along each edge of an element, for EnclosedElement::exposed_uv.
 inline constexpr int kEnclosedSubdivision = 8;
 

@@ -45,7 +45,7 @@ bool canonical(const Link& a, const Link& b) {
 class Hierarchy {
  public:
   Hierarchy(const Scene& scene, const HierarchicalOptions& options, LinkFormFactorCache* cache)
-      : scene_(scene), covers_(covers_by_surface(scene)), options_(options),
+      : scene_(scene), covers_(covers_by_surface(scene)), contacts_(scene), options_(options),
         cache_(cache != nullptr ? cache : &own_cache_) {
     min_size_m_ = min_element_size_m(scene, options);
     occluders_ = make_occluders(scene);
@@ -129,7 +129,9 @@ class Hierarchy {
   void add_tree(size_t k, bool back) {
     Tree& t = trees_.emplace_back(scene_.surfaces[k], k, back);
     t.covers = covers_[k];
+    t.enclosed = EnclosedRegions(contacts_.at(SideRef{k, back}), scene_.surfaces[k].frame());
     t.at(0).exposed = t.exposed_fraction_of(0);
+    t.at(0).unenclosed = t.unenclosed_fraction_of(0);
   }
 
   const std::vector<const Occluder*>& occluders(int r, int s) const {
@@ -176,7 +178,7 @@ class Hierarchy {
   Estimate error_estimate(const Link& l) const {
     const NodeState& s = trees_[static_cast<size_t>(l.source_tree)].at(l.source_node);
     return estimate(l.receiver_tree, trees_[static_cast<size_t>(l.receiver_tree)].node(l.receiver_node),
-                    s.radiosity.mean(), s.spread_w_m2, l.f, l.f_spread);
+                    s.seen_radiosity().mean(), s.spread_w_m2, l.f, l.f_spread);
   }
 
   bool splittable(int tree, const QuadNode& n) const {
@@ -199,15 +201,20 @@ class Hierarchy {
     return can_r && (!can_s || e.receiver_w >= e.source_w) ? Refine::receiver : Refine::source;
   }
 
-  /// Splits a leaf; its children start with its radiosity until the next solve.
+  /// Splits a leaf; its children are seen at its radiosity until the next solve (their own is
+  /// nil over their enclosed part).
   void split(int tree, int node) {
     Tree& t = trees_[static_cast<size_t>(tree)];
     if (!t.node(node).is_leaf()) return;
     t.quad.split(node);
-    const Rgb radiosity = t.at(node).radiosity;
+    const Rgb radiosity = t.at(node).seen_radiosity();
     for (int c = 0; c < 4; ++c) {
-      t.state.push_back({radiosity});
-      t.state.back().exposed = t.exposed_fraction_of(static_cast<int>(t.state.size()) - 1);
+      const int k = static_cast<int>(t.state.size());
+      NodeState child{radiosity};
+      child.exposed = t.exposed_fraction_of(k);
+      child.unenclosed = t.unenclosed_fraction_of(k);
+      child.radiosity *= child.unenclosed;
+      t.state.push_back(child);
     }
   }
 
@@ -228,7 +235,7 @@ class Hierarchy {
     };
     const auto stored = [&](int tree, int index) {
       const Tree& t = trees_[static_cast<size_t>(tree)];
-      return End{tree, index, t.node(index), t.at(index).radiosity.mean(), t.at(index).spread_w_m2};
+      return End{tree, index, t.node(index), t.at(index).seen_radiosity().mean(), t.at(index).spread_w_m2};
     };
     // The four children of an end: stored ones for a node split already, else the quarters,
     // which start with the parent's radiosity and no spread.
@@ -376,6 +383,7 @@ class Hierarchy {
 
   const Scene& scene_;
   std::vector<std::vector<ConvexPolygon>> covers_;  ///< by scene surface (solver/covered.h)
+  ContactFinder contacts_;  ///< for each side's enclosed regions (solver/enclosed.h)
   HierarchicalOptions options_;
   LinkFormFactorCache own_cache_;
   LinkFormFactorCache* cache_;  ///< the caller's, or own_cache_

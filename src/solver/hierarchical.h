@@ -12,6 +12,8 @@
 // radiosity is its uniform emission, never), and its children are linked instead. Passes of
 // best-first refinement alternate with solves (gathering over the links, push-pull) until no
 // link is refined; then each leaf gets its own links to its ancestors' sources (final gather).
+// The parts of a side that surfaces standing on it enclose (solver/enclosed.h) neither receive
+// nor send light: a node across one is seen at the radiosity of its part outside them.
 
 #include <optional>
 #include <string>

@@ -17,7 +17,8 @@ Rgb push_pull(Tree& t, int index, const Rgb& irradiance_above, double& change, d
   const Rgb irradiance = irradiance_above + n.gathered;
   Rgb b;
   if (node.is_leaf()) {
-    b = n.exposed * (t.emission_w_m2 + t.reflectance * irradiance);
+    // The irradiance is the node's mean, nil over its enclosed part (no light reaches it).
+    b = n.exposed * (n.unenclosed * t.emission_w_m2 + t.reflectance * irradiance);
     n.irradiance = irradiance;
     change = std::max(change, (b - n.radiosity).abs().maxCoeff());
     largest = std::max(largest, b.abs().maxCoeff());
@@ -30,11 +31,15 @@ Rgb push_pull(Tree& t, int index, const Rgb& irradiance_above, double& change, d
       const double a = t.node(first + c).area_m2;
       b += a * bc;
       area += a;
-      lo = std::min(lo, bc.mean());
-      hi = std::max(hi, bc.mean());
+      // The spread of what the children are seen at: a wholly enclosed child is never seen.
+      const NodeState& child = t.at(first + c);
+      if (child.unenclosed <= 0) continue;
+      const double seen = child.seen_radiosity().mean();
+      lo = std::min(lo, seen);
+      hi = std::max(hi, seen);
     }
     b /= area;
-    t.at(index).spread_w_m2 = hi - lo;
+    t.at(index).spread_w_m2 = hi >= lo ? hi - lo : 0;
   }
   t.at(index).radiosity = b;
   return b;
@@ -51,9 +56,10 @@ ConvexPolygon polygon_of(const QuadNode& n) {
   return p;
 }
 
-/// Adds the area of node k's part in the half-space `front` to `area_m2_sum`, and that area times the
-/// node's radiosity to `power_w`: whole nodes as they are, a leaf across the plane by the share
-/// of its area on the front side (its radiosity is uniform).
+/// Adds the unenclosed area of node k's part in the half-space `front` to `area_m2_sum`, and the
+/// power that part sends to `power_w`: whole nodes as they are, a leaf across the plane by the
+/// share of its area on the front side (its radiosity is uniform; its enclosed part is taken as
+/// spread over it alike).
 void add_front_part(const Tree& t, int k, const HalfSpace& front, double& area_m2_sum, Rgb& power_w) {
   const QuadNode& node = t.node(k);
   const ConvexPolygon p = polygon_of(node);
@@ -68,7 +74,7 @@ void add_front_part(const Tree& t, int k, const HalfSpace& front, double& area_m
       const double whole_m2 = area_m2(p);
       a_m2 = whole_m2 > 0 ? a_m2 * area_m2(part) / whole_m2 : 0;  // a node has area; no 0 / 0 if not
     }
-    area_m2_sum += a_m2;
+    area_m2_sum += a_m2 * t.at(k).unenclosed;
     power_w += a_m2 * t.at(k).radiosity;
     return;
   }
@@ -78,7 +84,8 @@ void add_front_part(const Tree& t, int k, const HalfSpace& front, double& area_m
 /// The links whose source node the receiver's plane cuts (a ground node across a wall's foot,
 /// linked to the wall): the receiver sees only the source's part in front of its plane, so it
 /// takes that part's mean radiosity, not the node's (which mixes in the lit or shadowed ground on
-/// the wall's other side). Each distinct (receiver side, source node) is listed once.
+/// the wall's other side): the power it sends over the area it sends it from (its unenclosed part).
+/// Each distinct (receiver side, source node) is listed once.
 struct SourcesSeenInPart {
   struct Part {
     int receiver_tree, source_tree, source_node;
@@ -120,7 +127,7 @@ struct SourcesSeenInPart {
       double area_m2_sum = 0;
       Rgb power_w = Rgb::Zero();
       add_front_part(t, q.source_node, fronts_[static_cast<size_t>(q.receiver_tree)], area_m2_sum, power_w);
-      radiosity_w_m2[k] = area_m2_sum > 0 ? Rgb(power_w / area_m2_sum) : t.at(q.source_node).radiosity;
+      radiosity_w_m2[k] = area_m2_sum > 0 ? Rgb(power_w / area_m2_sum) : t.at(q.source_node).seen_radiosity();
     }
   }
 
@@ -141,7 +148,7 @@ bool gather_over_links(std::vector<Tree>& trees, const std::vector<Link>& links,
       const Link& l = links[i];
       const int part = seen_in_part.of_link[i];
       const Rgb& b = part >= 0 ? seen_in_part.radiosity_w_m2[static_cast<size_t>(part)]
-                               : trees[static_cast<size_t>(l.source_tree)].at(l.source_node).radiosity;
+                               : trees[static_cast<size_t>(l.source_tree)].at(l.source_node).seen_radiosity();
       trees[static_cast<size_t>(l.receiver_tree)].at(l.receiver_node).gathered += l.f * b;
     }
     double change = 0, largest = 0;
@@ -168,7 +175,7 @@ void add_surfaces(const Scene& scene, const std::vector<Tree>& trees, Solution& 
       const QuadNode& n = t.node(k);
       out.elements.push_back({n, n.center, n.area_m2, t.at(k).radiosity});
     }
-    st.emitted_w += t.at(0).exposed * t.node(0).area_m2 * t.emission_w_m2;
+    st.emitted_w += t.at(0).exposed * t.at(0).unenclosed * t.node(0).area_m2 * t.emission_w_m2;
     st.elements += out.elements.size();
     sol.surfaces.push_back(std::move(out));
   }

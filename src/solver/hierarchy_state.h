@@ -9,6 +9,7 @@
 #include "mesh/quadtree.h"
 #include "scene/side.h"
 #include "solver/covered.h"
+#include "solver/enclosed.h"
 #include "solver/solution.h"
 
 namespace radrecon::hierarchy {
@@ -20,6 +21,17 @@ struct NodeState {
   Rgb irradiance = Rgb::Zero();  ///< leaves: total irradiance including the ancestors', W/m^2
   double spread_w_m2 = 0;        ///< max - min of the children's radiosity (channel mean); 0 at leaves
   double exposed = 1;            ///< Tree::exposed_fraction_of() the node, set when it is made
+  /// The fraction of the node outside the regions that surfaces standing on its side enclose
+  /// (Tree::enclosed), set when it is made. No light reaches those regions, so the node's
+  /// radiosity (its mean over its area) is nil there, and what it sends is seen from its
+  /// unenclosed part alone, at seen_radiosity().
+  double unenclosed = 1;
+  /// The radiosity of the node's unenclosed part, W/m^2: what a receiver sees of it (its visible
+  /// form factor leaves the enclosed part out). 0 for a node wholly enclosed.
+  Rgb seen_radiosity() const {
+    if (unenclosed >= 1) return radiosity;
+    return unenclosed > 0 ? Rgb(radiosity / unenclosed) : Rgb::Zero();
+  }
 };
 
 /// One side of one surface: its quadtree and the radiometry of every node.
@@ -40,6 +52,11 @@ struct Tree {
   /// The surfaces lying on this one (solver/covered.h): a node's exposed fraction scales what it
   /// emits, absorbs and reflects, so its radiosity is its mean over its area, the covered part dark.
   std::vector<ConvexPolygon> covers;
+  /// The regions of this side that surfaces standing on it enclose (solver/enclosed.h: the floor
+  /// under a block without a bottom): they neither receive nor send light.
+  EnclosedRegions enclosed;
+  /// The fraction of node k outside `enclosed`.
+  double unenclosed_fraction_of(int k) const { return enclosed.exposed_fraction(node(k)); }
   /// The fraction of node k that `covers` leave exposed.
   double exposed_fraction_of(int k) const {
     const QuadNode& n = node(k);

@@ -47,6 +47,21 @@ inline Scene closed_room_with_lamp(double rho, double E) {
   return room;
 }
 
+/// The room with a block 0.78 x 0.66 x 0.9 m standing on its floor, open at its foot as the
+/// Cornell box's blocks are (its five faces facing out, reflectance rho): the floor under it is
+/// enclosed (solver/enclosed.h), and its edges lie off the floor's dyadic lines, so quadtree nodes
+/// straddle them. Absorbed = emitted still holds; the block's faces add to the visible area.
+inline Scene closed_room_with_standing_block(double rho, double E) {
+  Scene room = closed_room(rho, E);
+  for (Surface& f : box_faces({0.83, 0.71, 0}, {1.61, 1.37, 0.9})) {
+    if (f.name == "-z") continue;  // no bottom: the faces stand on the floor
+    f.name = "block" + f.name;
+    f.reflectance = Rgb::Constant(rho);
+    room.surfaces.push_back(f);
+  }
+  return room;
+}
+
 /// sum A B over every element of the solution, channel 0, W: the radiosity power the closed forms
 /// predict (Phi / (1 - rho) in a closed room or box).
 inline double radiosity_power_w(const Solution& sol) {

@@ -140,6 +140,32 @@ TEST(Hierarchical, ALightLyingOnTheCeilingKeepsTheRoomsEnergy) {
   expect_closed_room_keeps_its_energy(testing_support::closed_room_with_lamp, "lamp on the ceiling");
 }
 
+/// A block standing on the floor of the closed room, open at its foot (solver/enclosed.h): the
+/// floor under it neither receives nor sends light. A floor node across the block's foot sends
+/// what its exposed part reflects, and every receiver sees only that part (the block hides the
+/// rest): it must be seen at the radiosity of that part, its power over its exposed area, not at
+/// its mean over its whole area. Seen at its mean, the room lost 1.25e-2 of its power at
+/// epsilon 1e-2 W and 6.6e-3 at 1e-3 W (0.12 and 0.090 at reflectance 0.95). What is left is the
+/// loss of links that see a source in part at the mean of all of it (docs/method.md, hierarchical
+/// radiosity's known limits), which the block's shadow and what it hides make one-signed: the
+/// same block lifted 1 cm, with a bottom, loses 3.1e-3 and 9.4e-4 here (1.6e-2 and 2.8e-2 at
+/// reflectance 0.95, which this test leaves out for that reason).
+TEST(Hierarchical, AClosedRoomWithABlockStandingOnItsFloorKeepsItsEnergy) {
+  constexpr double kOccludedRoomRelative = 2e-3;  // the loss left by links seeing sources in part
+  const double rho = 0.5, E = 40, phi = E * testing_support::kClosedRoomLight_m2;
+  for (const double epsilon_w : {1e-2, 1e-3}) {
+    HierarchicalOptions options;
+    options.epsilon_w = epsilon_w;
+    const Solution sol =
+        solve_hierarchical(testing_support::closed_room_with_standing_block(rho, E), options, "quadtree-eps");
+    EXPECT_TRUE(sol.stats.converged);
+    EXPECT_NEAR(sol.stats.emitted_w[0], phi, 1e-12 * phi);
+    EXPECT_NEAR(sol.stats.absorbed_w[0], phi, kOccludedRoomRelative * phi) << "epsilon " << epsilon_w;
+    std::printf("hierarchical, a block standing in the closed room, epsilon %g W: absorbed / emitted - 1 = %.2e\n",
+                epsilon_w, sol.stats.absorbed_w[0] / phi - 1);
+  }
+}
+
 TEST(Hierarchical, GatheringStoppedByItsIterationLimitIsReportedNotConverged) {
   // In a closed box of reflectance 0.6 each Jacobi step removes about a factor 0.6 of the
   // change: 3 steps cannot reach 1e-6, 200 can (0.6^200 ~ 1e-44).
