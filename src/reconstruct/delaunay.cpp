@@ -13,6 +13,7 @@
 #include "reconstruct/hull_chain.h"
 #include "reconstruct/interpolant.h"
 #include "reconstruct/kdtree.h"
+#include "reconstruct/nearest_segment.h"
 
 namespace radrecon {
 
@@ -32,6 +33,7 @@ struct DelaunayMesh::Impl {
   std::vector<Delaunay::Face_handle> handles;             ///< by face index
   std::vector<std::pair<std::int64_t, int>> vertex_face;  ///< by sample: a face and its corner there
   std::unique_ptr<HullChains<Delaunay>> chains;  ///< CGAL's hull edges and their pieces
+  std::unique_ptr<NearestSegment> nearest_piece;  ///< over chains->pieces, ties to the smaller sample pair
   /// By sample: the infinite faces of the hull edges it ends (two), or of the one it splits.
   std::vector<std::array<Delaunay::Face_handle, 2>> hull_at;
   std::unique_ptr<KdTree2> tree;
@@ -81,6 +83,11 @@ DelaunayMesh::DelaunayMesh(std::span<const Vec2> points, const std::string& meth
     if (!(std::abs(det) > tol::kDelaunaySliverRelative * edge_sq[static_cast<size_t>(longest)])) affine_[f].sliver_corner = longest;
   }
   m.chains = std::make_unique<HullChains<Delaunay>>(m.dt, points_);
+  {
+    std::vector<std::pair<unsigned, unsigned>> pieces, keys;
+    for (const auto& e : m.chains->pieces) pieces.emplace_back(e.a, e.b), keys.push_back(std::minmax(e.a, e.b));
+    m.nearest_piece = std::make_unique<NearestSegment>(points_, std::move(pieces), std::move(keys));
+  }
   // By sample: the hull edges it ends, two; or, no vertex of CGAL's hull, the one it splits (a
   // thin set's hull vertex within rounding of the edge across it keeps its own two).
   m.hull_at.assign(n, {});
@@ -254,22 +261,10 @@ bool DelaunayMesh::locate(const Vec2& q, OutsideHull outside, std::int64_t& hint
         return true;
       }
       if (outside == OutsideHull::none) return false;
-      // The nearest point of the hull: on the pieces of the hull edge nearest q or of the two at
-      // its ends, found by walking the hull (not by a scan of all of it: a raster around 100,000
-      // samples on a circle). Ties between pieces: the one of smaller sample indices.
-      const Delaunay::Face_handle nearest_hull = nearest_hull_face(m.dt, points_, q, nearest_edge, std::numeric_limits<double>::infinity());
-      const int h = nearest_hull->index(infinite);
-      double best = std::numeric_limits<double>::infinity();
-      const HullChainEdge<Delaunay::Face_handle>* nearest = nullptr;
-      const auto key = [](const HullChainEdge<Delaunay::Face_handle>& e) { return std::minmax(e.a, e.b); };
-      for (const Delaunay::Face_handle& g :
-           {nearest_hull, nearest_hull->neighbor(Delaunay::ccw(h)), nearest_hull->neighbor(Delaunay::cw(h))})
-        for (const HullChainEdge<Delaunay::Face_handle>& e : m.chains->of(g, g->index(infinite))) {
-          const Vec2 &a = points_[e.a], &b = points_[e.b];
-          const double t = nearest_on_segment_t(q, a, b);
-          const double d = (a + t * (b - a) - q).squaredNorm();
-          if (d < best || (nearest && d == best && key(e) < key(*nearest))) best = d, nearest = &e;
-        }
+      // The nearest point of the hull: on its nearest piece (reconstruct/nearest_segment.h; ties:
+      // the piece of smaller sample indices), whatever the queries before.
+      const std::optional<NearestSegment::Found> found = m.nearest_piece->nearest(q);
+      const HullChainEdge<Delaunay::Face_handle>* nearest = found ? &m.chains->pieces[found->segment] : nullptr;
       if (!nearest) return false;  // q so far away that every distance overflowed
       out.face = nearest->inner->info();
       on_edge(points_, vertices_[static_cast<size_t>(out.face)], nearest->corner, q, out.b);

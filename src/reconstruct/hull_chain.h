@@ -84,13 +84,14 @@ struct HullBandBound {
   double at(const Vec2& q) const { return fixed_m + tol::kCoordinateRounding * std::max(largest_coordinate, q.cwiseAbs().maxCoeff()); }
 };
 
-/// For q outside the hull of `dt` (a 2-D triangulation; `points` its samples by vertex info): the
-/// infinite face whose hull edge is nearest to q, found from `outside`, an infinite face whose
-/// hull edge q lies outside of (what CGAL's locate() returns there, which depends on where its
-/// walk began: along collinear hull edges, such as a lattice's side, any of them). Walks along
-/// the hull from it while the distance falls: over the hull edges that q lies outside of, the
-/// distance falls and then rises, and the nearest edge is among them. So the face found depends
-/// on q alone (up to a tie between edges, whose nearest points are then one and the same).
+/// For q outside the hull of `dt` (a 2-D triangulation; `points` its samples by vertex info) and
+/// within rounding of it: the infinite face whose hull edge is nearest to q, found from
+/// `outside`, an infinite face whose hull edge q lies outside of (what CGAL's locate() returns
+/// there, which depends on where its walk began: along collinear hull edges, such as a lattice's
+/// side, any of them). Walks along the hull from it while the distance falls. That finds a local
+/// minimum of the distance only: from a point farther out, a long, thin hull has two, and the
+/// one found depended on the query before (an outside-in trial); the nearest point of the hull
+/// is found by reconstruct/nearest_segment.h. Within rounding of the hull the walk's edge is q's.
 ///
 /// `band_bound_m` bounds every hull edge's band (HullBandBound::at()): q farther outside
 /// `outside`'s line than that lies at least as far from the whole hull (it stands on the line's

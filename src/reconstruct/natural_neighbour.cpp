@@ -34,6 +34,11 @@ NaturalNeighbour::NaturalNeighbour(const ScatteredSamples& samples, OutsideHull 
   // finite triangle on it, and split at the samples on it up to rounding (hull_chain.h).
   const HullChains<Delaunay> chains(impl_->dt, impl_->points);
   for (const auto& e : chains.pieces) impl_->hull_pieces.emplace_back(e.a, e.b);
+  {
+    std::vector<std::pair<unsigned, unsigned>> keys;
+    for (const auto& [a, b] : impl_->hull_pieces) keys.push_back(std::minmax(a, b));
+    impl_->nearest_piece = std::make_unique<NearestSegment>(impl_->points, impl_->hull_pieces, std::move(keys));
+  }
   auto inf = impl_->dt.infinite_vertex();
   auto fc = impl_->dt.incident_faces(inf), done = fc;
   do {

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "core/check.h"
@@ -17,6 +18,7 @@
 #include "reconstruct/hull_chain.h"
 #include "reconstruct/kdtree.h"
 #include "reconstruct/natural_neighbour.h"
+#include "reconstruct/nearest_segment.h"
 #include "reconstruct/nn_delaunay.h"
 #include "reconstruct/sibson_c1.h"
 #include "reconstruct/sibson_raster.h"
@@ -43,6 +45,7 @@ struct NaturalNeighbour::Impl {
   /// The hull through every sample on it up to rounding (hull_chain.h): the hull edges' pieces,
   /// and by hull edge its pieces' range [begin, end). A query's value on the hull is taken on them.
   std::vector<std::pair<unsigned, unsigned>> hull_pieces;
+  std::unique_ptr<NearestSegment> nearest_piece;  ///< over hull_pieces, ties to the smaller pair
   std::vector<std::pair<size_t, size_t>> hull_edge_pieces;
   std::vector<double> hull_edge_depth_m;  ///< by hull edge: how far inside it its pieces' ends lie
   HullBandBound hull_band_bound;  ///< bounds every hull edge's band (hull_chain.h)
@@ -231,34 +234,20 @@ struct NaturalNeighbour::Impl {
     out.emplace_back(best_edge.second, best_t);
   }
 
-  /// nearest_on_edges() over the pieces of the hull edge nearest to q and of the two at its ends,
-  /// found by walking along the hull from `outside`, the infinite face q was located in
-  /// (nearest_hull_face(), hull_chain.h); over every piece if `outside` is no infinite face. The
-  /// nearest point of the hull lies on those (a scan of the whole hull took 30 s for a raster
-  /// around 100,000 samples on a circle).
-  void nearest_on_near_edges(const Vec2& q, const Delaunay::Face_handle& outside,
-                             std::vector<std::pair<unsigned, double>>& out) const {
-    if (outside == Delaunay::Face_handle() || !dt.is_infinite(outside)) return nearest_on_edges(q, hull_pieces, out);
-    const auto infinite = dt.infinite_vertex();
-    const Delaunay::Face_handle nearest = nearest_hull_face(dt, points, q, outside, std::numeric_limits<double>::infinity());
-    const int i = nearest->index(infinite);
-    std::array<std::pair<unsigned, unsigned>, 3 * kNearPieces> near;
-    size_t count = 0;
-    for (const Delaunay::Face_handle& g : {nearest, nearest->neighbor(Delaunay::ccw(i)), nearest->neighbor(Delaunay::cw(i))}) {
-      const int gi = g->index(infinite);
-      const unsigned a = g->vertex(Delaunay::ccw(gi))->info(), b = g->vertex(Delaunay::cw(gi))->info();
-      for (const int e : hull_edges_at[a]) {
-        if (e < 0 || hull_edges[static_cast<size_t>(e)] != std::pair(a, b)) continue;
-        const auto [begin, end] = hull_edge_pieces[static_cast<size_t>(e)];
-        if (end - begin > kNearPieces || count + (end - begin) > near.size()) return nearest_on_edges(q, hull_pieces, out);
-        for (size_t k = begin; k < end; ++k) near[count++] = hull_pieces[k];
-      }
-    }
-    if (count == 0) return nearest_on_edges(q, hull_pieces, out);  // no edge matched: not expected, but whole
-    nearest_on_edges(q, std::span(near).first(count), out);
+  /// The nearest point of the hull to q, as nearest_on_edges() over every piece gives it (ties:
+  /// the smaller pair), found through nearest_piece (reconstruct/nearest_segment.h): a scan of the
+  /// whole hull took 30 s for a raster around 100,000 samples on a circle, and a walk along it from
+  /// where q was located stopped at a local minimum of the distance (a long, thin hull).
+  void nearest_on_hull_pieces(const Vec2& q, std::vector<std::pair<unsigned, double>>& out) const {
+    const std::optional<NearestSegment::Found> found = nearest_piece->nearest(q);
+    if (!found) return nearest_on_edges(q, hull_pieces, out);  // every distance overflowed: as the scan does
+    // In sample order, as nearest_on_edges() gives it: the same coordinates, bit for bit.
+    const auto [a, b] = hull_pieces[found->segment];
+    const double t = a < b ? found->t : 1 - found->t;
+    out.clear();
+    out.emplace_back(std::min(a, b), 1 - t);
+    out.emplace_back(std::max(a, b), t);
   }
-  /// The pieces of one hull edge nearest_on_near_edges() holds on the stack (more: the whole scan).
-  static constexpr size_t kNearPieces = 64;
 
   /// The nearest point to q of the hull of a triangulation (of the samples visible from q) as
   /// nearest_on_edges() gives it: a point, a segment, or the edges of the infinite faces.
@@ -301,7 +290,7 @@ struct NaturalNeighbour::Impl {
     } else {
       // Outside the hull: no value with outside=none (its nearest point would go unused).
       if (barriers.empty() && outside == OutsideHull::none) return Kind::on_hull;
-      nearest_on_near_edges(q, hint, s.coords);
+      nearest_on_hull_pieces(q, s.coords);
       // Its nearest point, if nothing hides it (or its edge) from q.
       if (barriers.empty()) return Kind::on_hull;
       Vec2 nearest = Vec2::Zero();

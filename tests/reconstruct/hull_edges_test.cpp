@@ -282,5 +282,59 @@ TEST(HullEdges, AThinSetWhoseHullVerticesLieOnTheEdgesAcrossIsTriangulated) {
   }
 }
 
+TEST(HullEdges, OutsideTheHullEveryQueryTakesTheNearestHullPointWhateverTheQueriesBefore) {
+  // A long, thin hull (the element centroids of a triangle sheared by 0.9999, rows collinear
+  // along its base): the distance from a point outside it to its edges has two local minima,
+  // and a walk along the hull from where the point was located stopped at the wrong one. The
+  // second of the queries (0, 0), (1, 0) took 0.515 where the nearest hull point's x is 0.970,
+  // and 0.970 when asked alone (an outside-in trial). The values are x, linear along every hull
+  // edge: the nearest hull point's x, by brute force over every pair of samples with all the
+  // others on or left of their line.
+  constexpr int n = 11;
+  constexpr double shear = 0.9999;
+  ScatteredSamples s;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n - j; ++i) {
+      for (const double k : {1.0 / 3, 2.0 / 3}) {
+        if (k > 0.5 && i == n - j - 1) continue;
+        const Vec2 uv((i + k) / n, (j + k) / n);
+        s.points.emplace_back(uv.x() + shear * uv.y(), uv.y());
+        s.values.push_back(s.points.back().x());
+      }
+    }
+  const auto nearest_hull_x = [&](const Vec2& q) {
+    double best = std::numeric_limits<double>::infinity(), x = 0;
+    for (size_t i = 0; i < s.points.size(); ++i)
+      for (size_t j = 0; j < s.points.size(); ++j) {
+        if (i == j) continue;
+        const Vec2 a = s.points[i], ab = s.points[j] - a;
+        bool hull = true;
+        for (size_t k = 0; k < s.points.size() && hull; ++k) hull = ab.x() * (s.points[k] - a).y() - ab.y() * (s.points[k] - a).x() >= 0;
+        if (!hull) continue;
+        const double t = std::clamp((q - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+        if (const double d = (a + t * ab - q).squaredNorm(); d < best) best = d, x = (a + t * ab).x();
+      }
+    return x;
+  };
+  std::mt19937 rng(20261208);
+  std::uniform_real_distribution<double> ux(-0.5, 2.5), uy(-0.5, 1.5);
+  std::vector<Vec2> q = {{0, 0}, {1, 0}};
+  while (q.size() < 400) q.emplace_back(ux(rng), uy(rng));
+  for (const Method m : kTriangulationMethods) {
+    const InterpolantResult interpolant = make_scattered_interpolant(m, s, MethodParams{});
+    ASSERT_TRUE(interpolant) << interpolant.reason();
+    std::vector<double> v(q.size());
+    interpolant.value()->evaluate(q, v);
+    for (size_t k = 0; k < q.size(); ++k) {
+      std::vector<double> alone(1);
+      interpolant.value()->evaluate(std::span(&q[k], 1), alone);
+      EXPECT_EQ(v[k], alone[0]) << method_name(m) << " at (" << q[k].transpose() << ")";
+      // Inside the hull x itself (the methods reproduce linear functions); outside, the nearest
+      // hull point's.
+      if (std::abs(v[k] - q[k].x()) > 1e-9) EXPECT_NEAR(v[k], nearest_hull_x(q[k]), 1e-12) << method_name(m) << " at (" << q[k].transpose() << ")";
+    }
+  }
+}
+
 }  // namespace hull_edges_test
 }  // namespace radrecon
