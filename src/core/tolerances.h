@@ -290,6 +290,12 @@ inline constexpr std::size_t kKeptFragmentsShadows = 16;
 /// an element's, while its shooter blocks keep an area to take their means over.
 inline constexpr double kEnclosedLeastFraction = 1e-9;
 
+/// An element (or quadtree node) whose overlap with the enclosed regions of its side is at most
+/// this fraction of its area is not enclosed at all, and one left exposed by at most this
+/// fraction wholly enclosed (solver/enclosed.h): it only touches a region's outline, from outside
+/// or inside, the difference the clip's round-off.
+inline constexpr double kEnclosedOverlapRelative = 1e-9;
+
 /// VisibleFragments: a part of a shooting patch counts as seen in part when the fragments it sees
 /// cover less of its front than its area less this fraction of it, and less kPlaneDistance_m
 /// times its outline's length: clip() takes a vertex within kPlaneDistance_m of a plane as on it,

@@ -26,7 +26,8 @@ struct EnclosedElement {
   double exposed = 0;
   /// Points of its exposed part where it gathers, (u, v): the midpoints of the cells of a
   /// regular subdivision of the element (kEnclosedSubdivision per edge) that lie outside every
-  /// enclosed region; empty when none does (a sliver).
+  /// enclosed region; empty when none does (a sliver) or when every one does (the region only
+  /// clips a corner between them): the element then gathers where it would.
   std::vector<Vec2> exposed_uv;
 };
 
