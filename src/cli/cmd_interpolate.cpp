@@ -61,9 +61,10 @@ std::string declared_crs(const std::string& path, const std::string& option) {
 }
 
 /// Warns when the samples and the barriers, both vector sources, declare different CRSs: their
-/// coordinates are taken as stored (no reprojection), so the barriers would stand elsewhere.
-void warn_of_another_crs(const std::string& samples, const std::string& barriers) {
-  if (barriers.empty()) return;
+/// coordinates are taken as stored (no reprojection), so the barriers would stand elsewhere. Not
+/// when the samples' points come from fields (--x, --y), whose CRS the layer does not declare.
+void warn_of_another_crs(const std::string& samples, const std::string& barriers, bool samples_by_fields) {
+  if (barriers.empty() || samples_by_fields) return;
   const std::string a = declared_crs(samples, "--samples"), b = declared_crs(barriers, "--barriers");
   if (!a.empty() && !b.empty() && !gdal_functions("--barriers").same_crs(a, b))
     std::fprintf(stderr, "radrecon: warning: %s and %s declare different CRSs; coordinates are used as stored, not "
@@ -83,9 +84,10 @@ void run_interpolate(const InterpolateArgs& args) {
   // raster: a GeoTIFF by libtiff when its CRS is none or an EPSG code, else by GDAL.
   const std::string ext = lower_extension(args.out);
   const bool geo_raster = !args.gdal_format.empty() || !(ext == ".csv" || ext == ".pfm" || ext == ".png");
-  // The raster's CRS: --crs, else the one a vector source of the samples declares (as gdal_grid).
+  // The raster's CRS: --crs, else the one a vector source of the samples declares (as gdal_grid),
+  // when the points are its geometry (--x and --y name fields of any coordinates).
   std::string crs = args.crs;
-  if (crs.empty() && geo_raster) {
+  if (crs.empty() && geo_raster && args.x_column.empty()) {
     crs = declared_crs(args.samples, "--samples");
     if (!crs.empty() && !args.quiet)
       std::fprintf(stderr, "interpolate: the raster's CRS is the samples' (%s; --crs sets another)\n",
@@ -156,7 +158,7 @@ void run_interpolate(const InterpolateArgs& args) {
 
   // Barriers, samples, interpolant, queries.
   if (!args.barriers.empty()) params.barriers = read_barriers_file(args.barriers, "--barriers");
-  warn_of_another_crs(args.samples, args.barriers);
+  warn_of_another_crs(args.samples, args.barriers, !args.x_column.empty());
   CsvColumns columns{args.x_column, args.y_column, {}};
   for (size_t at = 0; !args.value_columns.empty();) {
     const size_t comma = args.value_columns.find(',', at);

@@ -30,7 +30,7 @@ inline constexpr const char* kPluginSetLimit = "radrecon_plugin_set_limit";
 inline constexpr const char* kPluginAbiEntry = "radrecon_plugin_abi";
 /// The plugins' interface version: raise it whenever a table of functions, or a type they pass
 /// (MeshImport, PictureValues, ScatteredSamples, ...), changes.
-inline constexpr int kPluginAbi = 7;
+inline constexpr int kPluginAbi = 8;
 
 /// The plugin's table of functions, loaded on the first call: from $env if set, else `file`
 /// in the executable's folder, else in ../lib/radrecon/ from it, else beside (or one folder

@@ -118,6 +118,15 @@ with tempfile.TemporaryDirectory() as tmp:
     check(r.returncode == 0 and osr.SpatialReference(wkt=gdal.Open(path("z2193.tif")).GetProjection()).GetAuthorityCode(None) == "2193",
           f"--crs over the layer's: exit {r.returncode}")
 
+    # Points from fields (--x, --y): the layer's CRS is its geometry's, not theirs; none is carried.
+    xyf = layer(path("xyf.gpkg"), [(f"POINT ({15 + 0.001 * i} {49 + 0.001 * j})", {"e": 500000.0 + 100 * i, "n": 5500000.0 + 100 * j,
+                                                                                 "mag": f(i, j)}) for i, j in GRID],
+                [("e", ogr.OFTReal), ("n", ogr.OFTReal), ("mag", ogr.OFTReal)], srs_epsg=4326)
+    r = run("--samples", xyf, "--x", "e", "--y", "n", "--value", "mag", "--method", "linear", "--raster", "8x6",
+            "--domain", domain, "--out", path("xyf.tif"))
+    check(r.returncode == 0 and gdal.Open(path("xyf.tif")).GetProjection() == "",
+          f"--x/--y fields: no CRS carried: exit {r.returncode}, {r.stderr.strip()}")
+
     # A barrier layer in another CRS than the samples': a warning (coordinates are not reprojected).
     wall = layer(path("wall.gpkg"), [("LINESTRING (500250 5499000, 500250 5501000)", {})], [], srs_epsg=4326,
                  geom_type=ogr.wkbLineString)
