@@ -195,6 +195,10 @@ py::array interpolate(const py::object& points_arg, const py::object& values_arg
 /// files), which save() must not overwrite, as the command line refuses to.
 struct PySolution : Solution {
   std::vector<std::string> inputs;
+  /// Read from a file: its statistics as it has them (JSON text; "" for none), handed on as they
+  /// are rather than through SolveStats, whose defaults (0 shots, converged) a file without them
+  /// would seem to hold.
+  std::optional<std::string> file_stats;
 };
 
 /// A surface side of a solution, its elements as arrays.
@@ -379,7 +383,11 @@ Raises radrecon.Error (a ValueError) for refused input.)doc");
   py::class_<PySolution>(m, "Solution", "A solved scene: its statistics and its surface sides' elements as arrays.")
       .def_property_readonly("scene", [](const PySolution& s) { return s.scene; })
       .def_property_readonly("mesh", [](const PySolution& s) { return s.mesh; })
-      .def_property_readonly("stats", [](const PySolution& s) { return stats_dict(s.stats); })
+      .def_property_readonly("stats", [](const PySolution& s) {
+        if (!s.file_stats) return py::object(stats_dict(s.stats));
+        if (s.file_stats->empty()) return py::object(py::dict());
+        return py::module_::import("json").attr("loads")(*s.file_stats);
+      })
       .def_property_readonly("surfaces", [](const PySolution& s) {
         py::list out;
         for (const SurfaceSolution& side : s.surfaces) out.append(surface_dict(side));
@@ -417,7 +425,9 @@ Raises radrecon.Error (a ValueError) for refused input.)doc")
     PySolution out;
     {
       py::gil_scoped_release release;
-      static_cast<Solution&>(out) = read_solution_json(path);
+      std::string stats;
+      static_cast<Solution&>(out) = read_solution_json(path, &stats);
+      out.file_stats = std::move(stats);
     }
     out.inputs.push_back(std::filesystem::absolute(path).string());  // save() must not overwrite it
     return out;

@@ -169,43 +169,7 @@ std::vector<Polyline> polylines(const JsonReader& r, const json& j, const std::s
 
 }  // namespace
 
-/// The solver's statistics as write_solution_json() writes them; each key optional (files of
-/// earlier versions, or written by hand, lack some), each checked for its type and range.
-SolveStats read_stats(const JsonReader& r, const json& js) {
-  if (!js.is_object()) r.fail("stats", "must be an object");
-  SolveStats st;
-  const auto count = [&](const char* key, size_t& out) {
-    if (!js.contains(key)) return;
-    const json& j = js[key];
-    if (!j.is_number_unsigned()) r.fail(JsonReader::join("stats", key), "must be a whole number >= 0");
-    out = j.get<size_t>();
-  };
-  const auto non_negative = [&](const char* key) {
-    const double v = r.number(js[key], JsonReader::join("stats", key));
-    if (v < 0) r.fail(JsonReader::join("stats", key), "must not be negative");
-    return v;
-  };
-  const auto power = [&](const char* key, Rgb& out) {
-    if (!js.contains(key)) return;
-    out = r.vec3(js[key], JsonReader::join("stats", key)).array();
-  };
-  if (js.contains("method")) st.method = r.string(js["method"], "stats.method");
-  count("shots", st.shots);
-  count("elements", st.elements);
-  count("patches", st.patches);
-  count("links", st.links);
-  if (js.contains("epsilon_w")) st.epsilon_w = non_negative("epsilon_w");
-  power("emitted_w", st.emitted_w);
-  power("absorbed_w", st.absorbed_w);
-  power("unshot_w", st.unshot_w);
-  power("escaped_w", st.escaped_w);
-  if (js.contains("residual")) st.residual = non_negative("residual");
-  if (js.contains("converged")) st.converged = r.boolean(js["converged"], "stats.converged");
-  if (js.contains("seconds")) st.seconds = non_negative("seconds");
-  return st;
-}
-
-Solution read_solution_json(const std::filesystem::path& path) {
+Solution read_solution_json(const std::filesystem::path& path, std::string* stats_json) {
   const std::string text = read_text_file(path.string(), "solution file");
   const JsonReader r(path.string());
   // Written by radrecon (tens of MB for a fine mesh), whose writer gives each key once: not
@@ -296,7 +260,7 @@ Solution read_solution_json(const std::filesystem::path& path) {
     }
     sol.surfaces.push_back(std::move(out));
   }
-  if (doc.contains("stats")) sol.stats = read_stats(r, doc["stats"]);
+  if (stats_json != nullptr) *stats_json = doc.contains("stats") ? doc["stats"].dump() : std::string();
   return sol;
 }
 

@@ -9,6 +9,8 @@
 #include <fstream>
 #include <limits>
 
+#include <nlohmann/json.hpp>
+
 #include "core/error.h"
 #include "io/solution_json.h"
 #include "support/temp_dir.h"
@@ -70,47 +72,35 @@ TEST_F(SolutionFiles, WhatIsWrittenReadsBack) {
   EXPECT_NE(text.find("\"converged\": false"), std::string::npos);
 }
 
-TEST_F(SolutionFiles, StatisticsReadBack) {
-  // Read by Python's load_solution(): a loaded solution reported 0 shots and no powers.
+TEST_F(SolutionFiles, StatisticsAreHandedOnAsTheFileHasThem) {
+  // For Python's load_solution(): the file's statistics, as written (they are not read into the
+  // solution: a loaded one reported 0 shots and "converged" for a file without them).
   Solution sol = two_element_grid();
   sol.stats.method = "hierarchical";
-  sol.stats.shots = 0;
-  sol.stats.elements = 2;
-  sol.stats.patches = 3;
   sol.stats.links = 12345;
   sol.stats.epsilon_w = 2.5e-7;
   sol.stats.emitted_w = Rgb(1, 2, 3);
-  sol.stats.absorbed_w = Rgb(0.5, 1.5, 2.5);
-  sol.stats.unshot_w = Rgb(1e-9, 0, 0);
-  sol.stats.escaped_w = Rgb(0.25, 0.125, 0.0625);
   sol.stats.residual = 3e-5;
   sol.stats.converged = false;
-  sol.stats.seconds = 1.5;
   const fs::path path = dir_ / "stats.json";
   write_solution_json(path, sol);
-  const SolveStats back = read_solution_json(path).stats;
-  EXPECT_EQ(back.method, "hierarchical");
-  EXPECT_EQ(back.elements, 2u);
-  EXPECT_EQ(back.patches, 3u);
-  EXPECT_EQ(back.links, 12345u);
-  EXPECT_DOUBLE_EQ(back.epsilon_w, 2.5e-7);
-  EXPECT_EQ(back.emitted_w[2], 3.0);
-  EXPECT_EQ(back.absorbed_w[1], 1.5);
-  EXPECT_EQ(back.unshot_w[0], 1e-9);
-  EXPECT_EQ(back.escaped_w[2], 0.0625);
-  EXPECT_DOUBLE_EQ(back.residual, 3e-5);
-  EXPECT_FALSE(back.converged);
-  EXPECT_EQ(back.seconds, 1.5);
-  // Malformed statistics are refused where they are; absent ones are the defaults.
+  std::string text;
+  read_solution_json(path, &text);
+  const nlohmann::json stats = nlohmann::json::parse(text);
+  EXPECT_EQ(stats["method"], "hierarchical");
+  EXPECT_EQ(stats["links"], 12345);
+  EXPECT_DOUBLE_EQ(stats["epsilon_w"].get<double>(), 2.5e-7);
+  EXPECT_EQ(stats["emitted_w"][2], 3.0);
+  EXPECT_DOUBLE_EQ(stats["residual"].get<double>(), 3e-5);
+  EXPECT_EQ(stats["converged"], false);
+  // Statistics of any shape do not stop a file from being read (render and export never use
+  // them; a tool that rewrote 408 shots as 408.0 made render refuse the file: a review), and a
+  // file without them hands on none.
   const std::string side = R"({"surfaces": [{"name": "a", "length_u_m": 1, "length_v_m": 1, "elements": [{"u0": 0, "v0": 0, "u1": 1, "v1": 1, "center": [0,0,0], "area": 1, "radiosity": [1,1,1]}]}])";
-  EXPECT_EQ(refusal(side + "}"), "");
-  EXPECT_EQ(refusal(side + R"(, "stats": {}})"), "");
-  EXPECT_NE(refusal(side + R"(, "stats": []})").find("stats: must be an object"), std::string::npos);
-  EXPECT_NE(refusal(side + R"(, "stats": {"shots": -1}})").find("stats.shots: must be a whole number >= 0"), std::string::npos);
-  EXPECT_NE(refusal(side + R"(, "stats": {"shots": 2.5}})").find("stats.shots: must be a whole number >= 0"), std::string::npos);
-  EXPECT_NE(refusal(side + R"(, "stats": {"residual": -1}})").find("stats.residual: must not be negative"), std::string::npos);
-  EXPECT_NE(refusal(side + R"(, "stats": {"emitted_w": [1, 2]}})").find("stats.emitted_w"), std::string::npos);
-  EXPECT_NE(refusal(side + R"(, "stats": {"converged": 1}})").find("stats.converged"), std::string::npos);
+  EXPECT_EQ(refusal(side + R"(, "stats": {"shots": 408.0, "residual": -1, "converged": 1}})"), "");
+  EXPECT_EQ(refusal(side + R"(, "stats": []})"), "");
+  read_solution_json(write("none.json", side + "}"), &text);
+  EXPECT_EQ(text, "");
 }
 
 TEST_F(SolutionFiles, NegativeRadiosityIsClampedToZeroAndThenReadsBack) {

@@ -42,12 +42,30 @@ def test_a_loaded_solution_holds_what_was_saved(cornell):
     for a, b in zip(sol.surfaces, back.surfaces):
         np.testing.assert_allclose(b["radiosity"], a["radiosity"], rtol=1e-8, atol=1e-300)
         np.testing.assert_array_equal(b["cell"], a["cell"])
-        np.testing.assert_allclose(b["st"], a["st"], rtol=1e-12)
+        # st: each cell's centroid in (s, t) = (u length_u + v shear, v length_v), computed here
+        # from its (u, v) corners (a triangle's lower half from its right angle at (u0, v0), its
+        # upper from (u1, v1)).
+        u0, v0, u1, v1 = b["cell"].T
+        shape = np.array(b["shape"])
+        u = np.where(shape == "box", (u0 + u1) / 2, np.where(shape == "lower", (2 * u0 + u1) / 3, (u0 + 2 * u1) / 3))
+        v = np.where(shape == "box", (v0 + v1) / 2, np.where(shape == "lower", (2 * v0 + v1) / 3, (v0 + 2 * v1) / 3))
+        expected = np.column_stack([u * b["length_u_m"] + v * b["shear_m"], v * b["length_v_m"]])
+        np.testing.assert_allclose(b["st"], expected, rtol=1e-12, atol=1e-15)
     # A loaded file is an input: save() does not overwrite it.
     before = path.read_bytes()
     with pytest.raises(radrecon.Error, match="is the input file"):
         back.save(path)
     assert path.read_bytes() == before
+
+
+def test_a_loaded_solutions_stats_are_the_files(tmp_path):
+    # As the file has them: none, or some (a file without them seemed to hold 0 shots, converged).
+    two_regions_solution(tmp_path / "plate.json")
+    assert radrecon.load_solution(tmp_path / "plate.json").stats == {}
+    doc = json.loads((tmp_path / "plate.json").read_text())
+    doc["stats"] = {"shots": 408.0, "note": "rewritten by a tool"}
+    (tmp_path / "with.json").write_text(json.dumps(doc))
+    assert radrecon.load_solution(tmp_path / "with.json").stats == {"shots": 408.0, "note": "rewritten by a tool"}
 
 
 def test_load_solution_refusals(tmp_path):
