@@ -118,14 +118,16 @@ InterpolantResult reconstruct_unmasked(const SurfaceSolution& s, Method method, 
   }
   const bool grid = s.grid_nu > 0 && s.grid_nv > 0;
   const bool point_method = method != Method::constant && !is_grid_method(method) && !is_cell_method(method);
-  if (grid && !s.excluded.empty() && point_method)
-    return make_scattered_interpolant(method, outside_regions(grid_cells(s).centres(), s.excluded), params);
+  // Border samples first: a grid side with excluded regions (the Cornell box's floor) went to the
+  // branch below and took none (an outside-in trial).
   if (sampling.border_samples && point_method && !s.triangle) {  // border samples frame a quad's sides
     ScatteredSamples samples = outside_regions(grid ? grid_cells(s).centres() : element_centres(s), s.excluded);
     const Result<size_t> added = add_border_samples(method, samples, Rect{0, 0, s.length_u_m, s.length_v_m}, params);
     if (!added) return Failure{"its border samples: " + added.reason()};
     return make_scattered_interpolant(method, samples, params);
   }
+  if (grid && !s.excluded.empty() && point_method)
+    return make_scattered_interpolant(method, outside_regions(grid_cells(s).centres(), s.excluded), params);
   if (is_cell_method(method) && !s.excluded.empty()) {
     // The cells under excluded regions are holes (NaN): no value there, no influence outside.
     // Every cell centred under one (a coarse quadtree's one ceiling leaf under a lamp): the cells

@@ -207,6 +207,30 @@ def test_a_method_that_takes_no_barriers_says_so(tmp_path):
         sol.reconstruct("plate", queries=[[0.3, 0.5]], method="linear", barriers=False)
 
 
+def test_border_samples_on_a_grid_side_with_an_excluded_region(tmp_path):
+    # A 1 m side of 8 x 8 elements holding 1 + 2 s + 3 t, a block's foot excluded in its middle:
+    # border samples (planes fitted to the samples each sees) carry the linear function out to the
+    # side's border, where without them natural-neighbour takes the hull's nearest point. They
+    # were skipped on grid sides with excluded regions (an outside-in trial).
+    elements = []
+    for j in range(8):
+        for i in range(8):
+            s, t = (i + 0.5) / 8, (j + 0.5) / 8
+            b = 1 + 2 * s + 3 * t
+            elements.append({"u0": i / 8, "v0": j / 8, "u1": (i + 1) / 8, "v1": (j + 1) / 8, "center": [s, t, 0],
+                             "area": 1 / 64, "radiosity": [b, b, b]})
+    doc = {"surfaces": [{"name": "floor", "length_u_m": 1, "length_v_m": 1, "grid": [8, 8], "elements": elements,
+                         "excluded": [[[0.4, 0.4], [0.6, 0.4], [0.6, 0.6], [0.4, 0.6]]]}]}
+    (tmp_path / "floor.json").write_text(json.dumps(doc))
+    sol = radrecon.load_solution(tmp_path / "floor.json")
+    q = np.array([[0.02, 0.5], [0.5, 0.98], [0.97, 0.03], [0.01, 0.99]])
+    f = 1 + 2 * q[:, 0] + 3 * q[:, 1]
+    with_border = sol.reconstruct("floor", queries=q, border_samples=True)[:, 0]
+    np.testing.assert_allclose(with_border, f, rtol=1e-9)
+    without = sol.reconstruct("floor", queries=q)[:, 0]
+    assert np.abs(without - f).max() > 1e-2
+
+
 def test_reconstruct_refusals(cornell):
     sol, _ = cornell
     with pytest.raises(radrecon.Error, match=r"^side: the solution has no side 'flor'; its sides: floor, light"):
