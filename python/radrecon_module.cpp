@@ -306,6 +306,10 @@ py::array reconstruct(const PySolution& sol, const std::string& side_name, const
   } else {
     at = query_points(doubles_of(queries_arg, "queries"), kChannels);
     shape = {static_cast<py::ssize_t>(at.size()), kChannels};
+    // A point outside the outline by rounding (on it, as contains_st() takes it) is asked on it:
+    // a triangle's cells gave it no value (an outside-in trial).
+    for (Vec2& p : at)
+      if (side->contains_st(p)) p = side->onto_side_st(p);
   }
   py::array_t<double> out(shape);
   const std::span<double> values(out.mutable_data(), static_cast<size_t>(out.size()));

@@ -24,6 +24,12 @@ bool SurfaceSolution::contains_st(const Vec2& st) const {
   return triangle ? uv.x() + uv.y() <= 1 + slack : uv.x() <= 1 + slack && uv.y() <= 1 + slack;
 }
 
+Vec2 SurfaceSolution::onto_side_st(const Vec2& st) const {
+  Vec2 uv = frame().uv(st).cwiseMax(Vec2(0, 0)).cwiseMin(Vec2(1, 1));
+  if (triangle && uv.x() + uv.y() > 1) uv -= Vec2::Constant(0.5 * (uv.x() + uv.y() - 1));
+  return frame().st(uv.cwiseMax(Vec2(0, 0)));
+}
+
 NegativeRadiosity clamp_negative_radiosity(Solution& solution) {
   NegativeRadiosity found;
   for (SurfaceSolution& side : solution.surfaces)

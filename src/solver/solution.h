@@ -47,6 +47,10 @@ struct SurfaceSolution {
   /// Whether (s, t), metres, lies on the side: in its outline, or outside it by at most
   /// tol::kOnBorderParameter of its parameters (a point on its border, rounded).
   bool contains_st(const Vec2& st) const;
+  /// The point of the side nearest to (s, t) through its parameters: (u, v) clamped to its
+  /// domain (a triangle's onto its hypotenuse along u = v's normal), for a point contains_st()
+  /// takes that lies outside the outline by rounding.
+  Vec2 onto_side_st(const Vec2& st) const;
 };
 
 /// Solver statistics. Powers are per colour channel, in W.

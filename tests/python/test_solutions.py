@@ -160,6 +160,11 @@ def test_no_value_off_the_side(cornell):
     assert off.any() and on.any()
     assert np.isnan(img[off]).all()
     assert np.isfinite(img[on]).all()
+    # Outside the outline by rounding (1e-10 m, within 1e-9 of the parameters): on it, for every
+    # method (constant, drawing the triangle's cells, gave it none).
+    corner = [[tri["shear_m"], tri["length_v_m"] + 1e-10], [tri["length_u_m"] / 2, -1e-12]]
+    for method in ("constant", "shepard", "natural-neighbour"):
+        assert np.isfinite(sol.reconstruct("red_wall.a", queries=corner, method=method)).all(), method
     # A query beyond a quad's rectangle: no value either.
     wall = side(sol, "back_wall")
     q = np.array([[-0.01, 0.2], [wall["length_u_m"] + 0.01, 0.2], [0.2, wall["length_v_m"] * 1.01], [0.2, 0.2]])
