@@ -8,9 +8,11 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/limits.h"
 #include "core/parse.h"
 #include "core/tolerances.h"
 #include "io/geojson.h"
+#include "io/raster.h"
 
 namespace radrecon::python {
 
@@ -109,8 +111,13 @@ void raise_warnings(const WarningCollector& warnings) {
 }
 
 bool is_path(const py::handle& o) { return py::isinstance<py::str>(o) || py::hasattr(o, "__fspath__"); }
-std::string path_of(const py::handle& o) {
-  return py::module_::import("os").attr("fspath")(o).cast<std::string>();  // a PathLike's bytes: the name's bytes
+std::string path_of(const py::handle& o, const std::string& field) {
+  std::string path = py::module_::import("os").attr("fspath")(o).cast<std::string>();  // a PathLike's bytes: the name's bytes
+  // The system's calls end a name at a NUL: "a.json\0x" would read or write a.json (as Python's
+  // own open() refuses it).
+  if (path.find('\0') != std::string::npos)
+    throw UserError(field, "the file name " + py::repr(o).cast<std::string>() + " holds a NUL character");
+  return path;
 }
 
 std::vector<double> numbers_of(const py::handle& o, size_t count, bool whole, const std::string& field,
@@ -138,6 +145,29 @@ std::vector<double> numbers_of(const py::handle& o, size_t count, bool whole, co
   return out;
 }
 
+std::string text_of(const py::handle& o, const std::string& field, const std::string& expected) {
+  if (!py::isinstance<py::str>(o)) throw UserError(field, expected + ", got " + py::repr(o).cast<std::string>());
+  return o.cast<std::string>();
+}
+
+std::optional<double> optional_number(const py::handle& o, const std::string& field, bool whole) {
+  if (o.is_none()) return std::nullopt;
+  const std::string what = whole ? "a whole number" : "a number";
+  const auto refuse = [&] { throw UserError(field, what + " (or None) is expected, got " + py::repr(o).cast<std::string>()); };
+  if (py::isinstance<py::bool_>(o) || py::isinstance<py::str>(o) || py::isinstance<py::bytes>(o) ||
+      py::isinstance(o, py::module_::import("numpy").attr("bool_")))
+    refuse();
+  PyObject* as_float = PyNumber_Float(o.ptr());
+  if (as_float == nullptr) {
+    PyErr_Clear();
+    refuse();
+  }
+  const double v = PyFloat_AsDouble(as_float);
+  Py_DECREF(as_float);
+  if (whole && !(std::isfinite(v) && v == std::floor(v))) refuse();
+  return v;
+}
+
 bool flag_of(const py::handle& o, const std::string& field) {
   if (PyBool_Check(o.ptr())) return o.ptr() == Py_True;
   if (py::hasattr(o, "dtype") && py::str(o.attr("dtype")).cast<std::string>() == "bool" && py::len(o.attr("shape")) == 0)
@@ -148,7 +178,7 @@ bool flag_of(const py::handle& o, const std::string& field) {
 Barriers barriers_of(const py::object& barriers) {
   if (barriers.is_none()) return {};
   if (is_path(barriers)) {
-    const std::string path = path_of(barriers);
+    const std::string path = path_of(barriers, "barriers");
     // pathlib.Path("") is "." : the working folder read as a vector source, no barriers meant.
     if (path.empty() || path == ".") throw UserError("barriers", "an empty file name (None: no barriers)");
     return read_barriers_file(path, "barriers");
@@ -175,6 +205,38 @@ Barriers barriers_of(const py::object& barriers) {
   Result<Barriers> b = Barriers::from_polylines(lines);
   if (!b) throw UserError("barriers", b.reason());
   return std::move(b).value();
+}
+
+std::optional<std::pair<int, int>> raster_of(const py::object& raster_arg, int channels) {
+  if (raster_arg.is_none()) return std::nullopt;
+  const std::vector<double> r = numbers_of(raster_arg, 2, true, "raster", "(width, height), two whole numbers, is expected");
+  if (r[0] < 1 || r[1] < 1 || r[0] > kMaxRasterSide || r[1] > kMaxRasterSide ||
+      r[0] * r[1] * channels > static_cast<double>(limit_value(Limit::raster_points)))
+    throw UserError("raster", "(" + format_number(r[0]) + ", " + format_number(r[1]) + ") is out of range: 1 <= width, height <= " +
+                                  std::to_string(kMaxRasterSide) + ", at most " + std::to_string(limit_value(Limit::raster_points)) +
+                                  " cells, each counted once for each value column (" + std::to_string(channels) + ")");
+  return std::pair<int, int>(static_cast<int>(r[0]), static_cast<int>(r[1]));
+}
+
+std::vector<Vec2> query_points(const Doubles& queries, int channels) {
+  check_points(queries, "queries");
+  if (static_cast<double>(queries.shape(0)) * channels > static_cast<double>(limit_value(Limit::raster_points)))
+    throw UserError("queries", std::to_string(queries.shape(0)) + " points of " + std::to_string(channels) +
+                                   " value columns are beyond the limit of " + std::to_string(limit_value(Limit::raster_points)) +
+                                   " (a point counts once for each value column)");
+  return as_vec2(queries);
+}
+
+void evaluate_all(const Interpolant& f, const std::optional<Raster>& raster, std::span<const Vec2> points,
+                  std::span<double> out) {
+  const size_t channels = static_cast<size_t>(f.channels());
+  const size_t count = raster ? static_cast<size_t>(raster->width) * static_cast<size_t>(raster->height) : points.size();
+  for (size_t first = 0; first < count; first += kEvaluateBatch) {
+    const size_t batch = std::min(kEvaluateBatch, count - first);
+    const std::span<double> out_batch = out.subspan(first * channels, batch * channels);
+    if (raster) f.evaluate_raster(*raster, first, batch, out_batch);
+    else f.evaluate(points.subspan(first, batch), out_batch);
+  }
 }
 
 }  // namespace radrecon::python

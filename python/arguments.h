@@ -1,17 +1,23 @@
 #pragma once
-// Python arguments as radrecon's values, for the module (radrecon_module.cpp): arrays of any
-// dtype and layout, paths, flags and keyword settings, each refused with a radrecon.Error naming
-// the argument where pybind would raise a TypeError naming none.
+// Python arguments as radrecon's values, for the module (radrecon_module.cpp, solutions.cpp):
+// arrays of any dtype and layout, paths, flags, keyword settings, rasters and query points, each
+// refused with a radrecon.Error naming the argument where pybind would raise a TypeError naming
+// none; and an interpolant evaluated over them.
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <optional>
+#include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/error.h"
 #include "core/vec.h"
 #include "reconstruct/barriers.h"
+#include "reconstruct/interpolant.h"
+#include "reconstruct/samples.h"
 
 namespace radrecon::python {
 
@@ -44,9 +50,10 @@ std::vector<std::string> settings_of(const py::kwargs& params);
 /// The library's warnings collected (core/error.h) as Python UserWarnings; with the GIL held.
 void raise_warnings(const WarningCollector& warnings);
 
-/// Whether `o` is a path: a str or an os.PathLike (pathlib.Path); and its text.
+/// Whether `o` is a path: a str or an os.PathLike (pathlib.Path); and its text, refused (naming
+/// `field`) when it holds a NUL character, at which the system would end it.
 bool is_path(const py::handle& o);
-std::string path_of(const py::handle& o);
+std::string path_of(const py::handle& o, const std::string& field);
 
 /// `o` as a sequence of `count` numbers (a tuple, list or array; not a string), each a whole
 /// number if `whole` (not a bool); UserError naming `field` with what is `expected` otherwise.
@@ -55,6 +62,14 @@ std::string path_of(const py::handle& o);
 std::vector<double> numbers_of(const py::handle& o, size_t count, bool whole, const std::string& field,
                                const std::string& expected);
 
+/// `o` as text: a str (not bytes); UserError naming `field`, with what is `expected`, otherwise
+/// (pybind's own TypeError named no argument).
+std::string text_of(const py::handle& o, const std::string& field, const std::string& expected);
+
+/// `o` as a number, or nullopt for None: a real number (int, float, a NumPy scalar; not a bool or
+/// text), a whole one if `whole`; UserError naming `field` otherwise.
+std::optional<double> optional_number(const py::handle& o, const std::string& field, bool whole = false);
+
 /// `o` as a flag: True or False (a numpy bool too); UserError naming `field` otherwise. pybind's
 /// own TypeError printed every argument, the arrays whole, and named none.
 bool flag_of(const py::handle& o, const std::string& field);
@@ -62,5 +77,19 @@ bool flag_of(const py::handle& o, const std::string& field);
 /// Barriers from a file (GeoJSON, or any OGR line source through GDAL) or a sequence of (k, 2)
 /// polylines.
 Barriers barriers_of(const py::object& barriers);
+
+/// raster=(width, height) as a size, or none; refused (naming "raster") beyond kMaxRasterSide
+/// or, as the command line's limit, beyond Limit::raster_points cells counted once for each of
+/// the `channels` value columns.
+std::optional<std::pair<int, int>> raster_of(const py::object& raster_arg, int channels);
+
+/// queries=(m, 2) as points, refused (naming "queries") as check_points() does or, as the command
+/// line's limit, beyond Limit::raster_points points counted once for each value column.
+std::vector<Vec2> query_points(const Doubles& queries, int channels);
+
+/// The interpolant's values at the raster's cells (row by row, the domain's y0 row first) or at
+/// the points, in batches of kEvaluateBatch, into `out` (channels() values a point). Without the GIL.
+void evaluate_all(const Interpolant& f, const std::optional<Raster>& raster, std::span<const Vec2> points,
+                  std::span<double> out);
 
 }  // namespace radrecon::python

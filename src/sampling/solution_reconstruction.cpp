@@ -189,6 +189,16 @@ InterpolantResult reconstruct_side(const SurfaceSolution& s, Method method, cons
       std::make_unique<OutsideExcluded>(std::move(built).value(), s.excluded, sampling.outline_band_m, nudge_m));
 }
 
+InterpolantResult reconstruct_side_or_constant(const SurfaceSolution& side, Method method, const MethodParams& params,
+                                               const SideSampling& sampling, std::optional<Fallback>& fallback) {
+  fallback.reset();
+  InterpolantResult built = reconstruct_side(side, method, params, sampling);
+  if (built) return built;
+  const auto same = [&](const SolutionElement& e) { return (e.radiosity_w_m2 == side.elements.front().radiosity_w_m2).all(); };
+  fallback = Fallback{side.name, built.reason(), std::all_of(side.elements.begin(), side.elements.end(), same)};
+  return reconstruct_side(side, Method::constant, params, SideSampling{.barriers = false, .outline_band_m = sampling.outline_band_m});
+}
+
 SolutionReconstruction::SolutionReconstruction(const Scene& scene, const Solution& solution, Method method,
                                                const MethodParams& params, const std::string& source,
                                                const SideSampling& sampling) {
@@ -231,15 +241,10 @@ SolutionReconstruction::SolutionReconstruction(const Scene& scene, const Solutio
     s.shear_m = surface.shear_m();
     SideSampling own = sampling;
     own.outline_band_m = surface.frame_bend_m();
-    InterpolantResult built = reconstruct_side(s, method, params, own);
-    if (!built) {
-      const auto same = [&](const SolutionElement& e) {
-        return (e.radiosity_w_m2 == side.elements.front().radiosity_w_m2).all();
-      };
-      fallbacks_.push_back({side.name, built.reason(), std::all_of(side.elements.begin(), side.elements.end(), same)});
-      built = reconstruct_side(s, Method::constant, params, SideSampling{.barriers = false, .outline_band_m = own.outline_band_m});
-      if (!built) throw UserError(source, "surface '" + side.name + "': " + built.reason());
-    }
+    std::optional<Fallback> fallback;
+    InterpolantResult built = reconstruct_side_or_constant(s, method, params, own, fallback);
+    if (!built) throw UserError(source, "surface '" + side.name + "': " + built.reason());
+    if (fallback) fallbacks_.push_back(*fallback);
     sides_[ref->slot()] = std::move(built).value();
   }
 }

@@ -4,6 +4,7 @@
 // the exporters read radiosity from it.
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -52,6 +53,14 @@ struct Fallback {
   /// method would draw, nothing to warn of.
   bool exact = false;
 };
+
+/// reconstruct_side(), or where the method cannot serve the side (too few samples, a grid
+/// method on a triangle), the side piecewise constant without its barriers, as render draws it,
+/// `fallback` then saying why. A Failure only if even that cannot be made.
+InterpolantResult reconstruct_side_or_constant(const SurfaceSolution& side, Method method, const MethodParams& params,
+                                               const SideSampling& sampling, std::optional<Fallback>& fallback);
+
+
 
 class SolutionReconstruction {
  public:

@@ -236,6 +236,27 @@ def test_border_samples_on_a_grid_side_with_an_excluded_region(tmp_path):
     assert np.abs(without - f).max() > 1e-2
 
 
+def test_a_side_the_method_cannot_serve_is_drawn_piecewise_constant_as_render_draws_it(cornell):
+    # A grid method on a triangle's side: piecewise constant, with a warning (it was refused,
+    # and render drew it so; an outside-in trial).
+    sol, _ = cornell
+    q = side(sol, "red_wall.a")["st"][:5]
+    with pytest.warns(UserWarning, match=r"bilinear cannot reconstruct side 'red_wall.a' \(bilinear needs grid data"):
+        got = sol.reconstruct("red_wall.a", queries=q, method="bilinear")
+    np.testing.assert_array_equal(got, sol.reconstruct("red_wall.a", queries=q, method="constant", barriers=False))
+
+
+def test_solve_and_load_refuse_wrong_types_naming_the_argument(tmp_path):
+    # pybind's own TypeError named no argument; a NUL in a file name cut it short in silence.
+    for kwargs, field in [({"residual": "1e-3"}, "residual"), ({"patches": 2.5}, "patches"), ({"patches": True}, "patches"),
+                          ({"mesh": 16}, "mesh"), ({"leaves_on": 3, "mesh": "quadtree:10"}, "leaves_on")]:
+        with pytest.raises(radrecon.Error, match="^" + field + ": "):
+            radrecon.solve("cornell", **({"mesh": "grid:2"} | kwargs))
+    with pytest.raises(radrecon.Error, match=r"^path: the file name .* holds a NUL character"):
+        radrecon.load_solution(str(tmp_path / "a.json") + "\0x")
+    assert radrecon.solve("cornell", "grid:2", residual=np.float64(1e-3), patches=np.int64(2)).stats["patches"] > 0
+
+
 def test_reconstruct_refusals(cornell):
     sol, _ = cornell
     with pytest.raises(radrecon.Error, match=r"^side: the solution has no side 'flor'; its sides: floor, light"):
@@ -244,8 +265,9 @@ def test_reconstruct_refusals(cornell):
         sol.reconstruct("floor")
     with pytest.raises(radrecon.Error, match=r"^queries/raster: give either"):
         sol.reconstruct("floor", queries=[[0.1, 0.1]], raster=(4, 4))
-    with pytest.raises(radrecon.Error, match=r"^method: bilinear cannot reconstruct side 'red_wall.a': bilinear needs grid data"):
-        sol.reconstruct("red_wall.a", raster=(4, 4), method="bilinear")
+    for side in (None, 0, b"floor"):
+        with pytest.raises(radrecon.Error, match=r"^side: a side's name \(str"):
+            sol.reconstruct(side, raster=(4, 4))
     with pytest.raises(radrecon.Error, match=r"^method: "):
         sol.reconstruct("floor", raster=(4, 4), method="kriging")
     with pytest.raises(radrecon.Error, match=r"^border_samples: "):
