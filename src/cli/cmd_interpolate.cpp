@@ -51,13 +51,10 @@ struct InterpolateArgs {
   bool quiet = false;
 };
 
-/// The CRS a vector source declares (GdalFunctions::source_crs()); "" for a table, and for
-/// GeoJSON, which GDAL takes as WGS 84 whatever it holds (RFC 7946), while files of local or
-/// projected coordinates are common.
+/// The CRS a vector source declares (GdalFunctions::source_crs(): not GeoJSON's implicit WGS 84);
+/// "" for a table.
 std::string declared_crs(const std::string& path, const std::string& option) {
-  const std::string ext = lower_extension(path);
-  if (!is_ogr_vector_path(path) || ext == ".geojson" || ext == ".json") return {};
-  return gdal_functions(option).source_crs(path);
+  return is_ogr_vector_path(path) ? gdal_functions(option).source_crs(path) : std::string();
 }
 
 /// Warns when the samples and the barriers, both vector sources, declare different CRSs: their

@@ -3,6 +3,8 @@
 #include "io/gdal_vector.h"
 
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <memory>
 #include <optional>
 #include <string_view>
@@ -12,6 +14,8 @@
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
 #include <ogrsf_frmts.h>
+
+#include <nlohmann/json.hpp>
 
 #include "core/barrier_line.h"
 #include "core/error.h"
@@ -111,11 +115,24 @@ std::unique_ptr<GDALDataset> open_quietly(const std::string& path) {
 
 }  // namespace
 
+/// Whether a GeoJSON file names its CRS (the "crs" member of its top level, as GeoJSON before
+/// RFC 7946 wrote it): without one, GDAL reports WGS 84 whatever the coordinates are.
+bool geojson_names_crs(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const nlohmann::json doc = nlohmann::json::parse(text, nullptr, false);
+  return doc.is_object() && doc.contains("crs") && !doc["crs"].is_null();
+}
+
 std::string ogr_source_crs(const std::string& path) {
   const std::unique_ptr<GDALDataset> data = open_quietly(path);
   if (!data || data->GetLayerCount() < 1) return {};
   const OGRSpatialReference* declared = data->GetLayer(0)->GetSpatialRef();
   if (declared == nullptr) return {};
+  // GeoJSON (RFC 7946: WGS 84 always) says nothing of files of local or projected coordinates,
+  // which are common; only a "crs" member it names counts.
+  const std::string driver = data->GetDriver() != nullptr ? data->GetDriver()->GetDescription() : "";
+  if ((driver == "GeoJSON" && !geojson_names_crs(path)) || driver == "GeoJSONSeq" || driver == "TopoJSON") return {};
   OGRSpatialReference srs(*declared);
   // An EPSG code where the CRS is one (radrecon's own GeoTIFF writer takes those), else its WKT.
   const char* authority = srs.GetAuthorityName(nullptr);

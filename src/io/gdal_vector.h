@@ -35,7 +35,9 @@ std::vector<Vec2> read_queries_ogr(const std::string& path, const CsvColumns& co
 std::vector<Polyline> read_ogr_barriers(const std::string& path);
 
 /// The CRS its first layer declares: "EPSG:CODE" when it is an EPSG one, else its WKT; "" when
-/// it declares none (or GDAL cannot open it: the readers above say why).
+/// it declares none (or GDAL cannot open it: the readers above say why), and for GeoJSON without
+/// a "crs" member, which GDAL reports as WGS 84 whatever its coordinates (RFC 7946), while files
+/// of local or projected coordinates are common.
 std::string ogr_source_crs(const std::string& path);
 
 /// Whether two CRSs (EPSG codes, WKT, PROJ strings) are the same (OGRSpatialReference::IsSame());

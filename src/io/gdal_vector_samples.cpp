@@ -75,25 +75,32 @@ struct ValueSources {
 };
 
 /// The text fields whose every value reads as a number (a CSV's columns through a VRT), and for
-/// the others the first feature whose value does not: "feature 2 holds 'n/a'".
+/// those of which only some do, the first feature whose value does not: "feature 2 holds 'n/a'"
+/// ("" for a field of numbers, and for one of text that holds none).
 std::vector<std::string> text_fields_not_numbers(OgrLayer& src, std::vector<bool>& all_numbers) {
   const int n = src.fields().GetFieldCount();
   all_numbers.assign(static_cast<size_t>(n), false);
   std::vector<std::string> why(static_cast<size_t>(n));
+  std::vector<bool> some_number(static_cast<size_t>(n), false);
   for (int k = 0; k < n; ++k) all_numbers[static_cast<size_t>(k)] = src.text(k);
-  if (std::find(all_numbers.begin(), all_numbers.end(), true) == all_numbers.end()) return why;  // no pass needed
+  const std::vector<bool> text = all_numbers;
+  if (std::find(text.begin(), text.end(), true) == text.end()) return why;  // no pass needed
   src.layer().ResetReading();
   for (std::unique_ptr<OGRFeature> f(src.layer().GetNextFeature()); f; f.reset(src.layer().GetNextFeature()))
     for (int k = 0; k < n; ++k) {
-      if (!all_numbers[static_cast<size_t>(k)]) continue;
+      const size_t i = static_cast<size_t>(k);
+      if (!text[i] || (!all_numbers[i] && some_number[i])) continue;  // decided
       const std::string_view t = trim_blanks(f->IsFieldSetAndNotNull(k) ? f->GetFieldAsString(k) : "");
       double v = 0;
-      if (!f->IsFieldSetAndNotNull(k) || parse_double(t, v) != NumberStatus::ok) {
-        all_numbers[static_cast<size_t>(k)] = false;
-        why[static_cast<size_t>(k)] = "feature " + std::to_string(f->GetFID()) +
-                                      (f->IsFieldSetAndNotNull(k) ? " holds " + in_quotes(t) : " has none");
+      if (f->IsFieldSetAndNotNull(k) && parse_double(t, v) == NumberStatus::ok) {
+        some_number[i] = true;
+      } else if (all_numbers[i]) {
+        all_numbers[i] = false;
+        why[i] = "feature " + std::to_string(f->GetFID()) + (f->IsFieldSetAndNotNull(k) ? " holds " + in_quotes(t) : " has none");
       }
     }
+  for (int k = 0; k < n; ++k)
+    if (!some_number[static_cast<size_t>(k)]) why[static_cast<size_t>(k)].clear();  // text, not numbers
   return why;
 }
 
@@ -102,6 +109,27 @@ bool points_have_z(OgrLayer& src) {
   src.layer().ResetReading();
   const std::unique_ptr<OGRFeature> f(src.layer().GetNextFeature());
   return f && f->GetGeometryRef() != nullptr && f->GetGeometryRef()->Is3D();
+}
+
+/// The one z every point of the layer's Point and MultiPoint geometries has, if they all have the
+/// same (a PointZ shapefile of z = 0, as exporters write them); nullopt otherwise.
+std::optional<double> one_z(OgrLayer& src) {
+  std::optional<double> z;
+  bool same = true;
+  const auto see = [&](const OGRPoint& p) {
+    if (!p.Is3D()) same = false;
+    else if (!z) z = p.getZ();
+    else same = same && p.getZ() == *z;
+  };
+  src.layer().ResetReading();
+  for (std::unique_ptr<OGRFeature> f(src.layer().GetNextFeature()); f && same; f.reset(src.layer().GetNextFeature())) {
+    const OGRGeometry* g = f->GetGeometryRef();
+    const OGRwkbGeometryType type = g ? wkbFlatten(g->getGeometryType()) : wkbUnknown;
+    if (type == wkbPoint) see(*g->toPoint());
+    else if (type == wkbMultiPoint)
+      for (const OGRPoint* p : *g->toMultiPoint()) see(*p);
+  }
+  return same ? z : std::nullopt;
 }
 
 /// The values' sources, by --value, or by default (docs/interpolate.md, "Vector sources").
@@ -125,37 +153,39 @@ ValueSources value_sources(OgrLayer& src, const CsvColumns& columns, std::vector
     names.push_back(src.name(out.fields.back()));
   }
   if (!columns.values.empty()) return out;
-  // As gdal_grid: the points' z when they have one.
-  std::string fields_left;  // numeric fields not interpolated, for a note
+  // As gdal_grid: the points' z when they have one; unless every point has the same z and the
+  // layer has numeric fields (a PointZ shapefile of z = 0 beside its depths: a flat raster).
   std::vector<bool> all_numbers;
   const std::vector<std::string> why_not = text_fields_not_numbers(src, all_numbers);
   std::vector<std::string> left_out[3];  // coordinates' names, the features' numbers, Booleans
+  std::vector<int> fields;                // the numeric fields that would be interpolated
   for (int k = 0; k < n; ++k) {
     const std::string name = src.name(k), lower = ascii_lower(name);
     if (!(src.numeric(k) || all_numbers[static_cast<size_t>(k)]) || lower == ascii_lower(columns.x) ||
         lower == ascii_lower(columns.y))
       continue;
-    if (z) {
-      fields_left += (fields_left.empty() ? "" : ", ") + name;
-    } else if (columns.x.empty() ? names_a_coordinate(lower) : repeats_a_coordinate_name(lower)) {
-      left_out[0].push_back(name);
-    } else if (numbers_features(lower)) {
-      left_out[1].push_back(name);
-    } else if (src.boolean(k)) {
-      left_out[2].push_back(name);
-    } else {
-      out.fields.push_back(k);
-      names.push_back(name);
-    }
+    if (columns.x.empty() ? names_a_coordinate(lower) : repeats_a_coordinate_name(lower)) left_out[0].push_back(name);
+    else if (numbers_features(lower)) left_out[1].push_back(name);
+    else if (src.boolean(k)) left_out[2].push_back(name);
+    else fields.push_back(k);
   }
+  std::string field_names;
+  for (const int k : fields) field_names += (field_names.empty() ? "" : ", ") + src.name(k);
   if (z) {
-    out.z = true;
-    names.push_back("z");
-    if (!fields_left.empty())
-      warn(src.path() + ": the values are the points' z (as gdal_grid takes them); the numeric fields " + fields_left +
-           " are not interpolated (--value names the fields to interpolate)");
-    return out;
+    const std::optional<double> flat = fields.empty() ? std::nullopt : one_z(src);
+    if (!flat) {
+      out.z = true;
+      names.push_back("z");
+      if (!fields.empty())
+        warn(src.path() + ": the values are the points' z (as gdal_grid takes them); the numeric fields " + field_names +
+             " are not interpolated (--value names the fields to interpolate)");
+      return out;
+    }
+    warn(src.path() + ": every point's z is " + format_number(*flat) + ": the numeric fields " + field_names +
+         " are interpolated instead (--value z names the z)");
   }
+  out.fields = fields;
+  for (const int k : fields) names.push_back(src.name(k));
   const auto list = [](const std::vector<std::string>& names) {
     std::string s;
     for (const std::string& n : names) s += (s.empty() ? "" : ", ") + n;
@@ -174,6 +204,13 @@ ValueSources value_sources(OgrLayer& src, const CsvColumns& columns, std::vector
                      : std::string()) +
              " (--value names the fields to interpolate)");
       }
+  // A field of text that holds numbers but in some features: not interpolated, said so (it was
+  // left out in silence beside the numeric fields).
+  if (!out.fields.empty())
+    for (int k = 0; k < n; ++k)
+      if (!why_not[static_cast<size_t>(k)].empty())
+        warn(src.path() + ": the text field " + src.name(k) + " is not interpolated: " + why_not[static_cast<size_t>(k)] +
+             ", not a number (--value " + src.name(k) + " names it, and then refuses that feature)");
   if (out.fields.empty()) {
     std::string found;  // the fields there are, with their types (a number written as a string is text)
     for (int k = 0; k < n; ++k) {
@@ -209,18 +246,14 @@ ScatteredSamples read_samples_ogr(const std::string& path, std::vector<std::stri
                                         format_number(tol::kMaxSampleValue));
     return v;
   };
-  double lowest_z = std::numeric_limits<double>::infinity(), highest_z = -lowest_z;
   for_each_point(src, columns, [&](const OGRFeature& f, const FeaturePoint& q) {
     s.points.push_back(q.p);
     for (const int k : sources.fields) s.values.push_back(check(f, "field " + src.name(k), src.number(f, k)));
     if (sources.z) {
       if (!std::isfinite(q.z)) throw UserError(src.where(f), "its point has no z (or not a finite one); --value names a field instead");
       s.values.push_back(check(f, "its z", q.z));
-      lowest_z = std::min(lowest_z, q.z), highest_z = std::max(highest_z, q.z);
     }
   });
-  if (sources.z && columns.values.empty() && lowest_z == highest_z && src.fields().GetFieldCount() > 0)
-    warn(path + ": every point's z is " + format_number(lowest_z) + ": the raster is flat (--value names a field to interpolate instead)");
   if (value_names) *value_names = names;
   return s;
 }

@@ -118,6 +118,22 @@ with tempfile.TemporaryDirectory() as tmp:
     check(r.returncode == 0 and osr.SpatialReference(wkt=gdal.Open(path("z2193.tif")).GetProjection()).GetAuthorityCode(None) == "2193",
           f"--crs over the layer's: exit {r.returncode}")
 
+    # Every z the same (a PointZ shapefile of z = 0, as exporters write them) beside a numeric field:
+    # the field is interpolated, with a warning (the z made a flat raster: a review).
+    flat = layer(path("flat.gpkg"), [(f"POINT Z ({i} {j} 0)", {"depth": f(i, j)}) for i, j in GRID],
+                 [("depth", ogr.OFTReal)], geom_type=ogr.wkbPoint25D)
+    r = run("--samples", flat, "--method", "linear", "--raster", "8x6", "--domain", "0,0,4,3", "--out", path("flat.csv"))
+    check(r.returncode == 0 and "every point's z is 0: the numeric fields depth are interpolated instead" in r.stderr,
+          f"flat z: exit {r.returncode}, {r.stderr.strip()}")
+    if r.returncode == 0:
+        exact(path("flat.csv"), f, "flat z: depth")
+    # A text field of numbers but in one feature, beside a numeric field: said not to be interpolated.
+    both = layer(path("both.gpkg"), [(f"POINT ({i} {j})", {"mag": f(i, j), "depth": "n/a" if (i, j) == (1, 1) else "3"})
+                                     for i, j in GRID], [("mag", ogr.OFTReal), ("depth", ogr.OFTString)])
+    r = run("--samples", both, "--method", "linear", "--raster", "8x6", "--domain", "0,0,4,3", "--out", path("both.csv"))
+    check(r.returncode == 0 and "the text field depth is not interpolated: feature" in r.stderr,
+          f"a text field of numbers but one: exit {r.returncode}, {r.stderr.strip()}")
+
     # Points from fields (--x, --y): the layer's CRS is its geometry's, not theirs; none is carried.
     xyf = layer(path("xyf.gpkg"), [(f"POINT ({15 + 0.001 * i} {49 + 0.001 * j})", {"e": 500000.0 + 100 * i, "n": 5500000.0 + 100 * j,
                                                                                  "mag": f(i, j)}) for i, j in GRID],
@@ -126,6 +142,18 @@ with tempfile.TemporaryDirectory() as tmp:
             "--domain", domain, "--out", path("xyf.tif"))
     check(r.returncode == 0 and gdal.Open(path("xyf.tif")).GetProjection() == "",
           f"--x/--y fields: no CRS carried: exit {r.returncode}, {r.stderr.strip()}")
+
+    # GeoJSON: a "crs" member it names is carried; without one (GDAL's implicit WGS 84), none.
+    for name, crs_member, want in [("named.geojson", ', "crs": {"type": "name", "properties": {"name": "urn:ogc:def:crs:EPSG::32633"}}', "32633"),
+                                   ("plain.geojson", "", None)]:
+        features = ", ".join(f'{{"type": "Feature", "properties": {{"mag": {f(i, j)!r}}}, "geometry": {{"type": "Point", '
+                             f'"coordinates": [{500000 + 100 * i}, {5500000 + 100 * j}]}}}}' for i, j in GRID)
+        with open(path(name), "w") as out:
+            out.write('{"type": "FeatureCollection"' + crs_member + ', "features": [' + features + "]}")
+        tif = path(name + ".tif")
+        r = run("--samples", path(name), "--method", "linear", "--raster", "8x6", "--domain", domain, "--out", tif)
+        got = osr.SpatialReference(wkt=gdal.Open(tif).GetProjection()).GetAuthorityCode(None) if r.returncode == 0 else "failed"
+        check(got == want, f"{name}: CRS {got}, expected {want} ({r.stderr.strip()})")
 
     # A barrier layer in another CRS than the samples': a warning (coordinates are not reprojected).
     wall = layer(path("wall.gpkg"), [("LINESTRING (500250 5499000, 500250 5501000)", {})], [], srs_epsg=4326,
