@@ -113,11 +113,7 @@ py::array interpolate(const py::object& points_arg, const py::object& values_arg
     at = query_points(*queries, samples.channels);
     shape = {static_cast<py::ssize_t>(at.size())};
   }
-  if (raster && !border_samples)  // as the command line warns
-    if (const std::string apart = domain_apart(grid.domain, samples); !apart.empty()) {
-      const std::string message = apart + ": every value there is extrapolated, or none (outside='none')";
-      if (PyErr_WarnEx(PyExc_UserWarning, message.c_str(), 1) != 0) throw py::error_already_set();
-    }
+  if (raster && !border_samples) warn_if_domain_apart(grid.domain, samples);  // raised with the others below
   // The border's rectangle holds the domain (checked above) and every sample (as --border-samples).
   std::optional<Rect> border_domain;
   if (domain) border_domain = Rect{(*domain)[0], (*domain)[1], (*domain)[2], (*domain)[3]};

@@ -96,7 +96,7 @@ void run_export(const ExportArgs& args) {
   refuse_overwriting_inputs(args.out, "--out", scene_files);
   if (!args.exr.empty()) refuse_overwriting_inputs(args.exr, "--exr", scene_files);
   const Scene scene = load_scene(scene_spec);
-  const auto recon = noting_the_solutions_scene(scene, solution, scene_spec, [&] {
+  const auto recon = noting_the_solutions_scene(scene, solution, scene_spec, !args.scene.empty(), [&] {
     return reconstruct_solution(scene, solution, args.solution, args.method, args.params, args.no_barriers,
                                 args.border_samples);
   });

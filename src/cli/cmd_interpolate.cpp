@@ -182,10 +182,7 @@ void run_interpolate(const InterpolateArgs& args) {
   }
   // A raster apart from every sample (another unit or CRS, swapped columns): said so (with border
   // samples, add_border_samples() says it with their count).
-  if (use_raster && !args.border_samples)
-    if (const std::string apart = domain_apart(raster.domain, samples); !apart.empty())
-      std::fprintf(stderr, "radrecon: warning: %s: every value there is extrapolated, or none (outside=none)\n",
-                   apart.c_str());
+  if (use_raster && !args.border_samples) warn_if_domain_apart(raster.domain, samples);
   size_t border_samples = 0;
   if (args.border_samples) {
     // On the rectangle holding --domain (the raster's) and every sample.

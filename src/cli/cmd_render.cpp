@@ -146,14 +146,14 @@ void run_render(const RenderArgs& args) {
   const std::string scene_spec = scene_of(args.scene, solution);
   refuse_overwriting_inputs(args.out, "--out", scene_input_files(scene_spec));
   const Scene scene = load_scene(scene_spec);
-  const Camera* camera = noting_the_solutions_scene(scene, solution, scene_spec, [&] {
+  const Camera* camera = noting_the_solutions_scene(scene, solution, scene_spec, !args.scene.empty(), [&] {
     for (const Camera& c : scene.cameras)
       if (c.name == args.camera) return &c;
     std::string names;
     for (const Camera& c : scene.cameras) names += (names.empty() ? "" : ", ") + c.name;
     throw UserError("--camera", "the scene has no camera '" + args.camera + "' (cameras: " + (names.empty() ? "none" : names) + ")");
   });
-  const std::unique_ptr<SolutionReconstruction> recon_ptr = noting_the_solutions_scene(scene, solution, scene_spec, [&] {
+  const std::unique_ptr<SolutionReconstruction> recon_ptr = noting_the_solutions_scene(scene, solution, scene_spec, !args.scene.empty(), [&] {
     return reconstruct_solution(scene, solution, args.solution, args.method, args.params, args.no_barriers,
                                 args.border_samples);
   });

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "io/scene_json.h"
 #include "sampling/solution_reconstruction.h"
 
 namespace radrecon::cli {
@@ -29,11 +30,18 @@ std::unique_ptr<SolutionReconstruction> reconstruct_solution(const Scene& scene,
 /// while `solution` records another scene's name than `scene`'s, adds that to the refusal: a
 /// solution of a model rendered with --scene left at its default read "the scene's side 'ground'
 /// is not in the solution ... solve the scene again".
+/// `scene_given`: whether --scene was given; when it was not and the solution's scene name chose
+/// a built-in scene (scene_of()), a refusal says so: a scene file of the same name ("cornell")
+/// was drawn as the built-in one.
 template <class Step>
-auto noting_the_solutions_scene(const Scene& scene, const Solution& solution, const std::string& scene_option, Step&& step) {
+auto noting_the_solutions_scene(const Scene& scene, const Solution& solution, const std::string& scene_option,
+                                bool scene_given, Step&& step) {
   try {
     return step();
   } catch (const UserError& e) {
+    if (!scene_given && is_builtin_scene(scene_option) && solution.scene == scene_option)
+      throw UserError(std::string(e.what()) + " (--scene was not given, so the built-in scene '" + scene_option +
+                      "', after the solution's scene name, was used: give --scene the file it was solved from)");
     if (solution.scene.empty() || solution.scene == scene.name) throw;
     throw UserError(std::string(e.what()) + " (the solution was solved from scene '" + solution.scene +
                     "', and --scene " + scene_option + " is scene '" + scene.name +

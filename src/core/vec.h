@@ -22,6 +22,14 @@ using Polyline = std::vector<Vec2>;
 /// (0, a, b), positive when b lies counter-clockwise of a.
 inline double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
+/// Twice the signed area of the closed polygon `p` (its last point joined back to its first),
+/// positive when it runs counter-clockwise.
+inline double twice_signed_area(const Polyline& p) {
+  double a = 0;
+  for (size_t i = 0, j = p.size() - 1; i < p.size(); j = i++) a += cross(p[j], p[i]);
+  return p.empty() ? 0.0 : a;
+}
+
 /// The parameter t in [0, 1] of the point a + t (b - a) of the segment [a, b] nearest to q (q's
 /// projection onto the segment's line, clamped to its ends); 0 when a = b.
 inline double nearest_on_segment_t(const Vec2& q, const Vec2& a, const Vec2& b) {

@@ -8,6 +8,7 @@
 #include <cstdio>
 
 #include "core/check.h"
+#include "core/error.h"
 #include "core/parse.h"
 #include "core/tolerances.h"
 
@@ -205,6 +206,11 @@ std::string domain_apart(const Rect& domain, const ScatteredSamples& samples) {
   const Rect box = bounding_box(samples);
   if (!(domain.x0 > box.x1 || domain.x1 < box.x0 || domain.y0 > box.y1 || domain.y1 < box.y0)) return {};
   return "the domain " + rect_text(domain) + " does not meet the samples' bounding box " + rect_text(box);
+}
+
+void warn_if_domain_apart(const Rect& domain, const ScatteredSamples& samples) {
+  if (const std::string apart = domain_apart(domain, samples); !apart.empty())
+    warn(apart + ": every value there is extrapolated, or none (outside=none)");
 }
 
 }  // namespace radrecon

@@ -41,6 +41,11 @@ Rect bounding_box(const ScatteredSamples& samples);
 /// "" when it does, or when there are no samples.
 std::string domain_apart(const Rect& domain, const ScatteredSamples& samples);
 
+/// Warns (core/error.h warn()) when a raster's domain does not meet the samples' bounding box
+/// (domain_apart()): every value there is extrapolated, or none. Without border samples, which
+/// say it themselves with their count (add_border_samples()).
+void warn_if_domain_apart(const Rect& domain, const ScatteredSamples& samples);
+
 /// The samples as the nodes of a regular grid, if they are one: the distinct x values (values
 /// within the x tolerance of each other count as one) are nx >= 2 equally spaced values,
 /// each within the x tolerance from x0 + i (x1 - x0) / (nx - 1); the same for y; and every

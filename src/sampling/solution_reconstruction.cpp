@@ -26,9 +26,7 @@ class OutsideExcluded final : public Interpolant {
       : inner_(std::move(inner)), regions_(std::move(regions)), band_m_(band_m), nudge_m_(nudge_m) {
     // Each ring's orientation, once: its outside lies right of an edge of a counter-clockwise one.
     for (const Polyline& r : regions_) {
-      double twice_area = 0;
-      for (size_t i = 0; i < r.size(); ++i) twice_area += cross(r[i], r[(i + 1) % r.size()]);
-      counter_clockwise_.push_back(twice_area > 0);
+      counter_clockwise_.push_back(twice_signed_area(r) > 0);
     }
   }
   int channels() const override { return inner_->channels(); }

@@ -88,12 +88,6 @@ std::vector<Vec3> clip_polygon_to_quad(const Surface& quad, std::vector<Vec3> po
   return poly;
 }
 
-/// Twice the signed area of a closed polygon (positive counter-clockwise).
-double twice_signed_area(const Polyline& p) {
-  double a = 0;
-  for (size_t i = 0; i < p.size(); ++i) a += cross(p[i], p[(i + 1) % p.size()]);
-  return a;
-}
 
 bool lexicographically_less(const Vec2& a, const Vec2& b) { return std::tie(a.x(), a.y()) < std::tie(b.x(), b.y()); }
 

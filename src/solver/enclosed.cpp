@@ -24,12 +24,6 @@ struct StBox {
   bool overlaps(const StBox& o) const { return (lo.array() < o.hi.array()).all() && (o.lo.array() < hi.array()).all(); }
 };
 
-/// Twice the signed area of a polygon (counter-clockwise positive).
-double twice_signed_area(const std::vector<Vec2>& p) {
-  double a = 0;
-  for (size_t i = 0, j = p.size() - 1; i < p.size(); j = i++) a += cross(p[j], p[i]);
-  return a;
-}
 
 }  // namespace
 

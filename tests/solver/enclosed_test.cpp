@@ -26,11 +26,11 @@ TEST(Enclosed, OverlapAreaOfANonConvexRegionAgreesWithItsClosedForm) {
   const Polyline l = {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
   const std::vector<Vec2> square = {{0.5, 0.5}, {1.5, 0.5}, {1.5, 1.5}, {0.5, 1.5}};
   EXPECT_NEAR(overlap_area(l, square), 0.75, 1e-15);
-  // Holding the square, apart from it, and a triangle cut by the L's notch.
+  // A square inside the L, and one apart from it.
   EXPECT_NEAR(overlap_area(l, {{0.1, 0.1}, {0.6, 0.1}, {0.6, 0.6}, {0.1, 0.6}}), 0.25, 1e-15);
   EXPECT_EQ(overlap_area(l, {{3, 3}, {4, 3}, {4, 4}, {3, 4}}), 0.0);
-  // The triangle (0.5, 0.5), (1.5, 0.5), (0.5, 1.5): all in the L but the corner [1, 1.5] x [1, ...]
-  // beyond the hypotenuse, which misses [1, 2]^2 (x + y <= 2 touches it at (1, 1) only).
+  // The triangle (0.5, 0.5), (1.5, 0.5), (0.5, 1.5): wholly in the L, its hypotenuse x + y = 2
+  // touching the notch [1, 2]^2 at (1, 1) only.
   EXPECT_NEAR(overlap_area(l, {{0.5, 0.5}, {1.5, 0.5}, {0.5, 1.5}}), 0.5, 1e-15);
 }
 
