@@ -185,15 +185,19 @@ TEST(EmitterTie, ALightInTheCeilingsPlaneIsHitWhicheverIsListedFirst) {
   }
 }
 
+/// A scene of the surfaces `a` and `b` (JSON objects), in that order or the other, then `rest`
+/// (more surfaces and the cameras, JSON text after them).
+Scene in_either_order(const std::string& a, const std::string& b, bool a_first, const std::string& rest) {
+  return parse_scene_json(R"({"name": "tie", "surfaces": [)" + (a_first ? a + ", " + b : b + ", " + a) + rest, "tie.json");
+}
+
 TEST(EmitterTie, OfTwoOneSidedFacesBackToBackTheOneFacingTheRayIsSeenWhicheverIsListedFirst) {
   // A plate of no thickness: a top facing +z and a bottom facing -z in one plane. The first
   // listed was hit from both sides, its back drawn black from one (an outside-in trial).
   const std::string top = R"({"name": "top", "corners": [[1,1,1], [2,1,1], [2,2,1], [1,2,1]], "reflectance": 0.6})";
   const std::string bottom = R"({"name": "bottom", "corners": [[1,1,1], [1,2,1], [2,2,1], [2,1,1]], "reflectance": 0.6})";
   for (const bool top_first : {true, false}) {
-    const Scene scene = parse_scene_json(R"({"name": "plate", "surfaces": [)" + (top_first ? top + ", " + bottom : bottom + ", " + top) +
-                                             R"(, {"name": "lamp", "corners": [[5,5,5], [5,6,5], [6,6,5], [6,5,5]], "reflectance": 0, "emission": 1}], "cameras": [{"name": "c", "eye": [0,0,3], "target": [1.5,1.5,1], "up": [0,0,1], "fov_deg": 60}]})",
-                                         "plate.json");
+    const Scene scene = in_either_order(top, bottom, top_first, R"(, {"name": "lamp", "corners": [[5,5,5], [5,6,5], [6,6,5], [6,5,5]], "reflectance": 0, "emission": 1}], "cameras": [{"name": "c", "eye": [0,0,3], "target": [1.5,1.5,1], "up": [0,0,1], "fov_deg": 60}]})");
     const size_t top_index = top_first ? 0 : 1;
     for (const Vec3& target : {Vec3(1.5, 1.5, 1), Vec3(1.1, 1.9, 1), Vec3(1.93, 1.02, 1)}) {
       const Vec3 above(1.3, 1.6, 3), below(1.7, 1.4, -2);
@@ -214,9 +218,7 @@ TEST(EmitterTie, ARugLyingOnAFloorIsSeenWhicheverIsListedFirst) {
   const std::string floor = R"({"name": "floor", "corners": [[0,0,0], [4,0,0], [4,4,0], [0,4,0]], "reflectance": 0.5})";
   const std::string rug = R"({"name": "rug", "corners": [[1,1,0], [2,1,0], [2,2,0], [1,2,0]], "reflectance": 0.2})";
   for (const bool floor_first : {true, false}) {
-    const Scene scene = parse_scene_json(R"({"name": "room", "surfaces": [)" + (floor_first ? floor + ", " + rug : rug + ", " + floor) +
-                                             R"(, {"name": "lamp", "corners": [[0,0,3], [0,4,3], [4,4,3], [4,0,3]], "reflectance": 0, "emission": 1}], "cameras": [{"name": "c", "eye": [2,2,2], "target": [1.5,1.5,0], "up": [0,1,0], "fov_deg": 60}]})",
-                                         "room.json");
+    const Scene scene = in_either_order(floor, rug, floor_first, R"(, {"name": "lamp", "corners": [[0,0,3], [0,4,3], [4,4,3], [4,0,3]], "reflectance": 0, "emission": 1}], "cameras": [{"name": "c", "eye": [2,2,2], "target": [1.5,1.5,0], "up": [0,1,0], "fov_deg": 60}]})");
     const size_t rug_index = floor_first ? 1 : 0;
     const Vec3 above(1.3, 1.6, 2);
     for (const Vec3& target : {Vec3(1.5, 1.5, 0), Vec3(1.1, 1.9, 0), Vec3(1.93, 1.02, 0)}) {

@@ -54,12 +54,24 @@ Scene room_with_a_box() {
   return scene;
 }
 
+/// The room's mesh at grid:N (N elements along the floor's edge), its floor's index and the
+/// elements enclosed_elements() finds.
+struct FloorFound {
+  Mesh mesh;
+  size_t floor = 0;
+  std::vector<EnclosedElement> found;
+};
+FloorFound floor_enclosed(const Scene& scene, int divisions) {
+  FloorFound out{make_grid_mesh(scene, {divisions}), 0, {}};
+  out.floor = *out.mesh.find("floor");
+  EXPECT_EQ(out.mesh.surfaces[out.floor].nu, divisions);
+  out.found = enclosed_elements(scene, out.mesh, ContactFinder(scene));
+  return out;
+}
+
 TEST(Enclosed, ElementsAcrossABoxsFootKeepTheirExposedFractionAndGatherOutsideIt) {
   const Scene scene = room_with_a_box();
-  const Mesh mesh = make_grid_mesh(scene, {4});
-  const size_t floor = *mesh.find("floor");
-  ASSERT_EQ(mesh.surfaces[floor].nu, 4);
-  const std::vector<EnclosedElement> found = enclosed_elements(scene, mesh, ContactFinder(scene));
+  const auto [mesh, floor, found] = floor_enclosed(scene, 4);
   // Every element of the floor's inner 2 x 2 meets [0.3, 0.7]^2 in a 0.2 x 0.2 square of its
   // 0.25 x 0.25: 0.36 of it exposed; no other element (of any side) meets an enclosed region.
   ASSERT_EQ(found.size(), 4u);
@@ -82,10 +94,7 @@ TEST(Enclosed, ElementsThatOnlyTouchABoxsFootAreWholeAndGatherWhereTheyWould) {
   // rounding (3e-17 m^2), moved their gathering points, and took radiosities 2.6% off their
   // mirror images' (a review).
   const Scene scene = room_with_a_box();
-  const Mesh mesh = make_grid_mesh(scene, {10});
-  const size_t floor = *mesh.find("floor");
-  ASSERT_EQ(mesh.surfaces[floor].nu, 10);
-  const std::vector<EnclosedElement> found = enclosed_elements(scene, mesh, ContactFinder(scene));
+  const auto [mesh, floor, found] = floor_enclosed(scene, 10);
   EXPECT_EQ(found.size(), 16u);
   for (const EnclosedElement& x : found) {
     const MeshElement& e = mesh.surfaces[floor].elements[x.element];
