@@ -2,7 +2,8 @@
 """interpolate's samples from OGR vector sources as a gdal_grid user brings them (an outside-in
 trial's findings): a CSV's columns through a VRT (text to OGR), the points' z as the values,
 MultiPoints, a shapefile's FID and Boolean fields left out, the layer's CRS carried to the
-GeoTIFF, a barrier layer in another CRS, an empty layer. Values are checked against the closed
+GeoTIFF, a barrier layer in another CRS, an empty layer, the bands named after their value
+columns. Values are checked against the closed
 form of a linear function, which `linear` reproduces exactly inside the samples' hull.
 
 Usage: gdal_vector_check.py /path/to/radrecon   (exit 77: python3-gdal or gdalinfo missing)
@@ -12,7 +13,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from gdal_check_support import check, f, finish, gdal, osr, run  # noqa: E402
+from gdal_check_support import check, f, finish, gdal, osr, run, write_samples  # noqa: E402
 from osgeo import ogr  # noqa: E402
 
 
@@ -206,5 +207,15 @@ with tempfile.TemporaryDirectory() as tmp:
     check(r.returncode == 0, f"lat,lon: exit {r.returncode}, {r.stderr.strip()}")
     if r.returncode == 0:
         exact(path("ll_out.csv"), f, "lat,lon columns")
+
+    # Each band named after its value column (they had no description: an outside-in trial), by
+    # radrecon's own GeoTIFF writer (no CRS) and by GDAL's (a PROJ string; ERDAS .img).
+    samples = write_samples(tmp)
+    for name, extra in [("both.tif", []), ("both_proj.tif", ["--crs", "+proj=utm +zone=33 +datum=WGS84"]), ("both.img", [])]:
+        out = os.path.join(tmp, name)
+        r = run("--samples", samples, "--method", "linear", "--raster", "5x4", "--domain", "0,0,4,3", *extra, "--out", out)
+        opened = gdal.Open(out) if r.returncode == 0 else None  # held: its bands die with it
+        names = [opened.GetRasterBand(b).GetDescription() for b in (1, 2)] if opened else None
+        check(names == ["mag", "depth"], f"{name}: band descriptions {names} ({r.stderr.strip()})")
 
 finish()
