@@ -226,7 +226,9 @@ void bind_solutions(py::module_& m) {
 side: its name ("floor", "wall1/front"). Either queries: (m, 2) points of the side's (s, t) frame,
 metres, giving (m, 3) W/m^2; or raster=(width, height) over the bounding box of its outline
 (surfaces[i]["outline"]), giving (height, width, 3), row 0 at the lowest t. NaN off the side
-and in its excluded regions. method: any of methods() (the grid methods on grid sides only).
+and in its excluded regions. method: any of methods(); a side the method cannot serve (a grid
+method on a triangle's side, too few samples) is drawn piecewise constant, as render draws it,
+with a UserWarning.
 barriers: honour the side's barriers (as render without --no-barriers); border_samples: as
 render --border-samples. Further keywords are the method's parameters as in --param.
 Raises radrecon.Error (a ValueError) for refused input.)doc")
