@@ -84,11 +84,17 @@ bool EnclosedRegions::encloses(const Vec2& uv) const {
 }
 
 std::vector<EnclosedElement> enclosed_elements(const Scene& scene, const Mesh& mesh, const ContactFinder& contacts) {
+  std::vector<SideContactSet> by_side;
+  for (const MeshSurface& side : mesh.surfaces) by_side.push_back(contacts.at(SideRef{side.scene_surface, side.back_side}));
+  return enclosed_elements(scene, mesh, by_side);
+}
+
+std::vector<EnclosedElement> enclosed_elements(const Scene& scene, const Mesh& mesh,
+                                               std::span<const SideContactSet> contacts_by_side) {
   std::vector<EnclosedElement> out;
   for (size_t s = 0; s < mesh.surfaces.size(); ++s) {
     const MeshSurface& side = mesh.surfaces[s];
-    const EnclosedRegions regions(contacts.at(SideRef{side.scene_surface, side.back_side}),
-                                  scene.surfaces[side.scene_surface].frame());
+    const EnclosedRegions regions(contacts_by_side[s], scene.surfaces[side.scene_surface].frame());
     if (regions.empty()) continue;
     for (size_t e = 0; e < side.elements.size(); ++e) {
       const MeshElement& element = side.elements[e];

@@ -9,6 +9,7 @@
 // parts").
 
 #include <cstddef>
+#include <span>
 #include <vector>
 
 #include "core/vec.h"
@@ -65,6 +66,9 @@ inline constexpr int kEnclosedSubdivision = 8;
 /// Enclosed regions are taken as they are listed (not faced ones: those may be seen), and as not
 /// overlapping each other.
 std::vector<EnclosedElement> enclosed_elements(const Scene& scene, const Mesh& mesh, const ContactFinder& contacts);
+/// The same from each mesh side's contacts, found already (ContactFinder::at(), by mesh side).
+std::vector<EnclosedElement> enclosed_elements(const Scene& scene, const Mesh& mesh,
+                                               std::span<const SideContactSet> contacts_by_side);
 
 /// Moves the receiver's centre and Gauss points onto the element's exposed part
 /// (EnclosedElement::exposed_uv, not empty): its centre to the exposed point nearest their mean;

@@ -76,12 +76,17 @@ Solution solve_progressive(const Scene& scene, Mesh mesh, const ProgressiveOptio
   std::vector<SideState> state(mesh.surfaces.size());
   std::vector<ShooterSplits> splits;  // per side, for its shooter trees
   const ContactFinder contacts(scene);
-  for (const MeshSurface& side : mesh.surfaces) splits.push_back(shooter_splits(scene, side, contacts));
+  std::vector<SideContactSet> contacts_by_side;  // found once: the shooter trees' splits and the enclosed parts
+  for (const MeshSurface& side : mesh.surfaces) {
+    contacts_by_side.push_back(contacts.at(SideRef{side.scene_surface, side.back_side}));
+    splits.push_back(shooter_splits(scene, side, contacts_by_side.back()));
+  }
   const std::vector<std::vector<ConvexPolygon>> covers_by = covers_by_surface(scene);
   std::vector<std::vector<Receiver>> receivers = make_receivers(scene, mesh);  // once for all shots
   // Elements partly enclosed by surfaces standing on their side: they gather on their exposed
   // part, and their areas, which carry every power of the solve, are their exposed parts'.
-  const std::vector<EnclosedElement> enclosed = enclosed_elements(scene, mesh, contacts);
+  const std::vector<EnclosedElement> enclosed = enclosed_elements(scene, mesh, contacts_by_side);
+  std::vector<SideContactSet>().swap(contacts_by_side);  // no further use
   std::vector<double> whole_area_m2;  // theirs, for the solution
   for (const EnclosedElement& x : enclosed) {
     MeshElement& element = mesh.surfaces[x.side].elements[x.element];

@@ -271,6 +271,10 @@ size_t ShooterTree::build(size_t index, int i0, int j0, int i1, int j1, size_t n
 }
 
 ShooterSplits shooter_splits(const Scene& scene, const MeshSurface& side, const ContactFinder& contacts) {
+  return shooter_splits(scene, side, contacts.at(SideRef{side.scene_surface, side.back_side}));
+}
+
+ShooterSplits shooter_splits(const Scene& scene, const MeshSurface& side, const SideContactSet& contacts) {
   ShooterSplits out;
   if (side.domain.is_triangle()) return out;
   const Surface& surface = scene.surfaces[side.scene_surface];
@@ -283,7 +287,7 @@ ShooterSplits shooter_splits(const Scene& scene, const MeshSurface& side, const 
         at > 0 && at < n)
       into.push_back(static_cast<int>(at));
   };
-  for (const Segment2& line : contacts.at(SideRef{side.scene_surface, side.back_side}).lines) {
+  for (const Segment2& line : contacts.lines) {
     boundary(line.a.x(), line.b.x(), length_u, side.nu, out.u);
     boundary(line.a.y(), line.b.y(), length_v, side.nv, out.v);
   }

@@ -53,6 +53,8 @@ struct ShooterSplits {
 /// tol::kSplitAlignRelative of a cell from a cell boundary, and triangles' sides, give none.
 /// `contacts`: the scene's.
 ShooterSplits shooter_splits(const Scene& scene, const MeshSurface& side, const ContactFinder& contacts);
+/// The same from the side's contacts, found already (ContactFinder::at()).
+ShooterSplits shooter_splits(const Scene& scene, const MeshSurface& side, const SideContactSet& contacts);
 
 /// The blocks over the cells [i0,i1) x [j0,j1) of a side (a shooting patch), from the whole
 /// patch down to single elements, with their unshot radiosity when built. A block splits in
